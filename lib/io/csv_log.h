@@ -1,0 +1,52 @@
+// Reader for the log files of SPEC section 3: UTF-8 text, comma separated,
+// one header row, '#' comment lines, SI units. Parsing is strict: every
+// problem throws InputError "file:line: column 'name': what".
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace driveid {
+
+/// A parsed log: the requested columns, in the order they were requested,
+/// stored column-major. Names are the logical names (after --col mapping).
+struct CsvLog {
+  std::string path;                        ///< file the data came from (for messages)
+  std::vector<std::string> names;          ///< logical column names, as requested
+  std::vector<std::vector<double>> columns;  ///< columns[k][row], SI units
+  std::vector<int> line_numbers;           ///< 1-based file line of each data row
+  std::vector<std::string> comments;       ///< comment lines without the leading '#'
+
+  std::size_t rows() const { return line_numbers.size(); }
+  /// Column by logical name; throws std::out_of_range for a name not requested.
+  const std::vector<double>& column(const std::string& name) const;
+};
+
+/// Options of the reader.
+struct CsvReadOptions {
+  /// Logical column name -> header text in the file (from `--col NAME=HEADER`).
+  std::map<std::string, std::string> column_map;
+  /// Name of the time column, which must be strictly increasing ("" = none).
+  std::string time_column = "t";
+  /// Longest accepted line, in bytes (a longer one is an error, not a hang).
+  std::size_t max_line_bytes = 1 << 20;
+};
+
+/// Parses CSV text already in memory. `path` is used in messages only.
+/// `required` lists the logical names that must be present; every row must
+/// have exactly as many fields as the header, each a finite number.
+CsvLog ParseCsvLog(const std::string& path, const std::string& text,
+                   const std::vector<std::string>& required, const CsvReadOptions& options = {});
+
+/// Reads and parses a file (see ParseCsvLog). Throws InputError if unreadable.
+CsvLog ReadCsvLog(const std::string& path, const std::vector<std::string>& required,
+                  const CsvReadOptions& options = {});
+
+/// Reads a whole file into memory; throws InputError naming the file.
+std::string ReadFileToString(const std::string& path);
+
+/// Parses `--col NAME=HEADER` entries; throws InputError on a malformed entry.
+std::map<std::string, std::string> ParseColumnMap(const std::vector<std::string>& entries);
+
+}  // namespace driveid

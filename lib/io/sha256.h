@@ -1,0 +1,11 @@
+// SHA-256 (FIPS 180-4) for the provenance of fitted parameter files.
+#pragma once
+
+#include <string>
+
+namespace driveid {
+
+/// Lower-case hexadecimal SHA-256 digest of `bytes`.
+std::string Sha256Hex(const std::string& bytes);
+
+}  // namespace driveid

@@ -1,0 +1,191 @@
+#include "sim/cvodes_integrator.h"
+
+#include <cvodes/cvodes.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+
+namespace driveid {
+namespace {
+
+void Check(int code, const char* function) {
+  if (code < 0) throw IdentificationError(fmt::format("integrator: {} failed with code {}", function, code));
+}
+
+template <typename T>
+T* CheckPointer(T* pointer, const char* function) {
+  if (pointer == nullptr) throw IdentificationError(fmt::format("integrator: {} returned null", function));
+  return pointer;
+}
+
+int RightHandSide(realtype t, N_Vector y, N_Vector ydot, void* user_data) {
+  try {
+    static_cast<const SensitivityOdeSystem*>(user_data)->CalcDerivatives(t, N_VGetArrayPointer(y),
+                                                                         N_VGetArrayPointer(ydot));
+    return 0;
+  } catch (...) {
+    return -1;
+  }
+}
+
+int Jacobian(realtype t, N_Vector y, N_Vector, SUNMatrix jac, void* user_data, N_Vector, N_Vector, N_Vector) {
+  try {
+    static_cast<const SensitivityOdeSystem*>(user_data)->CalcStateJacobian(t, N_VGetArrayPointer(y),
+                                                                           SUNDenseMatrix_Data(jac));
+    return 0;
+  } catch (...) {
+    return -1;
+  }
+}
+
+int SensitivityRightHandSide(int, realtype t, N_Vector y, N_Vector, int j, N_Vector ys, N_Vector ysdot,
+                             void* user_data, N_Vector, N_Vector) {
+  try {
+    static_cast<const SensitivityOdeSystem*>(user_data)->CalcSensitivityDerivative(
+        t, N_VGetArrayPointer(y), j, N_VGetArrayPointer(ys), N_VGetArrayPointer(ysdot));
+    return 0;
+  } catch (...) {
+    return -1;
+  }
+}
+
+int Roots(realtype t, N_Vector y, realtype* g, void* user_data) {
+  try {
+    static_cast<const SensitivityOdeSystem*>(user_data)->CalcRoots(t, N_VGetArrayPointer(y), g);
+    return 0;
+  } catch (...) {
+    return -1;
+  }
+}
+
+}  // namespace
+
+struct CvodesIntegrator::Handles {
+  SUNContext context = nullptr;
+  N_Vector state = nullptr;
+  N_Vector absolute_tolerance = nullptr;
+  N_Vector* sensitivities = nullptr;
+  int sensitivity_count = 0;
+  SUNMatrix matrix = nullptr;
+  SUNLinearSolver linear_solver = nullptr;
+  void* memory = nullptr;
+  bool sensitivities_initialised = false;
+
+  ~Handles() {
+    if (memory) CVodeFree(&memory);
+    if (linear_solver) SUNLinSolFree(linear_solver);
+    if (matrix) SUNMatDestroy(matrix);
+    if (sensitivities) N_VDestroyVectorArray(sensitivities, sensitivity_count);
+    if (absolute_tolerance) N_VDestroy(absolute_tolerance);
+    if (state) N_VDestroy(state);
+    if (context) SUNContext_Free(&context);
+  }
+};
+
+CvodesIntegrator::CvodesIntegrator(const SensitivityOdeSystem& system, const IntegratorOptions& options)
+    : handles_(std::make_unique<Handles>()), system_(system) {
+  Handles& h = *handles_;
+  const int n = system.state_size();
+  Check(SUNContext_Create(nullptr, &h.context), "SUNContext_Create");
+  h.state = CheckPointer(N_VNew_Serial(n, h.context), "N_VNew_Serial");
+  N_VConst(0.0, h.state);
+  h.absolute_tolerance = CheckPointer(N_VNew_Serial(n, h.context), "N_VNew_Serial");
+  for (int i = 0; i < n; ++i) {
+    NV_Ith_S(h.absolute_tolerance, i) =
+        options.absolute_tolerance.empty() ? 1e-12 : options.absolute_tolerance[static_cast<std::size_t>(i)];
+  }
+  // Adams-Moulton with Newton iteration: the drive trains are lightly damped
+  // oscillators, not stiff, and Adams keeps their oscillations undamped.
+  h.memory = CheckPointer(CVodeCreate(CV_ADAMS, h.context), "CVodeCreate");
+  Check(CVodeInit(h.memory, RightHandSide, 0.0, h.state), "CVodeInit");
+  Check(CVodeSetUserData(h.memory, const_cast<SensitivityOdeSystem*>(&system)), "CVodeSetUserData");
+  Check(CVodeSVtolerances(h.memory, options.relative_tolerance, h.absolute_tolerance), "CVodeSVtolerances");
+  Check(CVodeSetMaxNumSteps(h.memory, options.max_steps), "CVodeSetMaxNumSteps");
+  h.matrix = CheckPointer(SUNDenseMatrix(n, n, h.context), "SUNDenseMatrix");
+  h.linear_solver = CheckPointer(SUNLinSol_Dense(h.state, h.matrix, h.context), "SUNLinSol_Dense");
+  Check(CVodeSetLinearSolver(h.memory, h.linear_solver, h.matrix), "CVodeSetLinearSolver");
+  Check(CVodeSetJacFn(h.memory, Jacobian), "CVodeSetJacFn");
+  if (system.root_count() > 0) {
+    Check(CVodeRootInit(h.memory, system.root_count(), Roots), "CVodeRootInit");
+    Check(CVodeSetNoInactiveRootWarn(h.memory), "CVodeSetNoInactiveRootWarn");
+  }
+  root_directions_.assign(static_cast<std::size_t>(system.root_count()), 0);
+
+  h.sensitivity_count = system.sensitivity_count();
+  if (h.sensitivity_count > 0) {
+    h.sensitivities = CheckPointer(N_VCloneVectorArray(h.sensitivity_count, h.state), "N_VCloneVectorArray");
+    for (int j = 0; j < h.sensitivity_count; ++j) N_VConst(0.0, h.sensitivities[j]);
+    Check(CVodeSensInit1(h.memory, h.sensitivity_count, CV_STAGGERED, SensitivityRightHandSide, h.sensitivities),
+          "CVodeSensInit1");
+    std::vector<realtype> absolute(static_cast<std::size_t>(h.sensitivity_count));
+    // Sensitivity j is measured in state units per unit of p_j: its absolute
+    // tolerance is the state's, divided by the parameter's scale. CVODES
+    // takes one scalar per sensitivity; use the smallest state tolerance.
+    double smallest = 1e300;
+    for (int i = 0; i < n; ++i) smallest = std::min(smallest, NV_Ith_S(h.absolute_tolerance, i));
+    for (int j = 0; j < h.sensitivity_count; ++j) {
+      const double scale = options.parameter_scale.empty() ? 1.0 : options.parameter_scale[static_cast<std::size_t>(j)];
+      absolute[static_cast<std::size_t>(j)] = smallest / (scale > 0.0 ? scale : 1.0);
+    }
+    Check(CVodeSensSStolerances(h.memory, options.relative_tolerance, absolute.data()), "CVodeSensSStolerances");
+    Check(CVodeSetSensErrCon(h.memory, SUNTRUE), "CVodeSetSensErrCon");
+    h.sensitivities_initialised = true;
+    Check(CVodeSensToggleOff(h.memory), "CVodeSensToggleOff");
+  }
+}
+
+CvodesIntegrator::~CvodesIntegrator() = default;
+
+void CvodesIntegrator::Restart(double t0, const double* x0, const std::vector<const double*>& s0,
+                               bool with_sensitivities) {
+  Handles& h = *handles_;
+  const int n = system_.state_size();
+  double* state = N_VGetArrayPointer(h.state);
+  for (int i = 0; i < n; ++i) state[i] = x0[i];
+  Check(CVodeReInit(h.memory, t0, h.state), "CVodeReInit");
+  sensitivities_on_ = with_sensitivities && h.sensitivity_count > 0;
+  if (sensitivities_on_) {
+    for (int j = 0; j < h.sensitivity_count; ++j) {
+      double* s = N_VGetArrayPointer(h.sensitivities[j]);
+      const double* source = static_cast<std::size_t>(j) < s0.size() ? s0[static_cast<std::size_t>(j)] : nullptr;
+      for (int i = 0; i < n; ++i) s[i] = source ? source[i] : 0.0;
+    }
+    Check(CVodeSensReInit(h.memory, CV_STAGGERED, h.sensitivities), "CVodeSensReInit");
+  } else if (h.sensitivity_count > 0) {
+    Check(CVodeSensToggleOff(h.memory), "CVodeSensToggleOff");
+  }
+  time_ = t0;
+  std::fill(root_directions_.begin(), root_directions_.end(), 0);
+}
+
+bool CvodesIntegrator::Advance(double t_out, double t_stop) {
+  Handles& h = *handles_;
+  Check(CVodeSetStopTime(h.memory, t_stop), "CVodeSetStopTime");
+  realtype reached = time_;
+  const int flag = CVode(h.memory, t_out, h.state, &reached, CV_NORMAL);
+  Check(flag, "CVode");
+  time_ = reached;
+  if (sensitivities_on_) {
+    realtype sensitivity_time = 0.0;
+    Check(CVodeGetSens(h.memory, &sensitivity_time, h.sensitivities), "CVodeGetSens");
+  }
+  if (flag == CV_ROOT_RETURN) {
+    Check(CVodeGetRootInfo(h.memory, root_directions_.data()), "CVodeGetRootInfo");
+    return true;
+  }
+  std::fill(root_directions_.begin(), root_directions_.end(), 0);
+  return false;
+}
+
+const double* CvodesIntegrator::state() const { return N_VGetArrayPointer(handles_->state); }
+
+const double* CvodesIntegrator::sensitivity(int j) const {
+  return N_VGetArrayPointer(handles_->sensitivities[j]);
+}
+
+}  // namespace driveid

@@ -1,0 +1,219 @@
+#include "sim/drivetrain_simulator.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "sim/cvodes_integrator.h"
+
+namespace driveid {
+namespace {
+constexpr int kMaxSwitches = 100000;  // per simulation: more means chattering, refuse
+constexpr int kOmega = 1;
+
+int Sign(double value) { return (value > 0.0) - (value < 0.0); }
+}  // namespace
+
+class DriveTrainSimulator::System final : public SensitivityOdeSystem {
+ public:
+  System(DriveTrainModel model, const DriveTrainParameters& nominal, std::vector<DriveTrainParameter> parameters)
+      : model_(model), params_(nominal), parameters_(std::move(parameters)),
+        n_(DriveTrainStateSize(model)) {
+    IntegratorOptions options;
+    // Absolute tolerances from the output: 1e-7 N m of link torque.
+    const double torque_tolerance = 1e-7;
+    const double phi_tolerance = torque_tolerance / CalcSeriesStiffness(nominal);
+    options.relative_tolerance = 1e-8;
+    options.absolute_tolerance = {phi_tolerance, phi_tolerance * 1e3};
+    if (model == DriveTrainModel::kFull) {
+      const double deflection_tolerance = torque_tolerance / nominal.link_stiffness;
+      options.absolute_tolerance.push_back(deflection_tolerance);
+      options.absolute_tolerance.push_back(deflection_tolerance * 1e3);
+    }
+    for (auto parameter : parameters_) {
+      options.parameter_scale.push_back(std::abs(GetDriveTrainParameter(nominal, parameter)));
+    }
+    integrator_ = std::make_unique<CvodesIntegrator>(*this, options);
+    jacobian_.resize(static_cast<std::size_t>(n_ * n_));
+  }
+
+  int state_size() const override { return n_; }
+  int sensitivity_count() const override { return static_cast<int>(parameters_.size()); }
+  int root_count() const override { return 2; }
+
+  void CalcDerivatives(double, const double* x, double* dx) const override {
+    CalcDriveTrainDerivatives(params_, model_, motor_torque_, mode_, x, dx);
+  }
+  void CalcStateJacobian(double, const double*, double* jacobian) const override {
+    CalcDriveTrainStateJacobian(params_, model_, mode_, jacobian);
+  }
+  void CalcSensitivityDerivative(double, const double* x, int j, const double* s, double* ds) const override {
+    CalcDriveTrainParameterJacobian(params_, model_, motor_torque_, mode_, x, parameters_[static_cast<std::size_t>(j)], ds);
+    for (int col = 0; col < n_; ++col) {
+      const double sc = s[col];
+      if (sc == 0.0) continue;
+      for (int row = 0; row < n_; ++row) ds[row] += jacobian_cache(col, row) * sc;
+    }
+  }
+  void CalcRoots(double, const double* x, double* g) const override {
+    if (mode_ != 0) {
+      g[0] = x[kOmega];
+      g[1] = 1.0;  // inactive
+    } else {
+      const double net = CalcNetTorque(params_, model_, motor_torque_, x);
+      g[0] = net - params_.coulomb_friction;
+      g[1] = net + params_.coulomb_friction;
+    }
+  }
+
+  void Simulate(const DriveTrainParameters& params, const std::vector<double>& time,
+                const std::vector<double>& motor_torque, bool with_sensitivities, DriveTrainResponse* out) {
+    params_ = params;
+    const std::size_t samples = time.size();
+    const std::size_t p = parameters_.size();
+    with_sensitivities = with_sensitivities && p > 0;
+    out->link_torque.assign(samples, 0.0);
+    out->friction_mode.assign(samples, 0);
+    out->link_torque_sensitivity.assign(with_sensitivities ? samples * p : 0, 0.0);
+    out->switch_count = 0;
+    if (samples == 0) return;
+
+    x_.assign(static_cast<std::size_t>(n_), 0.0);
+    s_.assign(p * static_cast<std::size_t>(n_), 0.0);
+    mode_ = 0;
+    motor_torque_ = motor_torque[0];
+    DecideModeAtRest();
+    Record(0, with_sensitivities, out);
+
+    std::size_t k = 0;
+    while (k + 1 < samples) {
+      std::size_t end = k + 1;
+      while (end + 1 < samples && motor_torque[end] == motor_torque[k]) ++end;
+      motor_torque_ = motor_torque[k];
+      if (x_[kOmega] == 0.0) DecideModeAtRest();
+      RefreshJacobian();
+      RestartIntegrator(time[k], with_sensitivities);
+      for (std::size_t m = k + 1; m <= end; ++m) {
+        while (integrator_->Advance(time[m], time[end])) {
+          HandleSwitch(with_sensitivities);
+          if (++out->switch_count > kMaxSwitches) {
+            throw IdentificationError(fmt::format(
+                "simulation: more than {} stick/slip switches before t = {} s (chattering)", kMaxSwitches,
+                integrator_->time()));
+          }
+          RestartIntegrator(integrator_->time(), with_sensitivities);
+        }
+        CopyFromIntegrator(with_sensitivities);
+        Record(m, with_sensitivities, out);
+      }
+      k = end;
+    }
+  }
+
+  DriveTrainModel model() const { return model_; }
+  const std::vector<DriveTrainParameter>& parameters() const { return parameters_; }
+
+ private:
+  double jacobian_cache(int col, int row) const { return jacobian_[static_cast<std::size_t>(col * n_ + row)]; }
+
+  void RefreshJacobian() { CalcDriveTrainStateJacobian(params_, model_, mode_, jacobian_.data()); }
+
+  // omega == 0: stuck if the friction can hold the net torque, else slide towards it.
+  void DecideModeAtRest() {
+    const double net = CalcNetTorque(params_, model_, motor_torque_, x_.data());
+    mode_ = std::abs(net) <= params_.coulomb_friction ? 0 : Sign(net);
+  }
+
+  void RestartIntegrator(double t, bool with_sensitivities) {
+    pointers_.clear();
+    for (std::size_t j = 0; j < parameters_.size(); ++j) pointers_.push_back(&s_[j * static_cast<std::size_t>(n_)]);
+    integrator_->Restart(t, x_.data(), pointers_, with_sensitivities);
+  }
+
+  void CopyFromIntegrator(bool with_sensitivities) {
+    std::copy(integrator_->state(), integrator_->state() + n_, x_.begin());
+    if (!with_sensitivities) return;
+    for (std::size_t j = 0; j < parameters_.size(); ++j) {
+      const double* s = integrator_->sensitivity(static_cast<int>(j));
+      std::copy(s, s + n_, s_.begin() + static_cast<std::ptrdiff_t>(j * static_cast<std::size_t>(n_)));
+    }
+  }
+
+  // A root stopped the integrator: switch the friction mode and apply the
+  // sensitivity jump conditions (see the header).
+  void HandleSwitch(bool with_sensitivities) {
+    CopyFromIntegrator(with_sensitivities);
+    const int old_mode = mode_;
+    if (old_mode != 0) {
+      double before[4];
+      CalcDriveTrainDerivatives(params_, model_, motor_torque_, old_mode, x_.data(), before);
+      const double omega_rate_before = before[kOmega];
+      x_[kOmega] = 0.0;
+      DecideModeAtRest();
+      if (with_sensitivities && std::abs(omega_rate_before) > 0.0) {
+        double after[4];
+        CalcDriveTrainDerivatives(params_, model_, motor_torque_, mode_, x_.data(), after);
+        for (std::size_t j = 0; j < parameters_.size(); ++j) {
+          double* s = &s_[j * static_cast<std::size_t>(n_)];
+          const double time_derivative = -s[kOmega] / omega_rate_before;  // dt*/dp_j
+          for (int i = 0; i < n_; ++i) s[i] += (before[i] - after[i]) * time_derivative;
+          s[kOmega] = mode_ == 0 ? 0.0 : s[kOmega];
+        }
+      }
+    } else {
+      const auto& fired = integrator_->root_directions();
+      const double net = CalcNetTorque(params_, model_, motor_torque_, x_.data());
+      mode_ = fired[0] != 0 ? 1 : (fired[1] != 0 ? -1 : Sign(net));
+    }
+    RefreshJacobian();
+  }
+
+  void Record(std::size_t k, bool with_sensitivities, DriveTrainResponse* out) const {
+    out->link_torque[k] = CalcLinkTorque(params_, model_, x_.data());
+    out->friction_mode[k] = mode_;
+    if (!with_sensitivities) return;
+    double gradient[4];
+    CalcLinkTorqueStateGradient(params_, model_, gradient);
+    const std::size_t p = parameters_.size();
+    for (std::size_t j = 0; j < p; ++j) {
+      const double* s = &s_[j * static_cast<std::size_t>(n_)];
+      double value = CalcLinkTorqueParameterDerivative(params_, model_, x_.data(), parameters_[j]);
+      for (int i = 0; i < n_; ++i) value += gradient[i] * s[i];
+      out->link_torque_sensitivity[k * p + j] = value;
+    }
+  }
+
+  DriveTrainModel model_;
+  DriveTrainParameters params_;
+  std::vector<DriveTrainParameter> parameters_;
+  int n_;
+  std::unique_ptr<CvodesIntegrator> integrator_;
+  std::vector<double> jacobian_;
+  std::vector<double> x_;
+  std::vector<double> s_;  // sensitivities, parameter-major
+  std::vector<const double*> pointers_;
+  double motor_torque_ = 0.0;
+  int mode_ = 0;
+};
+
+DriveTrainSimulator::DriveTrainSimulator(DriveTrainModel model, const DriveTrainParameters& nominal,
+                                         std::vector<DriveTrainParameter> sensitivity_parameters)
+    : system_(std::make_unique<System>(model, nominal, std::move(sensitivity_parameters))) {}
+
+DriveTrainSimulator::~DriveTrainSimulator() = default;
+
+void DriveTrainSimulator::Simulate(const DriveTrainParameters& params, const std::vector<double>& time,
+                                   const std::vector<double>& motor_torque, bool with_sensitivities,
+                                   DriveTrainResponse* response) {
+  system_->Simulate(params, time, motor_torque, with_sensitivities, response);
+}
+
+DriveTrainModel DriveTrainSimulator::model() const { return system_->model(); }
+
+const std::vector<DriveTrainParameter>& DriveTrainSimulator::sensitivity_parameters() const {
+  return system_->parameters();
+}
+
+}  // namespace driveid

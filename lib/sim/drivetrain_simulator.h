@@ -1,0 +1,66 @@
+// Simulation of the drive train of models/drivetrain.h under a zero-order-
+// hold motor torque, with Coulomb friction that truly sticks, and forward
+// sensitivities of the link torque with respect to chosen parameters.
+//
+// Stick/slip is a switched system. Each friction mode (-1, 0, +1) has a
+// smooth vector field, integrated by CVODES; switches are located by CVODES
+// root finding:
+//   sliding (mode +-1): root g = omega. At omega = 0 the drive sticks if
+//     |F| <= tau_c, else it reverses (mode = sgn F).
+//   stuck (mode 0): roots g = F - tau_c and g = F + tau_c; crossing one
+//     breaks the drive away in the direction of F.
+// At a state event at t*(p) where the field jumps from f- to f+, the
+// sensitivities jump by
+//   s+ = s- + (f- - f+) dt*/dp,  dt*/dp = -(dg/dx s-) / (dg/dx f-)
+// (differentiate x(t*(p), p) on both sides of the event). For sticking this
+// gives s_omega+ = 0; at a reversal s_omega+ = s_omega- f+_omega / f-_omega;
+// at a break-away f is continuous (F = +-tau_c there) and nothing jumps.
+// Input steps happen at sample times, which do not depend on p: the field
+// jumps but the sensitivities do not.
+//
+// The torque command tau_motor[k] is held on [t_k, t_{k+1}); the response
+// y_k = tau_link(t_k) is sampled before the new command applies. The drive
+// starts at rest and unloaded at t_0 (phi = Delta = 0).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "models/drivetrain.h"
+
+namespace driveid {
+
+/// Simulated response at the sample times.
+struct DriveTrainResponse {
+  std::vector<double> link_torque;              ///< tau_link(t_k) [N m]
+  /// d tau_link(t_k) / d p_j, row-major (sample k, parameter j); empty without sensitivities.
+  std::vector<double> link_torque_sensitivity;
+  std::vector<int> friction_mode;               ///< friction mode at t_k (-1, 0, +1)
+  int switch_count = 0;                         ///< number of stick/slip switches
+};
+
+class DriveTrainSimulator {
+ public:
+  /// `nominal` sets the integrator's tolerance scales; `sensitivity_parameters`
+  /// are the parameters whose sensitivities Simulate can compute.
+  DriveTrainSimulator(DriveTrainModel model, const DriveTrainParameters& nominal,
+                      std::vector<DriveTrainParameter> sensitivity_parameters);
+  ~DriveTrainSimulator();
+  DriveTrainSimulator(const DriveTrainSimulator&) = delete;
+  DriveTrainSimulator& operator=(const DriveTrainSimulator&) = delete;
+
+  /// Simulates the response to the held torque command. `time` strictly
+  /// increasing, same length as `motor_torque`. Reuses `response`'s storage.
+  /// Throws IdentificationError if the integrator fails.
+  void Simulate(const DriveTrainParameters& params, const std::vector<double>& time,
+                const std::vector<double>& motor_torque, bool with_sensitivities, DriveTrainResponse* response);
+
+  DriveTrainModel model() const;
+  const std::vector<DriveTrainParameter>& sensitivity_parameters() const;
+
+ private:
+  class System;
+  std::unique_ptr<System> system_;
+};
+
+}  // namespace driveid

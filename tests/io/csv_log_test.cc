@@ -1,0 +1,79 @@
+#include "io/csv_log.h"
+
+#include <catch2/catch.hpp>
+
+#include "core/errors.h"
+
+using driveid::CsvReadOptions;
+using driveid::InputError;
+using driveid::ParseCsvLog;
+
+namespace {
+const std::vector<std::string> kStep = {"t", "tau_motor", "tau_link"};
+
+std::string ErrorOf(const std::string& text, const CsvReadOptions& options = {}) {
+  try {
+    ParseCsvLog("log.csv", text, kStep, options);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+}  // namespace
+
+TEST_CASE("reads header, comments, CRLF and BOM") {
+  const std::string text =
+      "\xEF\xBB\xBF# made by hand\r\nt, tau_motor ,tau_link,extra\r\n0,0,0.5,x\r\n\r\n0.001,-0.8,1e-3,y\r\n";
+  const auto log = ParseCsvLog("log.csv", text, kStep);
+  REQUIRE(log.rows() == 2);
+  CHECK(log.column("tau_motor")[1] == -0.8);
+  CHECK(log.column("tau_link")[1] == 1e-3);
+  CHECK(log.line_numbers[1] == 5);
+  REQUIRE(log.comments.size() == 1);
+  CHECK(log.comments[0] == " made by hand");
+}
+
+TEST_CASE("maps columns with --col") {
+  CsvReadOptions options;
+  options.column_map = driveid::ParseColumnMap({"tau_link=strain"});
+  const auto log = ParseCsvLog("log.csv", "t,tau_motor,strain\n0,1,2\n", kStep, options);
+  CHECK(log.column("tau_link")[0] == 2.0);
+  CHECK_THROWS_AS(driveid::ParseColumnMap({"novalue"}), InputError);
+}
+
+TEST_CASE("irregular sampling is accepted, non-increasing time is not") {
+  CHECK_NOTHROW(ParseCsvLog("log.csv", "t,tau_motor,tau_link\n0,0,0\n0.001,0,0\n0.0035,0,0\n", kStep));
+  CHECK(ErrorOf("t,tau_motor,tau_link\n0,0,0\n0.001,0,0\n0.001,0,0\n") ==
+        "log.csv:4: column 't': time not strictly increasing (0.001 after 0.001)");
+}
+
+TEST_CASE("every malformed input names file, line and column") {
+  CHECK(ErrorOf("") == "log.csv: empty file: no header row");
+  CHECK(ErrorOf("# only a comment\n") == "log.csv: empty file: no header row");
+  CHECK(ErrorOf("t,tau_motor,tau_link\n") == "log.csv:1: no data rows after the header");
+  CHECK_THAT(ErrorOf("t,tau_motor\n0,1\n"), Catch::StartsWith("log.csv:1: missing column 'tau_link'"));
+  CHECK(ErrorOf("t,tau_motor,tau_link\n0,0,1.2.3\n") == "log.csv:2: column 'tau_link': not a number: \"1.2.3\"");
+  CHECK(ErrorOf("t,tau_motor,tau_link\n0,nan,1\n") == "log.csv:2: column 'tau_motor': not a finite number: \"nan\"");
+  CHECK(ErrorOf("t,tau_motor,tau_link\n0,0,inf\n") == "log.csv:2: column 'tau_link': not a finite number: \"inf\"");
+  CHECK(ErrorOf("t,tau_motor,tau_link\n0,0,1e999\n") == "log.csv:2: column 'tau_link': number out of range: \"1e999\"");
+  CHECK(ErrorOf("t,tau_motor,tau_link\n0,,1\n") == "log.csv:2: column 'tau_motor': empty cell");
+  CHECK(ErrorOf("t,tau_motor,tau_link\n0,0\n") == "log.csv:2: 2 fields, but the header (line 1) has 3");
+  CHECK(ErrorOf("t,tau_motor,tau_link\n0,0,1,4\n") == "log.csv:2: 4 fields, but the header (line 1) has 3");
+  CHECK(ErrorOf("t,t,tau_link\n0,0,1\n") == "log.csv:1: column 't' appears twice in the header");
+}
+
+TEST_CASE("binary garbage and huge lines are refused without echoing them") {
+  std::string garbage = "t,tau_motor,tau_link\n0,0,";
+  for (int i = 0; i < 300; ++i) garbage += static_cast<char>(i % 256);
+  const std::string error = ErrorOf(garbage);
+  CHECK_THAT(error, Catch::StartsWith("log.csv:2: column 'tau_link': not a number: \"\\x00"));
+  CHECK(error.size() < 400);
+  const std::string huge = "t,tau_motor,tau_link\n0,0," + std::string(2 << 20, '1') + "\n";
+  CHECK(ErrorOf(huge) == "log.csv:2: line longer than 1048576 bytes");
+  CHECK_THAT(ErrorOf(std::string("\0\0\0\x01\x02", 5)), Catch::StartsWith("log.csv:1: missing column"));
+}
+
+TEST_CASE("unreadable file") {
+  CHECK_THROWS_WITH(driveid::ReadCsvLog("/nonexistent/x.csv", kStep),
+                    "/nonexistent/x.csv: cannot open file for reading");
+}

@@ -1,0 +1,124 @@
+// The stick/slip simulator against closed forms, finite differences and the
+// defining property of sticking friction.
+#include "sim/drivetrain_simulator.h"
+
+#include <cmath>
+
+#include <catch2/catch.hpp>
+
+using namespace driveid;
+
+namespace {
+DriveTrainParameters PaperParameters() {
+  DriveTrainParameters p;
+  p.motor_inertia = 0.413 / 6400.0;
+  p.gearbox_inertia = 0.043 / 6400.0;
+  return p;
+}
+
+struct StepLog {
+  std::vector<double> time, torque;
+};
+
+StepLog MakeStep(double rate, double duration, double step_time, double amplitude) {
+  StepLog log;
+  const int n = static_cast<int>(std::lround(duration * rate)) + 1;
+  for (int k = 0; k < n; ++k) {
+    log.time.push_back(k / rate);
+    log.torque.push_back(k / rate >= step_time - 1e-12 ? amplitude : 0.0);
+  }
+  return log;
+}
+}  // namespace
+
+TEST_CASE("reduced step response matches the closed form, then sticks") {
+  const auto params = PaperParameters();
+  const auto log = MakeStep(1000.0, 0.2, 0.0, -0.8);
+  DriveTrainSimulator simulator(DriveTrainModel::kReduced, params, {});
+  DriveTrainResponse response;
+  simulator.Simulate(params, log.time, log.torque, false, &response);
+  // Sliding in the negative direction: target level Y = n_g u + tau_c.
+  const auto tf = CalcReducedTransferFunction(params);
+  const double zeta = tf.damping_ratio, wn = tf.natural_frequency;
+  const double wd = wn * std::sqrt(1 - zeta * zeta);
+  const double target = 80.0 * -0.8 + params.coulomb_friction;
+  const double stick_time = M_PI / wd;
+  const double stuck_level = target * (1 + std::exp(-zeta * wn * stick_time));
+  for (std::size_t k = 0; k < log.time.size(); ++k) {
+    const double t = log.time[k];
+    const double expected = t < stick_time ? target * (1 - std::exp(-zeta * wn * t) *
+                                                               (std::cos(wd * t) + zeta / std::sqrt(1 - zeta * zeta) * std::sin(wd * t)))
+                                           : stuck_level;
+    INFO("t = " << t);
+    CHECK(response.link_torque[k] == Approx(expected).margin(1e-5));
+  }
+  CHECK(response.switch_count == 1);
+  CHECK(response.friction_mode.back() == 0);
+  // Steady state falls short of n_g |u| by about tau_c.
+  CHECK(std::abs(response.link_torque.back()) == Approx(64.0 - 5.0).margin(0.25));
+}
+
+TEST_CASE("a stuck drive stays put under sub-breakaway torque") {
+  auto params = PaperParameters();
+  for (auto model : {DriveTrainModel::kReduced, DriveTrainModel::kFull}) {
+    // n_g |u| = 4.8 N m < tau_c = 5 N m: nothing may move, ever.
+    const auto log = MakeStep(1000.0, 1.0, 0.1, 0.06);
+    DriveTrainSimulator simulator(model, params, {});
+    DriveTrainResponse response;
+    simulator.Simulate(params, log.time, log.torque, false, &response);
+    for (double y : response.link_torque) CHECK(y == 0.0);
+    CHECK(response.switch_count == 0);
+  }
+  // After a real step the drive sticks and then holds without creeping.
+  const auto log = MakeStep(1000.0, 2.0, 0.02, -0.8);
+  DriveTrainSimulator simulator(DriveTrainModel::kReduced, params, {});
+  DriveTrainResponse response;
+  simulator.Simulate(params, log.time, log.torque, false, &response);
+  const double at_half = response.link_torque[500];
+  CHECK(response.link_torque.back() == at_half);
+}
+
+TEST_CASE("sensitivities match central differences of whole simulations") {
+  const auto params = PaperParameters();
+  struct Case {
+    DriveTrainModel model;
+    double rate;
+  };
+  for (const Case c : {Case{DriveTrainModel::kReduced, 1000.0}, Case{DriveTrainModel::kFull, 5000.0}}) {
+    // A step followed by a reversal exercises stick, break-away and reversal.
+    auto log = MakeStep(c.rate, 0.3, 0.02, -0.8);
+    for (std::size_t k = 0; k < log.time.size(); ++k) {
+      if (log.time[k] >= 0.15) log.torque[k] = 0.5;
+    }
+    std::vector<DriveTrainParameter> parameters = {
+        DriveTrainParameter::kViscousFriction, DriveTrainParameter::kMotorInertia,
+        DriveTrainParameter::kCoulombFriction, DriveTrainParameter::kLinkStiffness,
+        DriveTrainParameter::kGearboxStiffness};
+    if (c.model == DriveTrainModel::kFull) parameters.push_back(DriveTrainParameter::kGearboxInertia);
+    DriveTrainSimulator simulator(c.model, params, parameters);
+    DriveTrainResponse response;
+    simulator.Simulate(params, log.time, log.torque, true, &response);
+    CHECK(response.switch_count >= 2);
+    const std::size_t p = parameters.size();
+    for (std::size_t j = 0; j < p; ++j) {
+      const double value = GetDriveTrainParameter(params, parameters[j]);
+      const double h = 1e-5 * value;
+      auto plus = params, minus = params;
+      SetDriveTrainParameter(plus, parameters[j], value + h);
+      SetDriveTrainParameter(minus, parameters[j], value - h);
+      DriveTrainResponse rp, rm;
+      simulator.Simulate(plus, log.time, log.torque, false, &rp);
+      simulator.Simulate(minus, log.time, log.torque, false, &rm);
+      double worst = 0.0, scale = 0.0;
+      for (std::size_t k = 0; k < log.time.size(); ++k) {
+        const double fd = (rp.link_torque[k] - rm.link_torque[k]) / (2 * h);
+        worst = std::max(worst, std::abs(fd - response.link_torque_sensitivity[k * p + j]));
+        scale = std::max(scale, std::abs(fd));
+      }
+      INFO("model " << static_cast<int>(c.model) << " parameter " << DriveTrainParameterKey(parameters[j])
+                    << " worst " << worst << " scale " << scale);
+      CHECK(scale > 0.0);
+      CHECK(worst <= 2e-3 * scale);
+    }
+  }
+}
