@@ -13,8 +13,18 @@
 namespace driveid {
 namespace {
 
-void Check(int code, const char* function) {
-  if (code < 0) throw IdentificationError(fmt::format("integrator: {} failed with code {}", function, code));
+// CVODES reports details through an error handler; keep the last message
+// (the library prints nothing) and put it into the exception.
+void CaptureError(int, const char* module, const char* function, char* message, void* user_data) {
+  *static_cast<std::string*>(user_data) = fmt::format("{} {}: {}", module, function, message);
+}
+
+void Check(int code, const char* function, const std::string* detail = nullptr) {
+  if (code >= 0) return;
+  if (detail != nullptr && !detail->empty()) {
+    throw IdentificationError(fmt::format("integrator: {} failed with code {} ({})", function, code, *detail));
+  }
+  throw IdentificationError(fmt::format("integrator: {} failed with code {}", function, code));
 }
 
 template <typename T>
@@ -75,6 +85,7 @@ struct CvodesIntegrator::Handles {
   SUNLinearSolver linear_solver = nullptr;
   void* memory = nullptr;
   bool sensitivities_initialised = false;
+  std::string last_error;
 
   ~Handles() {
     if (memory) CVodeFree(&memory);
@@ -102,6 +113,7 @@ CvodesIntegrator::CvodesIntegrator(const SensitivityOdeSystem& system, const Int
   // Adams-Moulton with Newton iteration: the drive trains are lightly damped
   // oscillators, not stiff, and Adams keeps their oscillations undamped.
   h.memory = CheckPointer(CVodeCreate(CV_ADAMS, h.context), "CVodeCreate");
+  Check(CVodeSetErrHandlerFn(h.memory, CaptureError, &h.last_error), "CVodeSetErrHandlerFn");
   Check(CVodeInit(h.memory, RightHandSide, 0.0, h.state), "CVodeInit");
   Check(CVodeSetUserData(h.memory, const_cast<SensitivityOdeSystem*>(&system)), "CVodeSetUserData");
   Check(CVodeSVtolerances(h.memory, options.relative_tolerance, h.absolute_tolerance), "CVodeSVtolerances");
@@ -160,6 +172,7 @@ void CvodesIntegrator::Restart(double t0, const double* x0, const std::vector<co
     Check(CVodeSensToggleOff(h.memory), "CVodeSensToggleOff");
   }
   time_ = t0;
+  steps_since_restart_ = 0;
   std::fill(root_directions_.begin(), root_directions_.end(), 0);
 }
 
@@ -167,9 +180,14 @@ bool CvodesIntegrator::Advance(double t_out, double t_stop) {
   Handles& h = *handles_;
   Check(CVodeSetStopTime(h.memory, t_stop), "CVodeSetStopTime");
   realtype reached = time_;
+  h.last_error.clear();
   const int flag = CVode(h.memory, t_out, h.state, &reached, CV_NORMAL);
-  Check(flag, "CVode");
+  Check(flag, "CVode", &h.last_error);
   time_ = reached;
+  long steps = 0;  // since the last CVodeReInit, which zeroes the counter
+  Check(CVodeGetNumSteps(h.memory, &steps), "CVodeGetNumSteps");
+  total_steps_ += steps - steps_since_restart_;
+  steps_since_restart_ = steps;
   if (sensitivities_on_) {
     realtype sensitivity_time = 0.0;
     Check(CVodeGetSens(h.memory, &sensitivity_time, h.sensitivities), "CVodeGetSens");
@@ -181,6 +199,8 @@ bool CvodesIntegrator::Advance(double t_out, double t_stop) {
   std::fill(root_directions_.begin(), root_directions_.end(), 0);
   return false;
 }
+
+long CvodesIntegrator::step_count() const { return total_steps_; }
 
 const double* CvodesIntegrator::state() const { return N_VGetArrayPointer(handles_->state); }
 

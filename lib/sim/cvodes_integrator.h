@@ -35,7 +35,7 @@ struct IntegratorOptions {
   double relative_tolerance = 1e-8;
   std::vector<double> absolute_tolerance;  ///< per state; empty = 1e-12 each
   std::vector<double> parameter_scale;     ///< |p_j| for sensitivity tolerances; empty = 1
-  long max_steps = 100000;                 ///< per call to Advance
+  long max_steps = 20000;                  ///< per call to Advance
 };
 
 class CvodesIntegrator {
@@ -54,6 +54,8 @@ class CvodesIntegrator {
   bool Advance(double t_out, double t_stop);
 
   double time() const { return time_; }
+  /// Internal steps taken since construction, across restarts (work measure).
+  long step_count() const;
   const double* state() const;
   /// Sensitivity j at time() (valid after Advance with sensitivities on).
   const double* sensitivity(int j) const;
@@ -66,6 +68,8 @@ class CvodesIntegrator {
   const SensitivityOdeSystem& system_;
   double time_ = 0.0;
   bool sensitivities_on_ = false;
+  long total_steps_ = 0;
+  long steps_since_restart_ = 0;
   std::vector<int> root_directions_;
 };
 

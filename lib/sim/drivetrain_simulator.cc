@@ -10,7 +10,12 @@
 
 namespace driveid {
 namespace {
-constexpr int kMaxSwitches = 100000;  // per simulation: more means chattering, refuse
+// Work budgets per simulation, so that a pathological trial point of the
+// solver (near-zero inertia, chattering) fails fast instead of grinding:
+// switches and integrator steps, per sample plus a constant.
+constexpr long kSwitchesPerSample = 4;
+constexpr long kStepsPerSample = 200;
+constexpr long kBudgetConstant = 2000;
 constexpr int kOmega = 1;
 
 int Sign(double value) { return (value > 0.0) - (value < 0.0); }
@@ -80,6 +85,7 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem {
     out->switch_count = 0;
     if (samples == 0) return;
 
+    last_step_count_ = integrator_->step_count();
     x_.assign(static_cast<std::size_t>(n_), 0.0);
     s_.assign(p * static_cast<std::size_t>(n_), 0.0);
     mode_ = 0;
@@ -87,6 +93,9 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem {
     DecideModeAtRest();
     Record(0, with_sensitivities, out);
 
+    const long switch_budget = kBudgetConstant + kSwitchesPerSample * static_cast<long>(samples);
+    const long step_budget = kBudgetConstant + kStepsPerSample * static_cast<long>(samples);
+    long steps = 0;
     std::size_t k = 0;
     while (k + 1 < samples) {
       std::size_t end = k + 1;
@@ -98,12 +107,20 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem {
       for (std::size_t m = k + 1; m <= end; ++m) {
         while (integrator_->Advance(time[m], time[end])) {
           HandleSwitch(with_sensitivities);
-          if (++out->switch_count > kMaxSwitches) {
+          if (++out->switch_count > switch_budget) {
             throw IdentificationError(fmt::format(
-                "simulation: more than {} stick/slip switches before t = {} s (chattering)", kMaxSwitches,
+                "simulation: more than {} stick/slip switches before t = {} s (chattering)", switch_budget,
                 integrator_->time()));
           }
           RestartIntegrator(integrator_->time(), with_sensitivities);
+        }
+        const long total = integrator_->step_count();
+        steps += total - last_step_count_;
+        last_step_count_ = total;
+        if (steps > step_budget) {
+          throw IdentificationError(fmt::format(
+              "simulation: more than {} integrator steps before t = {} s (the parameters make the model too stiff)",
+              step_budget, integrator_->time()));
         }
         CopyFromIntegrator(with_sensitivities);
         Record(m, with_sensitivities, out);
@@ -196,6 +213,7 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem {
   std::vector<const double*> pointers_;
   double motor_torque_ = 0.0;
   int mode_ = 0;
+  long last_step_count_ = 0;
 };
 
 DriveTrainSimulator::DriveTrainSimulator(DriveTrainModel model, const DriveTrainParameters& nominal,

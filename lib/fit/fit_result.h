@@ -1,0 +1,53 @@
+// Plain result types of a fit (no solver headers): what every fitting
+// command reports (SPEC section 6) and writes into the parameter file.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace driveid {
+
+/// One estimated parameter, in its physical unit.
+struct ParameterEstimate {
+  std::string name;
+  double value = 0.0;
+  double standard_error = 0.0;  ///< from the Jacobian at the optimum
+  double ci95_low = 0.0;        ///< 95 % confidence interval (Student t)
+  double ci95_high = 0.0;
+};
+
+/// Goodness of fit of one measured channel (e.g. tau_link of one log).
+struct ChannelStatistics {
+  std::string name;
+  int samples = 0;
+  double rmse = 0.0;         ///< root mean square residual, channel unit
+  double fit_percent = 0.0;  ///< NRMSE fit, 100 (1 - |y - yhat| / |y - mean(y)|)
+};
+
+struct FitResult {
+  std::vector<ParameterEstimate> estimates;
+  std::vector<double> correlation;       ///< row-major P x P
+  std::vector<ChannelStatistics> channels;
+  std::vector<double> singular_values;   ///< of the column-normalised Jacobian, descending
+  int iterations = 0;
+  bool converged = false;
+  double cost = 0.0;                     ///< 1/2 sum of squared residuals
+  std::string termination;               ///< solver's reason for stopping
+};
+
+/// One input file of a fit, for provenance.
+struct DataFileRecord {
+  std::string file;
+  std::string sha256;
+  int samples = 0;
+};
+
+/// What produced a fit (goes into the parameter file's `fit` section).
+struct FitProvenance {
+  std::string command;  ///< the exact command line
+  std::string version;  ///< tool version
+  std::string model;    ///< model variant, e.g. "reduced"
+  std::vector<DataFileRecord> data;
+};
+
+}  // namespace driveid

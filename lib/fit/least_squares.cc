@@ -1,0 +1,264 @@
+#include "fit/least_squares.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Dense>
+#include <ceres/ceres.h>
+#include <fmt/format.h>
+
+#include "core/errors.h"
+
+namespace driveid {
+namespace {
+
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// Ceres sees the scaled parameters z = p / scale as one block.
+class ScaledCost final : public ceres::CostFunction {
+ public:
+  ScaledCost(ResidualModel& model, std::vector<double> scale)
+      : model_(model), scale_(std::move(scale)), physical_(scale_.size()) {
+    set_num_residuals(model.residual_count());
+    mutable_parameter_block_sizes()->push_back(static_cast<int>(scale_.size()));
+  }
+
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const std::size_t p = scale_.size();
+    for (std::size_t j = 0; j < p; ++j) physical_[j] = parameters[0][j] * scale_[j];
+    double* jacobian = (jacobians != nullptr) ? jacobians[0] : nullptr;
+    if (!model_.Evaluate(physical_.data(), residuals, jacobian)) return false;
+    if (jacobian != nullptr) {
+      const std::size_t n = static_cast<std::size_t>(num_residuals());
+      for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t j = 0; j < p; ++j) jacobian[i * p + j] *= scale_[j];
+      }
+    }
+    return true;
+  }
+
+ private:
+  ResidualModel& model_;
+  const std::vector<double> scale_;
+  mutable std::vector<double> physical_;
+};
+
+class ProgressCallback final : public ceres::IterationCallback {
+ public:
+  explicit ProgressCallback(const std::function<void(const FitIteration&)>& progress) : progress_(progress) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
+    progress_({s.iteration, s.cost, s.gradient_norm, s.step_norm});
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const std::function<void(const FitIteration&)>& progress_;
+};
+
+// Column-normalised Jacobian: each parameter's sensitivity scaled to unit
+// length, so that its singular values measure collinearity only.
+struct Collinearity {
+  Eigen::VectorXd singular_values;  // descending
+  Eigen::MatrixXd right_vectors;    // columns = parameter directions
+  std::vector<int> dead;            // parameters with no effect at all
+};
+
+Collinearity AnalyseCollinearity(const RowMatrix& jacobian) {
+  Collinearity result;
+  RowMatrix normalised = jacobian;
+  for (Eigen::Index j = 0; j < jacobian.cols(); ++j) {
+    const double norm = jacobian.col(j).norm();
+    if (!(norm > 0.0) || !std::isfinite(norm)) {
+      result.dead.push_back(static_cast<int>(j));
+      normalised.col(j).setZero();
+    } else {
+      normalised.col(j) /= norm;
+    }
+  }
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(normalised, Eigen::ComputeThinV);
+  result.singular_values = svd.singularValues();
+  result.right_vectors = svd.matrixV();
+  return result;
+}
+
+void RequireIdentifiable(const RowMatrix& jacobian, const std::vector<FitParameter>& parameters,
+                         const FitOptions& options, const char* where) {
+  const Collinearity c = AnalyseCollinearity(jacobian);
+  std::vector<std::string> involved;
+  std::string detail;
+  if (!c.dead.empty()) {
+    for (int j : c.dead) involved.push_back(parameters[static_cast<std::size_t>(j)].name);
+    detail = "the data carry no information on them (zero sensitivity)";
+  } else {
+    const Eigen::Index p = c.singular_values.size();
+    std::vector<double> weight(static_cast<std::size_t>(p), 0.0);
+    int weak = 0;
+    for (Eigen::Index k = 0; k < p; ++k) {
+      if (c.singular_values(k) >= options.identifiability_threshold) continue;
+      ++weak;
+      for (Eigen::Index j = 0; j < p; ++j) {
+        weight[static_cast<std::size_t>(j)] = std::max(weight[static_cast<std::size_t>(j)], std::abs(c.right_vectors(j, k)));
+      }
+    }
+    if (weak == 0) return;
+    for (Eigen::Index j = 0; j < p; ++j) {
+      if (weight[static_cast<std::size_t>(j)] > 0.2) involved.push_back(parameters[static_cast<std::size_t>(j)].name);
+    }
+    detail = fmt::format("{} near-null direction{} (smallest singular value {:.2g} of the normalised Jacobian, "
+                         "threshold {:.2g}): only combinations of them are determined",
+                         weak, weak > 1 ? "s" : "", c.singular_values(p - 1), options.identifiability_threshold);
+  }
+  std::string names;
+  for (const auto& name : involved) names += (names.empty() ? "" : ", ") + name;
+  std::string message = fmt::format("not identifiable {}: {}: {}", where, names, detail);
+  if (options.advice) {
+    const std::string advice = options.advice(involved);
+    if (!advice.empty()) message += "; " + advice;
+  }
+  throw IdentificationError(message);
+}
+
+}  // namespace
+
+double StudentT975(int dof) {
+  static const double kTable[] = {0, 12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228,
+                                  2.201, 2.179, 2.160, 2.145, 2.131, 2.120, 2.110, 2.101, 2.093, 2.086,
+                                  2.080, 2.074, 2.069, 2.064, 2.060, 2.056, 2.052, 2.048, 2.045, 2.042};
+  if (dof < 1) return std::numeric_limits<double>::infinity();
+  if (dof <= 30) return kTable[dof];
+  // Cornish-Fisher expansion around the normal quantile, accurate to 1e-4 for dof > 30.
+  const double z = 1.959963984540054;
+  const double n = dof;
+  return z + (z * z * z + z) / (4 * n) + (5 * std::pow(z, 5) + 16 * z * z * z + 3 * z) / (96 * n * n);
+}
+
+FitResult FitLeastSquares(ResidualModel& model, const std::vector<FitParameter>& parameters,
+                          const std::vector<FitChannel>& channels, const FitOptions& options) {
+  const int n = model.residual_count();
+  const int p = static_cast<int>(parameters.size());
+  if (p == 0) throw IdentificationError("nothing to fit: no free parameters");
+  if (n <= p) throw IdentificationError(fmt::format("{} samples cannot determine {} parameters", n, p));
+
+  std::vector<double> scale(static_cast<std::size_t>(p));
+  std::vector<double> z(static_cast<std::size_t>(p));
+  for (int j = 0; j < p; ++j) {
+    const auto& fp = parameters[static_cast<std::size_t>(j)];
+    double s = fp.scale > 0.0 ? fp.scale : std::abs(fp.initial);
+    if (!(s > 0.0)) s = 1.0;
+    scale[static_cast<std::size_t>(j)] = s;
+    z[static_cast<std::size_t>(j)] = fp.initial / s;
+  }
+
+  RowMatrix jacobian(n, p);
+  Eigen::VectorXd residuals(n);
+  std::vector<double> physical(static_cast<std::size_t>(p));
+  auto evaluate_at = [&](const std::vector<double>& zz) {
+    for (int j = 0; j < p; ++j) physical[static_cast<std::size_t>(j)] = zz[static_cast<std::size_t>(j)] * scale[static_cast<std::size_t>(j)];
+    if (!model.Evaluate(physical.data(), residuals.data(), jacobian.data())) {
+      throw IdentificationError("the model cannot be evaluated at these parameter values");
+    }
+  };
+  // Structural problems show at the start already: refuse before solving.
+  evaluate_at(z);
+  RequireIdentifiable(jacobian, parameters, options, "from these logs");
+
+  ceres::Problem::Options problem_options;
+  problem_options.cost_function_ownership = ceres::TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
+  problem.AddResidualBlock(new ScaledCost(model, scale), nullptr, z.data());
+  for (int j = 0; j < p; ++j) {
+    const double lower = parameters[static_cast<std::size_t>(j)].lower_bound;
+    if (std::isfinite(lower)) problem.SetParameterLowerBound(z.data(), j, lower / scale[static_cast<std::size_t>(j)]);
+  }
+  ceres::Solver::Options solver_options;
+  solver_options.linear_solver_type = ceres::DENSE_QR;
+  solver_options.max_num_iterations = options.max_iterations;
+  // Parameters are scaled by their starting values: a first step may change
+  // them by about 100 %, not by orders of magnitude.
+  solver_options.initial_trust_region_radius = 1.0;
+  solver_options.function_tolerance = 1e-10;
+  solver_options.gradient_tolerance = 1e-12;
+  solver_options.parameter_tolerance = 1e-10;
+  solver_options.logging_type = ceres::SILENT;
+  solver_options.num_threads = 1;  // deterministic
+  ProgressCallback callback(options.progress);
+  if (options.progress) {
+    solver_options.callbacks.push_back(&callback);
+    solver_options.update_state_every_iteration = false;
+  }
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver_options, &problem, &summary);
+
+  FitResult result;
+  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  result.termination = summary.message;
+  result.converged = summary.termination_type == ceres::CONVERGENCE;
+  if (summary.termination_type == ceres::FAILURE || summary.termination_type == ceres::USER_FAILURE) {
+    throw IdentificationError("solver failed: " + summary.message);
+  }
+  if (!result.converged) {
+    throw IdentificationError(fmt::format("solver did not converge in {} iterations: {}", result.iterations,
+                                          summary.message));
+  }
+
+  evaluate_at(z);
+  RequireIdentifiable(jacobian, parameters, options, "at the optimum");
+  result.cost = 0.5 * residuals.squaredNorm();
+  result.singular_values.clear();
+  {
+    const Collinearity c = AnalyseCollinearity(jacobian);
+    for (Eigen::Index k = 0; k < c.singular_values.size(); ++k) result.singular_values.push_back(c.singular_values(k));
+  }
+
+  // Covariance of the (unweighted) least-squares estimate with a residual
+  // variance per channel: sandwich A B A, A = (J'J)^-1, B = sum_c s_c^2 J_c'J_c,
+  // s_c^2 = SSR_c / (N_c (N - P) / N). With one channel: s^2 (J'J)^-1.
+  const Eigen::VectorXd column_scale = jacobian.colwise().norm().transpose();
+  const RowMatrix scaled = jacobian * column_scale.cwiseInverse().asDiagonal();
+  const Eigen::MatrixXd information = scaled.transpose() * scaled;
+  const Eigen::MatrixXd inverse = information.ldlt().solve(Eigen::MatrixXd::Identity(p, p));
+  Eigen::MatrixXd middle = Eigen::MatrixXd::Zero(p, p);
+  const double dof_fraction = static_cast<double>(n - p) / n;
+  std::vector<FitChannel> all = channels;
+  if (all.empty()) all.push_back({"residual", 0, n, nullptr});
+  for (const auto& channel : all) {
+    const auto rows = scaled.middleRows(channel.begin, channel.count);
+    const double ssr = residuals.segment(channel.begin, channel.count).squaredNorm();
+    const double variance = ssr / (channel.count * dof_fraction);
+    middle += variance * rows.transpose() * rows;
+
+    ChannelStatistics stats;
+    stats.name = channel.name;
+    stats.samples = channel.count;
+    stats.rmse = std::sqrt(ssr / channel.count);
+    if (channel.measured != nullptr) {
+      const Eigen::Map<const Eigen::VectorXd> y(channel.measured, channel.count);
+      const double spread = (y.array() - y.mean()).matrix().norm();
+      stats.fit_percent = spread > 0.0 ? 100.0 * (1.0 - std::sqrt(ssr) / spread) : 0.0;
+    }
+    result.channels.push_back(stats);
+  }
+  Eigen::MatrixXd covariance = inverse * middle * inverse;
+  covariance = column_scale.cwiseInverse().asDiagonal() * covariance * column_scale.cwiseInverse().asDiagonal();
+
+  const double t = StudentT975(n - p);
+  for (int j = 0; j < p; ++j) {
+    ParameterEstimate e;
+    e.name = parameters[static_cast<std::size_t>(j)].name;
+    e.value = z[static_cast<std::size_t>(j)] * scale[static_cast<std::size_t>(j)];
+    e.standard_error = std::sqrt(std::max(0.0, covariance(j, j)));
+    e.ci95_low = e.value - t * e.standard_error;
+    e.ci95_high = e.value + t * e.standard_error;
+    result.estimates.push_back(e);
+  }
+  result.correlation.resize(static_cast<std::size_t>(p * p));
+  for (int i = 0; i < p; ++i) {
+    for (int j = 0; j < p; ++j) {
+      const double denominator = std::sqrt(covariance(i, i) * covariance(j, j));
+      result.correlation[static_cast<std::size_t>(i * p + j)] = denominator > 0.0 ? covariance(i, j) / denominator : 0.0;
+    }
+  }
+  return result;
+}
+
+}  // namespace driveid

@@ -1,0 +1,71 @@
+// Fit core shared by all models: bounded nonlinear least squares (Ceres,
+// Levenberg-Marquardt) on parameters scaled by their starting values, an
+// identifiability check on the column-normalised Jacobian before and after
+// the solve, and statistics (SPEC section 6).
+#pragma once
+
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "fit/fit_result.h"
+
+namespace driveid {
+
+/// A model whose residuals r(p) = y_model(p) - y_measured and Jacobian
+/// dr/dp = dy_model/dp can be evaluated together (one simulation per call).
+class ResidualModel {
+ public:
+  virtual ~ResidualModel() = default;
+  virtual int residual_count() const = 0;
+  /// Fills `residuals` (length N) and, if `jacobian` is non-null, the
+  /// row-major N x P Jacobian in physical units. Returns false if the model
+  /// cannot be evaluated at `parameters` (the solver then backs off).
+  virtual bool Evaluate(const double* parameters, double* residuals, double* jacobian) = 0;
+};
+
+/// A free parameter: name (parameter-file key), start value and lower bound.
+struct FitParameter {
+  std::string name;
+  double initial = 0.0;
+  double lower_bound = -std::numeric_limits<double>::infinity();  ///< 0 for physical parameters
+  double scale = 0.0;  ///< typical magnitude; 0 = |initial| (or 1 if initial is 0)
+};
+
+/// A measured channel occupying residuals [begin, begin + count).
+struct FitChannel {
+  std::string name;
+  int begin = 0;
+  int count = 0;
+  const double* measured = nullptr;  ///< count values, for fit percent
+};
+
+/// Progress of one solver iteration (for -v).
+struct FitIteration {
+  int iteration;
+  double cost;
+  double gradient_norm;
+  double step_norm;
+};
+
+struct FitOptions {
+  int max_iterations = 100;
+  /// Smallest singular value of the column-normalised Jacobian below which
+  /// the parameters count as not identifiable (collinearity index 1/s > 1000).
+  double identifiability_threshold = 1e-3;
+  /// Optional advice for a non-identifiable set, given the parameters involved.
+  std::function<std::string(const std::vector<std::string>&)> advice;
+  std::function<void(const FitIteration&)> progress;
+};
+
+/// Solves the problem and returns estimates with statistics. Throws
+/// IdentificationError when the parameters are not identifiable (naming
+/// them), when the solver fails or does not converge.
+FitResult FitLeastSquares(ResidualModel& model, const std::vector<FitParameter>& parameters,
+                          const std::vector<FitChannel>& channels, const FitOptions& options);
+
+/// Two-sided 97.5 % quantile of Student's t with `dof` degrees of freedom.
+double StudentT975(int dof);
+
+}  // namespace driveid

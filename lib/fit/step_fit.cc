@@ -1,0 +1,208 @@
+#include "fit/step_fit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "io/csv_log.h"
+#include "sim/drivetrain_simulator.h"
+
+namespace driveid {
+namespace {
+
+const DriveTrainParameter kAllParameters[] = {
+    DriveTrainParameter::kViscousFriction, DriveTrainParameter::kMotorInertia,
+    DriveTrainParameter::kGearboxInertia,  DriveTrainParameter::kLinkStiffness,
+    DriveTrainParameter::kGearboxStiffness, DriveTrainParameter::kCoulombFriction};
+
+bool Contains(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+// Model-specific advice for a non-identifiable set (SPEC 5.1 identifiability).
+std::string StepAdvice(const std::vector<std::string>& involved) {
+  std::vector<std::string> advice;
+  if (Contains(involved, "k_Tl") && Contains(involved, "k_Tg")) {
+    advice.push_back("fix k_Tl or k_Tg with --params: only their series combination enters a step response");
+  } else if ((Contains(involved, "k_Tl") || Contains(involved, "k_Tg")) &&
+             (Contains(involved, "Theta_motor") || Contains(involved, "d_g"))) {
+    advice.push_back("a step response fixes only Theta_motor/k_eq and d_g/k_eq: fix the stiffness with --params");
+  }
+  if (Contains(involved, "offset") || Contains(involved, "offset_1")) {
+    advice.push_back("a per-log offset needs samples before the step to separate it from tau_c");
+  }
+  return fmt::format("{}", fmt::join(advice, "; "));
+}
+
+class StepResiduals final : public ResidualModel {
+ public:
+  StepResiduals(const std::vector<StepLog>& logs, const DriveTrainParameters& start, DriveTrainModel model,
+                std::vector<DriveTrainParameter> ode_parameters, bool fit_offsets)
+      : logs_(logs), params_(start), ode_parameters_(ode_parameters), fit_offsets_(fit_offsets),
+        simulator_(model, start, std::move(ode_parameters)) {
+    for (const auto& log : logs_) {
+      first_row_.push_back(rows_);
+      rows_ += static_cast<int>(log.time.size());
+    }
+  }
+
+  int residual_count() const override { return rows_; }
+  int parameter_count() const {
+    return static_cast<int>(ode_parameters_.size()) + (fit_offsets_ ? static_cast<int>(logs_.size()) : 0);
+  }
+
+  bool Evaluate(const double* parameters, double* residuals, double* jacobian) override {
+    const std::size_t q = ode_parameters_.size();
+    const std::size_t p = static_cast<std::size_t>(parameter_count());
+    for (std::size_t j = 0; j < q; ++j) SetDriveTrainParameter(params_, ode_parameters_[j], parameters[j]);
+    try {
+      for (std::size_t i = 0; i < logs_.size(); ++i) {
+        const StepLog& log = logs_[i];
+        simulator_.Simulate(params_, log.time, log.motor_torque, jacobian != nullptr, &response_);
+        const double offset = fit_offsets_ ? parameters[q + i] : 0.0;
+        const std::size_t base = static_cast<std::size_t>(first_row_[i]);
+        for (std::size_t k = 0; k < log.time.size(); ++k) {
+          residuals[base + k] = response_.link_torque[k] + offset - log.link_torque[k];
+          if (jacobian == nullptr) continue;
+          double* row = jacobian + (base + k) * p;
+          for (std::size_t j = 0; j < q; ++j) row[j] = response_.link_torque_sensitivity[k * q + j];
+          for (std::size_t m = q; m < p; ++m) row[m] = (fit_offsets_ && m - q == i) ? 1.0 : 0.0;
+        }
+      }
+    } catch (const IdentificationError&) {
+      return false;  // integrator failure at these values: the solver backs off
+    }
+    for (int i = 0; i < rows_; ++i) {
+      if (!std::isfinite(residuals[i])) return false;
+    }
+    return true;
+  }
+
+  std::vector<double> Simulate(std::size_t i, const double* parameters) {
+    const std::size_t q = ode_parameters_.size();
+    for (std::size_t j = 0; j < q; ++j) SetDriveTrainParameter(params_, ode_parameters_[j], parameters[j]);
+    simulator_.Simulate(params_, logs_[i].time, logs_[i].motor_torque, false, &response_);
+    std::vector<double> out = response_.link_torque;
+    if (fit_offsets_) {
+      for (double& y : out) y += parameters[q + i];
+    }
+    return out;
+  }
+
+  const std::vector<int>& first_rows() const { return first_row_; }
+
+ private:
+  const std::vector<StepLog>& logs_;
+  DriveTrainParameters params_;
+  std::vector<DriveTrainParameter> ode_parameters_;
+  bool fit_offsets_;
+  DriveTrainSimulator simulator_;
+  DriveTrainResponse response_;
+  std::vector<int> first_row_;
+  int rows_ = 0;
+};
+
+void CheckStepLog(const StepLog& log) {
+  if (log.time.size() < 3) {
+    throw InputError(fmt::format("{}: {} samples: a step log needs at least 3", log.path, log.time.size()));
+  }
+  const bool steps = std::any_of(log.motor_torque.begin(), log.motor_torque.end(),
+                                 [&](double u) { return u != log.motor_torque.front(); });
+  if (!steps && log.motor_torque.front() == 0.0) {
+    throw IdentificationError(fmt::format(
+        "{}: column 'tau_motor' is zero throughout: the log holds no torque step to identify anything from",
+        log.path));
+  }
+}
+
+}  // namespace
+
+StepLog ReadStepLog(const std::string& path, const std::map<std::string, std::string>& column_map) {
+  CsvReadOptions options;
+  options.column_map = column_map;
+  CsvLog csv = ReadCsvLog(path, {"t", "tau_motor", "tau_link"}, options);
+  StepLog log;
+  log.path = path;
+  log.time = std::move(csv.columns[0]);
+  log.motor_torque = std::move(csv.columns[1]);
+  log.link_torque = std::move(csv.columns[2]);
+  return log;
+}
+
+const std::vector<std::string>& StepFitParameterNames() {
+  static const std::vector<std::string> names = {"d_g", "Theta_motor", "Theta_g", "k_Tl", "k_Tg", "tau_c", "offset"};
+  return names;
+}
+
+StepFitOutput FitStepResponses(const std::vector<StepLog>& logs, const DriveTrainParameters& start,
+                               const StepFitOptions& options) {
+  if (logs.empty()) throw std::invalid_argument("no step logs given");
+  for (const auto& name : options.free) {
+    if (!Contains(StepFitParameterNames(), name)) {
+      throw std::invalid_argument(fmt::format("--free {}: not a step-fit parameter (choose from {})", name,
+                                              fmt::join(StepFitParameterNames(), ", ")));
+    }
+  }
+  for (const auto& log : logs) CheckStepLog(log);
+  if (options.model == DriveTrainModel::kFull && !(start.gearbox_inertia > 0.0)) {
+    throw InputError("the full model needs drivetrain.Theta_g > 0 in --params");
+  }
+  if (options.model == DriveTrainModel::kReduced && Contains(options.free, "Theta_g")) {
+    throw IdentificationError("Theta_g has no effect in the reduced model (it sets Theta_g = 0): use --model full");
+  }
+
+  std::vector<DriveTrainParameter> ode_parameters;
+  std::vector<FitParameter> fit_parameters;
+  for (auto parameter : kAllParameters) {
+    const std::string key = DriveTrainParameterKey(parameter);
+    if (!Contains(options.free, key)) continue;
+    const double value = GetDriveTrainParameter(start, parameter);
+    if (!(value > 0.0)) {
+      throw InputError(fmt::format("--free {}: the starting value in --params must be > 0, got {}", key, value));
+    }
+    ode_parameters.push_back(parameter);
+    // Friction may vanish; inertias and stiffnesses must stay strictly positive.
+    const bool may_vanish = parameter == DriveTrainParameter::kViscousFriction ||
+                            parameter == DriveTrainParameter::kCoulombFriction;
+    fit_parameters.push_back({key, value, may_vanish ? 0.0 : 1e-6 * value, 0.0});
+  }
+  const bool fit_offsets = Contains(options.free, "offset");
+  if (fit_offsets) {
+    double scale = 0.0;
+    for (const auto& log : logs) {
+      for (double y : log.link_torque) scale = std::max(scale, std::abs(y));
+    }
+    for (std::size_t i = 0; i < logs.size(); ++i) {
+      fit_parameters.push_back({fmt::format("offset_{}", i + 1), 0.0, -std::numeric_limits<double>::infinity(),
+                                std::max(1e-3 * scale, 1e-9)});
+    }
+  }
+
+  StepResiduals residuals(logs, start, options.model, ode_parameters, fit_offsets);
+  std::vector<FitChannel> channels;
+  for (std::size_t i = 0; i < logs.size(); ++i) {
+    channels.push_back({logs[i].path + ":tau_link", residuals.first_rows()[i],
+                        static_cast<int>(logs[i].time.size()), logs[i].link_torque.data()});
+  }
+  FitOptions fit_options = options.fit;
+  if (!fit_options.advice) fit_options.advice = StepAdvice;
+
+  StepFitOutput output;
+  output.fit = FitLeastSquares(residuals, fit_parameters, channels, fit_options);
+  std::vector<double> estimate;
+  for (const auto& e : output.fit.estimates) estimate.push_back(e.value);
+  output.params = start;
+  for (std::size_t j = 0; j < ode_parameters.size(); ++j) SetDriveTrainParameter(output.params, ode_parameters[j], estimate[j]);
+  output.offsets.assign(logs.size(), 0.0);
+  for (std::size_t i = 0; i < logs.size(); ++i) {
+    if (fit_offsets) output.offsets[i] = estimate[ode_parameters.size() + i];
+    output.simulated.push_back(residuals.Simulate(i, estimate.data()));
+  }
+  return output;
+}
+
+}  // namespace driveid

@@ -1,0 +1,50 @@
+// Output-error identification of the drive train (SPEC 5.1) from logged
+// motor-torque steps: simulate the stick/slip model with CVODES (one run per
+// log and evaluation, sensitivities for the Jacobian), fit with the core of
+// fit/least_squares. Several logs are fit jointly and share the drive-train
+// parameters; `offset` adds a constant strain-gauge bias per log.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "fit/least_squares.h"
+#include "models/drivetrain.h"
+
+namespace driveid {
+
+/// A logged step response (SPEC 3, step log).
+struct StepLog {
+  std::string path;
+  std::vector<double> time;          ///< t [s], strictly increasing
+  std::vector<double> motor_torque;  ///< tau_motor [N m], held between samples
+  std::vector<double> link_torque;   ///< tau_link [N m], strain gauge
+};
+
+/// Reads a step log; `column_map` from --col. Throws InputError.
+StepLog ReadStepLog(const std::string& path, const std::map<std::string, std::string>& column_map = {});
+
+/// Names accepted by --free for the step fit.
+const std::vector<std::string>& StepFitParameterNames();
+
+struct StepFitOptions {
+  DriveTrainModel model = DriveTrainModel::kReduced;
+  std::vector<std::string> free = {"d_g", "Theta_motor", "tau_c"};  ///< may include "offset"
+  FitOptions fit;
+};
+
+struct StepFitOutput {
+  DriveTrainParameters params;              ///< start values with the estimates put in
+  std::vector<double> offsets;              ///< per log [N m] (0 when not free)
+  FitResult fit;
+  std::vector<std::vector<double>> simulated;  ///< model link torque per log, offset included
+};
+
+/// Fits the free parameters to all logs jointly. Throws std::invalid_argument
+/// for an unknown name in `free`, InputError for unusable start values and
+/// IdentificationError when the data cannot determine the free parameters.
+StepFitOutput FitStepResponses(const std::vector<StepLog>& logs, const DriveTrainParameters& start,
+                               const StepFitOptions& options);
+
+}  // namespace driveid

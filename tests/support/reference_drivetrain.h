@@ -1,0 +1,29 @@
+// An independent implementation of SPEC 5.1 for recovery tests: written from
+// the equations without the library's model or simulator code. Fixed-step
+// classical Runge-Kutta on fine substeps; stick, reversal and break-away
+// located by bisection on the substep. The test data are made with this, so
+// a mistake shared by the library's model and simulator cannot hide.
+#pragma once
+
+#include <vector>
+
+namespace reference {
+
+struct DriveTrain {
+  bool full = false;
+  double n_g = 80, k_Tl = 15000, k_Tg = 18375;
+  double J = 0.413;   // n_g^2 Theta_motor [kg m^2]
+  double Jg = 0.043;  // n_g^2 Theta_g
+  double d_g = 0.016, tau_c = 5.0;
+};
+
+struct Log {
+  std::vector<double> t, tau_motor, tau_link;
+};
+
+/// Step of `amplitude` N m at `step_time`, sampled at `rate` Hz for `duration` s,
+/// link torque plus `offset` and Gaussian noise `sigma` from `seed`.
+Log SimulateStep(const DriveTrain& d, double rate, double duration, double step_time, double amplitude,
+                 double sigma, double offset, unsigned seed);
+
+}  // namespace reference
