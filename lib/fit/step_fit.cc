@@ -121,10 +121,11 @@ void CheckStepLog(const StepLog& log) {
 
 }  // namespace
 
-StepLog ReadStepLog(const std::string& path, const std::map<std::string, std::string>& column_map) {
+StepLog ParseStepLog(const std::string& path, const std::string& text,
+                     const std::map<std::string, std::string>& column_map) {
   CsvReadOptions options;
   options.column_map = column_map;
-  CsvLog csv = ReadCsvLog(path, {"t", "tau_motor", "tau_link"}, options);
+  CsvLog csv = ParseCsvLog(path, text, {"t", "tau_motor", "tau_link"}, options);
   StepLog log;
   log.path = path;
   log.time = std::move(csv.columns[0]);

@@ -22,8 +22,10 @@ struct StepLog {
   std::vector<double> link_torque;   ///< tau_link [N m], strain gauge
 };
 
-/// Reads a step log; `column_map` from --col. Throws InputError.
-StepLog ReadStepLog(const std::string& path, const std::map<std::string, std::string>& column_map = {});
+/// Parses a step log already read into memory; `column_map` from --col.
+/// Throws InputError.
+StepLog ParseStepLog(const std::string& path, const std::string& text,
+                     const std::map<std::string, std::string>& column_map = {});
 
 /// Names accepted by --free for the step fit.
 const std::vector<std::string>& StepFitParameterNames();

@@ -169,7 +169,7 @@ std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit,
     out += "drivetrain:            # seed 000 section 4, SPEC 5.1\n";
     for (const auto& spec : kDriveTrainKeys) {
       const std::string line = fmt::format("  {}: {}", spec.key, Number((*file.drivetrain).*(spec.member)));
-      out += fmt::format("{:<24}# {}\n", line, spec.doc);
+      out += fmt::format("{:<28} # {}\n", line, spec.doc);
     }
   }
   if (fit != nullptr && provenance != nullptr) {

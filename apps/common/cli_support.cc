@@ -1,0 +1,123 @@
+#include "common/cli_support.h"
+
+#include <cstdio>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "io/atomic_file.h"
+#include "report/fit_summary.h"
+
+namespace driveid::cli {
+namespace {
+
+// One line: newlines in a message become "; ".
+std::string OneLine(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  std::string out;
+  for (char c : text) {
+    if (c == '\n') out += "; ";
+    else out += c;
+  }
+  return out;
+}
+
+void Fail(const std::string& program, const std::string& message) {
+  std::fprintf(stderr, "%s: %s\n", program.c_str(), OneLine(message).c_str());
+}
+
+}  // namespace
+
+int RunMain(CLI::App& app, int argc, char** argv, const std::function<void()>& dispatch) {
+  const std::string program = app.get_name();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    Fail(program, std::string(e.what()) + " (see --help)");
+    return kUsage;
+  }
+  try {
+    dispatch();
+    return kSuccess;
+  } catch (const InputError& e) {
+    Fail(program, e.what());
+    return kInvalidInput;
+  } catch (const IdentificationError& e) {
+    Fail(program, e.what());
+    return kIdentificationFailed;
+  } catch (const std::invalid_argument& e) {
+    Fail(program, e.what());
+    return kUsage;
+  } catch (const std::exception& e) {
+    Fail(program, std::string("internal error: ") + e.what());
+    return kInternal;
+  }
+}
+
+std::string CommandLine(int argc, char** argv) {
+  std::string out;
+  for (int i = 0; i < argc; ++i) {
+    std::string arg = argv[i];
+    if (i == 0) {
+      const auto slash = arg.rfind('/');
+      if (slash != std::string::npos) arg = arg.substr(slash + 1);
+    }
+    const bool plain = !arg.empty() && arg.find_first_not_of(
+        "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./=,:+@%") == std::string::npos;
+    if (!out.empty()) out += ' ';
+    if (plain) {
+      out += arg;
+    } else {
+      out += '\'';
+      for (char c : arg) {
+        if (c == '\'') out += "'\\''";
+        else out += c;
+      }
+      out += '\'';
+    }
+  }
+  return out;
+}
+
+void AddFitOutputOptions(CLI::App& command, FitOutputOptions& options) {
+  command.add_option("-o,--output", options.output, "write the fitted parameter file here (default: stdout)");
+  command.add_option("--trace", options.trace, "write a CSV of time, measured, model and residual per channel");
+  command.add_option("--plot", options.plot, "render fit vs measurement and residuals (.png or .svg)")
+      ->check([](const std::string& path) {
+        return IsSupportedPlotPath(path) ? std::string() : std::string("--plot needs a .png or .svg file name");
+      });
+  command.add_flag("--json", options.json, "print the summary as one JSON object instead of the table");
+  command.add_flag("-q,--quiet", options.quiet, "print no summary table");
+  command.add_flag("-v,--verbose", options.verbose, "log solver iterations on stderr");
+}
+
+void EmitFitOutputs(const FitOutputOptions& options, const FitOutputs& outputs) {
+  // Plot first: it is the step most likely to fail (gnuplot), and nothing
+  // has been written yet if it does.
+  if (!options.plot.empty()) RenderFitPlot(options.plot, outputs.plot_series, outputs.plot_labels);
+  if (!options.trace.empty()) WriteFileAtomically(options.trace, outputs.trace_csv);
+  if (!options.output.empty()) WriteFileAtomically(options.output, outputs.parameter_file);
+
+  std::FILE* summary = options.output.empty() ? stderr : stdout;
+  if (options.json) {
+    std::fputs(FormatFitJson(outputs.fit, outputs.provenance).c_str(), summary);
+  } else if (!options.quiet) {
+    std::fputs(FormatFitTable(outputs.fit, outputs.provenance).c_str(), summary);
+  }
+  if (options.output.empty()) std::fputs(outputs.parameter_file.c_str(), stdout);
+  std::fflush(stdout);
+}
+
+void PrintIteration(int iteration, double cost, double gradient_norm, double step_norm) {
+  std::fprintf(stderr, "iteration %3d  cost %.9e  |gradient| %.3e  |step| %.3e\n", iteration, cost, gradient_norm,
+               step_norm);
+}
+
+}  // namespace driveid::cli

@@ -1,0 +1,54 @@
+// Helpers shared by the command-line tools: exit codes (SPEC 7), the
+// options every fitting subcommand has, and writing its outputs.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "fit/fit_result.h"
+#include "report/plot.h"
+
+namespace driveid::cli {
+
+enum ExitCode { kSuccess = 0, kInternal = 1, kUsage = 2, kInvalidInput = 3, kIdentificationFailed = 4 };
+
+/// Parses the command line and runs `dispatch`, mapping exceptions to exit
+/// codes with a one-line message "program: ..." on stderr.
+int RunMain(CLI::App& app, int argc, char** argv, const std::function<void()>& dispatch);
+
+/// The exact command line, shell-quoted where needed (for provenance).
+std::string CommandLine(int argc, char** argv);
+
+/// Output flags every fitting subcommand shares.
+struct FitOutputOptions {
+  std::string output;  ///< parameter file ("" = stdout)
+  std::string trace;   ///< CSV of measured, model, residual
+  std::string plot;    ///< PNG or SVG
+  bool json = false;
+  bool quiet = false;
+  bool verbose = false;
+};
+void AddFitOutputOptions(CLI::App& command, FitOutputOptions& options);
+
+/// Everything a fit produces; EmitFitOutputs writes it all or nothing.
+struct FitOutputs {
+  std::string parameter_file;       ///< YAML text
+  std::string trace_csv;            ///< CSV text
+  std::vector<PlotSeries> plot_series;
+  PlotLabels plot_labels;
+  FitResult fit;
+  FitProvenance provenance;
+};
+
+/// Renders the plot, writes trace and parameter file (atomically), and
+/// prints the summary (table or JSON) on stdout, or on stderr when the
+/// parameter file itself goes to stdout.
+void EmitFitOutputs(const FitOutputOptions& options, const FitOutputs& outputs);
+
+/// Prints one solver iteration to stderr (for -v).
+void PrintIteration(int iteration, double cost, double gradient_norm, double step_norm);
+
+}  // namespace driveid::cli

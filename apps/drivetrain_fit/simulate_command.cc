@@ -1,0 +1,62 @@
+#include "drivetrain_fit/simulate_command.h"
+
+#include <cstdio>
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "io/atomic_file.h"
+#include "io/parameter_file.h"
+
+namespace driveid::cli {
+
+CLI::App* SetupSimulateCommand(CLI::App& app, SimulateStepOptions& options) {
+  CLI::App* simulate = app.add_subcommand("simulate", "Write synthetic logs in the input format");
+  simulate->require_subcommand(1);
+  CLI::App* step = simulate->add_subcommand(
+      "step", "Motor-torque step with joint B fixed (default: the paper's -0.8 N m step, seed 000 Fig. 6)");
+  step->add_option("--params", options.params, "parameter file with a drivetrain section")->required();
+  step->add_option("-o,--output", options.output, "log file to write (default: stdout)");
+  step->add_option("--model", options.model, "reduced or full")->check(CLI::IsMember({"reduced", "full"}));
+  step->add_option("--rate", options.experiment.rate, "sampling rate [Hz]")->capture_default_str();
+  step->add_option("--duration", options.experiment.duration, "log length [s]")->capture_default_str();
+  step->add_option("--step-time", options.experiment.step_time, "time of the step [s]")->capture_default_str();
+  step->add_option("--step-torque", options.experiment.step_torque, "motor torque after the step [N m]")
+      ->capture_default_str();
+  step->add_option("--noise", options.experiment.noise, "std of Gaussian noise on tau_link [N m]")
+      ->capture_default_str();
+  step->add_option("--seed", options.experiment.seed, "noise seed")->capture_default_str();
+  step->add_option("--offset", options.experiment.offset, "constant strain-gauge bias [N m]")->capture_default_str();
+  step->footer(
+      "Example:\n"
+      "  drivetrain-fit simulate step --params data/paper000.yaml --noise 0.1 --seed 1 -o step.csv");
+  return simulate;
+}
+
+void RunSimulateStepCommand(const SimulateStepOptions& options, const std::string& command_line) {
+  const ParameterFile file = ReadParameterFile(options.params);
+  if (!file.drivetrain) throw InputError(fmt::format("{}: no 'drivetrain' section", options.params));
+  StepExperiment experiment = options.experiment;
+  experiment.model = options.model == "full" ? DriveTrainModel::kFull : DriveTrainModel::kReduced;
+  if (experiment.model == DriveTrainModel::kFull && !(file.drivetrain->gearbox_inertia > 0.0)) {
+    throw InputError(fmt::format("{}: the full model needs drivetrain.Theta_g > 0", options.params));
+  }
+  const StepLog log = SimulateStepExperiment(*file.drivetrain, experiment);
+  const std::vector<std::string> comments = {
+      "synthetic step log (SPEC 3) made by: " + command_line,
+      fmt::format("model {}, rate {} Hz, step {} N m at {} s, noise {} N m (seed {}), offset {} N m", options.model,
+                  experiment.rate, experiment.step_torque, experiment.step_time, experiment.noise, experiment.seed,
+                  experiment.offset),
+      fmt::format("truth: n_g {}, k_Tl {}, k_Tg {}, Theta_motor {}, Theta_g {}, d_g {}, tau_c {}",
+                  file.drivetrain->gear_ratio, file.drivetrain->link_stiffness, file.drivetrain->gearbox_stiffness,
+                  file.drivetrain->motor_inertia, file.drivetrain->gearbox_inertia,
+                  file.drivetrain->viscous_friction, file.drivetrain->coulomb_friction)};
+  const std::string text = FormatStepLog(log, comments);
+  if (options.output.empty()) {
+    std::fputs(text.c_str(), stdout);
+  } else {
+    WriteFileAtomically(options.output, text);
+  }
+}
+
+}  // namespace driveid::cli

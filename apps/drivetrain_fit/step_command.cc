@@ -1,0 +1,81 @@
+#include "drivetrain_fit/step_command.h"
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "fit/step_fit.h"
+#include "io/csv_log.h"
+#include "io/parameter_file.h"
+#include "io/sha256.h"
+
+namespace driveid::cli {
+
+CLI::App* SetupStepCommand(CLI::App& app, StepOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "step", "Fit d_g, Theta_motor, tau_c (and more) to logged motor-torque step responses (SPEC 5.1)");
+  command->add_option("logs", options.logs, "step logs: CSV with t, tau_motor, tau_link")->required();
+  command->add_option("--params", options.params, "parameter file with known values and starting guesses")
+      ->required();
+  command->add_option("--model", options.model, "reduced (eq. 16, second order) or full (eqs. 13-14)")
+      ->check(CLI::IsMember({"reduced", "full"}));
+  command->add_option("--free", options.free, "parameters to estimate: d_g, Theta_motor, Theta_g, k_Tl, k_Tg, "
+                                               "tau_c, offset (a bias per log)")
+      ->delimiter(',');
+  command->add_option("--col", options.columns, "map a column: NAME=HEADER (e.g. tau_link=strain_gauge)");
+  AddFitOutputOptions(*command, options.output);
+  command->footer(
+      "Example:\n"
+      "  drivetrain-fit step data/fig6_step.csv --params data/paper000_start.yaml \\\n"
+      "      --free d_g,Theta_motor,tau_c,offset -o fitted.yaml --plot fit.png --trace fit.csv");
+  return command;
+}
+
+void RunStepCommand(const StepOptions& options, const std::string& command_line) {
+  const ParameterFile start_file = ReadParameterFile(options.params);
+  if (!start_file.drivetrain) {
+    throw InputError(fmt::format("{}: no 'drivetrain' section", options.params));
+  }
+  const auto column_map = ParseColumnMap(options.columns);
+
+  FitOutputs outputs;
+  outputs.provenance.command = command_line;
+  outputs.provenance.version = DRIVEID_VERSION;
+  outputs.provenance.model = options.model;
+  std::vector<StepLog> logs;
+  for (const auto& path : options.logs) {
+    const std::string text = ReadFileToString(path);
+    logs.push_back(ParseStepLog(path, text, column_map));
+    outputs.provenance.data.push_back({path, Sha256Hex(text), static_cast<int>(logs.back().time.size())});
+  }
+
+  StepFitOptions fit_options;
+  fit_options.model = options.model == "full" ? DriveTrainModel::kFull : DriveTrainModel::kReduced;
+  fit_options.free = options.free;
+  if (options.output.verbose) {
+    fit_options.fit.progress = [](const FitIteration& it) {
+      PrintIteration(it.iteration, it.cost, it.gradient_norm, it.step_norm);
+    };
+  }
+  const StepFitOutput result = FitStepResponses(logs, *start_file.drivetrain, fit_options);
+
+  ParameterFile fitted = start_file;
+  fitted.drivetrain = result.params;
+  outputs.fit = result.fit;
+  outputs.parameter_file = FormatParameterFile(fitted, &outputs.fit, &outputs.provenance);
+
+  outputs.trace_csv = "# drivetrain-fit step trace: measured and model link torque [N m]\n";
+  outputs.trace_csv += "log,t,tau_motor,tau_link_measured,tau_link_model,residual\n";
+  for (std::size_t i = 0; i < logs.size(); ++i) {
+    const StepLog& log = logs[i];
+    const auto& model = result.simulated[i];
+    for (std::size_t k = 0; k < log.time.size(); ++k) {
+      outputs.trace_csv += fmt::format("{},{},{},{},{:.9g},{:.9g}\n", i + 1, log.time[k], log.motor_torque[k],
+                                       log.link_torque[k], model[k], log.link_torque[k] - model[k]);
+    }
+    outputs.plot_series.push_back({log.path, log.time, log.link_torque, model});
+  }
+  outputs.plot_labels = {fmt::format("drive-train step fit ({} model)", options.model), "link torque [N m]"};
+  EmitFitOutputs(options.output, outputs);
+}
+
+}  // namespace driveid::cli

@@ -1,0 +1,25 @@
+// drivetrain-fit step: output-error fit of the drive train to step logs.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "common/cli_support.h"
+
+namespace driveid::cli {
+
+struct StepOptions {
+  std::vector<std::string> logs;
+  std::string params;
+  std::string model = "reduced";
+  std::vector<std::string> free = {"d_g", "Theta_motor", "tau_c"};
+  std::vector<std::string> columns;
+  FitOutputOptions output;
+};
+
+CLI::App* SetupStepCommand(CLI::App& app, StepOptions& options);
+void RunStepCommand(const StepOptions& options, const std::string& command_line);
+
+}  // namespace driveid::cli

@@ -1,0 +1,89 @@
+#include "report/drivetrain_report.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "report/fit_summary.h"
+
+namespace driveid {
+namespace {
+
+// The numbers seed 000 prints in eq. (17) and the text after it.
+constexpr double kPaperGain = 81.0;
+constexpr double kPaperLagS2 = 5.249e-5;
+constexpr double kPaperLagS1 = 0.031;
+constexpr double kPaperNaturalFrequency = 138.0;
+constexpr double kPaperDampingRatio = 0.9;
+constexpr double kPaperStepTorque = -0.8;
+
+struct Derived {
+  ReducedTransferFunction tf;
+  double series_stiffness;
+  double stuck_level;  // link torque after the paper's step, drive stuck, no overshoot [N m]
+  double overshoot;    // relative overshoot of the sliding phase
+  double stuck_link_frequency;
+};
+
+Derived Derive(const DriveTrainParameters& p) {
+  Derived d{};
+  d.tf = CalcReducedTransferFunction(p);
+  d.series_stiffness = CalcSeriesStiffness(p);
+  const double drive = p.gear_ratio * kPaperStepTorque;
+  d.stuck_level = drive - std::copysign(std::min(p.coulomb_friction, std::abs(drive)), drive);
+  const double zeta = d.tf.damping_ratio;
+  d.overshoot = zeta < 1.0 ? std::exp(-M_PI * zeta / std::sqrt(1.0 - zeta * zeta)) : 0.0;
+  d.stuck_link_frequency = p.gearbox_inertia > 0.0 ? CalcStuckLinkFrequency(p) : 0.0;
+  return d;
+}
+
+}  // namespace
+
+std::string FormatDriveTrainReport(const DriveTrainParameters& p, const std::string& source) {
+  const Derived d = Derive(p);
+  const double n2 = p.gear_ratio * p.gear_ratio;
+  std::string out = fmt::format("drive train from {} (seed 000 section 4, SPEC 5.1)\n", source);
+  out += fmt::format("  n_g^2 Theta_motor = {:.4g} kg m^2, n_g^2 Theta_g = {:.4g} kg m^2, n_g^2 d_g = {:.4g} N m s/rad\n",
+                     n2 * p.motor_inertia, n2 * p.gearbox_inertia, n2 * p.viscous_friction);
+  out += fmt::format("  k_eq = k_Tl k_Tg / (k_Tl + k_Tg) = {:.6g} N m/rad\n\n", d.series_stiffness);
+  out += "eq. (16), reduced model: tau_link / tau_motor = K / (a2 s^2 + a1 s + 1)\n";
+  out += fmt::format("  {:<16} {:>14} {:>14}   {}\n", "", "paper (17)", "recomputed", "note");
+  out += fmt::format("  {:<16} {:>14} {:>14.6g}   {}\n", "gain K [-]", kPaperGain, d.tf.gain,
+                     "misprint: the steady-state gain is n_g");
+  out += fmt::format("  {:<16} {:>14} {:>14.6g}   {}\n", "a2 [s^2]", kPaperLagS2, d.tf.lag_s2,
+                     "n_g^2 Theta_motor / k_eq");
+  out += fmt::format("  {:<16} {:>14} {:>14.6g}   {}\n", "a1 [s]", kPaperLagS1, d.tf.lag_s1,
+                     "misprint: 0.013 s intended (only it gives zeta = 0.9)");
+  out += fmt::format("  {:<16} {:>14} {:>14.6g}   {}\n", "omega_n [1/s]", kPaperNaturalFrequency,
+                     d.tf.natural_frequency, "1 / sqrt(a2)");
+  out += fmt::format("  {:<16} {:>14} {:>14.6g}   {}\n", "zeta [-]", kPaperDampingRatio, d.tf.damping_ratio,
+                     "a1 omega_n / 2");
+  out += fmt::format("\npaper experiment (Fig. 6): tau_motor step {} N m\n", kPaperStepTorque);
+  out += fmt::format("  ideal steady state n_g tau_motor = {:.4g} N m; with Coulomb friction tau_c = {:.4g} N m the "
+                     "drive sticks near {:.4g} N m (sliding overshoot {:.2g} %)\n",
+                     p.gear_ratio * kPaperStepTorque, p.coulomb_friction, d.stuck_level, 100.0 * d.overshoot);
+  if (d.stuck_link_frequency > 0.0) {
+    out += fmt::format("full model: link mode with the motor stuck sqrt((k_Tl + k_Tg) / (n_g^2 Theta_g)) = {:.4g} rad/s "
+                       "({:.4g} Hz), undamped\n",
+                       d.stuck_link_frequency, d.stuck_link_frequency / (2 * M_PI));
+  }
+  out += "seed misprints corrected (SPEC 5.1): (13) viscous term n_g^2 d_g phi' (printed theta_g); (14) right side "
+         "k_Tg phi (printed k_T,k); n_g^2 Theta_g = 0.043 (printed 0.413)\n";
+  return out;
+}
+
+std::string FormatDriveTrainReportJson(const DriveTrainParameters& p, const std::string& source) {
+  const Derived d = Derive(p);
+  return fmt::format(
+      "{{\"source\":{},\"series_stiffness\":{},\"transfer_function\":{{\"gain\":{},\"a2\":{},\"a1\":{},"
+      "\"natural_frequency\":{},\"damping_ratio\":{}}},\"paper\":{{\"gain\":{},\"a2\":{},\"a1\":{},"
+      "\"natural_frequency\":{},\"damping_ratio\":{}}},\"step\":{{\"motor_torque\":{},\"stuck_level\":{},"
+      "\"overshoot\":{}}},\"stuck_link_frequency\":{}}}\n",
+      JsonString(source), JsonNumber(d.series_stiffness), JsonNumber(d.tf.gain), JsonNumber(d.tf.lag_s2),
+      JsonNumber(d.tf.lag_s1), JsonNumber(d.tf.natural_frequency), JsonNumber(d.tf.damping_ratio),
+      JsonNumber(kPaperGain), JsonNumber(kPaperLagS2), JsonNumber(kPaperLagS1), JsonNumber(kPaperNaturalFrequency),
+      JsonNumber(kPaperDampingRatio), JsonNumber(kPaperStepTorque), JsonNumber(d.stuck_level),
+      JsonNumber(d.overshoot), JsonNumber(d.stuck_link_frequency));
+}
+
+}  // namespace driveid

@@ -1,0 +1,30 @@
+// Fit-vs-measurement plots rendered with gnuplot (Debian gnuplot-nox):
+// top panel measured and model per series, bottom panel the residuals.
+// PNG or SVG by the output file's extension. The file appears atomically.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace driveid {
+
+struct PlotSeries {
+  std::string title;            ///< e.g. the log's file name
+  std::vector<double> time;     ///< [s]
+  std::vector<double> measured;
+  std::vector<double> model;
+};
+
+struct PlotLabels {
+  std::string title;
+  std::string y_label;  ///< e.g. "link torque [N m]"
+};
+
+/// True for a path ending in .png or .svg (case-insensitive).
+bool IsSupportedPlotPath(const std::string& path);
+
+/// Renders the plot into `path`. Throws std::runtime_error if gnuplot is
+/// missing or fails (message includes gnuplot's first error line).
+void RenderFitPlot(const std::string& path, const std::vector<PlotSeries>& series, const PlotLabels& labels);
+
+}  // namespace driveid

@@ -1,0 +1,62 @@
+#include "sim/step_experiment.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "sim/drivetrain_simulator.h"
+#include "sim/noise.h"
+
+namespace driveid {
+namespace {
+constexpr double kMaxSamples = 1e7;
+
+void Require(bool ok, const char* option, double value, const char* constraint) {
+  if (!ok) throw std::invalid_argument(fmt::format("{} = {}: violated constraint: {}", option, value, constraint));
+}
+}  // namespace
+
+void ValidateStepExperiment(const StepExperiment& e) {
+  Require(std::isfinite(e.rate) && e.rate > 0.0, "--rate", e.rate, "rate > 0 Hz");
+  Require(std::isfinite(e.duration) && e.duration > 0.0, "--duration", e.duration, "duration > 0 s");
+  Require(e.duration * e.rate <= kMaxSamples, "--duration", e.duration, "duration * rate <= 1e7 samples");
+  Require(std::isfinite(e.step_time) && e.step_time >= 0.0 && e.step_time < e.duration, "--step-time", e.step_time,
+          "0 <= step time < duration");
+  Require(std::isfinite(e.step_torque), "--step-torque", e.step_torque, "finite");
+  Require(std::isfinite(e.noise) && e.noise >= 0.0, "--noise", e.noise, "noise >= 0");
+  Require(std::isfinite(e.offset), "--offset", e.offset, "finite");
+}
+
+StepLog SimulateStepExperiment(const DriveTrainParameters& params, const StepExperiment& e) {
+  ValidateStepExperiment(e);
+  StepLog log;
+  log.path = "simulated";
+  const long samples = std::lround(e.duration * e.rate) + 1;
+  log.time.reserve(static_cast<std::size_t>(samples));
+  log.motor_torque.reserve(static_cast<std::size_t>(samples));
+  for (long k = 0; k < samples; ++k) {
+    const double t = static_cast<double>(k) / e.rate;
+    log.time.push_back(t);
+    log.motor_torque.push_back(t >= e.step_time - 1e-9 / e.rate ? e.step_torque : 0.0);
+  }
+  DriveTrainSimulator simulator(e.model, params, {});
+  DriveTrainResponse response;
+  simulator.Simulate(params, log.time, log.motor_torque, false, &response);
+  GaussianNoise noise(e.seed);
+  log.link_torque = std::move(response.link_torque);
+  for (double& y : log.link_torque) y += e.offset + (e.noise > 0.0 ? noise.Next(e.noise) : 0.0);
+  return log;
+}
+
+std::string FormatStepLog(const StepLog& log, const std::vector<std::string>& comments) {
+  std::string out;
+  for (const auto& line : comments) out += "# " + line + "\n";
+  out += "t,tau_motor,tau_link\n";
+  for (std::size_t k = 0; k < log.time.size(); ++k) {
+    out += fmt::format("{},{},{:.9g}\n", log.time[k], log.motor_torque[k], log.link_torque[k]);
+  }
+  return out;
+}
+
+}  // namespace driveid
