@@ -9,6 +9,7 @@ namespace driveid::cli {
 
 struct ReportOptions {
   std::string params;
+  std::string fitted;
   bool json = false;
 };
 

@@ -16,6 +16,9 @@ constexpr double kPaperLagS1 = 0.031;
 constexpr double kPaperNaturalFrequency = 138.0;
 constexpr double kPaperDampingRatio = 0.9;
 constexpr double kPaperStepTorque = -0.8;
+constexpr double kPaperViscousFriction = 0.016;  // N m s/rad
+constexpr double kPaperCoulombFriction = 5.0;    // N m
+constexpr double kPaperSteadyState = -59.0;      // "-0.8 N m x 80 less the 5 N m Coulomb friction"
 
 struct Derived {
   ReducedTransferFunction tf;
@@ -39,29 +42,38 @@ Derived Derive(const DriveTrainParameters& p) {
 
 }  // namespace
 
-std::string FormatDriveTrainReport(const DriveTrainParameters& p, const std::string& source) {
+std::string FormatDriveTrainReport(const DriveTrainParameters& p, const std::string& source,
+                                   const DriveTrainParameters* fitted, const std::string& fitted_source) {
   const Derived d = Derive(p);
   const double n2 = p.gear_ratio * p.gear_ratio;
   std::string out = fmt::format("drive train from {} (seed 000 section 4, SPEC 5.1)\n", source);
   out += fmt::format("  n_g^2 Theta_motor = {:.4g} kg m^2, n_g^2 Theta_g = {:.4g} kg m^2, n_g^2 d_g = {:.4g} N m s/rad\n",
                      n2 * p.motor_inertia, n2 * p.gearbox_inertia, n2 * p.viscous_friction);
   out += fmt::format("  k_eq = k_Tl k_Tg / (k_Tl + k_Tg) = {:.6g} N m/rad\n\n", d.series_stiffness);
+  if (fitted != nullptr) out += fmt::format("fitted: {}\n", fitted_source);
   out += "eq. (16), reduced model: tau_link / tau_motor = K / (a2 s^2 + a1 s + 1)\n";
-  out += fmt::format("  {:<16} {:>14} {:>14}   {}\n", "", "paper (17)", "recomputed", "note");
-  out += fmt::format("  {:<16} {:>14} {:>14.6g}   {}\n", "gain K [-]", kPaperGain, d.tf.gain,
-                     "misprint: the steady-state gain is n_g");
-  out += fmt::format("  {:<16} {:>14} {:>14.6g}   {}\n", "a2 [s^2]", kPaperLagS2, d.tf.lag_s2,
-                     "n_g^2 Theta_motor / k_eq");
-  out += fmt::format("  {:<16} {:>14} {:>14.6g}   {}\n", "a1 [s]", kPaperLagS1, d.tf.lag_s1,
-                     "misprint: 0.013 s intended (only it gives zeta = 0.9)");
-  out += fmt::format("  {:<16} {:>14} {:>14.6g}   {}\n", "omega_n [1/s]", kPaperNaturalFrequency,
-                     d.tf.natural_frequency, "1 / sqrt(a2)");
-  out += fmt::format("  {:<16} {:>14} {:>14.6g}   {}\n", "zeta [-]", kPaperDampingRatio, d.tf.damping_ratio,
-                     "a1 omega_n / 2");
-  out += fmt::format("\npaper experiment (Fig. 6): tau_motor step {} N m\n", kPaperStepTorque);
-  out += fmt::format("  ideal steady state n_g tau_motor = {:.4g} N m; with Coulomb friction tau_c = {:.4g} N m the "
-                     "drive sticks near {:.4g} N m (sliding overshoot {:.2g} %)\n",
-                     p.gear_ratio * kPaperStepTorque, p.coulomb_friction, d.stuck_level, 100.0 * d.overshoot);
+  const Derived f = fitted != nullptr ? Derive(*fitted) : d;
+  auto row = [&](const char* name, double paper, double recomputed, double fit, const char* note) {
+    std::string line = fmt::format("  {:<22} {:>11.6g} {:>12.6g}", name, paper, recomputed);
+    if (fitted != nullptr) line += fmt::format(" {:>12.6g}", fit);
+    return line + "   " + note + "\n";
+  };
+  out += fmt::format("  {:<22} {:>11} {:>12}{}   {}\n", "", "paper", "recomputed", fitted ? "       fitted" : "", "note");
+  out += row("d_g [N m s/rad]", kPaperViscousFriction, p.viscous_friction, fitted ? fitted->viscous_friction : 0.0,
+             "section 4: best match of Fig. 6");
+  out += row("tau_c [N m]", kPaperCoulombFriction, p.coulomb_friction, fitted ? fitted->coulomb_friction : 0.0,
+             "section 4: the 'gain loss' of Fig. 6");
+  out += row("gain K [-]", kPaperGain, d.tf.gain, f.tf.gain, "misprint (81): the steady-state gain is n_g");
+  out += row("a2 [s^2]", kPaperLagS2, d.tf.lag_s2, f.tf.lag_s2, "n_g^2 Theta_motor / k_eq");
+  out += row("a1 [s]", kPaperLagS1, d.tf.lag_s1, f.tf.lag_s1, "misprint: 0.013 s intended (only it gives zeta = 0.9)");
+  out += row("omega_n [1/s]", kPaperNaturalFrequency, d.tf.natural_frequency, f.tf.natural_frequency, "1 / sqrt(a2)");
+  out += row("zeta [-]", kPaperDampingRatio, d.tf.damping_ratio, f.tf.damping_ratio, "a1 omega_n / 2");
+  out += row("steady state [N m]", kPaperSteadyState, d.stuck_level, f.stuck_level,
+             "after the -0.8 N m step: n_g tau_motor + tau_c (stuck)");
+  out += fmt::format("\npaper experiment (Fig. 6): tau_motor step {} N m: ideal n_g tau_motor = {:.4g} N m; Coulomb "
+                     "friction tau_c = {:.4g} N m makes the drive stick near {:.4g} N m (sliding overshoot {:.2g} %)\n",
+                     kPaperStepTorque, p.gear_ratio * kPaperStepTorque, p.coulomb_friction, d.stuck_level,
+                     100.0 * d.overshoot);
   if (d.stuck_link_frequency > 0.0) {
     out += fmt::format("full model: link mode with the motor stuck sqrt((k_Tl + k_Tg) / (n_g^2 Theta_g)) = {:.4g} rad/s "
                        "({:.4g} Hz), undamped\n",
@@ -72,18 +84,26 @@ std::string FormatDriveTrainReport(const DriveTrainParameters& p, const std::str
   return out;
 }
 
-std::string FormatDriveTrainReportJson(const DriveTrainParameters& p, const std::string& source) {
-  const Derived d = Derive(p);
-  return fmt::format(
-      "{{\"source\":{},\"series_stiffness\":{},\"transfer_function\":{{\"gain\":{},\"a2\":{},\"a1\":{},"
-      "\"natural_frequency\":{},\"damping_ratio\":{}}},\"paper\":{{\"gain\":{},\"a2\":{},\"a1\":{},"
-      "\"natural_frequency\":{},\"damping_ratio\":{}}},\"step\":{{\"motor_torque\":{},\"stuck_level\":{},"
-      "\"overshoot\":{}}},\"stuck_link_frequency\":{}}}\n",
-      JsonString(source), JsonNumber(d.series_stiffness), JsonNumber(d.tf.gain), JsonNumber(d.tf.lag_s2),
-      JsonNumber(d.tf.lag_s1), JsonNumber(d.tf.natural_frequency), JsonNumber(d.tf.damping_ratio),
-      JsonNumber(kPaperGain), JsonNumber(kPaperLagS2), JsonNumber(kPaperLagS1), JsonNumber(kPaperNaturalFrequency),
-      JsonNumber(kPaperDampingRatio), JsonNumber(kPaperStepTorque), JsonNumber(d.stuck_level),
-      JsonNumber(d.overshoot), JsonNumber(d.stuck_link_frequency));
+namespace {
+std::string DerivedJson(const Derived& d) {
+  return fmt::format("{{\"gain\":{},\"a2\":{},\"a1\":{},\"natural_frequency\":{},\"damping_ratio\":{},"
+                     "\"steady_state\":{},\"overshoot\":{},\"series_stiffness\":{},\"stuck_link_frequency\":{}}}",
+                     JsonNumber(d.tf.gain), JsonNumber(d.tf.lag_s2), JsonNumber(d.tf.lag_s1),
+                     JsonNumber(d.tf.natural_frequency), JsonNumber(d.tf.damping_ratio), JsonNumber(d.stuck_level),
+                     JsonNumber(d.overshoot), JsonNumber(d.series_stiffness), JsonNumber(d.stuck_link_frequency));
+}
+}  // namespace
+
+std::string FormatDriveTrainReportJson(const DriveTrainParameters& p, const std::string& source,
+                                       const DriveTrainParameters* fitted) {
+  std::string out = fmt::format("{{\"source\":{},\"recomputed\":{},", JsonString(source), DerivedJson(Derive(p)));
+  if (fitted != nullptr) out += fmt::format("\"fitted\":{},", DerivedJson(Derive(*fitted)));
+  out += fmt::format("\"paper\":{{\"d_g\":{},\"tau_c\":{},\"gain\":{},\"a2\":{},\"a1\":{},\"natural_frequency\":{},"
+                     "\"damping_ratio\":{},\"steady_state\":{}}}}}\n",
+                     JsonNumber(kPaperViscousFriction), JsonNumber(kPaperCoulombFriction), JsonNumber(kPaperGain),
+                     JsonNumber(kPaperLagS2), JsonNumber(kPaperLagS1), JsonNumber(kPaperNaturalFrequency),
+                     JsonNumber(kPaperDampingRatio), JsonNumber(kPaperSteadyState));
+  return out;
 }
 
 }  // namespace driveid

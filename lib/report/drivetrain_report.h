@@ -10,10 +10,13 @@
 
 namespace driveid {
 
-/// Text report; `source` names the parameter file.
-std::string FormatDriveTrainReport(const DriveTrainParameters& params, const std::string& source);
+/// Text report; `source` names the parameter file. With `fitted` non-null a
+/// further column shows the same quantities for a fitted parameter set.
+std::string FormatDriveTrainReport(const DriveTrainParameters& params, const std::string& source,
+                                   const DriveTrainParameters* fitted = nullptr, const std::string& fitted_source = "");
 
 /// The same as one JSON object.
-std::string FormatDriveTrainReportJson(const DriveTrainParameters& params, const std::string& source);
+std::string FormatDriveTrainReportJson(const DriveTrainParameters& params, const std::string& source,
+                                       const DriveTrainParameters* fitted = nullptr);
 
 }  // namespace driveid

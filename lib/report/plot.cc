@@ -75,8 +75,8 @@ void RenderFitPlot(const std::string& path, const std::vector<PlotSeries>& serie
   };
 
   std::string script;
-  script += svg ? "set terminal svg size 1000,750 dynamic font 'sans,11'\n"
-                : "set terminal pngcairo size 1000,750 font 'sans,10'\n";
+  script += svg ? "set terminal svg size 1000,800 dynamic noenhanced font 'sans,11'\n"
+                : "set terminal pngcairo size 1000,800 noenhanced font 'sans,10'\n";
   script += fmt::format("set output {}\n", GnuplotString(image));
   for (std::size_t s = 0; s < series.size(); ++s) {
     script += fmt::format("$d{} << EOD\n", s);
@@ -86,8 +86,8 @@ void RenderFitPlot(const std::string& path, const std::vector<PlotSeries>& serie
     }
     script += "EOD\n";
   }
-  script += "set multiplot layout 2,1\nset grid\nset key outside right top\n";
-  script += "set lmargin 12\nset rmargin 28\n";
+  script += "set multiplot layout 2,1\nset grid\nset key outside below horizontal\n";
+  script += "set lmargin 12\nset rmargin 4\n";
   script += fmt::format("set title {}\nset ylabel {}\nunset xlabel\n", GnuplotString(labels.title),
                         GnuplotString(labels.y_label));
   std::string measured_plot = "plot ";
