@@ -1,0 +1,129 @@
+#!/usr/bin/env bash
+# CLI tests of drivetrain-fit: exit codes (SPEC 7), one-line messages naming
+# file and line, no output file on failure, identifiability refusal, a golden
+# report, and byte-identical reruns. Usage: drivetrain_fit_cli_test.sh BIN SRC
+set -u
+bin="$1"
+src="$2"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+passed=0
+failed=0
+fail() { echo "FAIL: $*"; failed=$((failed + 1)); }
+ok() { passed=$((passed + 1)); }
+
+cp "$src/data/paper000.yaml" paper.yaml
+cp "$src/data/paper000_start.yaml" start.yaml
+"$bin" simulate step --params paper.yaml --noise 0.1 --seed 4 -o good.csv || fail "simulate step"
+
+# expect CODE PATTERN -- ARGS...: exit code, a single stderr line starting
+# with the program name and matching PATTERN, and no out.yaml written.
+expect() {
+  local code="$1" pattern="$2"
+  shift 3
+  rm -f out.yaml
+  "$bin" "$@" -o out.yaml > stdout.txt 2> stderr.txt
+  local got=$?
+  local lines
+  lines=$(wc -l < stderr.txt)
+  if [ "$got" -ne "$code" ]; then
+    fail "$* -> exit $got, expected $code: $(head -c 300 stderr.txt)"
+  elif [ "$lines" -ne 1 ]; then
+    fail "$* -> $lines stderr lines: $(head -c 300 stderr.txt)"
+  elif ! grep -q "^drivetrain-fit: " stderr.txt; then
+    fail "$* -> message does not start with the program name: $(cat stderr.txt)"
+  elif ! grep -qE -- "$pattern" stderr.txt; then
+    fail "$* -> message does not match /$pattern/: $(cat stderr.txt)"
+  elif [ -e out.yaml ] || ls out.yaml.tmp.* > /dev/null 2>&1; then
+    fail "$* -> an output file was written on failure"
+  else
+    ok
+  fi
+}
+
+# Malformed logs: exit 3, file:line: column.
+printf '' > empty.csv
+printf 't,tau_motor,tau_link\n' > header_only.csv
+printf 't,tau_motor\n0,0\n0.001,-0.8\n' > missing_column.csv
+printf 't,tau_motor,tau_link\n0,0,0\n0.001,-0.8,1.2.3\n' > not_number.csv
+printf 't,tau_motor,tau_link\n0,0,0\n0.001,-0.8,NaN\n' > nan.csv
+printf 't,tau_motor,tau_link\n0,0,0\n0.001,-inf,1\n' > inf.csv
+printf 't,tau_motor,tau_link\n0,0,0\n0.001,-0.8,1e400\n' > overflow.csv
+printf 't,tau_motor,tau_link\n0,0,0\n0.001,,1\n' > empty_cell.csv
+printf 't,tau_motor,tau_link\n0,0,0\n0.001,-0.8\n' > ragged.csv
+printf 't,tau_motor,tau_link\n0,0,0\n0.001,-0.8,1,7\n' > extra.csv
+printf 't,tau_motor,tau_link\n0,0,0\n0.002,-0.8,1\n0.001,-0.8,2\n' > time_back.csv
+printf 't,tau_motor,tau_link\n0,0,0\n0.001,-0.8,\x00\x01\xff\xfe\x7f\n' > garbage.csv
+{ printf 't,tau_motor,tau_link\n0,0,'; head -c 2097152 /dev/zero | tr '\0' '7'; printf '\n'; } > long_line.csv
+printf 't,tau_motor,tau_link\n0,0,0.1\n0.001,0,-0.1\n0.002,0,0.05\n' > no_step.csv
+
+expect 3 "empty.csv: empty file" -- step empty.csv --params start.yaml
+expect 3 "header_only.csv:1: no data rows" -- step header_only.csv --params start.yaml
+expect 3 "missing_column.csv:1: missing column 'tau_link'" -- step missing_column.csv --params start.yaml
+expect 3 "not_number.csv:3: column 'tau_link': not a number" -- step not_number.csv --params start.yaml
+expect 3 "nan.csv:3: column 'tau_link': not a finite number" -- step nan.csv --params start.yaml
+expect 3 "inf.csv:3: column 'tau_motor': not a finite number" -- step inf.csv --params start.yaml
+expect 3 "overflow.csv:3: column 'tau_link': number out of range" -- step overflow.csv --params start.yaml
+expect 3 "empty_cell.csv:3: column 'tau_motor': empty cell" -- step empty_cell.csv --params start.yaml
+expect 3 "ragged.csv:3: 2 fields, but the header" -- step ragged.csv --params start.yaml
+expect 3 "extra.csv:3: 4 fields, but the header" -- step extra.csv --params start.yaml
+expect 3 "time_back.csv:4: column 't': time not strictly increasing" -- step time_back.csv --params start.yaml
+expect 3 "garbage.csv:3: column 'tau_link': not a number" -- step garbage.csv --params start.yaml
+expect 3 "long_line.csv:2: line longer than" -- step long_line.csv --params start.yaml
+expect 3 "nowhere.csv: cannot open" -- step nowhere.csv --params start.yaml
+expect 3 "good.csv:4: missing column 'strain'" -- step good.csv --params start.yaml --col tau_link=strain
+expect 4 "no_step.csv: column 'tau_motor' is zero throughout" -- step no_step.csv --params start.yaml
+
+# Malformed parameter files: exit 3, file:line:column: key.
+printf 'drivetrain: [1, 2\n' > bad.yaml
+sed 's/k_Tl: 15000/k_Tl: 15000\n  k_TL: 1/' start.yaml > unknown_key.yaml
+sed 's/k_Tg: 18375/k_Tg: -18375/' start.yaml > negative.yaml
+expect 3 "bad.yaml:2:1: invalid YAML" -- step good.csv --params bad.yaml
+expect 3 "unknown_key.yaml:[0-9]+:3: drivetrain.k_TL: unknown key" -- step good.csv --params unknown_key.yaml
+expect 3 "negative.yaml:[0-9]+:9: drivetrain.k_Tg: must be > 0" -- step good.csv --params negative.yaml
+expect 3 "missing.yaml: cannot open" -- step good.csv --params missing.yaml
+
+# Not identifiable: exit 4 naming the stiffnesses.
+expect 4 "not identifiable.*k_Tl.*k_Tg.*fix k_Tl or k_Tg" -- step good.csv --params start.yaml --free d_g,Theta_motor,k_Tl,k_Tg
+expect 4 "Theta_g has no effect in the reduced model" -- step good.csv --params start.yaml --free d_g,Theta_g
+
+# Usage errors: exit 2.
+expect 2 "not a step-fit parameter" -- step good.csv --params start.yaml --free d_g,mass
+expect 2 "" -- step good.csv --params start.yaml --bogus
+expect 2 "png or .svg" -- step good.csv --params start.yaml --plot fit.jpg
+expect 2 "" -- step good.csv
+expect 2 "--rate = -5: violated constraint" -- simulate step --params paper.yaml --rate -5
+
+# Success: fit, trace, plot, JSON; the parameter file reads back as --params.
+if "$bin" step good.csv --params start.yaml -o fit.yaml --trace trace.csv --plot fit.svg -q; then ok; else fail "good fit"; fi
+[ -s fit.yaml ] && [ -s trace.csv ] && grep -q "<svg" fit.svg && ok || fail "fit outputs missing"
+grep -q "^  converged: true" fit.yaml && ok || fail "fit.yaml lacks converged: true"
+head -2 trace.csv | tail -1 | grep -q "^log,t,tau_motor,tau_link_measured,tau_link_model,residual$" && ok || fail "trace header"
+"$bin" step good.csv --params fit.yaml -q -o refit.yaml && ok || fail "fit output is not a valid --params input"
+"$bin" step good.csv --params start.yaml --json -o fit_json.yaml > summary.json && grep -q '"converged":true' summary.json && ok || fail "--json summary"
+# Byte-identical reruns.
+cp fit.yaml first.yaml
+"$bin" step good.csv --params start.yaml -o fit.yaml --trace trace.csv --plot fit.svg -q && cmp -s fit.yaml first.yaml \
+  && ok || fail "rerun of the same fit differs"
+cp good.csv first.csv
+"$bin" simulate step --params paper.yaml --noise 0.1 --seed 4 -o good.csv && cmp -s good.csv first.csv && ok || fail "simulate rerun differs"
+# The fitted d_g is within 3 % of the truth 0.016.
+dg=$(awk '/^  d_g:/ {print $2}' fit.yaml)
+awk -v v="$dg" 'BEGIN { exit !(v > 0.01552 && v < 0.01648) }' && ok || fail "fitted d_g $dg not within 3 % of 0.016"
+# A failed fit leaves an existing output file untouched.
+cp fit.yaml keep.yaml
+"$bin" step no_step.csv --params start.yaml -q -o keep.yaml 2> /dev/null
+cmp -s fit.yaml keep.yaml && ok || fail "failed fit touched the existing output"
+
+# Golden: report of the paper's values.
+"$bin" report paper.yaml > report.txt && diff -u "$src/tests/cli/golden/report_paper000.txt" report.txt > report.diff \
+  && ok || fail "report differs from golden: $(head -c 600 report.diff)"
+# Every subcommand's help has a worked example.
+for sub in step "simulate step" report; do
+  # shellcheck disable=SC2086
+  "$bin" $sub --help | grep -q "Example:" && ok || fail "$sub --help lacks an example"
+done
+
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
