@@ -23,14 +23,16 @@ int Sign(double value) { return (value > 0.0) - (value < 0.0); }
 
 class DriveTrainSimulator::System final : public SensitivityOdeSystem {
  public:
-  System(DriveTrainModel model, const DriveTrainParameters& nominal, std::vector<DriveTrainParameter> parameters)
+  System(DriveTrainModel model, const DriveTrainParameters& nominal, std::vector<DriveTrainParameter> parameters,
+         const SimulationTolerances& tolerances)
       : model_(model), params_(nominal), parameters_(std::move(parameters)),
         n_(DriveTrainStateSize(model)) {
     IntegratorOptions options;
-    // Absolute tolerances from the output: 1e-7 N m of link torque.
-    const double torque_tolerance = 1e-7;
+    // Absolute tolerances of the states from the link-torque tolerance; the
+    // rates get the same with a time scale of 1 ms.
+    const double torque_tolerance = tolerances.link_torque;
     const double phi_tolerance = torque_tolerance / CalcSeriesStiffness(nominal);
-    options.relative_tolerance = 1e-8;
+    options.relative_tolerance = tolerances.relative;
     options.absolute_tolerance = {phi_tolerance, phi_tolerance * 1e3};
     if (model == DriveTrainModel::kFull) {
       const double deflection_tolerance = torque_tolerance / nominal.link_stiffness;
@@ -217,8 +219,9 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem {
 };
 
 DriveTrainSimulator::DriveTrainSimulator(DriveTrainModel model, const DriveTrainParameters& nominal,
-                                         std::vector<DriveTrainParameter> sensitivity_parameters)
-    : system_(std::make_unique<System>(model, nominal, std::move(sensitivity_parameters))) {}
+                                         std::vector<DriveTrainParameter> sensitivity_parameters,
+                                         const SimulationTolerances& tolerances)
+    : system_(std::make_unique<System>(model, nominal, std::move(sensitivity_parameters), tolerances)) {}
 
 DriveTrainSimulator::~DriveTrainSimulator() = default;
 

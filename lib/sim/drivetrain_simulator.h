@@ -39,12 +39,20 @@ struct DriveTrainResponse {
   int switch_count = 0;                         ///< number of stick/slip switches
 };
 
+/// Integrator accuracy. The defaults resolve the link torque far below any
+/// strain-gauge noise; tighter values are for checking derivatives.
+struct SimulationTolerances {
+  double relative = 1e-7;     ///< relative tolerance of states and sensitivities
+  double link_torque = 1e-6;  ///< absolute tolerance, expressed as link torque [N m]
+};
+
 class DriveTrainSimulator {
  public:
   /// `nominal` sets the integrator's tolerance scales; `sensitivity_parameters`
   /// are the parameters whose sensitivities Simulate can compute.
   DriveTrainSimulator(DriveTrainModel model, const DriveTrainParameters& nominal,
-                      std::vector<DriveTrainParameter> sensitivity_parameters);
+                      std::vector<DriveTrainParameter> sensitivity_parameters,
+                      const SimulationTolerances& tolerances = {});
   ~DriveTrainSimulator();
   DriveTrainSimulator(const DriveTrainSimulator&) = delete;
   DriveTrainSimulator& operator=(const DriveTrainSimulator&) = delete;

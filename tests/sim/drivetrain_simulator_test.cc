@@ -83,8 +83,15 @@ TEST_CASE("sensitivities match central differences of whole simulations") {
   struct Case {
     DriveTrainModel model;
     double rate;
+    SimulationTolerances tolerances;
+    double difference_step;  // relative FD step: above the integrator's noise
+    double agreement;        // relative to the largest sensitivity
   };
-  for (const Case c : {Case{DriveTrainModel::kReduced, 1000.0}, Case{DriveTrainModel::kFull, 5000.0}}) {
+  const SimulationTolerances tight{1e-10, 1e-9};
+  for (const Case c : {Case{DriveTrainModel::kReduced, 1000.0, tight, 1e-5, 2e-4},
+                       Case{DriveTrainModel::kFull, 5000.0, tight, 1e-5, 2e-4},
+                       Case{DriveTrainModel::kReduced, 1000.0, {}, 1e-3, 5e-3},
+                       Case{DriveTrainModel::kFull, 5000.0, {}, 1e-3, 5e-3}}) {
     // A step followed by a reversal exercises stick, break-away and reversal.
     auto log = MakeStep(c.rate, 0.3, 0.02, -0.8);
     for (std::size_t k = 0; k < log.time.size(); ++k) {
@@ -95,14 +102,14 @@ TEST_CASE("sensitivities match central differences of whole simulations") {
         DriveTrainParameter::kCoulombFriction, DriveTrainParameter::kLinkStiffness,
         DriveTrainParameter::kGearboxStiffness};
     if (c.model == DriveTrainModel::kFull) parameters.push_back(DriveTrainParameter::kGearboxInertia);
-    DriveTrainSimulator simulator(c.model, params, parameters);
+    DriveTrainSimulator simulator(c.model, params, parameters, c.tolerances);
     DriveTrainResponse response;
     simulator.Simulate(params, log.time, log.torque, true, &response);
     CHECK(response.switch_count >= 2);
     const std::size_t p = parameters.size();
     for (std::size_t j = 0; j < p; ++j) {
       const double value = GetDriveTrainParameter(params, parameters[j]);
-      const double h = 1e-5 * value;
+      const double h = c.difference_step * value;
       auto plus = params, minus = params;
       SetDriveTrainParameter(plus, parameters[j], value + h);
       SetDriveTrainParameter(minus, parameters[j], value - h);
@@ -118,7 +125,7 @@ TEST_CASE("sensitivities match central differences of whole simulations") {
       INFO("model " << static_cast<int>(c.model) << " parameter " << DriveTrainParameterKey(parameters[j])
                     << " worst " << worst << " scale " << scale);
       CHECK(scale > 0.0);
-      CHECK(worst <= 2e-3 * scale);
+      CHECK(worst <= c.agreement * scale);
     }
   }
 }

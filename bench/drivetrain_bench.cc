@@ -1,0 +1,82 @@
+// Benchmark (not a test): CSV parse throughput and step-fit time vs number of
+// samples. Prints a Markdown table. Usage: drivetrain_bench [repetitions]
+//
+// Data: the paper's drive train (SPEC 5.1), reduced model, -0.8 N m step at
+// 20 ms in a 0.2 s log, noise 0.1 N m; the fit starts 2-3x off with
+// --free d_g,Theta_motor,tau_c,offset. More samples = a higher rate.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "fit/step_fit.h"
+#include "io/csv_log.h"
+#include "sim/step_experiment.h"
+
+using namespace driveid;
+
+namespace {
+double Seconds(std::chrono::steady_clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+DriveTrainParameters Paper() {
+  DriveTrainParameters p;
+  p.motor_inertia = 0.413 / 6400.0;
+  p.gearbox_inertia = 0.043 / 6400.0;
+  return p;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int repetitions = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
+
+  // CSV parse: a 1,000,000-row step log (about 33 MB) parsed from memory.
+  StepExperiment big;
+  big.rate = 5e6;
+  big.noise = 0.1;
+  const StepLog big_log = SimulateStepExperiment(Paper(), big);
+  const std::string text = FormatStepLog(big_log, {"benchmark"});
+  double best = 1e30;
+  for (int r = 0; r < repetitions; ++r) {
+    const auto start = std::chrono::steady_clock::now();
+    const CsvLog log = ParseCsvLog("bench.csv", text, {"t", "tau_motor", "tau_link"});
+    best = std::min(best, Seconds(std::chrono::steady_clock::now() - start));
+    if (log.rows() != big_log.time.size()) return 1;
+  }
+  std::printf("| CSV parse | %zu rows, %.1f MB | %.1f ms | %.0f MB/s |\n", big_log.time.size(), text.size() / 1e6,
+              best * 1e3, text.size() / 1e6 / best);
+
+  std::printf("\n| samples | model | free | fit time (best of %d) | iterations | d_g error |\n", repetitions);
+  std::printf("|---:|---|---|---:|---:|---:|\n");
+  for (const char* model_name : {"reduced", "full"}) {
+    const bool full = std::string(model_name) == "full";
+    for (int samples : {200, 1000, 5000, 20000, 100000}) {
+      StepExperiment e;
+      e.model = full ? DriveTrainModel::kFull : DriveTrainModel::kReduced;
+      e.rate = (samples - 1) / e.duration;
+      e.noise = 0.1;
+      e.offset = 0.5;
+      e.seed = 7;
+      StepLog log = SimulateStepExperiment(Paper(), e);
+      log.path = "bench";
+      DriveTrainParameters start = Paper();
+      start.motor_inertia *= 2.5;
+      start.viscous_friction /= 3.0;
+      start.coulomb_friction *= 2.0;
+      StepFitOptions options;
+      options.model = e.model;
+      options.free = {"d_g", "Theta_motor", "tau_c", "offset"};
+      double fastest = 1e30;
+      StepFitOutput out;
+      for (int r = 0; r < repetitions; ++r) {
+        const auto begin = std::chrono::steady_clock::now();
+        out = FitStepResponses({log}, start, options);
+        fastest = std::min(fastest, Seconds(std::chrono::steady_clock::now() - begin));
+      }
+      std::printf("| %d | %s | 4 | %.2f ms | %d | %+.2f %% |\n", samples, model_name, fastest * 1e3, out.fit.iterations,
+                  100.0 * (out.params.viscous_friction / 0.016 - 1.0));
+    }
+  }
+  return 0;
+}
