@@ -105,26 +105,41 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem {
       motor_torque_ = motor_torque[k];
       if (x_[kOmega] == 0.0) DecideModeAtRest();
       RefreshJacobian();
-      RestartIntegrator(time[k], with_sensitivities);
+      // A stuck reduced drive has no dynamics: state, sensitivities and the
+      // net torque stay constant until the command changes, so stuck samples
+      // are recorded without integrating.
+      bool integrating = !StuckWithoutDynamics();
+      if (integrating) RestartIntegrator(time[k], with_sensitivities);
       for (std::size_t m = k + 1; m <= end; ++m) {
-        while (integrator_->Advance(time[m], time[end])) {
-          HandleSwitch(with_sensitivities);
-          if (++out->switch_count > switch_budget) {
-            throw IdentificationError(fmt::format(
-                "simulation: more than {} stick/slip switches before t = {} s (chattering)", switch_budget,
-                integrator_->time()));
+        if (integrating) {
+          bool stuck = false;
+          while (integrator_->Advance(time[m], time[end])) {
+            HandleSwitch(with_sensitivities);
+            if (++out->switch_count > switch_budget) {
+              throw IdentificationError(fmt::format(
+                  "simulation: more than {} stick/slip switches before t = {} s (chattering)", switch_budget,
+                  integrator_->time()));
+            }
+            if (StuckWithoutDynamics()) {
+              stuck = true;
+              break;
+            }
+            RestartIntegrator(integrator_->time(), with_sensitivities);
           }
-          RestartIntegrator(integrator_->time(), with_sensitivities);
+          const long total = integrator_->step_count();
+          steps += total - last_step_count_;
+          last_step_count_ = total;
+          if (steps > step_budget) {
+            throw IdentificationError(fmt::format(
+                "simulation: more than {} integrator steps before t = {} s (the parameters make the model too stiff)",
+                step_budget, integrator_->time()));
+          }
+          if (stuck) {
+            integrating = false;  // x_ and s_ hold the stuck state
+          } else {
+            CopyFromIntegrator(with_sensitivities);
+          }
         }
-        const long total = integrator_->step_count();
-        steps += total - last_step_count_;
-        last_step_count_ = total;
-        if (steps > step_budget) {
-          throw IdentificationError(fmt::format(
-              "simulation: more than {} integrator steps before t = {} s (the parameters make the model too stiff)",
-              step_budget, integrator_->time()));
-        }
-        CopyFromIntegrator(with_sensitivities);
         Record(m, with_sensitivities, out);
       }
       k = end;
@@ -136,6 +151,8 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem {
 
  private:
   double jacobian_cache(int col, int row) const { return jacobian_[static_cast<std::size_t>(col * n_ + row)]; }
+
+  bool StuckWithoutDynamics() const { return model_ == DriveTrainModel::kReduced && mode_ == 0; }
 
   void RefreshJacobian() { CalcDriveTrainStateJacobian(params_, model_, mode_, jacobian_.data()); }
 
