@@ -6,11 +6,10 @@
 namespace driveid {
 namespace {
 
-// Index of each state in the state vector.
-constexpr int kPhi = 0;
-constexpr int kOmega = 1;
-constexpr int kDeflection = 2;
-constexpr int kDeflectionRate = 3;
+constexpr int kPhi = DriveTrainState::kMotorAngle;
+constexpr int kOmega = DriveTrainState::kMotorRate;
+constexpr int kDeflection = DriveTrainState::kDeflection;
+constexpr int kDeflectionRate = DriveTrainState::kDeflectionRate;
 
 struct Lumped {
   double inertia;          // J = n_g^2 Theta_motor [kg m^2, output side]

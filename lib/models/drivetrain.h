@@ -46,6 +46,14 @@ struct DriveTrainParameters {
 
 enum class DriveTrainModel { kReduced, kFull };
 
+/// Index of each state in the state vector (the full model uses all four).
+struct DriveTrainState {
+  static constexpr int kMotorAngle = 0;      ///< phi [rad], gear output side
+  static constexpr int kMotorRate = 1;       ///< omega = d(phi)/dt [rad/s]
+  static constexpr int kDeflection = 2;      ///< Delta [rad]
+  static constexpr int kDeflectionRate = 3;  ///< d(Delta)/dt [rad/s]
+};
+
 /// Parameters that can be estimated, in a fixed order (index into sensitivities).
 enum class DriveTrainParameter : int {
   kViscousFriction = 0,  // d_g

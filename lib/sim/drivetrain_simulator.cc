@@ -16,7 +16,7 @@ namespace {
 constexpr long kSwitchesPerSample = 4;
 constexpr long kStepsPerSample = 200;
 constexpr long kBudgetConstant = 2000;
-constexpr int kOmega = 1;
+constexpr int kOmega = DriveTrainState::kMotorRate;
 
 int Sign(double value) { return (value > 0.0) - (value < 0.0); }
 }  // namespace

@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include "core/errors.h"
+#include "support/paper000.h"
 #include "support/reference_drivetrain.h"
 
 using namespace driveid;
@@ -22,9 +23,8 @@ StepLog ToStepLog(const reference::Log& log, const std::string& name) {
 }
 
 DriveTrainParameters BadStart() {
-  DriveTrainParameters p;
+  DriveTrainParameters p = testing_support::PaperDriveTrain();
   p.motor_inertia = kTrueMotorInertia * 2.5;
-  p.gearbox_inertia = 0.043 / 6400.0;
   p.viscous_friction = kTrueViscous / 3.0;
   p.coulomb_friction = kTrueCoulomb * 2.0;
   return p;

@@ -6,15 +6,12 @@
 
 #include <catch2/catch.hpp>
 
+#include "support/paper000.h"
+
 using namespace driveid;
 
 namespace {
-DriveTrainParameters PaperParameters() {
-  DriveTrainParameters p;
-  p.motor_inertia = 0.413 / 6400.0;
-  p.gearbox_inertia = 0.043 / 6400.0;
-  return p;
-}
+using testing_support::PaperDriveTrain;
 
 const DriveTrainParameter kAll[] = {
     DriveTrainParameter::kViscousFriction, DriveTrainParameter::kMotorInertia,
@@ -23,7 +20,7 @@ const DriveTrainParameter kAll[] = {
 }  // namespace
 
 TEST_CASE("state and parameter Jacobians match central differences") {
-  const auto params = PaperParameters();
+  const auto params = PaperDriveTrain();
   const double state[4] = {-6e-3, -0.4, -3.5e-3, 0.7};
   const double torque = -0.8;
   for (auto model : {DriveTrainModel::kReduced, DriveTrainModel::kFull}) {
@@ -73,7 +70,7 @@ TEST_CASE("state and parameter Jacobians match central differences") {
 TEST_CASE("reduced model equals the full model's static limit") {
   // With Theta_g = 0 the deflection follows phi statically: at equilibrium
   // of (14) Delta = k_Tg phi/(k_Tl + k_Tg), so both give the same link torque.
-  const auto params = PaperParameters();
+  const auto params = PaperDriveTrain();
   const double phi = 1e-3;
   const double delta = params.gearbox_stiffness * phi / (params.link_stiffness + params.gearbox_stiffness);
   const double full_state[4] = {phi, 0, delta, 0};
@@ -85,7 +82,7 @@ TEST_CASE("reduced model equals the full model's static limit") {
 }
 
 TEST_CASE("eq. (16) with the paper's values: omega_n, zeta, gain") {
-  const auto tf = CalcReducedTransferFunction(PaperParameters());
+  const auto tf = CalcReducedTransferFunction(PaperDriveTrain());
   const double k_eq = 15000.0 * 18375.0 / (15000.0 + 18375.0);
   CHECK(tf.gain == 80.0);
   CHECK(tf.lag_s2 == Approx(0.413 / k_eq));

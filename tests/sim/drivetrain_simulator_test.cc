@@ -6,15 +6,12 @@
 
 #include <catch2/catch.hpp>
 
+#include "support/paper000.h"
+
 using namespace driveid;
 
 namespace {
-DriveTrainParameters PaperParameters() {
-  DriveTrainParameters p;
-  p.motor_inertia = 0.413 / 6400.0;
-  p.gearbox_inertia = 0.043 / 6400.0;
-  return p;
-}
+using testing_support::PaperDriveTrain;
 
 struct StepLog {
   std::vector<double> time, torque;
@@ -32,7 +29,7 @@ StepLog MakeStep(double rate, double duration, double step_time, double amplitud
 }  // namespace
 
 TEST_CASE("reduced step response matches the closed form, then sticks") {
-  const auto params = PaperParameters();
+  const auto params = PaperDriveTrain();
   const auto log = MakeStep(1000.0, 0.2, 0.0, -0.8);
   DriveTrainSimulator simulator(DriveTrainModel::kReduced, params, {});
   DriveTrainResponse response;
@@ -59,7 +56,7 @@ TEST_CASE("reduced step response matches the closed form, then sticks") {
 }
 
 TEST_CASE("a stuck drive stays put under sub-breakaway torque") {
-  auto params = PaperParameters();
+  auto params = PaperDriveTrain();
   for (auto model : {DriveTrainModel::kReduced, DriveTrainModel::kFull}) {
     // n_g |u| = 4.8 N m < tau_c = 5 N m: nothing may move, ever.
     const auto log = MakeStep(1000.0, 1.0, 0.1, 0.06);
@@ -79,7 +76,7 @@ TEST_CASE("a stuck drive stays put under sub-breakaway torque") {
 }
 
 TEST_CASE("sensitivities match central differences of whole simulations") {
-  const auto params = PaperParameters();
+  const auto params = PaperDriveTrain();
   struct Case {
     DriveTrainModel model;
     double rate;
