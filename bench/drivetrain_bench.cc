@@ -44,8 +44,9 @@ int main(int argc, char** argv) {
     best = std::min(best, Seconds(std::chrono::steady_clock::now() - start));
     if (log.rows() != big_log.time.size()) return 1;
   }
-  std::printf("| CSV parse | %zu rows, %.1f MB | %.1f ms | %.0f MB/s |\n", big_log.time.size(), text.size() / 1e6,
-              best * 1e3, text.size() / 1e6 / best);
+  const double megabytes = static_cast<double>(text.size()) / 1e6;
+  std::printf("| CSV parse | %zu rows, %.1f MB | %.1f ms | %.0f MB/s |\n", big_log.time.size(), megabytes, best * 1e3,
+              megabytes / best);
 
   std::printf("\n| samples | model | free | fit time (best of %d) | iterations | d_g error |\n", repetitions);
   std::printf("|---:|---|---|---:|---:|---:|\n");
