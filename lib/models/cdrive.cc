@@ -1,0 +1,65 @@
+#include "models/cdrive.h"
+
+#include <cmath>
+
+namespace driveid {
+
+Matrix2 CalcCDriveJacobian(double lead) {
+  const double k = lead / (4.0 * M_PI);
+  return {k, -k, k, k};
+}
+
+Matrix2 CalcCDriveJacobianInverse(double lead) {
+  const double k = 2.0 * M_PI / lead;
+  return {k, k, -k, k};
+}
+
+double CalcCollarTranslation(double lead, double psi_left, double psi_right) {
+  return lead / (4.0 * M_PI) * (psi_left - psi_right);
+}
+
+double CalcCollarRotation(double psi_left, double psi_right) { return 0.5 * (psi_left + psi_right); }
+
+double CalcMassCoupling(double lead) { return lead * lead / (16.0 * M_PI * M_PI); }
+
+double CalcInertiaDiagonal(const CDriveParameters& p) {
+  return p.hub_inertia + 0.25 * p.collar_inertia + CalcMassCoupling(p.lead) * p.collar_mass;
+}
+
+double CalcInertiaOffDiagonal(const CDriveParameters& p) {
+  return 0.25 * p.collar_inertia - CalcMassCoupling(p.lead) * p.collar_mass;
+}
+
+Matrix2 CalcCDriveInertiaMatrix(const CDriveParameters& p) {
+  const double a = CalcInertiaDiagonal(p), b = CalcInertiaOffDiagonal(p);
+  return {a, b, b, a};
+}
+
+Matrix2 CalcCDriveDampingMatrix(const CDriveParameters& p) {
+  const double diagonal = p.viscous_motor + 0.5 * p.viscous_collar;
+  const double off = -0.5 * p.viscous_collar;
+  return {diagonal, off, off, diagonal};
+}
+
+Vector2 CalcCDriveCoulombTorque(const CDriveParameters& p, double rate_left, double rate_right) {
+  const double collar = p.coulomb_collar * Signum(rate_left - rate_right);
+  return {p.coulomb_motor * Signum(rate_left) + collar, p.coulomb_motor * Signum(rate_right) - collar};
+}
+
+double CalcCDriveDissipatedPower(const CDriveParameters& p, double rate_left, double rate_right) {
+  const Matrix2 c = CalcCDriveDampingMatrix(p);
+  const Vector2 coulomb = CalcCDriveCoulombTorque(p, rate_left, rate_right);
+  const double left = c[0] * rate_left + c[1] * rate_right + coulomb[0];
+  const double right = c[2] * rate_left + c[3] * rate_right + coulomb[1];
+  return rate_left * left + rate_right * right;
+}
+
+Vector2 CalcCDriveInverseDynamics(const CDriveParameters& p, const Vector2& rate, const Vector2& acceleration) {
+  const Matrix2 m = CalcCDriveInertiaMatrix(p);
+  const Matrix2 c = CalcCDriveDampingMatrix(p);
+  const Vector2 coulomb = CalcCDriveCoulombTorque(p, rate[0], rate[1]);
+  return {m[0] * acceleration[0] + m[1] * acceleration[1] + c[0] * rate[0] + c[1] * rate[1] + coulomb[0],
+          m[2] * acceleration[0] + m[3] * acceleration[1] + c[2] * rate[0] + c[3] * rate[1] + coulomb[1]};
+}
+
+}  // namespace driveid
