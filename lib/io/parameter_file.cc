@@ -14,19 +14,21 @@
 namespace driveid {
 namespace {
 
-/// Declaration of one scalar key: doc, unit, minimum and whether it may be absent.
+constexpr double kNotGiven = std::numeric_limits<double>::quiet_NaN();
+
+/// Declaration of one scalar key of a section: doc with unit, minimum, and
+/// whether the section is incomplete without it.
+template <typename T>
 struct ScalarKey {
   const char* key;
-  double DriveTrainParameters::*member;
+  double T::*member;
   const char* doc;
   double minimum;
   bool minimum_exclusive;
   bool required;
 };
 
-constexpr double kNoMinimum = -std::numeric_limits<double>::infinity();
-
-const ScalarKey kDriveTrainKeys[] = {
+const ScalarKey<DriveTrainParameters> kDriveTrainKeys[] = {
     {"n_g", &DriveTrainParameters::gear_ratio, "gear ratio [-]", 0.0, true, true},
     {"k_Tl", &DriveTrainParameters::link_stiffness, "link bending stiffness [N m/rad]", 0.0, true, true},
     {"k_Tg", &DriveTrainParameters::gearbox_stiffness, "gearbox stiffness [N m/rad]", 0.0, true, true},
@@ -34,6 +36,28 @@ const ScalarKey kDriveTrainKeys[] = {
     {"Theta_g", &DriveTrainParameters::gearbox_inertia, "gearbox inertia, motor side [kg m^2]", 0.0, false, false},
     {"d_g", &DriveTrainParameters::viscous_friction, "gearbox viscous friction at the gear input [N m s/rad]", 0.0, false, true},
     {"tau_c", &DriveTrainParameters::coulomb_friction, "Coulomb friction at the gear output [N m]", 0.0, false, true},
+};
+
+const ScalarKey<CDriveParameters> kCDriveKeys[] = {
+    {"p", &CDriveParameters::lead, "screw lead [m]", 0.0, true, true},
+    {"I_h", &CDriveParameters::hub_inertia, "motor rotor + coupling + screw inertia [kg m^2]", 0.0, false, false},
+    {"I_c", &CDriveParameters::collar_inertia, "collar inertia about the screw axis [kg m^2]", 0.0, false, false},
+    {"m", &CDriveParameters::collar_mass, "collar mass [kg]", 0.0, false, false},
+    {"beta", &CDriveParameters::viscous_motor, "viscous, rotor and bearings [N m s/rad]", 0.0, false, false},
+    {"gamma", &CDriveParameters::viscous_collar, "viscous, collar on the screws [N m s/rad]", 0.0, false, false},
+    {"delta", &CDriveParameters::coulomb_motor, "Coulomb, rotor and bearings [N m]", 0.0, false, false},
+    {"eta", &CDriveParameters::coulomb_collar, "Coulomb, collar on the screws [N m]", 0.0, false, false},
+};
+
+const ScalarKey<CDriveControlSettings> kControlKeys[] = {
+    {"K_P", &CDriveControlSettings::proportional_gain, "proportional gain [N m/rad]", 0.0, false, true},
+    {"K_I", &CDriveControlSettings::second_gain, "second gain as printed: integral [N m/(rad s)] (PI, PID) or derivative [N m s/rad] (PD)", 0.0, false, true},
+    {"K_D", &CDriveControlSettings::derivative_gain, "derivative gain, PID only [N m s/rad]", 0.0, false, false},
+    {"dead_zone", &CDriveControlSettings::dead_zone, "dead zone on velocities and their difference [rad/s]", 0.0, false, false},
+    {"rate_limit", &CDriveControlSettings::rate_limit, "rate limit of each unit Coulomb term [1/s]", 0.0, true, false},
+    {"velocity_window", &CDriveControlSettings::velocity_window, "encoder velocity difference window [s]", 0.0, true, false},
+    {"sample_time", &CDriveControlSettings::sample_time, "controller period [s]", 0.0, true, false},
+    {"encoder_counts", &CDriveControlSettings::encoder_counts, "encoder counts per revolution", 0.0, true, false},
 };
 
 const char* const kKnownSections[] = {"drivetrain", "axis", "planar_robot", "cdrive", "fit"};
@@ -59,7 +83,7 @@ double ParseNumber(const std::string& path, const std::string& name, const YAML:
   return value;
 }
 
-// Keys of a mapping, refusing duplicates and non-scalar keys.
+// Refuses non-mappings, duplicate and non-scalar keys.
 void CheckMapping(const std::string& path, const std::string& name, const YAML::Node& node) {
   if (!node.IsMap()) throw InputError(fmt::format("{}: {}: expected a mapping of keys", Where(path, node), name));
   std::set<std::string> seen;
@@ -71,38 +95,96 @@ void CheckMapping(const std::string& path, const std::string& name, const YAML::
   }
 }
 
-DriveTrainParameters ParseDriveTrain(const std::string& path, const YAML::Node& section) {
-  CheckMapping(path, "drivetrain", section);
-  DriveTrainParameters params;
-  params.gearbox_inertia = 0.0;  // optional: only the full model needs it
+template <typename T, std::size_t N>
+std::string KnownKeys(const ScalarKey<T> (&keys)[N], const std::vector<std::string>& extra) {
+  std::string known;
+  for (const auto& key : keys) known += std::string(known.empty() ? "" : ", ") + key.key;
+  for (const auto& key : extra) known += ", " + key;
+  return known;
+}
+
+// Parses the scalar keys of a section into `out`. Keys in `extra` are left
+// to the caller (returned as nodes); every other key must be declared.
+template <typename T, std::size_t N>
+std::vector<std::pair<std::string, YAML::Node>> ParseScalars(const std::string& path, const std::string& section,
+                                                             const YAML::Node& node, const ScalarKey<T> (&keys)[N],
+                                                             const std::vector<std::string>& extra, T& out) {
+  CheckMapping(path, section, node);
+  std::vector<std::pair<std::string, YAML::Node>> others;
   std::set<std::string> given;
-  for (const auto& item : section) {
+  for (const auto& item : node) {
     const std::string key = item.first.Scalar();
-    const ScalarKey* spec = nullptr;
-    for (const auto& candidate : kDriveTrainKeys) {
+    const ScalarKey<T>* spec = nullptr;
+    for (const auto& candidate : keys) {
       if (key == candidate.key) spec = &candidate;
     }
     if (spec == nullptr) {
-      std::string known;
-      for (const auto& candidate : kDriveTrainKeys) known += std::string(known.empty() ? "" : ", ") + candidate.key;
-      throw InputError(fmt::format("{}: drivetrain.{}: unknown key (known: {})", Where(path, item.first), key, known));
+      bool is_extra = false;
+      for (const auto& name : extra) is_extra = is_extra || key == name;
+      if (!is_extra) {
+        throw InputError(fmt::format("{}: {}.{}: unknown key (known: {})", Where(path, item.first), section, key,
+                                     KnownKeys(keys, extra)));
+      }
+      others.emplace_back(key, item.second);
+      continue;
     }
     if (item.second.IsNull()) continue;  // "key: " with no value = not given
-    const std::string name = "drivetrain." + key;
+    const std::string name = section + "." + key;
     const double value = ParseNumber(path, name, item.second);
     if (spec->minimum_exclusive ? !(value > spec->minimum) : !(value >= spec->minimum)) {
       throw InputError(fmt::format("{}: {}: must be {} {}, got {} ({})", Where(path, item.second), name,
                                    spec->minimum_exclusive ? ">" : ">=", spec->minimum, value, spec->doc));
     }
-    params.*(spec->member) = value;
+    out.*(spec->member) = value;
     given.insert(key);
   }
-  for (const auto& spec : kDriveTrainKeys) {
+  for (const auto& spec : keys) {
     if (spec.required && !given.count(spec.key)) {
-      throw InputError(fmt::format("{}: drivetrain.{}: missing value ({})", Where(path, section), spec.key, spec.doc));
+      throw InputError(fmt::format("{}: {}.{}: missing value ({})", Where(path, node), section, spec.key, spec.doc));
     }
   }
+  return others;
+}
+
+DriveTrainParameters ParseDriveTrain(const std::string& path, const YAML::Node& node) {
+  DriveTrainParameters params;
+  params.gearbox_inertia = 0.0;  // optional: only the full model needs it
+  ParseScalars(path, "drivetrain", node, kDriveTrainKeys, {}, params);
   return params;
+}
+
+CDriveControlSettings ParseControl(const std::string& path, const YAML::Node& node) {
+  CDriveControlSettings control;
+  const auto others = ParseScalars(path, "cdrive.control", node, kControlKeys, {"law"}, control);
+  for (const auto& [key, value] : others) {
+    const std::string law = value.IsScalar() ? value.Scalar() : "";
+    if (law == "PI") control.law = ControlLaw::kPI;
+    else if (law == "PD") control.law = ControlLaw::kPD;
+    else if (law == "PID") control.law = ControlLaw::kPID;
+    else throw InputError(fmt::format("{}: cdrive.control.law: must be PI, PD or PID", Where(path, value)));
+  }
+  return control;
+}
+
+CDriveSection ParseCDrive(const std::string& path, const YAML::Node& node) {
+  CDriveSection section;
+  CDriveParameters& p = section.params;
+  p.hub_inertia = p.collar_inertia = p.collar_mass = kNotGiven;
+  p.viscous_motor = p.viscous_collar = p.coulomb_motor = p.coulomb_collar = kNotGiven;
+  const auto others = ParseScalars(path, "cdrive", node, kCDriveKeys, {"k_t", "control"}, p);
+  for (const auto& [key, value] : others) {
+    if (key == "k_t") {
+      if (value.IsNull()) continue;
+      section.torque_constant = ParseNumber(path, "cdrive.k_t", value);
+      if (!(section.torque_constant > 0.0)) {
+        throw InputError(fmt::format("{}: cdrive.k_t: must be > 0, got {} (motor torque constant [N m/A])",
+                                     Where(path, value), section.torque_constant));
+      }
+    } else if (!value.IsNull()) {
+      section.control = ParseControl(path, value);
+    }
+  }
+  return section;
 }
 
 std::string Quoted(const std::string& text) {
@@ -124,7 +206,28 @@ std::string Quoted(const std::string& text) {
 std::string Number(double value) { return fmt::format("{}", value); }
 std::string Short(double value) { return fmt::format("{:.6g}", value); }
 
+template <typename T, std::size_t N>
+std::string FormatScalars(const T& values, const ScalarKey<T> (&keys)[N], const std::string& indent) {
+  std::string out;
+  for (const auto& spec : keys) {
+    const double value = values.*(spec.member);
+    if (!IsGiven(value)) continue;
+    const std::string line = fmt::format("{}{}: {}", indent, spec.key, Number(value));
+    out += fmt::format("{:<28} # {}\n", line, spec.doc);
+  }
+  return out;
+}
+
 }  // namespace
+
+const char* ControlLawName(ControlLaw law) {
+  switch (law) {
+    case ControlLaw::kPI: return "PI";
+    case ControlLaw::kPD: return "PD";
+    case ControlLaw::kPID: return "PID";
+  }
+  return "PI";
+}
 
 ParameterFile ParseParameterFile(const std::string& path, const std::string& text) {
   YAML::Node root;
@@ -148,6 +251,8 @@ ParameterFile ParseParameterFile(const std::string& path, const std::string& tex
     }
     if (section == "drivetrain") {
       file.drivetrain = ParseDriveTrain(path, item.second);
+    } else if (section == "cdrive") {
+      file.cdrive = ParseCDrive(path, item.second);
     } else if (section == "fit") {
       // Provenance of an earlier fit: accepted so that a fit's output is a
       // valid input, and replaced when a new file is written.
@@ -163,13 +268,25 @@ ParameterFile ParseParameterFile(const std::string& path, const std::string& tex
 
 ParameterFile ReadParameterFile(const std::string& path) { return ParseParameterFile(path, ReadFileToString(path)); }
 
-std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit, const FitProvenance* provenance) {
+std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit, const FitProvenance* provenance,
+                                const std::vector<DerivedQuantity>& derived) {
   std::string out = "# driveid parameter file (SPEC section 4). Units: SI, radians.\n";
   if (file.drivetrain) {
     out += "drivetrain:            # seed 000 section 4, SPEC 5.1\n";
-    for (const auto& spec : kDriveTrainKeys) {
-      const std::string line = fmt::format("  {}: {}", spec.key, Number((*file.drivetrain).*(spec.member)));
-      out += fmt::format("{:<28} # {}\n", line, spec.doc);
+    out += FormatScalars(*file.drivetrain, kDriveTrainKeys, "  ");
+  }
+  if (file.cdrive) {
+    out += "cdrive:                # seed 001, SPEC 5.4\n";
+    out += FormatScalars(file.cdrive->params, kCDriveKeys, "  ");
+    if (IsGiven(file.cdrive->torque_constant)) {
+      out += fmt::format("{:<28} # {}\n", fmt::format("  k_t: {}", Number(file.cdrive->torque_constant)),
+                         "motor torque constant [N m/A]");
+    }
+    if (file.cdrive->control) {
+      out += "  control:             # position controller and friction compensation, eq. (31)\n";
+      out += fmt::format("{:<28} # {}\n", fmt::format("    law: {}", ControlLawName(file.cdrive->control->law)),
+                         "how K_I is read: PI, PD or PID");
+      out += FormatScalars(*file.cdrive->control, kControlKeys, "    ");
     }
   }
   if (fit != nullptr && provenance != nullptr) {
@@ -186,6 +303,13 @@ std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit,
     for (const auto& e : fit->estimates) {
       out += fmt::format("    {}: {{value: {}, std: {}, ci95: [{}, {}]}}\n", e.name, Number(e.value),
                          Short(e.standard_error), Short(e.ci95_low), Short(e.ci95_high));
+    }
+    if (!derived.empty()) {
+      out += "  derived:\n";
+      for (const auto& d : derived) {
+        out += fmt::format("    {}: {{value: {}, std: {}}}  # {}\n", d.name, Number(d.value), Short(d.standard_error),
+                           d.unit);
+      }
     }
     const std::size_t p = fit->estimates.size();
     out += "  correlation:\n";

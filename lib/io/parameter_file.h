@@ -2,21 +2,43 @@
 // values a controller can read, and a separate `fit` section with the
 // statistics and provenance written by the fitting commands.
 //
-// Reading is strict: unknown keys, non-numbers, NaN/Inf and out-of-range
-// values throw InputError "file:line:column: section.key: what".
+// Reading is strict: unknown keys, duplicate keys, non-numbers, NaN/Inf and
+// out-of-range values throw InputError "file:line:column: section.key: what".
+// Optional keys that are absent read as NaN ("not given").
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "control/cdrive_control_settings.h"
 #include "fit/fit_result.h"
+#include "models/cdrive.h"
 #include "models/drivetrain.h"
 
 namespace driveid {
 
+/// The C-drive section: model parameters, the motor torque constant (for
+/// logs of currents) and the controller settings.
+struct CDriveSection {
+  CDriveParameters params;
+  double torque_constant = std::numeric_limits<double>::quiet_NaN();  ///< k_t [N m/A]
+  std::optional<CDriveControlSettings> control;
+};
+
 struct ParameterFile {
   std::optional<DriveTrainParameters> drivetrain;
+  std::optional<CDriveSection> cdrive;
   bool had_fit_section = false;  ///< input carried a previous fit (replaced on output)
+};
+
+/// Derived quantities written under fit.derived (e.g. the C-drive's a, b).
+struct DerivedQuantity {
+  std::string name;
+  double value = 0.0;
+  double standard_error = 0.0;
+  std::string unit;
 };
 
 /// Parses YAML text; `path` is used in messages only.
@@ -27,6 +49,10 @@ ParameterFile ReadParameterFile(const std::string& path);
 /// Formats a parameter file; with `fit`/`provenance` non-null a `fit`
 /// section is added. Output is deterministic and reads back unchanged.
 std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit = nullptr,
-                                const FitProvenance* provenance = nullptr);
+                                const FitProvenance* provenance = nullptr,
+                                const std::vector<DerivedQuantity>& derived = {});
+
+/// True when a value was given (not NaN).
+inline bool IsGiven(double value) { return value == value; }
 
 }  // namespace driveid

@@ -71,3 +71,42 @@ TEST_CASE("bad parameter files name file, line, column and key") {
   CHECK(ErrorOf("- 1\n- 2\n") == "p.yaml:1:1: parameter file: expected a mapping of keys");
   CHECK_THAT(ErrorOf(std::string(kValid) + "  tau_c2: [1]\n"), Catch::Contains("unknown key"));
 }
+
+TEST_CASE("cdrive section with control reads back unchanged") {
+  const std::string text =
+      "cdrive:\n"
+      "  p: 0.06\n"
+      "  I_h: 6e-4\n"
+      "  I_c: 1.6e-3\n"
+      "  m: 2\n"
+      "  beta: 0.002655\n"
+      "  gamma: 0.004333\n"
+      "  delta: 0.1086\n"
+      "  eta: 0.1501\n"
+      "  k_t: 0.5\n"
+      "  control: {K_P: 7.17, K_I: 0.0239, law: PD, dead_zone: 0.5, rate_limit: 50}\n";
+  const auto file = ParseParameterFile("c.yaml", text);
+  REQUIRE(file.cdrive);
+  CHECK(file.cdrive->params.coulomb_collar == 0.1501);
+  CHECK(file.cdrive->torque_constant == 0.5);
+  REQUIRE(file.cdrive->control);
+  CHECK(file.cdrive->control->law == ControlLaw::kPD);
+  CHECK(file.cdrive->control->second_gain == 0.0239);
+  const auto again = ParseParameterFile("d.yaml", FormatParameterFile(file));
+  CHECK(FormatParameterFile(again) == FormatParameterFile(file));
+  CHECK(again.cdrive->control->law == ControlLaw::kPD);
+  // Absent optional values read as "not given" and are not written.
+  const auto bare = ParseParameterFile("e.yaml", "cdrive:\n  p: 0.06\n");
+  CHECK_FALSE(IsGiven(bare.cdrive->params.viscous_motor));
+  CHECK(FormatParameterFile(bare).find("beta") == std::string::npos);
+}
+
+TEST_CASE("bad cdrive sections are named precisely") {
+  CHECK(ErrorOf("cdrive:\n  p: 0.06\n  control: {K_P: 1, K_I: 0, law: PIDD}\n") ==
+        "p.yaml:3:34: cdrive.control.law: must be PI, PD or PID");
+  CHECK_THAT(ErrorOf("cdrive:\n  p: 0.06\n  control:\n    K_P: 1\n    K_I: 0\n    Kd: 3\n"),
+             Catch::StartsWith("p.yaml:6:5: cdrive.control.Kd: unknown key"));
+  CHECK_THAT(ErrorOf("cdrive:\n  p: -0.06\n"), Catch::StartsWith("p.yaml:2:6: cdrive.p: must be > 0"));
+  CHECK_THAT(ErrorOf("cdrive:\n  I_h: 1\n"), Catch::Contains("cdrive.p: missing value"));
+  CHECK_THAT(ErrorOf("cdrive:\n  p: 0.06\n  k_t: 0\n"), Catch::StartsWith("p.yaml:3:8: cdrive.k_t: must be > 0"));
+}
