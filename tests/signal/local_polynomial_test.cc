@@ -42,7 +42,9 @@ TEST_CASE("13-bit encoder staircase: velocity within a few mrad/s, no lag on a s
     double& worst = std::abs(truth) > 0.5 ? worst_moving : worst_reversal;
     worst = std::max(worst, std::abs(d.rate[k] - truth));
   }
-  CHECK(worst_moving < 0.005);   // rad/s, against a peak of 7.5 rad/s
+  // Quantisation noise: q/sqrt(12) over a +-20 ms window of 1 ms samples
+  // gives a slope std of about 3 mrad/s; the worst of 4000 is about 3.5 std.
+  CHECK(worst_moving < 0.015);   // rad/s, against a peak of 7.5 rad/s
   // Near a reversal the staircase is long and the estimate worse: the fits
   // exclude samples with |rate| below their threshold (0.5 rad/s by default).
   CHECK(worst_reversal < 0.03);
