@@ -26,6 +26,7 @@ struct ChannelStatistics {
 
 struct FitResult {
   std::vector<ParameterEstimate> estimates;
+  std::vector<double> covariance;        ///< row-major P x P, physical units
   std::vector<double> correlation;       ///< row-major P x P
   std::vector<ChannelStatistics> channels;
   std::vector<double> singular_values;   ///< of the column-normalised Jacobian, descending
@@ -33,6 +34,15 @@ struct FitResult {
   bool converged = false;
   double cost = 0.0;                     ///< 1/2 sum of squared residuals
   std::string termination;               ///< solver's reason for stopping
+};
+
+/// A quantity derived from the estimates (e.g. the C-drive's a and b), with
+/// its standard error propagated through the covariance.
+struct DerivedQuantity {
+  std::string name;
+  double value = 0.0;
+  double standard_error = 0.0;
+  std::string unit;
 };
 
 /// One input file of a fit, for provenance.

@@ -255,6 +255,10 @@ FitResult FitLeastSquares(ResidualModel& model, const std::vector<FitParameter>&
     e.ci95_high = e.value + t * e.standard_error;
     result.estimates.push_back(e);
   }
+  result.covariance.resize(static_cast<std::size_t>(p * p));
+  for (int i = 0; i < p; ++i) {
+    for (int j = 0; j < p; ++j) result.covariance[static_cast<std::size_t>(i * p + j)] = covariance(i, j);
+  }
   result.correlation.resize(static_cast<std::size_t>(p * p));
   for (int i = 0; i < p; ++i) {
     for (int j = 0; j < p; ++j) {

@@ -141,17 +141,33 @@ CsvLog ParseCsvLog(const std::string& path, const std::string& text,
         }
       }
       for (std::size_t k = 0; k < required.size(); ++k) {
-        const auto mapped = options.column_map.find(required[k]);
-        const std::string& wanted = mapped == options.column_map.end() ? required[k] : mapped->second;
+        // Alternatives "a|b": the first one present wins.
+        std::vector<std::string> alternatives;
+        for (std::size_t start = 0;;) {
+          const std::size_t bar = required[k].find('|', start);
+          alternatives.push_back(required[k].substr(start, bar == std::string::npos ? bar : bar - start));
+          if (bar == std::string::npos) break;
+          start = bar + 1;
+        }
         std::size_t found = field_count;
-        for (std::size_t i = 0; i < field_count; ++i) {
-          if (header[i] == wanted) found = i;
+        std::string wanted_all;
+        for (const auto& name : alternatives) {
+          const auto mapped = options.column_map.find(name);
+          const std::string& wanted = mapped == options.column_map.end() ? name : mapped->second;
+          wanted_all += (wanted_all.empty() ? "'" : "' or '") + wanted;
+          for (std::size_t i = 0; i < field_count && found == field_count; ++i) {
+            if (header[i] == wanted) {
+              found = i;
+              log.names[k] = name;
+            }
+          }
+          if (found != field_count) break;
         }
         if (found == field_count) {
           std::string have;
           for (std::size_t i = 0; i < field_count && i < 12; ++i) have += (i ? ", " : "") + Quote(header[i].data(), header[i].data() + header[i].size());
-          throw InputError(fmt::format("{}:{}: missing column '{}' (header has {}; map another name with --col {}=HEADER)",
-                                       path, line, wanted, have, required[k]));
+          throw InputError(fmt::format("{}:{}: missing column {}' (header has {}; map another name with --col {}=HEADER)",
+                                       path, line, wanted_all, have, alternatives.front()));
         }
         slot_of_field[found] = static_cast<int>(k);
       }
@@ -205,7 +221,7 @@ CsvLog ParseCsvLog(const std::string& path, const std::string& text,
   }
   if (!options.time_column.empty()) {
     for (std::size_t k = 0; k < required.size(); ++k) {
-      if (required[k] != options.time_column) continue;
+      if (log.names[k] != options.time_column) continue;
       const auto& time = log.columns[k];
       for (std::size_t r = 1; r < time.size(); ++r) {
         if (!(time[r] > time[r - 1])) {

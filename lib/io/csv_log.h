@@ -34,8 +34,10 @@ struct CsvReadOptions {
 };
 
 /// Parses CSV text already in memory. `path` is used in messages only.
-/// `required` lists the logical names that must be present; every row must
-/// have exactly as many fields as the header, each a finite number.
+/// `required` lists the logical names that must be present; an entry
+/// "a|b" accepts column a or, if absent, column b (log.names tells which).
+/// Every row must have exactly as many fields as the header, and the
+/// requested fields must be finite numbers.
 CsvLog ParseCsvLog(const std::string& path, const std::string& text,
                    const std::vector<std::string>& required, const CsvReadOptions& options = {});
 

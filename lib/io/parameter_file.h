@@ -33,14 +33,6 @@ struct ParameterFile {
   bool had_fit_section = false;  ///< input carried a previous fit (replaced on output)
 };
 
-/// Derived quantities written under fit.derived (e.g. the C-drive's a, b).
-struct DerivedQuantity {
-  std::string name;
-  double value = 0.0;
-  double standard_error = 0.0;
-  std::string unit;
-};
-
 /// Parses YAML text; `path` is used in messages only.
 ParameterFile ParseParameterFile(const std::string& path, const std::string& text);
 /// Reads and parses a file.

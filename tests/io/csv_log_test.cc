@@ -77,3 +77,15 @@ TEST_CASE("unreadable file") {
   CHECK_THROWS_WITH(driveid::ReadCsvLog("/nonexistent/x.csv", kStep),
                     "/nonexistent/x.csv: cannot open file for reading");
 }
+
+TEST_CASE("alternatives: the first present column wins, names tell which") {
+  const std::vector<std::string> wanted = {"t", "tau_L|i_L"};
+  const auto with_torque = ParseCsvLog("c.csv", "t,i_L,tau_L\n0,1,2\n", wanted);
+  CHECK(with_torque.names[1] == "tau_L");
+  CHECK(with_torque.columns[1][0] == 2.0);
+  const auto with_current = ParseCsvLog("c.csv", "t,i_L\n0,1\n", wanted);
+  CHECK(with_current.names[1] == "i_L");
+  CHECK(with_current.column("i_L")[0] == 1.0);
+  CHECK_THROWS_WITH(ParseCsvLog("c.csv", "t,x\n0,1\n", wanted),
+                    Catch::StartsWith("c.csv:1: missing column 'tau_L' or 'i_L' (header has"));
+}

@@ -1,0 +1,325 @@
+#include "fit/cdrive_fit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "io/csv_log.h"
+#include "signal/local_polynomial.h"
+
+namespace driveid {
+namespace {
+
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// A parameter of the linear model: its key, where it lives, and a typical
+// magnitude for scaling when no start value is given.
+struct LinearParameter {
+  const char* key;
+  double CDriveParameters::*member;
+  double typical;
+};
+
+const LinearParameter kFrictionParameters[] = {
+    {"beta", &CDriveParameters::viscous_motor, 1e-3},
+    {"gamma", &CDriveParameters::viscous_collar, 1e-3},
+    {"delta", &CDriveParameters::coulomb_motor, 0.1},
+    {"eta", &CDriveParameters::coulomb_collar, 0.1},
+};
+
+const LinearParameter kInertiaParameters[] = {
+    {"I_h", &CDriveParameters::hub_inertia, 1e-4},
+    {"I_c", &CDriveParameters::collar_inertia, 1e-4},
+    {"m", &CDriveParameters::collar_mass, 1.0},
+};
+
+bool Contains(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+// Regressor entries of one sample in sum (S) and difference (D) form, for
+// friction (beta, gamma, delta, eta) and inertia (I_h, I_c, m).
+struct SampleRows {
+  double friction_sum[4];
+  double friction_difference[4];
+  double inertia_sum[3];
+  double inertia_difference[3];
+};
+
+SampleRows CalcSampleRows(double lead, double rate_left, double rate_right, double acceleration_left,
+                          double acceleration_right) {
+  const double rate_sum = rate_left + rate_right, rate_difference = rate_left - rate_right;
+  const double sign_left = Signum(rate_left), sign_right = Signum(rate_right);
+  const double acceleration_sum = acceleration_left + acceleration_right;
+  const double acceleration_difference = acceleration_left - acceleration_right;
+  const double mass_coupling = CalcMassCoupling(lead);
+  return {{rate_sum, 0.0, sign_left + sign_right, 0.0},
+          {rate_difference, rate_difference, sign_left - sign_right, 2.0 * Signum(rate_difference)},
+          {acceleration_sum, 0.5 * acceleration_sum, 0.0},
+          {acceleration_difference, 0.0, 2.0 * mass_coupling * acceleration_difference}};
+}
+
+class LinearResiduals final : public ResidualModel {
+ public:
+  LinearResiduals(RowMatrix regressor, Eigen::VectorXd measured)
+      : regressor_(std::move(regressor)), measured_(std::move(measured)) {}
+  int residual_count() const override { return static_cast<int>(measured_.size()); }
+  bool Evaluate(const double* parameters, double* residuals, double* jacobian) override {
+    const Eigen::Map<const Eigen::VectorXd> p(parameters, regressor_.cols());
+    Eigen::Map<Eigen::VectorXd>(residuals, measured_.size()) = regressor_ * p - measured_;
+    if (jacobian != nullptr) Eigen::Map<RowMatrix>(jacobian, regressor_.rows(), regressor_.cols()) = regressor_;
+    return true;
+  }
+
+ private:
+  const RowMatrix regressor_;
+  const Eigen::VectorXd measured_;
+};
+
+enum class Kind { kFriction, kInertia };
+
+std::string FrictionAdvice(const std::vector<std::string>& involved) {
+  if (Contains(involved, "gamma") || Contains(involved, "eta")) {
+    return "gamma and eta need motion with psi_L' != psi_R' (translation or helical programs): in pure rotation the "
+           "collar does not move on the screws";
+  }
+  return "add programs with other velocity profiles or fix some coefficients with --params";
+}
+
+std::string InertiaAdvice(const std::vector<std::string>& involved) {
+  const int count = Contains(involved, "I_h") + Contains(involved, "I_c") + Contains(involved, "m");
+  if (count >= 2) {
+    return "only a = I_h + I_c/4 + p^2 m/(16 pi^2) and b = I_c/4 - p^2 m/(16 pi^2) are identifiable from motor "
+           "torques (a + b from rotation, a - b from translation): fix one of I_h, I_c, m with --params";
+  }
+  return "";
+}
+
+struct Design {
+  RowMatrix regressor;
+  Eigen::VectorXd measured;
+  std::vector<FitChannel> channels;
+  std::vector<std::vector<double>> channel_measured;  // storage behind channels[].measured
+  std::vector<SignalDerivatives> left, right;
+  int rows_possible = 0;
+};
+
+CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveParameters& start, const CDriveFitOptions& options,
+                    Kind kind) {
+  if (logs.empty()) throw std::invalid_argument("no logs given");
+  if (!(options.half_window > 0.0) || !std::isfinite(options.half_window)) {
+    throw std::invalid_argument(fmt::format("--window = {}: violated constraint: window > 0 s", options.half_window));
+  }
+  if (!(options.min_rate >= 0.0) || !std::isfinite(options.min_rate)) {
+    throw std::invalid_argument(fmt::format("--min-rate = {}: violated constraint: min rate >= 0", options.min_rate));
+  }
+  const bool friction = kind == Kind::kFriction;
+  const LinearParameter* table = friction ? kFrictionParameters : kInertiaParameters;
+  const int table_size = friction ? 4 : 3;
+  std::vector<std::string> free = options.free;
+  if (free.empty()) free = friction ? std::vector<std::string>{"beta", "gamma", "delta", "eta"}
+                                    : std::vector<std::string>{"I_h", "I_c"};
+  for (const auto& name : free) {
+    bool known = false;
+    for (int j = 0; j < table_size; ++j) known = known || name == table[j].key;
+    if (!known) {
+      throw std::invalid_argument(fmt::format("--free {}: not a parameter of the {} fit (choose from {})", name,
+                                              friction ? "friction" : "inertia",
+                                              friction ? "beta, gamma, delta, eta" : "I_h, I_c, m"));
+    }
+  }
+  // Everything not free must be known: the inertia for the friction fit, the
+  // friction for the inertia fit, and the fixed members of the fitted group.
+  const char* needed[] = {"I_h", "I_c", "m", "beta", "gamma", "delta", "eta"};
+  double CDriveParameters::*members[] = {&CDriveParameters::hub_inertia, &CDriveParameters::collar_inertia,
+                                         &CDriveParameters::collar_mass, &CDriveParameters::viscous_motor,
+                                         &CDriveParameters::viscous_collar, &CDriveParameters::coulomb_motor,
+                                         &CDriveParameters::coulomb_collar};
+  for (int i = 0; i < 7; ++i) {
+    if (!Contains(free, needed[i]) && !(start.*(members[i]) == start.*(members[i]))) {
+      throw InputError(fmt::format("--params: cdrive.{} is needed (fixed in this fit){}", needed[i],
+                                   i < 3 && friction ? "; give 0 to neglect the small inertial part" : ""));
+    }
+  }
+
+  std::vector<int> free_columns;  // index into table
+  std::vector<FitParameter> parameters;
+  for (int j = 0; j < table_size; ++j) {
+    if (!Contains(free, table[j].key)) continue;
+    free_columns.push_back(j);
+    const double value = start.*(table[j].member);
+    const double initial = value == value && value > 0.0 ? value : 0.0;
+    parameters.push_back({table[j].key, initial, 0.0, initial > 0.0 ? initial : table[j].typical});
+  }
+  const int p = static_cast<int>(free_columns.size());
+
+  // Build rows: per log the sum rows, then the difference rows.
+  Design design;
+  std::vector<double> rows;  // flattened regressor, p per row
+  std::vector<double> values;
+  CDriveParameters fixed = start;
+  for (int j : free_columns) fixed.*(table[j].member) = 0.0;  // known part excludes the free terms
+  for (const auto& log : logs) {
+    if (log.time.size() < 5) {
+      throw InputError(fmt::format("{}: {} samples: too few to differentiate", log.path, log.time.size()));
+    }
+    design.left.push_back(EstimateDerivatives(log.time, log.angle_left, options.half_window));
+    design.right.push_back(EstimateDerivatives(log.time, log.angle_right, options.half_window));
+    const auto& left = design.left.back();
+    const auto& right = design.right.back();
+    for (int part = 0; part < 2; ++part) {
+      const int begin = static_cast<int>(values.size());
+      std::vector<double> measured;
+      for (std::size_t k = 0; k < log.time.size(); ++k) {
+        if (!left.valid[k] || !right.valid[k]) continue;
+        if (part == 0) ++design.rows_possible;
+        const double rl = left.rate[k], rr = right.rate[k];
+        const bool signs_known = std::abs(rl) >= options.min_rate && std::abs(rr) >= options.min_rate;
+        const bool collar_known = std::abs(rl - rr) >= options.min_rate;
+        if (!signs_known || (part == 1 && !collar_known)) continue;
+        const SampleRows sample = CalcSampleRows(start.lead, rl, rr, left.acceleration[k], right.acceleration[k]);
+        // Known part: (28) with the free terms set to zero.
+        const Vector2 known = CalcCDriveInverseDynamics(fixed, {rl, rr}, {left.acceleration[k], right.acceleration[k]});
+        const double y = part == 0 ? log.torque_left[k] + log.torque_right[k] - known[0] - known[1]
+                                   : log.torque_left[k] - log.torque_right[k] - known[0] + known[1];
+        const double* full = friction ? (part == 0 ? sample.friction_sum : sample.friction_difference)
+                                      : (part == 0 ? sample.inertia_sum : sample.inertia_difference);
+        for (int j : free_columns) rows.push_back(full[j]);
+        values.push_back(y);
+        measured.push_back(part == 0 ? log.torque_left[k] + log.torque_right[k]
+                                     : log.torque_left[k] - log.torque_right[k]);
+      }
+      const int count = static_cast<int>(values.size()) - begin;
+      if (count > 0) {
+        design.channel_measured.push_back(std::move(measured));
+        design.channels.push_back({log.path + (part == 0 ? ":tau_L+tau_R" : ":tau_L-tau_R"), begin, count, nullptr});
+      }
+    }
+  }
+  for (std::size_t c = 0; c < design.channels.size(); ++c) design.channels[c].measured = design.channel_measured[c].data();
+  const int n = static_cast<int>(values.size());
+  if (n == 0) {
+    throw IdentificationError(fmt::format(
+        "no usable samples: every sample has a motor rate below --min-rate {} rad/s (or the logs are shorter than the "
+        "differentiator window)",
+        options.min_rate));
+  }
+  design.regressor = Eigen::Map<RowMatrix>(rows.data(), n, p);
+  design.measured = Eigen::Map<Eigen::VectorXd>(values.data(), n);
+
+  LinearResiduals residuals(design.regressor, design.measured);
+  FitOptions fit_options = options.fit;
+  if (!fit_options.advice) fit_options.advice = friction ? FrictionAdvice : InertiaAdvice;
+  CDriveFitOutput out;
+  out.fit = FitLeastSquares(residuals, parameters, design.channels, fit_options);
+  // fit% is of the measured sum/difference, not of the part left after the known terms.
+  out.params = start;
+  for (std::size_t j = 0; j < free_columns.size(); ++j) {
+    out.params.*(table[free_columns[j]].member) = out.fit.estimates[j].value;
+  }
+  out.rows_used = static_cast<int>(design.channels.empty() ? 0 : n);
+  out.rows_possible = design.rows_possible;
+
+  if (!friction) {
+    // a and b of eq. (17) with their standard errors: linear in (I_h, I_c, m).
+    const double k = CalcMassCoupling(start.lead);
+    const double gradient_a[3] = {1.0, 0.25, k}, gradient_b[3] = {0.0, 0.25, -k};
+    auto propagate = [&](const double* gradient) {
+      double variance = 0.0;
+      for (int i = 0; i < p; ++i) {
+        for (int j = 0; j < p; ++j) {
+          variance += gradient[free_columns[static_cast<std::size_t>(i)]] *
+                      out.fit.covariance[static_cast<std::size_t>(i * p + j)] *
+                      gradient[free_columns[static_cast<std::size_t>(j)]];
+        }
+      }
+      return std::sqrt(std::max(0.0, variance));
+    };
+    out.derived.push_back({"a", CalcInertiaDiagonal(out.params), propagate(gradient_a), "kg m^2, M diagonal (eq. 17)"});
+    out.derived.push_back({"b", CalcInertiaOffDiagonal(out.params), propagate(gradient_b), "kg m^2, M off-diagonal"});
+  }
+
+  for (std::size_t i = 0; i < logs.size(); ++i) {
+    const auto& log = logs[i];
+    CDriveTrace trace;
+    for (std::size_t k = 0; k < log.time.size(); ++k) {
+      if (!design.left[i].valid[k] || !design.right[i].valid[k]) continue;
+      const double rl = design.left[i].rate[k], rr = design.right[i].rate[k];
+      const Vector2 model = CalcCDriveInverseDynamics(out.params, {rl, rr},
+                                                      {design.left[i].acceleration[k], design.right[i].acceleration[k]});
+      trace.time.push_back(log.time[k]);
+      trace.measured_left.push_back(log.torque_left[k]);
+      trace.measured_right.push_back(log.torque_right[k]);
+      trace.model_left.push_back(model[0]);
+      trace.model_right.push_back(model[1]);
+      trace.used.push_back(std::abs(rl) >= options.min_rate && std::abs(rr) >= options.min_rate);
+    }
+    out.traces.push_back(std::move(trace));
+  }
+  return out;
+}
+
+}  // namespace
+
+CDriveLog ParseCDriveLog(const std::string& path, const std::string& text,
+                         const std::map<std::string, std::string>& column_map, double torque_constant) {
+  CsvReadOptions options;
+  options.column_map = column_map;
+  CsvLog csv = ParseCsvLog(path, text, {"t", "psi_L", "psi_R", "tau_L|i_L", "tau_R|i_R"}, options);
+  CDriveLog log;
+  log.path = path;
+  log.time = std::move(csv.columns[0]);
+  log.angle_left = std::move(csv.columns[1]);
+  log.angle_right = std::move(csv.columns[2]);
+  log.torque_left = std::move(csv.columns[3]);
+  log.torque_right = std::move(csv.columns[4]);
+  const bool left_current = csv.names[3] == "i_L", right_current = csv.names[4] == "i_R";
+  if (left_current != right_current) {
+    throw InputError(fmt::format("{}: give both motor torques (tau_L, tau_R) or both currents (i_L, i_R)", path));
+  }
+  if (left_current) {
+    if (!(torque_constant > 0.0)) {
+      throw InputError(fmt::format("{}: the log has currents i_L, i_R: cdrive.k_t must be given in --params", path));
+    }
+    for (double& v : log.torque_left) v *= torque_constant;
+    for (double& v : log.torque_right) v *= torque_constant;
+  }
+  return log;
+}
+
+std::string FormatCDriveLog(const CDriveLog& log, const std::vector<std::string>& comments) {
+  std::string out;
+  for (const auto& line : comments) out += "# " + line + "\n";
+  out += "t,psi_L,psi_R,tau_L,tau_R\n";
+  for (std::size_t k = 0; k < log.time.size(); ++k) {
+    out += fmt::format("{},{:.10g},{:.10g},{:.7g},{:.7g}\n", log.time[k], log.angle_left[k], log.angle_right[k],
+                       log.torque_left[k], log.torque_right[k]);
+  }
+  return out;
+}
+
+const std::vector<std::string>& CDriveFrictionParameterNames() {
+  static const std::vector<std::string> names = {"beta", "gamma", "delta", "eta"};
+  return names;
+}
+
+const std::vector<std::string>& CDriveInertiaParameterNames() {
+  static const std::vector<std::string> names = {"I_h", "I_c", "m"};
+  return names;
+}
+
+CDriveFitOutput FitCDriveFriction(const std::vector<CDriveLog>& logs, const CDriveParameters& start,
+                                  const CDriveFitOptions& options) {
+  return Fit(logs, start, options, Kind::kFriction);
+}
+
+CDriveFitOutput FitCDriveInertia(const std::vector<CDriveLog>& logs, const CDriveParameters& start,
+                                 const CDriveFitOptions& options) {
+  return Fit(logs, start, options, Kind::kInertia);
+}
+
+}  // namespace driveid

@@ -1,0 +1,86 @@
+// Identification of the C-drive (SPEC 5.4) from motor angles and torques by
+// inverse-dynamics least squares:
+//   friction: beta, gamma, delta, eta from slow programs, inertia from --params;
+//   inertia:  I_h, I_c, m (only a and b of eq. 17 are identifiable) from fast
+//             programs, friction from --params.
+// Rates and accelerations come from the zero-phase local-polynomial
+// differentiator. The equations are used as sum and difference of the two
+// motors:
+//   tau_L + tau_R = (a + b)(psi_L'' + psi_R'') + beta (psi_L' + psi_R') + delta (sgn psi_L' + sgn psi_R')
+//   tau_L - tau_R = (a - b)(psi_L'' - psi_R'') + (beta + gamma)(psi_L' - psi_R')
+//                   + delta (sgn psi_L' - sgn psi_R') + 2 eta sgn(psi_L' - psi_R')
+// with a + b = I_h + I_c/2 and a - b = I_h + p^2 m/(8 pi^2). The collar terms
+// appear only in the difference, so pure rotation (psi_L' = psi_R') cannot
+// determine gamma and eta. A sum row is used only where both |psi_L'| and
+// |psi_R'| exceed min_rate (the Coulomb signs are then certain; near a
+// reversal the encoder staircase and static friction make them unknown); a
+// difference row also needs |psi_L' - psi_R'| above it.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "fit/least_squares.h"
+#include "models/cdrive.h"
+
+namespace driveid {
+
+/// A C-drive log (SPEC 3): motor angles and torques (or currents x k_t).
+struct CDriveLog {
+  std::string path;
+  std::vector<double> time;         ///< [s]
+  std::vector<double> angle_left;   ///< psi_L [rad]
+  std::vector<double> angle_right;  ///< psi_R [rad]
+  std::vector<double> torque_left;  ///< tau_L [N m]
+  std::vector<double> torque_right; ///< tau_R [N m]
+};
+
+/// Parses a C-drive log; columns t, psi_L, psi_R and tau_L, tau_R or i_L,
+/// i_R (then `torque_constant` k_t [N m/A] must be given). Throws InputError.
+CDriveLog ParseCDriveLog(const std::string& path, const std::string& text,
+                         const std::map<std::string, std::string>& column_map, double torque_constant);
+
+/// Formats a C-drive log as CSV with '#' comment lines first.
+std::string FormatCDriveLog(const CDriveLog& log, const std::vector<std::string>& comments);
+
+struct CDriveFitOptions {
+  std::vector<std::string> free;  ///< empty = the default of the fit
+  double half_window = 0.02;      ///< differentiator half window [s]
+  double min_rate = 0.5;          ///< rate threshold for using a sample [rad/s]
+  FitOptions fit;
+};
+
+/// Per-log comparison of measured and model torques (model from (28) with
+/// the fitted parameters and the estimated rates and accelerations).
+struct CDriveTrace {
+  std::vector<double> time;
+  std::vector<double> measured_left, measured_right;
+  std::vector<double> model_left, model_right;
+  std::vector<char> used;  ///< 1 if the sample entered the fit (sum row)
+};
+
+struct CDriveFitOutput {
+  CDriveParameters params;                 ///< start values with the estimates put in
+  FitResult fit;
+  std::vector<DerivedQuantity> derived;    ///< a and b of eq. (17) for the inertia fit
+  std::vector<CDriveTrace> traces;
+  int rows_used = 0;
+  int rows_possible = 0;
+};
+
+/// Names accepted by --free.
+const std::vector<std::string>& CDriveFrictionParameterNames();  // beta, gamma, delta, eta
+const std::vector<std::string>& CDriveInertiaParameterNames();   // I_h, I_c, m
+
+/// Fits beta, gamma, delta, eta (or the `free` subset) jointly over all logs.
+/// I_h, I_c, m must be given in `start` (0 neglects the inertial part).
+CDriveFitOutput FitCDriveFriction(const std::vector<CDriveLog>& logs, const CDriveParameters& start,
+                                  const CDriveFitOptions& options);
+
+/// Fits I_h, I_c, m (or the `free` subset; default I_h, I_c with m fixed)
+/// with the friction coefficients from `start`. Reports a and b always.
+CDriveFitOutput FitCDriveInertia(const std::vector<CDriveLog>& logs, const CDriveParameters& start,
+                                 const CDriveFitOptions& options);
+
+}  // namespace driveid
