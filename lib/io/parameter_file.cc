@@ -258,6 +258,24 @@ ParameterFile ParseParameterFile(const std::string& path, const std::string& tex
       // valid input, and replaced when a new file is written.
       CheckMapping(path, "fit", item.second);
       file.had_fit_section = true;
+      const YAML::Node estimates = item.second["estimates"];
+      if (estimates && estimates.IsMap()) {
+        for (const auto& entry : estimates) {
+          const YAML::Node& e = entry.second;
+          if (!e.IsMap() || !e["value"] || !e["std"]) continue;
+          const std::string name = "fit.estimates." + entry.first.Scalar();
+          ParameterEstimate estimate;
+          estimate.name = entry.first.Scalar();
+          estimate.value = ParseNumber(path, name + ".value", e["value"]);
+          estimate.standard_error = ParseNumber(path, name + ".std", e["std"]);
+          const YAML::Node interval = e["ci95"];
+          if (interval && interval.IsSequence() && interval.size() == 2) {
+            estimate.ci95_low = ParseNumber(path, name + ".ci95", interval[0]);
+            estimate.ci95_high = ParseNumber(path, name + ".ci95", interval[1]);
+          }
+          file.fit_estimates.push_back(estimate);
+        }
+      }
     } else {
       throw InputError(fmt::format("{}: {}: section not supported by this version of driveid",
                                    Where(path, item.first), section));

@@ -31,6 +31,8 @@ struct ParameterFile {
   std::optional<DriveTrainParameters> drivetrain;
   std::optional<CDriveSection> cdrive;
   bool had_fit_section = false;  ///< input carried a previous fit (replaced on output)
+  /// fit.estimates of a previous fit (value, std, ci95), for reports.
+  std::vector<ParameterEstimate> fit_estimates;
 };
 
 /// Parses YAML text; `path` is used in messages only.

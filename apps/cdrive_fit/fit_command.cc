@@ -1,0 +1,92 @@
+#include "cdrive_fit/fit_command.h"
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "fit/cdrive_fit.h"
+#include "io/csv_log.h"
+#include "io/parameter_file.h"
+#include "io/sha256.h"
+
+namespace driveid::cli {
+
+CLI::App* SetupCDriveFitCommand(CLI::App& app, CDriveFitCommandOptions& options, CDriveFitKind kind) {
+  const bool friction = kind == CDriveFitKind::kFriction;
+  options.kind = kind;
+  CLI::App* command = app.add_subcommand(
+      friction ? "friction" : "inertia",
+      friction ? "Fit the dissipation parameters beta, gamma, delta, eta from slow-motion logs (inertia from --params)"
+               : "Fit the inertia I_h, I_c, m (a and b of eq. 17) from fast-motion logs (friction from --params)");
+  command->add_option("logs", options.logs, "C-drive logs: CSV with t, psi_L, psi_R, tau_L, tau_R (or i_L, i_R)")
+      ->required();
+  command->add_option("--params", options.params, "parameter file with a cdrive section")->required();
+  command->add_option("--free", options.free,
+                      friction ? "parameters to estimate (default beta,gamma,delta,eta)"
+                               : "parameters to estimate (default I_h,I_c with m fixed); all three are not identifiable")
+      ->delimiter(',');
+  command->add_option("--col", options.columns, "map a column: NAME=HEADER (e.g. psi_L=encoder_left)");
+  command->add_option("--window", options.window,
+                      friction ? "half window of the zero-phase differentiator [s] (default 0.02)"
+                               : "half window of the zero-phase differentiator [s] (default 0.005)");
+  command->add_option("--min-rate", options.min_rate,
+                      "use samples whose motor rates (and their difference, for the collar) exceed this [rad/s]")
+      ->capture_default_str();
+  AddFitOutputOptions(*command, options.output);
+  command->footer(friction ? "Example:\n  cdrive-fit friction data/cdrive_slow_translation.csv data/cdrive_slow_rotation.csv "
+                             "data/cdrive_slow_helical.csv \\\n      --params data/cdrive_table1.yaml -o friction.yaml --plot friction.png"
+                           : "Example:\n  cdrive-fit inertia data/cdrive_fast_translation.csv data/cdrive_fast_rotation.csv "
+                             "data/cdrive_fast_helical.csv \\\n      --params data/cdrive_table1.yaml --free I_h,I_c -o inertia.yaml");
+  return command;
+}
+
+void RunCDriveFitCommand(const CDriveFitCommandOptions& options, const std::string& command_line) {
+  const bool friction = options.kind == CDriveFitKind::kFriction;
+  const ParameterFile start = ReadParameterFile(options.params);
+  if (!start.cdrive) throw InputError(fmt::format("{}: no 'cdrive' section", options.params));
+  const auto column_map = ParseColumnMap(options.columns);
+
+  FitOutputs outputs;
+  outputs.provenance.command = command_line;
+  outputs.provenance.version = DRIVEID_VERSION;
+  outputs.provenance.model = friction ? "cdrive friction (28)" : "cdrive inertia (17), (28)";
+  std::vector<CDriveLog> logs;
+  for (const auto& path : options.logs) {
+    const std::string text = ReadFileToString(path);
+    logs.push_back(ParseCDriveLog(path, text, column_map, start.cdrive->torque_constant));
+    outputs.provenance.data.push_back({path, Sha256Hex(text), static_cast<int>(logs.back().time.size())});
+  }
+
+  CDriveFitOptions fit_options;
+  fit_options.free = options.free;
+  fit_options.half_window = options.window > 0.0 ? options.window : (friction ? 0.02 : 0.005);
+  fit_options.min_rate = options.min_rate;
+  if (options.output.verbose) {
+    fit_options.fit.progress = [](const FitIteration& it) {
+      PrintIteration(it.iteration, it.cost, it.gradient_norm, it.step_norm);
+    };
+  }
+  const CDriveFitOutput result = friction ? FitCDriveFriction(logs, start.cdrive->params, fit_options)
+                                          : FitCDriveInertia(logs, start.cdrive->params, fit_options);
+
+  ParameterFile fitted = start;
+  fitted.cdrive->params = result.params;
+  outputs.fit = result.fit;
+  outputs.parameter_file = FormatParameterFile(fitted, &outputs.fit, &outputs.provenance, result.derived);
+  outputs.trace_csv = "# cdrive-fit trace: measured and model motor torques [N m]; used = entered the fit\n";
+  outputs.trace_csv += "log,t,tau_L_measured,tau_L_model,tau_R_measured,tau_R_model,used\n";
+  for (std::size_t i = 0; i < logs.size(); ++i) {
+    const CDriveTrace& trace = result.traces[i];
+    for (std::size_t k = 0; k < trace.time.size(); ++k) {
+      outputs.trace_csv += fmt::format("{},{},{},{:.7g},{},{:.7g},{}\n", i + 1, trace.time[k], trace.measured_left[k],
+                                       trace.model_left[k], trace.measured_right[k], trace.model_right[k],
+                                       trace.used[k] ? 1 : 0);
+    }
+    outputs.plot_series.push_back({logs[i].path + " tau_L", trace.time, trace.measured_left, trace.model_left});
+    outputs.plot_series.push_back({logs[i].path + " tau_R", trace.time, trace.measured_right, trace.model_right});
+  }
+  outputs.plot_labels = {friction ? "C-drive friction fit: motor torques" : "C-drive inertia fit: motor torques",
+                         "motor torque [N m]"};
+  EmitFitOutputs(options.output, outputs);
+}
+
+}  // namespace driveid::cli

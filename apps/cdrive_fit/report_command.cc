@@ -1,0 +1,30 @@
+#include "cdrive_fit/report_command.h"
+
+#include <cstdio>
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "io/parameter_file.h"
+#include "report/cdrive_report.h"
+
+namespace driveid::cli {
+
+CLI::App* SetupCDriveReportCommand(CLI::App& app, CDriveReportOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "report", "Jacobian, its inverse, isotropy, inertia matrix and a Table-I style table of the dissipation parameters");
+  command->add_option("params", options.params, "parameter file with a cdrive section")->required();
+  command->add_flag("--json", options.json, "print one JSON object instead of the text");
+  command->footer("Example:\n  cdrive-fit report data/cdrive_table1.yaml");
+  return command;
+}
+
+void RunCDriveReportCommand(const CDriveReportOptions& options) {
+  const ParameterFile file = ReadParameterFile(options.params);
+  if (!file.cdrive) throw InputError(fmt::format("{}: no 'cdrive' section", options.params));
+  const std::string text = options.json ? FormatCDriveReportJson(*file.cdrive, file.fit_estimates, options.params)
+                                        : FormatCDriveReport(*file.cdrive, file.fit_estimates, options.params);
+  std::fputs(text.c_str(), stdout);
+}
+
+}  // namespace driveid::cli

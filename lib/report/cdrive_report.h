@@ -1,0 +1,21 @@
+// Report of a C-drive parameter set (cdrive-fit report): J, J^-1, J'J, the
+// inertia matrix M and its isotropy, and a Table-I style table of the
+// dissipation parameters beside the paper's, with standard errors when the
+// file carries a fit.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "fit/fit_result.h"
+#include "io/parameter_file.h"
+
+namespace driveid {
+
+std::string FormatCDriveReport(const CDriveSection& cdrive, const std::vector<ParameterEstimate>& estimates,
+                               const std::string& source);
+
+std::string FormatCDriveReportJson(const CDriveSection& cdrive, const std::vector<ParameterEstimate>& estimates,
+                                   const std::string& source);
+
+}  // namespace driveid
