@@ -4,6 +4,7 @@
 
 #include "cdrive_fit/fit_command.h"
 #include "cdrive_fit/report_command.h"
+#include "cdrive_fit/simulate_command.h"
 #include "common/cli_support.h"
 
 int main(int argc, char** argv) {
@@ -13,13 +14,16 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   CDriveFitCommandOptions friction, inertia;
   CDriveReportOptions report;
+  CDriveSimulateOptions simulate;
   CLI::App* friction_command = SetupCDriveFitCommand(app, friction, CDriveFitKind::kFriction);
   CLI::App* inertia_command = SetupCDriveFitCommand(app, inertia, CDriveFitKind::kInertia);
   CLI::App* report_command = SetupCDriveReportCommand(app, report);
+  CLI::App* simulate_command = SetupCDriveSimulateCommand(app, simulate);
   const std::string command_line = CommandLine(argc, argv);
   return RunMain(app, argc, argv, [&] {
     if (*friction_command) RunCDriveFitCommand(friction, command_line);
     if (*inertia_command) RunCDriveFitCommand(inertia, command_line);
     if (*report_command) RunCDriveReportCommand(report);
+    if (*simulate_command) RunCDriveSimulateCommand(simulate, command_line);
   });
 }

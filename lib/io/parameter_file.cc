@@ -220,15 +220,6 @@ std::string FormatScalars(const T& values, const ScalarKey<T> (&keys)[N], const 
 
 }  // namespace
 
-const char* ControlLawName(ControlLaw law) {
-  switch (law) {
-    case ControlLaw::kPI: return "PI";
-    case ControlLaw::kPD: return "PD";
-    case ControlLaw::kPID: return "PID";
-  }
-  return "PI";
-}
-
 ParameterFile ParseParameterFile(const std::string& path, const std::string& text) {
   YAML::Node root;
   try {

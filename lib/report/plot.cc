@@ -64,7 +64,7 @@ bool IsSupportedPlotPath(const std::string& path) {
   return EndsWith(lower, ".png") || EndsWith(lower, ".svg");
 }
 
-void RenderFitPlot(const std::string& path, const std::vector<PlotSeries>& series, const PlotLabels& labels) {
+void RenderPanels(const std::string& path, const std::vector<PlotPanel>& panels, const std::string& x_label) {
   const bool svg = EndsWith(Lower(path), ".svg");
   const std::string image = TemporaryName(path, svg ? ".svg" : ".png");
   const std::string script_path = TemporaryName(path, ".gp");
@@ -73,37 +73,41 @@ void RenderFitPlot(const std::string& path, const std::vector<PlotSeries>& serie
     std::remove(script_path.c_str());
     std::remove(error_path.c_str());
   };
-
+  const int height = 150 + 330 * static_cast<int>(panels.size());
   std::string script;
-  script += svg ? "set terminal svg size 1000,800 dynamic noenhanced font 'sans,11'\n"
-                : "set terminal pngcairo size 1000,800 noenhanced font 'sans,10'\n";
+  script += svg ? fmt::format("set terminal svg size 1000,{} dynamic noenhanced font 'sans,11'\n", height)
+                : fmt::format("set terminal pngcairo size 1000,{} noenhanced font 'sans,10'\n", height);
   script += fmt::format("set output {}\n", GnuplotString(image));
-  for (std::size_t s = 0; s < series.size(); ++s) {
-    script += fmt::format("$d{} << EOD\n", s);
-    const auto& one = series[s];
-    for (std::size_t k = 0; k < one.time.size(); ++k) {
-      script += fmt::format("{} {} {} {}\n", one.time[k], one.measured[k], one.model[k], one.measured[k] - one.model[k]);
+  int block = 0;
+  for (const auto& panel : panels) {
+    for (const auto& line : panel.lines) {
+      script += fmt::format("$d{} << EOD\n", block++);
+      for (std::size_t k = 0; k < line.x.size(); ++k) script += fmt::format("{} {}\n", line.x[k], line.y[k]);
+      script += "EOD\n";
     }
-    script += "EOD\n";
   }
-  script += "set multiplot layout 2,1\nset grid\nset key outside below horizontal\n";
+  script += fmt::format("set multiplot layout {},1\nset grid\nset key outside below horizontal\n", panels.size());
   script += "set lmargin 12\nset rmargin 4\n";
-  script += fmt::format("set title {}\nset ylabel {}\nunset xlabel\n", GnuplotString(labels.title),
-                        GnuplotString(labels.y_label));
-  std::string measured_plot = "plot ";
-  std::string residual_plot = "plot ";
-  for (std::size_t s = 0; s < series.size(); ++s) {
-    const std::string name = GnuplotString(series[s].title);
-    measured_plot += fmt::format(
-        "{}$d{} using 1:2 with points pt 7 ps 0.35 lc rgb '#9a9a9a' title {}.' measured', $d{} using 1:3 with lines "
-        "lw 2 lc {} title {}.' model'",
-        s ? ", " : "", s, name, s, s + 1, name);
-    residual_plot += fmt::format("{}$d{} using 1:4 with lines lc {} title {}", s ? ", " : "", s, s + 1, name);
+  block = 0;
+  for (std::size_t p = 0; p < panels.size(); ++p) {
+    const auto& panel = panels[p];
+    script += fmt::format("set title {}\nset ylabel {}\n", GnuplotString(panel.title), GnuplotString(panel.y_label));
+    script += p + 1 == panels.size() ? fmt::format("set xlabel {}\n", GnuplotString(x_label)) : "unset xlabel\n";
+    std::string plot = "plot ";
+    int colour = 1;
+    for (std::size_t l = 0; l < panel.lines.size(); ++l) {
+      const auto& line = panel.lines[l];
+      plot += l ? ", " : "";
+      if (line.points) {
+        plot += fmt::format("$d{} using 1:2 with points pt 7 ps 0.35 lc rgb '#9a9a9a' title {}", block++,
+                            GnuplotString(line.title));
+      } else {
+        plot += fmt::format("$d{} using 1:2 with lines lw 2 lc {} title {}", block++, colour++, GnuplotString(line.title));
+      }
+    }
+    script += plot + "\n";
   }
-  script += measured_plot + "\n";
-  script += "set title 'residual (measured - model)'\nset xlabel 'time [s]'\n";
-  script += fmt::format("set ylabel {}\n", GnuplotString("residual " + labels.y_label));
-  script += residual_plot + "\nunset multiplot\nset output\n";
+  script += "unset multiplot\nset output\n";
   try {
     WriteFileAtomically(script_path, script);
   } catch (...) {
@@ -141,6 +145,19 @@ void RenderFitPlot(const std::string& path, const std::vector<PlotSeries>& serie
     std::remove(image.c_str());
     throw std::runtime_error(fmt::format("{}: cannot write plot", path));
   }
+}
+
+void RenderFitPlot(const std::string& path, const std::vector<PlotSeries>& series, const PlotLabels& labels) {
+  PlotPanel fit{labels.title, labels.y_label, {}};
+  PlotPanel residual{"residual (measured - model)", "residual " + labels.y_label, {}};
+  for (const auto& one : series) {
+    fit.lines.push_back({one.title + " measured", one.time, one.measured, true});
+    fit.lines.push_back({one.title + " model", one.time, one.model, false});
+    std::vector<double> difference(one.time.size());
+    for (std::size_t k = 0; k < difference.size(); ++k) difference[k] = one.measured[k] - one.model[k];
+    residual.lines.push_back({one.title, one.time, std::move(difference), false});
+  }
+  RenderPanels(path, {fit, residual}, "time [s]");
 }
 
 }  // namespace driveid

@@ -20,6 +20,25 @@ struct PlotLabels {
   std::string y_label;  ///< e.g. "link torque [N m]"
 };
 
+/// One curve of a panel.
+struct PlotLine {
+  std::string title;
+  std::vector<double> x;
+  std::vector<double> y;
+  bool points = false;  ///< grey dots (measurements) instead of a line
+};
+
+/// One panel (stacked vertically, sharing the time axis).
+struct PlotPanel {
+  std::string title;
+  std::string y_label;
+  std::vector<PlotLine> lines;
+};
+
+/// Renders stacked panels into `path` (PNG or SVG); the last panel gets the
+/// x label. Throws std::runtime_error if gnuplot is missing or fails.
+void RenderPanels(const std::string& path, const std::vector<PlotPanel>& panels, const std::string& x_label);
+
 /// True for a path ending in .png or .svg (case-insensitive).
 bool IsSupportedPlotPath(const std::string& path);
 

@@ -1,0 +1,116 @@
+#include "cdrive_fit/simulate_command.h"
+
+#include <cstdio>
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "io/atomic_file.h"
+#include "io/parameter_file.h"
+#include "report/fit_summary.h"
+#include "report/plot.h"
+#include "sim/cdrive_closed_loop.h"
+
+namespace driveid::cli {
+
+CLI::App* SetupCDriveSimulateCommand(CLI::App& app, CDriveSimulateOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "simulate", "Closed-loop simulation of a Table II motion program at the controller rate (seed 001 IV.C-F)");
+  command->add_option("--program", options.program, "translation, rotation or helical")
+      ->required()
+      ->check(CLI::IsMember({"translation", "rotation", "helical"}));
+  command->add_option("--params", options.params, "parameter file with a cdrive section including control")->required();
+  command->add_option("-o,--output", options.output, "log to write (default: stdout)");
+  command->add_option("--stroke", options.stroke, "stroke time T [s]; one cycle is 2 T (seed: 1 s, 0.5 Hz)")
+      ->capture_default_str();
+  command->add_option("--cycles", options.cycles, "forward-and-back cycles")->capture_default_str();
+  command->add_option("--noise", options.noise, "std of noise added to the logged torques [N m]")->capture_default_str();
+  command->add_option("--seed", options.seed, "noise seed")->capture_default_str();
+  command->add_option("--law", options.law, "override cdrive.control.law: PI, PD or PID")
+      ->check(CLI::IsMember({"PI", "PD", "PID"}));
+  command->add_option("--trace", options.trace, "CSV of the tracking errors in u [m] and theta [rad]");
+  command->add_option("--plot", options.plot, "plot of the tracking errors (.png or .svg)")
+      ->check([](const std::string& path) {
+        return IsSupportedPlotPath(path) ? std::string() : std::string("--plot needs a .png or .svg file name");
+      });
+  command->add_flag("--json", options.json, "print the summary as one JSON object");
+  command->footer(
+      "Example:\n  cdrive-fit simulate --program helical --params data/cdrive_table1.yaml --cycles 1 \\\n"
+      "      -o helical.csv --trace helical_errors.csv --plot helical_errors.png");
+  return command;
+}
+
+void RunCDriveSimulateCommand(const CDriveSimulateOptions& options, const std::string& command_line) {
+  const ParameterFile file = ReadParameterFile(options.params);
+  if (!file.cdrive) throw InputError(fmt::format("{}: no 'cdrive' section", options.params));
+  const CDriveParameters& params = file.cdrive->params;
+  const char* names[] = {"I_h", "I_c", "m", "beta", "gamma", "delta", "eta"};
+  const double values[] = {params.hub_inertia, params.collar_inertia, params.collar_mass, params.viscous_motor,
+                           params.viscous_collar, params.coulomb_motor, params.coulomb_collar};
+  for (int i = 0; i < 7; ++i) {
+    if (!IsGiven(values[i])) throw InputError(fmt::format("{}: cdrive.{}: needed by the simulation", options.params, names[i]));
+  }
+  CDriveControlSettings settings = file.cdrive->control.value_or(CDriveControlSettings{});
+  if (options.law == "PI") settings.law = ControlLaw::kPI;
+  if (options.law == "PD") settings.law = ControlLaw::kPD;
+  if (options.law == "PID") settings.law = ControlLaw::kPID;
+
+  ClosedLoopOptions loop;
+  loop.program = TableTwoProgram(options.program, options.stroke);
+  loop.cycles = options.cycles;
+  loop.torque_noise = options.noise;
+  loop.seed = options.seed;
+  const ClosedLoopResult result = SimulateClosedLoop(params, settings, loop);
+
+  const std::vector<std::string> comments = {
+      "C-drive log (SPEC 3) made by: " + command_line,
+      fmt::format("program {} (alpha_L {}, alpha_R {} rad), stroke {} s, {} cycles, {} at {} Hz, 13-bit encoders, "
+                  "torque noise {} N m (seed {})",
+                  loop.program.name, loop.program.amplitude_left, loop.program.amplitude_right, loop.program.stroke,
+                  loop.cycles, ControlLawName(settings.law), 1.0 / settings.sample_time, options.noise, options.seed),
+      fmt::format("truth: p {}, I_h {}, I_c {}, m {}, beta {}, gamma {}, delta {}, eta {}", params.lead,
+                  params.hub_inertia, params.collar_inertia, params.collar_mass, params.viscous_motor,
+                  params.viscous_collar, params.coulomb_motor, params.coulomb_collar)};
+  const std::string log_text = FormatCDriveLog(result.log, comments);
+
+  if (!options.plot.empty()) {
+    std::vector<double> millimetres(result.tracking.translation_error);
+    for (double& v : millimetres) v *= 1e3;
+    RenderPanels(options.plot,
+                 {{fmt::format("tracking error in u, {} ({})", loop.program.name, ControlLawName(settings.law)),
+                   "u error [mm]", {{"u_ref - u", result.tracking.time, millimetres, false}}},
+                  {"tracking error in theta", "theta error [rad]",
+                   {{"theta_ref - theta", result.tracking.time, result.tracking.rotation_error, false}}}},
+                 "time [s]");
+  }
+  if (!options.trace.empty()) {
+    std::string trace = "# tracking errors from the encoder angles (SPEC 5.4 coordinates)\nt,u_error,theta_error\n";
+    for (std::size_t k = 0; k < result.tracking.time.size(); ++k) {
+      trace += fmt::format("{},{:.6g},{:.6g}\n", result.tracking.time[k], result.tracking.translation_error[k],
+                           result.tracking.rotation_error[k]);
+    }
+    WriteFileAtomically(options.trace, trace);
+  }
+  if (!options.output.empty()) WriteFileAtomically(options.output, log_text);
+
+  std::FILE* summary = options.output.empty() ? stderr : stdout;
+  if (options.json) {
+    std::fprintf(summary,
+                 "{\"program\":%s,\"law\":\"%s\",\"endpoint_u_error\":%s,\"endpoint_theta_error\":%s,"
+                 "\"max_u_error\":%s,\"max_theta_error\":%s,\"switches\":%d}\n",
+                 JsonString(loop.program.name).c_str(), ControlLawName(settings.law),
+                 JsonNumber(result.endpoint_translation_error).c_str(), JsonNumber(result.endpoint_rotation_error).c_str(),
+                 JsonNumber(result.max_translation_error).c_str(), JsonNumber(result.max_rotation_error).c_str(),
+                 result.switches);
+  } else {
+    std::fprintf(summary,
+                 "%s, %s: end-point error u %.4f mm, theta %.5f rad (seed 001: < 0.1 mm, < 0.01 rad); max over the "
+                 "run u %.3f mm, theta %.4f rad; %d stick/slip switches\n",
+                 loop.program.name.c_str(), ControlLawName(settings.law), result.endpoint_translation_error * 1e3,
+                 result.endpoint_rotation_error, result.max_translation_error * 1e3, result.max_rotation_error,
+                 result.switches);
+  }
+  if (options.output.empty()) std::fputs(log_text.c_str(), stdout);
+}
+
+}  // namespace driveid::cli
