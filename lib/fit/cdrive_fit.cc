@@ -99,6 +99,48 @@ std::string InertiaAdvice(const std::vector<std::string>& involved) {
   return "";
 }
 
+// Which samples may enter the sum and the difference rows. A sample needs
+// certain Coulomb signs (|rates| >= min_rate; for the difference also
+// |psi_L' - psi_R'|), and so must every sample within its differentiator
+// window: around a reversal the drive sticks and breaks away, the motion is
+// not smooth, and a local quadratic that straddles it biases the rates and
+// accelerations (with closed-loop logs by several percent in gamma).
+struct UsableMask {
+  std::vector<char> sum, difference;
+};
+
+std::vector<char> Erode(const std::vector<double>& time, const std::vector<char>& ok, double half_window) {
+  const std::size_t n = time.size();
+  std::vector<char> out(n, 0);
+  double last_bad = -1e300;
+  std::vector<double> since(n), until(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!ok[k]) last_bad = time[k];
+    since[k] = time[k] - last_bad;
+  }
+  double next_bad = 1e300;
+  for (std::size_t k = n; k-- > 0;) {
+    if (!ok[k]) next_bad = time[k];
+    until[k] = next_bad - time[k];
+  }
+  for (std::size_t k = 0; k < n; ++k) out[k] = since[k] > half_window && until[k] > half_window;
+  return out;
+}
+
+UsableMask UsableSamples(const std::vector<double>& time, const SignalDerivatives& left, const SignalDerivatives& right,
+                         double min_rate, double half_window) {
+  const std::size_t n = time.size();
+  std::vector<char> signs(n), collar(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double rl = left.rate[k], rr = right.rate[k];
+    // Samples without a centred window (log ends) do not spoil their neighbours.
+    const bool centred = left.valid[k] && right.valid[k];
+    signs[k] = !centred || (std::abs(rl) >= min_rate && std::abs(rr) >= min_rate);
+    collar[k] = !centred || (signs[k] && std::abs(rl - rr) >= min_rate);
+  }
+  return {Erode(time, signs, half_window), Erode(time, collar, half_window)};
+}
+
 struct Design {
   RowMatrix regressor;
   Eigen::VectorXd measured;
@@ -171,6 +213,7 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveParameters& 
     design.right.push_back(EstimateDerivatives(log.time, log.angle_right, options.half_window));
     const auto& left = design.left.back();
     const auto& right = design.right.back();
+    const auto usable = UsableSamples(log.time, left, right, options.min_rate, options.half_window);
     for (int part = 0; part < 2; ++part) {
       const int begin = static_cast<int>(values.size());
       std::vector<double> measured;
@@ -178,9 +221,7 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveParameters& 
         if (!left.valid[k] || !right.valid[k]) continue;
         if (part == 0) ++design.rows_possible;
         const double rl = left.rate[k], rr = right.rate[k];
-        const bool signs_known = std::abs(rl) >= options.min_rate && std::abs(rr) >= options.min_rate;
-        const bool collar_known = std::abs(rl - rr) >= options.min_rate;
-        if (!signs_known || (part == 1 && !collar_known)) continue;
+        if (!(part == 0 ? usable.sum[k] : usable.difference[k])) continue;
         const SampleRows sample = CalcSampleRows(start.lead, rl, rr, left.acceleration[k], right.acceleration[k]);
         // Known part: (28) with the free terms set to zero.
         const Vector2 known = CalcCDriveInverseDynamics(fixed, {rl, rr}, {left.acceleration[k], right.acceleration[k]});
@@ -245,6 +286,7 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveParameters& 
 
   for (std::size_t i = 0; i < logs.size(); ++i) {
     const auto& log = logs[i];
+    const auto usable = UsableSamples(log.time, design.left[i], design.right[i], options.min_rate, options.half_window);
     CDriveTrace trace;
     for (std::size_t k = 0; k < log.time.size(); ++k) {
       if (!design.left[i].valid[k] || !design.right[i].valid[k]) continue;
@@ -256,7 +298,7 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveParameters& 
       trace.measured_right.push_back(log.torque_right[k]);
       trace.model_left.push_back(model[0]);
       trace.model_right.push_back(model[1]);
-      trace.used.push_back(std::abs(rl) >= options.min_rate && std::abs(rr) >= options.min_rate);
+      trace.used.push_back(usable.sum[k]);
     }
     out.traces.push_back(std::move(trace));
   }
