@@ -8,39 +8,13 @@ src="$2"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
-passed=0
-failed=0
-fail() { echo "FAIL: $*"; failed=$((failed + 1)); }
-ok() { passed=$((passed + 1)); }
+program=drivetrain-fit
+# shellcheck source=tests/cli/cli_test_lib.sh
+source "$src/tests/cli/cli_test_lib.sh"
 
 cp "$src/data/paper000.yaml" paper.yaml
 cp "$src/data/paper000_start.yaml" start.yaml
 "$bin" simulate step --params paper.yaml --noise 0.1 --seed 4 -o good.csv || fail "simulate step"
-
-# expect CODE PATTERN -- ARGS...: exit code, a single stderr line starting
-# with the program name and matching PATTERN, and no out.yaml written.
-expect() {
-  local code="$1" pattern="$2"
-  shift 3
-  rm -f out.yaml
-  "$bin" "$@" -o out.yaml > stdout.txt 2> stderr.txt
-  local got=$?
-  local lines
-  lines=$(wc -l < stderr.txt)
-  if [ "$got" -ne "$code" ]; then
-    fail "$* -> exit $got, expected $code: $(head -c 300 stderr.txt)"
-  elif [ "$lines" -ne 1 ]; then
-    fail "$* -> $lines stderr lines: $(head -c 300 stderr.txt)"
-  elif ! grep -q "^drivetrain-fit: " stderr.txt; then
-    fail "$* -> message does not start with the program name: $(cat stderr.txt)"
-  elif ! grep -qE -- "$pattern" stderr.txt; then
-    fail "$* -> message does not match /$pattern/: $(cat stderr.txt)"
-  elif [ -e out.yaml ] || ls out.yaml.tmp.* > /dev/null 2>&1; then
-    fail "$* -> an output file was written on failure"
-  else
-    ok
-  fi
-}
 
 # Malformed logs: exit 3, file:line: column.
 printf '' > empty.csv
@@ -125,5 +99,4 @@ for sub in step "simulate step" report; do
   "$bin" $sub --help | grep -q "Example:" && ok || fail "$sub --help lacks an example"
 done
 
-echo "$passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+finish

@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# CLI tests of cdrive-fit: bad C-drive logs and parameter files (exit 3),
+# refusals (exit 4) with no output file, simulate -> friction round trip,
+# reruns, report. Usage: cdrive_fit_cli_test.sh BIN SRC
+set -u
+bin="$1"
+src="$2"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+program=cdrive-fit
+# shellcheck source=tests/cli/cli_test_lib.sh
+source "$src/tests/cli/cli_test_lib.sh"
+
+cp "$src/data/cdrive_table1.yaml" table1.yaml
+for prog in translation rotation helical; do
+  "$bin" simulate --program "$prog" --params table1.yaml --stroke 2 --cycles 2 --noise 0.01 -o "$prog.csv" \
+    > /dev/null || fail "simulate $prog"
+done
+
+# Bad C-drive logs: exit 3 with file:line: column.
+printf 't,psi_L,psi_R,tau_L\n0,0,0,0\n' > missing.csv
+printf 't,psi_L,psi_R,tau_L,tau_R\n0,0,0,0,0\n0.001,0,x,0,0\n' > not_number.csv
+printf 't,psi_L,psi_R,tau_L,tau_R\n0,0,0,0,0\n0.001,0,0,inf,0\n' > inf.csv
+printf 't,psi_L,psi_R,i_L,i_R\n0,0,0,0,0\n0.001,0,0,1,1\n' > currents.csv
+printf 't,psi_L,psi_R,i_L,tau_R\n0,0,0,0,0\n' > mixed.csv
+printf 't,psi_L,psi_R,tau_L,tau_R\n0,0,0,0,0\n0,0,0,0,0\n' > time.csv
+expect 3 "missing.csv:1: missing column 'tau_R' or 'i_R'" -- friction missing.csv --params table1.yaml
+expect 3 "not_number.csv:3: column 'psi_R': not a number" -- friction not_number.csv --params table1.yaml
+expect 3 "inf.csv:3: column 'tau_L': not a finite number" -- friction inf.csv --params table1.yaml
+expect 3 "currents.csv: the log has currents i_L, i_R: cdrive.k_t must be given" -- friction currents.csv --params table1.yaml
+expect 3 "mixed.csv: give both motor torques" -- friction mixed.csv --params table1.yaml
+expect 3 "time.csv:3: column 't': time not strictly increasing" -- inertia time.csv --params table1.yaml
+
+# Bad parameter files.
+sed 's/  eta: 0.1501/  eta: -0.1501/' table1.yaml > negative.yaml
+sed 's/    law: PD/    law: P/' table1.yaml > law.yaml
+sed '/  I_h:/d' table1.yaml > no_inertia.yaml
+expect 3 "negative.yaml:[0-9]+:8: cdrive.eta: must be >= 0" -- friction translation.csv --params negative.yaml
+expect 3 "law.yaml:[0-9]+:10: cdrive.control.law: must be PI, PD or PID" -- friction translation.csv --params law.yaml
+expect 3 "cdrive.I_h is needed" -- friction translation.csv --params no_inertia.yaml
+expect 3 "no 'cdrive' section" -- friction translation.csv --params "$src/data/paper000.yaml"
+
+# Refusals: exit 4, naming what cannot be determined; no output file.
+expect 4 "not identifiable.*gamma, eta.*pure rotation" -- friction rotation.csv --params table1.yaml
+expect 4 "not identifiable.*I_h, I_c, m.*fix one of I_h, I_c, m" -- inertia translation.csv rotation.csv helical.csv \
+  --params table1.yaml --free I_h,I_c,m
+expect 4 "no usable samples" -- friction translation.csv --params table1.yaml --min-rate 1000
+
+# Usage errors: exit 2.
+expect 2 "not a parameter of the friction fit" -- friction translation.csv --params table1.yaml --free beta,zeta
+expect 2 "" -- simulate --program spiral --params table1.yaml
+expect 2 "--stroke = -1: violated constraint" -- simulate --program rotation --params table1.yaml --stroke -1
+
+# simulate -> friction round trip; the output reads back; reruns are identical.
+if "$bin" friction translation.csv rotation.csv helical.csv --params table1.yaml -q -o fitted.yaml --trace trace.csv; then
+  ok
+else
+  fail "friction fit of simulated logs"
+fi
+for key in beta gamma delta eta; do
+  truth=$(awk -v k="  $key:" 'index($0, k) == 1 {print $2; exit}' table1.yaml)
+  value=$(awk -v k="  $key:" 'index($0, k) == 1 {print $2; exit}' fitted.yaml)
+  awk -v v="$value" -v t="$truth" 'BEGIN { d = v / t - 1; exit !(d < 0.03 && d > -0.03) }' && ok \
+    || fail "$key = $value, simulated with $truth (more than 3 % off)"
+done
+cp fitted.yaml first.yaml
+"$bin" friction translation.csv rotation.csv helical.csv --params table1.yaml -q -o fitted.yaml --trace trace.csv \
+  && cmp -s fitted.yaml first.yaml && ok || fail "rerun differs"
+"$bin" report fitted.yaml > report.txt && grep -q "beta = 0.00" report.txt && grep -q "+-" report.txt && ok \
+  || fail "report lacks the fitted table with uncertainties"
+"$bin" friction translation.csv rotation.csv helical.csv --params fitted.yaml -q -o refit.yaml && ok \
+  || fail "fit output is not a valid --params input"
+for sub in friction inertia simulate report; do
+  "$bin" "$sub" --help | grep -q "Example:" && ok || fail "$sub --help lacks an example"
+done
+finish

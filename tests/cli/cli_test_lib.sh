@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Helpers shared by the CLI test scripts. Set `bin` (the executable) and
+# `program` (its name in messages) before sourcing.
+passed=0
+failed=0
+fail() { echo "FAIL: $*"; failed=$((failed + 1)); }
+ok() { passed=$((passed + 1)); }
+
+# expect CODE PATTERN -- ARGS...: exit code, a single stderr line starting
+# with the program name and matching PATTERN, and no out.yaml written.
+expect() {
+  local code="$1" pattern="$2"
+  shift 3
+  rm -f out.yaml
+  "$bin" "$@" -o out.yaml > stdout.txt 2> stderr.txt
+  local got=$?
+  local lines
+  lines=$(wc -l < stderr.txt)
+  if [ "$got" -ne "$code" ]; then
+    fail "$* -> exit $got, expected $code: $(head -c 300 stderr.txt)"
+  elif [ "$lines" -ne 1 ]; then
+    fail "$* -> $lines stderr lines: $(head -c 300 stderr.txt)"
+  elif ! grep -q "^$program: " stderr.txt; then
+    fail "$* -> message does not start with the program name: $(cat stderr.txt)"
+  elif ! grep -qE -- "$pattern" stderr.txt; then
+    fail "$* -> message does not match /$pattern/: $(cat stderr.txt)"
+  elif [ -e out.yaml ] || ls out.yaml.tmp.* > /dev/null 2>&1; then
+    fail "$* -> an output file was written on failure"
+  else
+    ok
+  fi
+}
+
+finish() {
+  echo "$passed passed, $failed failed"
+  [ "$failed" -eq 0 ]
+}
