@@ -74,18 +74,33 @@ void RunCDriveFitCommand(const CDriveFitCommandOptions& options, const std::stri
   outputs.parameter_file = FormatParameterFile(fitted, &outputs.fit, &outputs.provenance, result.derived);
   outputs.trace_csv = "# cdrive-fit trace: measured and model motor torques [N m]; used = entered the fit\n";
   outputs.trace_csv += "log,t,tau_L_measured,tau_L_model,tau_R_measured,tau_R_model,used\n";
+  // One panel per log (measured dots, model lines for both motors), then the
+  // residuals of the samples that entered the fit.
+  PlotPanel residuals{"residual (measured - model) of the samples used in the fit", "residual torque [N m]", {}};
   for (std::size_t i = 0; i < logs.size(); ++i) {
     const CDriveTrace& trace = result.traces[i];
+    PlotLine used_left{logs[i].path + " tau_L", {}, {}, false, true};
+    PlotLine used_right{logs[i].path + " tau_R", {}, {}, false, true};
     for (std::size_t k = 0; k < trace.time.size(); ++k) {
       outputs.trace_csv += fmt::format("{},{},{},{:.7g},{},{:.7g},{}\n", i + 1, trace.time[k], trace.measured_left[k],
                                        trace.model_left[k], trace.measured_right[k], trace.model_right[k],
                                        trace.used[k] ? 1 : 0);
+      if (!trace.used[k]) continue;
+      used_left.x.push_back(trace.time[k]);
+      used_left.y.push_back(trace.measured_left[k] - trace.model_left[k]);
+      used_right.x.push_back(trace.time[k]);
+      used_right.y.push_back(trace.measured_right[k] - trace.model_right[k]);
     }
-    outputs.plot_series.push_back({logs[i].path + " tau_L", trace.time, trace.measured_left, trace.model_left});
-    outputs.plot_series.push_back({logs[i].path + " tau_R", trace.time, trace.measured_right, trace.model_right});
+    outputs.plot_panels.push_back(
+        {fmt::format("{} fit: {}", friction ? "friction" : "inertia", logs[i].path), "motor torque [N m]",
+         {{"measured tau_L", trace.time, trace.measured_left, true},
+          {"model tau_L", trace.time, trace.model_left, false},
+          {"measured tau_R", trace.time, trace.measured_right, true},
+          {"model tau_R", trace.time, trace.model_right, false}}});
+    residuals.lines.push_back(std::move(used_left));
+    residuals.lines.push_back(std::move(used_right));
   }
-  outputs.plot_labels = {friction ? "C-drive friction fit: motor torques" : "C-drive inertia fit: motor torques",
-                         "motor torque [N m]"};
+  outputs.plot_panels.push_back(std::move(residuals));
   EmitFitOutputs(options.output, outputs);
 }
 

@@ -101,7 +101,7 @@ void AddFitOutputOptions(CLI::App& command, FitOutputOptions& options) {
 void EmitFitOutputs(const FitOutputOptions& options, const FitOutputs& outputs) {
   // Plot first: it is the step most likely to fail (gnuplot), and nothing
   // has been written yet if it does.
-  if (!options.plot.empty()) RenderFitPlot(options.plot, outputs.plot_series, outputs.plot_labels);
+  if (!options.plot.empty()) RenderPanels(options.plot, outputs.plot_panels, "time [s]");
   if (!options.trace.empty()) WriteFileAtomically(options.trace, outputs.trace_csv);
   if (!options.output.empty()) WriteFileAtomically(options.output, outputs.parameter_file);
 

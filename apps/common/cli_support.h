@@ -37,8 +37,7 @@ void AddFitOutputOptions(CLI::App& command, FitOutputOptions& options);
 struct FitOutputs {
   std::string parameter_file;       ///< YAML text
   std::string trace_csv;            ///< CSV text
-  std::vector<PlotSeries> plot_series;
-  PlotLabels plot_labels;
+  std::vector<PlotPanel> plot_panels;  ///< stacked panels sharing the time axis
   FitResult fit;
   FitProvenance provenance;
 };

@@ -65,6 +65,7 @@ void RunStepCommand(const StepOptions& options, const std::string& command_line)
 
   outputs.trace_csv = "# drivetrain-fit step trace: measured and model link torque [N m]\n";
   outputs.trace_csv += "log,t,tau_motor,tau_link_measured,tau_link_model,residual\n";
+  std::vector<PlotSeries> series;
   for (std::size_t i = 0; i < logs.size(); ++i) {
     const StepLog& log = logs[i];
     const auto& model = result.simulated[i];
@@ -72,9 +73,10 @@ void RunStepCommand(const StepOptions& options, const std::string& command_line)
       outputs.trace_csv += fmt::format("{},{},{},{},{:.9g},{:.9g}\n", i + 1, log.time[k], log.motor_torque[k],
                                        log.link_torque[k], model[k], log.link_torque[k] - model[k]);
     }
-    outputs.plot_series.push_back({log.path, log.time, log.link_torque, model});
+    series.push_back({log.path, log.time, log.link_torque, model});
   }
-  outputs.plot_labels = {fmt::format("drive-train step fit ({} model)", options.model), "link torque [N m]"};
+  outputs.plot_panels =
+      MakeFitPanels(series, {fmt::format("drive-train step fit ({} model)", options.model), "link torque [N m]"});
   EmitFitOutputs(options.output, outputs);
 }
 

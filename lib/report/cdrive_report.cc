@@ -65,11 +65,11 @@ std::string FormatCDriveReport(const CDriveSection& cdrive, const std::vector<Pa
     out += "\ninertia: I_h, I_c, m not all given\n";
   }
   out += "\ndissipation (Table I):\n";
-  out += fmt::format("  {:<18} {:<28} {:<28}\n", "part", "viscous [N m s/rad]", "Coulomb [N m]");
-  out += fmt::format("  {:<18} {:<28} {:<28}\n", "rotational parts",
+  out += fmt::format("  {:<18} {:<34} {:<34}\n", "part", "viscous [N m s/rad]", "Coulomb [N m]");
+  out += fmt::format("  {:<18} {:<34} {:<34}\n", "rotational parts",
                      "beta = " + Value(p.viscous_motor, Lookup(estimates, "beta")),
                      "delta = " + Value(p.coulomb_motor, Lookup(estimates, "delta")));
-  out += fmt::format("  {:<18} {:<28} {:<28}\n", "collar",
+  out += fmt::format("  {:<18} {:<34} {:<34}\n", "collar",
                      "gamma = " + Value(p.viscous_collar, Lookup(estimates, "gamma")),
                      "eta = " + Value(p.coulomb_collar, Lookup(estimates, "eta")));
   out += "  paper Table I:     beta = 0.002655, gamma = 0.004333, delta = 0.1086, eta = 0.1501\n";

@@ -101,6 +101,9 @@ void RenderPanels(const std::string& path, const std::vector<PlotPanel>& panels,
       if (line.points) {
         plot += fmt::format("$d{} using 1:2 with points pt 7 ps 0.35 lc rgb '#9a9a9a' title {}", block++,
                             GnuplotString(line.title));
+      } else if (line.dots) {
+        plot += fmt::format("$d{} using 1:2 with points pt 7 ps 0.3 lc {} title {}", block++, colour++,
+                            GnuplotString(line.title));
       } else {
         plot += fmt::format("$d{} using 1:2 with lines lw 2 lc {} title {}", block++, colour++, GnuplotString(line.title));
       }
@@ -147,7 +150,7 @@ void RenderPanels(const std::string& path, const std::vector<PlotPanel>& panels,
   }
 }
 
-void RenderFitPlot(const std::string& path, const std::vector<PlotSeries>& series, const PlotLabels& labels) {
+std::vector<PlotPanel> MakeFitPanels(const std::vector<PlotSeries>& series, const PlotLabels& labels) {
   PlotPanel fit{labels.title, labels.y_label, {}};
   PlotPanel residual{"residual (measured - model)", "residual " + labels.y_label, {}};
   for (const auto& one : series) {
@@ -157,7 +160,7 @@ void RenderFitPlot(const std::string& path, const std::vector<PlotSeries>& serie
     for (std::size_t k = 0; k < difference.size(); ++k) difference[k] = one.measured[k] - one.model[k];
     residual.lines.push_back({one.title, one.time, std::move(difference), false});
   }
-  RenderPanels(path, {fit, residual}, "time [s]");
+  return {fit, residual};
 }
 
 }  // namespace driveid

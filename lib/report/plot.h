@@ -26,6 +26,7 @@ struct PlotLine {
   std::vector<double> x;
   std::vector<double> y;
   bool points = false;  ///< grey dots (measurements) instead of a line
+  bool dots = false;    ///< coloured dots (scattered samples, e.g. residuals with gaps)
 };
 
 /// One panel (stacked vertically, sharing the time axis).
@@ -42,8 +43,9 @@ void RenderPanels(const std::string& path, const std::vector<PlotPanel>& panels,
 /// True for a path ending in .png or .svg (case-insensitive).
 bool IsSupportedPlotPath(const std::string& path);
 
-/// Renders the plot into `path`. Throws std::runtime_error if gnuplot is
-/// missing or fails (message includes gnuplot's first error line).
-void RenderFitPlot(const std::string& path, const std::vector<PlotSeries>& series, const PlotLabels& labels);
+
+/// The standard fit plot: measured (dots) and model (lines) of every series
+/// in one panel, their residuals in a second.
+std::vector<PlotPanel> MakeFitPanels(const std::vector<PlotSeries>& series, const PlotLabels& labels);
 
 }  // namespace driveid
