@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include "core/errors.h"
+#include "support/paper001.h"
 #include "support/reference_cdrive.h"
 
 using namespace driveid;
@@ -31,11 +32,7 @@ std::vector<CDriveLog> Programs(double stroke, int cycles, unsigned seed, bool w
 }
 
 CDriveParameters Start() {
-  CDriveParameters p;  // inertia known; friction guesses 2-3x off
-  p.lead = 0.06;
-  p.hub_inertia = 6e-4;
-  p.collar_inertia = 1.6e-3;
-  p.collar_mass = 2.0;
+  CDriveParameters p = testing_support::TableOneCDrive();  // inertia known; friction guesses 2-3x off
   p.viscous_motor = 0.002655 * 2.5;
   p.viscous_collar = 0.004333 / 2.0;
   p.coulomb_motor = 0.1086 * 3.0;

@@ -6,21 +6,12 @@
 
 #include <catch2/catch.hpp>
 
+#include "support/paper001.h"
+
 using namespace driveid;
 
 namespace {
-CDriveParameters TableOne() {
-  CDriveParameters p;
-  p.lead = 0.06;
-  p.hub_inertia = 6e-4;
-  p.collar_inertia = 1.6e-3;
-  p.collar_mass = 2.0;
-  p.viscous_motor = 0.002655;
-  p.viscous_collar = 0.004333;
-  p.coulomb_motor = 0.1086;
-  p.coulomb_collar = 0.1501;
-  return p;
-}
+using testing_support::TableOneCDrive;
 
 Matrix2 Multiply(const Matrix2& a, const Matrix2& b) {
   return {a[0] * b[0] + a[1] * b[2], a[0] * b[1] + a[1] * b[3], a[2] * b[0] + a[3] * b[2], a[2] * b[1] + a[3] * b[3]};
@@ -51,7 +42,7 @@ TEST_CASE("kinematics: J psi gives (u, p theta / 2 pi)") {
 }
 
 TEST_CASE("M is symmetric positive definite, and proportional to 1 under eq. (18)") {
-  const auto p = TableOne();
+  const auto p = TableOneCDrive();
   const Matrix2 m = CalcCDriveInertiaMatrix(p);
   CHECK(m[1] == m[2]);
   CHECK(m[0] > 0.0);
@@ -72,7 +63,7 @@ TEST_CASE("M is symmetric positive definite, and proportional to 1 under eq. (18
 }
 
 TEST_CASE("C is symmetric and the Hessian of Delta_v; dissipated power is never negative") {
-  const auto p = TableOne();
+  const auto p = TableOneCDrive();
   const Matrix2 c = CalcCDriveDampingMatrix(p);
   CHECK(c[1] == c[2]);
   // Delta_v = beta/2 (L^2 + R^2) + gamma/2 [(L - theta')^2 + (R - theta')^2], theta' = (L + R)/2.
@@ -90,7 +81,7 @@ TEST_CASE("C is symmetric and the Hessian of Delta_v; dissipated power is never 
 }
 
 TEST_CASE("Table II: pure rotation carries no collar friction, pure translation does") {
-  const auto p = TableOne();
+  const auto p = TableOneCDrive();
   // Rotation: psi_L' = psi_R' -> collar at rest on the screws: no gamma, no eta.
   const Vector2 rotation = CalcCDriveInverseDynamics(p, {2.0, 2.0}, {0.0, 0.0});
   CHECK(rotation[0] == Approx(p.viscous_motor * 2.0 + p.coulomb_motor));

@@ -4,6 +4,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "support/paper001.h"
+
 #include "control/cdrive_controller.h"
 #include "fit/cdrive_fit.h"
 #include "sim/cdrive_closed_loop.h"
@@ -12,22 +14,11 @@
 using namespace driveid;
 
 namespace {
-CDriveParameters TableOne() {
-  CDriveParameters p;
-  p.lead = 0.06;
-  p.hub_inertia = 6e-4;
-  p.collar_inertia = 1.6e-3;
-  p.collar_mass = 2.0;
-  p.viscous_motor = 0.002655;
-  p.viscous_collar = 0.004333;
-  p.coulomb_motor = 0.1086;
-  p.coulomb_collar = 0.1501;
-  return p;
-}
+using testing_support::TableOneCDrive;
 
 // Runs the plant from rest with a constant torque, returns the rates at `time`.
 Vector2 RatesAfter(const Vector2& torque, double time) {
-  CDrivePlant plant(TableOne());
+  CDrivePlant plant(TableOneCDrive());
   plant.Reset({});
   const int steps = 100;
   for (int k = 0; k < steps; ++k) plant.Advance(k * time / steps, (k + 1) * time / steps, torque);
@@ -36,7 +27,7 @@ Vector2 RatesAfter(const Vector2& torque, double time) {
 }  // namespace
 
 TEST_CASE("plant: pure rotation and pure translation follow their closed forms") {
-  const auto p = TableOne();
+  const auto p = TableOneCDrive();
   const double a = CalcInertiaDiagonal(p), b = CalcInertiaOffDiagonal(p);
   const double t = 0.3, torque = 0.5;
   // Rotation: equal torques, the collar sticks on the screws:
@@ -54,7 +45,7 @@ TEST_CASE("plant: pure rotation and pure translation follow their closed forms")
 }
 
 TEST_CASE("plant: torques inside the friction cone move nothing; just outside they do") {
-  const auto p = TableOne();
+  const auto p = TableOneCDrive();
   // Motor L alone at 0.2 N m: a collar force f in [0.2 - delta, 0.2 + delta] n [-delta, delta] n [-eta, eta]
   // = [0.0914, 0.1086] lets motor R's friction hold everything: nothing moves.
   CHECK(RatesAfter({0.2, 0.0}, 0.2)[0] == 0.0);
@@ -77,7 +68,7 @@ TEST_CASE("plant: torques inside the friction cone move nothing; just outside th
 }
 
 TEST_CASE("eq. (31): viscous and Coulomb terms, dead zone and rate limit") {
-  const auto p = TableOne();
+  const auto p = TableOneCDrive();
   FrictionCompensator compensator(p, 0.5, 50.0, 0.001);
   // Far from zero and after the rate limiter has settled: eq. (31) exactly.
   Vector2 tau{};
@@ -92,7 +83,7 @@ TEST_CASE("eq. (31): viscous and Coulomb terms, dead zone and rate limit") {
 }
 
 TEST_CASE("reading K_I: the PD reading reproduces the seed's end-point errors, the PI reading does not") {
-  const auto p = TableOne();
+  const auto p = TableOneCDrive();
   for (const char* name : {"translation", "rotation", "helical"}) {
     ClosedLoopOptions options;
     options.program = TableTwoProgram(name, 1.0);  // 0.5 Hz as in the seed
@@ -112,7 +103,7 @@ TEST_CASE("reading K_I: the PD reading reproduces the seed's end-point errors, t
 }
 
 TEST_CASE("simulate -> friction and simulate -> inertia round trips recover the simulated values") {
-  const auto truth = TableOne();
+  const auto truth = TableOneCDrive();
   CDriveControlSettings settings;
   settings.law = ControlLaw::kPD;
   std::vector<CDriveLog> slow, fast;
