@@ -37,6 +37,8 @@ const LinearParameter kInertiaParameters[] = {
     {"m", &CDriveParameters::collar_mass, 1.0},
 };
 
+bool IsGivenValue(double value) { return value == value; }
+
 bool Contains(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
 }
@@ -181,10 +183,14 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveParameters& 
                                          &CDriveParameters::collar_mass, &CDriveParameters::viscous_motor,
                                          &CDriveParameters::viscous_collar, &CDriveParameters::coulomb_motor,
                                          &CDriveParameters::coulomb_collar};
-  for (int i = 0; i < 7; ++i) {
-    if (!Contains(free, needed[i]) && !(start.*(members[i]) == start.*(members[i]))) {
-      throw InputError(fmt::format("--params: cdrive.{} is needed (fixed in this fit){}", needed[i],
-                                   i < 3 && friction ? "; give 0 to neglect the small inertial part" : ""));
+  // Without I_h, I_c and m the friction fit estimates a + b and a - b of
+  // eq. (17) alongside, as nuisance parameters (their columns, the summed and
+  // differenced accelerations, are nearly orthogonal to the friction columns).
+  const bool inertia_nuisance = friction && !(IsGivenValue(start.hub_inertia) && IsGivenValue(start.collar_inertia) &&
+                                              IsGivenValue(start.collar_mass));
+  for (int i = inertia_nuisance ? 3 : 0; i < 7; ++i) {
+    if (!Contains(free, needed[i]) && !IsGivenValue(start.*(members[i]))) {
+      throw InputError(fmt::format("--params: cdrive.{} is needed (fixed in this fit)", needed[i]));
     }
   }
 
@@ -197,7 +203,11 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveParameters& 
     const double initial = value == value && value > 0.0 ? value : 0.0;
     parameters.push_back({table[j].key, initial, 0.0, initial > 0.0 ? initial : table[j].typical});
   }
-  const int p = static_cast<int>(free_columns.size());
+  if (inertia_nuisance) {
+    parameters.push_back({"a_plus_b", 0.0, 0.0, 1e-3});
+    parameters.push_back({"a_minus_b", 0.0, 0.0, 1e-3});
+  }
+  const int p = static_cast<int>(parameters.size());
 
   // Build rows: per log the sum rows, then the difference rows.
   Design design;
@@ -205,6 +215,7 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveParameters& 
   std::vector<double> values;
   CDriveParameters fixed = start;
   for (int j : free_columns) fixed.*(table[j].member) = 0.0;  // known part excludes the free terms
+  if (inertia_nuisance) fixed.hub_inertia = fixed.collar_inertia = fixed.collar_mass = 0.0;
   for (const auto& log : logs) {
     if (log.time.size() < 5) {
       throw InputError(fmt::format("{}: {} samples: too few to differentiate", log.path, log.time.size()));
@@ -230,6 +241,10 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveParameters& 
         const double* full = friction ? (part == 0 ? sample.friction_sum : sample.friction_difference)
                                       : (part == 0 ? sample.inertia_sum : sample.inertia_difference);
         for (int j : free_columns) rows.push_back(full[j]);
+        if (inertia_nuisance) {
+          rows.push_back(part == 0 ? left.acceleration[k] + right.acceleration[k] : 0.0);
+          rows.push_back(part == 0 ? 0.0 : left.acceleration[k] - right.acceleration[k]);
+        }
         values.push_back(y);
         measured.push_back(part == 0 ? log.torque_left[k] + log.torque_right[k]
                                      : log.torque_left[k] - log.torque_right[k]);
@@ -265,6 +280,17 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveParameters& 
   out.rows_used = static_cast<int>(design.channels.empty() ? 0 : n);
   out.rows_possible = design.rows_possible;
 
+  if (inertia_nuisance) {
+    // a = ((a + b) + (a - b)) / 2, b = ((a + b) - (a - b)) / 2.
+    const std::size_t s_index = free_columns.size(), d_index = s_index + 1;
+    const double sum = out.fit.estimates[s_index].value, difference = out.fit.estimates[d_index].value;
+    const auto cov = [&](std::size_t i, std::size_t j) { return out.fit.covariance[i * static_cast<std::size_t>(p) + j]; };
+    const double spread = 0.25 * (cov(s_index, s_index) + cov(d_index, d_index));
+    out.derived.push_back({"a", 0.5 * (sum + difference), std::sqrt(std::max(0.0, spread + 0.5 * cov(s_index, d_index))),
+                           "kg m^2, M diagonal (eq. 17), fitted as a nuisance"});
+    out.derived.push_back({"b", 0.5 * (sum - difference), std::sqrt(std::max(0.0, spread - 0.5 * cov(s_index, d_index))),
+                           "kg m^2, M off-diagonal, fitted as a nuisance"});
+  }
   if (!friction) {
     // a and b of eq. (17) with their standard errors: linear in (I_h, I_c, m).
     const double k = CalcMassCoupling(start.lead);
@@ -284,6 +310,8 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveParameters& 
     out.derived.push_back({"b", CalcInertiaOffDiagonal(out.params), propagate(gradient_b), "kg m^2, M off-diagonal"});
   }
 
+  CDriveParameters fixed_with_fit = out.params;  // for the trace when M was a nuisance
+  fixed_with_fit.hub_inertia = fixed_with_fit.collar_inertia = fixed_with_fit.collar_mass = 0.0;
   for (std::size_t i = 0; i < logs.size(); ++i) {
     const auto& log = logs[i];
     const auto usable = UsableSamples(log.time, design.left[i], design.right[i], options.min_rate, options.half_window);
@@ -291,8 +319,13 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveParameters& 
     for (std::size_t k = 0; k < log.time.size(); ++k) {
       if (!design.left[i].valid[k] || !design.right[i].valid[k]) continue;
       const double rl = design.left[i].rate[k], rr = design.right[i].rate[k];
-      const Vector2 model = CalcCDriveInverseDynamics(out.params, {rl, rr},
-                                                      {design.left[i].acceleration[k], design.right[i].acceleration[k]});
+      const Vector2 acceleration = {design.left[i].acceleration[k], design.right[i].acceleration[k]};
+      Vector2 model = CalcCDriveInverseDynamics(inertia_nuisance ? fixed_with_fit : out.params, {rl, rr}, acceleration);
+      if (inertia_nuisance) {
+        const double a = out.derived[0].value, b = out.derived[1].value;
+        model[0] += a * acceleration[0] + b * acceleration[1];
+        model[1] += b * acceleration[0] + a * acceleration[1];
+      }
       trace.time.push_back(log.time[k]);
       trace.measured_left.push_back(log.torque_left[k]);
       trace.measured_right.push_back(log.torque_right[k]);

@@ -74,7 +74,8 @@ const std::vector<std::string>& CDriveFrictionParameterNames();  // beta, gamma,
 const std::vector<std::string>& CDriveInertiaParameterNames();   // I_h, I_c, m
 
 /// Fits beta, gamma, delta, eta (or the `free` subset) jointly over all logs.
-/// I_h, I_c, m must be given in `start` (0 neglects the inertial part).
+/// With I_h, I_c, m given in `start` the inertial part is known; without
+/// them a + b and a - b are estimated alongside (reported as a, b).
 CDriveFitOutput FitCDriveFriction(const std::vector<CDriveLog>& logs, const CDriveParameters& start,
                                   const CDriveFitOptions& options);
 

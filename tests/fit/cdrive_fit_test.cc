@@ -119,3 +119,18 @@ TEST_CASE("currents with k_t, and missing k_t refused") {
   CHECK_THROWS_WITH(ParseCDriveLog("c.csv", text, {}, std::nan("")), Catch::Contains("cdrive.k_t must be given"));
   CHECK_THROWS_AS(ParseCDriveLog("c.csv", "t,psi_L,psi_R,i_L,tau_R\n0,0,0,1,2\n", {}, 0.5), InputError);
 }
+
+TEST_CASE("friction without the inertias: a + b and a - b are estimated alongside") {
+  auto start = Start();
+  start.hub_inertia = start.collar_inertia = start.collar_mass = std::nan("");
+  const auto out = FitCDriveFriction(Programs(4.0, 2, 21), start, {});
+  CHECK(Estimate(out.fit, "beta") == Approx(0.002655).epsilon(0.03));
+  CHECK(Estimate(out.fit, "gamma") == Approx(0.004333).epsilon(0.03));
+  CHECK(Estimate(out.fit, "delta") == Approx(0.1086).epsilon(0.03));
+  CHECK(Estimate(out.fit, "eta") == Approx(0.1501).epsilon(0.03));
+  const double k = 0.06 * 0.06 / (16 * M_PI * M_PI);
+  CHECK(Estimate(out.fit, "a_plus_b") == Approx(6e-4 + 1.6e-3 / 2).epsilon(0.05));
+  CHECK(Estimate(out.fit, "a_minus_b") == Approx(6e-4 + 2 * k * 2.0).epsilon(0.05));
+  REQUIRE(out.derived.size() == 2);
+  CHECK(out.derived[0].name == "a");
+}
