@@ -85,7 +85,13 @@ class LinearResiduals final : public ResidualModel {
 enum class Kind { kFriction, kInertia };
 
 std::string FrictionAdvice(const std::vector<std::string>& involved) {
-  if (Contains(involved, "gamma") || Contains(involved, "eta")) {
+  const bool motor = Contains(involved, "beta") || Contains(involved, "delta");
+  const bool collar = Contains(involved, "gamma") || Contains(involved, "eta");
+  if (motor && collar) {
+    return "pure translation (psi_L' = -psi_R') fixes only beta + gamma and delta + 2 eta: add a rotation or helical "
+           "program to separate the motors' friction from the collar's";
+  }
+  if (collar) {
     return "gamma and eta need motion with psi_L' != psi_R' (translation or helical programs): in pure rotation the "
            "collar does not move on the screws";
   }

@@ -35,10 +35,10 @@ expect 3 "time.csv:3: column 't': time not strictly increasing" -- inertia time.
 # Bad parameter files.
 sed 's/  eta: 0.1501/  eta: -0.1501/' table1.yaml > negative.yaml
 sed 's/    law: PD/    law: P/' table1.yaml > law.yaml
-sed '/  I_h:/d' table1.yaml > no_inertia.yaml
+sed '/  beta:/d' table1.yaml > no_beta.yaml
 expect 3 "negative.yaml:[0-9]+:8: cdrive.eta: must be >= 0" -- friction translation.csv --params negative.yaml
 expect 3 "law.yaml:[0-9]+:10: cdrive.control.law: must be PI, PD or PID" -- friction translation.csv --params law.yaml
-expect 3 "cdrive.I_h is needed" -- friction translation.csv --params no_inertia.yaml
+expect 3 "cdrive.beta is needed" -- inertia translation.csv --params no_beta.yaml
 expect 3 "no 'cdrive' section" -- friction translation.csv --params "$src/data/paper000.yaml"
 
 # Refusals: exit 4, naming what cannot be determined; no output file.
@@ -46,6 +46,8 @@ expect 4 "not identifiable.*gamma, eta.*pure rotation" -- friction rotation.csv 
 expect 4 "not identifiable.*I_h, I_c, m.*fix one of I_h, I_c, m" -- inertia translation.csv rotation.csv helical.csv \
   --params table1.yaml --free I_h,I_c,m
 expect 4 "no usable samples" -- friction translation.csv --params table1.yaml --min-rate 1000
+expect 4 "not identifiable.*beta, gamma, delta, eta.*pure translation .* fixes only beta \+ gamma" -- \
+  friction translation.csv --params table1.yaml
 
 # Usage errors: exit 2.
 expect 2 "not a parameter of the friction fit" -- friction translation.csv --params table1.yaml --free beta,zeta
