@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include "common/cli_support.h"
+#include "drivetrain_fit/axis_command.h"
 #include "drivetrain_fit/report_command.h"
 #include "drivetrain_fit/simulate_command.h"
 #include "drivetrain_fit/step_command.h"
@@ -14,14 +15,19 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   StepOptions step;
   SimulateStepOptions simulate;
+  SimulateAxisOptions simulate_axis;
   ReportOptions report;
+  AxisOptions axis;
   CLI::App* step_command = SetupStepCommand(app, step);
-  CLI::App* simulate_command = SetupSimulateCommand(app, simulate);
+  CLI::App* axis_command = SetupAxisCommand(app, axis);
+  const SimulateCommands simulate_commands = SetupSimulateCommand(app, simulate, simulate_axis);
   CLI::App* report_command = SetupReportCommand(app, report);
   const std::string command_line = CommandLine(argc, argv);
   return RunMain(app, argc, argv, [&] {
     if (*step_command) RunStepCommand(step, command_line);
-    if (*simulate_command) RunSimulateStepCommand(simulate, command_line);
+    if (*axis_command) RunAxisCommand(axis, command_line);
+    if (*simulate_commands.step) RunSimulateStepCommand(simulate, command_line);
+    if (*simulate_commands.axis) RunSimulateAxisCommand(simulate_axis, command_line);
     if (*report_command) RunReportCommand(report);
   });
 }

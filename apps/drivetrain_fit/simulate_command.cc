@@ -10,7 +10,7 @@
 
 namespace driveid::cli {
 
-CLI::App* SetupSimulateCommand(CLI::App& app, SimulateStepOptions& options) {
+SimulateCommands SetupSimulateCommand(CLI::App& app, SimulateStepOptions& options, SimulateAxisOptions& axis_options) {
   CLI::App* simulate = app.add_subcommand("simulate", "Write synthetic logs in the input format");
   simulate->require_subcommand(1);
   CLI::App* step = simulate->add_subcommand(
@@ -30,7 +30,45 @@ CLI::App* SetupSimulateCommand(CLI::App& app, SimulateStepOptions& options) {
   step->footer(
       "Example:\n"
       "  drivetrain-fit simulate step --params data/paper000.yaml --noise 0.1 --seed 1 -o step.csv");
-  return simulate;
+
+  CLI::App* axis = simulate->add_subcommand("axis", "Rigid axis following a prescribed motion (SPEC 5.2)");
+  AxisExperiment& e = axis_options.experiment;
+  axis->add_option("--params", axis_options.params, "parameter file with an axis section")->required();
+  axis->add_option("-o,--output", axis_options.output, "log file to write (default: stdout)");
+  axis->add_option("--profile", e.profile, "multisine or constant")->capture_default_str();
+  axis->add_option("--rate", e.rate, "sampling rate [Hz]")->capture_default_str();
+  axis->add_option("--duration", e.duration, "log length [s]")->capture_default_str();
+  axis->add_option("--amplitude", e.amplitude, "multisine amplitude [rad or m]")->capture_default_str();
+  axis->add_option("--speed", e.speed, "constant profile rate [rad/s or m/s]")->capture_default_str();
+  axis->add_option("--resolution", e.resolution, "position quantum (0: none)")->capture_default_str();
+  axis->add_option("--noise", e.noise, "std of force noise")->capture_default_str();
+  axis->add_option("--seed", e.seed, "noise seed")->capture_default_str();
+  axis->footer("Example:\n  drivetrain-fit simulate axis --params data/axis_example.yaml --noise 0.05 -o axis.csv");
+  return {step, axis};
+}
+
+void RunSimulateAxisCommand(const SimulateAxisOptions& options, const std::string& command_line) {
+  const ParameterFile file = ReadParameterFile(options.params);
+  if (!file.axis) throw InputError(fmt::format("{}: no 'axis' section", options.params));
+  const AxisParameters params = file.axis->params();
+  const char* names[] = {"inertia", "viscous", "coulomb", "offset"};
+  const double values[] = {params.inertia, params.viscous, params.coulomb, params.offset};
+  for (int i = 0; i < 4; ++i) {
+    if (!IsGiven(values[i])) throw InputError(fmt::format("{}: axis.{}: needed by the simulation", options.params, names[i]));
+  }
+  const AxisLog log = SimulateAxisExperiment(params, options.experiment);
+  const auto& e = options.experiment;
+  const std::string text = FormatAxisLog(
+      log, {"synthetic axis log (SPEC 3) made by: " + command_line,
+            fmt::format("profile {}, rate {} Hz, resolution {}, noise {} (seed {})", e.profile, e.rate, e.resolution,
+                        e.noise, e.seed),
+            fmt::format("truth: inertia {}, viscous {}, coulomb {}, offset {}", params.inertia, params.viscous,
+                        params.coulomb, params.offset)});
+  if (options.output.empty()) {
+    std::fputs(text.c_str(), stdout);
+  } else {
+    WriteFileAtomically(options.output, text);
+  }
 }
 
 void RunSimulateStepCommand(const SimulateStepOptions& options, const std::string& command_line) {

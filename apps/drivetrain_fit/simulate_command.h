@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "sim/axis_experiment.h"
 #include "sim/step_experiment.h"
 
 namespace driveid::cli {
@@ -16,7 +17,19 @@ struct SimulateStepOptions {
   StepExperiment experiment;
 };
 
-CLI::App* SetupSimulateCommand(CLI::App& app, SimulateStepOptions& options);
+struct SimulateAxisOptions {
+  std::string params;
+  std::string output;
+  AxisExperiment experiment;
+};
+
+struct SimulateCommands {
+  CLI::App* step = nullptr;
+  CLI::App* axis = nullptr;
+};
+
+SimulateCommands SetupSimulateCommand(CLI::App& app, SimulateStepOptions& step, SimulateAxisOptions& axis);
 void RunSimulateStepCommand(const SimulateStepOptions& options, const std::string& command_line);
+void RunSimulateAxisCommand(const SimulateAxisOptions& options, const std::string& command_line);
 
 }  // namespace driveid::cli

@@ -8,13 +8,12 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "fit/linear_residuals.h"
 #include "io/csv_log.h"
 #include "signal/local_polynomial.h"
 
 namespace driveid {
 namespace {
-
-using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
 // A parameter of the linear model: its key, where it lives, and a typical
 // magnitude for scaling when no start value is given.
@@ -64,23 +63,6 @@ SampleRows CalcSampleRows(double lead, double rate_left, double rate_right, doub
           {acceleration_sum, 0.5 * acceleration_sum, 0.0},
           {acceleration_difference, 0.0, 2.0 * mass_coupling * acceleration_difference}};
 }
-
-class LinearResiduals final : public ResidualModel {
- public:
-  LinearResiduals(RowMatrix regressor, Eigen::VectorXd measured)
-      : regressor_(std::move(regressor)), measured_(std::move(measured)) {}
-  int residual_count() const override { return static_cast<int>(measured_.size()); }
-  bool Evaluate(const double* parameters, double* residuals, double* jacobian) override {
-    const Eigen::Map<const Eigen::VectorXd> p(parameters, regressor_.cols());
-    Eigen::Map<Eigen::VectorXd>(residuals, measured_.size()) = regressor_ * p - measured_;
-    if (jacobian != nullptr) Eigen::Map<RowMatrix>(jacobian, regressor_.rows(), regressor_.cols()) = regressor_;
-    return true;
-  }
-
- private:
-  const RowMatrix regressor_;
-  const Eigen::VectorXd measured_;
-};
 
 enum class Kind { kFriction, kInertia };
 

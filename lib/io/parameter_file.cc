@@ -49,6 +49,15 @@ const ScalarKey<CDriveParameters> kCDriveKeys[] = {
     {"eta", &CDriveParameters::coulomb_collar, "Coulomb, collar on the screws [N m]", 0.0, false, false},
 };
 
+const ScalarKey<AxisSection> kAxisKeys[] = {
+    {"inertia", &AxisSection::inertia, "J, inertia [kg m^2] (linear axis: mass [kg])", 0.0, false, false},
+    {"viscous", &AxisSection::viscous, "b, viscous friction [N m s/rad] (linear: N s/m)", 0.0, false, false},
+    {"coulomb", &AxisSection::coulomb, "tau_c, Coulomb friction [N m] (linear: N)", 0.0, false, false},
+    {"offset", &AxisSection::offset, "tau_0, constant offset [N m] (linear: N)", -std::numeric_limits<double>::infinity(), false, false},
+    {"k_t", &AxisSection::torque_constant, "torque constant for logs of current [N m/A]", 0.0, true, false},
+    {"n_g", &AxisSection::gear_ratio, "gear ratio, to report d_g = b / n_g^2 [-]", 0.0, true, false},
+};
+
 const ScalarKey<CDriveControlSettings> kControlKeys[] = {
     {"K_P", &CDriveControlSettings::proportional_gain, "proportional gain [N m/rad]", 0.0, false, true},
     {"K_I", &CDriveControlSettings::second_gain, "second gain as printed: integral [N m/(rad s)] (PI, PID) or derivative [N m s/rad] (PD)", 0.0, false, true},
@@ -242,6 +251,10 @@ ParameterFile ParseParameterFile(const std::string& path, const std::string& tex
     }
     if (section == "drivetrain") {
       file.drivetrain = ParseDriveTrain(path, item.second);
+    } else if (section == "axis") {
+      AxisSection axis;
+      ParseScalars(path, "axis", item.second, kAxisKeys, {}, axis);
+      file.axis = axis;
     } else if (section == "cdrive") {
       file.cdrive = ParseCDrive(path, item.second);
     } else if (section == "fit") {
@@ -283,6 +296,10 @@ std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit,
   if (file.drivetrain) {
     out += "drivetrain:            # seed 000 section 4, SPEC 5.1\n";
     out += FormatScalars(*file.drivetrain, kDriveTrainKeys, "  ");
+  }
+  if (file.axis) {
+    out += "axis:                  # SPEC 5.2: tau = J q'' + b q' + tau_c sgn(q') + tau_0\n";
+    out += FormatScalars(*file.axis, kAxisKeys, "  ");
   }
   if (file.cdrive) {
     out += "cdrive:                # seed 001, SPEC 5.4\n";

@@ -14,6 +14,7 @@
 
 #include "control/cdrive_control_settings.h"
 #include "fit/fit_result.h"
+#include "models/axis.h"
 #include "models/cdrive.h"
 #include "models/drivetrain.h"
 
@@ -27,8 +28,27 @@ struct CDriveSection {
   std::optional<CDriveControlSettings> control;
 };
 
+/// The axis section: model parameters (NaN = not given), the torque
+/// constant for logs of current, and an optional gear ratio (for d_g).
+struct AxisSection {
+  double inertia = std::numeric_limits<double>::quiet_NaN();          ///< J
+  double viscous = std::numeric_limits<double>::quiet_NaN();          ///< b
+  double coulomb = std::numeric_limits<double>::quiet_NaN();          ///< tau_c
+  double offset = std::numeric_limits<double>::quiet_NaN();           ///< tau_0
+  double torque_constant = std::numeric_limits<double>::quiet_NaN();  ///< k_t [N m/A]
+  double gear_ratio = std::numeric_limits<double>::quiet_NaN();       ///< n_g [-]
+  AxisParameters params() const { return {inertia, viscous, coulomb, offset}; }
+  void set(const AxisParameters& p) {
+    inertia = p.inertia;
+    viscous = p.viscous;
+    coulomb = p.coulomb;
+    offset = p.offset;
+  }
+};
+
 struct ParameterFile {
   std::optional<DriveTrainParameters> drivetrain;
+  std::optional<AxisSection> axis;
   std::optional<CDriveSection> cdrive;
   bool had_fit_section = false;  ///< input carried a previous fit (replaced on output)
   /// fit.estimates of a previous fit (value, std, ci95), for reports.

@@ -1,0 +1,99 @@
+#include "drivetrain_fit/axis_command.h"
+
+#include <cstdio>
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "fit/axis_fit.h"
+#include "io/csv_log.h"
+#include "io/parameter_file.h"
+#include "io/sha256.h"
+
+namespace driveid::cli {
+
+CLI::App* SetupAxisCommand(CLI::App& app, AxisOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "axis", "Inertia, viscous and Coulomb friction and offset of a rigid axis by IDIM-LS (SPEC 5.2)");
+  command->add_option("logs", options.logs, "axis logs: CSV with t, q and tau (or i with axis.k_t)")->required();
+  command->add_option("--params", options.params, "parameter file with an axis section (start values, k_t, n_g)");
+  command->add_option("--free", options.free, "parameters to estimate: inertia, viscous, coulomb, offset")
+      ->delimiter(',');
+  command->add_option("--col", options.columns, "map a column: NAME=HEADER (e.g. q=position)");
+  command->add_option("--cutoff", options.cutoff, "position low-pass cutoff [Hz] (default: sampling rate / 40)");
+  command->add_option("--decimation", options.decimation, "parallel decimation factor")->capture_default_str();
+  AddFitOutputOptions(*command, options.output);
+  command->footer(
+      "Example:\n  drivetrain-fit simulate axis --params data/axis_example.yaml --noise 0.05 -o axis.csv\n"
+      "  drivetrain-fit axis axis.csv -o axis_fit.yaml --plot axis_fit.png\n"
+      "  (constant-rate logs: --free viscous,coulomb,offset)");
+  return command;
+}
+
+void RunAxisCommand(const AxisOptions& options, const std::string& command_line) {
+  ParameterFile start;
+  if (!options.params.empty()) start = ReadParameterFile(options.params);
+  const AxisSection section = start.axis.value_or(AxisSection{});
+  const auto column_map = ParseColumnMap(options.columns);
+
+  FitOutputs outputs;
+  outputs.provenance.command = command_line;
+  outputs.provenance.version = DRIVEID_VERSION;
+  outputs.provenance.model = "axis (SPEC 5.2), IDIM-LS";
+  std::vector<AxisLog> logs;
+  for (const auto& path : options.logs) {
+    const std::string text = ReadFileToString(path);
+    logs.push_back(ParseAxisLog(path, text, column_map, section.torque_constant));
+    outputs.provenance.data.push_back({path, Sha256Hex(text), static_cast<int>(logs.back().time.size())});
+  }
+  AxisFitOptions fit_options;
+  fit_options.free = options.free;
+  fit_options.cutoff = options.cutoff;
+  fit_options.decimation = options.decimation;
+  if (options.output.verbose) {
+    fit_options.fit.progress = [](const FitIteration& it) {
+      PrintIteration(it.iteration, it.cost, it.gradient_norm, it.step_norm);
+    };
+  }
+  const AxisFitOutput result = FitAxis(logs, section.params(), fit_options);
+
+  ParameterFile fitted = start;
+  AxisSection out_section = section;
+  out_section.set(result.params);
+  fitted.axis = out_section;
+  outputs.fit = result.fit;
+  std::vector<DerivedQuantity> derived;
+  derived.push_back({"relative_error_percent", result.relative_error_percent, 0.0, "% |tau - model| / |tau|"});
+  if (IsGiven(section.gear_ratio)) {
+    double viscous_std = 0.0;
+    for (const auto& e : result.fit.estimates) {
+      if (e.name == "viscous") viscous_std = e.standard_error;
+    }
+    const double n2 = section.gear_ratio * section.gear_ratio;
+    derived.push_back({"d_g", result.params.viscous / n2, viscous_std / n2, "N m s/rad at the gear input, b / n_g^2"});
+  }
+  outputs.parameter_file = FormatParameterFile(fitted, &outputs.fit, &outputs.provenance, derived);
+  outputs.trace_csv = fmt::format("# drivetrain-fit axis trace: decimated samples used by IDIM-LS ({}, cutoff {} Hz)\n",
+                                  result.method, result.cutoff);
+  outputs.trace_csv += "log,t,tau_measured,tau_model,residual\n";
+  std::vector<PlotSeries> series(logs.size());
+  for (std::size_t i = 0; i < logs.size(); ++i) series[i].title = logs[i].path;
+  for (std::size_t k = 0; k < result.time.size(); ++k) {
+    const int i = result.log_index[k];
+    outputs.trace_csv += fmt::format("{},{},{:.7g},{:.7g},{:.7g}\n", i + 1, result.time[k], result.measured[k],
+                                     result.model[k], result.measured[k] - result.model[k]);
+    auto& s = series[static_cast<std::size_t>(i)];
+    s.time.push_back(result.time[k]);
+    s.measured.push_back(result.measured[k]);
+    s.model.push_back(result.model[k]);
+  }
+  outputs.plot_panels = MakeFitPanels(series, {"axis IDIM-LS fit (filtered, decimated)", "force or torque"});
+  EmitFitOutputs(options.output, outputs);
+  if (!options.output.quiet && !options.output.json) {
+    std::fprintf(options.output.output.empty() ? stderr : stdout,
+                 "relative error of the fit %.2f %%, %d decimated samples, acceleration content %.3g 1/s\n",
+                 result.relative_error_percent, result.samples_used, result.acceleration_content);
+  }
+}
+
+}  // namespace driveid::cli

@@ -1,0 +1,26 @@
+// drivetrain-fit axis: IDIM-LS identification of a rigid axis (SPEC 5.2).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "common/cli_support.h"
+
+namespace driveid::cli {
+
+struct AxisOptions {
+  std::vector<std::string> logs;
+  std::string params;
+  std::vector<std::string> free = {"inertia", "viscous", "coulomb", "offset"};
+  std::vector<std::string> columns;
+  double cutoff = 0.0;
+  int decimation = 10;
+  FitOutputOptions output;
+};
+
+CLI::App* SetupAxisCommand(CLI::App& app, AxisOptions& options);
+void RunAxisCommand(const AxisOptions& options, const std::string& command_line);
+
+}  // namespace driveid::cli

@@ -1,0 +1,271 @@
+#include "fit/axis_fit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "fit/linear_residuals.h"
+#include "io/csv_log.h"
+#include "signal/butterworth.h"
+#include "signal/local_polynomial.h"
+
+namespace driveid {
+namespace {
+
+constexpr const char* kNames[] = {"inertia", "viscous", "coulomb", "offset"};
+double AxisParameters::*const kMembers[] = {&AxisParameters::inertia, &AxisParameters::viscous,
+                                            &AxisParameters::coulomb, &AxisParameters::offset};
+
+bool Contains(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+// Rates and accelerations at the log's samples, and which method made them.
+struct Derivatives {
+  std::vector<double> rate, acceleration;
+  std::vector<char> valid;
+  double rate_hz = 0.0;  // 0 for irregular sampling
+};
+
+Derivatives Differentiate(const AxisLog& log, double cutoff_request) {
+  Derivatives d;
+  const std::size_t n = log.time.size();
+  d.rate_hz = ConstantRate(log.time);
+  d.rate.assign(n, 0.0);
+  d.acceleration.assign(n, 0.0);
+  d.valid.assign(n, 0);
+  if (d.rate_hz > 0.0) {
+    const double cutoff = cutoff_request > 0.0 ? cutoff_request : d.rate_hz / 40.0;
+    if (!(cutoff < 0.5 * d.rate_hz)) {
+      throw std::invalid_argument(fmt::format("--cutoff = {}: violated constraint: below half the sampling rate {} Hz",
+                                              cutoff, d.rate_hz));
+    }
+    const std::vector<double> q = ZeroPhaseLowPass(log.position, cutoff, d.rate_hz);
+    const double dt = 1.0 / d.rate_hz;
+    for (std::size_t k = 1; k + 1 < n; ++k) {
+      d.rate[k] = (q[k + 1] - q[k - 1]) / (2.0 * dt);
+      d.acceleration[k] = (q[k + 1] - 2.0 * q[k] + q[k - 1]) / (dt * dt);
+      d.valid[k] = 1;
+    }
+  } else {
+    // Irregular sampling: local quadratic fits on the time stamps.
+    const double span = log.time.back() - log.time.front();
+    const double mean_rate = static_cast<double>(n - 1) / span;
+    const double cutoff = cutoff_request > 0.0 ? cutoff_request : mean_rate / 40.0;
+    const SignalDerivatives s = EstimateDerivatives(log.time, log.position, 0.5 / cutoff);
+    d.rate = s.rate;
+    d.acceleration = s.acceleration;
+    d.valid = s.valid;
+  }
+  return d;
+}
+
+}  // namespace
+
+AxisLog ParseAxisLog(const std::string& path, const std::string& text,
+                     const std::map<std::string, std::string>& column_map, double torque_constant) {
+  CsvReadOptions options;
+  options.column_map = column_map;
+  CsvLog csv = ParseCsvLog(path, text, {"t", "q", "tau|i"}, options);
+  AxisLog log{path, std::move(csv.columns[0]), std::move(csv.columns[1]), std::move(csv.columns[2])};
+  if (csv.names[2] == "i") {
+    if (!(torque_constant > 0.0)) {
+      throw InputError(fmt::format("{}: the log has a current column 'i': axis.k_t must be given in --params", path));
+    }
+    for (double& v : log.force) v *= torque_constant;
+  }
+  return log;
+}
+
+std::string FormatAxisLog(const AxisLog& log, const std::vector<std::string>& comments) {
+  std::string out;
+  for (const auto& line : comments) out += "# " + line + "\n";
+  out += "t,q,tau\n";
+  for (std::size_t k = 0; k < log.time.size(); ++k) {
+    out += fmt::format("{},{:.10g},{:.7g}\n", log.time[k], log.position[k], log.force[k]);
+  }
+  return out;
+}
+
+const std::vector<std::string>& AxisParameterNames() {
+  static const std::vector<std::string> names(std::begin(kNames), std::end(kNames));
+  return names;
+}
+
+AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisParameters& start, const AxisFitOptions& options) {
+  if (logs.empty()) throw std::invalid_argument("no logs given");
+  for (const auto& name : options.free) {
+    if (!Contains(AxisParameterNames(), name)) {
+      throw std::invalid_argument(fmt::format("--free {}: not an axis parameter (choose from inertia, viscous, "
+                                              "coulomb, offset)", name));
+    }
+  }
+  if (options.decimation < 1) {
+    throw std::invalid_argument(fmt::format("--decimation = {}: violated constraint: >= 1", options.decimation));
+  }
+  std::vector<int> free_columns;
+  std::vector<FitParameter> parameters;
+  for (int j = 0; j < 4; ++j) {
+    const double value = start.*kMembers[j];
+    if (Contains(options.free, kNames[j])) {
+      free_columns.push_back(j);
+      const bool signed_parameter = j == 3;
+      const double initial = value == value ? value : 0.0;
+      parameters.push_back({kNames[j], signed_parameter ? initial : std::max(0.0, initial),
+                            signed_parameter ? -std::numeric_limits<double>::infinity() : 0.0, 0.0});
+    } else if (!(value == value) && j != 0) {
+      throw InputError(fmt::format("--params: axis.{} is needed (fixed in this fit)", kNames[j]));
+    }
+  }
+  // A fixed inertia that is not given counts as 0, which is only harmless
+  // without acceleration content (checked below).
+  AxisParameters known_start = start;
+  const bool inertia_missing = !Contains(options.free, "inertia") && !(start.inertia == start.inertia);
+  if (inertia_missing) known_start.inertia = 0.0;
+  const int p = static_cast<int>(free_columns.size());
+
+  AxisFitOutput out;
+  std::vector<double> rows, values, acceleration_kept, rate_kept;
+  std::vector<FitChannel> channels;
+  for (std::size_t i = 0; i < logs.size(); ++i) {
+    const AxisLog& log = logs[i];
+    if (log.time.size() < 20) throw InputError(fmt::format("{}: {} samples: too few for IDIM-LS", log.path, log.time.size()));
+    const Derivatives d = Differentiate(log, options.cutoff);
+    out.method = d.rate_hz > 0.0 ? "IDIM-LS: Butterworth zero-phase, central differences, parallel decimation"
+                                 : "IDIM-LS on irregular samples: local-polynomial rates, subsampling";
+    out.cutoff = options.cutoff > 0.0 ? options.cutoff : d.rate_hz / 40.0;
+    const std::size_t n = log.time.size();
+    double max_rate = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      if (d.valid[k]) max_rate = std::max(max_rate, std::abs(d.rate[k]));
+    }
+    const double min_rate = options.min_rate_fraction * max_rate;
+    // Full-rate columns [q'', q', sgn q', 1] and the force; invalid ends hold their neighbours.
+    std::vector<std::vector<double>> columns(4, std::vector<double>(n, 0.0));
+    std::vector<char> slow(n, 0);
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t m = d.valid[k] ? k : (k == 0 ? 1 : n - 2);
+      columns[0][k] = d.acceleration[m];
+      columns[1][k] = d.rate[m];
+      columns[2][k] = static_cast<double>((d.rate[m] > 0.0) - (d.rate[m] < 0.0));
+      columns[3][k] = 1.0;
+      slow[k] = std::abs(d.rate[m]) < min_rate;
+    }
+    std::vector<double> force = log.force;
+    const int decimation = options.decimation;
+    if (d.rate_hz > 0.0 && decimation > 1) {
+      const double cutoff = 0.8 * d.rate_hz / (2.0 * decimation);
+      for (auto& c : columns) c = ZeroPhaseLowPass(c, cutoff, d.rate_hz);
+      force = ZeroPhaseLowPass(force, cutoff, d.rate_hz);
+    }
+    // A kept sample must be clear of slow samples by the filter's reach.
+    const std::size_t reach = static_cast<std::size_t>(std::max(1, 2 * decimation));
+    std::vector<char> clear(n, 1);
+    std::size_t last_slow = 0;
+    bool seen = false;
+    for (std::size_t k = 0; k < n; ++k) {
+      if (slow[k]) {
+        seen = true;
+        last_slow = k;
+      }
+      if (seen && k - last_slow <= reach) clear[k] = 0;
+    }
+    seen = false;
+    for (std::size_t k = n; k-- > 0;) {
+      if (slow[k]) {
+        seen = true;
+        last_slow = k;
+      }
+      if (seen && last_slow - k <= reach) clear[k] = 0;
+    }
+    const int begin = static_cast<int>(values.size());
+    const std::size_t margin = reach + 2;  // filter start-up at the ends
+    for (std::size_t k = margin; k + margin < n; k += static_cast<std::size_t>(decimation)) {
+      if (!clear[k]) continue;
+      double known = 0.0;
+      for (int j = 0; j < 4; ++j) {
+        if (!Contains(options.free, kNames[j])) known += (known_start.*kMembers[j]) * columns[static_cast<std::size_t>(j)][k];
+      }
+      for (int j : free_columns) rows.push_back(columns[static_cast<std::size_t>(j)][k]);
+      acceleration_kept.push_back(columns[0][k]);
+      rate_kept.push_back(columns[1][k]);
+      values.push_back(force[k] - known);
+      out.time.push_back(log.time[k]);
+      out.measured.push_back(force[k]);
+      out.log_index.push_back(static_cast<int>(i));
+    }
+    const int count = static_cast<int>(values.size()) - begin;
+    if (count > 0) channels.push_back({log.path + ":tau", begin, count, out.measured.data() + begin});
+  }
+  const int rows_used = static_cast<int>(values.size());
+  if (rows_used <= p) {
+    throw IdentificationError(fmt::format("{} usable samples after decimation cannot determine {} parameters (the logs "
+                                          "barely move or are too short)", rows_used, p));
+  }
+  // Acceleration content: with a free inertia the decimated accelerations
+  // must matter next to the rates (RMS(q'') / RMS(q') in 1/s); a constant-rate
+  // log has only quantisation noise there and identifies friction only.
+  double acceleration_square = 0.0, rate_square = 0.0;
+  for (int r = 0; r < rows_used; ++r) {
+    acceleration_square += std::pow(acceleration_kept[static_cast<std::size_t>(r)], 2);
+    rate_square += std::pow(rate_kept[static_cast<std::size_t>(r)], 2);
+  }
+  const double ratio = rate_square > 0.0 ? std::sqrt(acceleration_square / rate_square) : 0.0;
+  out.acceleration_content = ratio;
+  if (inertia_missing && ratio >= options.min_acceleration_content) {
+    throw InputError(fmt::format("--params: axis.inertia is needed (fixed in this fit, and the logs accelerate: "
+                                 "RMS(q'') / RMS(q') = {:.3g} 1/s)", ratio));
+  }
+  if (Contains(options.free, "inertia")) {
+    if (!(ratio >= options.min_acceleration_content)) {
+      throw IdentificationError(fmt::format(
+          "not identifiable: inertia: the logs have no acceleration content (RMS(q'') / RMS(q') = {:.3g} 1/s, below "
+          "{:.3g}): constant-rate motion identifies friction only: fit it with --free viscous,coulomb,offset",
+          ratio, options.min_acceleration_content));
+    }
+  }
+  // channels[].measured must point at stable storage: out.measured is complete now.
+  for (auto& c : channels) c.measured = out.measured.data() + c.begin;
+  LinearResiduals residuals(Eigen::Map<RowMatrix>(rows.data(), rows_used, p),
+                            Eigen::Map<Eigen::VectorXd>(values.data(), rows_used));
+  FitOptions fit_options = options.fit;
+  if (!fit_options.advice) {
+    fit_options.advice = [](const std::vector<std::string>& involved) -> std::string {
+      if (Contains(involved, "inertia")) return "the log has no acceleration content: fit friction alone with --free viscous,coulomb,offset";
+      if (Contains(involved, "coulomb") && Contains(involved, "offset")) {
+        return "coulomb and offset need motion in both directions";
+      }
+      return "";
+    };
+  }
+  out.fit = FitLeastSquares(residuals, parameters, channels, fit_options);
+  out.params = known_start;
+  for (std::size_t j = 0; j < free_columns.size(); ++j) out.params.*kMembers[free_columns[j]] = out.fit.estimates[j].value;
+  for (std::size_t j = 0; j < free_columns.size(); ++j) {
+    const auto& e = out.fit.estimates[j];
+    if (free_columns[j] == 0 && !(e.standard_error <= options.max_relative_std * std::abs(e.value))) {
+      throw IdentificationError(fmt::format(
+          "not identifiable: inertia = {:.4g} +- {:.2g}: the log has too little acceleration content (constant-rate "
+          "motion identifies friction only): fit friction alone with --free viscous,coulomb,offset",
+          e.value, e.standard_error));
+    }
+  }
+  // Model at the used samples and the relative error.
+  double residual_norm = 0.0, force_norm = 0.0;
+  out.model.resize(out.measured.size());
+  for (int r = 0; r < rows_used; ++r) {
+    double model = out.measured[static_cast<std::size_t>(r)] - values[static_cast<std::size_t>(r)];
+    for (int j = 0; j < p; ++j) model += rows[static_cast<std::size_t>(r * p + j)] * out.fit.estimates[static_cast<std::size_t>(j)].value;
+    out.model[static_cast<std::size_t>(r)] = model;
+    residual_norm += std::pow(out.measured[static_cast<std::size_t>(r)] - model, 2);
+    force_norm += std::pow(out.measured[static_cast<std::size_t>(r)], 2);
+  }
+  out.relative_error_percent = force_norm > 0.0 ? 100.0 * std::sqrt(residual_norm / force_norm) : 0.0;
+  out.samples_used = rows_used;
+  return out;
+}
+
+}  // namespace driveid

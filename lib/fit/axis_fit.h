@@ -1,0 +1,68 @@
+// Inverse-dynamics identification of a rigid axis (SPEC 5.2) by IDIM-LS:
+//   1. zero-phase low-pass of the position (Butterworth, forward-backward),
+//      cutoff `cutoff` (default rate/40: 25 Hz at 1 kHz);
+//   2. central-difference velocity and acceleration;
+//   3. parallel decimation: the regressor columns [q'', q', sgn(q'), 1] and
+//      the measured force pass the same zero-phase low-pass at 0.8 of the
+//      decimated Nyquist frequency, then every `decimation`-th sample is kept
+//      (default 10: the information lies below the position cutoff);
+//   4. bounded least squares through the shared fit core (standard errors,
+//      identifiability), relative error of the fit |tau - X p| / |tau|.
+// Samples near a velocity reversal (|q'| below min_rate_fraction of the
+// largest rate, anywhere within the decimation filter's reach) are left out.
+// Irregularly sampled logs are differentiated with the local-polynomial
+// differentiator instead of the Butterworth path (no constant rate assumed).
+// A log without acceleration content (constant rate) identifies friction
+// only: with `inertia` free the fit refuses and names it.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "fit/least_squares.h"
+#include "models/axis.h"
+
+namespace driveid {
+
+struct AxisLog {
+  std::string path;
+  std::vector<double> time;      ///< [s]
+  std::vector<double> position;  ///< q [rad or m]
+  std::vector<double> force;     ///< tau [N m or N] (from i x k_t if given as current)
+};
+
+/// Parses an axis log: t, q and tau, or i with `torque_constant`. Throws InputError.
+AxisLog ParseAxisLog(const std::string& path, const std::string& text,
+                     const std::map<std::string, std::string>& column_map, double torque_constant);
+
+std::string FormatAxisLog(const AxisLog& log, const std::vector<std::string>& comments);
+
+const std::vector<std::string>& AxisParameterNames();  // inertia, viscous, coulomb, offset
+
+struct AxisFitOptions {
+  std::vector<std::string> free = {"inertia", "viscous", "coulomb", "offset"};
+  double cutoff = 0.0;                ///< position low-pass [Hz]; 0 = rate / 40
+  int decimation = 10;                ///< keep every n-th sample after parallel filtering
+  double min_rate_fraction = 0.01;    ///< exclude |q'| below this fraction of max |q'|
+  double max_relative_std = 0.25;     ///< refuse a free inertia less certain than this
+  double min_acceleration_content = 1.0;  ///< RMS(q'') / RMS(q') [1/s] needed for a free inertia
+  FitOptions fit;
+};
+
+struct AxisFitOutput {
+  AxisParameters params;
+  FitResult fit;
+  double relative_error_percent = 0.0;  ///< |tau - X p| / |tau| on the decimated samples
+  double acceleration_content = 0.0;    ///< RMS(q'') / RMS(q') [1/s] of the used samples
+  std::string method;                   ///< how rates were obtained
+  double cutoff = 0.0;
+  int samples_used = 0;
+  std::vector<double> time, measured, model;  ///< decimated samples used, for traces and plots
+  std::vector<int> log_index;
+};
+
+/// Fits the free parameters jointly over all logs; fixed ones come from `start`.
+AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisParameters& start, const AxisFitOptions& options);
+
+}  // namespace driveid

@@ -1,0 +1,51 @@
+#include "sim/axis_experiment.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "sim/noise.h"
+
+namespace driveid {
+namespace {
+void Require(bool ok, const char* option, double value, const char* constraint) {
+  if (!ok) throw std::invalid_argument(fmt::format("{} = {}: violated constraint: {}", option, value, constraint));
+}
+}  // namespace
+
+AxisLog SimulateAxisExperiment(const AxisParameters& params, const AxisExperiment& e) {
+  Require(std::isfinite(e.rate) && e.rate > 0.0, "--rate", e.rate, "rate > 0 Hz");
+  Require(std::isfinite(e.duration) && e.duration > 0.0 && e.duration * e.rate <= 1e7, "--duration", e.duration,
+          "0 < duration, duration * rate <= 1e7");
+  Require(std::isfinite(e.noise) && e.noise >= 0.0, "--noise", e.noise, "noise >= 0");
+  Require(std::isfinite(e.resolution) && e.resolution >= 0.0, "--resolution", e.resolution, "resolution >= 0");
+  if (e.profile != "multisine" && e.profile != "constant") {
+    throw std::invalid_argument("--profile " + e.profile + ": choose multisine or constant");
+  }
+  GaussianNoise noise(e.seed);
+  AxisLog log;
+  log.path = "simulated";
+  const long samples = std::lround(e.duration * e.rate) + 1;
+  const double w1 = 2 * M_PI * 0.3, w2 = 2 * M_PI * 1.1, w3 = 2 * M_PI * 2.3;
+  for (long k = 0; k < samples; ++k) {
+    const double t = static_cast<double>(k) / e.rate;
+    double q, rate, acceleration;
+    if (e.profile == "constant") {
+      q = e.speed * t;
+      rate = e.speed;
+      acceleration = 0.0;
+    } else {
+      q = e.amplitude * (0.6 * std::sin(w1 * t) + 0.3 * std::sin(w2 * t + 1) + 0.1 * std::sin(w3 * t + 2));
+      rate = e.amplitude * (0.6 * w1 * std::cos(w1 * t) + 0.3 * w2 * std::cos(w2 * t + 1) + 0.1 * w3 * std::cos(w3 * t + 2));
+      acceleration = -e.amplitude * (0.6 * w1 * w1 * std::sin(w1 * t) + 0.3 * w2 * w2 * std::sin(w2 * t + 1) +
+                                     0.1 * w3 * w3 * std::sin(w3 * t + 2));
+    }
+    log.time.push_back(t);
+    log.position.push_back(e.resolution > 0.0 ? std::floor(q / e.resolution) * e.resolution : q);
+    log.force.push_back(CalcAxisForce(params, rate, acceleration) + (e.noise > 0.0 ? noise.Next(e.noise) : 0.0));
+  }
+  return log;
+}
+
+}  // namespace driveid
