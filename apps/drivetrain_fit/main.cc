@@ -5,6 +5,7 @@
 #include "common/cli_support.h"
 #include "drivetrain_fit/axis_command.h"
 #include "drivetrain_fit/report_command.h"
+#include "drivetrain_fit/robot_command.h"
 #include "drivetrain_fit/simulate_command.h"
 #include "drivetrain_fit/step_command.h"
 
@@ -16,11 +17,14 @@ int main(int argc, char** argv) {
   StepOptions step;
   SimulateStepOptions simulate;
   SimulateAxisOptions simulate_axis;
+  SimulateRobotOptions simulate_robot;
+  RobotOptions robot;
   ReportOptions report;
   AxisOptions axis;
   CLI::App* step_command = SetupStepCommand(app, step);
   CLI::App* axis_command = SetupAxisCommand(app, axis);
-  const SimulateCommands simulate_commands = SetupSimulateCommand(app, simulate, simulate_axis);
+  CLI::App* robot_command = SetupRobotCommand(app, robot);
+  const SimulateCommands simulate_commands = SetupSimulateCommand(app, simulate, simulate_axis, simulate_robot);
   CLI::App* report_command = SetupReportCommand(app, report);
   const std::string command_line = CommandLine(argc, argv);
   return RunMain(app, argc, argv, [&] {
@@ -28,6 +32,8 @@ int main(int argc, char** argv) {
     if (*axis_command) RunAxisCommand(axis, command_line);
     if (*simulate_commands.step) RunSimulateStepCommand(simulate, command_line);
     if (*simulate_commands.axis) RunSimulateAxisCommand(simulate_axis, command_line);
+    if (*robot_command) RunRobotCommand(robot, command_line);
+    if (*simulate_commands.robot) RunSimulateRobotCommand(simulate_robot, command_line);
     if (*report_command) RunReportCommand(report);
   });
 }

@@ -10,7 +10,8 @@
 
 namespace driveid::cli {
 
-SimulateCommands SetupSimulateCommand(CLI::App& app, SimulateStepOptions& options, SimulateAxisOptions& axis_options) {
+SimulateCommands SetupSimulateCommand(CLI::App& app, SimulateStepOptions& options, SimulateAxisOptions& axis_options,
+                                      SimulateRobotOptions& robot_options) {
   CLI::App* simulate = app.add_subcommand("simulate", "Write synthetic logs in the input format");
   simulate->require_subcommand(1);
   CLI::App* step = simulate->add_subcommand(
@@ -44,7 +45,49 @@ SimulateCommands SetupSimulateCommand(CLI::App& app, SimulateStepOptions& option
   axis->add_option("--noise", e.noise, "std of force noise")->capture_default_str();
   axis->add_option("--seed", e.seed, "noise seed")->capture_default_str();
   axis->footer("Example:\n  drivetrain-fit simulate axis --params data/axis_example.yaml --noise 0.05 -o axis.csv");
-  return {step, axis};
+
+  CLI::App* robot = simulate->add_subcommand(
+      "robot", "Planar robot along the 250 mm triangle at 50 m/s^2 and 3 m/s (seed 000 section 6)");
+  RobotExperiment& r = robot_options.experiment;
+  robot->add_option("--params", robot_options.params, "parameter file with a planar_robot section")->required();
+  robot->add_option("-o,--output", robot_options.output, "log file to write (default: stdout)");
+  robot->add_option("--side", r.side, "triangle side [m]")->capture_default_str();
+  robot->add_option("--acceleration", r.acceleration, "path acceleration [m/s^2]")->capture_default_str();
+  robot->add_option("--speed", r.speed, "path speed [m/s]")->capture_default_str();
+  robot->add_option("--dwell", r.dwell, "rest at each corner [s]")->capture_default_str();
+  robot->add_option("--loops", r.loops, "loops around the triangle")->capture_default_str();
+  robot->add_option("--rate", r.rate, "sampling rate [Hz]")->capture_default_str();
+  robot->add_option("--prestress", r.prestress, "null-space joint torque at the gear output [N m]")
+      ->capture_default_str();
+  robot->add_option("--noise", r.current_noise, "std of current noise [A]")->capture_default_str();
+  robot->add_option("--seed", r.seed, "noise seed")->capture_default_str();
+  robot->footer("Example:\n  drivetrain-fit simulate robot --params data/robot_paper000.yaml --noise 0.02 -o triangle.csv");
+  return {step, axis, robot};
+}
+
+void RunSimulateRobotCommand(const SimulateRobotOptions& options, const std::string& command_line) {
+  const ParameterFile file = ReadParameterFile(options.params);
+  if (!file.planar_robot) throw InputError(fmt::format("{}: no 'planar_robot' section", options.params));
+  RobotLog log;
+  try {
+    log = SimulateRobotExperiment(*file.planar_robot, options.experiment);
+  } catch (const std::domain_error& e) {
+    throw InputError(fmt::format("{}: the triangle leaves the workspace: {}", options.params, e.what()));
+  }
+  const auto& r = options.experiment;
+  const auto& p = *file.planar_robot;
+  const std::string text = FormatRobotLog(
+      log, {"synthetic robot log (SPEC 3) made by: " + command_line,
+            fmt::format("triangle side {} m, {} m/s^2, {} m/s, dwell {} s, {} loops, {} Hz, 13-bit encoders behind the "
+                        "gears, prestress {} N m, current noise {} A (seed {})",
+                        r.side, r.acceleration, r.speed, r.dwell, r.loops, r.rate, r.prestress, r.current_noise, r.seed),
+            fmt::format("truth: Theta {}, m_c {}, d_g {}, n_g {}, k_t {}", p.output_inertia, p.center_mass,
+                        p.viscous_friction, p.gear_ratio, p.torque_constant)});
+  if (options.output.empty()) {
+    std::fputs(text.c_str(), stdout);
+  } else {
+    WriteFileAtomically(options.output, text);
+  }
 }
 
 void RunSimulateAxisCommand(const SimulateAxisOptions& options, const std::string& command_line) {

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "sim/axis_experiment.h"
+#include "sim/robot_experiment.h"
 #include "sim/step_experiment.h"
 
 namespace driveid::cli {
@@ -23,12 +24,21 @@ struct SimulateAxisOptions {
   AxisExperiment experiment;
 };
 
+struct SimulateRobotOptions {
+  std::string params;
+  std::string output;
+  RobotExperiment experiment;
+};
+
 struct SimulateCommands {
   CLI::App* step = nullptr;
   CLI::App* axis = nullptr;
+  CLI::App* robot = nullptr;
 };
 
-SimulateCommands SetupSimulateCommand(CLI::App& app, SimulateStepOptions& step, SimulateAxisOptions& axis);
+SimulateCommands SetupSimulateCommand(CLI::App& app, SimulateStepOptions& step, SimulateAxisOptions& axis,
+                                      SimulateRobotOptions& robot);
+void RunSimulateRobotCommand(const SimulateRobotOptions& options, const std::string& command_line);
 void RunSimulateStepCommand(const SimulateStepOptions& options, const std::string& command_line);
 void RunSimulateAxisCommand(const SimulateAxisOptions& options, const std::string& command_line);
 

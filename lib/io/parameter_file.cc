@@ -58,6 +58,16 @@ const ScalarKey<AxisSection> kAxisKeys[] = {
     {"n_g", &AxisSection::gear_ratio, "gear ratio, to report d_g = b / n_g^2 [-]", 0.0, true, false},
 };
 
+const ScalarKey<PlanarRobotParameters> kRobotKeys[] = {
+    {"base_distance", &PlanarRobotParameters::base_distance, "a, distance of the base joints [m]", 0.0, true, true},
+    {"l", &PlanarRobotParameters::link_length, "link length [m]", 0.0, true, true},
+    {"n_g", &PlanarRobotParameters::gear_ratio, "gear ratio [-]", 0.0, true, true},
+    {"Theta", &PlanarRobotParameters::output_inertia, "actuator inertia at the gear output [kg m^2]", 0.0, false, true},
+    {"m_c", &PlanarRobotParameters::center_mass, "mass of the centre joint [kg]", 0.0, false, true},
+    {"d_g", &PlanarRobotParameters::viscous_friction, "gearbox viscous friction at the gear input [N m s/rad]", 0.0, false, true},
+    {"k_t", &PlanarRobotParameters::torque_constant, "motor torque constant [N m/A]", 0.0, true, true},
+};
+
 const ScalarKey<CDriveControlSettings> kControlKeys[] = {
     {"K_P", &CDriveControlSettings::proportional_gain, "proportional gain [N m/rad]", 0.0, false, true},
     {"K_I", &CDriveControlSettings::second_gain, "second gain as printed: integral [N m/(rad s)] (PI, PID) or derivative [N m s/rad] (PD)", 0.0, false, true},
@@ -251,6 +261,22 @@ ParameterFile ParseParameterFile(const std::string& path, const std::string& tex
     }
     if (section == "drivetrain") {
       file.drivetrain = ParseDriveTrain(path, item.second);
+    } else if (section == "planar_robot") {
+      PlanarRobotParameters robot;
+      const auto others = ParseScalars(path, "planar_robot", item.second, kRobotKeys, {"elbow"}, robot);
+      for (const auto& [key, value] : others) {
+        if (!value.IsSequence() || value.size() != 3) {
+          throw InputError(fmt::format("{}: planar_robot.elbow: expected [e1, e2, e3] with each +1 or -1", Where(path, value)));
+        }
+        for (std::size_t i = 0; i < 3; ++i) {
+          const double e = ParseNumber(path, "planar_robot.elbow", value[i]);
+          if (e != 1.0 && e != -1.0) {
+            throw InputError(fmt::format("{}: planar_robot.elbow: each entry must be +1 or -1, got {}", Where(path, value[i]), e));
+          }
+          robot.elbow[i] = static_cast<int>(e);
+        }
+      }
+      file.planar_robot = robot;
     } else if (section == "axis") {
       AxisSection axis;
       ParseScalars(path, "axis", item.second, kAxisKeys, {}, axis);
@@ -296,6 +322,13 @@ std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit,
   if (file.drivetrain) {
     out += "drivetrain:            # seed 000 section 4, SPEC 5.1\n";
     out += FormatScalars(*file.drivetrain, kDriveTrainKeys, "  ");
+  }
+  if (file.planar_robot) {
+    out += "planar_robot:          # seed 000 sections 2, 5; SPEC 5.3\n";
+    out += FormatScalars(*file.planar_robot, kRobotKeys, "  ");
+    const auto& e = file.planar_robot->elbow;
+    out += fmt::format("{:<28} # {}\n", fmt::format("  elbow: [{}, {}, {}]", e[0], e[1], e[2]),
+                       "+1: B_i counter-clockwise of the ray A_i -> C");
   }
   if (file.axis) {
     out += "axis:                  # SPEC 5.2: tau = J q'' + b q' + tau_c sgn(q') + tau_0\n";

@@ -17,6 +17,7 @@
 #include "models/axis.h"
 #include "models/cdrive.h"
 #include "models/drivetrain.h"
+#include "models/planar_robot.h"
 
 namespace driveid {
 
@@ -49,6 +50,7 @@ struct AxisSection {
 struct ParameterFile {
   std::optional<DriveTrainParameters> drivetrain;
   std::optional<AxisSection> axis;
+  std::optional<PlanarRobotParameters> planar_robot;
   std::optional<CDriveSection> cdrive;
   bool had_fit_section = false;  ///< input carried a previous fit (replaced on output)
   /// fit.estimates of a previous fit (value, std, ci95), for reports.

@@ -1,0 +1,25 @@
+// drivetrain-fit robot: Theta, m_c, d_g of the planar robot (SPEC 5.3).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "common/cli_support.h"
+
+namespace driveid::cli {
+
+struct RobotOptions {
+  std::vector<std::string> logs;
+  std::string params;
+  std::vector<std::string> free = {"Theta", "m_c", "d_g"};
+  std::vector<std::string> columns;
+  double window = 0.005;
+  FitOutputOptions output;
+};
+
+CLI::App* SetupRobotCommand(CLI::App& app, RobotOptions& options);
+void RunRobotCommand(const RobotOptions& options, const std::string& command_line);
+
+}  // namespace driveid::cli

@@ -1,0 +1,207 @@
+#include "fit/robot_fit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "fit/linear_residuals.h"
+#include "io/csv_log.h"
+#include "signal/local_polynomial.h"
+
+namespace driveid {
+namespace {
+
+constexpr const char* kNames[] = {"Theta", "m_c", "d_g"};
+double PlanarRobotParameters::*const kMembers[] = {&PlanarRobotParameters::output_inertia,
+                                                   &PlanarRobotParameters::center_mass,
+                                                   &PlanarRobotParameters::viscous_friction};
+
+bool Contains(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+// Kinematic quantities of one sample.
+struct Sample {
+  Vector3 theta, rate, acceleration;
+  Vector2 position, velocity, acceleration_xy;
+  Matrix23 g;
+};
+
+// Differentiates a log; returns the valid samples and their indices.
+std::vector<std::pair<std::size_t, Sample>> Kinematics(const PlanarRobotParameters& robot, const RobotLog& log,
+                                                       double half_window) {
+  std::array<SignalDerivatives, 3> joints;
+  for (std::size_t i = 0; i < 3; ++i) joints[i] = EstimateDerivatives(log.time, log.angle[i], half_window);
+  const std::size_t n = log.time.size();
+  std::vector<double> x(n), y(n);
+  const double a = robot.base_distance;
+  Vector2 guess = {0.5 * a, a / (2.0 * std::sqrt(3.0))};
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vector2 c = CalcForwardKinematics(robot, {joints[0].value[k], joints[1].value[k], joints[2].value[k]}, guess);
+    x[k] = c[0];
+    y[k] = c[1];
+    guess = c;
+  }
+  const SignalDerivatives dx = EstimateDerivatives(log.time, x, half_window);
+  const SignalDerivatives dy = EstimateDerivatives(log.time, y, half_window);
+  std::vector<std::pair<std::size_t, Sample>> out;
+  out.reserve(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!(joints[0].valid[k] && joints[1].valid[k] && joints[2].valid[k] && dx.valid[k] && dy.valid[k])) continue;
+    Sample s;
+    for (std::size_t i = 0; i < 3; ++i) {
+      s.theta[i] = joints[i].value[k];
+      s.rate[i] = joints[i].rate[k];
+      s.acceleration[i] = joints[i].acceleration[k];
+    }
+    s.position = {x[k], y[k]};
+    s.velocity = {dx.rate[k], dy.rate[k]};
+    s.acceleration_xy = {dx.acceleration[k], dy.acceleration[k]};
+    s.g = CalcTransposedInverseJacobian(robot, s.position, s.theta);
+    out.emplace_back(k, s);
+  }
+  return out;
+}
+
+}  // namespace
+
+RobotLog ParseRobotLog(const std::string& path, const std::string& text,
+                       const std::map<std::string, std::string>& column_map) {
+  CsvReadOptions options;
+  options.column_map = column_map;
+  CsvLog csv = ParseCsvLog(path, text, {"t", "theta1", "theta2", "theta3", "i1", "i2", "i3"}, options);
+  RobotLog log;
+  log.path = path;
+  log.time = std::move(csv.columns[0]);
+  for (std::size_t i = 0; i < 3; ++i) {
+    log.angle[i] = std::move(csv.columns[1 + i]);
+    log.current[i] = std::move(csv.columns[4 + i]);
+  }
+  return log;
+}
+
+const std::vector<std::string>& RobotParameterNames() {
+  static const std::vector<std::string> names(std::begin(kNames), std::end(kNames));
+  return names;
+}
+
+RobotFitOutput FitRobot(const std::vector<RobotLog>& logs, const PlanarRobotParameters& start,
+                        const RobotFitOptions& options) {
+  if (logs.empty()) throw std::invalid_argument("no logs given");
+  for (const auto& name : options.free) {
+    if (!Contains(RobotParameterNames(), name)) {
+      throw std::invalid_argument(fmt::format("--free {}: not a robot parameter (choose from Theta, m_c, d_g)", name));
+    }
+  }
+  if (!(options.half_window > 0.0)) {
+    throw std::invalid_argument(fmt::format("--window = {}: violated constraint: > 0 s", options.half_window));
+  }
+  if (!(start.torque_constant > 0.0)) throw InputError("--params: planar_robot.k_t is needed (currents to torques)");
+  std::vector<int> free_columns;
+  std::vector<FitParameter> parameters;
+  for (int j = 0; j < 3; ++j) {
+    if (!Contains(options.free, kNames[j])) continue;
+    free_columns.push_back(j);
+    const double value = start.*kMembers[j];
+    parameters.push_back({kNames[j], value > 0.0 ? value : 0.0, 0.0, value > 0.0 ? value : 1.0});
+  }
+  const int p = static_cast<int>(free_columns.size());
+  const double n_g = start.gear_ratio, k_t = start.torque_constant;
+
+  std::vector<std::vector<std::pair<std::size_t, Sample>>> kinematics;
+  std::vector<double> rows, values, measured_storage;
+  std::vector<FitChannel> channels;
+  for (const auto& log : logs) {
+    if (log.time.size() < 10) throw InputError(fmt::format("{}: {} samples: too few", log.path, log.time.size()));
+    try {
+      kinematics.push_back(Kinematics(start, log, options.half_window));
+    } catch (const std::domain_error& e) {
+      throw InputError(fmt::format("{}: joint angles outside the workspace: {}", log.path, e.what()));
+    }
+    for (int component = 0; component < 2; ++component) {
+      const int begin = static_cast<int>(values.size());
+      for (const auto& [k, s] : kinematics.back()) {
+        const double* g_row = &s.g[static_cast<std::size_t>(component * 3)];
+        double projected_torque = 0.0, projected_acceleration = 0.0, projected_rate = 0.0;
+        for (std::size_t i = 0; i < 3; ++i) {
+          projected_torque += g_row[i] * k_t * log.current[i][k];
+          projected_acceleration += g_row[i] * s.acceleration[i];
+          projected_rate += g_row[i] * s.rate[i];
+        }
+        const double columns[3] = {projected_acceleration, s.acceleration_xy[static_cast<std::size_t>(component)],
+                                   n_g * n_g * projected_rate};
+        double known = 0.0;
+        for (int j = 0; j < 3; ++j) {
+          if (!Contains(options.free, kNames[j])) known += (start.*kMembers[j]) * columns[j];
+        }
+        for (int j : free_columns) rows.push_back(columns[j]);
+        values.push_back(n_g * projected_torque - known);
+        measured_storage.push_back(n_g * projected_torque);
+      }
+      const int count = static_cast<int>(values.size()) - begin;
+      if (count > 0) channels.push_back({log.path + (component == 0 ? ":force_x" : ":force_y"), begin, count, nullptr});
+    }
+  }
+  const int n = static_cast<int>(values.size());
+  if (n <= p) throw IdentificationError("too few usable samples (logs shorter than the differentiator window)");
+  for (auto& c : channels) c.measured = measured_storage.data() + c.begin;
+  LinearResiduals residuals(Eigen::Map<RowMatrix>(rows.data(), n, p), Eigen::Map<Eigen::VectorXd>(values.data(), n));
+  FitOptions fit_options = options.fit;
+  if (!fit_options.advice) {
+    fit_options.advice = [](const std::vector<std::string>&) -> std::string {
+      return "the trajectory must accelerate and move at speed in both directions (e.g. simulate robot's triangle)";
+    };
+  }
+  RobotFitOutput out;
+  out.fit = FitLeastSquares(residuals, parameters, channels, fit_options);
+  out.params = start;
+  for (std::size_t j = 0; j < free_columns.size(); ++j) out.params.*kMembers[free_columns[j]] = out.fit.estimates[j].value;
+
+  // Current prediction with the fitted parameters (Fig. 7 decomposition).
+  const PlanarRobotParameters& r = out.params;
+  const double scale = 1.0 / (n_g * k_t);
+  for (std::size_t l = 0; l < logs.size(); ++l) {
+    RobotCurrentPrediction prediction;
+    for (const auto& [k, s] : kinematics[l]) {
+      const Matrix23 g_rate = CalcTransposedInverseJacobianRate(r, s.position, s.theta, s.velocity);
+      const Vector3 centre = ApplyPseudoInverse(s.g, {r.center_mass * s.acceleration_xy[0], r.center_mass * s.acceleration_xy[1]});
+      // G+ G i: the part of the measured current that moves the robot.
+      Vector2 projected{};
+      for (std::size_t i = 0; i < 3; ++i) {
+        projected[0] += s.g[i] * logs[l].current[i][k];
+        projected[1] += s.g[3 + i] * logs[l].current[i][k];
+      }
+      const Vector3 motion = ApplyPseudoInverse(s.g, projected);
+      // Centrifugal/Coriolis: Theta dG' x' has a null-space part; the motors
+      // share the Cartesian force G Theta dG' x' by the minimum norm, G+ G.
+      Vector3 coriolis_joint{};
+      Vector2 coriolis_force{};
+      for (std::size_t i = 0; i < 3; ++i) {
+        coriolis_joint[i] = r.output_inertia * (g_rate[i] * s.velocity[0] + g_rate[3 + i] * s.velocity[1]);
+        coriolis_force[0] += s.g[i] * coriolis_joint[i];
+        coriolis_force[1] += s.g[3 + i] * coriolis_joint[i];
+      }
+      const Vector3 coriolis_motion = ApplyPseudoInverse(s.g, coriolis_force);
+      prediction.time.push_back(logs[l].time[k]);
+      for (std::size_t i = 0; i < 3; ++i) {
+        const double inertia = (r.output_inertia * (s.g[i] * s.acceleration_xy[0] + s.g[3 + i] * s.acceleration_xy[1]) +
+                                centre[i]) * scale;
+        const double coriolis = coriolis_motion[i] * scale;
+        const double friction = n_g * n_g * r.viscous_friction * s.rate[i] * scale;
+        prediction.measured[i].push_back(logs[l].current[i][k]);
+        prediction.measured_motion[i].push_back(motion[i]);
+        prediction.inertia[i].push_back(inertia);
+        prediction.coriolis[i].push_back(coriolis);
+        prediction.friction[i].push_back(friction);
+        prediction.total[i].push_back(inertia + coriolis + friction);
+      }
+    }
+    out.predictions.push_back(std::move(prediction));
+  }
+  return out;
+}
+
+}  // namespace driveid

@@ -1,0 +1,53 @@
+// Synthetic robot logs (SPEC 5.3, 5.5): the centre joint runs an
+// equilateral triangle (side 250 mm, centred in the workspace) edge by edge,
+// rest to rest, with a trapezoidal speed profile (50 m/s^2, 3 m/s), a dwell
+// at each corner, for several loops. Joint angles from inverse kinematics,
+// quantised by motor encoders behind the gears; motor currents from the
+// rigid-body model (minimum-norm torques), plus a constant null-space
+// prestress and Gaussian current noise.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "models/planar_robot.h"
+
+namespace driveid {
+
+/// A robot log (SPEC 3): joint angles at the gear output and motor currents.
+struct RobotLog {
+  std::string path;
+  std::vector<double> time;
+  std::array<std::vector<double>, 3> angle;    ///< theta_i [rad]
+  std::array<std::vector<double>, 3> current;  ///< i_i [A]
+};
+
+struct RobotExperiment {
+  double side = 0.25;            ///< triangle side [m]
+  double acceleration = 50.0;    ///< [m/s^2]
+  double speed = 3.0;            ///< [m/s]
+  double dwell = 0.05;           ///< rest at each corner [s]
+  int loops = 3;
+  double rate = 1000.0;          ///< [Hz]
+  double encoder_counts = 8192;  ///< per motor revolution (angles quantised by 2 pi / (counts n_g))
+  double prestress = 3.0;        ///< null-space joint torque at the gear output [N m]
+  double current_noise = 0.0;    ///< [A]
+  std::uint64_t seed = 1;
+};
+
+/// Reference path sample: position, velocity, acceleration of the centre joint.
+struct PathSample {
+  Vector2 position, velocity, acceleration;
+};
+/// The triangle path as a function of time (holds the last corner after the end).
+PathSample CalcTrianglePath(const PlanarRobotParameters& robot, const RobotExperiment& e, double time);
+double CalcTriangleDuration(const RobotExperiment& e);
+
+/// Throws std::invalid_argument for bad options, std::domain_error if the
+/// triangle leaves the workspace.
+RobotLog SimulateRobotExperiment(const PlanarRobotParameters& robot, const RobotExperiment& experiment);
+
+std::string FormatRobotLog(const RobotLog& log, const std::vector<std::string>& comments);
+
+}  // namespace driveid
