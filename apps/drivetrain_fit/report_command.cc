@@ -1,12 +1,15 @@
 #include "drivetrain_fit/report_command.h"
 
+#include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
 #include "core/errors.h"
 #include "io/parameter_file.h"
 #include "report/drivetrain_report.h"
+#include "report/planar_robot_report.h"
 
 namespace driveid::cli {
 
@@ -15,6 +18,12 @@ CLI::App* SetupReportCommand(CLI::App& app, ReportOptions& options) {
       "report", "Transfer function (eq. 16), omega_n, zeta, gain; the paper's eq. (17) beside the recomputed values");
   command->add_option("params", options.params, "parameter file")->required();
   command->add_option("--fitted", options.fitted, "a fitted parameter file to show in a further column");
+  command->add_option("--pose", options.pose, "robot: centre joint x,y [m] (default: the workspace centre)")
+      ->delimiter(',')
+      ->expected(2);
+  command->add_option("--velocity", options.velocity, "robot: centre joint velocity vx,vy [m/s] for C (default 0)")
+      ->delimiter(',')
+      ->expected(2);
   command->add_flag("--json", options.json, "print one JSON object instead of the text");
   command->footer("Example:\n  drivetrain-fit report data/paper000.yaml --fitted out/fig6_fit.yaml");
   return command;
@@ -22,7 +31,23 @@ CLI::App* SetupReportCommand(CLI::App& app, ReportOptions& options) {
 
 void RunReportCommand(const ReportOptions& options) {
   const ParameterFile file = ReadParameterFile(options.params);
-  if (!file.drivetrain) throw InputError(fmt::format("{}: no 'drivetrain' section", options.params));
+  if (!file.drivetrain && !file.planar_robot) {
+    throw InputError(fmt::format("{}: no 'drivetrain' or 'planar_robot' section", options.params));
+  }
+  if (file.planar_robot) {
+    const PlanarRobotParameters& robot = *file.planar_robot;
+    const double a = robot.base_distance;
+    const Vector2 pose = options.pose.size() == 2 ? Vector2{options.pose[0], options.pose[1]}
+                                                   : Vector2{0.5 * a, a / (2.0 * std::sqrt(3.0))};
+    const Vector2 velocity = options.velocity.size() == 2 ? Vector2{options.velocity[0], options.velocity[1]}
+                                                           : Vector2{0.0, 0.0};
+    try {
+      std::fputs(FormatPlanarRobotReport(robot, pose, velocity, options.params).c_str(), stdout);
+    } catch (const std::domain_error& e) {
+      throw std::invalid_argument(fmt::format("--pose: {}", e.what()));
+    }
+    if (!file.drivetrain) return;
+  }
   ParameterFile fitted;
   if (!options.fitted.empty()) {
     fitted = ReadParameterFile(options.fitted);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -10,6 +11,8 @@ namespace driveid::cli {
 struct ReportOptions {
   std::string params;
   std::string fitted;
+  std::vector<double> pose;      ///< x, y [m] for the robot report
+  std::vector<double> velocity;  ///< vx, vy [m/s]
   bool json = false;
 };
 

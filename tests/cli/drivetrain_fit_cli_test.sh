@@ -90,11 +90,40 @@ cp fit.yaml keep.yaml
 "$bin" step no_step.csv --params start.yaml -q -o keep.yaml 2> /dev/null
 cmp -s fit.yaml keep.yaml && ok || fail "failed fit touched the existing output"
 
+# axis (SPEC 5.2).
+cp "$src/data/axis_example.yaml" axis.yaml
+"$bin" simulate axis --params axis.yaml --noise 0.05 --duration 25 -o axis.csv && ok || fail "simulate axis"
+"$bin" simulate axis --params axis.yaml --profile constant --speed 1 --noise 0.05 -o constant.csv && ok \
+  || fail "simulate axis constant"
+printf 't,q,i\n0,0,1\n0.001,0,1\n' > axis_current.csv
+expect 4 "inertia: the logs have no acceleration content" -- axis constant.csv --params axis.yaml
+expect 3 "axis_current.csv: the log has a current column 'i': axis.k_t must be given" -- axis axis_current.csv
+expect 3 "axis.csv:[0-9]+: missing column 'force' or 'amps'" -- axis axis.csv --col tau=force --col i=amps
+expect 2 "not an axis parameter" -- axis axis.csv --free mass
+if "$bin" axis axis.csv --params axis.yaml -q -o axis_fit.yaml; then ok; else fail "axis fit"; fi
+grep -q "^    d_g: {value: 3.1" axis_fit.yaml && ok || fail "axis fit lacks d_g = b / n_g^2 near 3.1e-5"
+
+# robot (SPEC 5.3).
+cp "$src/data/robot_paper000.yaml" robot.yaml
+cp "$src/data/robot_start.yaml" robot_start.yaml
+"$bin" simulate robot --params robot.yaml --noise 0.02 --seed 5 -o robot.csv && ok || fail "simulate robot"
+cut -d, -f1-6 robot.csv > robot_missing.csv
+expect 3 "robot_missing.csv:[0-9]+: missing column 'i3'" -- robot robot_missing.csv --params robot_start.yaml
+expect 3 "no 'planar_robot' section" -- robot robot.csv --params paper.yaml
+expect 2 "not a robot parameter" -- robot robot.csv --params robot_start.yaml --free Theta,mass
+expect 3 "triangle leaves the workspace" -- simulate robot --params robot.yaml --side 3
+if "$bin" robot robot.csv --params robot_start.yaml -q -o robot_fit.yaml --trace robot_trace.csv; then ok; else fail "robot fit"; fi
+theta=$(awk '/^  Theta:/ {print $2}' robot_fit.yaml)
+awk -v v="$theta" 'BEGIN { exit !(v > 0.5335 && v < 0.5665) }' && ok || fail "robot Theta $theta not within 3 % of 0.55"
+head -2 robot_trace.csv | tail -1 | grep -q "^log,t,motor,i_measured,i_motion,i_model,i_inertia,i_coriolis,i_friction$" \
+  && ok || fail "robot trace header"
+"$bin" report robot.yaml | grep -q "M = Theta G G' + m_c 1" && ok || fail "robot report lacks M"
+
 # Golden: report of the paper's values.
 "$bin" report paper.yaml > report.txt && diff -u "$src/tests/cli/golden/report_paper000.txt" report.txt > report.diff \
   && ok || fail "report differs from golden: $(head -c 600 report.diff)"
 # Every subcommand's help has a worked example.
-for sub in step "simulate step" report; do
+for sub in step axis robot "simulate step" "simulate axis" "simulate robot" report; do
   # shellcheck disable=SC2086
   "$bin" $sub --help | grep -q "Example:" && ok || fail "$sub --help lacks an example"
 done
