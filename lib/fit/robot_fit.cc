@@ -121,13 +121,18 @@ RobotFitOutput FitRobot(const std::vector<RobotLog>& logs, const PlanarRobotPara
     } catch (const std::domain_error& e) {
       throw InputError(fmt::format("{}: joint angles outside the workspace: {}", log.path, e.what()));
     }
+    // Parallel filtering: the currents pass the same zero-phase local fit as
+    // the angles, so that both sides of the equation see the same bandwidth
+    // (the trapezoid's acceleration jumps otherwise bias Theta).
+    std::array<std::vector<double>, 3> current;
+    for (std::size_t i = 0; i < 3; ++i) current[i] = EstimateDerivatives(log.time, log.current[i], options.half_window).value;
     for (int component = 0; component < 2; ++component) {
       const int begin = static_cast<int>(values.size());
       for (const auto& [k, s] : kinematics.back()) {
         const double* g_row = &s.g[static_cast<std::size_t>(component * 3)];
         double projected_torque = 0.0, projected_acceleration = 0.0, projected_rate = 0.0;
         for (std::size_t i = 0; i < 3; ++i) {
-          projected_torque += g_row[i] * k_t * log.current[i][k];
+          projected_torque += g_row[i] * k_t * current[i][k];
           projected_acceleration += g_row[i] * s.acceleration[i];
           projected_rate += g_row[i] * s.rate[i];
         }

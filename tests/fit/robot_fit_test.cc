@@ -7,6 +7,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "support/reference_robot.h"
+
 using namespace driveid;
 
 namespace {
@@ -56,4 +58,21 @@ TEST_CASE("robot: the null-space prestress drops out, and the prediction matches
   CHECK(close > static_cast<int>(0.75 * static_cast<double>(p.time.size())));
   // The split adds up.
   CHECK(p.inertia[1][100] + p.coriolis[1][100] + p.friction[1][100] == Approx(p.total[1][100]));
+}
+
+TEST_CASE("robot: logs of the independent generator (own IK, numerical Jacobian) give the same recovery") {
+  for (unsigned seed : {7u, 8u}) {
+    const auto ref = reference::SimulateTriangle(reference::Robot{}, 3, 0.05, 3.0, 0.02, seed);
+    RobotLog log;
+    log.path = "reference";
+    log.time = ref.t;
+    log.angle = ref.theta;
+    log.current = ref.current;
+    const RobotFitOutput out = FitRobot({log}, Start(), {});
+    INFO("seed " << seed << ": Theta " << out.params.output_inertia << ", m_c " << out.params.center_mass << ", d_g "
+                 << out.params.viscous_friction);
+    CHECK(out.params.output_inertia == Approx(0.55).epsilon(0.03));
+    CHECK(out.params.viscous_friction == Approx(0.002).epsilon(0.05));
+    CHECK(out.params.center_mass == Approx(0.5).epsilon(0.15));
+  }
 }
