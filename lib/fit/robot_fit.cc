@@ -126,9 +126,33 @@ RobotFitOutput FitRobot(const std::vector<RobotLog>& logs, const PlanarRobotPara
     // (the trapezoid's acceleration jumps otherwise bias Theta).
     std::array<std::vector<double>, 3> current;
     for (std::size_t i = 0; i < 3; ++i) current[i] = EstimateDerivatives(log.time, log.current[i], options.half_window).value;
+    // Jumps (steps of the commanded acceleration) cannot be followed by any
+    // smooth differentiator: find them where a current leaves its local fit
+    // by more than 4 robust standard deviations, and leave out every sample
+    // whose window reaches one.
+    std::vector<char> near_jump(log.time.size(), 0);
+    for (std::size_t i = 0; i < 3; ++i) {
+      std::vector<double> deviation(log.time.size());
+      for (std::size_t k = 0; k < deviation.size(); ++k) deviation[k] = std::abs(log.current[i][k] - current[i][k]);
+      std::vector<double> sorted = deviation;
+      std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+      const double sigma = 1.4826 * sorted[sorted.size() / 2];
+      for (std::size_t k = 0; k < deviation.size(); ++k) {
+        if (!(deviation[k] > 4.0 * sigma) || sigma <= 0.0) continue;
+        for (std::size_t m = 0; m < log.time.size(); ++m) {
+          if (std::abs(log.time[m] - log.time[k]) <= options.half_window) near_jump[m] = 1;
+        }
+      }
+    }
+    // Decimation to the filter band: smoothed rows are correlated over the
+    // window, so keep about one row per half window (honest standard errors).
+    const double mean_step = (log.time.back() - log.time.front()) / static_cast<double>(log.time.size() - 1);
+    const std::size_t stride = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(options.half_window / mean_step)));
     for (int component = 0; component < 2; ++component) {
       const int begin = static_cast<int>(values.size());
+      std::size_t counter = 0;
       for (const auto& [k, s] : kinematics.back()) {
+        if (near_jump[k] || counter++ % stride != 0) continue;
         const double* g_row = &s.g[static_cast<std::size_t>(component * 3)];
         double projected_torque = 0.0, projected_acceleration = 0.0, projected_rate = 0.0;
         for (std::size_t i = 0; i < 3; ++i) {
