@@ -49,22 +49,15 @@ void RunCDriveFitCommand(const CDriveFitCommandOptions& options, const std::stri
   outputs.provenance.command = command_line;
   outputs.provenance.version = DRIVEID_VERSION;
   outputs.provenance.model = friction ? "cdrive friction (28)" : "cdrive inertia (17), (28)";
-  std::vector<CDriveLog> logs;
-  for (const auto& path : options.logs) {
-    const std::string text = ReadFileToString(path);
-    logs.push_back(ParseCDriveLog(path, text, column_map, start.cdrive->torque_constant));
-    outputs.provenance.data.push_back({path, Sha256Hex(text), static_cast<int>(logs.back().time.size())});
-  }
+  const auto logs = LoadLogs<CDriveLog>(options.logs, outputs.provenance, [&](const std::string& path, const std::string& text) {
+    return ParseCDriveLog(path, text, column_map, start.cdrive->torque_constant);
+  });
 
   CDriveFitOptions fit_options;
   fit_options.free = options.free;
   fit_options.half_window = options.window > 0.0 ? options.window : (friction ? 0.02 : 0.005);
   fit_options.min_rate = options.min_rate;
-  if (options.output.verbose) {
-    fit_options.fit.progress = [](const FitIteration& it) {
-      PrintIteration(it.iteration, it.cost, it.gradient_norm, it.step_norm);
-    };
-  }
+  SetProgress(fit_options.fit, options.output.verbose);
   const CDriveFitOutput result = friction ? FitCDriveFriction(logs, start.cdrive->params, fit_options)
                                           : FitCDriveInertia(logs, start.cdrive->params, fit_options);
 

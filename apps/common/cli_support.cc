@@ -115,9 +115,12 @@ void EmitFitOutputs(const FitOutputOptions& options, const FitOutputs& outputs) 
   std::fflush(stdout);
 }
 
-void PrintIteration(int iteration, double cost, double gradient_norm, double step_norm) {
-  std::fprintf(stderr, "iteration %3d  cost %.9e  |gradient| %.3e  |step| %.3e\n", iteration, cost, gradient_norm,
-               step_norm);
+void SetProgress(FitOptions& fit, bool verbose) {
+  if (!verbose) return;
+  fit.progress = [](const FitIteration& it) {
+    std::fprintf(stderr, "iteration %3d  cost %.9e  |gradient| %.3e  |step| %.3e\n", it.iteration, it.cost,
+                 it.gradient_norm, it.step_norm);
+  };
 }
 
 }  // namespace driveid::cli

@@ -9,6 +9,9 @@
 #include <CLI/CLI.hpp>
 
 #include "fit/fit_result.h"
+#include "fit/least_squares.h"
+#include "io/csv_log.h"
+#include "io/sha256.h"
 #include "report/plot.h"
 
 namespace driveid::cli {
@@ -47,7 +50,20 @@ struct FitOutputs {
 /// parameter file itself goes to stdout.
 void EmitFitOutputs(const FitOutputOptions& options, const FitOutputs& outputs);
 
-/// Prints one solver iteration to stderr (for -v).
-void PrintIteration(int iteration, double cost, double gradient_norm, double step_norm);
+/// With -v, logs every solver iteration of the fit to stderr.
+void SetProgress(FitOptions& fit, bool verbose);
+
+/// Reads each log once, parses it with `parse(path, text)` and records its
+/// provenance (file, SHA-256, samples) in `provenance`.
+template <typename Log, typename Parse>
+std::vector<Log> LoadLogs(const std::vector<std::string>& paths, FitProvenance& provenance, Parse parse) {
+  std::vector<Log> logs;
+  for (const auto& path : paths) {
+    const std::string text = ReadFileToString(path);
+    logs.push_back(parse(path, text));
+    provenance.data.push_back({path, Sha256Hex(text), static_cast<int>(logs.back().time.size())});
+  }
+  return logs;
+}
 
 }  // namespace driveid::cli

@@ -40,21 +40,14 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
   outputs.provenance.command = command_line;
   outputs.provenance.version = DRIVEID_VERSION;
   outputs.provenance.model = "axis (SPEC 5.2), IDIM-LS";
-  std::vector<AxisLog> logs;
-  for (const auto& path : options.logs) {
-    const std::string text = ReadFileToString(path);
-    logs.push_back(ParseAxisLog(path, text, column_map, section.torque_constant));
-    outputs.provenance.data.push_back({path, Sha256Hex(text), static_cast<int>(logs.back().time.size())});
-  }
+  const auto logs = LoadLogs<AxisLog>(options.logs, outputs.provenance, [&](const std::string& path, const std::string& text) {
+    return ParseAxisLog(path, text, column_map, section.torque_constant);
+  });
   AxisFitOptions fit_options;
   fit_options.free = options.free;
   fit_options.cutoff = options.cutoff;
   fit_options.decimation = options.decimation;
-  if (options.output.verbose) {
-    fit_options.fit.progress = [](const FitIteration& it) {
-      PrintIteration(it.iteration, it.cost, it.gradient_norm, it.step_norm);
-    };
-  }
+  SetProgress(fit_options.fit, options.output.verbose);
   const AxisFitOutput result = FitAxis(logs, section.params(), fit_options);
 
   ParameterFile fitted = start;

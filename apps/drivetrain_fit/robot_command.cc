@@ -34,20 +34,13 @@ void RunRobotCommand(const RobotOptions& options, const std::string& command_lin
   outputs.provenance.command = command_line;
   outputs.provenance.version = DRIVEID_VERSION;
   outputs.provenance.model = "planar robot, rigid body (SPEC 5.3), projected with G";
-  std::vector<RobotLog> logs;
-  for (const auto& path : options.logs) {
-    const std::string text = ReadFileToString(path);
-    logs.push_back(ParseRobotLog(path, text, column_map));
-    outputs.provenance.data.push_back({path, Sha256Hex(text), static_cast<int>(logs.back().time.size())});
-  }
+  const auto logs = LoadLogs<RobotLog>(options.logs, outputs.provenance, [&](const std::string& path, const std::string& text) {
+    return ParseRobotLog(path, text, column_map);
+  });
   RobotFitOptions fit_options;
   fit_options.free = options.free;
   fit_options.half_window = options.window;
-  if (options.output.verbose) {
-    fit_options.fit.progress = [](const FitIteration& it) {
-      PrintIteration(it.iteration, it.cost, it.gradient_norm, it.step_norm);
-    };
-  }
+  SetProgress(fit_options.fit, options.output.verbose);
   const RobotFitOutput result = FitRobot(logs, *start.planar_robot, fit_options);
   ParameterFile fitted = start;
   fitted.planar_robot = result.params;

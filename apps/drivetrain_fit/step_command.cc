@@ -41,21 +41,14 @@ void RunStepCommand(const StepOptions& options, const std::string& command_line)
   outputs.provenance.command = command_line;
   outputs.provenance.version = DRIVEID_VERSION;
   outputs.provenance.model = options.model;
-  std::vector<StepLog> logs;
-  for (const auto& path : options.logs) {
-    const std::string text = ReadFileToString(path);
-    logs.push_back(ParseStepLog(path, text, column_map));
-    outputs.provenance.data.push_back({path, Sha256Hex(text), static_cast<int>(logs.back().time.size())});
-  }
+  const auto logs = LoadLogs<StepLog>(options.logs, outputs.provenance, [&](const std::string& path, const std::string& text) {
+    return ParseStepLog(path, text, column_map);
+  });
 
   StepFitOptions fit_options;
   fit_options.model = options.model == "full" ? DriveTrainModel::kFull : DriveTrainModel::kReduced;
   fit_options.free = options.free;
-  if (options.output.verbose) {
-    fit_options.fit.progress = [](const FitIteration& it) {
-      PrintIteration(it.iteration, it.cost, it.gradient_norm, it.step_norm);
-    };
-  }
+  SetProgress(fit_options.fit, options.output.verbose);
   const StepFitOutput result = FitStepResponses(logs, *start_file.drivetrain, fit_options);
 
   ParameterFile fitted = start_file;
