@@ -26,7 +26,7 @@ CLI::App* SetupCDriveFitCommand(CLI::App& app, CDriveFitCommandOptions& options,
       ->delimiter(',');
   command->add_option("--col", options.columns, "map a column: NAME=HEADER (e.g. psi_L=encoder_left)");
   command->add_option("--window", options.window,
-                      friction ? "half window of the zero-phase differentiator [s] (default 0.02)"
+                      friction ? "half window of the zero-phase differentiator [s] (default 0.01)"
                                : "half window of the zero-phase differentiator [s] (default 0.005)");
   command->add_option("--min-rate", options.min_rate,
                       "use samples whose motor rates (and their difference, for the collar) exceed this [rad/s]")
@@ -55,7 +55,7 @@ void RunCDriveFitCommand(const CDriveFitCommandOptions& options, const std::stri
 
   CDriveFitOptions fit_options;
   fit_options.free = options.free;
-  fit_options.half_window = options.window > 0.0 ? options.window : (friction ? 0.02 : 0.005);
+  fit_options.half_window = options.window > 0.0 ? options.window : (friction ? 0.01 : 0.005);
   fit_options.min_rate = options.min_rate;
   SetProgress(fit_options.fit, options.output.verbose);
   const CDriveFitOutput result = friction ? FitCDriveFriction(logs, start.cdrive->params, fit_options)

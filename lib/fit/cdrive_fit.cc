@@ -208,8 +208,24 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveParameters& 
     if (log.time.size() < 5) {
       throw InputError(fmt::format("{}: {} samples: too few to differentiate", log.path, log.time.size()));
     }
+    // Rates and accelerations from the +-half_window fit. When a + b and
+    // a - b are estimated, the accelerations are regressors and their noise
+    // would attenuate them: take those from a window twice as wide. (When M
+    // is known the narrow window is better: the subtracted inertial torque
+    // must follow the closed-loop oscillations after reversals.)
     design.left.push_back(EstimateDerivatives(log.time, log.angle_left, options.half_window));
     design.right.push_back(EstimateDerivatives(log.time, log.angle_right, options.half_window));
+    if (inertia_nuisance) {
+      const double wide = 2.0 * options.half_window;
+      const SignalDerivatives wide_left = EstimateDerivatives(log.time, log.angle_left, wide);
+      const SignalDerivatives wide_right = EstimateDerivatives(log.time, log.angle_right, wide);
+      for (std::size_t k = 0; k < log.time.size(); ++k) {
+        design.left.back().acceleration[k] = wide_left.acceleration[k];
+        design.right.back().acceleration[k] = wide_right.acceleration[k];
+        design.left.back().valid[k] = design.left.back().valid[k] && wide_left.valid[k];
+        design.right.back().valid[k] = design.right.back().valid[k] && wide_right.valid[k];
+      }
+    }
     const auto& left = design.left.back();
     const auto& right = design.right.back();
     const auto usable = UsableSamples(log.time, left, right, options.min_rate, options.half_window);

@@ -46,7 +46,7 @@ std::string FormatCDriveLog(const CDriveLog& log, const std::vector<std::string>
 
 struct CDriveFitOptions {
   std::vector<std::string> free;  ///< empty = the default of the fit
-  double half_window = 0.02;      ///< differentiator half window [s]
+  double half_window = 0.01;      ///< differentiator half window [s] (doubled for accelerations that are regressors)
   double min_rate = 0.5;          ///< rate threshold for using a sample [rad/s]
   FitOptions fit;
 };
