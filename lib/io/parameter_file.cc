@@ -239,7 +239,49 @@ std::string FormatScalars(const T& values, const ScalarKey<T> (&keys)[N], const 
 
 }  // namespace
 
+namespace {
+
+// yaml-cpp parses nested collections recursively: refuse input that could
+// exhaust the stack before handing it over (no real parameter file nests
+// deeper than three levels).
+void CheckNesting(const std::string& path, const std::string& text) {
+  constexpr std::size_t kMaxBytes = 1 << 20;
+  constexpr int kMaxFlowDepth = 32;
+  constexpr std::size_t kMaxIndent = 64;
+  if (text.size() > kMaxBytes) throw InputError(fmt::format("{}: parameter file larger than {} bytes", path, kMaxBytes));
+  int depth = 0, line = 1;
+  std::size_t indent = 0;
+  bool at_line_start = true;
+  for (char c : text) {
+    if (c == '\n') {
+      ++line;
+      indent = 0;
+      at_line_start = true;
+      continue;
+    }
+    if (at_line_start && (c == ' ' || c == '-' || c == '\t')) {
+      if (++indent > kMaxIndent) {
+        throw InputError(fmt::format("{}:{}: nested deeper than a parameter file can be (indent over {})", path, line,
+                                     kMaxIndent));
+      }
+      continue;
+    }
+    at_line_start = false;
+    if (c == '[' || c == '{') {
+      if (++depth > kMaxFlowDepth) {
+        throw InputError(fmt::format("{}:{}: nested deeper than a parameter file can be (over {} brackets)", path,
+                                     line, kMaxFlowDepth));
+      }
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+}
+
+}  // namespace
+
 ParameterFile ParseParameterFile(const std::string& path, const std::string& text) {
+  CheckNesting(path, text);
   YAML::Node root;
   try {
     root = YAML::Load(text);

@@ -110,3 +110,11 @@ TEST_CASE("bad cdrive sections are named precisely") {
   CHECK_THAT(ErrorOf("cdrive:\n  I_h: 1\n"), Catch::Contains("cdrive.p: missing value"));
   CHECK_THAT(ErrorOf("cdrive:\n  p: 0.06\n  k_t: 0\n"), Catch::StartsWith("p.yaml:3:8: cdrive.k_t: must be > 0"));
 }
+
+TEST_CASE("deeply nested input is refused before yaml-cpp recurses into it") {
+  CHECK_THAT(ErrorOf(std::string(100000, '[')), Catch::Contains("nested deeper than a parameter file can be"));
+  std::string indented = "drivetrain:\n";
+  for (int i = 1; i < 200; ++i) indented += std::string(static_cast<std::size_t>(i), ' ') + "a:\n";
+  CHECK_THAT(ErrorOf(indented), Catch::Contains("nested deeper"));
+  CHECK_THAT(ErrorOf(std::string(2 << 20, '#')), Catch::Contains("larger than"));
+}
