@@ -353,6 +353,9 @@ ParameterFile ParseParameterFile(const std::string& path, const std::string& tex
                                    Where(path, item.first), section));
     }
   }
+  if (!file.drivetrain && !file.axis && !file.planar_robot && !file.cdrive) {
+    throw InputError(fmt::format("{}: no model section (drivetrain, axis, planar_robot or cdrive)", path));
+  }
   return file;
 }
 

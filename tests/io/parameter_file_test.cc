@@ -118,3 +118,10 @@ TEST_CASE("deeply nested input is refused before yaml-cpp recurses into it") {
   CHECK_THAT(ErrorOf(indented), Catch::Contains("nested deeper"));
   CHECK_THAT(ErrorOf(std::string(2 << 20, '#')), Catch::Contains("larger than"));
 }
+
+TEST_CASE("fuzzer regression: a file with only a fit section has no model to use") {
+  // Found by tests/fuzz/parameter_file_fuzzer: accepted, but formatted to a
+  // comment-only file that reads back as empty.
+  CHECK(ErrorOf("fit:\n  command: \"x\"\n  converged: true\n") ==
+        "p.yaml: no model section (drivetrain, axis, planar_robot or cdrive)");
+}
