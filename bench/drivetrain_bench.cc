@@ -11,8 +11,14 @@
 #include <string>
 #include <vector>
 
+#include "fit/axis_fit.h"
+#include "fit/cdrive_fit.h"
+#include "fit/robot_fit.h"
 #include "fit/step_fit.h"
 #include "io/csv_log.h"
+#include "sim/axis_experiment.h"
+#include "sim/cdrive_closed_loop.h"
+#include "sim/robot_experiment.h"
 #include "sim/step_experiment.h"
 
 using namespace driveid;
@@ -78,6 +84,65 @@ int main(int argc, char** argv) {
       std::printf("| %d | %s | 4 | %.2f ms | %d | %+.2f %% |\n", samples, model_name, fastest * 1e3, out.fit.iterations,
                   100.0 * (out.params.viscous_friction / 0.016 - 1.0));
     }
+  }
+
+  // The other fits vs samples (library time, best of the repetitions).
+  auto time_best = [&](auto&& fit) {
+    double fastest = 1e30;
+    for (int r = 0; r < repetitions; ++r) {
+      const auto begin = std::chrono::steady_clock::now();
+      fit();
+      fastest = std::min(fastest, Seconds(std::chrono::steady_clock::now() - begin));
+    }
+    return fastest * 1e3;
+  };
+  std::printf("\n| fit | samples | time (best of %d) | time per 1000 samples |\n|---|---:|---:|---:|\n", repetitions);
+  const AxisParameters axis_truth{0.05, 0.2, 1.0, 0.3};
+  for (double duration : {2.5, 10.0, 25.0, 100.0}) {
+    AxisExperiment e;
+    e.noise = 0.05;
+    e.duration = duration;
+    const AxisLog log = SimulateAxisExperiment(axis_truth, e);
+    const double ms = time_best([&] { FitAxis({log}, {0.1, 0.5, 2.0, 0.0}, {}); });
+    std::printf("| axis (IDIM-LS) | %zu | %.2f ms | %.3f ms |\n", log.time.size(), ms, ms * 1000.0 / static_cast<double>(log.time.size()));
+  }
+  CDriveParameters cdrive;
+  cdrive.lead = 0.06;
+  cdrive.hub_inertia = 6e-4;
+  cdrive.collar_inertia = 1.6e-3;
+  cdrive.collar_mass = 2.0;
+  cdrive.viscous_motor = 0.002655;
+  cdrive.viscous_collar = 0.004333;
+  cdrive.coulomb_motor = 0.1086;
+  cdrive.coulomb_collar = 0.1501;
+  CDriveControlSettings control;
+  control.law = ControlLaw::kPD;
+  for (int cycles : {1, 2, 4, 8}) {
+    std::vector<CDriveLog> logs;
+    std::size_t samples = 0;
+    for (const char* program : {"translation", "rotation", "helical"}) {
+      ClosedLoopOptions options;
+      options.program = TableTwoProgram(program, 4.0);
+      options.cycles = cycles;
+      options.torque_noise = 0.01;
+      logs.push_back(SimulateClosedLoop(cdrive, control, options).log);
+      samples += logs.back().time.size();
+    }
+    const double ms = time_best([&] { FitCDriveFriction(logs, cdrive, {}); });
+    std::printf("| C-drive friction | %zu | %.2f ms | %.3f ms |\n", samples, ms, ms * 1000.0 / static_cast<double>(samples));
+  }
+  const PlanarRobotParameters robot;
+  PlanarRobotParameters robot_start = robot;
+  robot_start.output_inertia = 1.0;
+  robot_start.center_mass = 1.0;
+  robot_start.viscous_friction = 0.001;
+  for (int loops : {3, 12, 48}) {
+    RobotExperiment e;
+    e.loops = loops;
+    e.current_noise = 0.02;
+    const RobotLog log = SimulateRobotExperiment(robot, e);
+    const double ms = time_best([&] { FitRobot({log}, robot_start, {}); });
+    std::printf("| robot | %zu | %.2f ms | %.3f ms |\n", log.time.size(), ms, ms * 1000.0 / static_cast<double>(log.time.size()));
   }
   return 0;
 }

@@ -139,8 +139,10 @@ RobotFitOutput FitRobot(const std::vector<RobotLog>& logs, const PlanarRobotPara
       const double sigma = 1.4826 * sorted[sorted.size() / 2];
       for (std::size_t k = 0; k < deviation.size(); ++k) {
         if (!(deviation[k] > 4.0 * sigma) || sigma <= 0.0) continue;
-        for (std::size_t m = 0; m < log.time.size(); ++m) {
-          if (std::abs(log.time[m] - log.time[k]) <= options.half_window) near_jump[m] = 1;
+        // Mark the window around k (time is increasing: scan outwards).
+        for (std::size_t m = k; m-- > 0 && log.time[k] - log.time[m] <= options.half_window;) near_jump[m] = 1;
+        for (std::size_t m = k; m < log.time.size() && log.time[m] - log.time[k] <= options.half_window; ++m) {
+          near_jump[m] = 1;
         }
       }
     }
