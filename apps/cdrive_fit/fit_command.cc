@@ -31,6 +31,9 @@ CLI::App* SetupCDriveFitCommand(CLI::App& app, CDriveFitCommandOptions& options,
   command->add_option("--min-rate", options.min_rate,
                       "use samples whose motor rates (and their difference, for the collar) exceed this [rad/s]")
       ->capture_default_str();
+  command->add_option("--settle", options.settle,
+                      "also leave out this long around each reversal (stick/slip and controller transients) [s] "
+                      "(default 0.1 for friction, 0 for inertia)");
   AddFitOutputOptions(*command, options.output);
   command->footer(friction ? "Example:\n  cdrive-fit friction data/cdrive_slow_translation.csv data/cdrive_slow_rotation.csv "
                              "data/cdrive_slow_helical.csv \\\n      --params data/cdrive_table1.yaml -o friction.yaml --plot friction.png"
@@ -57,6 +60,7 @@ void RunCDriveFitCommand(const CDriveFitCommandOptions& options, const std::stri
   fit_options.free = options.free;
   fit_options.half_window = options.window > 0.0 ? options.window : (friction ? 0.01 : 0.005);
   fit_options.min_rate = options.min_rate;
+  fit_options.settle = options.settle;  // < 0: the fit's default
   SetProgress(fit_options.fit, options.output.verbose);
   const CDriveFitOutput result = friction ? FitCDriveFriction(logs, start.cdrive->params, fit_options)
                                           : FitCDriveInertia(logs, start.cdrive->params, fit_options);

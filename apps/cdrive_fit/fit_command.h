@@ -20,6 +20,7 @@ struct CDriveFitCommandOptions {
   std::vector<std::string> columns;
   double window = 0.0;     ///< differentiator half window [s]; 0 = the fit's default
   double min_rate = 0.5;   ///< [rad/s]
+  double settle = -1.0;    ///< [s]; < 0 = the fit's default
   FitOutputOptions output;
 };
 

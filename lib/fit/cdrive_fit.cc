@@ -118,7 +118,7 @@ std::vector<char> Erode(const std::vector<double>& time, const std::vector<char>
 }
 
 UsableMask UsableSamples(const std::vector<double>& time, const SignalDerivatives& left, const SignalDerivatives& right,
-                         double min_rate, double half_window) {
+                         double min_rate, double half_window, double settle) {
   const std::size_t n = time.size();
   std::vector<char> signs(n), collar(n);
   for (std::size_t k = 0; k < n; ++k) {
@@ -128,7 +128,8 @@ UsableMask UsableSamples(const std::vector<double>& time, const SignalDerivative
     signs[k] = !centred || (std::abs(rl) >= min_rate && std::abs(rr) >= min_rate);
     collar[k] = !centred || (signs[k] && std::abs(rl - rr) >= min_rate);
   }
-  return {Erode(time, signs, half_window), Erode(time, collar, half_window)};
+  const double reach = std::max(half_window, settle);
+  return {Erode(time, signs, reach), Erode(time, collar, reach)};
 }
 
 struct Design {
@@ -150,6 +151,7 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveParameters& 
     throw std::invalid_argument(fmt::format("--min-rate = {}: violated constraint: min rate >= 0", options.min_rate));
   }
   const bool friction = kind == Kind::kFriction;
+  const double settle = options.settle >= 0.0 ? options.settle : (friction ? 0.1 : 0.0);
   const LinearParameter* table = friction ? kFrictionParameters : kInertiaParameters;
   const int table_size = friction ? 4 : 3;
   std::vector<std::string> free = options.free;
@@ -228,7 +230,7 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveParameters& 
     }
     const auto& left = design.left.back();
     const auto& right = design.right.back();
-    const auto usable = UsableSamples(log.time, left, right, options.min_rate, options.half_window);
+    const auto usable = UsableSamples(log.time, left, right, options.min_rate, options.half_window, settle);
     for (int part = 0; part < 2; ++part) {
       const int begin = static_cast<int>(values.size());
       std::vector<double> measured;
@@ -318,7 +320,8 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveParameters& 
   fixed_with_fit.hub_inertia = fixed_with_fit.collar_inertia = fixed_with_fit.collar_mass = 0.0;
   for (std::size_t i = 0; i < logs.size(); ++i) {
     const auto& log = logs[i];
-    const auto usable = UsableSamples(log.time, design.left[i], design.right[i], options.min_rate, options.half_window);
+    const auto usable = UsableSamples(log.time, design.left[i], design.right[i], options.min_rate, options.half_window,
+                                      settle);
     CDriveTrace trace;
     for (std::size_t k = 0; k < log.time.size(); ++k) {
       if (!design.left[i].valid[k] || !design.right[i].valid[k]) continue;

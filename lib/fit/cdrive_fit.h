@@ -48,6 +48,10 @@ struct CDriveFitOptions {
   std::vector<std::string> free;  ///< empty = the default of the fit
   double half_window = 0.01;      ///< differentiator half window [s] (doubled for accelerations that are regressors)
   double min_rate = 0.5;          ///< rate threshold for using a sample [rad/s]
+  /// Also leave out this long around each slow stretch (stick/slip and
+  /// controller transients after reversals) [s]; < 0 = 0.1 s for the friction
+  /// fit (slow programs), 0 for the inertia fit (fast programs reverse often).
+  double settle = -1.0;
   FitOptions fit;
 };
 
