@@ -376,8 +376,10 @@ std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit,
                        "+1: B_i counter-clockwise of the ray A_i -> C");
   }
   if (file.axis) {
-    out += "axis:                  # SPEC 5.2: tau = J q'' + b q' + tau_c sgn(q') + tau_0\n";
-    out += FormatScalars(*file.axis, kAxisKeys, "  ");
+    // Every axis key is optional: an empty section must still read back as a mapping.
+    const std::string body = FormatScalars(*file.axis, kAxisKeys, "  ");
+    out += body.empty() ? "axis: {}               # SPEC 5.2: tau = J q'' + b q' + tau_c sgn(q') + tau_0\n"
+                        : "axis:                  # SPEC 5.2: tau = J q'' + b q' + tau_c sgn(q') + tau_0\n" + body;
   }
   if (file.cdrive) {
     out += "cdrive:                # seed 001, SPEC 5.4\n";

@@ -125,3 +125,13 @@ TEST_CASE("fuzzer regression: a file with only a fit section has no model to use
   CHECK(ErrorOf("fit:\n  command: \"x\"\n  converged: true\n") ==
         "p.yaml: no model section (drivetrain, axis, planar_robot or cdrive)");
 }
+
+TEST_CASE("fuzzer regression: an axis section with every value empty reads back after formatting") {
+  // Found by tests/fuzz/parameter_file_fuzzer (tests/fuzz/regressions/parameter_file_axis_all_empty.yaml).
+  const auto file = ParseParameterFile("p.yaml", "axis:\n  inertia: \n  offset:\n");
+  REQUIRE(file.axis);
+  const std::string formatted = FormatParameterFile(file);
+  const auto again = ParseParameterFile("q.yaml", formatted);
+  CHECK(again.axis);
+  CHECK(FormatParameterFile(again) == formatted);
+}
