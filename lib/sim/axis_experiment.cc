@@ -5,21 +5,18 @@
 
 #include <fmt/format.h>
 
+#include "core/option_check.h"
+
 #include "sim/noise.h"
 
 namespace driveid {
-namespace {
-void Require(bool ok, const char* option, double value, const char* constraint) {
-  if (!ok) throw std::invalid_argument(fmt::format("{} = {}: violated constraint: {}", option, value, constraint));
-}
-}  // namespace
 
 AxisLog SimulateAxisExperiment(const AxisParameters& params, const AxisExperiment& e) {
-  Require(std::isfinite(e.rate) && e.rate > 0.0, "--rate", e.rate, "rate > 0 Hz");
-  Require(std::isfinite(e.duration) && e.duration > 0.0 && e.duration * e.rate <= 1e7, "--duration", e.duration,
+  RequireOption(std::isfinite(e.rate) && e.rate > 0.0, "--rate", e.rate, "rate > 0 Hz");
+  RequireOption(std::isfinite(e.duration) && e.duration > 0.0 && e.duration * e.rate <= 1e7, "--duration", e.duration,
           "0 < duration, duration * rate <= 1e7");
-  Require(std::isfinite(e.noise) && e.noise >= 0.0, "--noise", e.noise, "noise >= 0");
-  Require(std::isfinite(e.resolution) && e.resolution >= 0.0, "--resolution", e.resolution, "resolution >= 0");
+  RequireOption(std::isfinite(e.noise) && e.noise >= 0.0, "--noise", e.noise, "noise >= 0");
+  RequireOption(std::isfinite(e.resolution) && e.resolution >= 0.0, "--resolution", e.resolution, "resolution >= 0");
   if (e.profile != "multisine" && e.profile != "constant") {
     throw std::invalid_argument("--profile " + e.profile + ": choose multisine or constant");
   }

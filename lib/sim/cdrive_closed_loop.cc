@@ -5,24 +5,21 @@
 
 #include <fmt/format.h>
 
+#include "core/option_check.h"
+
 #include "control/cdrive_controller.h"
 #include "sim/cdrive_plant.h"
 #include "sim/noise.h"
 
 namespace driveid {
-namespace {
-void Require(bool ok, const char* option, double value, const char* constraint) {
-  if (!ok) throw std::invalid_argument(fmt::format("{} = {}: violated constraint: {}", option, value, constraint));
-}
-}  // namespace
 
 void ValidateClosedLoop(const ClosedLoopOptions& o, const CDriveControlSettings& s) {
-  Require(std::isfinite(o.program.stroke) && o.program.stroke > 0.0, "--stroke", o.program.stroke, "stroke > 0 s");
-  Require(o.cycles >= 1 && o.cycles <= 1000, "--cycles", o.cycles, "1 <= cycles <= 1000");
-  Require(std::isfinite(o.torque_noise) && o.torque_noise >= 0.0, "--noise", o.torque_noise, "noise >= 0");
-  Require(2.0 * o.program.stroke * o.cycles / s.sample_time <= 1e7, "--cycles", o.cycles,
+  RequireOption(std::isfinite(o.program.stroke) && o.program.stroke > 0.0, "--stroke", o.program.stroke, "stroke > 0 s");
+  RequireOption(o.cycles >= 1 && o.cycles <= 1000, "--cycles", o.cycles, "1 <= cycles <= 1000");
+  RequireOption(std::isfinite(o.torque_noise) && o.torque_noise >= 0.0, "--noise", o.torque_noise, "noise >= 0");
+  RequireOption(2.0 * o.program.stroke * o.cycles / s.sample_time <= 1e7, "--cycles", o.cycles,
           "at most 1e7 controller periods");
-  Require(s.velocity_window >= s.sample_time, "cdrive.control.velocity_window", s.velocity_window,
+  RequireOption(s.velocity_window >= s.sample_time, "cdrive.control.velocity_window", s.velocity_window,
           "velocity window >= sample time");
 }
 

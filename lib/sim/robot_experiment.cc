@@ -5,14 +5,12 @@
 
 #include <fmt/format.h>
 
+#include "core/option_check.h"
+
 #include "sim/noise.h"
 
 namespace driveid {
 namespace {
-
-void Require(bool ok, const char* option, double value, const char* constraint) {
-  if (!ok) throw std::invalid_argument(fmt::format("{} = {}: violated constraint: {}", option, value, constraint));
-}
 
 // Trapezoidal (or triangular) rest-to-rest profile along a segment of `length`.
 struct Profile {
@@ -84,16 +82,16 @@ PathSample CalcTrianglePath(const PlanarRobotParameters& robot, const RobotExper
 }
 
 RobotLog SimulateRobotExperiment(const PlanarRobotParameters& robot, const RobotExperiment& e) {
-  Require(e.side > 0.0 && std::isfinite(e.side), "--side", e.side, "side > 0 m");
-  Require(e.acceleration > 0.0 && std::isfinite(e.acceleration), "--acceleration", e.acceleration, "> 0 m/s^2");
-  Require(e.speed > 0.0 && std::isfinite(e.speed), "--speed", e.speed, "> 0 m/s");
-  Require(e.dwell >= 0.0 && std::isfinite(e.dwell), "--dwell", e.dwell, ">= 0 s");
-  Require(e.loops >= 1 && e.loops <= 10000, "--loops", e.loops, "1 <= loops <= 10000");
-  Require(e.rate > 0.0 && std::isfinite(e.rate), "--rate", e.rate, "> 0 Hz");
-  Require(e.current_noise >= 0.0 && std::isfinite(e.current_noise), "--noise", e.current_noise, ">= 0 A");
-  Require(std::isfinite(e.prestress), "--prestress", e.prestress, "finite");
+  RequireOption(e.side > 0.0 && std::isfinite(e.side), "--side", e.side, "side > 0 m");
+  RequireOption(e.acceleration > 0.0 && std::isfinite(e.acceleration), "--acceleration", e.acceleration, "> 0 m/s^2");
+  RequireOption(e.speed > 0.0 && std::isfinite(e.speed), "--speed", e.speed, "> 0 m/s");
+  RequireOption(e.dwell >= 0.0 && std::isfinite(e.dwell), "--dwell", e.dwell, ">= 0 s");
+  RequireOption(e.loops >= 1 && e.loops <= 10000, "--loops", e.loops, "1 <= loops <= 10000");
+  RequireOption(e.rate > 0.0 && std::isfinite(e.rate), "--rate", e.rate, "> 0 Hz");
+  RequireOption(e.current_noise >= 0.0 && std::isfinite(e.current_noise), "--noise", e.current_noise, ">= 0 A");
+  RequireOption(std::isfinite(e.prestress), "--prestress", e.prestress, "finite");
   const double duration = CalcTriangleDuration(e);
-  Require(duration * e.rate <= 1e7, "--loops", e.loops, "at most 1e7 samples");
+  RequireOption(duration * e.rate <= 1e7, "--loops", e.loops, "at most 1e7 samples");
   GaussianNoise noise(e.seed);
   const double quantum = 2.0 * M_PI / (e.encoder_counts * robot.gear_ratio);
   RobotLog log;

@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "core/option_check.h"
+
 #include "sim/drivetrain_simulator.h"
 #include "sim/noise.h"
 
@@ -12,20 +14,17 @@ namespace driveid {
 namespace {
 constexpr double kMaxSamples = 1e7;
 
-void Require(bool ok, const char* option, double value, const char* constraint) {
-  if (!ok) throw std::invalid_argument(fmt::format("{} = {}: violated constraint: {}", option, value, constraint));
-}
 }  // namespace
 
 void ValidateStepExperiment(const StepExperiment& e) {
-  Require(std::isfinite(e.rate) && e.rate > 0.0, "--rate", e.rate, "rate > 0 Hz");
-  Require(std::isfinite(e.duration) && e.duration > 0.0, "--duration", e.duration, "duration > 0 s");
-  Require(e.duration * e.rate <= kMaxSamples, "--duration", e.duration, "duration * rate <= 1e7 samples");
-  Require(std::isfinite(e.step_time) && e.step_time >= 0.0 && e.step_time < e.duration, "--step-time", e.step_time,
+  RequireOption(std::isfinite(e.rate) && e.rate > 0.0, "--rate", e.rate, "rate > 0 Hz");
+  RequireOption(std::isfinite(e.duration) && e.duration > 0.0, "--duration", e.duration, "duration > 0 s");
+  RequireOption(e.duration * e.rate <= kMaxSamples, "--duration", e.duration, "duration * rate <= 1e7 samples");
+  RequireOption(std::isfinite(e.step_time) && e.step_time >= 0.0 && e.step_time < e.duration, "--step-time", e.step_time,
           "0 <= step time < duration");
-  Require(std::isfinite(e.step_torque), "--step-torque", e.step_torque, "finite");
-  Require(std::isfinite(e.noise) && e.noise >= 0.0, "--noise", e.noise, "noise >= 0");
-  Require(std::isfinite(e.offset), "--offset", e.offset, "finite");
+  RequireOption(std::isfinite(e.step_torque), "--step-torque", e.step_torque, "finite");
+  RequireOption(std::isfinite(e.noise) && e.noise >= 0.0, "--noise", e.noise, "noise >= 0");
+  RequireOption(std::isfinite(e.offset), "--offset", e.offset, "finite");
 }
 
 StepLog SimulateStepExperiment(const DriveTrainParameters& params, const StepExperiment& e) {
