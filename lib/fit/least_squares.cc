@@ -81,9 +81,11 @@ Collinearity AnalyseCollinearity(const RowMatrix& jacobian) {
   return result;
 }
 
-void RequireIdentifiable(const RowMatrix& jacobian, const std::vector<FitParameter>& parameters,
-                         const FitOptions& options, const char* where) {
-  const Collinearity c = AnalyseCollinearity(jacobian);
+// Throws IdentificationError if the Jacobian's columns are (nearly)
+// collinear; returns the analysis otherwise.
+Collinearity RequireIdentifiable(const RowMatrix& jacobian, const std::vector<FitParameter>& parameters,
+                                 const FitOptions& options, const char* where) {
+  Collinearity c = AnalyseCollinearity(jacobian);
   std::vector<std::string> involved;
   std::string detail;
   if (!c.dead.empty()) {
@@ -100,7 +102,7 @@ void RequireIdentifiable(const RowMatrix& jacobian, const std::vector<FitParamet
         weight[static_cast<std::size_t>(j)] = std::max(weight[static_cast<std::size_t>(j)], std::abs(c.right_vectors(j, k)));
       }
     }
-    if (weak == 0) return;
+    if (weak == 0) return c;
     for (Eigen::Index j = 0; j < p; ++j) {
       if (weight[static_cast<std::size_t>(j)] > 0.2) involved.push_back(parameters[static_cast<std::size_t>(j)].name);
     }
@@ -206,13 +208,10 @@ FitResult FitLeastSquares(ResidualModel& model, const std::vector<FitParameter>&
   }
 
   evaluate_at(z);
-  RequireIdentifiable(jacobian, parameters, options, "at the optimum");
+  const Collinearity collinearity = RequireIdentifiable(jacobian, parameters, options, "at the optimum");
   result.cost = 0.5 * residuals.squaredNorm();
-  result.singular_values.clear();
-  {
-    const Collinearity c = AnalyseCollinearity(jacobian);
-    for (Eigen::Index k = 0; k < c.singular_values.size(); ++k) result.singular_values.push_back(c.singular_values(k));
-  }
+  result.singular_values.assign(collinearity.singular_values.data(),
+                                collinearity.singular_values.data() + collinearity.singular_values.size());
 
   // Covariance of the (unweighted) least-squares estimate with a residual
   // variance per channel: sandwich A B A, A = (J'J)^-1, B = sum_c s_c^2 J_c'J_c,

@@ -84,7 +84,6 @@ struct CvodesIntegrator::Handles {
   SUNMatrix matrix = nullptr;
   SUNLinearSolver linear_solver = nullptr;
   void* memory = nullptr;
-  bool sensitivities_initialised = false;
   std::string last_error;
 
   ~Handles() {
@@ -150,7 +149,6 @@ CvodesIntegrator::CvodesIntegrator(const SensitivityOdeSystem& system, const Int
     // where 1e-4 relative error is irrelevant, and the fits run 1.4-2x faster.
     // tests/sim/drivetrain_simulator_test checks them against finite differences.
     Check(CVodeSetSensErrCon(h.memory, SUNFALSE), "CVodeSetSensErrCon");
-    h.sensitivities_initialised = true;
     Check(CVodeSensToggleOff(h.memory), "CVodeSensToggleOff");
   }
 }
