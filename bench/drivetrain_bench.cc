@@ -20,18 +20,14 @@
 #include "sim/cdrive_closed_loop.h"
 #include "sim/robot_experiment.h"
 #include "sim/step_experiment.h"
+#include "support/paper000.h"
+#include "support/paper001.h"
 
 using namespace driveid;
 
 namespace {
 double Seconds(std::chrono::steady_clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
-DriveTrainParameters Paper() {
-  DriveTrainParameters p;
-  p.motor_inertia = 0.413 / 6400.0;
-  p.gearbox_inertia = 0.043 / 6400.0;
-  return p;
-}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -41,7 +37,7 @@ int main(int argc, char** argv) {
   StepExperiment big;
   big.rate = 5e6;
   big.noise = 0.1;
-  const StepLog big_log = SimulateStepExperiment(Paper(), big);
+  const StepLog big_log = SimulateStepExperiment(testing_support::PaperDriveTrain(), big);
   const std::string text = FormatStepLog(big_log, {"benchmark"});
   double best = 1e30;
   for (int r = 0; r < repetitions; ++r) {
@@ -65,9 +61,9 @@ int main(int argc, char** argv) {
       e.noise = 0.1;
       e.offset = 0.5;
       e.seed = 7;
-      StepLog log = SimulateStepExperiment(Paper(), e);
+      StepLog log = SimulateStepExperiment(testing_support::PaperDriveTrain(), e);
       log.path = "bench";
-      DriveTrainParameters start = Paper();
+      DriveTrainParameters start = testing_support::PaperDriveTrain();
       start.motor_inertia *= 2.5;
       start.viscous_friction /= 3.0;
       start.coulomb_friction *= 2.0;
@@ -106,15 +102,7 @@ int main(int argc, char** argv) {
     const double ms = time_best([&] { FitAxis({log}, {0.1, 0.5, 2.0, 0.0}, {}); });
     std::printf("| axis (IDIM-LS) | %zu | %.2f ms | %.3f ms |\n", log.time.size(), ms, ms * 1000.0 / static_cast<double>(log.time.size()));
   }
-  CDriveParameters cdrive;
-  cdrive.lead = 0.06;
-  cdrive.hub_inertia = 6e-4;
-  cdrive.collar_inertia = 1.6e-3;
-  cdrive.collar_mass = 2.0;
-  cdrive.viscous_motor = 0.002655;
-  cdrive.viscous_collar = 0.004333;
-  cdrive.coulomb_motor = 0.1086;
-  cdrive.coulomb_collar = 0.1501;
+  const CDriveParameters cdrive = testing_support::TableOneCDrive();
   CDriveControlSettings control;
   control.law = ControlLaw::kPD;
   for (int cycles : {1, 2, 4, 8}) {
