@@ -8,7 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "fit/fit_result.h"
+#include "core/fit_result.h"
 #include "fit/least_squares.h"
 #include "io/csv_log.h"
 #include "io/sha256.h"

@@ -65,30 +65,7 @@ Derivatives Differentiate(const AxisLog& log, double cutoff_request) {
 
 }  // namespace
 
-AxisLog ParseAxisLog(const std::string& path, const std::string& text,
-                     const std::map<std::string, std::string>& column_map, double torque_constant) {
-  CsvReadOptions options;
-  options.column_map = column_map;
-  CsvLog csv = ParseCsvLog(path, text, {"t", "q", "tau|i"}, options);
-  AxisLog log{path, std::move(csv.columns[0]), std::move(csv.columns[1]), std::move(csv.columns[2])};
-  if (csv.names[2] == "i") {
-    if (!(torque_constant > 0.0)) {
-      throw InputError(fmt::format("{}: the log has a current column 'i': axis.k_t must be given in --params", path));
-    }
-    for (double& v : log.force) v *= torque_constant;
-  }
-  return log;
-}
 
-std::string FormatAxisLog(const AxisLog& log, const std::vector<std::string>& comments) {
-  std::string out;
-  for (const auto& line : comments) out += "# " + line + "\n";
-  out += "t,q,tau\n";
-  for (std::size_t k = 0; k < log.time.size(); ++k) {
-    out += fmt::format("{},{:.10g},{:.7g}\n", log.time[k], log.position[k], log.force[k]);
-  }
-  return out;
-}
 
 const std::vector<std::string>& AxisParameterNames() {
   static const std::vector<std::string> names(std::begin(kNames), std::end(kNames));

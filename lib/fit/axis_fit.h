@@ -21,22 +21,13 @@
 #include <vector>
 
 #include "fit/least_squares.h"
+#include "io/axis_log.h"
 #include "models/axis.h"
 
 namespace driveid {
 
-struct AxisLog {
-  std::string path;
-  std::vector<double> time;      ///< [s]
-  std::vector<double> position;  ///< q [rad or m]
-  std::vector<double> force;     ///< tau [N m or N] (from i x k_t if given as current)
-};
 
-/// Parses an axis log: t, q and tau, or i with `torque_constant`. Throws InputError.
-AxisLog ParseAxisLog(const std::string& path, const std::string& text,
-                     const std::map<std::string, std::string>& column_map, double torque_constant);
 
-std::string FormatAxisLog(const AxisLog& log, const std::vector<std::string>& comments);
 
 const std::vector<std::string>& AxisParameterNames();  // inertia, viscous, coulomb, offset
 

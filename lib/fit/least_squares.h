@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "fit/fit_result.h"
+#include "core/fit_result.h"
 
 namespace driveid {
 

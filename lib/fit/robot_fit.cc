@@ -68,20 +68,6 @@ std::vector<std::pair<std::size_t, Sample>> Kinematics(const PlanarRobotParamete
 
 }  // namespace
 
-RobotLog ParseRobotLog(const std::string& path, const std::string& text,
-                       const std::map<std::string, std::string>& column_map) {
-  CsvReadOptions options;
-  options.column_map = column_map;
-  CsvLog csv = ParseCsvLog(path, text, {"t", "theta1", "theta2", "theta3", "i1", "i2", "i3"}, options);
-  RobotLog log;
-  log.path = path;
-  log.time = std::move(csv.columns[0]);
-  for (std::size_t i = 0; i < 3; ++i) {
-    log.angle[i] = std::move(csv.columns[1 + i]);
-    log.current[i] = std::move(csv.columns[4 + i]);
-  }
-  return log;
-}
 
 const std::vector<std::string>& RobotParameterNames() {
   static const std::vector<std::string> names(std::begin(kNames), std::end(kNames));

@@ -20,13 +20,10 @@
 
 #include "fit/least_squares.h"
 #include "models/planar_robot.h"
-#include "sim/robot_experiment.h"
+#include "io/robot_log.h"
 
 namespace driveid {
 
-/// Parses t, theta1..3, i1..3. Throws InputError.
-RobotLog ParseRobotLog(const std::string& path, const std::string& text,
-                       const std::map<std::string, std::string>& column_map);
 
 struct RobotFitOptions {
   std::vector<std::string> free = {"Theta", "m_c", "d_g"};

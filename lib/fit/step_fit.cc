@@ -121,18 +121,6 @@ void CheckStepLog(const StepLog& log) {
 
 }  // namespace
 
-StepLog ParseStepLog(const std::string& path, const std::string& text,
-                     const std::map<std::string, std::string>& column_map) {
-  CsvReadOptions options;
-  options.column_map = column_map;
-  CsvLog csv = ParseCsvLog(path, text, {"t", "tau_motor", "tau_link"}, options);
-  StepLog log;
-  log.path = path;
-  log.time = std::move(csv.columns[0]);
-  log.motor_torque = std::move(csv.columns[1]);
-  log.link_torque = std::move(csv.columns[2]);
-  return log;
-}
 
 const std::vector<std::string>& StepFitParameterNames() {
   static const std::vector<std::string> names = {"d_g", "Theta_motor", "Theta_g", "k_Tl", "k_Tg", "tau_c", "offset"};

@@ -10,22 +10,12 @@
 #include <vector>
 
 #include "fit/least_squares.h"
+#include "io/step_log.h"
 #include "models/drivetrain.h"
 
 namespace driveid {
 
-/// A logged step response (SPEC 3, step log).
-struct StepLog {
-  std::string path;
-  std::vector<double> time;          ///< t [s], strictly increasing
-  std::vector<double> motor_torque;  ///< tau_motor [N m], held between samples
-  std::vector<double> link_torque;   ///< tau_link [N m], strain gauge
-};
 
-/// Parses a step log already read into memory; `column_map` from --col.
-/// Throws InputError.
-StepLog ParseStepLog(const std::string& path, const std::string& text,
-                     const std::map<std::string, std::string>& column_map = {});
 
 /// Names accepted by --free for the step fit.
 const std::vector<std::string>& StepFitParameterNames();

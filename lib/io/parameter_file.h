@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "control/cdrive_control_settings.h"
-#include "fit/fit_result.h"
+#include "core/fit_result.h"
 #include "models/axis.h"
 #include "models/cdrive.h"
 #include "models/drivetrain.h"

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "fit/fit_result.h"
+#include "core/fit_result.h"
 #include "io/parameter_file.h"
 
 namespace driveid {

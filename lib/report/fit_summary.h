@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "fit/fit_result.h"
+#include "core/fit_result.h"
 
 namespace driveid {
 

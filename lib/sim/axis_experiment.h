@@ -8,7 +8,8 @@
 #include <cstdint>
 #include <string>
 
-#include "fit/axis_fit.h"
+#include "io/axis_log.h"
+#include "models/axis.h"
 
 namespace driveid {
 

@@ -11,7 +11,8 @@
 #include <vector>
 
 #include "control/cdrive_control_settings.h"
-#include "fit/cdrive_fit.h"
+#include "io/cdrive_log.h"
+#include "models/cdrive.h"
 #include "sim/motion_program.h"
 
 namespace driveid {

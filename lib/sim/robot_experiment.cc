@@ -127,15 +127,5 @@ RobotLog SimulateRobotExperiment(const PlanarRobotParameters& robot, const Robot
   return log;
 }
 
-std::string FormatRobotLog(const RobotLog& log, const std::vector<std::string>& comments) {
-  std::string out;
-  for (const auto& line : comments) out += "# " + line + "\n";
-  out += "t,theta1,theta2,theta3,i1,i2,i3\n";
-  for (std::size_t k = 0; k < log.time.size(); ++k) {
-    out += fmt::format("{},{:.10g},{:.10g},{:.10g},{:.6g},{:.6g},{:.6g}\n", log.time[k], log.angle[0][k],
-                       log.angle[1][k], log.angle[2][k], log.current[0][k], log.current[1][k], log.current[2][k]);
-  }
-  return out;
-}
 
 }  // namespace driveid

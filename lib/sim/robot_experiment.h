@@ -11,17 +11,11 @@
 #include <string>
 #include <vector>
 
+#include "io/robot_log.h"
 #include "models/planar_robot.h"
 
 namespace driveid {
 
-/// A robot log (SPEC 3): joint angles at the gear output and motor currents.
-struct RobotLog {
-  std::string path;
-  std::vector<double> time;
-  std::array<std::vector<double>, 3> angle;    ///< theta_i [rad]
-  std::array<std::vector<double>, 3> current;  ///< i_i [A]
-};
 
 struct RobotExperiment {
   double side = 0.25;            ///< triangle side [m]
@@ -48,6 +42,5 @@ double CalcTriangleDuration(const RobotExperiment& e);
 /// triangle leaves the workspace.
 RobotLog SimulateRobotExperiment(const PlanarRobotParameters& robot, const RobotExperiment& experiment);
 
-std::string FormatRobotLog(const RobotLog& log, const std::vector<std::string>& comments);
 
 }  // namespace driveid

@@ -48,14 +48,5 @@ StepLog SimulateStepExperiment(const DriveTrainParameters& params, const StepExp
   return log;
 }
 
-std::string FormatStepLog(const StepLog& log, const std::vector<std::string>& comments) {
-  std::string out;
-  for (const auto& line : comments) out += "# " + line + "\n";
-  out += "t,tau_motor,tau_link\n";
-  for (std::size_t k = 0; k < log.time.size(); ++k) {
-    out += fmt::format("{},{},{:.9g}\n", log.time[k], log.motor_torque[k], log.link_torque[k]);
-  }
-  return out;
-}
 
 }  // namespace driveid

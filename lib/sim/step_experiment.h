@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "fit/step_fit.h"
+#include "io/step_log.h"
 #include "models/drivetrain.h"
 
 namespace driveid {
@@ -30,7 +30,5 @@ void ValidateStepExperiment(const StepExperiment& experiment);
 /// Simulates the experiment (noise and offset added to tau_link).
 StepLog SimulateStepExperiment(const DriveTrainParameters& params, const StepExperiment& experiment);
 
-/// Formats a step log as CSV with '#' comment lines first.
-std::string FormatStepLog(const StepLog& log, const std::vector<std::string>& comments);
 
 }  // namespace driveid

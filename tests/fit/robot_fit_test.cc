@@ -2,6 +2,7 @@
 // prestress, encoder quantisation and current noise; the prestress has no
 // influence; the current prediction matches the motion part of the current.
 #include "fit/robot_fit.h"
+#include "sim/robot_experiment.h"
 
 #include <cmath>
 

@@ -1,0 +1,25 @@
+// Axis logs (docs/formats.md): t, q and tau, or i with k_t.
+#pragma once
+
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace driveid {
+
+struct AxisLog {
+  std::string path;
+  std::vector<double> time;      ///< [s]
+  std::vector<double> position;  ///< q [rad or m]
+  std::vector<double> force;     ///< tau [N m or N] (from i x k_t if given as current)
+};
+
+/// Parses an axis log: t, q and tau, or i with `torque_constant`. Throws InputError.
+AxisLog ParseAxisLog(const std::string& path, const std::string& text,
+                     const std::map<std::string, std::string>& column_map, double torque_constant);
+
+/// Formats an axis log as CSV with '#' comment lines first.
+std::string FormatAxisLog(const AxisLog& log, const std::vector<std::string>& comments);
+
+}  // namespace driveid

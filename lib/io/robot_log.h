@@ -1,0 +1,26 @@
+// Planar robot logs (docs/formats.md): t, theta1..3, i1..3.
+#pragma once
+
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace driveid {
+
+/// A robot log (SPEC 3): joint angles at the gear output and motor currents.
+struct RobotLog {
+  std::string path;
+  std::vector<double> time;
+  std::array<std::vector<double>, 3> angle;    ///< theta_i [rad]
+  std::array<std::vector<double>, 3> current;  ///< i_i [A]
+};
+
+/// Parses t, theta1..3, i1..3. Throws InputError.
+RobotLog ParseRobotLog(const std::string& path, const std::string& text,
+                       const std::map<std::string, std::string>& column_map);
+
+/// Formats a robot log as CSV with '#' comment lines first.
+std::string FormatRobotLog(const RobotLog& log, const std::vector<std::string>& comments);
+
+}  // namespace driveid

@@ -1,0 +1,33 @@
+#include "io/step_log.h"
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "io/csv_log.h"
+
+namespace driveid {
+
+StepLog ParseStepLog(const std::string& path, const std::string& text,
+                     const std::map<std::string, std::string>& column_map) {
+  CsvReadOptions options;
+  options.column_map = column_map;
+  CsvLog csv = ParseCsvLog(path, text, {"t", "tau_motor", "tau_link"}, options);
+  StepLog log;
+  log.path = path;
+  log.time = std::move(csv.columns[0]);
+  log.motor_torque = std::move(csv.columns[1]);
+  log.link_torque = std::move(csv.columns[2]);
+  return log;
+}
+
+std::string FormatStepLog(const StepLog& log, const std::vector<std::string>& comments) {
+  std::string out;
+  for (const auto& line : comments) out += "# " + line + "\n";
+  out += "t,tau_motor,tau_link\n";
+  for (std::size_t k = 0; k < log.time.size(); ++k) {
+    out += fmt::format("{},{},{:.9g}\n", log.time[k], log.motor_torque[k], log.link_torque[k]);
+  }
+  return out;
+}
+
+}  // namespace driveid

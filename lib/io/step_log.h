@@ -1,0 +1,27 @@
+// Step logs (docs/formats.md): t, tau_motor, tau_link.
+#pragma once
+
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace driveid {
+
+/// A logged step response (SPEC 3, step log).
+struct StepLog {
+  std::string path;
+  std::vector<double> time;          ///< t [s], strictly increasing
+  std::vector<double> motor_torque;  ///< tau_motor [N m], held between samples
+  std::vector<double> link_torque;   ///< tau_link [N m], strain gauge
+};
+
+/// Parses a step log already read into memory; `column_map` from --col.
+/// Throws InputError.
+StepLog ParseStepLog(const std::string& path, const std::string& text,
+                     const std::map<std::string, std::string>& column_map = {});
+
+/// Formats a step log as CSV with '#' comment lines first.
+std::string FormatStepLog(const StepLog& log, const std::vector<std::string>& comments);
+
+}  // namespace driveid

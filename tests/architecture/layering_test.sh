@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# The library's layers (lib/CMakeLists.txt): no file includes a header of a
+# layer it does not depend on. The build enforces this too (a layer sees
+# only the headers it links); this test names the offending line.
+set -u
+lib="$1/lib"
+declare -A allowed=(
+  [core]="core"
+  [models]="core models"
+  [signal]="core signal"
+  [control]="core models control"
+  [io]="core models control io"
+  [sim]="core models control io sim"
+  [fit]="core models signal io sim fit"
+  [report]="core models io report"
+)
+bad=0
+checked=0
+for layer in "${!allowed[@]}"; do
+  for file in "$lib/$layer"/*; do
+    while IFS=: read -r line target; do
+      checked=$((checked + 1))
+      dir="${target%%/*}"
+      case " ${allowed[$layer]} " in
+        *" $dir "*) ;;
+        *) echo "FAIL: lib/$layer/$(basename "$file"):$line includes \"$target\" (layer '$dir' is not below '$layer')"; bad=$((bad + 1)) ;;
+      esac
+    done < <(grep -no '^#include "[a-z_]*/[^"]*"' "$file" | sed 's/#include "//; s/"$//')
+  done
+done
+# Every layer directory must be declared here (a new one must be placed).
+for dir in "$lib"/*/; do
+  name=$(basename "$dir")
+  [ -n "${allowed[$name]+x}" ] || { echo "FAIL: lib/$name is not a known layer"; bad=$((bad + 1)); }
+done
+echo "$checked includes checked"
+echo "$((checked - bad)) passed, $bad failed"
+[ "$bad" -eq 0 ]
