@@ -116,7 +116,7 @@ int main(int argc, char** argv) {
       logs.push_back(SimulateClosedLoop(cdrive, control, options).log);
       samples += logs.back().time.size();
     }
-    const double ms = time_best([&] { FitCDriveFriction(logs, cdrive, {}); });
+    const double ms = time_best([&] { FitCDriveFriction(logs, MakeSection(CDriveParameterTable(), cdrive), {}); });
     std::printf("| C-drive friction | %zu | %.2f ms | %.3f ms |\n", samples, ms, ms * 1000.0 / static_cast<double>(samples));
   }
   const PlanarRobotParameters robot;

@@ -21,8 +21,8 @@ CLI::App* SetupCDriveFitCommand(CLI::App& app, CDriveFitCommandOptions& options,
       ->required();
   command->add_option("--params", options.params, "parameter file with a cdrive section")->required();
   command->add_option("--free", options.free,
-                      friction ? "parameters to estimate (default beta,gamma,delta,eta)"
-                               : "parameters to estimate (default I_h,I_c with m fixed); all three are not identifiable")
+                      FreeOptionHelp(CDriveParameterTable(), friction ? "friction" : "inertia",
+                                     friction ? "" : "; all three of I_h, I_c, m are not identifiable"))
       ->delimiter(',');
   command->add_option("--col", options.columns, "map a column: NAME=HEADER (e.g. psi_L=encoder_left)");
   command->add_option("--window", options.window,
@@ -53,7 +53,7 @@ void RunCDriveFitCommand(const CDriveFitCommandOptions& options, const std::stri
   outputs.provenance.version = DRIVEID_VERSION;
   outputs.provenance.model = friction ? "cdrive friction (28)" : "cdrive inertia (17), (28)";
   const auto logs = LoadLogs<CDriveLog>(options.logs, outputs.provenance, [&](const std::string& path, const std::string& text) {
-    return ParseCDriveLog(path, text, column_map, start.cdrive->torque_constant);
+    return ParseCDriveLog(path, text, column_map, start.cdrive->torque_constant.value_or(0.0));
   });
 
   CDriveFitOptions fit_options;
@@ -62,11 +62,11 @@ void RunCDriveFitCommand(const CDriveFitCommandOptions& options, const std::stri
   fit_options.min_rate = options.min_rate;
   fit_options.settle = options.settle;  // < 0: the fit's default
   SetProgress(fit_options.fit, options.output.verbose);
-  const CDriveFitOutput result = friction ? FitCDriveFriction(logs, start.cdrive->params, fit_options)
-                                          : FitCDriveInertia(logs, start.cdrive->params, fit_options);
+  const CDriveFitOutput result = friction ? FitCDriveFriction(logs, *start.cdrive, fit_options)
+                                          : FitCDriveInertia(logs, *start.cdrive, fit_options);
 
   ParameterFile fitted = start;
-  fitted.cdrive->params = result.params;
+  fitted.cdrive = result.section;
   outputs.fit = result.fit;
   outputs.parameter_file = FormatParameterFile(fitted, &outputs.fit, &outputs.provenance, result.derived);
   outputs.trace_csv = "# cdrive-fit trace: measured and model motor torques [N m]; used = entered the fit\n";

@@ -23,7 +23,7 @@ void RunCDriveReportCommand(const CDriveReportOptions& options) {
   const ParameterFile file = ReadParameterFile(options.params);
   if (!file.cdrive) throw InputError(fmt::format("{}: no 'cdrive' section", options.params));
   const std::string text = options.json ? FormatCDriveReportJson(*file.cdrive, file.fit_estimates, options.params)
-                                        : FormatCDriveReport(*file.cdrive, file.fit_estimates, options.params);
+                                        : FormatCDriveReport(*file.cdrive, file.cdrive_control, file.fit_estimates, options.params);
   std::fputs(text.c_str(), stdout);
 }
 

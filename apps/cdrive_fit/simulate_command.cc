@@ -43,14 +43,9 @@ CLI::App* SetupCDriveSimulateCommand(CLI::App& app, CDriveSimulateOptions& optio
 void RunCDriveSimulateCommand(const CDriveSimulateOptions& options, const std::string& command_line) {
   const ParameterFile file = ReadParameterFile(options.params);
   if (!file.cdrive) throw InputError(fmt::format("{}: no 'cdrive' section", options.params));
-  const CDriveParameters& params = file.cdrive->params;
-  const char* names[] = {"I_h", "I_c", "m", "beta", "gamma", "delta", "eta"};
-  const double values[] = {params.hub_inertia, params.collar_inertia, params.collar_mass, params.viscous_motor,
-                           params.viscous_collar, params.coulomb_motor, params.coulomb_collar};
-  for (int i = 0; i < 7; ++i) {
-    if (!IsGiven(values[i])) throw InputError(fmt::format("{}: cdrive.{}: needed by the simulation", options.params, names[i]));
-  }
-  CDriveControlSettings settings = file.cdrive->control.value_or(CDriveControlSettings{});
+  RequireModelValues(CDriveParameterTable(), *file.cdrive, options.params, "cdrive", "the simulation");
+  const CDriveParameters params = MakeModelParameters(CDriveParameterTable(), *file.cdrive, CDriveParameters{}, "cdrive");
+  CDriveControlSettings settings = MakeControlSettings(file.cdrive_control.value_or(CDriveControlSection{}));
   if (options.law == "PI") settings.law = ControlLaw::kPI;
   if (options.law == "PD") settings.law = ControlLaw::kPD;
   if (options.law == "PID") settings.law = ControlLaw::kPID;
@@ -63,7 +58,7 @@ void RunCDriveSimulateCommand(const CDriveSimulateOptions& options, const std::s
   const ClosedLoopResult result = SimulateClosedLoop(params, settings, loop);
 
   const std::vector<std::string> comments = {
-      "C-drive log (SPEC 3) made by: " + command_line,
+      "C-drive log (docs/formats.md) made by: " + command_line,
       fmt::format("program {} (alpha_L {}, alpha_R {} rad), stroke {} s, {} cycles, {} at {} Hz, 13-bit encoders, "
                   "torque noise {} N m (seed {})",
                   loop.program.name, loop.program.amplitude_left, loop.program.amplitude_right, loop.program.stroke,

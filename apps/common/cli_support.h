@@ -7,8 +7,10 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include "core/fit_result.h"
+#include "models/parameter_table.h"
 #include "fit/least_squares.h"
 #include "io/csv_log.h"
 #include "io/sha256.h"
@@ -49,6 +51,19 @@ struct FitOutputs {
 /// prints the summary (table or JSON) on stdout, or on stderr when the
 /// parameter file itself goes to stdout.
 void EmitFitOutputs(const FitOutputOptions& options, const FitOutputs& outputs);
+
+/// Help text of --free from a model's table: the parameters the fit can
+/// estimate (with `extra` names such as a per-log offset) and its default set.
+template <class Section, class Model>
+std::string FreeOptionHelp(const ParameterTable<Section, Model>& table, const std::string& fit,
+                           const std::string& extra = "") {
+  std::string names;
+  for (const auto& row : table) {
+    if (row.spec.InFit(fit)) names += fmt::format("{}{} [{}]", names.empty() ? "" : ", ", row.spec.key, row.spec.unit);
+  }
+  return fmt::format("parameters to estimate: {}{} (default {})", names, extra,
+                     fmt::join(FitParameterKeys(table, fit, true), ","));
+}
 
 /// With -v, logs every solver iteration of the fit to stderr.
 void SetProgress(FitOptions& fit, bool verbose);

@@ -17,7 +17,7 @@ CLI::App* SetupAxisCommand(CLI::App& app, AxisOptions& options) {
       "axis", "Inertia, viscous and Coulomb friction and offset of a rigid axis by IDIM-LS (SPEC 5.2)");
   command->add_option("logs", options.logs, "axis logs: CSV with t, q and tau (or i with axis.k_t)")->required();
   command->add_option("--params", options.params, "parameter file with an axis section (start values, k_t, n_g)");
-  command->add_option("--free", options.free, "parameters to estimate: inertia, viscous, coulomb, offset")
+  command->add_option("--free", options.free, FreeOptionHelp(AxisParameterTable(), "axis"))
       ->delimiter(',');
   command->add_option("--col", options.columns, "map a column: NAME=HEADER (e.g. q=position)");
   command->add_option("--cutoff", options.cutoff, "position low-pass cutoff [Hz] (default: sampling rate / 40)");
@@ -41,28 +41,28 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
   outputs.provenance.version = DRIVEID_VERSION;
   outputs.provenance.model = "axis (SPEC 5.2), IDIM-LS";
   const auto logs = LoadLogs<AxisLog>(options.logs, outputs.provenance, [&](const std::string& path, const std::string& text) {
-    return ParseAxisLog(path, text, column_map, section.torque_constant);
+    return ParseAxisLog(path, text, column_map, section.torque_constant.value_or(0.0));
   });
   AxisFitOptions fit_options;
   fit_options.free = options.free;
   fit_options.cutoff = options.cutoff;
   fit_options.decimation = options.decimation;
   SetProgress(fit_options.fit, options.output.verbose);
-  const AxisFitOutput result = FitAxis(logs, section.params(), fit_options);
+  const AxisFitOutput result = FitAxis(logs, section, fit_options);
 
   ParameterFile fitted = start;
   AxisSection out_section = section;
-  out_section.set(result.params);
+  StoreModelParameters(AxisParameterTable(), result.params, out_section);
   fitted.axis = out_section;
   outputs.fit = result.fit;
   std::vector<DerivedQuantity> derived;
   derived.push_back({"relative_error_percent", result.relative_error_percent, 0.0, "% |tau - model| / |tau|"});
-  if (IsGiven(section.gear_ratio)) {
+  if (section.gear_ratio) {
     double viscous_std = 0.0;
     for (const auto& e : result.fit.estimates) {
       if (e.name == "viscous") viscous_std = e.standard_error;
     }
-    const double n2 = section.gear_ratio * section.gear_ratio;
+    const double n2 = *section.gear_ratio * *section.gear_ratio;
     derived.push_back({"d_g", result.params.viscous / n2, viscous_std / n2, "N m s/rad at the gear input, b / n_g^2"});
   }
   outputs.parameter_file = FormatParameterFile(fitted, &outputs.fit, &outputs.provenance, derived);

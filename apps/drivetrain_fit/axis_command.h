@@ -7,13 +7,14 @@
 #include <CLI/CLI.hpp>
 
 #include "common/cli_support.h"
+#include "models/axis.h"
 
 namespace driveid::cli {
 
 struct AxisOptions {
   std::vector<std::string> logs;
   std::string params;
-  std::vector<std::string> free = {"inertia", "viscous", "coulomb", "offset"};
+  std::vector<std::string> free = FitParameterKeys(AxisParameterTable(), "axis", true);
   std::vector<std::string> columns;
   double cutoff = 0.0;
   int decimation = 10;

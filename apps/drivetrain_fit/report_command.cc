@@ -35,7 +35,7 @@ void RunReportCommand(const ReportOptions& options) {
     throw InputError(fmt::format("{}: no 'drivetrain' or 'planar_robot' section", options.params));
   }
   if (file.planar_robot) {
-    const PlanarRobotParameters& robot = *file.planar_robot;
+    const PlanarRobotParameters robot = MakePlanarRobotParameters(*file.planar_robot);
     const double a = robot.base_distance;
     const Vector2 pose = options.pose.size() == 2 ? Vector2{options.pose[0], options.pose[1]}
                                                    : Vector2{0.5 * a, a / (2.0 * std::sqrt(3.0))};
@@ -53,10 +53,13 @@ void RunReportCommand(const ReportOptions& options) {
     fitted = ReadParameterFile(options.fitted);
     if (!fitted.drivetrain) throw InputError(fmt::format("{}: no 'drivetrain' section", options.fitted));
   }
-  const DriveTrainParameters* fitted_params = fitted.drivetrain ? &*fitted.drivetrain : nullptr;
+  const DriveTrainParameters params = MakeDriveTrainParameters(*file.drivetrain);
+  std::optional<DriveTrainParameters> fitted_values;
+  if (fitted.drivetrain) fitted_values = MakeDriveTrainParameters(*fitted.drivetrain);
+  const DriveTrainParameters* fitted_params = fitted_values ? &*fitted_values : nullptr;
   const std::string text = options.json
-                               ? FormatDriveTrainReportJson(*file.drivetrain, options.params, fitted_params)
-                               : FormatDriveTrainReport(*file.drivetrain, options.params, fitted_params, options.fitted);
+                               ? FormatDriveTrainReportJson(params, options.params, fitted_params)
+                               : FormatDriveTrainReport(params, options.params, fitted_params, options.fitted);
   std::fputs(text.c_str(), stdout);
 }
 

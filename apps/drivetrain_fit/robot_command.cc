@@ -15,7 +15,7 @@ CLI::App* SetupRobotCommand(CLI::App& app, RobotOptions& options) {
       "robot", "Theta, m_c, d_g of the planar robot from joint angles and motor currents (SPEC 5.3)");
   command->add_option("logs", options.logs, "robot logs: CSV with t, theta1..3, i1..3")->required();
   command->add_option("--params", options.params, "parameter file with a planar_robot section")->required();
-  command->add_option("--free", options.free, "parameters to estimate: Theta, m_c, d_g")->delimiter(',');
+  command->add_option("--free", options.free, FreeOptionHelp(PlanarRobotParameterTable(), "robot"))->delimiter(',');
   command->add_option("--col", options.columns, "map a column: NAME=HEADER");
   command->add_option("--window", options.window, "half window of the zero-phase differentiator [s]")
       ->capture_default_str();
@@ -41,9 +41,9 @@ void RunRobotCommand(const RobotOptions& options, const std::string& command_lin
   fit_options.free = options.free;
   fit_options.half_window = options.window;
   SetProgress(fit_options.fit, options.output.verbose);
-  const RobotFitOutput result = FitRobot(logs, *start.planar_robot, fit_options);
+  const RobotFitOutput result = FitRobot(logs, MakePlanarRobotParameters(*start.planar_robot), fit_options);
   ParameterFile fitted = start;
-  fitted.planar_robot = result.params;
+  StoreModelParameters(PlanarRobotParameterTable(), result.params, *fitted.planar_robot);
   outputs.fit = result.fit;
   outputs.parameter_file = FormatParameterFile(fitted, &outputs.fit, &outputs.provenance);
 

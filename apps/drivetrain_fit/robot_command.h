@@ -7,13 +7,14 @@
 #include <CLI/CLI.hpp>
 
 #include "common/cli_support.h"
+#include "models/planar_robot.h"
 
 namespace driveid::cli {
 
 struct RobotOptions {
   std::vector<std::string> logs;
   std::string params;
-  std::vector<std::string> free = {"Theta", "m_c", "d_g"};
+  std::vector<std::string> free = FitParameterKeys(PlanarRobotParameterTable(), "robot", true);
   std::vector<std::string> columns;
   double window = 0.005;
   FitOutputOptions output;

@@ -70,14 +70,14 @@ void RunSimulateRobotCommand(const SimulateRobotOptions& options, const std::str
   if (!file.planar_robot) throw InputError(fmt::format("{}: no 'planar_robot' section", options.params));
   RobotLog log;
   try {
-    log = SimulateRobotExperiment(*file.planar_robot, options.experiment);
+    log = SimulateRobotExperiment(MakePlanarRobotParameters(*file.planar_robot), options.experiment);
   } catch (const std::domain_error& e) {
     throw InputError(fmt::format("{}: the triangle leaves the workspace: {}", options.params, e.what()));
   }
   const auto& r = options.experiment;
-  const auto& p = *file.planar_robot;
+  const PlanarRobotParameters p = MakePlanarRobotParameters(*file.planar_robot);
   const std::string text = FormatRobotLog(
-      log, {"synthetic robot log (SPEC 3) made by: " + command_line,
+      log, {"synthetic robot log (docs/formats.md) made by: " + command_line,
             fmt::format("triangle side {} m, {} m/s^2, {} m/s, dwell {} s, {} loops, {} Hz, 13-bit encoders behind the "
                         "gears, prestress {} N m, current noise {} A (seed {})",
                         r.side, r.acceleration, r.speed, r.dwell, r.loops, r.rate, r.prestress, r.current_noise, r.seed),
@@ -93,16 +93,12 @@ void RunSimulateRobotCommand(const SimulateRobotOptions& options, const std::str
 void RunSimulateAxisCommand(const SimulateAxisOptions& options, const std::string& command_line) {
   const ParameterFile file = ReadParameterFile(options.params);
   if (!file.axis) throw InputError(fmt::format("{}: no 'axis' section", options.params));
-  const AxisParameters params = file.axis->params();
-  const char* names[] = {"inertia", "viscous", "coulomb", "offset"};
-  const double values[] = {params.inertia, params.viscous, params.coulomb, params.offset};
-  for (int i = 0; i < 4; ++i) {
-    if (!IsGiven(values[i])) throw InputError(fmt::format("{}: axis.{}: needed by the simulation", options.params, names[i]));
-  }
+  RequireModelValues(AxisParameterTable(), *file.axis, options.params, "axis", "the simulation");
+  const AxisParameters params = MakeModelParameters(AxisParameterTable(), *file.axis, AxisParameters{}, "axis");
   const AxisLog log = SimulateAxisExperiment(params, options.experiment);
   const auto& e = options.experiment;
   const std::string text = FormatAxisLog(
-      log, {"synthetic axis log (SPEC 3) made by: " + command_line,
+      log, {"synthetic axis log (docs/formats.md) made by: " + command_line,
             fmt::format("profile {}, rate {} Hz, resolution {}, noise {} (seed {})", e.profile, e.rate, e.resolution,
                         e.noise, e.seed),
             fmt::format("truth: inertia {}, viscous {}, coulomb {}, offset {}", params.inertia, params.viscous,
@@ -119,19 +115,19 @@ void RunSimulateStepCommand(const SimulateStepOptions& options, const std::strin
   if (!file.drivetrain) throw InputError(fmt::format("{}: no 'drivetrain' section", options.params));
   StepExperiment experiment = options.experiment;
   experiment.model = options.model == "full" ? DriveTrainModel::kFull : DriveTrainModel::kReduced;
-  if (experiment.model == DriveTrainModel::kFull && !(file.drivetrain->gearbox_inertia > 0.0)) {
+  const DriveTrainParameters p = MakeDriveTrainParameters(*file.drivetrain);
+  if (experiment.model == DriveTrainModel::kFull && !(p.gearbox_inertia > 0.0)) {
     throw InputError(fmt::format("{}: the full model needs drivetrain.Theta_g > 0", options.params));
   }
-  const StepLog log = SimulateStepExperiment(*file.drivetrain, experiment);
+  const StepLog log = SimulateStepExperiment(p, experiment);
   const std::vector<std::string> comments = {
-      "synthetic step log (SPEC 3) made by: " + command_line,
+      "synthetic step log (docs/formats.md) made by: " + command_line,
       fmt::format("model {}, rate {} Hz, step {} N m at {} s, noise {} N m (seed {}), offset {} N m", options.model,
                   experiment.rate, experiment.step_torque, experiment.step_time, experiment.noise, experiment.seed,
                   experiment.offset),
       fmt::format("truth: n_g {}, k_Tl {}, k_Tg {}, Theta_motor {}, Theta_g {}, d_g {}, tau_c {}",
-                  file.drivetrain->gear_ratio, file.drivetrain->link_stiffness, file.drivetrain->gearbox_stiffness,
-                  file.drivetrain->motor_inertia, file.drivetrain->gearbox_inertia,
-                  file.drivetrain->viscous_friction, file.drivetrain->coulomb_friction)};
+                  p.gear_ratio, p.link_stiffness, p.gearbox_stiffness, p.motor_inertia, p.gearbox_inertia,
+                  p.viscous_friction, p.coulomb_friction)};
   const std::string text = FormatStepLog(log, comments);
   if (options.output.empty()) {
     std::fputs(text.c_str(), stdout);

@@ -18,8 +18,7 @@ CLI::App* SetupStepCommand(CLI::App& app, StepOptions& options) {
       ->required();
   command->add_option("--model", options.model, "reduced (eq. 16, second order) or full (eqs. 13-14)")
       ->check(CLI::IsMember({"reduced", "full"}));
-  command->add_option("--free", options.free, "parameters to estimate: d_g, Theta_motor, Theta_g, k_Tl, k_Tg, "
-                                               "tau_c, offset (a bias per log)")
+  command->add_option("--free", options.free, FreeOptionHelp(DriveTrainParameterTable(), "step", ", offset (a bias per log)"))
       ->delimiter(',');
   command->add_option("--col", options.columns, "map a column: NAME=HEADER (e.g. tau_link=strain_gauge)");
   AddFitOutputOptions(*command, options.output);
@@ -49,10 +48,11 @@ void RunStepCommand(const StepOptions& options, const std::string& command_line)
   fit_options.model = options.model == "full" ? DriveTrainModel::kFull : DriveTrainModel::kReduced;
   fit_options.free = options.free;
   SetProgress(fit_options.fit, options.output.verbose);
-  const StepFitOutput result = FitStepResponses(logs, *start_file.drivetrain, fit_options);
+  const StepFitOutput result =
+      FitStepResponses(logs, MakeDriveTrainParameters(*start_file.drivetrain), fit_options);
 
   ParameterFile fitted = start_file;
-  fitted.drivetrain = result.params;
+  StoreModelParameters(DriveTrainParameterTable(), result.params, *fitted.drivetrain);
   outputs.fit = result.fit;
   outputs.parameter_file = FormatParameterFile(fitted, &outputs.fit, &outputs.provenance);
 

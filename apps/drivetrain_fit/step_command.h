@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "common/cli_support.h"
+#include "models/drivetrain.h"
 
 namespace driveid::cli {
 
@@ -14,7 +15,7 @@ struct StepOptions {
   std::vector<std::string> logs;
   std::string params;
   std::string model = "reduced";
-  std::vector<std::string> free = {"d_g", "Theta_motor", "tau_c"};
+  std::vector<std::string> free = FitParameterKeys(DriveTrainParameterTable(), "step", true);
   std::vector<std::string> columns;
   FitOutputOptions output;
 };

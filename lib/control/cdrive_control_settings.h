@@ -3,6 +3,10 @@
 // from the parameter file's `cdrive.control` section.
 #pragma once
 
+#include <optional>
+
+#include "models/parameter_table.h"
+
 namespace driveid {
 
 /// How to read the seed's second gain K_I (printed unit "N m/rad s"):
@@ -24,5 +28,46 @@ struct CDriveControlSettings {
   double sample_time = 0.001;        ///< controller period [s] (seed: 1 kHz)
   double encoder_counts = 8192.0;    ///< counts per motor revolution (seed: 13-bit)
 };
+
+/// The parameter file's `cdrive.control` section as written; what is not
+/// given takes the defaults of CDriveControlSettings.
+struct CDriveControlSection {
+  std::optional<double> proportional_gain, second_gain, derivative_gain, dead_zone, rate_limit, velocity_window,
+      sample_time, encoder_counts;
+  std::optional<ControlLaw> law;
+};
+
+inline const ParameterTable<CDriveControlSection, CDriveControlSettings>& CDriveControlParameterTable() {
+  using S = CDriveControlSection;
+  using P = CDriveControlSettings;
+  static const ParameterTable<S, P> table = {
+      {{"K_P", "K_P", "N m/rad", "proportional gain", 0.0, false, true, "", false, 0.0}, &S::proportional_gain,
+       &P::proportional_gain},
+      {{"K_I", "K_I", "N m/(rad s) or N m s/rad",
+        "second gain as printed: integral (PI, PID) or derivative (PD)", 0.0, false, true, "", false, 0.0},
+       &S::second_gain, &P::second_gain},
+      {{"K_D", "K_D", "N m s/rad", "derivative gain, PID only", 0.0, false, false, "", false, 0.0},
+       &S::derivative_gain, &P::derivative_gain},
+      {{"dead_zone", "DZ", "rad/s", "dead zone on velocities and their difference", 0.0, false, false, "", false, 0.0},
+       &S::dead_zone, &P::dead_zone},
+      {{"rate_limit", "RL", "1/s", "rate limit of each unit Coulomb term", 0.0, true, false, "", false, 0.0},
+       &S::rate_limit, &P::rate_limit},
+      {{"velocity_window", "T_v", "s", "encoder velocity difference window", 0.0, true, false, "", false, 0.0},
+       &S::velocity_window, &P::velocity_window},
+      {{"sample_time", "T_s", "s", "controller period", 0.0, true, false, "", false, 0.0}, &S::sample_time,
+       &P::sample_time},
+      {{"encoder_counts", "N_enc", "1/rev", "encoder counts per revolution", 0.0, true, false, "", false, 0.0},
+       &S::encoder_counts, &P::encoder_counts},
+  };
+  return table;
+}
+
+/// The controller settings of a section: given values over the defaults.
+inline CDriveControlSettings MakeControlSettings(const CDriveControlSection& section) {
+  CDriveControlSettings settings =
+      MakeModelParameters(CDriveControlParameterTable(), section, CDriveControlSettings{}, "cdrive.control");
+  if (section.law) settings.law = *section.law;
+  return settings;
+}
 
 }  // namespace driveid

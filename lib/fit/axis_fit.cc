@@ -15,9 +15,11 @@
 namespace driveid {
 namespace {
 
-constexpr const char* kNames[] = {"inertia", "viscous", "coulomb", "offset"};
-double AxisParameters::*const kMembers[] = {&AxisParameters::inertia, &AxisParameters::viscous,
-                                            &AxisParameters::coulomb, &AxisParameters::offset};
+// The regressor columns [q'', q', sgn q', 1] in the order of the first four
+// rows of the axis table: inertia, viscous, coulomb, offset.
+const ParameterRow<AxisSection, AxisParameters>& Column(int j) {
+  return AxisParameterTable()[static_cast<std::size_t>(j)];
+}
 
 bool Contains(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -67,41 +69,30 @@ Derivatives Differentiate(const AxisLog& log, double cutoff_request) {
 
 
 
-const std::vector<std::string>& AxisParameterNames() {
-  static const std::vector<std::string> names(std::begin(kNames), std::end(kNames));
-  return names;
-}
 
-AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisParameters& start, const AxisFitOptions& options) {
+AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options) {
   if (logs.empty()) throw std::invalid_argument("no logs given");
-  for (const auto& name : options.free) {
-    if (!Contains(AxisParameterNames(), name)) {
-      throw std::invalid_argument(fmt::format("--free {}: not an axis parameter (choose from inertia, viscous, "
-                                              "coulomb, offset)", name));
-    }
-  }
+  CheckFreeNames(AxisParameterTable(), "axis", options.free);
   if (options.decimation < 1) {
     throw std::invalid_argument(fmt::format("--decimation = {}: violated constraint: >= 1", options.decimation));
   }
   std::vector<int> free_columns;
   std::vector<FitParameter> parameters;
   for (int j = 0; j < 4; ++j) {
-    const double value = start.*kMembers[j];
-    if (Contains(options.free, kNames[j])) {
+    const ParameterSpec& spec = Column(j).spec;
+    const std::optional<double> value = start.*(Column(j).in_section);
+    if (Contains(options.free, spec.key)) {
       free_columns.push_back(j);
-      const bool signed_parameter = j == 3;
-      const double initial = value == value ? value : 0.0;
-      parameters.push_back({kNames[j], signed_parameter ? initial : std::max(0.0, initial),
-                            signed_parameter ? -std::numeric_limits<double>::infinity() : 0.0, 0.0});
-    } else if (!(value == value) && j != 0) {
-      throw InputError(fmt::format("--params: axis.{} is needed (fixed in this fit)", kNames[j]));
+      parameters.push_back({spec.key, std::max(spec.lower_bound, value.value_or(0.0)), spec.lower_bound, 0.0});
+    } else if (!value && j != 0) {
+      throw InputError(fmt::format("--params: axis.{} is needed (fixed in this fit)", spec.key));
     }
   }
   // A fixed inertia that is not given counts as 0, which is only harmless
   // without acceleration content (checked below).
-  AxisParameters known_start = start;
-  const bool inertia_missing = !Contains(options.free, "inertia") && !(start.inertia == start.inertia);
-  if (inertia_missing) known_start.inertia = 0.0;
+  AxisParameters known_start;
+  for (int j = 0; j < 4; ++j) known_start.*(Column(j).in_model) = (start.*(Column(j).in_section)).value_or(0.0);
+  const bool inertia_missing = !Contains(options.free, "inertia") && !start.inertia;
   const int p = static_cast<int>(free_columns.size());
 
   AxisFitOutput out;
@@ -164,7 +155,7 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisParameters& st
       if (!clear[k]) continue;
       double known = 0.0;
       for (int j = 0; j < 4; ++j) {
-        if (!Contains(options.free, kNames[j])) known += (known_start.*kMembers[j]) * columns[static_cast<std::size_t>(j)][k];
+        if (!Contains(options.free, Column(j).spec.key)) known += (known_start.*(Column(j).in_model)) * columns[static_cast<std::size_t>(j)][k];
       }
       for (int j : free_columns) rows.push_back(columns[static_cast<std::size_t>(j)][k]);
       acceleration_kept.push_back(columns[0][k]);
@@ -220,7 +211,7 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisParameters& st
   }
   out.fit = FitLeastSquares(residuals, parameters, channels, fit_options);
   out.params = known_start;
-  for (std::size_t j = 0; j < free_columns.size(); ++j) out.params.*kMembers[free_columns[j]] = out.fit.estimates[j].value;
+  for (std::size_t j = 0; j < free_columns.size(); ++j) out.params.*(Column(free_columns[j]).in_model) = out.fit.estimates[j].value;
   for (std::size_t j = 0; j < free_columns.size(); ++j) {
     const auto& e = out.fit.estimates[j];
     if (free_columns[j] == 0 && !(e.standard_error <= options.max_relative_std * std::abs(e.value))) {

@@ -29,10 +29,8 @@ namespace driveid {
 
 
 
-const std::vector<std::string>& AxisParameterNames();  // inertia, viscous, coulomb, offset
-
 struct AxisFitOptions {
-  std::vector<std::string> free = {"inertia", "viscous", "coulomb", "offset"};
+  std::vector<std::string> free = FitParameterKeys(AxisParameterTable(), "axis", true);
   double cutoff = 0.0;                ///< position low-pass [Hz]; 0 = rate / 40
   int decimation = 10;                ///< keep every n-th sample after parallel filtering
   double min_rate_fraction = 0.01;    ///< exclude |q'| below this fraction of max |q'|
@@ -54,6 +52,8 @@ struct AxisFitOutput {
 };
 
 /// Fits the free parameters jointly over all logs; fixed ones come from `start`.
-AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisParameters& start, const AxisFitOptions& options);
+/// Start values and fixed values come from `start` (a fixed parameter other
+/// than the inertia must be given).
+AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options);
 
 }  // namespace driveid

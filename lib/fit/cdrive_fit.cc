@@ -15,28 +15,16 @@
 namespace driveid {
 namespace {
 
-// A parameter of the linear model: its key, where it lives, and a typical
-// magnitude for scaling when no start value is given.
-struct LinearParameter {
-  const char* key;
-  double CDriveParameters::*member;
-  double typical;
-};
+using CDriveRow = ParameterRow<CDriveSection, CDriveParameters>;
 
-const LinearParameter kFrictionParameters[] = {
-    {"beta", &CDriveParameters::viscous_motor, 1e-3},
-    {"gamma", &CDriveParameters::viscous_collar, 1e-3},
-    {"delta", &CDriveParameters::coulomb_motor, 0.1},
-    {"eta", &CDriveParameters::coulomb_collar, 0.1},
-};
-
-const LinearParameter kInertiaParameters[] = {
-    {"I_h", &CDriveParameters::hub_inertia, 1e-4},
-    {"I_c", &CDriveParameters::collar_inertia, 1e-4},
-    {"m", &CDriveParameters::collar_mass, 1.0},
-};
-
-bool IsGivenValue(double value) { return value == value; }
+// The rows of the table a fit ("friction" or "inertia") estimates, in table order.
+std::vector<const CDriveRow*> FitRows(const char* fit) {
+  std::vector<const CDriveRow*> rows;
+  for (const auto& row : CDriveParameterTable()) {
+    if (row.spec.InFit(fit)) rows.push_back(&row);
+  }
+  return rows;
+}
 
 bool Contains(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -141,8 +129,10 @@ struct Design {
   int rows_possible = 0;
 };
 
-CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveParameters& start, const CDriveFitOptions& options,
-                    Kind kind) {
+CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& start_section,
+                    const CDriveFitOptions& options, Kind kind) {
+  const CDriveParameters start = ModelValuesOrNaN(CDriveParameterTable(), start_section);  // NaN = not given
+  if (!start_section.lead) throw InputError("--params: cdrive.p is needed");
   if (logs.empty()) throw std::invalid_argument("no logs given");
   if (!(options.half_window > 0.0) || !std::isfinite(options.half_window)) {
     throw std::invalid_argument(fmt::format("--window = {}: violated constraint: window > 0 s", options.half_window));
@@ -152,46 +142,35 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveParameters& 
   }
   const bool friction = kind == Kind::kFriction;
   const double settle = options.settle >= 0.0 ? options.settle : (friction ? 0.1 : 0.0);
-  const LinearParameter* table = friction ? kFrictionParameters : kInertiaParameters;
-  const int table_size = friction ? 4 : 3;
+  const char* fit_name = friction ? "friction" : "inertia";
+  const std::vector<const CDriveRow*> table = FitRows(fit_name);
+  const int table_size = static_cast<int>(table.size());
   std::vector<std::string> free = options.free;
-  if (free.empty()) free = friction ? std::vector<std::string>{"beta", "gamma", "delta", "eta"}
-                                    : std::vector<std::string>{"I_h", "I_c"};
-  for (const auto& name : free) {
-    bool known = false;
-    for (int j = 0; j < table_size; ++j) known = known || name == table[j].key;
-    if (!known) {
-      throw std::invalid_argument(fmt::format("--free {}: not a parameter of the {} fit (choose from {})", name,
-                                              friction ? "friction" : "inertia",
-                                              friction ? "beta, gamma, delta, eta" : "I_h, I_c, m"));
-    }
-  }
+  if (free.empty()) free = FitParameterKeys(CDriveParameterTable(), fit_name, true);
+  CheckFreeNames(CDriveParameterTable(), fit_name, free);
   // Everything not free must be known: the inertia for the friction fit, the
   // friction for the inertia fit, and the fixed members of the fitted group.
-  const char* needed[] = {"I_h", "I_c", "m", "beta", "gamma", "delta", "eta"};
-  double CDriveParameters::*members[] = {&CDriveParameters::hub_inertia, &CDriveParameters::collar_inertia,
-                                         &CDriveParameters::collar_mass, &CDriveParameters::viscous_motor,
-                                         &CDriveParameters::viscous_collar, &CDriveParameters::coulomb_motor,
-                                         &CDriveParameters::coulomb_collar};
   // Without I_h, I_c and m the friction fit estimates a + b and a - b of
   // eq. (17) alongside, as nuisance parameters (their columns, the summed and
   // differenced accelerations, are nearly orthogonal to the friction columns).
-  const bool inertia_nuisance = friction && !(IsGivenValue(start.hub_inertia) && IsGivenValue(start.collar_inertia) &&
-                                              IsGivenValue(start.collar_mass));
-  for (int i = inertia_nuisance ? 3 : 0; i < 7; ++i) {
-    if (!Contains(free, needed[i]) && !IsGivenValue(start.*(members[i]))) {
-      throw InputError(fmt::format("--params: cdrive.{} is needed (fixed in this fit)", needed[i]));
+  const bool inertia_nuisance =
+      friction && !(start_section.hub_inertia && start_section.collar_inertia && start_section.collar_mass);
+  for (const auto& row : CDriveParameterTable()) {
+    if (row.in_model == nullptr || row.spec.required) continue;  // k_t; p was checked
+    if (inertia_nuisance && row.spec.InFit("inertia")) continue;
+    if (!Contains(free, row.spec.key) && !(start_section.*(row.in_section))) {
+      throw InputError(fmt::format("--params: cdrive.{} is needed (fixed in this fit)", row.spec.key));
     }
   }
 
   std::vector<int> free_columns;  // index into table
   std::vector<FitParameter> parameters;
   for (int j = 0; j < table_size; ++j) {
-    if (!Contains(free, table[j].key)) continue;
+    if (!Contains(free, table[j]->spec.key)) continue;
     free_columns.push_back(j);
-    const double value = start.*(table[j].member);
+    const double value = start.*(table[j]->in_model);
     const double initial = value == value && value > 0.0 ? value : 0.0;
-    parameters.push_back({table[j].key, initial, 0.0, initial > 0.0 ? initial : table[j].typical});
+    parameters.push_back({table[j]->spec.key, initial, 0.0, initial > 0.0 ? initial : table[j]->spec.typical});
   }
   if (inertia_nuisance) {
     parameters.push_back({"a_plus_b", 0.0, 0.0, 1e-3});
@@ -204,7 +183,7 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveParameters& 
   std::vector<double> rows;  // flattened regressor, p per row
   std::vector<double> values;
   CDriveParameters fixed = start;
-  for (int j : free_columns) fixed.*(table[j].member) = 0.0;  // known part excludes the free terms
+  for (int j : free_columns) fixed.*(table[j]->in_model) = 0.0;  // known part excludes the free terms
   if (inertia_nuisance) fixed.hub_inertia = fixed.collar_inertia = fixed.collar_mass = 0.0;
   for (const auto& log : logs) {
     if (log.time.size() < 5) {
@@ -279,9 +258,12 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveParameters& 
   CDriveFitOutput out;
   out.fit = FitLeastSquares(residuals, parameters, design.channels, fit_options);
   // fit% is of the measured sum/difference, not of the part left after the known terms.
-  out.params = start;
+  CDriveParameters fitted = start;
+  out.section = start_section;
   for (std::size_t j = 0; j < free_columns.size(); ++j) {
-    out.params.*(table[free_columns[j]].member) = out.fit.estimates[j].value;
+    const CDriveRow& row = *table[free_columns[j]];
+    fitted.*(row.in_model) = out.fit.estimates[j].value;
+    out.section.*(row.in_section) = out.fit.estimates[j].value;
   }
   out.rows_used = static_cast<int>(design.channels.empty() ? 0 : n);
   out.rows_possible = design.rows_possible;
@@ -312,11 +294,11 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveParameters& 
       }
       return std::sqrt(std::max(0.0, variance));
     };
-    out.derived.push_back({"a", CalcInertiaDiagonal(out.params), propagate(gradient_a), "kg m^2, M diagonal (eq. 17)"});
-    out.derived.push_back({"b", CalcInertiaOffDiagonal(out.params), propagate(gradient_b), "kg m^2, M off-diagonal"});
+    out.derived.push_back({"a", CalcInertiaDiagonal(fitted), propagate(gradient_a), "kg m^2, M diagonal (eq. 17)"});
+    out.derived.push_back({"b", CalcInertiaOffDiagonal(fitted), propagate(gradient_b), "kg m^2, M off-diagonal"});
   }
 
-  CDriveParameters fixed_with_fit = out.params;  // for the trace when M was a nuisance
+  CDriveParameters fixed_with_fit = fitted;  // for the trace when M was a nuisance
   fixed_with_fit.hub_inertia = fixed_with_fit.collar_inertia = fixed_with_fit.collar_mass = 0.0;
   for (std::size_t i = 0; i < logs.size(); ++i) {
     const auto& log = logs[i];
@@ -327,7 +309,7 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveParameters& 
       if (!design.left[i].valid[k] || !design.right[i].valid[k]) continue;
       const double rl = design.left[i].rate[k], rr = design.right[i].rate[k];
       const Vector2 acceleration = {design.left[i].acceleration[k], design.right[i].acceleration[k]};
-      Vector2 model = CalcCDriveInverseDynamics(inertia_nuisance ? fixed_with_fit : out.params, {rl, rr}, acceleration);
+      Vector2 model = CalcCDriveInverseDynamics(inertia_nuisance ? fixed_with_fit : fitted, {rl, rr}, acceleration);
       if (inertia_nuisance) {
         const double a = out.derived[0].value, b = out.derived[1].value;
         model[0] += a * acceleration[0] + b * acceleration[1];
@@ -349,22 +331,12 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveParameters& 
 
 
 
-const std::vector<std::string>& CDriveFrictionParameterNames() {
-  static const std::vector<std::string> names = {"beta", "gamma", "delta", "eta"};
-  return names;
-}
-
-const std::vector<std::string>& CDriveInertiaParameterNames() {
-  static const std::vector<std::string> names = {"I_h", "I_c", "m"};
-  return names;
-}
-
-CDriveFitOutput FitCDriveFriction(const std::vector<CDriveLog>& logs, const CDriveParameters& start,
+CDriveFitOutput FitCDriveFriction(const std::vector<CDriveLog>& logs, const CDriveSection& start,
                                   const CDriveFitOptions& options) {
   return Fit(logs, start, options, Kind::kFriction);
 }
 
-CDriveFitOutput FitCDriveInertia(const std::vector<CDriveLog>& logs, const CDriveParameters& start,
+CDriveFitOutput FitCDriveInertia(const std::vector<CDriveLog>& logs, const CDriveSection& start,
                                  const CDriveFitOptions& options) {
   return Fit(logs, start, options, Kind::kInertia);
 }

@@ -51,7 +51,7 @@ struct CDriveTrace {
 };
 
 struct CDriveFitOutput {
-  CDriveParameters params;                 ///< start values with the estimates put in
+  CDriveSection section;                   ///< start values with the estimates put in
   FitResult fit;
   std::vector<DerivedQuantity> derived;    ///< a and b of eq. (17) for the inertia fit
   std::vector<CDriveTrace> traces;
@@ -59,19 +59,15 @@ struct CDriveFitOutput {
   int rows_possible = 0;
 };
 
-/// Names accepted by --free.
-const std::vector<std::string>& CDriveFrictionParameterNames();  // beta, gamma, delta, eta
-const std::vector<std::string>& CDriveInertiaParameterNames();   // I_h, I_c, m
-
 /// Fits beta, gamma, delta, eta (or the `free` subset) jointly over all logs.
 /// With I_h, I_c, m given in `start` the inertial part is known; without
 /// them a + b and a - b are estimated alongside (reported as a, b).
-CDriveFitOutput FitCDriveFriction(const std::vector<CDriveLog>& logs, const CDriveParameters& start,
+CDriveFitOutput FitCDriveFriction(const std::vector<CDriveLog>& logs, const CDriveSection& start,
                                   const CDriveFitOptions& options);
 
 /// Fits I_h, I_c, m (or the `free` subset; default I_h, I_c with m fixed)
 /// with the friction coefficients from `start`. Reports a and b always.
-CDriveFitOutput FitCDriveInertia(const std::vector<CDriveLog>& logs, const CDriveParameters& start,
+CDriveFitOutput FitCDriveInertia(const std::vector<CDriveLog>& logs, const CDriveSection& start,
                                  const CDriveFitOptions& options);
 
 }  // namespace driveid

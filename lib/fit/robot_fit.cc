@@ -14,10 +14,18 @@
 namespace driveid {
 namespace {
 
-constexpr const char* kNames[] = {"Theta", "m_c", "d_g"};
-double PlanarRobotParameters::*const kMembers[] = {&PlanarRobotParameters::output_inertia,
-                                                   &PlanarRobotParameters::center_mass,
-                                                   &PlanarRobotParameters::viscous_friction};
+// The regressor columns in the order of the robot fit's rows of the table:
+// Theta, m_c, d_g.
+const ParameterRow<PlanarRobotSection, PlanarRobotParameters>& Column(std::size_t j) {
+  static const auto rows = [] {
+    std::vector<const ParameterRow<PlanarRobotSection, PlanarRobotParameters>*> out;
+    for (const auto& row : PlanarRobotParameterTable()) {
+      if (row.spec.InFit("robot")) out.push_back(&row);
+    }
+    return out;
+  }();
+  return *rows.at(j);
+}
 
 bool Contains(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -69,19 +77,11 @@ std::vector<std::pair<std::size_t, Sample>> Kinematics(const PlanarRobotParamete
 }  // namespace
 
 
-const std::vector<std::string>& RobotParameterNames() {
-  static const std::vector<std::string> names(std::begin(kNames), std::end(kNames));
-  return names;
-}
 
 RobotFitOutput FitRobot(const std::vector<RobotLog>& logs, const PlanarRobotParameters& start,
                         const RobotFitOptions& options) {
   if (logs.empty()) throw std::invalid_argument("no logs given");
-  for (const auto& name : options.free) {
-    if (!Contains(RobotParameterNames(), name)) {
-      throw std::invalid_argument(fmt::format("--free {}: not a robot parameter (choose from Theta, m_c, d_g)", name));
-    }
-  }
+  CheckFreeNames(PlanarRobotParameterTable(), "robot", options.free);
   if (!(options.half_window > 0.0)) {
     throw std::invalid_argument(fmt::format("--window = {}: violated constraint: > 0 s", options.half_window));
   }
@@ -89,10 +89,10 @@ RobotFitOutput FitRobot(const std::vector<RobotLog>& logs, const PlanarRobotPara
   std::vector<int> free_columns;
   std::vector<FitParameter> parameters;
   for (int j = 0; j < 3; ++j) {
-    if (!Contains(options.free, kNames[j])) continue;
+    if (!Contains(options.free, Column(j).spec.key)) continue;
     free_columns.push_back(j);
-    const double value = start.*kMembers[j];
-    parameters.push_back({kNames[j], value > 0.0 ? value : 0.0, 0.0, value > 0.0 ? value : 1.0});
+    const double value = start.*(Column(j).in_model);
+    parameters.push_back({Column(j).spec.key, value > 0.0 ? value : 0.0, 0.0, value > 0.0 ? value : 1.0});
   }
   const int p = static_cast<int>(free_columns.size());
   const double n_g = start.gear_ratio, k_t = start.torque_constant;
@@ -152,7 +152,7 @@ RobotFitOutput FitRobot(const std::vector<RobotLog>& logs, const PlanarRobotPara
                                    n_g * n_g * projected_rate};
         double known = 0.0;
         for (int j = 0; j < 3; ++j) {
-          if (!Contains(options.free, kNames[j])) known += (start.*kMembers[j]) * columns[j];
+          if (!Contains(options.free, Column(j).spec.key)) known += (start.*(Column(j).in_model)) * columns[j];
         }
         for (int j : free_columns) rows.push_back(columns[j]);
         values.push_back(n_g * projected_torque - known);
@@ -175,7 +175,7 @@ RobotFitOutput FitRobot(const std::vector<RobotLog>& logs, const PlanarRobotPara
   RobotFitOutput out;
   out.fit = FitLeastSquares(residuals, parameters, channels, fit_options);
   out.params = start;
-  for (std::size_t j = 0; j < free_columns.size(); ++j) out.params.*kMembers[free_columns[j]] = out.fit.estimates[j].value;
+  for (std::size_t j = 0; j < free_columns.size(); ++j) out.params.*(Column(free_columns[j]).in_model) = out.fit.estimates[j].value;
 
   // Current prediction with the fitted parameters (Fig. 7 decomposition).
   const PlanarRobotParameters& r = out.params;

@@ -26,7 +26,7 @@ namespace driveid {
 
 
 struct RobotFitOptions {
-  std::vector<std::string> free = {"Theta", "m_c", "d_g"};
+  std::vector<std::string> free = FitParameterKeys(PlanarRobotParameterTable(), "robot", true);
   double half_window = 0.005;  ///< differentiator half window [s]
   FitOptions fit;
 };
@@ -44,8 +44,6 @@ struct RobotFitOutput {
   FitResult fit;
   std::vector<RobotCurrentPrediction> predictions;
 };
-
-const std::vector<std::string>& RobotParameterNames();  // Theta, m_c, d_g
 
 RobotFitOutput FitRobot(const std::vector<RobotLog>& logs, const PlanarRobotParameters& start,
                         const RobotFitOptions& options);

@@ -122,20 +122,11 @@ void CheckStepLog(const StepLog& log) {
 }  // namespace
 
 
-const std::vector<std::string>& StepFitParameterNames() {
-  static const std::vector<std::string> names = {"d_g", "Theta_motor", "Theta_g", "k_Tl", "k_Tg", "tau_c", "offset"};
-  return names;
-}
 
 StepFitOutput FitStepResponses(const std::vector<StepLog>& logs, const DriveTrainParameters& start,
                                const StepFitOptions& options) {
   if (logs.empty()) throw std::invalid_argument("no step logs given");
-  for (const auto& name : options.free) {
-    if (!Contains(StepFitParameterNames(), name)) {
-      throw std::invalid_argument(fmt::format("--free {}: not a step-fit parameter (choose from {})", name,
-                                              fmt::join(StepFitParameterNames(), ", ")));
-    }
-  }
+  CheckFreeNames(DriveTrainParameterTable(), "step", options.free, {"offset"});
   for (const auto& log : logs) CheckStepLog(log);
   if (options.model == DriveTrainModel::kFull && !(start.gearbox_inertia > 0.0)) {
     throw InputError("the full model needs drivetrain.Theta_g > 0 in --params");

@@ -17,12 +17,9 @@ namespace driveid {
 
 
 
-/// Names accepted by --free for the step fit.
-const std::vector<std::string>& StepFitParameterNames();
-
 struct StepFitOptions {
   DriveTrainModel model = DriveTrainModel::kReduced;
-  std::vector<std::string> free = {"d_g", "Theta_motor", "tau_c"};  ///< may include "offset"
+  std::vector<std::string> free = FitParameterKeys(DriveTrainParameterTable(), "step", true);  ///< may include "offset"
   FitOptions fit;
 };
 

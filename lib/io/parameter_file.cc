@@ -1,5 +1,7 @@
 #include "io/parameter_file.h"
 
+#include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -13,71 +15,6 @@
 
 namespace driveid {
 namespace {
-
-constexpr double kNotGiven = std::numeric_limits<double>::quiet_NaN();
-
-/// Declaration of one scalar key of a section: doc with unit, minimum, and
-/// whether the section is incomplete without it.
-template <typename T>
-struct ScalarKey {
-  const char* key;
-  double T::*member;
-  const char* doc;
-  double minimum;
-  bool minimum_exclusive;
-  bool required;
-};
-
-const ScalarKey<DriveTrainParameters> kDriveTrainKeys[] = {
-    {"n_g", &DriveTrainParameters::gear_ratio, "gear ratio [-]", 0.0, true, true},
-    {"k_Tl", &DriveTrainParameters::link_stiffness, "link bending stiffness [N m/rad]", 0.0, true, true},
-    {"k_Tg", &DriveTrainParameters::gearbox_stiffness, "gearbox stiffness [N m/rad]", 0.0, true, true},
-    {"Theta_motor", &DriveTrainParameters::motor_inertia, "motor rotor inertia, motor side [kg m^2]", 0.0, true, true},
-    {"Theta_g", &DriveTrainParameters::gearbox_inertia, "gearbox inertia, motor side [kg m^2]", 0.0, false, false},
-    {"d_g", &DriveTrainParameters::viscous_friction, "gearbox viscous friction at the gear input [N m s/rad]", 0.0, false, true},
-    {"tau_c", &DriveTrainParameters::coulomb_friction, "Coulomb friction at the gear output [N m]", 0.0, false, true},
-};
-
-const ScalarKey<CDriveParameters> kCDriveKeys[] = {
-    {"p", &CDriveParameters::lead, "screw lead [m]", 0.0, true, true},
-    {"I_h", &CDriveParameters::hub_inertia, "motor rotor + coupling + screw inertia [kg m^2]", 0.0, false, false},
-    {"I_c", &CDriveParameters::collar_inertia, "collar inertia about the screw axis [kg m^2]", 0.0, false, false},
-    {"m", &CDriveParameters::collar_mass, "collar mass [kg]", 0.0, false, false},
-    {"beta", &CDriveParameters::viscous_motor, "viscous, rotor and bearings [N m s/rad]", 0.0, false, false},
-    {"gamma", &CDriveParameters::viscous_collar, "viscous, collar on the screws [N m s/rad]", 0.0, false, false},
-    {"delta", &CDriveParameters::coulomb_motor, "Coulomb, rotor and bearings [N m]", 0.0, false, false},
-    {"eta", &CDriveParameters::coulomb_collar, "Coulomb, collar on the screws [N m]", 0.0, false, false},
-};
-
-const ScalarKey<AxisSection> kAxisKeys[] = {
-    {"inertia", &AxisSection::inertia, "J, inertia [kg m^2] (linear axis: mass [kg])", 0.0, false, false},
-    {"viscous", &AxisSection::viscous, "b, viscous friction [N m s/rad] (linear: N s/m)", 0.0, false, false},
-    {"coulomb", &AxisSection::coulomb, "tau_c, Coulomb friction [N m] (linear: N)", 0.0, false, false},
-    {"offset", &AxisSection::offset, "tau_0, constant offset [N m] (linear: N)", -std::numeric_limits<double>::infinity(), false, false},
-    {"k_t", &AxisSection::torque_constant, "torque constant for logs of current [N m/A]", 0.0, true, false},
-    {"n_g", &AxisSection::gear_ratio, "gear ratio, to report d_g = b / n_g^2 [-]", 0.0, true, false},
-};
-
-const ScalarKey<PlanarRobotParameters> kRobotKeys[] = {
-    {"base_distance", &PlanarRobotParameters::base_distance, "a, distance of the base joints [m]", 0.0, true, true},
-    {"l", &PlanarRobotParameters::link_length, "link length [m]", 0.0, true, true},
-    {"n_g", &PlanarRobotParameters::gear_ratio, "gear ratio [-]", 0.0, true, true},
-    {"Theta", &PlanarRobotParameters::output_inertia, "actuator inertia at the gear output [kg m^2]", 0.0, false, true},
-    {"m_c", &PlanarRobotParameters::center_mass, "mass of the centre joint [kg]", 0.0, false, true},
-    {"d_g", &PlanarRobotParameters::viscous_friction, "gearbox viscous friction at the gear input [N m s/rad]", 0.0, false, true},
-    {"k_t", &PlanarRobotParameters::torque_constant, "motor torque constant [N m/A]", 0.0, true, true},
-};
-
-const ScalarKey<CDriveControlSettings> kControlKeys[] = {
-    {"K_P", &CDriveControlSettings::proportional_gain, "proportional gain [N m/rad]", 0.0, false, true},
-    {"K_I", &CDriveControlSettings::second_gain, "second gain as printed: integral [N m/(rad s)] (PI, PID) or derivative [N m s/rad] (PD)", 0.0, false, true},
-    {"K_D", &CDriveControlSettings::derivative_gain, "derivative gain, PID only [N m s/rad]", 0.0, false, false},
-    {"dead_zone", &CDriveControlSettings::dead_zone, "dead zone on velocities and their difference [rad/s]", 0.0, false, false},
-    {"rate_limit", &CDriveControlSettings::rate_limit, "rate limit of each unit Coulomb term [1/s]", 0.0, true, false},
-    {"velocity_window", &CDriveControlSettings::velocity_window, "encoder velocity difference window [s]", 0.0, true, false},
-    {"sample_time", &CDriveControlSettings::sample_time, "controller period [s]", 0.0, true, false},
-    {"encoder_counts", &CDriveControlSettings::encoder_counts, "encoder counts per revolution", 0.0, true, false},
-};
 
 const char* const kKnownSections[] = {"drivetrain", "axis", "planar_robot", "cdrive", "fit"};
 
@@ -114,35 +51,30 @@ void CheckMapping(const std::string& path, const std::string& name, const YAML::
   }
 }
 
-template <typename T, std::size_t N>
-std::string KnownKeys(const ScalarKey<T> (&keys)[N], const std::vector<std::string>& extra) {
+template <class Section, class Model>
+std::string KnownKeys(const ParameterTable<Section, Model>& table, const std::vector<std::string>& extra) {
   std::string known;
-  for (const auto& key : keys) known += std::string(known.empty() ? "" : ", ") + key.key;
+  for (const auto& row : table) known += std::string(known.empty() ? "" : ", ") + row.spec.key;
   for (const auto& key : extra) known += ", " + key;
   return known;
 }
 
-// Parses the scalar keys of a section into `out`. Keys in `extra` are left
-// to the caller (returned as nodes); every other key must be declared.
-template <typename T, std::size_t N>
-std::vector<std::pair<std::string, YAML::Node>> ParseScalars(const std::string& path, const std::string& section,
-                                                             const YAML::Node& node, const ScalarKey<T> (&keys)[N],
-                                                             const std::vector<std::string>& extra, T& out) {
+// Parses the keys of a section into `out` by its table. Keys in `extra` are
+// left to the caller (returned as nodes); every other key must be declared.
+template <class Section, class Model>
+std::vector<std::pair<std::string, YAML::Node>> ParseSection(const std::string& path, const std::string& section,
+                                                             const YAML::Node& node,
+                                                             const ParameterTable<Section, Model>& table,
+                                                             const std::vector<std::string>& extra, Section& out) {
   CheckMapping(path, section, node);
   std::vector<std::pair<std::string, YAML::Node>> others;
-  std::set<std::string> given;
   for (const auto& item : node) {
     const std::string key = item.first.Scalar();
-    const ScalarKey<T>* spec = nullptr;
-    for (const auto& candidate : keys) {
-      if (key == candidate.key) spec = &candidate;
-    }
-    if (spec == nullptr) {
-      bool is_extra = false;
-      for (const auto& name : extra) is_extra = is_extra || key == name;
-      if (!is_extra) {
+    const auto* row = FindParameter(table, key);
+    if (row == nullptr) {
+      if (std::find(extra.begin(), extra.end(), key) == extra.end()) {
         throw InputError(fmt::format("{}: {}.{}: unknown key (known: {})", Where(path, item.first), section, key,
-                                     KnownKeys(keys, extra)));
+                                     KnownKeys(table, extra)));
       }
       others.emplace_back(key, item.second);
       continue;
@@ -150,31 +82,25 @@ std::vector<std::pair<std::string, YAML::Node>> ParseScalars(const std::string& 
     if (item.second.IsNull()) continue;  // "key: " with no value = not given
     const std::string name = section + "." + key;
     const double value = ParseNumber(path, name, item.second);
-    if (spec->minimum_exclusive ? !(value > spec->minimum) : !(value >= spec->minimum)) {
+    if (!row->spec.Admits(value)) {
       throw InputError(fmt::format("{}: {}: must be {} {}, got {} ({})", Where(path, item.second), name,
-                                   spec->minimum_exclusive ? ">" : ">=", spec->minimum, value, spec->doc));
+                                   row->spec.lower_exclusive ? ">" : ">=", row->spec.lower_bound, value,
+                                   row->spec.Doc()));
     }
-    out.*(spec->member) = value;
-    given.insert(key);
+    out.*(row->in_section) = value;
   }
-  for (const auto& spec : keys) {
-    if (spec.required && !given.count(spec.key)) {
-      throw InputError(fmt::format("{}: {}.{}: missing value ({})", Where(path, node), section, spec.key, spec.doc));
+  for (const auto& row : table) {
+    if (row.spec.required && !(out.*(row.in_section))) {
+      throw InputError(fmt::format("{}: {}.{}: missing value ({})", Where(path, node), section, row.spec.key,
+                                   row.spec.Doc()));
     }
   }
   return others;
 }
 
-DriveTrainParameters ParseDriveTrain(const std::string& path, const YAML::Node& node) {
-  DriveTrainParameters params;
-  params.gearbox_inertia = 0.0;  // optional: only the full model needs it
-  ParseScalars(path, "drivetrain", node, kDriveTrainKeys, {}, params);
-  return params;
-}
-
-CDriveControlSettings ParseControl(const std::string& path, const YAML::Node& node) {
-  CDriveControlSettings control;
-  const auto others = ParseScalars(path, "cdrive.control", node, kControlKeys, {"law"}, control);
+CDriveControlSection ParseControl(const std::string& path, const YAML::Node& node) {
+  CDriveControlSection control;
+  const auto others = ParseSection(path, "cdrive.control", node, CDriveControlParameterTable(), {"law"}, control);
   for (const auto& [key, value] : others) {
     const std::string law = value.IsScalar() ? value.Scalar() : "";
     if (law == "PI") control.law = ControlLaw::kPI;
@@ -183,27 +109,6 @@ CDriveControlSettings ParseControl(const std::string& path, const YAML::Node& no
     else throw InputError(fmt::format("{}: cdrive.control.law: must be PI, PD or PID", Where(path, value)));
   }
   return control;
-}
-
-CDriveSection ParseCDrive(const std::string& path, const YAML::Node& node) {
-  CDriveSection section;
-  CDriveParameters& p = section.params;
-  p.hub_inertia = p.collar_inertia = p.collar_mass = kNotGiven;
-  p.viscous_motor = p.viscous_collar = p.coulomb_motor = p.coulomb_collar = kNotGiven;
-  const auto others = ParseScalars(path, "cdrive", node, kCDriveKeys, {"k_t", "control"}, p);
-  for (const auto& [key, value] : others) {
-    if (key == "k_t") {
-      if (value.IsNull()) continue;
-      section.torque_constant = ParseNumber(path, "cdrive.k_t", value);
-      if (!(section.torque_constant > 0.0)) {
-        throw InputError(fmt::format("{}: cdrive.k_t: must be > 0, got {} (motor torque constant [N m/A])",
-                                     Where(path, value), section.torque_constant));
-      }
-    } else if (!value.IsNull()) {
-      section.control = ParseControl(path, value);
-    }
-  }
-  return section;
 }
 
 std::string Quoted(const std::string& text) {
@@ -225,14 +130,15 @@ std::string Quoted(const std::string& text) {
 std::string Number(double value) { return fmt::format("{}", value); }
 std::string Short(double value) { return fmt::format("{:.6g}", value); }
 
-template <typename T, std::size_t N>
-std::string FormatScalars(const T& values, const ScalarKey<T> (&keys)[N], const std::string& indent) {
+template <class Section, class Model>
+std::string FormatSection(const Section& values, const ParameterTable<Section, Model>& table, const std::string& indent) {
   std::string out;
-  for (const auto& spec : keys) {
-    const double value = values.*(spec.member);
-    if (!IsGiven(value)) continue;
-    const std::string line = fmt::format("{}{}: {}", indent, spec.key, Number(value));
-    out += fmt::format("{:<28} # {}\n", line, spec.doc);
+  for (const auto& row : table) {
+    const std::optional<double>& value = values.*(row.in_section);
+    if (!value) continue;
+    const std::string line = fmt::format("{}{}: {}", indent, row.spec.key, Number(*value));
+    const std::string symbol = row.spec.symbol == std::string(row.spec.key) ? "" : std::string(row.spec.symbol) + ", ";
+    out += fmt::format("{:<28} # {}{}\n", line, symbol, row.spec.Doc());
   }
   return out;
 }
@@ -302,29 +208,39 @@ ParameterFile ParseParameterFile(const std::string& path, const std::string& tex
                                    Where(path, item.first), section));
     }
     if (section == "drivetrain") {
-      file.drivetrain = ParseDriveTrain(path, item.second);
+      DriveTrainSection drivetrain;
+      ParseSection(path, "drivetrain", item.second, DriveTrainParameterTable(), {}, drivetrain);
+      file.drivetrain = drivetrain;
     } else if (section == "planar_robot") {
-      PlanarRobotParameters robot;
-      const auto others = ParseScalars(path, "planar_robot", item.second, kRobotKeys, {"elbow"}, robot);
+      PlanarRobotSection robot;
+      const auto others =
+          ParseSection(path, "planar_robot", item.second, PlanarRobotParameterTable(), {"elbow"}, robot);
       for (const auto& [key, value] : others) {
         if (!value.IsSequence() || value.size() != 3) {
           throw InputError(fmt::format("{}: planar_robot.elbow: expected [e1, e2, e3] with each +1 or -1", Where(path, value)));
         }
+        std::array<int, 3> elbow{};
         for (std::size_t i = 0; i < 3; ++i) {
           const double e = ParseNumber(path, "planar_robot.elbow", value[i]);
           if (e != 1.0 && e != -1.0) {
             throw InputError(fmt::format("{}: planar_robot.elbow: each entry must be +1 or -1, got {}", Where(path, value[i]), e));
           }
-          robot.elbow[i] = static_cast<int>(e);
+          elbow[i] = static_cast<int>(e);
         }
+        robot.elbow = elbow;
       }
       file.planar_robot = robot;
     } else if (section == "axis") {
       AxisSection axis;
-      ParseScalars(path, "axis", item.second, kAxisKeys, {}, axis);
+      ParseSection(path, "axis", item.second, AxisParameterTable(), {}, axis);
       file.axis = axis;
     } else if (section == "cdrive") {
-      file.cdrive = ParseCDrive(path, item.second);
+      CDriveSection cdrive;
+      const auto others = ParseSection(path, "cdrive", item.second, CDriveParameterTable(), {"control"}, cdrive);
+      for (const auto& [key, value] : others) {
+        if (!value.IsNull()) file.cdrive_control = ParseControl(path, value);
+      }
+      file.cdrive = cdrive;
     } else if (section == "fit") {
       // Provenance of an earlier fit: accepted so that a fit's output is a
       // valid input, and replaced when a new file is written.
@@ -363,36 +279,34 @@ ParameterFile ReadParameterFile(const std::string& path) { return ParseParameter
 
 std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit, const FitProvenance* provenance,
                                 const std::vector<DerivedQuantity>& derived) {
-  std::string out = "# driveid parameter file (SPEC section 4). Units: SI, radians.\n";
+  std::string out = "# driveid parameter file (docs/formats.md). Units: SI, radians.\n";
   if (file.drivetrain) {
-    out += "drivetrain:            # seed 000 section 4, SPEC 5.1\n";
-    out += FormatScalars(*file.drivetrain, kDriveTrainKeys, "  ");
+    out += "drivetrain:            # seed 000 section 4; docs/models.md#drive-train\n";
+    out += FormatSection(*file.drivetrain, DriveTrainParameterTable(), "  ");
   }
   if (file.planar_robot) {
-    out += "planar_robot:          # seed 000 sections 2, 5; SPEC 5.3\n";
-    out += FormatScalars(*file.planar_robot, kRobotKeys, "  ");
-    const auto& e = file.planar_robot->elbow;
+    out += "planar_robot:          # seed 000 sections 2, 5; docs/models.md#planar-robot\n";
+    out += FormatSection(*file.planar_robot, PlanarRobotParameterTable(), "  ");
+    const auto e = file.planar_robot->elbow.value_or(std::array<int, 3>{1, 1, 1});
     out += fmt::format("{:<28} # {}\n", fmt::format("  elbow: [{}, {}, {}]", e[0], e[1], e[2]),
                        "+1: B_i counter-clockwise of the ray A_i -> C");
   }
   if (file.axis) {
     // Every axis key is optional: an empty section must still read back as a mapping.
-    const std::string body = FormatScalars(*file.axis, kAxisKeys, "  ");
-    out += body.empty() ? "axis: {}               # SPEC 5.2: tau = J q'' + b q' + tau_c sgn(q') + tau_0\n"
-                        : "axis:                  # SPEC 5.2: tau = J q'' + b q' + tau_c sgn(q') + tau_0\n" + body;
+    const std::string body = FormatSection(*file.axis, AxisParameterTable(), "  ");
+    out += body.empty() ? "axis: {}               # docs/models.md#axis: tau = J q'' + b q' + tau_c sgn(q') + tau_0\n"
+                        : "axis:                  # docs/models.md#axis: tau = J q'' + b q' + tau_c sgn(q') + tau_0\n" + body;
   }
   if (file.cdrive) {
-    out += "cdrive:                # seed 001, SPEC 5.4\n";
-    out += FormatScalars(file.cdrive->params, kCDriveKeys, "  ");
-    if (IsGiven(file.cdrive->torque_constant)) {
-      out += fmt::format("{:<28} # {}\n", fmt::format("  k_t: {}", Number(file.cdrive->torque_constant)),
-                         "motor torque constant [N m/A]");
-    }
-    if (file.cdrive->control) {
+    out += "cdrive:                # seed 001; docs/models.md#c-drive\n";
+    out += FormatSection(*file.cdrive, CDriveParameterTable(), "  ");
+    if (file.cdrive_control) {
       out += "  control:             # position controller and friction compensation, eq. (31)\n";
-      out += fmt::format("{:<28} # {}\n", fmt::format("    law: {}", ControlLawName(file.cdrive->control->law)),
-                         "how K_I is read: PI, PD or PID");
-      out += FormatScalars(*file.cdrive->control, kControlKeys, "    ");
+      if (file.cdrive_control->law) {
+        out += fmt::format("{:<28} # {}\n", fmt::format("    law: {}", ControlLawName(*file.cdrive_control->law)),
+                           "how K_I is read: PI, PD or PID");
+      }
+      out += FormatSection(*file.cdrive_control, CDriveControlParameterTable(), "    ");
     }
   }
   if (fit != nullptr && provenance != nullptr) {

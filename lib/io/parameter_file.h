@@ -1,13 +1,13 @@
-// Parameter files (SPEC section 4): YAML with one section per model, plain
+// Parameter files (docs/formats.md): YAML with one section per model, plain
 // values a controller can read, and a separate `fit` section with the
-// statistics and provenance written by the fitting commands.
+// statistics and provenance written by the fitting commands. Each section is
+// read and written from its model's parameter table (models/*.h).
 //
 // Reading is strict: unknown keys, duplicate keys, non-numbers, NaN/Inf and
 // out-of-range values throw InputError "file:line:column: section.key: what".
-// Optional keys that are absent read as NaN ("not given").
+// Keys that are absent (or written without a value) are not given.
 #pragma once
 
-#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,37 +21,14 @@
 
 namespace driveid {
 
-/// The C-drive section: model parameters, the motor torque constant (for
-/// logs of currents) and the controller settings.
-struct CDriveSection {
-  CDriveParameters params;
-  double torque_constant = std::numeric_limits<double>::quiet_NaN();  ///< k_t [N m/A]
-  std::optional<CDriveControlSettings> control;
-};
-
-/// The axis section: model parameters (NaN = not given), the torque
-/// constant for logs of current, and an optional gear ratio (for d_g).
-struct AxisSection {
-  double inertia = std::numeric_limits<double>::quiet_NaN();          ///< J
-  double viscous = std::numeric_limits<double>::quiet_NaN();          ///< b
-  double coulomb = std::numeric_limits<double>::quiet_NaN();          ///< tau_c
-  double offset = std::numeric_limits<double>::quiet_NaN();           ///< tau_0
-  double torque_constant = std::numeric_limits<double>::quiet_NaN();  ///< k_t [N m/A]
-  double gear_ratio = std::numeric_limits<double>::quiet_NaN();       ///< n_g [-]
-  AxisParameters params() const { return {inertia, viscous, coulomb, offset}; }
-  void set(const AxisParameters& p) {
-    inertia = p.inertia;
-    viscous = p.viscous;
-    coulomb = p.coulomb;
-    offset = p.offset;
-  }
-};
-
+/// A parameter file: one optional section per model (the sections and
+/// their tables live beside the models), plus what a previous fit left.
 struct ParameterFile {
-  std::optional<DriveTrainParameters> drivetrain;
+  std::optional<DriveTrainSection> drivetrain;
   std::optional<AxisSection> axis;
-  std::optional<PlanarRobotParameters> planar_robot;
+  std::optional<PlanarRobotSection> planar_robot;
   std::optional<CDriveSection> cdrive;
+  std::optional<CDriveControlSection> cdrive_control;  ///< `cdrive.control`
   bool had_fit_section = false;  ///< input carried a previous fit (replaced on output)
   /// fit.estimates of a previous fit (value, std, ci95), for reports.
   std::vector<ParameterEstimate> fit_estimates;
@@ -67,8 +44,5 @@ ParameterFile ReadParameterFile(const std::string& path);
 std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit = nullptr,
                                 const FitProvenance* provenance = nullptr,
                                 const std::vector<DerivedQuantity>& derived = {});
-
-/// True when a value was given (not NaN).
-inline bool IsGiven(double value) { return value == value; }
 
 }  // namespace driveid

@@ -1,7 +1,12 @@
-// Rigid single axis (SPEC 5.2; seed 000 section 5 per actuator, friction at
-// constant rates): tau = J q'' + b q' + tau_c sgn(q') + tau_0.
+// Rigid single axis (docs/models.md#axis; seed 000 section 5 per actuator,
+// friction at constant rates):
+//   tau = J q'' + b q' + tau_c sgn(q') + tau_0,   sgn(0) = 0.
 // Unit-agnostic: rotary (rad, N m, kg m^2) or linear (m, N, kg) axes.
 #pragma once
+
+#include <optional>
+
+#include "models/parameter_table.h"
 
 namespace driveid {
 
@@ -11,6 +16,32 @@ struct AxisParameters {
   double coulomb = 0.0;  ///< tau_c [N m or N]
   double offset = 0.0;   ///< tau_0 [N m or N]
 };
+
+/// The parameter file's `axis` section: every value optional.
+struct AxisSection {
+  std::optional<double> inertia, viscous, coulomb, offset;
+  std::optional<double> torque_constant;  ///< k_t [N m/A], for logs of current
+  std::optional<double> gear_ratio;       ///< n_g [-], to report d_g = b / n_g^2
+};
+
+/// The axis parameters: key, symbol, unit, bound, fit membership.
+inline const ParameterTable<AxisSection, AxisParameters>& AxisParameterTable() {
+  static const ParameterTable<AxisSection, AxisParameters> table = {
+      {{"inertia", "J", "kg m^2 (linear axis: kg)", "inertia", 0.0, false, false, "axis", true, 0.0},
+       &AxisSection::inertia, &AxisParameters::inertia},
+      {{"viscous", "b", "N m s/rad (linear: N s/m)", "viscous friction", 0.0, false, false, "axis", true, 0.0},
+       &AxisSection::viscous, &AxisParameters::viscous},
+      {{"coulomb", "tau_c", "N m (linear: N)", "Coulomb friction", 0.0, false, false, "axis", true, 0.0},
+       &AxisSection::coulomb, &AxisParameters::coulomb},
+      {{"offset", "tau_0", "N m (linear: N)", "constant offset", kUnbounded, false, false, "axis", true, 0.0},
+       &AxisSection::offset, &AxisParameters::offset},
+      {{"k_t", "k_t", "N m/A", "torque constant for logs of current", 0.0, true, false, "", false, 0.0},
+       &AxisSection::torque_constant, nullptr},
+      {{"n_g", "n_g", "-", "gear ratio, to report d_g = b / n_g^2", 0.0, true, false, "", false, 0.0},
+       &AxisSection::gear_ratio, nullptr},
+  };
+  return table;
+}
 
 /// Force/torque of the axis at a rate and acceleration (sgn(0) = 0).
 inline double CalcAxisForce(const AxisParameters& p, double rate, double acceleration) {

@@ -21,10 +21,13 @@
 #pragma once
 
 #include <array>
+#include <optional>
+
+#include "models/parameter_table.h"
 
 namespace driveid {
 
-/// C-drive parameters (SPEC 4, section `cdrive`). NaN marks a value not given.
+/// C-drive parameters (section `cdrive`).
 struct CDriveParameters {
   double lead = 0.06;            ///< p, screw lead [m]
   double hub_inertia = 0.0;      ///< I_h, motor rotor + coupling + screw [kg m^2]
@@ -35,6 +38,41 @@ struct CDriveParameters {
   double coulomb_motor = 0.0;    ///< delta, rotor/bearing Coulomb [N m]
   double coulomb_collar = 0.0;   ///< eta, collar/screw Coulomb [N m]
 };
+
+/// The parameter file's `cdrive` section as written (the controller
+/// settings, `cdrive.control`, are read beside it).
+struct CDriveSection {
+  std::optional<double> lead, hub_inertia, collar_inertia, collar_mass, viscous_motor, viscous_collar, coulomb_motor,
+      coulomb_collar;
+  std::optional<double> torque_constant;  ///< k_t [N m/A], for logs of currents
+};
+
+/// The C-drive's parameters: the "friction" fit estimates beta..eta, the
+/// "inertia" fit I_h, I_c, m (default I_h, I_c); `typical` scales a fit
+/// started from no value.
+inline const ParameterTable<CDriveSection, CDriveParameters>& CDriveParameterTable() {
+  using S = CDriveSection;
+  using P = CDriveParameters;
+  static const ParameterTable<S, P> table = {
+      {{"p", "p", "m", "screw lead", 0.0, true, true, "", false, 0.0}, &S::lead, &P::lead},
+      {{"I_h", "I_h", "kg m^2", "motor rotor + coupling + screw inertia", 0.0, false, false, "inertia", true, 1e-4},
+       &S::hub_inertia, &P::hub_inertia},
+      {{"I_c", "I_c", "kg m^2", "collar inertia about the screw axis", 0.0, false, false, "inertia", true, 1e-4},
+       &S::collar_inertia, &P::collar_inertia},
+      {{"m", "m", "kg", "collar mass", 0.0, false, false, "inertia", false, 1.0}, &S::collar_mass, &P::collar_mass},
+      {{"beta", "beta", "N m s/rad", "viscous, rotor and bearings", 0.0, false, false, "friction", true, 1e-3},
+       &S::viscous_motor, &P::viscous_motor},
+      {{"gamma", "gamma", "N m s/rad", "viscous, collar on the screws", 0.0, false, false, "friction", true, 1e-3},
+       &S::viscous_collar, &P::viscous_collar},
+      {{"delta", "delta", "N m", "Coulomb, rotor and bearings", 0.0, false, false, "friction", true, 0.1},
+       &S::coulomb_motor, &P::coulomb_motor},
+      {{"eta", "eta", "N m", "Coulomb, collar on the screws", 0.0, false, false, "friction", true, 0.1},
+       &S::coulomb_collar, &P::coulomb_collar},
+      {{"k_t", "k_t", "N m/A", "motor torque constant", 0.0, true, false, "", false, 0.0}, &S::torque_constant,
+       nullptr},
+  };
+  return table;
+}
 
 using Vector2 = std::array<double, 2>;
 using Matrix2 = std::array<double, 4>;  ///< row-major [[0, 1], [2, 3]]

@@ -24,40 +24,32 @@ Lumped CalcLumped(const DriveTrainParameters& p) {
 
 }  // namespace
 
-const char* DriveTrainParameterKey(DriveTrainParameter parameter) {
+double DriveTrainParameters::*DriveTrainParameterMember(DriveTrainParameter parameter) {
   switch (parameter) {
-    case DriveTrainParameter::kViscousFriction: return "d_g";
-    case DriveTrainParameter::kMotorInertia: return "Theta_motor";
-    case DriveTrainParameter::kGearboxInertia: return "Theta_g";
-    case DriveTrainParameter::kLinkStiffness: return "k_Tl";
-    case DriveTrainParameter::kGearboxStiffness: return "k_Tg";
-    case DriveTrainParameter::kCoulombFriction: return "tau_c";
+    case DriveTrainParameter::kViscousFriction: return &DriveTrainParameters::viscous_friction;
+    case DriveTrainParameter::kMotorInertia: return &DriveTrainParameters::motor_inertia;
+    case DriveTrainParameter::kGearboxInertia: return &DriveTrainParameters::gearbox_inertia;
+    case DriveTrainParameter::kLinkStiffness: return &DriveTrainParameters::link_stiffness;
+    case DriveTrainParameter::kGearboxStiffness: return &DriveTrainParameters::gearbox_stiffness;
+    case DriveTrainParameter::kCoulombFriction: return &DriveTrainParameters::coulomb_friction;
   }
-  throw std::logic_error("DriveTrainParameterKey: bad parameter");
+  throw std::logic_error("DriveTrainParameterMember: bad parameter");
+}
+
+const char* DriveTrainParameterKey(DriveTrainParameter parameter) {
+  const auto member = DriveTrainParameterMember(parameter);
+  for (const auto& row : DriveTrainParameterTable()) {
+    if (row.in_model == member) return row.spec.key;
+  }
+  throw std::logic_error("DriveTrainParameterKey: parameter missing from the table");
 }
 
 double GetDriveTrainParameter(const DriveTrainParameters& p, DriveTrainParameter parameter) {
-  switch (parameter) {
-    case DriveTrainParameter::kViscousFriction: return p.viscous_friction;
-    case DriveTrainParameter::kMotorInertia: return p.motor_inertia;
-    case DriveTrainParameter::kGearboxInertia: return p.gearbox_inertia;
-    case DriveTrainParameter::kLinkStiffness: return p.link_stiffness;
-    case DriveTrainParameter::kGearboxStiffness: return p.gearbox_stiffness;
-    case DriveTrainParameter::kCoulombFriction: return p.coulomb_friction;
-  }
-  throw std::logic_error("GetDriveTrainParameter: bad parameter");
+  return p.*DriveTrainParameterMember(parameter);
 }
 
 void SetDriveTrainParameter(DriveTrainParameters& p, DriveTrainParameter parameter, double value) {
-  switch (parameter) {
-    case DriveTrainParameter::kViscousFriction: p.viscous_friction = value; return;
-    case DriveTrainParameter::kMotorInertia: p.motor_inertia = value; return;
-    case DriveTrainParameter::kGearboxInertia: p.gearbox_inertia = value; return;
-    case DriveTrainParameter::kLinkStiffness: p.link_stiffness = value; return;
-    case DriveTrainParameter::kGearboxStiffness: p.gearbox_stiffness = value; return;
-    case DriveTrainParameter::kCoulombFriction: p.coulomb_friction = value; return;
-  }
-  throw std::logic_error("SetDriveTrainParameter: bad parameter");
+  p.*DriveTrainParameterMember(parameter) = value;
 }
 
 int DriveTrainStateSize(DriveTrainModel model) { return model == DriveTrainModel::kFull ? 4 : 2; }

@@ -29,11 +29,14 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
+
+#include "models/parameter_table.h"
 
 namespace driveid {
 
-/// Parameters of the drive train (SPEC 4, section `drivetrain`).
+/// Parameters of the drive train (section `drivetrain`); defaults are the paper's values.
 struct DriveTrainParameters {
   double gear_ratio = 80.0;           ///< n_g [-]
   double link_stiffness = 15000.0;    ///< k_Tl, link bending stiffness [N m/rad]
@@ -54,6 +57,42 @@ struct DriveTrainState {
   static constexpr int kDeflectionRate = 3;  ///< d(Delta)/dt [rad/s]
 };
 
+/// The parameter file's `drivetrain` section as written (optional values).
+struct DriveTrainSection {
+  std::optional<double> gear_ratio, link_stiffness, gearbox_stiffness, motor_inertia, gearbox_inertia,
+      viscous_friction, coulomb_friction;
+};
+
+/// The drive-train parameters; the step fit estimates the "step" ones.
+inline const ParameterTable<DriveTrainSection, DriveTrainParameters>& DriveTrainParameterTable() {
+  using S = DriveTrainSection;
+  using P = DriveTrainParameters;
+  static const ParameterTable<S, P> table = {
+      {{"n_g", "n_g", "-", "gear ratio", 0.0, true, true, "", false, 0.0}, &S::gear_ratio, &P::gear_ratio},
+      {{"k_Tl", "k_Tl", "N m/rad", "link bending stiffness", 0.0, true, true, "step", false, 0.0},
+       &S::link_stiffness, &P::link_stiffness},
+      {{"k_Tg", "k_Tg", "N m/rad", "gearbox stiffness", 0.0, true, true, "step", false, 0.0},
+       &S::gearbox_stiffness, &P::gearbox_stiffness},
+      {{"Theta_motor", "Theta_motor", "kg m^2", "motor rotor inertia, motor side", 0.0, true, true, "step", true, 0.0},
+       &S::motor_inertia, &P::motor_inertia},
+      {{"Theta_g", "Theta_g", "kg m^2", "gearbox inertia, motor side", 0.0, false, false, "step", false, 0.0},
+       &S::gearbox_inertia, &P::gearbox_inertia},
+      {{"d_g", "d_g", "N m s/rad", "gearbox viscous friction at the gear input", 0.0, false, true, "step", true, 0.0},
+       &S::viscous_friction, &P::viscous_friction},
+      {{"tau_c", "tau_c", "N m", "Coulomb friction at the gear output", 0.0, false, true, "step", true, 0.0},
+       &S::coulomb_friction, &P::coulomb_friction},
+  };
+  return table;
+}
+
+/// The parameters of a section (Theta_g 0 when not given: reduced model
+/// only); throws InputError naming a missing or out-of-range value.
+inline DriveTrainParameters MakeDriveTrainParameters(const DriveTrainSection& section) {
+  DriveTrainParameters defaults;
+  defaults.gearbox_inertia = 0.0;
+  return MakeModelParameters(DriveTrainParameterTable(), section, defaults, "drivetrain");
+}
+
 /// Parameters that can be estimated, in a fixed order (index into sensitivities).
 enum class DriveTrainParameter : int {
   kViscousFriction = 0,  // d_g
@@ -65,7 +104,9 @@ enum class DriveTrainParameter : int {
 };
 constexpr int kDriveTrainParameterCount = 6;
 
-/// Key of a parameter in the parameter file (`d_g`, `Theta_motor`, ...).
+/// Member of each estimable parameter (the table row is found by member).
+double DriveTrainParameters::*DriveTrainParameterMember(DriveTrainParameter parameter);
+/// Key of a parameter in the parameter file (`d_g`, `Theta_motor`, ...), from the table.
 const char* DriveTrainParameterKey(DriveTrainParameter parameter);
 /// Value of a parameter; SetDriveTrainParameter is its inverse.
 double GetDriveTrainParameter(const DriveTrainParameters& params, DriveTrainParameter parameter);

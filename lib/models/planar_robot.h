@@ -17,8 +17,10 @@
 #pragma once
 
 #include <array>
+#include <optional>
 
 #include "models/cdrive.h"  // Vector2
+#include "models/parameter_table.h"
 
 namespace driveid {
 
@@ -32,6 +34,43 @@ struct PlanarRobotParameters {
   double viscous_friction = 0.002;  ///< d_g, at the gear input [N m s/rad]
   double torque_constant = 0.5;     ///< k_t [N m/A]
 };
+
+/// The parameter file's `planar_robot` section as written.
+struct PlanarRobotSection {
+  std::optional<double> base_distance, link_length, gear_ratio, output_inertia, center_mass, viscous_friction,
+      torque_constant;
+  std::optional<std::array<int, 3>> elbow;  ///< +1: B_i counter-clockwise of the ray A_i -> C
+};
+
+/// The robot's parameters; the robot fit estimates Theta, m_c, d_g.
+inline const ParameterTable<PlanarRobotSection, PlanarRobotParameters>& PlanarRobotParameterTable() {
+  using S = PlanarRobotSection;
+  using P = PlanarRobotParameters;
+  static const ParameterTable<S, P> table = {
+      {{"base_distance", "a", "m", "distance of the base joints", 0.0, true, true, "", false, 0.0},
+       &S::base_distance, &P::base_distance},
+      {{"l", "l", "m", "link length", 0.0, true, true, "", false, 0.0}, &S::link_length, &P::link_length},
+      {{"n_g", "n_g", "-", "gear ratio", 0.0, true, true, "", false, 0.0}, &S::gear_ratio, &P::gear_ratio},
+      {{"Theta", "Theta", "kg m^2", "actuator inertia at the gear output", 0.0, false, true, "robot", true, 0.0},
+       &S::output_inertia, &P::output_inertia},
+      {{"m_c", "m_c", "kg", "mass of the centre joint", 0.0, false, true, "robot", true, 0.0}, &S::center_mass,
+       &P::center_mass},
+      {{"d_g", "d_g", "N m s/rad", "gearbox viscous friction at the gear input", 0.0, false, true, "robot", true, 0.0},
+       &S::viscous_friction, &P::viscous_friction},
+      {{"k_t", "k_t", "N m/A", "motor torque constant", 0.0, true, true, "", false, 0.0}, &S::torque_constant,
+       &P::torque_constant},
+  };
+  return table;
+}
+
+/// The parameters of a section (elbows +1 when not given); throws
+/// InputError naming a missing or out-of-range value.
+inline PlanarRobotParameters MakePlanarRobotParameters(const PlanarRobotSection& section) {
+  PlanarRobotParameters p = MakeModelParameters(PlanarRobotParameterTable(), section, PlanarRobotParameters{},
+                                                "planar_robot");
+  p.elbow = section.elbow.value_or(std::array<int, 3>{1, 1, 1});
+  return p;
+}
 
 using Matrix23 = std::array<double, 6>;  ///< row-major 2 x 3 (G)
 using Vector3 = std::array<double, 3>;

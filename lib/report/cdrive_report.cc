@@ -23,6 +23,8 @@ double Lookup(const std::vector<ParameterEstimate>& estimates, const std::string
   return std::nan("");
 }
 
+bool IsGiven(double value) { return value == value; }
+
 bool InertiaGiven(const CDriveParameters& p) {
   return IsGiven(p.hub_inertia) && IsGiven(p.collar_inertia) && IsGiven(p.collar_mass);
 }
@@ -35,12 +37,12 @@ std::string Value(double value, double standard_error) {
 
 }  // namespace
 
-std::string FormatCDriveReport(const CDriveSection& cdrive, const std::vector<ParameterEstimate>& estimates,
-                               const std::string& source) {
-  const CDriveParameters& p = cdrive.params;
+std::string FormatCDriveReport(const CDriveSection& cdrive, const std::optional<CDriveControlSection>& control,
+                               const std::vector<ParameterEstimate>& estimates, const std::string& source) {
+  const CDriveParameters p = ModelValuesOrNaN(CDriveParameterTable(), cdrive);
   const Matrix2 j = CalcCDriveJacobian(p.lead);
   const Matrix2 inverse = CalcCDriveJacobianInverse(p.lead);
-  std::string out = fmt::format("C-drive from {} (seed 001, SPEC 5.4), lead p = {} m\n\n", source, p.lead);
+  std::string out = fmt::format("C-drive from {} (seed 001; docs/models.md#c-drive), lead p = {} m\n\n", source, p.lead);
   out += "kinematics w = (u, v) = J psi, v = p theta / (2 pi):\n";
   out += fmt::format("  J    = p/(4 pi) [[1, -1], [1, 1]]    = [[{:.6g}, {:.6g}], [{:.6g}, {:.6g}]] m/rad\n", j[0], j[1],
                      j[2], j[3]);
@@ -81,8 +83,8 @@ std::string FormatCDriveReport(const CDriveSection& cdrive, const std::vector<Pa
                               100.0 * (values[i] / kTableOne[i].value - 1.0));
   }
   if (!deviations.empty()) out += "  vs Table I:       " + deviations + "\n";
-  if (cdrive.control) {
-    const auto& c = *cdrive.control;
+  if (control) {
+    const CDriveControlSettings c = MakeControlSettings(*control);
     out += fmt::format("\ncontroller: {} at {} Hz, K_P = {} N m/rad, K_I = {} ({}), dead zone {} rad/s, rate limit {} /s\n",
                        ControlLawName(c.law), 1.0 / c.sample_time, c.proportional_gain, c.second_gain,
                        c.law == ControlLaw::kPD ? "read as a derivative gain, N m s/rad"
@@ -94,7 +96,7 @@ std::string FormatCDriveReport(const CDriveSection& cdrive, const std::vector<Pa
 
 std::string FormatCDriveReportJson(const CDriveSection& cdrive, const std::vector<ParameterEstimate>& estimates,
                                    const std::string& source) {
-  const CDriveParameters& p = cdrive.params;
+  const CDriveParameters p = ModelValuesOrNaN(CDriveParameterTable(), cdrive);
   const Matrix2 j = CalcCDriveJacobian(p.lead), inverse = CalcCDriveJacobianInverse(p.lead);
   std::string out = fmt::format("{{\"source\":{},\"lead\":{},\"jacobian\":[{},{},{},{}],\"jacobian_inverse\":[{},{},{},{}],"
                                 "\"jtj\":{}",

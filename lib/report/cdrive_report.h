@@ -8,12 +8,15 @@
 #include <vector>
 
 #include "core/fit_result.h"
-#include "io/parameter_file.h"
+#include <optional>
+
+#include "control/cdrive_control_settings.h"
+#include "models/cdrive.h"
 
 namespace driveid {
 
-std::string FormatCDriveReport(const CDriveSection& cdrive, const std::vector<ParameterEstimate>& estimates,
-                               const std::string& source);
+std::string FormatCDriveReport(const CDriveSection& cdrive, const std::optional<CDriveControlSection>& control,
+                               const std::vector<ParameterEstimate>& estimates, const std::string& source);
 
 std::string FormatCDriveReportJson(const CDriveSection& cdrive, const std::vector<ParameterEstimate>& estimates,
                                    const std::string& source);

@@ -63,7 +63,7 @@ expect 4 "not identifiable.*k_Tl.*k_Tg.*fix k_Tl or k_Tg" -- step good.csv --par
 expect 4 "Theta_g has no effect in the reduced model" -- step good.csv --params start.yaml --free d_g,Theta_g
 
 # Usage errors: exit 2.
-expect 2 "not a step-fit parameter" -- step good.csv --params start.yaml --free d_g,mass
+expect 2 "not a parameter of the step fit" -- step good.csv --params start.yaml --free d_g,mass
 expect 2 "" -- step good.csv --params start.yaml --bogus
 expect 2 "png or .svg" -- step good.csv --params start.yaml --plot fit.jpg
 expect 2 "" -- step good.csv
@@ -99,7 +99,7 @@ printf 't,q,i\n0,0,1\n0.001,0,1\n' > axis_current.csv
 expect 4 "inertia: the logs have no acceleration content" -- axis constant.csv --params axis.yaml
 expect 3 "axis_current.csv: the log has a current column 'i': axis.k_t must be given" -- axis axis_current.csv
 expect 3 "axis.csv:[0-9]+: missing column 'force' or 'amps'" -- axis axis.csv --col tau=force --col i=amps
-expect 2 "not an axis parameter" -- axis axis.csv --free mass
+expect 2 "not a parameter of the axis fit" -- axis axis.csv --free mass
 if "$bin" axis axis.csv --params axis.yaml -q -o axis_fit.yaml; then ok; else fail "axis fit"; fi
 grep -q "^    d_g: {value: 3.1" axis_fit.yaml && ok || fail "axis fit lacks d_g = b / n_g^2 near 3.1e-5"
 
@@ -110,7 +110,7 @@ cp "$src/data/robot_start.yaml" robot_start.yaml
 cut -d, -f1-6 robot.csv > robot_missing.csv
 expect 3 "robot_missing.csv:[0-9]+: missing column 'i3'" -- robot robot_missing.csv --params robot_start.yaml
 expect 3 "no 'planar_robot' section" -- robot robot.csv --params paper.yaml
-expect 2 "not a robot parameter" -- robot robot.csv --params robot_start.yaml --free Theta,mass
+expect 2 "not a parameter of the robot fit" -- robot robot.csv --params robot_start.yaml --free Theta,mass
 expect 3 "triangle leaves the workspace" -- simulate robot --params robot.yaml --side 3
 if "$bin" robot robot.csv --params robot_start.yaml -q -o robot_fit.yaml --trace robot_trace.csv; then ok; else fail "robot fit"; fi
 theta=$(awk '/^  Theta:/ {print $2}' robot_fit.yaml)

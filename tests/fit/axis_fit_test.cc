@@ -79,7 +79,7 @@ TEST_CASE("axis: constant-rate logs identify friction only, a free inertia is re
     e.duration = 5.0;
     logs.push_back(SimulateAxisExperiment(kTruth, e));
   }
-  AxisParameters start{std::nan(""), 0.5, 2.0, 0.0};
+  AxisSection start{std::nullopt, 0.5, 2.0, 0.0};  // inertia not given
   try {
     FitAxis(logs, start, {});
     FAIL("fitted an inertia from constant-rate logs");

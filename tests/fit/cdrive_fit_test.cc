@@ -40,6 +40,8 @@ CDriveParameters Start() {
   return p;
 }
 
+CDriveSection Given(const CDriveParameters& p) { return MakeSection(CDriveParameterTable(), p); }
+
 double Estimate(const FitResult& fit, const std::string& name) {
   for (const auto& e : fit.estimates) {
     if (e.name == name) return e.value;
@@ -51,7 +53,7 @@ double Estimate(const FitResult& fit, const std::string& name) {
 
 TEST_CASE("friction: Table I recovered within 3 % from slow programs") {
   for (unsigned seed : {1u, 10u}) {
-    const auto out = FitCDriveFriction(Programs(4.0, 2, seed), Start(), {});
+    const auto out = FitCDriveFriction(Programs(4.0, 2, seed), Given(Start()), {});
     const reference::CDrive truth;
     for (const auto& e : out.fit.estimates) {
       const double value = e.name == "beta" ? truth.beta : e.name == "gamma" ? truth.gamma
@@ -67,7 +69,7 @@ TEST_CASE("friction: Table I recovered within 3 % from slow programs") {
 
 TEST_CASE("friction: rotation alone is refused naming gamma and eta") {
   try {
-    FitCDriveFriction(Programs(4.0, 2, 3, true), Start(), {});
+    FitCDriveFriction(Programs(4.0, 2, 3, true), Given(Start()), {});
     FAIL("fitted gamma and eta from pure rotation");
   } catch (const IdentificationError& e) {
     const std::string message = e.what();
@@ -82,7 +84,7 @@ TEST_CASE("friction: rotation alone is refused naming gamma and eta") {
   auto start = Start();
   start.viscous_collar = 0.004333;
   start.coulomb_collar = 0.1501;
-  const auto out = FitCDriveFriction(Programs(4.0, 2, 3, true), start, options);
+  const auto out = FitCDriveFriction(Programs(4.0, 2, 3, true), Given(start), options);
   CHECK(Estimate(out.fit, "beta") == Approx(0.002655).epsilon(0.03));
   CHECK(Estimate(out.fit, "delta") == Approx(0.1086).epsilon(0.03));
 }
@@ -97,7 +99,7 @@ TEST_CASE("inertia: I_h and I_c within 5 % from fast programs with m fixed; a an
   start.collar_inertia = 1.6e-3 / 3.0;
   CDriveFitOptions options;
   options.half_window = 0.005;
-  const auto out = FitCDriveInertia(Programs(0.25, 3, 5), start, options);
+  const auto out = FitCDriveInertia(Programs(0.25, 3, 5), Given(start), options);
   CHECK(Estimate(out.fit, "I_h") == Approx(6e-4).epsilon(0.05));
   CHECK(Estimate(out.fit, "I_c") == Approx(1.6e-3).epsilon(0.05));
   REQUIRE(out.derived.size() == 2);
@@ -107,7 +109,7 @@ TEST_CASE("inertia: I_h and I_c within 5 % from fast programs with m fixed; a an
   CHECK(out.derived[0].standard_error > 0.0);
   // All three free: refused, advising which to fix.
   options.free = {"I_h", "I_c", "m"};
-  CHECK_THROWS_WITH(FitCDriveInertia(Programs(0.25, 3, 5), start, options),
+  CHECK_THROWS_WITH(FitCDriveInertia(Programs(0.25, 3, 5), Given(start), options),
                     Catch::Contains("fix one of I_h, I_c, m"));
 }
 
@@ -121,8 +123,8 @@ TEST_CASE("currents with k_t, and missing k_t refused") {
 }
 
 TEST_CASE("friction without the inertias: a + b and a - b are estimated alongside") {
-  auto start = Start();
-  start.hub_inertia = start.collar_inertia = start.collar_mass = std::nan("");
+  CDriveSection start = Given(Start());
+  start.hub_inertia = start.collar_inertia = start.collar_mass = std::nullopt;
   const auto out = FitCDriveFriction(Programs(4.0, 2, 21), start, {});
   CHECK(Estimate(out.fit, "beta") == Approx(0.002655).epsilon(0.03));
   CHECK(Estimate(out.fit, "gamma") == Approx(0.004333).epsilon(0.03));

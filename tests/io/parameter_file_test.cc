@@ -87,17 +87,17 @@ TEST_CASE("cdrive section with control reads back unchanged") {
       "  control: {K_P: 7.17, K_I: 0.0239, law: PD, dead_zone: 0.5, rate_limit: 50}\n";
   const auto file = ParseParameterFile("c.yaml", text);
   REQUIRE(file.cdrive);
-  CHECK(file.cdrive->params.coulomb_collar == 0.1501);
+  CHECK(file.cdrive->coulomb_collar == 0.1501);
   CHECK(file.cdrive->torque_constant == 0.5);
-  REQUIRE(file.cdrive->control);
-  CHECK(file.cdrive->control->law == ControlLaw::kPD);
-  CHECK(file.cdrive->control->second_gain == 0.0239);
+  REQUIRE(file.cdrive_control);
+  CHECK(file.cdrive_control->law == ControlLaw::kPD);
+  CHECK(file.cdrive_control->second_gain == 0.0239);
   const auto again = ParseParameterFile("d.yaml", FormatParameterFile(file));
   CHECK(FormatParameterFile(again) == FormatParameterFile(file));
-  CHECK(again.cdrive->control->law == ControlLaw::kPD);
+  CHECK(again.cdrive_control->law == ControlLaw::kPD);
   // Absent optional values read as "not given" and are not written.
   const auto bare = ParseParameterFile("e.yaml", "cdrive:\n  p: 0.06\n");
-  CHECK_FALSE(IsGiven(bare.cdrive->params.viscous_motor));
+  CHECK_FALSE(bare.cdrive->viscous_motor);
   CHECK(FormatParameterFile(bare).find("beta") == std::string::npos);
 }
 

@@ -125,18 +125,18 @@ TEST_CASE("simulate -> friction and simulate -> inertia round trips recover the 
   start.viscous_collar /= 2.0;
   start.coulomb_motor *= 3.0;
   start.coulomb_collar /= 2.5;
-  const auto friction = FitCDriveFriction(slow, start, {});
-  CHECK(friction.params.viscous_motor == Approx(truth.viscous_motor).epsilon(0.03));
-  CHECK(friction.params.viscous_collar == Approx(truth.viscous_collar).epsilon(0.03));
-  CHECK(friction.params.coulomb_motor == Approx(truth.coulomb_motor).epsilon(0.03));
-  CHECK(friction.params.coulomb_collar == Approx(truth.coulomb_collar).epsilon(0.03));
+  const auto friction = FitCDriveFriction(slow, MakeSection(CDriveParameterTable(), start), {});
+  CHECK(*friction.section.viscous_motor == Approx(truth.viscous_motor).epsilon(0.03));
+  CHECK(*friction.section.viscous_collar == Approx(truth.viscous_collar).epsilon(0.03));
+  CHECK(*friction.section.coulomb_motor == Approx(truth.coulomb_motor).epsilon(0.03));
+  CHECK(*friction.section.coulomb_collar == Approx(truth.coulomb_collar).epsilon(0.03));
 
   auto inertia_start = truth;
   inertia_start.hub_inertia *= 2.5;
   inertia_start.collar_inertia /= 3.0;
   CDriveFitOptions options;
   options.half_window = 0.005;
-  const auto inertia = FitCDriveInertia(fast, inertia_start, options);
-  CHECK(inertia.params.hub_inertia == Approx(truth.hub_inertia).epsilon(0.05));
-  CHECK(inertia.params.collar_inertia == Approx(truth.collar_inertia).epsilon(0.05));
+  const auto inertia = FitCDriveInertia(fast, MakeSection(CDriveParameterTable(), inertia_start), options);
+  CHECK(*inertia.section.hub_inertia == Approx(truth.hub_inertia).epsilon(0.05));
+  CHECK(*inertia.section.collar_inertia == Approx(truth.collar_inertia).epsilon(0.05));
 }

@@ -1,0 +1,166 @@
+// One parameter table per model, declared beside the model struct: key,
+// paper symbol, unit, bound, default free set and where the value lives.
+// The parameter-file reader and writer, `--free` validation and help texts,
+// the fits' start values, bounds and scales, and the reports all read it, so
+// a key is written down once (docs/adding-a-model.md).
+//
+// A model has two structs: its file section (`std::optional` per key: given
+// or not, as the user wrote it) and its parameters (plain doubles the
+// equations use). A row points into both; settings that are not model
+// parameters (a torque constant, a gear ratio used for reporting) point into
+// the section only.
+#pragma once
+
+#include <algorithm>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+
+namespace driveid {
+
+/// What a parameter is, independent of where it is stored.
+struct ParameterSpec {
+  const char* key;          ///< parameter-file key and --free name
+  const char* symbol;       ///< the paper's symbol (ASCII)
+  const char* unit;         ///< SI unit, e.g. "N m s/rad"
+  const char* description;  ///< what it is
+  double lower_bound = 0.0;             ///< physical bound
+  bool lower_exclusive = false;         ///< value must be > lower_bound (else >=)
+  bool required = false;                ///< the section is incomplete without it
+  const char* fit = "";                 ///< fit that estimates it ("" = none); several: "a b"
+  bool default_free = false;            ///< in that fit's default --free set
+  double typical = 0.0;                 ///< typical magnitude for scaling (0 = from the start value)
+
+  /// "description [unit]" as written beside a value in a parameter file.
+  std::string Doc() const { return fmt::format("{} [{}]", description, unit); }
+  /// True when `value` satisfies the bound.
+  bool Admits(double value) const { return lower_exclusive ? value > lower_bound : value >= lower_bound; }
+  /// True when the named fit estimates this parameter.
+  bool InFit(const std::string& name) const {
+    const std::string fits = std::string(" ") + fit + " ";
+    return !name.empty() && fits.find(" " + name + " ") != std::string::npos;
+  }
+};
+
+constexpr double kUnbounded = -std::numeric_limits<double>::infinity();
+
+/// A row of a model's table: the spec, the value in the file section and
+/// (nullptr for settings) in the model's parameter struct.
+template <class Section, class Model>
+struct ParameterRow {
+  ParameterSpec spec;
+  std::optional<double> Section::*in_section;
+  double Model::*in_model;
+};
+
+template <class Section, class Model>
+using ParameterTable = std::vector<ParameterRow<Section, Model>>;
+
+/// The row of `key`, or nullptr.
+template <class Section, class Model>
+const ParameterRow<Section, Model>* FindParameter(const ParameterTable<Section, Model>& table, const std::string& key) {
+  for (const auto& row : table) {
+    if (key == row.spec.key) return &row;
+  }
+  return nullptr;
+}
+
+/// Keys a fit estimates (all of them, or only its default --free set).
+template <class Section, class Model>
+std::vector<std::string> FitParameterKeys(const ParameterTable<Section, Model>& table, const std::string& fit,
+                                          bool default_only = false) {
+  std::vector<std::string> keys;
+  for (const auto& row : table) {
+    if (row.spec.InFit(fit) && (!default_only || row.spec.default_free)) keys.push_back(row.spec.key);
+  }
+  return keys;
+}
+
+/// Throws std::invalid_argument unless every name is a parameter of `fit`.
+template <class Section, class Model>
+void CheckFreeNames(const ParameterTable<Section, Model>& table, const std::string& fit,
+                    const std::vector<std::string>& names, const std::vector<std::string>& extra = {}) {
+  std::vector<std::string> known = FitParameterKeys(table, fit);
+  known.insert(known.end(), extra.begin(), extra.end());
+  for (const auto& name : names) {
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      throw std::invalid_argument(
+          fmt::format("--free {}: not a parameter of the {} fit (choose from {})", name, fit, fmt::join(known, ", ")));
+    }
+  }
+}
+
+/// The model parameters of a section: given values over `defaults`; throws
+/// InputError naming `section_name.key` for a required value not given or a
+/// value out of bounds (the model's constructor check).
+template <class Section, class Model>
+Model MakeModelParameters(const ParameterTable<Section, Model>& table, const Section& section, Model defaults,
+                          const char* section_name) {
+  for (const auto& row : table) {
+    const std::optional<double>& value = section.*(row.in_section);
+    if (value) {
+      if (!row.spec.Admits(*value)) {
+        throw InputError(fmt::format("{}.{}: must be {} {}, got {} ({})", section_name, row.spec.key,
+                                     row.spec.lower_exclusive ? ">" : ">=", row.spec.lower_bound, *value,
+                                     row.spec.Doc()));
+      }
+      if (row.in_model != nullptr) defaults.*(row.in_model) = *value;
+    } else if (row.spec.required) {
+      throw InputError(fmt::format("{}.{}: missing value ({})", section_name, row.spec.key, row.spec.Doc()));
+    }
+  }
+  return defaults;
+}
+
+/// Throws InputError "<where>: section.key: needed by <purpose>" for the
+/// first model parameter (a row with a model member) that is not given.
+template <class Section, class Model>
+void RequireModelValues(const ParameterTable<Section, Model>& table, const Section& section, const std::string& where,
+                        const char* section_name, const std::string& purpose) {
+  for (const auto& row : table) {
+    if (row.in_model != nullptr && !(section.*(row.in_section))) {
+      throw InputError(
+          fmt::format("{}: {}.{}: needed by {} ({})", where, section_name, row.spec.key, purpose, row.spec.Doc()));
+    }
+  }
+}
+
+/// The model parameters of a section with NaN where a value is not given
+/// (for reports that show "-" and fits that tell given from missing).
+template <class Section, class Model>
+Model ModelValuesOrNaN(const ParameterTable<Section, Model>& table, const Section& section) {
+  Model model{};
+  for (const auto& row : table) {
+    if (row.in_model != nullptr) {
+      model.*(row.in_model) = (section.*(row.in_section)).value_or(std::numeric_limits<double>::quiet_NaN());
+    }
+  }
+  return model;
+}
+
+/// Writes every model parameter of `model` into `section` (settings stay).
+template <class Section, class Model>
+void StoreModelParameters(const ParameterTable<Section, Model>& table, const Model& model, Section& section) {
+  for (const auto& row : table) {
+    if (row.in_model != nullptr) section.*(row.in_section) = model.*(row.in_model);
+  }
+}
+
+}  // namespace driveid
+
+namespace driveid {
+
+/// A section with every model parameter of `model` given (settings not given).
+template <class Section, class Model>
+Section MakeSection(const ParameterTable<Section, Model>& table, const Model& model) {
+  Section section{};
+  StoreModelParameters(table, model, section);
+  return section;
+}
+
+}  // namespace driveid
