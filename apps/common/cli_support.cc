@@ -52,7 +52,10 @@ int RunMain(CLI::App& app, int argc, char** argv, const std::function<void()>& d
   } catch (const IdentificationError& e) {
     Fail(program, e.what());
     return kIdentificationFailed;
-  } catch (const std::invalid_argument& e) {
+  } catch (const OutputError& e) {
+    Fail(program, e.what());
+    return kInvalidInput;
+  } catch (const OptionError& e) {
     Fail(program, e.what());
     return kUsage;
   } catch (const std::exception& e) {

@@ -44,7 +44,7 @@ void RunReportCommand(const ReportOptions& options) {
     try {
       std::fputs(FormatPlanarRobotReport(robot, pose, velocity, options.params).c_str(), stdout);
     } catch (const std::domain_error& e) {
-      throw std::invalid_argument(fmt::format("--pose: {}", e.what()));
+      throw OptionError(fmt::format("--pose: {}", e.what()));
     }
     if (!file.drivetrain) return;
   }

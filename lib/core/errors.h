@@ -1,5 +1,6 @@
 // Error types thrown across the library boundary. Each maps to one exit code
-// of the command-line tools (SPEC section 7).
+// of the command-line tools (docs/formats.md#exit-codes); anything else that
+// escapes (std::logic_error, a plain std::invalid_argument) is a bug: exit 1.
 #pragma once
 
 #include <stdexcept>
@@ -13,6 +14,20 @@ namespace driveid {
 class InputError : public std::runtime_error {
  public:
   explicit InputError(const std::string& message) : std::runtime_error(message) {}
+};
+
+/// An output that cannot be written: unwritable path, a plot renderer
+/// (gnuplot) missing or failing, a full disk. Exit code 3, naming the file.
+class OutputError : public std::runtime_error {
+ public:
+  explicit OutputError(const std::string& message) : std::runtime_error(message) {}
+};
+
+/// An option value the library refuses (names the option, its value and the
+/// violated constraint). Exit code 2, like a command-line usage error.
+class OptionError : public std::runtime_error {
+ public:
+  explicit OptionError(const std::string& message) : std::runtime_error(message) {}
 };
 
 /// Identification failed: parameters not identifiable from the data, solver

@@ -7,11 +7,13 @@
 
 #include <fmt/format.h>
 
+#include "core/errors.h"
+
 namespace driveid {
 
-/// Throws std::invalid_argument naming the option, its value and the constraint unless `ok`.
+/// Throws OptionError naming the option, its value and the constraint unless `ok`.
 inline void RequireOption(bool ok, const char* option, double value, const char* constraint) {
-  if (!ok) throw std::invalid_argument(fmt::format("{} = {}: violated constraint: {}", option, value, constraint));
+  if (!ok) throw OptionError(fmt::format("{} = {}: violated constraint: {}", option, value, constraint));
 }
 
 }  // namespace driveid

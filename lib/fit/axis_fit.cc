@@ -42,7 +42,7 @@ Derivatives Differentiate(const AxisLog& log, double cutoff_request) {
   if (d.rate_hz > 0.0) {
     const double cutoff = cutoff_request > 0.0 ? cutoff_request : d.rate_hz / 40.0;
     if (!(cutoff < 0.5 * d.rate_hz)) {
-      throw std::invalid_argument(fmt::format("--cutoff = {}: violated constraint: below half the sampling rate {} Hz",
+      throw OptionError(fmt::format("--cutoff = {}: violated constraint: below half the sampling rate {} Hz",
                                               cutoff, d.rate_hz));
     }
     const std::vector<double> q = ZeroPhaseLowPass(log.position, cutoff, d.rate_hz);
@@ -71,10 +71,10 @@ Derivatives Differentiate(const AxisLog& log, double cutoff_request) {
 
 
 AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options) {
-  if (logs.empty()) throw std::invalid_argument("no logs given");
+  if (logs.empty()) throw OptionError("no logs given");
   CheckFreeNames(AxisParameterTable(), "axis", options.free);
   if (options.decimation < 1) {
-    throw std::invalid_argument(fmt::format("--decimation = {}: violated constraint: >= 1", options.decimation));
+    throw OptionError(fmt::format("--decimation = {}: violated constraint: >= 1", options.decimation));
   }
   std::vector<int> free_columns;
   std::vector<FitParameter> parameters;

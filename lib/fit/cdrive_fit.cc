@@ -133,12 +133,12 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
                     const CDriveFitOptions& options, Kind kind) {
   const CDriveParameters start = ModelValuesOrNaN(CDriveParameterTable(), start_section);  // NaN = not given
   if (!start_section.lead) throw InputError("--params: cdrive.p is needed");
-  if (logs.empty()) throw std::invalid_argument("no logs given");
+  if (logs.empty()) throw OptionError("no logs given");
   if (!(options.half_window > 0.0) || !std::isfinite(options.half_window)) {
-    throw std::invalid_argument(fmt::format("--window = {}: violated constraint: window > 0 s", options.half_window));
+    throw OptionError(fmt::format("--window = {}: violated constraint: window > 0 s", options.half_window));
   }
   if (!(options.min_rate >= 0.0) || !std::isfinite(options.min_rate)) {
-    throw std::invalid_argument(fmt::format("--min-rate = {}: violated constraint: min rate >= 0", options.min_rate));
+    throw OptionError(fmt::format("--min-rate = {}: violated constraint: min rate >= 0", options.min_rate));
   }
   const bool friction = kind == Kind::kFriction;
   const double settle = options.settle >= 0.0 ? options.settle : (friction ? 0.1 : 0.0);

@@ -157,7 +157,14 @@ FitResult FitLeastSquares(ResidualModel& model, const std::vector<FitParameter>&
   auto evaluate_at = [&](const std::vector<double>& zz) {
     for (int j = 0; j < p; ++j) physical[static_cast<std::size_t>(j)] = zz[static_cast<std::size_t>(j)] * scale[static_cast<std::size_t>(j)];
     if (!model.Evaluate(physical.data(), residuals.data(), jacobian.data())) {
-      throw IdentificationError("the model cannot be evaluated at these parameter values");
+      std::vector<std::string> values;
+      for (int j = 0; j < p; ++j) {
+        values.push_back(fmt::format("{} = {:.6g}", parameters[static_cast<std::size_t>(j)].name,
+                                     physical[static_cast<std::size_t>(j)]));
+      }
+      const std::string reason = model.LastFailure();
+      throw IdentificationError(fmt::format("the model cannot be evaluated at {}{}", fmt::join(values, ", "),
+                                            reason.empty() ? std::string(" (non-finite residuals)") : ": " + reason));
     }
   };
   // Structural problems show at the start already: refuse before solving.

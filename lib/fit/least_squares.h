@@ -23,6 +23,8 @@ class ResidualModel {
   /// row-major N x P Jacobian in physical units. Returns false if the model
   /// cannot be evaluated at `parameters` (the solver then backs off).
   virtual bool Evaluate(const double* parameters, double* residuals, double* jacobian) = 0;
+  /// Why the last Evaluate returned false (e.g. the integrator's reason), or "".
+  virtual std::string LastFailure() const { return {}; }
 };
 
 /// A free parameter: name (parameter-file key), start value and lower bound.

@@ -80,10 +80,10 @@ std::vector<std::pair<std::size_t, Sample>> Kinematics(const PlanarRobotParamete
 
 RobotFitOutput FitRobot(const std::vector<RobotLog>& logs, const PlanarRobotParameters& start,
                         const RobotFitOptions& options) {
-  if (logs.empty()) throw std::invalid_argument("no logs given");
+  if (logs.empty()) throw OptionError("no logs given");
   CheckFreeNames(PlanarRobotParameterTable(), "robot", options.free);
   if (!(options.half_window > 0.0)) {
-    throw std::invalid_argument(fmt::format("--window = {}: violated constraint: > 0 s", options.half_window));
+    throw OptionError(fmt::format("--window = {}: violated constraint: > 0 s", options.half_window));
   }
   if (!(start.torque_constant > 0.0)) throw InputError("--params: planar_robot.k_t is needed (currents to torques)");
   std::vector<int> free_columns;

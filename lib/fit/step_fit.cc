@@ -73,14 +73,21 @@ class StepResiduals final : public ResidualModel {
           for (std::size_t m = q; m < p; ++m) row[m] = (fit_offsets_ && m - q == i) ? 1.0 : 0.0;
         }
       }
-    } catch (const IdentificationError&) {
+    } catch (const IdentificationError& e) {
+      last_failure_ = e.what();
       return false;  // integrator failure at these values: the solver backs off
     }
     for (int i = 0; i < rows_; ++i) {
-      if (!std::isfinite(residuals[i])) return false;
+      if (!std::isfinite(residuals[i])) {
+        last_failure_ = "the simulated link torque is not finite";
+        return false;
+      }
     }
+    last_failure_.clear();
     return true;
   }
+
+  std::string LastFailure() const override { return last_failure_; }
 
   std::vector<double> Simulate(std::size_t i, const double* parameters) {
     const std::size_t q = ode_parameters_.size();
@@ -104,6 +111,7 @@ class StepResiduals final : public ResidualModel {
   DriveTrainResponse response_;
   std::vector<int> first_row_;
   int rows_ = 0;
+  std::string last_failure_;
 };
 
 void CheckStepLog(const StepLog& log) {
@@ -125,7 +133,7 @@ void CheckStepLog(const StepLog& log) {
 
 StepFitOutput FitStepResponses(const std::vector<StepLog>& logs, const DriveTrainParameters& start,
                                const StepFitOptions& options) {
-  if (logs.empty()) throw std::invalid_argument("no step logs given");
+  if (logs.empty()) throw OptionError("no step logs given");
   CheckFreeNames(DriveTrainParameterTable(), "step", options.free, {"offset"});
   for (const auto& log : logs) CheckStepLog(log);
   if (options.model == DriveTrainModel::kFull && !(start.gearbox_inertia > 0.0)) {

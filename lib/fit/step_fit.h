@@ -30,7 +30,7 @@ struct StepFitOutput {
   std::vector<std::vector<double>> simulated;  ///< model link torque per log, offset included
 };
 
-/// Fits the free parameters to all logs jointly. Throws std::invalid_argument
+/// Fits the free parameters to all logs jointly. Throws OptionError
 /// for an unknown name in `free`, InputError for unusable start values and
 /// IdentificationError when the data cannot determine the free parameters.
 StepFitOutput FitStepResponses(const std::vector<StepLog>& logs, const DriveTrainParameters& start,

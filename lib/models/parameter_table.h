@@ -81,7 +81,7 @@ std::vector<std::string> FitParameterKeys(const ParameterTable<Section, Model>& 
   return keys;
 }
 
-/// Throws std::invalid_argument unless every name is a parameter of `fit`.
+/// Throws OptionError unless every name is a parameter of `fit`.
 template <class Section, class Model>
 void CheckFreeNames(const ParameterTable<Section, Model>& table, const std::string& fit,
                     const std::vector<std::string>& names, const std::vector<std::string>& extra = {}) {
@@ -89,7 +89,7 @@ void CheckFreeNames(const ParameterTable<Section, Model>& table, const std::stri
   known.insert(known.end(), extra.begin(), extra.end());
   for (const auto& name : names) {
     if (std::find(known.begin(), known.end(), name) == known.end()) {
-      throw std::invalid_argument(
+      throw OptionError(
           fmt::format("--free {}: not a parameter of the {} fit (choose from {})", name, fit, fmt::join(known, ", ")));
     }
   }

@@ -1,5 +1,7 @@
 #include "report/plot.h"
 
+#include "core/errors.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -46,13 +48,13 @@ std::string TemporaryName(const std::string& base, const std::string& suffix) {
   std::vector<char> name(pattern.begin(), pattern.end());
   name.push_back('\0');
   const int fd = ::mkstemp(name.data());
-  if (fd < 0) throw std::runtime_error(fmt::format("{}: cannot create temporary file", base));
+  if (fd < 0) throw OutputError(fmt::format("{}: cannot create temporary file", base));
   ::close(fd);
   const std::string created(name.data());
   const std::string renamed = created + suffix;
   if (std::rename(created.c_str(), renamed.c_str()) != 0) {
     std::remove(created.c_str());
-    throw std::runtime_error(fmt::format("{}: cannot create temporary file", base));
+    throw OutputError(fmt::format("{}: cannot create temporary file", base));
   }
   return renamed;
 }
@@ -138,15 +140,15 @@ void RenderPanels(const std::string& path, const std::vector<PlotPanel>& panels,
   cleanup();
   if (spawned != 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     std::remove(image.c_str());
-    if (spawned != 0) throw std::runtime_error("cannot run gnuplot for --plot (install the Debian package gnuplot-nox)");
+    if (spawned != 0) throw OutputError("cannot run gnuplot for --plot (install the Debian package gnuplot-nox)");
     std::string first = error_text;
     while (!first.empty() && (first.front() == '\n' || first.front() == ' ')) first.erase(first.begin());
     first = first.substr(0, first.find('\n'));
-    throw std::runtime_error(fmt::format("{}: gnuplot failed: {}", path, first));
+    throw OutputError(fmt::format("{}: gnuplot failed: {}", path, first));
   }
   if (std::rename(image.c_str(), path.c_str()) != 0) {
     std::remove(image.c_str());
-    throw std::runtime_error(fmt::format("{}: cannot write plot", path));
+    throw OutputError(fmt::format("{}: cannot write plot", path));
   }
 }
 

@@ -37,7 +37,7 @@ struct PlotPanel {
 };
 
 /// Renders stacked panels into `path` (PNG or SVG); the last panel gets the
-/// x label. Throws std::runtime_error if gnuplot is missing or fails.
+/// x label. Throws OutputError if gnuplot is missing or fails.
 void RenderPanels(const std::string& path, const std::vector<PlotPanel>& panels, const std::string& x_label);
 
 /// True for a path ending in .png or .svg (case-insensitive).

@@ -1,5 +1,7 @@
 #include "sim/axis_experiment.h"
 
+#include "core/errors.h"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -18,7 +20,7 @@ AxisLog SimulateAxisExperiment(const AxisParameters& params, const AxisExperimen
   RequireOption(std::isfinite(e.noise) && e.noise >= 0.0, "--noise", e.noise, "noise >= 0");
   RequireOption(std::isfinite(e.resolution) && e.resolution >= 0.0, "--resolution", e.resolution, "resolution >= 0");
   if (e.profile != "multisine" && e.profile != "constant") {
-    throw std::invalid_argument("--profile " + e.profile + ": choose multisine or constant");
+    throw OptionError("--profile " + e.profile + ": choose multisine or constant");
   }
   GaussianNoise noise(e.seed);
   AxisLog log;

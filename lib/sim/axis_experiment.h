@@ -24,7 +24,7 @@ struct AxisExperiment {
   std::uint64_t seed = 1;
 };
 
-/// Throws std::invalid_argument naming a bad option.
+/// Throws OptionError naming a bad option.
 AxisLog SimulateAxisExperiment(const AxisParameters& params, const AxisExperiment& experiment);
 
 }  // namespace driveid

@@ -40,7 +40,7 @@ struct ClosedLoopResult {
   int switches = 0;                         ///< stick/slip switches of the plant
 };
 
-/// Checks the options and settings; throws std::invalid_argument naming the
+/// Checks the options and settings; throws OptionError naming the
 /// option, its value and the constraint.
 void ValidateClosedLoop(const ClosedLoopOptions& options, const CDriveControlSettings& settings);
 

@@ -1,5 +1,7 @@
 #include "sim/motion_program.h"
 
+#include "core/errors.h"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -9,7 +11,7 @@ MotionProgram TableTwoProgram(const std::string& name, double stroke) {
   if (name == "translation") return {name, 20.0, -20.0, stroke};
   if (name == "rotation") return {name, 20.0, 20.0, stroke};
   if (name == "helical") return {name, 14.0, -28.0, stroke};
-  throw std::invalid_argument("--program " + name + ": choose translation, rotation or helical");
+  throw OptionError("--program " + name + ": choose translation, rotation or helical");
 }
 
 ReferenceSample CalcProgramReference(double amplitude, double stroke, double time) {

@@ -18,7 +18,7 @@ struct MotionProgram {
 };
 
 /// Table II program by name (translation, rotation, helical); throws
-/// std::invalid_argument for another name.
+/// OptionError for another name.
 MotionProgram TableTwoProgram(const std::string& name, double stroke);
 
 /// Reference of one motor at time t >= 0: angle [rad], rate, acceleration.

@@ -38,7 +38,7 @@ struct PathSample {
 PathSample CalcTrianglePath(const PlanarRobotParameters& robot, const RobotExperiment& e, double time);
 double CalcTriangleDuration(const RobotExperiment& e);
 
-/// Throws std::invalid_argument for bad options, std::domain_error if the
+/// Throws OptionError for bad options, std::domain_error if the
 /// triangle leaves the workspace.
 RobotLog SimulateRobotExperiment(const PlanarRobotParameters& robot, const RobotExperiment& experiment);
 

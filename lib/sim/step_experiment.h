@@ -23,7 +23,7 @@ struct StepExperiment {
   double offset = 0.0;        ///< constant strain-gauge bias [N m]
 };
 
-/// Checks the experiment's settings; throws std::invalid_argument naming
+/// Checks the experiment's settings; throws OptionError naming
 /// the option, its value and the violated constraint.
 void ValidateStepExperiment(const StepExperiment& experiment);
 

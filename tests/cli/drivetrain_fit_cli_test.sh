@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# CLI tests of drivetrain-fit: exit codes (SPEC 7), one-line messages naming
+# CLI tests of drivetrain-fit: exit codes (docs/formats.md), one-line messages naming
 # file and line, no output file on failure, identifiability refusal, a golden
 # report, and byte-identical reruns. Usage: drivetrain_fit_cli_test.sh BIN SRC
 set -u
@@ -68,6 +68,15 @@ expect 2 "" -- step good.csv --params start.yaml --bogus
 expect 2 "png or .svg" -- step good.csv --params start.yaml --plot fit.jpg
 expect 2 "" -- step good.csv
 expect 2 "--rate = -5: violated constraint" -- simulate step --params paper.yaml --rate -5
+
+# Output errors keep their class: exit 3 naming the file, not "internal error".
+expect 3 "nodir/p.png" -- step good.csv --params start.yaml --plot nodir/p.png
+mkdir -p nognuplot
+rm -f out.yaml
+PATH="$work/nognuplot" "$bin" step good.csv --params start.yaml --plot p.png -o out.yaml > /dev/null 2> stderr.txt
+code=$?
+[ "$code" -eq 3 ] && grep -q "gnuplot" stderr.txt && [ ! -e out.yaml ] && ok ||
+  fail "missing gnuplot -> exit $code: $(cat stderr.txt)"
 
 # Success: fit, trace, plot, JSON; the parameter file reads back as --params.
 if "$bin" step good.csv --params start.yaml -o fit.yaml --trace trace.csv --plot fit.svg -q; then ok; else fail "good fit"; fi
