@@ -2,6 +2,7 @@
 
 #include <cvodes/cvodes.h>
 #include <nvector/nvector_serial.h>
+#include <sundials/sundials_config.h>
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
@@ -14,10 +15,19 @@ namespace driveid {
 namespace {
 
 // CVODES reports details through an error handler; keep the last message
-// (the library prints nothing) and put it into the exception.
+// (the library prints nothing) and put it into the exception. SUNDIALS 7
+// replaced CVodeSetErrHandlerFn by handlers on the context (whose default
+// prints to stderr: it is cleared first).
+#if SUNDIALS_VERSION_MAJOR >= 7
+void CaptureError(int, const char* function, const char*, const char* message, SUNErrCode, void* user_data,
+                  SUNContext) {
+  *static_cast<std::string*>(user_data) = fmt::format("{}: {}", function, message);
+}
+#else
 void CaptureError(int, const char* module, const char* function, char* message, void* user_data) {
   *static_cast<std::string*>(user_data) = fmt::format("{} {}: {}", module, function, message);
 }
+#endif
 
 void Check(int code, const char* function, const std::string* detail = nullptr) {
   if (code >= 0) return;
@@ -33,7 +43,7 @@ T* CheckPointer(T* pointer, const char* function) {
   return pointer;
 }
 
-int RightHandSide(realtype t, N_Vector y, N_Vector ydot, void* user_data) {
+int RightHandSide(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
   try {
     static_cast<const SensitivityOdeSystem*>(user_data)->CalcDerivatives(t, N_VGetArrayPointer(y),
                                                                          N_VGetArrayPointer(ydot));
@@ -43,7 +53,7 @@ int RightHandSide(realtype t, N_Vector y, N_Vector ydot, void* user_data) {
   }
 }
 
-int Jacobian(realtype t, N_Vector y, N_Vector, SUNMatrix jac, void* user_data, N_Vector, N_Vector, N_Vector) {
+int Jacobian(sunrealtype t, N_Vector y, N_Vector, SUNMatrix jac, void* user_data, N_Vector, N_Vector, N_Vector) {
   try {
     static_cast<const SensitivityOdeSystem*>(user_data)->CalcStateJacobian(t, N_VGetArrayPointer(y),
                                                                            SUNDenseMatrix_Data(jac));
@@ -53,7 +63,7 @@ int Jacobian(realtype t, N_Vector y, N_Vector, SUNMatrix jac, void* user_data, N
   }
 }
 
-int SensitivityRightHandSide(int, realtype t, N_Vector y, N_Vector, int j, N_Vector ys, N_Vector ysdot,
+int SensitivityRightHandSide(int, sunrealtype t, N_Vector y, N_Vector, int j, N_Vector ys, N_Vector ysdot,
                              void* user_data, N_Vector, N_Vector) {
   try {
     static_cast<const SensitivityOdeSystem*>(user_data)->CalcSensitivityDerivative(
@@ -64,7 +74,7 @@ int SensitivityRightHandSide(int, realtype t, N_Vector y, N_Vector, int j, N_Vec
   }
 }
 
-int Roots(realtype t, N_Vector y, realtype* g, void* user_data) {
+int Roots(sunrealtype t, N_Vector y, sunrealtype* g, void* user_data) {
   try {
     static_cast<const SensitivityOdeSystem*>(user_data)->CalcRoots(t, N_VGetArrayPointer(y), g);
     return 0;
@@ -101,7 +111,13 @@ CvodesIntegrator::CvodesIntegrator(const SensitivityOdeSystem& system, const Int
     : handles_(std::make_unique<Handles>()), system_(system) {
   Handles& h = *handles_;
   const int n = system.state_size();
+#if SUNDIALS_VERSION_MAJOR >= 7
+  Check(SUNContext_Create(SUN_COMM_NULL, &h.context), "SUNContext_Create");
+  Check(SUNContext_ClearErrHandlers(h.context), "SUNContext_ClearErrHandlers");
+  Check(SUNContext_PushErrHandler(h.context, CaptureError, &h.last_error), "SUNContext_PushErrHandler");
+#else
   Check(SUNContext_Create(nullptr, &h.context), "SUNContext_Create");
+#endif
   h.state = CheckPointer(N_VNew_Serial(n, h.context), "N_VNew_Serial");
   N_VConst(0.0, h.state);
   h.absolute_tolerance = CheckPointer(N_VNew_Serial(n, h.context), "N_VNew_Serial");
@@ -112,7 +128,9 @@ CvodesIntegrator::CvodesIntegrator(const SensitivityOdeSystem& system, const Int
   // Adams-Moulton with Newton iteration: the drive trains are lightly damped
   // oscillators, not stiff, and Adams keeps their oscillations undamped.
   h.memory = CheckPointer(CVodeCreate(CV_ADAMS, h.context), "CVodeCreate");
+#if SUNDIALS_VERSION_MAJOR < 7
   Check(CVodeSetErrHandlerFn(h.memory, CaptureError, &h.last_error), "CVodeSetErrHandlerFn");
+#endif
   Check(CVodeInit(h.memory, RightHandSide, 0.0, h.state), "CVodeInit");
   Check(CVodeSetUserData(h.memory, const_cast<SensitivityOdeSystem*>(&system)), "CVodeSetUserData");
   Check(CVodeSVtolerances(h.memory, options.relative_tolerance, h.absolute_tolerance), "CVodeSVtolerances");
@@ -133,7 +151,7 @@ CvodesIntegrator::CvodesIntegrator(const SensitivityOdeSystem& system, const Int
     for (int j = 0; j < h.sensitivity_count; ++j) N_VConst(0.0, h.sensitivities[j]);
     Check(CVodeSensInit1(h.memory, h.sensitivity_count, CV_STAGGERED, SensitivityRightHandSide, h.sensitivities),
           "CVodeSensInit1");
-    std::vector<realtype> absolute(static_cast<std::size_t>(h.sensitivity_count));
+    std::vector<sunrealtype> absolute(static_cast<std::size_t>(h.sensitivity_count));
     // Sensitivity j is measured in state units per unit of p_j: its absolute
     // tolerance is the state's, divided by the parameter's scale. CVODES
     // takes one scalar per sensitivity; use the smallest state tolerance.
@@ -181,7 +199,7 @@ void CvodesIntegrator::Restart(double t0, const double* x0, const std::vector<co
 bool CvodesIntegrator::Advance(double t_out, double t_stop) {
   Handles& h = *handles_;
   Check(CVodeSetStopTime(h.memory, t_stop), "CVodeSetStopTime");
-  realtype reached = time_;
+  sunrealtype reached = time_;
   h.last_error.clear();
   const int flag = CVode(h.memory, t_out, h.state, &reached, CV_NORMAL);
   Check(flag, "CVode", &h.last_error);
@@ -191,7 +209,7 @@ bool CvodesIntegrator::Advance(double t_out, double t_stop) {
   total_steps_ += steps - steps_since_restart_;
   steps_since_restart_ = steps;
   if (sensitivities_on_) {
-    realtype sensitivity_time = 0.0;
+    sunrealtype sensitivity_time = 0.0;
     Check(CVodeGetSens(h.memory, &sensitivity_time, h.sensitivities), "CVodeGetSens");
   }
   if (flag == CV_ROOT_RETURN) {
