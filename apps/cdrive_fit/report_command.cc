@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "common/cli_support.h"
 #include "core/errors.h"
 #include "io/parameter_file.h"
 #include "report/cdrive_report.h"
@@ -22,9 +23,9 @@ CLI::App* SetupCDriveReportCommand(CLI::App& app, CDriveReportOptions& options) 
 void RunCDriveReportCommand(const CDriveReportOptions& options) {
   const ParameterFile file = ReadParameterFile(options.params);
   if (!file.cdrive) throw InputError(fmt::format("{}: no 'cdrive' section", options.params));
-  const std::string text = options.json ? FormatCDriveReportJson(*file.cdrive, file.fit_estimates, options.params)
+  const std::string text = options.json ? DumpJson(CDriveReportJson(*file.cdrive, file.fit_estimates, options.params))
                                         : FormatCDriveReport(*file.cdrive, file.cdrive_control, file.fit_estimates, options.params);
-  std::fputs(text.c_str(), stdout);
+  WriteStdout(text);
 }
 
 }  // namespace driveid::cli

@@ -4,9 +4,11 @@
 
 #include <fmt/format.h>
 
+#include "common/cli_support.h"
 #include "core/errors.h"
 #include "io/atomic_file.h"
 #include "io/parameter_file.h"
+#include "report/json.h"
 #include "report/fit_summary.h"
 #include "report/plot.h"
 #include "sim/cdrive_closed_loop.h"
@@ -90,13 +92,14 @@ void RunCDriveSimulateCommand(const CDriveSimulateOptions& options, const std::s
 
   std::FILE* summary = options.output.empty() ? stderr : stdout;
   if (options.json) {
-    std::fprintf(summary,
-                 "{\"program\":%s,\"law\":\"%s\",\"endpoint_u_error\":%s,\"endpoint_theta_error\":%s,"
-                 "\"max_u_error\":%s,\"max_theta_error\":%s,\"switches\":%d}\n",
-                 JsonString(loop.program.name).c_str(), ControlLawName(settings.law),
-                 JsonNumber(result.endpoint_translation_error).c_str(), JsonNumber(result.endpoint_rotation_error).c_str(),
-                 JsonNumber(result.max_translation_error).c_str(), JsonNumber(result.max_rotation_error).c_str(),
-                 result.switches);
+    const Json json = {{"program", loop.program.name},
+                       {"law", ControlLawName(settings.law)},
+                       {"endpoint_u_error", result.endpoint_translation_error},
+                       {"endpoint_theta_error", result.endpoint_rotation_error},
+                       {"max_u_error", result.max_translation_error},
+                       {"max_theta_error", result.max_rotation_error},
+                       {"switches", result.switches}};
+    std::fputs(DumpJson(json).c_str(), summary);
   } else {
     std::fprintf(summary,
                  "%s, %s: end-point error u %.4f mm, theta %.5f rad (seed 001: < 0.1 mm, < 0.01 rad); max over the "
@@ -105,7 +108,7 @@ void RunCDriveSimulateCommand(const CDriveSimulateOptions& options, const std::s
                  result.endpoint_rotation_error, result.max_translation_error * 1e3, result.max_rotation_error,
                  result.switches);
   }
-  if (options.output.empty()) std::fputs(log_text.c_str(), stdout);
+  if (options.output.empty()) WriteStdout(log_text);
 }
 
 }  // namespace driveid::cli

@@ -89,6 +89,13 @@ std::string CommandLine(int argc, char** argv) {
   return out;
 }
 
+void WriteStdout(const std::string& text) {
+  if (std::fwrite(text.data(), 1, text.size(), stdout) != text.size() || std::fflush(stdout) != 0 ||
+      std::ferror(stdout)) {
+    throw OutputError("standard output: write error");
+  }
+}
+
 void AddFitOutputOptions(CLI::App& command, FitOutputOptions& options) {
   command.add_option("-o,--output", options.output, "write the fitted parameter file here (default: stdout)");
   command.add_option("--trace", options.trace, "write a CSV of time, measured, model and residual per channel");
@@ -110,12 +117,11 @@ void EmitFitOutputs(const FitOutputOptions& options, const FitOutputs& outputs) 
 
   std::FILE* summary = options.output.empty() ? stderr : stdout;
   if (options.json) {
-    std::fputs(FormatFitJson(outputs.fit, outputs.provenance).c_str(), summary);
+    std::fputs(DumpJson(FitJson(outputs.fit, outputs.provenance)).c_str(), summary);
   } else if (!options.quiet) {
     std::fputs(FormatFitTable(outputs.fit, outputs.provenance).c_str(), summary);
   }
-  if (options.output.empty()) std::fputs(outputs.parameter_file.c_str(), stdout);
-  std::fflush(stdout);
+  WriteStdout(options.output.empty() ? outputs.parameter_file : std::string());
 }
 
 void SetProgress(FitOptions& fit, bool verbose) {

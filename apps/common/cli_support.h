@@ -27,6 +27,10 @@ int RunMain(CLI::App& app, int argc, char** argv, const std::function<void()>& d
 /// The exact command line, shell-quoted where needed (for provenance).
 std::string CommandLine(int argc, char** argv);
 
+/// Writes `text` to standard output and flushes it; throws OutputError (exit
+/// 3) when that fails (a full disk, a closed pipe).
+void WriteStdout(const std::string& text);
+
 /// Output flags every fitting subcommand shares.
 struct FitOutputOptions {
   std::string output;  ///< parameter file ("" = stdout)

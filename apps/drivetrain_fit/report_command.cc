@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "common/cli_support.h"
 #include "core/errors.h"
 #include "io/parameter_file.h"
 #include "report/drivetrain_report.h"
@@ -34,6 +35,9 @@ void RunReportCommand(const ReportOptions& options) {
   if (!file.drivetrain && !file.planar_robot) {
     throw InputError(fmt::format("{}: no 'drivetrain' or 'planar_robot' section", options.params));
   }
+  // Text: one block per section. JSON: one document with a member per section.
+  std::string text;
+  Json json = Json::object();
   if (file.planar_robot) {
     const PlanarRobotParameters robot = MakePlanarRobotParameters(*file.planar_robot);
     const double a = robot.base_distance;
@@ -42,25 +46,26 @@ void RunReportCommand(const ReportOptions& options) {
     const Vector2 velocity = options.velocity.size() == 2 ? Vector2{options.velocity[0], options.velocity[1]}
                                                            : Vector2{0.0, 0.0};
     try {
-      std::fputs(FormatPlanarRobotReport(robot, pose, velocity, options.params).c_str(), stdout);
+      if (options.json) json["planar_robot"] = PlanarRobotReportJson(robot, pose, velocity, options.params);
+      else text += FormatPlanarRobotReport(robot, pose, velocity, options.params);
     } catch (const std::domain_error& e) {
       throw OptionError(fmt::format("--pose: {}", e.what()));
     }
-    if (!file.drivetrain) return;
   }
-  ParameterFile fitted;
-  if (!options.fitted.empty()) {
-    fitted = ReadParameterFile(options.fitted);
-    if (!fitted.drivetrain) throw InputError(fmt::format("{}: no 'drivetrain' section", options.fitted));
+  if (file.drivetrain) {
+    ParameterFile fitted;
+    if (!options.fitted.empty()) {
+      fitted = ReadParameterFile(options.fitted);
+      if (!fitted.drivetrain) throw InputError(fmt::format("{}: no 'drivetrain' section", options.fitted));
+    }
+    const DriveTrainParameters params = MakeDriveTrainParameters(*file.drivetrain);
+    std::optional<DriveTrainParameters> fitted_values;
+    if (fitted.drivetrain) fitted_values = MakeDriveTrainParameters(*fitted.drivetrain);
+    const DriveTrainParameters* fitted_params = fitted_values ? &*fitted_values : nullptr;
+    if (options.json) json["drivetrain"] = DriveTrainReportJson(params, options.params, fitted_params);
+    else text += FormatDriveTrainReport(params, options.params, fitted_params, options.fitted);
   }
-  const DriveTrainParameters params = MakeDriveTrainParameters(*file.drivetrain);
-  std::optional<DriveTrainParameters> fitted_values;
-  if (fitted.drivetrain) fitted_values = MakeDriveTrainParameters(*fitted.drivetrain);
-  const DriveTrainParameters* fitted_params = fitted_values ? &*fitted_values : nullptr;
-  const std::string text = options.json
-                               ? FormatDriveTrainReportJson(params, options.params, fitted_params)
-                               : FormatDriveTrainReport(params, options.params, fitted_params, options.fitted);
-  std::fputs(text.c_str(), stdout);
+  WriteStdout(options.json ? DumpJson(json) : text);
 }
 
 }  // namespace driveid::cli

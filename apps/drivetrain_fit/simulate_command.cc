@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "common/cli_support.h"
 #include "core/errors.h"
 #include "io/atomic_file.h"
 #include "io/parameter_file.h"
@@ -84,7 +85,7 @@ void RunSimulateRobotCommand(const SimulateRobotOptions& options, const std::str
             fmt::format("truth: Theta {}, m_c {}, d_g {}, n_g {}, k_t {}", p.output_inertia, p.center_mass,
                         p.viscous_friction, p.gear_ratio, p.torque_constant)});
   if (options.output.empty()) {
-    std::fputs(text.c_str(), stdout);
+    WriteStdout(text);
   } else {
     WriteFileAtomically(options.output, text);
   }
@@ -104,7 +105,7 @@ void RunSimulateAxisCommand(const SimulateAxisOptions& options, const std::strin
             fmt::format("truth: inertia {}, viscous {}, coulomb {}, offset {}", params.inertia, params.viscous,
                         params.coulomb, params.offset)});
   if (options.output.empty()) {
-    std::fputs(text.c_str(), stdout);
+    WriteStdout(text);
   } else {
     WriteFileAtomically(options.output, text);
   }
@@ -130,7 +131,7 @@ void RunSimulateStepCommand(const SimulateStepOptions& options, const std::strin
                   p.viscous_friction, p.coulomb_friction)};
   const std::string text = FormatStepLog(log, comments);
   if (options.output.empty()) {
-    std::fputs(text.c_str(), stdout);
+    WriteStdout(text);
   } else {
     WriteFileAtomically(options.output, text);
   }

@@ -94,28 +94,28 @@ std::string FormatCDriveReport(const CDriveSection& cdrive, const std::optional<
   return out;
 }
 
-std::string FormatCDriveReportJson(const CDriveSection& cdrive, const std::vector<ParameterEstimate>& estimates,
-                                   const std::string& source) {
+Json CDriveReportJson(const CDriveSection& cdrive, const std::vector<ParameterEstimate>& estimates,
+                      const std::string& source) {
   const CDriveParameters p = ModelValuesOrNaN(CDriveParameterTable(), cdrive);
   const Matrix2 j = CalcCDriveJacobian(p.lead), inverse = CalcCDriveJacobianInverse(p.lead);
-  std::string out = fmt::format("{{\"source\":{},\"lead\":{},\"jacobian\":[{},{},{},{}],\"jacobian_inverse\":[{},{},{},{}],"
-                                "\"jtj\":{}",
-                                JsonString(source), JsonNumber(p.lead), JsonNumber(j[0]), JsonNumber(j[1]),
-                                JsonNumber(j[2]), JsonNumber(j[3]), JsonNumber(inverse[0]), JsonNumber(inverse[1]),
-                                JsonNumber(inverse[2]), JsonNumber(inverse[3]),
-                                JsonNumber(p.lead * p.lead / (8 * M_PI * M_PI)));
+  Json out;
+  out["source"] = source;
+  out["lead"] = p.lead;
+  out["jacobian"] = {j[0], j[1], j[2], j[3]};
+  out["jacobian_inverse"] = {inverse[0], inverse[1], inverse[2], inverse[3]};
+  out["jtj"] = p.lead * p.lead / (8 * M_PI * M_PI);
   if (InertiaGiven(p)) {
-    out += fmt::format(",\"a\":{},\"b\":{}", JsonNumber(CalcInertiaDiagonal(p)), JsonNumber(CalcInertiaOffDiagonal(p)));
+    out["a"] = CalcInertiaDiagonal(p);
+    out["b"] = CalcInertiaOffDiagonal(p);
   }
-  const char* names[] = {"beta", "gamma", "delta", "eta"};
   const double values[] = {p.viscous_motor, p.viscous_collar, p.coulomb_motor, p.coulomb_collar};
-  out += ",\"dissipation\":{";
+  out["dissipation"] = Json::object();
   for (int i = 0; i < 4; ++i) {
-    out += fmt::format("{}\"{}\":{{\"value\":{},\"std\":{},\"table_one\":{}}}", i ? "," : "", names[i],
-                       IsGiven(values[i]) ? JsonNumber(values[i]) : "null", JsonNumber(Lookup(estimates, names[i])),
-                       JsonNumber(kTableOne[i].value));
+    out["dissipation"][kTableOne[i].key] = {{"value", IsGiven(values[i]) ? Json(values[i]) : Json(nullptr)},
+                                            {"std", Lookup(estimates, kTableOne[i].key)},
+                                            {"table_one", kTableOne[i].value}};
   }
-  return out + "}}\n";
+  return out;
 }
 
 }  // namespace driveid

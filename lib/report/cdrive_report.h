@@ -12,13 +12,14 @@
 
 #include "control/cdrive_control_settings.h"
 #include "models/cdrive.h"
+#include "report/json.h"
 
 namespace driveid {
 
 std::string FormatCDriveReport(const CDriveSection& cdrive, const std::optional<CDriveControlSection>& control,
                                const std::vector<ParameterEstimate>& estimates, const std::string& source);
 
-std::string FormatCDriveReportJson(const CDriveSection& cdrive, const std::vector<ParameterEstimate>& estimates,
-                                   const std::string& source);
+Json CDriveReportJson(const CDriveSection& cdrive, const std::vector<ParameterEstimate>& estimates,
+                      const std::string& source);
 
 }  // namespace driveid

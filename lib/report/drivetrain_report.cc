@@ -46,7 +46,7 @@ std::string FormatDriveTrainReport(const DriveTrainParameters& p, const std::str
                                    const DriveTrainParameters* fitted, const std::string& fitted_source) {
   const Derived d = Derive(p);
   const double n2 = p.gear_ratio * p.gear_ratio;
-  std::string out = fmt::format("drive train from {} (seed 000 section 4, SPEC 5.1)\n", source);
+  std::string out = fmt::format("drive train from {} (seed 000 section 4; docs/models.md#drive-train)\n", source);
   out += fmt::format("  n_g^2 Theta_motor = {:.4g} kg m^2, n_g^2 Theta_g = {:.4g} kg m^2, n_g^2 d_g = {:.4g} N m s/rad\n",
                      n2 * p.motor_inertia, n2 * p.gearbox_inertia, n2 * p.viscous_friction);
   out += fmt::format("  k_eq = k_Tl k_Tg / (k_Tl + k_Tg) = {:.6g} N m/rad\n\n", d.series_stiffness);
@@ -79,30 +79,34 @@ std::string FormatDriveTrainReport(const DriveTrainParameters& p, const std::str
                        "({:.4g} Hz), undamped\n",
                        d.stuck_link_frequency, d.stuck_link_frequency / (2 * M_PI));
   }
-  out += "seed misprints corrected (SPEC 5.1): (13) viscous term n_g^2 d_g phi' (printed theta_g); (14) right side "
+  out += "seed misprints corrected (docs/models.md#drive-train): (13) viscous term n_g^2 d_g phi' (printed theta_g); (14) right side "
          "k_Tg phi (printed k_T,k); n_g^2 Theta_g = 0.043 (printed 0.413)\n";
   return out;
 }
 
 namespace {
-std::string DerivedJson(const Derived& d) {
-  return fmt::format("{{\"gain\":{},\"a2\":{},\"a1\":{},\"natural_frequency\":{},\"damping_ratio\":{},"
-                     "\"steady_state\":{},\"overshoot\":{},\"series_stiffness\":{},\"stuck_link_frequency\":{}}}",
-                     JsonNumber(d.tf.gain), JsonNumber(d.tf.lag_s2), JsonNumber(d.tf.lag_s1),
-                     JsonNumber(d.tf.natural_frequency), JsonNumber(d.tf.damping_ratio), JsonNumber(d.stuck_level),
-                     JsonNumber(d.overshoot), JsonNumber(d.series_stiffness), JsonNumber(d.stuck_link_frequency));
+Json DerivedJson(const Derived& d) {
+  return {{"gain", d.tf.gain},
+          {"a2", d.tf.lag_s2},
+          {"a1", d.tf.lag_s1},
+          {"natural_frequency", d.tf.natural_frequency},
+          {"damping_ratio", d.tf.damping_ratio},
+          {"steady_state", d.stuck_level},
+          {"overshoot", d.overshoot},
+          {"series_stiffness", d.series_stiffness},
+          {"stuck_link_frequency", d.stuck_link_frequency}};
 }
 }  // namespace
 
-std::string FormatDriveTrainReportJson(const DriveTrainParameters& p, const std::string& source,
-                                       const DriveTrainParameters* fitted) {
-  std::string out = fmt::format("{{\"source\":{},\"recomputed\":{},", JsonString(source), DerivedJson(Derive(p)));
-  if (fitted != nullptr) out += fmt::format("\"fitted\":{},", DerivedJson(Derive(*fitted)));
-  out += fmt::format("\"paper\":{{\"d_g\":{},\"tau_c\":{},\"gain\":{},\"a2\":{},\"a1\":{},\"natural_frequency\":{},"
-                     "\"damping_ratio\":{},\"steady_state\":{}}}}}\n",
-                     JsonNumber(kPaperViscousFriction), JsonNumber(kPaperCoulombFriction), JsonNumber(kPaperGain),
-                     JsonNumber(kPaperLagS2), JsonNumber(kPaperLagS1), JsonNumber(kPaperNaturalFrequency),
-                     JsonNumber(kPaperDampingRatio), JsonNumber(kPaperSteadyState));
+Json DriveTrainReportJson(const DriveTrainParameters& p, const std::string& source, const DriveTrainParameters* fitted) {
+  Json out;
+  out["source"] = source;
+  out["recomputed"] = DerivedJson(Derive(p));
+  if (fitted != nullptr) out["fitted"] = DerivedJson(Derive(*fitted));
+  out["paper"] = {{"d_g", kPaperViscousFriction},   {"tau_c", kPaperCoulombFriction},
+                  {"gain", kPaperGain},             {"a2", kPaperLagS2},
+                  {"a1", kPaperLagS1},              {"natural_frequency", kPaperNaturalFrequency},
+                  {"damping_ratio", kPaperDampingRatio}, {"steady_state", kPaperSteadyState}};
   return out;
 }
 

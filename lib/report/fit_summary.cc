@@ -6,25 +6,6 @@
 
 namespace driveid {
 
-std::string JsonString(const std::string& text) {
-  std::string out = "\"";
-  for (char c : text) {
-    const unsigned char u = static_cast<unsigned char>(c);
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
-      default:
-        if (u < 0x20) out += fmt::format("\\u{:04x}", u);
-        else out += c;
-    }
-  }
-  return out + "\"";
-}
-
-std::string JsonNumber(double value) { return std::isfinite(value) ? fmt::format("{}", value) : "null"; }
-
 std::string FormatFitTable(const FitResult& fit, const FitProvenance& provenance) {
   std::string out;
   out += fmt::format("{:<14} {:>14} {:>12} {:>9}   {:<27}\n", "parameter", "estimate", "std", "rel.std", "95 % interval");
@@ -53,42 +34,33 @@ std::string FormatFitTable(const FitResult& fit, const FitProvenance& provenance
   return out;
 }
 
-std::string FormatFitJson(const FitResult& fit, const FitProvenance& provenance) {
-  std::string out = "{";
-  out += fmt::format("\"command\":{},\"version\":{},\"model\":{},", JsonString(provenance.command),
-                     JsonString(provenance.version), JsonString(provenance.model));
-  out += "\"data\":[";
-  for (std::size_t i = 0; i < provenance.data.size(); ++i) {
-    const auto& d = provenance.data[i];
-    out += fmt::format("{}{{\"file\":{},\"sha256\":\"{}\",\"samples\":{}}}", i ? "," : "", JsonString(d.file), d.sha256,
-                       d.samples);
+Json FitJson(const FitResult& fit, const FitProvenance& provenance) {
+  Json out;
+  out["command"] = provenance.command;
+  out["version"] = provenance.version;
+  out["model"] = provenance.model;
+  out["data"] = Json::array();
+  for (const auto& d : provenance.data) out["data"].push_back({{"file", d.file}, {"sha256", d.sha256}, {"samples", d.samples}});
+  out["estimates"] = Json::object();
+  for (const auto& e : fit.estimates) {
+    out["estimates"][e.name] = {{"value", e.value}, {"std", e.standard_error}, {"ci95", {e.ci95_low, e.ci95_high}}};
   }
-  out += "],\"estimates\":{";
-  for (std::size_t i = 0; i < fit.estimates.size(); ++i) {
-    const auto& e = fit.estimates[i];
-    out += fmt::format("{}{}:{{\"value\":{},\"std\":{},\"ci95\":[{},{}]}}", i ? "," : "", JsonString(e.name),
-                       JsonNumber(e.value), JsonNumber(e.standard_error), JsonNumber(e.ci95_low),
-                       JsonNumber(e.ci95_high));
-  }
-  out += "},\"correlation\":[";
   const std::size_t p = fit.estimates.size();
+  out["correlation"] = Json::array();
   for (std::size_t i = 0; i < p; ++i) {
-    out += i ? ",[" : "[";
-    for (std::size_t j = 0; j < p; ++j) out += (j ? "," : "") + JsonNumber(fit.correlation[i * p + j]);
-    out += "]";
+    Json row = Json::array();
+    for (std::size_t j = 0; j < p; ++j) row.push_back(fit.correlation[i * p + j]);
+    out["correlation"].push_back(row);
   }
-  out += "],\"rmse\":{";
-  for (std::size_t i = 0; i < fit.channels.size(); ++i) {
-    out += fmt::format("{}{}:{}", i ? "," : "", JsonString(fit.channels[i].name), JsonNumber(fit.channels[i].rmse));
+  out["rmse"] = Json::object();
+  out["fit_percent"] = Json::object();
+  for (const auto& c : fit.channels) {
+    out["rmse"][c.name] = c.rmse;
+    out["fit_percent"][c.name] = c.fit_percent;
   }
-  out += "},\"fit_percent\":{";
-  for (std::size_t i = 0; i < fit.channels.size(); ++i) {
-    out += fmt::format("{}{}:{}", i ? "," : "", JsonString(fit.channels[i].name),
-                       JsonNumber(fit.channels[i].fit_percent));
-  }
-  out += "},\"singular_values\":[";
-  for (std::size_t i = 0; i < fit.singular_values.size(); ++i) out += (i ? "," : "") + JsonNumber(fit.singular_values[i]);
-  out += fmt::format("],\"iterations\":{},\"converged\":{}}}\n", fit.iterations, fit.converged ? "true" : "false");
+  out["singular_values"] = fit.singular_values;
+  out["iterations"] = fit.iterations;
+  out["converged"] = fit.converged;
   return out;
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/fit_result.h"
+#include "report/json.h"
 
 namespace driveid {
 
@@ -12,13 +13,7 @@ namespace driveid {
 /// error, per-channel RMSE and fit %, correlations, solver status.
 std::string FormatFitTable(const FitResult& fit, const FitProvenance& provenance);
 
-/// One JSON object with the same content (deterministic key order).
-std::string FormatFitJson(const FitResult& fit, const FitProvenance& provenance);
-
-/// JSON string literal (quotes and escapes included).
-std::string JsonString(const std::string& text);
-
-/// JSON number: shortest round-trip form; non-finite values become null.
-std::string JsonNumber(double value);
+/// The same content as one JSON object (deterministic key order).
+Json FitJson(const FitResult& fit, const FitProvenance& provenance);
 
 }  // namespace driveid

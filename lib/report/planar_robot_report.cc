@@ -12,7 +12,7 @@ std::string FormatPlanarRobotReport(const PlanarRobotParameters& r, const Vector
   const Matrix2 m = CalcCartesianMass(r, g);
   const Matrix2 c = CalcCartesianDamping(r, g, g_rate);
   const Vector3 n = CalcNullSpace(g);
-  std::string out = fmt::format("planar robot from {} (seed 000 sections 2, 5; SPEC 5.3)\n", source);
+  std::string out = fmt::format("planar robot from {} (seed 000 sections 2, 5; docs/models.md#planar-robot)\n", source);
   out += fmt::format("  Theta = {} kg m^2 (seed: 0.55), m_c = {} kg (0.5), d_g = {} N m s/rad (0.002), n_g = {}, k_t = {} N m/A\n",
                      r.output_inertia, r.center_mass, r.viscous_friction, r.gear_ratio, r.torque_constant);
   out += fmt::format("pose C = ({:.4f}, {:.4f}) m, velocity ({:.3f}, {:.3f}) m/s; joint angles ({:.4f}, {:.4f}, {:.4f}) rad\n",
@@ -22,7 +22,29 @@ std::string FormatPlanarRobotReport(const PlanarRobotParameters& r, const Vector
   out += fmt::format("  M = Theta G G' + m_c 1          = [[{:.5g}, {:.5g}], [{:.5g}, {:.5g}]] kg\n", m[0], m[1], m[2], m[3]);
   out += fmt::format("  C = Theta G dG' + n_g^2 d_g G G' = [[{:.5g}, {:.5g}], [{:.5g}, {:.5g}]] N s/m\n", c[0], c[1], c[2],
                      c[3]);
-  out += "  (the seed prints G G^-1 in eq. (22) and a garbled eq. (23); SPEC 5.3 gives the forms above)\n";
+  out += "  (the seed prints G G^-1 in eq. (22) and a garbled eq. (23); docs/models.md gives the forms above)\n";
+  return out;
+}
+
+Json PlanarRobotReportJson(const PlanarRobotParameters& r, const Vector2& pose, const Vector2& velocity,
+                           const std::string& source) {
+  const Vector3 theta = CalcInverseKinematics(r, pose);
+  const Matrix23 g = CalcTransposedInverseJacobian(r, pose, theta);
+  const Matrix23 g_rate = CalcTransposedInverseJacobianRate(r, pose, theta, velocity);
+  const Matrix2 m = CalcCartesianMass(r, g);
+  const Matrix2 c = CalcCartesianDamping(r, g, g_rate);
+  const Vector3 n = CalcNullSpace(g);
+  Json out;
+  out["source"] = source;
+  out["parameters"] = {{"Theta", r.output_inertia}, {"m_c", r.center_mass}, {"d_g", r.viscous_friction},
+                       {"n_g", r.gear_ratio}, {"k_t", r.torque_constant}};
+  out["pose"] = {pose[0], pose[1]};
+  out["velocity"] = {velocity[0], velocity[1]};
+  out["joint_angles"] = {theta[0], theta[1], theta[2]};
+  out["G"] = {{g[0], g[1], g[2]}, {g[3], g[4], g[5]}};
+  out["null_space"] = {n[0], n[1], n[2]};
+  out["M"] = {{m[0], m[1]}, {m[2], m[3]}};
+  out["C"] = {{c[0], c[1]}, {c[2], c[3]}};
   return out;
 }
 
