@@ -1,7 +1,7 @@
 // Benchmark (not a test): CSV parse throughput and step-fit time vs number of
 // samples. Prints a Markdown table. Usage: drivetrain_bench [repetitions]
 //
-// Data: the paper's drive train (SPEC 5.1), reduced model, -0.8 N m step at
+// Data: the paper's drive train (docs/models.md#drive-train), reduced model, -0.8 N m step at
 // 20 ms in a 0.2 s log, noise 0.1 N m; the fit starts 2-3x off with
 // --free d_g,Theta_motor,tau_c,offset. More samples = a higher rate.
 #include <algorithm>

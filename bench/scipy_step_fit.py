@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Baseline for scripts/benchmark (not part of driveid): the plain SciPy fit
 the issue compares against -- solve_ivp + least_squares of the reduced drive
-train (SPEC 5.1) with tanh-smoothed Coulomb friction, free d_g, Theta_motor,
+train (docs/models.md#drive-train) with tanh-smoothed Coulomb friction, free d_g, Theta_motor,
 tau_c, offset, starting 2-3x off. Usage: scipy_step_fit.py LOG.csv"""
 import sys
 

@@ -81,7 +81,7 @@ void RunCDriveSimulateCommand(const CDriveSimulateOptions& options, const std::s
                  "time [s]");
   }
   if (!options.trace.empty()) {
-    std::string trace = "# tracking errors from the encoder angles (SPEC 5.4 coordinates)\nt,u_error,theta_error\n";
+    std::string trace = "# tracking errors from the encoder angles (docs/models.md#c-drive coordinates)\nt,u_error,theta_error\n";
     for (std::size_t k = 0; k < result.tracking.time.size(); ++k) {
       trace += fmt::format("{},{:.6g},{:.6g}\n", result.tracking.time[k], result.tracking.translation_error[k],
                            result.tracking.rotation_error[k]);

@@ -1,4 +1,4 @@
-// Helpers shared by the command-line tools: exit codes (SPEC 7), the
+// Helpers shared by the command-line tools: exit codes (docs/formats.md#exit-codes), the
 // options every fitting subcommand has, and writing its outputs.
 #pragma once
 

@@ -14,7 +14,7 @@ namespace driveid::cli {
 
 CLI::App* SetupAxisCommand(CLI::App& app, AxisOptions& options) {
   CLI::App* command = app.add_subcommand(
-      "axis", "Inertia, viscous and Coulomb friction and offset of a rigid axis by IDIM-LS (SPEC 5.2)");
+      "axis", "Inertia, viscous and Coulomb friction and offset of a rigid axis by IDIM-LS (docs/models.md#axis)");
   command->add_option("logs", options.logs, "axis logs: CSV with t, q and tau (or i with axis.k_t)")->required();
   command->add_option("--params", options.params, "parameter file with an axis section (start values, k_t, n_g)");
   command->add_option("--free", options.free, FreeOptionHelp(AxisParameterTable(), "axis"))
@@ -39,7 +39,7 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
   FitOutputs outputs;
   outputs.provenance.command = command_line;
   outputs.provenance.version = DRIVEID_VERSION;
-  outputs.provenance.model = "axis (SPEC 5.2), IDIM-LS";
+  outputs.provenance.model = "axis (docs/models.md#axis), IDIM-LS";
   const auto logs = LoadLogs<AxisLog>(options.logs, outputs.provenance, [&](const std::string& path, const std::string& text) {
     return ParseAxisLog(path, text, column_map, section.torque_constant.value_or(0.0));
   });

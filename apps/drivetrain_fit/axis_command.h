@@ -1,4 +1,4 @@
-// drivetrain-fit axis: IDIM-LS identification of a rigid axis (SPEC 5.2).
+// drivetrain-fit axis: IDIM-LS identification of a rigid axis (docs/models.md#axis).
 #pragma once
 
 #include <string>

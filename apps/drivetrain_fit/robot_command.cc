@@ -12,7 +12,7 @@ namespace driveid::cli {
 
 CLI::App* SetupRobotCommand(CLI::App& app, RobotOptions& options) {
   CLI::App* command = app.add_subcommand(
-      "robot", "Theta, m_c, d_g of the planar robot from joint angles and motor currents (SPEC 5.3)");
+      "robot", "Theta, m_c, d_g of the planar robot from joint angles and motor currents (docs/models.md#planar-robot)");
   command->add_option("logs", options.logs, "robot logs: CSV with t, theta1..3, i1..3")->required();
   command->add_option("--params", options.params, "parameter file with a planar_robot section")->required();
   command->add_option("--free", options.free, FreeOptionHelp(PlanarRobotParameterTable(), "robot"))->delimiter(',');
@@ -33,7 +33,7 @@ void RunRobotCommand(const RobotOptions& options, const std::string& command_lin
   FitOutputs outputs;
   outputs.provenance.command = command_line;
   outputs.provenance.version = DRIVEID_VERSION;
-  outputs.provenance.model = "planar robot, rigid body (SPEC 5.3), projected with G";
+  outputs.provenance.model = "planar robot, rigid body (docs/models.md#planar-robot), projected with G";
   const auto logs = LoadLogs<RobotLog>(options.logs, outputs.provenance, [&](const std::string& path, const std::string& text) {
     return ParseRobotLog(path, text, column_map);
   });

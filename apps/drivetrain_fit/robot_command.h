@@ -1,4 +1,4 @@
-// drivetrain-fit robot: Theta, m_c, d_g of the planar robot (SPEC 5.3).
+// drivetrain-fit robot: Theta, m_c, d_g of the planar robot (docs/models.md#planar-robot).
 #pragma once
 
 #include <string>

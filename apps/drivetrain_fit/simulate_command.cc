@@ -33,7 +33,7 @@ SimulateCommands SetupSimulateCommand(CLI::App& app, SimulateStepOptions& option
       "Example:\n"
       "  drivetrain-fit simulate step --params data/paper000.yaml --noise 0.1 --seed 1 -o step.csv");
 
-  CLI::App* axis = simulate->add_subcommand("axis", "Rigid axis following a prescribed motion (SPEC 5.2)");
+  CLI::App* axis = simulate->add_subcommand("axis", "Rigid axis following a prescribed motion (docs/models.md#axis)");
   AxisExperiment& e = axis_options.experiment;
   axis->add_option("--params", axis_options.params, "parameter file with an axis section")->required();
   axis->add_option("-o,--output", axis_options.output, "log file to write (default: stdout)");

@@ -1,5 +1,5 @@
 // Settings of the C-drive position controller and friction compensation
-// (seed 001 sections IV.C-D, eq. 31; SPEC 5.4), as a controller loads them
+// (seed 001 sections IV.C-D, eq. 31; docs/models.md#c-drive), as a controller loads them
 // from the parameter file's `cdrive.control` section.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The C-drive controller of seed 001 (sections IV.C-E; SPEC 5.4), per motor
+// The C-drive controller of seed 001 (sections IV.C-E; docs/models.md#c-drive), per motor
 // at a fixed period: position feedback on 13-bit encoder counts plus the
 // friction compensation of eq. (31),
 //   tau_L = beta w_L + delta RL{sgn[DZ(w_L)]} + gamma/2 (w_L - w_R) + eta RL{sgn[DZ(w_L - w_R)]}

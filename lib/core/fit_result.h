@@ -1,5 +1,5 @@
 // Plain result types of a fit (no solver headers): what every fitting
-// command reports (SPEC section 6) and writes into the parameter file.
+// command reports (docs/models.md#identification) and writes into the parameter file.
 #pragma once
 
 #include <string>

@@ -1,4 +1,4 @@
-// Inverse-dynamics identification of a rigid axis (SPEC 5.2) by IDIM-LS:
+// Inverse-dynamics identification of a rigid axis (docs/models.md#axis) by IDIM-LS:
 //   1. zero-phase low-pass of the position (Butterworth, forward-backward),
 //      cutoff `cutoff` (default rate/40: 25 Hz at 1 kHz);
 //   2. central-difference velocity and acceleration;

@@ -1,4 +1,4 @@
-// Identification of the C-drive (SPEC 5.4) from motor angles and torques by
+// Identification of the C-drive (docs/models.md#c-drive) from motor angles and torques by
 // inverse-dynamics least squares:
 //   friction: beta, gamma, delta, eta from slow programs, inertia from --params;
 //   inertia:  I_h, I_c, m (only a and b of eq. 17 are identifiable) from fast

@@ -1,7 +1,7 @@
 // Fit core shared by all models: bounded nonlinear least squares (Ceres,
 // Levenberg-Marquardt) on parameters scaled by their starting values, an
 // identifiability check on the column-normalised Jacobian before and after
-// the solve, and statistics (SPEC section 6).
+// the solve, and statistics (docs/models.md#identification).
 #pragma once
 
 #include <functional>

@@ -1,4 +1,4 @@
-// Identification of the planar robot's rigid-body model (SPEC 5.3) from joint
+// Identification of the planar robot's rigid-body model (docs/models.md#planar-robot) from joint
 // angles and motor currents along a trajectory. The actuator equations
 //   Theta theta'' + n_g^2 d_g theta' + G+ m_c x'' = n_g tau_motor,m
 // are multiplied by G, which removes the unknown null-space prestress

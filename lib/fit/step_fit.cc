@@ -23,7 +23,7 @@ bool Contains(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
 }
 
-// Model-specific advice for a non-identifiable set (SPEC 5.1 identifiability).
+// Model-specific advice for a non-identifiable set (docs/models.md#drive-train identifiability).
 std::string StepAdvice(const std::vector<std::string>& involved) {
   std::vector<std::string> advice;
   if (Contains(involved, "k_Tl") && Contains(involved, "k_Tg")) {

@@ -1,4 +1,4 @@
-// Output-error identification of the drive train (SPEC 5.1) from logged
+// Output-error identification of the drive train (docs/models.md#drive-train) from logged
 // motor-torque steps: simulate the stick/slip model with CVODES (one run per
 // log and evaluation, sensitivities for the Jacobian), fit with the core of
 // fit/least_squares. Several logs are fit jointly and share the drive-train

@@ -8,7 +8,7 @@
 
 namespace driveid {
 
-/// A C-drive log (SPEC 3): motor angles and torques (or currents x k_t).
+/// A C-drive log (docs/formats.md#logs): motor angles and torques (or currents x k_t).
 struct CDriveLog {
   std::string path;
   std::vector<double> time;         ///< [s]

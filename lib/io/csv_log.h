@@ -1,4 +1,4 @@
-// Reader for the log files of SPEC section 3: UTF-8 text, comma separated,
+// Reader for the log files of docs/formats.md#logs: UTF-8 text, comma separated,
 // one header row, '#' comment lines, SI units. Parsing is strict: every
 // problem throws InputError "file:line: column 'name': what".
 #pragma once

@@ -8,7 +8,7 @@
 
 namespace driveid {
 
-/// A robot log (SPEC 3): joint angles at the gear output and motor currents.
+/// A robot log (docs/formats.md#logs): joint angles at the gear output and motor currents.
 struct RobotLog {
   std::string path;
   std::vector<double> time;

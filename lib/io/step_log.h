@@ -8,7 +8,7 @@
 
 namespace driveid {
 
-/// A logged step response (SPEC 3, step log).
+/// A logged step response (docs/formats.md#logs, step log).
 struct StepLog {
   std::string path;
   std::vector<double> time;          ///< t [s], strictly increasing

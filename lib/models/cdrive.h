@@ -1,5 +1,5 @@
 // The two-motor ball-screw C-drive (seed 001, RHHR cylindrical differential;
-// SPEC 5.4, corrected equations).
+// docs/models.md#c-drive, corrected equations).
 //
 // Kinematics (eqs. 3-13), motor angles psi = (psi_L, psi_R) [rad], lead p [m]:
 //   u = p/(4 pi) (psi_L - psi_R)   collar translation [m]

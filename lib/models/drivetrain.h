@@ -1,5 +1,5 @@
 // Elastic geared drive train in the null space of the planar robot, joint B
-// fixed (seed 000 section 4, Fig. 5; SPEC 5.1, corrected equations).
+// fixed (seed 000 section 4, Fig. 5; docs/models.md#drive-train, corrected equations).
 //
 // States, all referred to the gear OUTPUT:
 //   phi       = q / n_g   motor angle [rad]
@@ -15,7 +15,7 @@
 //   n_g^2 Theta_motor phi'' + n_g^2 d_g phi' + k_eq phi + tau_c sgn(phi') = n_g tau_motor,  tau_link = k_eq phi
 // whose transfer function tau_link / tau_motor is eq. (16).
 //
-// Seed misprints corrected here (SPEC 5.1): (13) prints theta_g for the
+// Seed misprints corrected here (docs/models.md#drive-train): (13) prints theta_g for the
 // viscous term n_g^2 d_g phi'; (14) prints k_T,k on the right for k_Tg;
 // n_g^2 Theta_g is 0.043 kg m^2, not 0.413; (17) prints 0.031 s for 0.013 s
 // and gain 81 for n_g = 80.

@@ -1,5 +1,5 @@
 // The redundantly actuated planar parallel robot of seed 000 (sections 2, 5;
-// SPEC 5.3). Base joints A1 = (0, 0), A2 = (a, 0), A3 = (a/2, a sqrt(3)/2);
+// docs/models.md#planar-robot). Base joints A1 = (0, 0), A2 = (a, 0), A3 = (a/2, a sqrt(3)/2);
 // legs A_i - B_i - C with links of length l; joint angle theta_i is the angle
 // of A_i B_i from +x, counter-clockwise, at the gear output. elbow_i = +1
 // puts B_i counter-clockwise of the ray A_i -> C:

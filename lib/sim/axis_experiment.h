@@ -1,4 +1,4 @@
-// Synthetic axis logs (SPEC 5.2) in the axis-log format: the axis follows a
+// Synthetic axis logs (docs/models.md#axis) in the axis-log format: the axis follows a
 // prescribed motion exactly; the force is its inverse dynamics plus Gaussian
 // noise; positions are quantised like an encoder.
 //   multisine: q = A (0.6 sin(2 pi 0.3 t) + 0.3 sin(2 pi 1.1 t + 1) + 0.1 sin(2 pi 2.3 t + 2))

@@ -1,4 +1,4 @@
-// Motion programs of seed 001 (SPEC 5.5): each motor follows
+// Motion programs of seed 001 (docs/models.md#motion-programs): each motor follows
 //   psi_I(t) = alpha_I s(t/T),  s(x) = -20 x^7 + 70 x^6 - 84 x^5 + 35 x^4  (eq. 32)
 // forward over one stroke T, then back along the same program (period 2 T;
 // the seed runs T = 1 s, 0.5 Hz). s has zero rate, acceleration and jerk at

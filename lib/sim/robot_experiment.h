@@ -1,4 +1,4 @@
-// Synthetic robot logs (SPEC 5.3, 5.5): the centre joint runs an
+// Synthetic robot logs (docs/models.md#planar-robot, 5.5): the centre joint runs an
 // equilateral triangle (side 250 mm, centred in the workspace) edge by edge,
 // rest to rest, with a trapezoidal speed profile (50 m/s^2, 3 m/s), a dwell
 // at each corner, for several loops. Joint angles from inverse kinematics,

@@ -1,4 +1,4 @@
-// Synthetic step experiments in the step-log format (SPEC 3), from the same
+// Synthetic step experiments in the step-log format (docs/formats.md#logs), from the same
 // simulator the fit uses. Default: the paper's experiment (seed 000 Fig. 6),
 // a motor torque step of -0.8 N m with joint B fixed.
 #pragma once

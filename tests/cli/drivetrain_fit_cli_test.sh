@@ -99,7 +99,7 @@ cp fit.yaml keep.yaml
 "$bin" step no_step.csv --params start.yaml -q -o keep.yaml 2> /dev/null
 cmp -s fit.yaml keep.yaml && ok || fail "failed fit touched the existing output"
 
-# axis (SPEC 5.2).
+# axis (docs/models.md#axis).
 cp "$src/data/axis_example.yaml" axis.yaml
 "$bin" simulate axis --params axis.yaml --noise 0.05 --duration 25 -o axis.csv && ok || fail "simulate axis"
 "$bin" simulate axis --params axis.yaml --profile constant --speed 1 --noise 0.05 -o constant.csv && ok \
@@ -112,7 +112,7 @@ expect 2 "not a parameter of the axis fit" -- axis axis.csv --free mass
 if "$bin" axis axis.csv --params axis.yaml -q -o axis_fit.yaml; then ok; else fail "axis fit"; fi
 grep -q "^    d_g: {value: 3.1" axis_fit.yaml && ok || fail "axis fit lacks d_g = b / n_g^2 near 3.1e-5"
 
-# robot (SPEC 5.3).
+# robot (docs/models.md#planar-robot).
 cp "$src/data/robot_paper000.yaml" robot.yaml
 cp "$src/data/robot_start.yaml" robot_start.yaml
 "$bin" simulate robot --params robot.yaml --noise 0.02 --seed 5 -o robot.csv && ok || fail "simulate robot"

@@ -1,4 +1,4 @@
-// Axis IDIM-LS (SPEC 5.2): recovery from synthetic logs, constant-rate logs
+// Axis IDIM-LS (docs/models.md#axis): recovery from synthetic logs, constant-rate logs
 // identify friction only, the zero-phase filter has no lag.
 #include "fit/axis_fit.h"
 

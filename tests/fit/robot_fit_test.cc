@@ -1,4 +1,4 @@
-// Robot rigid-body identification (SPEC 5.3): recovery from the triangle with
+// Robot rigid-body identification (docs/models.md#planar-robot): recovery from the triangle with
 // prestress, encoder quantisation and current noise; the prestress has no
 // influence; the current prediction matches the motion part of the current.
 #include "fit/robot_fit.h"

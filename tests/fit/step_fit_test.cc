@@ -1,5 +1,5 @@
 // Recovery: logs from the independent reference implementation with the
-// paper's values (SPEC 5.1), fit from starting values off by 2-5x; the truth
+// paper's values (docs/models.md#drive-train), fit from starting values off by 2-5x; the truth
 // must lie within the stated tolerance and inside the reported 95 % interval.
 #include "fit/step_fit.h"
 

@@ -1,4 +1,4 @@
-// C-drive model checks (SPEC 5.4): kinematic identities, inertia matrix
+// C-drive model checks (docs/models.md#c-drive): kinematic identities, inertia matrix
 // properties, dissipation, and the Table II motion cases.
 #include "models/cdrive.h"
 

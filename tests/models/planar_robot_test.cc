@@ -1,4 +1,4 @@
-// Planar robot kinematics (SPEC 5.3) against finite differences and identities.
+// Planar robot kinematics (docs/models.md#planar-robot) against finite differences and identities.
 #include "models/planar_robot.h"
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// The paper's drive-train values (seed 000 section 4, SPEC 5.1) for tests:
+// The paper's drive-train values (seed 000 section 4, docs/models.md#drive-train) for tests:
 // n_g^2 Theta_motor = 0.413 kg m^2, n_g^2 Theta_g = 0.043 kg m^2.
 #pragma once
 

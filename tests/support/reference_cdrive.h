@@ -1,4 +1,4 @@
-// Independent generator of C-drive logs for tests (SPEC 5.4-5.5): the motors
+// Independent generator of C-drive logs for tests (docs/models.md#c-drive-5.5): the motors
 // follow a Table II program exactly (4-5-6-7 polynomial forward over T, then
 // back), torques from the inverse dynamics of (28) written here from the
 // equations, angles quantised by 13-bit encoders, Gaussian torque noise.

@@ -1,4 +1,4 @@
-// An independent implementation of SPEC 5.1 for recovery tests: written from
+// An independent implementation of docs/models.md#drive-train for recovery tests: written from
 // the equations without the library's model or simulator code. Fixed-step
 // classical Runge-Kutta on fine substeps; stick, reversal and break-away
 // located by bisection on the substep. The test data are made with this, so

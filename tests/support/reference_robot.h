@@ -1,4 +1,4 @@
-// Independent generator of planar-robot logs for tests (SPEC 5.3, 5.5): its
+// Independent generator of planar-robot logs for tests (docs/models.md#planar-robot, 5.5): its
 // own inverse kinematics, joint rates and accelerations by central
 // differences of the inverse kinematics along the path, the transposed
 // inverse Jacobian G from numerical derivatives of the inverse kinematics
