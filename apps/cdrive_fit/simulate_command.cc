@@ -60,7 +60,7 @@ void RunCDriveSimulateCommand(const CDriveSimulateOptions& options, const std::s
   const ClosedLoopResult result = SimulateClosedLoop(params, settings, loop);
 
   const std::vector<std::string> comments = {
-      "C-drive log (docs/formats.md) made by: " + command_line,
+      "C-drive log (docs/formats.md#logs) made by: " + command_line,
       fmt::format("program {} (alpha_L {}, alpha_R {} rad), stroke {} s, {} cycles, {} at {} Hz, 13-bit encoders, "
                   "torque noise {} N m (seed {})",
                   loop.program.name, loop.program.amplitude_left, loop.program.amplitude_right, loop.program.stroke,

@@ -78,7 +78,7 @@ void RunSimulateRobotCommand(const SimulateRobotOptions& options, const std::str
   const auto& r = options.experiment;
   const PlanarRobotParameters p = MakePlanarRobotParameters(*file.planar_robot);
   const std::string text = FormatRobotLog(
-      log, {"synthetic robot log (docs/formats.md) made by: " + command_line,
+      log, {"synthetic robot log (docs/formats.md#logs) made by: " + command_line,
             fmt::format("triangle side {} m, {} m/s^2, {} m/s, dwell {} s, {} loops, {} Hz, 13-bit encoders behind the "
                         "gears, prestress {} N m, current noise {} A (seed {})",
                         r.side, r.acceleration, r.speed, r.dwell, r.loops, r.rate, r.prestress, r.current_noise, r.seed),
@@ -99,7 +99,7 @@ void RunSimulateAxisCommand(const SimulateAxisOptions& options, const std::strin
   const AxisLog log = SimulateAxisExperiment(params, options.experiment);
   const auto& e = options.experiment;
   const std::string text = FormatAxisLog(
-      log, {"synthetic axis log (docs/formats.md) made by: " + command_line,
+      log, {"synthetic axis log (docs/formats.md#logs) made by: " + command_line,
             fmt::format("profile {}, rate {} Hz, resolution {}, noise {} (seed {})", e.profile, e.rate, e.resolution,
                         e.noise, e.seed),
             fmt::format("truth: inertia {}, viscous {}, coulomb {}, offset {}", params.inertia, params.viscous,
@@ -122,7 +122,7 @@ void RunSimulateStepCommand(const SimulateStepOptions& options, const std::strin
   }
   const StepLog log = SimulateStepExperiment(p, experiment);
   const std::vector<std::string> comments = {
-      "synthetic step log (docs/formats.md) made by: " + command_line,
+      "synthetic step log (docs/formats.md#logs) made by: " + command_line,
       fmt::format("model {}, rate {} Hz, step {} N m at {} s, noise {} N m (seed {}), offset {} N m", options.model,
                   experiment.rate, experiment.step_torque, experiment.step_time, experiment.noise, experiment.seed,
                   experiment.offset),

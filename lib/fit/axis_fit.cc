@@ -2,12 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
 #include "core/errors.h"
-#include "fit/linear_residuals.h"
+#include "fit/linear_regression.h"
 #include "io/csv_log.h"
 #include "signal/butterworth.h"
 #include "signal/local_polynomial.h"
@@ -76,28 +77,27 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
   if (options.decimation < 1) {
     throw OptionError(fmt::format("--decimation = {}: violated constraint: >= 1", options.decimation));
   }
-  std::vector<int> free_columns;
   std::vector<FitParameter> parameters;
+  std::vector<std::string> column_names;
+  std::map<std::string, double> fixed;
   for (int j = 0; j < 4; ++j) {
     const ParameterSpec& spec = Column(j).spec;
     const std::optional<double> value = start.*(Column(j).in_section);
+    column_names.push_back(spec.key);
     if (Contains(options.free, spec.key)) {
-      free_columns.push_back(j);
       parameters.push_back({spec.key, std::max(spec.lower_bound, value.value_or(0.0)), spec.lower_bound, 0.0});
     } else if (!value && j != 0) {
       throw InputError(fmt::format("--params: axis.{} is needed (fixed in this fit)", spec.key));
     }
+    // A fixed inertia that is not given counts as 0, which is only harmless
+    // without acceleration content (checked below).
+    fixed[spec.key] = value.value_or(0.0);
   }
-  // A fixed inertia that is not given counts as 0, which is only harmless
-  // without acceleration content (checked below).
-  AxisParameters known_start;
-  for (int j = 0; j < 4; ++j) known_start.*(Column(j).in_model) = (start.*(Column(j).in_section)).value_or(0.0);
   const bool inertia_missing = !Contains(options.free, "inertia") && !start.inertia;
-  const int p = static_cast<int>(free_columns.size());
+  const int p = static_cast<int>(parameters.size());
 
   AxisFitOutput out;
-  std::vector<double> rows, values, acceleration_kept, rate_kept;
-  std::vector<FitChannel> channels;
+  LinearRegression regression(column_names);  // [q'', q', sgn q', 1] per decimated sample
   for (std::size_t i = 0; i < logs.size(); ++i) {
     const AxisLog& log = logs[i];
     if (log.time.size() < 20) throw InputError(fmt::format("{}: {} samples: too few for IDIM-LS", log.path, log.time.size()));
@@ -149,26 +149,17 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
       }
       if (seen && last_slow - k <= reach) clear[k] = 0;
     }
-    const int begin = static_cast<int>(values.size());
+    regression.BeginChannel(log.path + ":tau");
     const std::size_t margin = reach + 2;  // filter start-up at the ends
     for (std::size_t k = margin; k + margin < n; k += static_cast<std::size_t>(decimation)) {
       if (!clear[k]) continue;
-      double known = 0.0;
-      for (int j = 0; j < 4; ++j) {
-        if (!Contains(options.free, Column(j).spec.key)) known += (known_start.*(Column(j).in_model)) * columns[static_cast<std::size_t>(j)][k];
-      }
-      for (int j : free_columns) rows.push_back(columns[static_cast<std::size_t>(j)][k]);
-      acceleration_kept.push_back(columns[0][k]);
-      rate_kept.push_back(columns[1][k]);
-      values.push_back(force[k] - known);
+      regression.AddRow({columns[0][k], columns[1][k], columns[2][k], columns[3][k]}, force[k]);
       out.time.push_back(log.time[k]);
       out.measured.push_back(force[k]);
       out.log_index.push_back(static_cast<int>(i));
     }
-    const int count = static_cast<int>(values.size()) - begin;
-    if (count > 0) channels.push_back({log.path + ":tau", begin, count, out.measured.data() + begin});
   }
-  const int rows_used = static_cast<int>(values.size());
+  const int rows_used = static_cast<int>(regression.rows());
   if (rows_used <= p) {
     throw IdentificationError(fmt::format("{} usable samples after decimation cannot determine {} parameters (the logs "
                                           "barely move or are too short)", rows_used, p));
@@ -177,9 +168,9 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
   // must matter next to the rates (RMS(q'') / RMS(q') in 1/s); a constant-rate
   // log has only quantisation noise there and identifies friction only.
   double acceleration_square = 0.0, rate_square = 0.0;
-  for (int r = 0; r < rows_used; ++r) {
-    acceleration_square += std::pow(acceleration_kept[static_cast<std::size_t>(r)], 2);
-    rate_square += std::pow(rate_kept[static_cast<std::size_t>(r)], 2);
+  for (std::size_t r = 0; r < regression.rows(); ++r) {
+    acceleration_square += std::pow(regression.at(r, 0), 2);
+    rate_square += std::pow(regression.at(r, 1), 2);
   }
   const double ratio = rate_square > 0.0 ? std::sqrt(acceleration_square / rate_square) : 0.0;
   out.acceleration_content = ratio;
@@ -195,10 +186,6 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
           ratio, options.min_acceleration_content));
     }
   }
-  // channels[].measured must point at stable storage: out.measured is complete now.
-  for (auto& c : channels) c.measured = out.measured.data() + c.begin;
-  LinearResiduals residuals(Eigen::Map<RowMatrix>(rows.data(), rows_used, p),
-                            Eigen::Map<Eigen::VectorXd>(values.data(), rows_used));
   FitOptions fit_options = options.fit;
   if (!fit_options.advice) {
     fit_options.advice = [](const std::vector<std::string>& involved) -> std::string {
@@ -209,12 +196,12 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
       return "";
     };
   }
-  out.fit = FitLeastSquares(residuals, parameters, channels, fit_options);
-  out.params = known_start;
-  for (std::size_t j = 0; j < free_columns.size(); ++j) out.params.*(Column(free_columns[j]).in_model) = out.fit.estimates[j].value;
-  for (std::size_t j = 0; j < free_columns.size(); ++j) {
-    const auto& e = out.fit.estimates[j];
-    if (free_columns[j] == 0 && !(e.standard_error <= options.max_relative_std * std::abs(e.value))) {
+  out.fit = regression.Fit(parameters, fixed, fit_options);
+  std::map<std::string, double> fitted = fixed;
+  for (const auto& e : out.fit.estimates) fitted[e.name] = e.value;
+  for (int j = 0; j < 4; ++j) out.params.*(Column(j).in_model) = fitted[Column(j).spec.key];
+  for (const auto& e : out.fit.estimates) {
+    if (e.name == "inertia" && !(e.standard_error <= options.max_relative_std * std::abs(e.value))) {
       throw IdentificationError(fmt::format(
           "not identifiable: inertia = {:.4g} +- {:.2g}: the log has too little acceleration content (constant-rate "
           "motion identifies friction only): fit friction alone with --free viscous,coulomb,offset",
@@ -223,13 +210,10 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
   }
   // Model at the used samples and the relative error.
   double residual_norm = 0.0, force_norm = 0.0;
-  out.model.resize(out.measured.size());
-  for (int r = 0; r < rows_used; ++r) {
-    double model = out.measured[static_cast<std::size_t>(r)] - values[static_cast<std::size_t>(r)];
-    for (int j = 0; j < p; ++j) model += rows[static_cast<std::size_t>(r * p + j)] * out.fit.estimates[static_cast<std::size_t>(j)].value;
-    out.model[static_cast<std::size_t>(r)] = model;
-    residual_norm += std::pow(out.measured[static_cast<std::size_t>(r)] - model, 2);
-    force_norm += std::pow(out.measured[static_cast<std::size_t>(r)], 2);
+  out.model = regression.Predict(fitted);
+  for (std::size_t r = 0; r < regression.rows(); ++r) {
+    residual_norm += std::pow(out.measured[r] - out.model[r], 2);
+    force_norm += std::pow(out.measured[r], 2);
   }
   out.relative_error_percent = force_norm > 0.0 ? 100.0 * std::sqrt(residual_norm / force_norm) : 0.0;
   out.samples_used = rows_used;

@@ -2,13 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
 #include "core/errors.h"
-#include "fit/linear_residuals.h"
+#include "fit/linear_regression.h"
 #include "io/csv_log.h"
 #include "signal/local_polynomial.h"
 
@@ -30,13 +31,23 @@ bool Contains(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
 }
 
-// Regressor entries of one sample in sum (S) and difference (D) form, for
-// friction (beta, gamma, delta, eta) and inertia (I_h, I_c, m).
+// The regressor columns: every model parameter of the table, then a + b and
+// a - b of eq. (17) for a friction fit without the inertias (nuisances).
+std::vector<std::string> RegressorColumns() {
+  std::vector<std::string> columns;
+  for (const auto& row : CDriveParameterTable()) {
+    if (row.in_model != nullptr && !row.spec.required) columns.push_back(row.spec.key);  // not p
+  }
+  columns.push_back("a_plus_b");
+  columns.push_back("a_minus_b");
+  return columns;
+}
+
+// One sample's rows in sum (tau_L + tau_R) and difference (tau_L - tau_R)
+// form, in the order of RegressorColumns(): I_h, I_c, m, beta, gamma, delta,
+// eta, a + b, a - b.
 struct SampleRows {
-  double friction_sum[4];
-  double friction_difference[4];
-  double inertia_sum[3];
-  double inertia_difference[3];
+  std::vector<double> sum, difference;
 };
 
 SampleRows CalcSampleRows(double lead, double rate_left, double rate_right, double acceleration_left,
@@ -46,10 +57,10 @@ SampleRows CalcSampleRows(double lead, double rate_left, double rate_right, doub
   const double acceleration_sum = acceleration_left + acceleration_right;
   const double acceleration_difference = acceleration_left - acceleration_right;
   const double mass_coupling = CalcMassCoupling(lead);
-  return {{rate_sum, 0.0, sign_left + sign_right, 0.0},
-          {rate_difference, rate_difference, sign_left - sign_right, 2.0 * Signum(rate_difference)},
-          {acceleration_sum, 0.5 * acceleration_sum, 0.0},
-          {acceleration_difference, 0.0, 2.0 * mass_coupling * acceleration_difference}};
+  return {{acceleration_sum, 0.5 * acceleration_sum, 0.0, rate_sum, 0.0, sign_left + sign_right, 0.0, acceleration_sum,
+           0.0},
+          {acceleration_difference, 0.0, 2.0 * mass_coupling * acceleration_difference, rate_difference, rate_difference,
+           sign_left - sign_right, 2.0 * Signum(rate_difference), 0.0, acceleration_difference}};
 }
 
 enum class Kind { kFriction, kInertia };
@@ -120,14 +131,11 @@ UsableMask UsableSamples(const std::vector<double>& time, const SignalDerivative
   return {Erode(time, signs, reach), Erode(time, collar, reach)};
 }
 
-struct Design {
-  RowMatrix regressor;
-  Eigen::VectorXd measured;
-  std::vector<FitChannel> channels;
-  std::vector<std::vector<double>> channel_measured;  // storage behind channels[].measured
-  std::vector<SignalDerivatives> left, right;
+struct Derivatives {
+  std::vector<SignalDerivatives> left, right;  // per log
   int rows_possible = 0;
 };
+
 
 CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& start_section,
                     const CDriveFitOptions& options, Kind kind) {
@@ -178,13 +186,18 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
   }
   const int p = static_cast<int>(parameters.size());
 
-  // Build rows: per log the sum rows, then the difference rows.
-  Design design;
-  std::vector<double> rows;  // flattened regressor, p per row
-  std::vector<double> values;
-  CDriveParameters fixed = start;
-  for (int j : free_columns) fixed.*(table[j]->in_model) = 0.0;  // known part excludes the free terms
-  if (inertia_nuisance) fixed.hub_inertia = fixed.collar_inertia = fixed.collar_mass = 0.0;
+  // Every column not free is fixed: at its given value, the inertias at 0
+  // when a + b and a - b stand in for them, the nuisances at 0 otherwise.
+  std::map<std::string, double> fixed;
+  for (const auto& name : RegressorColumns()) {
+    const auto* row = FindParameter(CDriveParameterTable(), name);
+    const bool nuisance_inertia = inertia_nuisance && row != nullptr && row->spec.InFit("inertia");
+    fixed[name] = row == nullptr || nuisance_inertia ? 0.0 : (start_section.*(row->in_section)).value_or(0.0);
+  }
+
+  // Rows: per log the sum rows, then the difference rows.
+  Derivatives design;
+  LinearRegression regression(RegressorColumns());
   for (const auto& log : logs) {
     if (log.time.size() < 5) {
       throw InputError(fmt::format("{}: {} samples: too few to differentiate", log.path, log.time.size()));
@@ -211,52 +224,30 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
     const auto& right = design.right.back();
     const auto usable = UsableSamples(log.time, left, right, options.min_rate, options.half_window, settle);
     for (int part = 0; part < 2; ++part) {
-      const int begin = static_cast<int>(values.size());
-      std::vector<double> measured;
+      regression.BeginChannel(log.path + (part == 0 ? ":tau_L+tau_R" : ":tau_L-tau_R"));
       for (std::size_t k = 0; k < log.time.size(); ++k) {
         if (!left.valid[k] || !right.valid[k]) continue;
         if (part == 0) ++design.rows_possible;
-        const double rl = left.rate[k], rr = right.rate[k];
         if (!(part == 0 ? usable.sum[k] : usable.difference[k])) continue;
-        const SampleRows sample = CalcSampleRows(start.lead, rl, rr, left.acceleration[k], right.acceleration[k]);
-        // Known part: (28) with the free terms set to zero.
-        const Vector2 known = CalcCDriveInverseDynamics(fixed, {rl, rr}, {left.acceleration[k], right.acceleration[k]});
-        const double y = part == 0 ? log.torque_left[k] + log.torque_right[k] - known[0] - known[1]
-                                   : log.torque_left[k] - log.torque_right[k] - known[0] + known[1];
-        const double* full = friction ? (part == 0 ? sample.friction_sum : sample.friction_difference)
-                                      : (part == 0 ? sample.inertia_sum : sample.inertia_difference);
-        for (int j : free_columns) rows.push_back(full[j]);
-        if (inertia_nuisance) {
-          rows.push_back(part == 0 ? left.acceleration[k] + right.acceleration[k] : 0.0);
-          rows.push_back(part == 0 ? 0.0 : left.acceleration[k] - right.acceleration[k]);
-        }
-        values.push_back(y);
-        measured.push_back(part == 0 ? log.torque_left[k] + log.torque_right[k]
-                                     : log.torque_left[k] - log.torque_right[k]);
-      }
-      const int count = static_cast<int>(values.size()) - begin;
-      if (count > 0) {
-        design.channel_measured.push_back(std::move(measured));
-        design.channels.push_back({log.path + (part == 0 ? ":tau_L+tau_R" : ":tau_L-tau_R"), begin, count, nullptr});
+        const SampleRows sample =
+            CalcSampleRows(start.lead, left.rate[k], right.rate[k], left.acceleration[k], right.acceleration[k]);
+        regression.AddRow(part == 0 ? sample.sum : sample.difference,
+                          part == 0 ? log.torque_left[k] + log.torque_right[k] : log.torque_left[k] - log.torque_right[k]);
       }
     }
   }
-  for (std::size_t c = 0; c < design.channels.size(); ++c) design.channels[c].measured = design.channel_measured[c].data();
-  const int n = static_cast<int>(values.size());
+  const int n = static_cast<int>(regression.rows());
   if (n == 0) {
     throw IdentificationError(fmt::format(
         "no usable samples: every sample has a motor rate below --min-rate {} rad/s (or the logs are shorter than the "
         "differentiator window)",
         options.min_rate));
   }
-  design.regressor = Eigen::Map<RowMatrix>(rows.data(), n, p);
-  design.measured = Eigen::Map<Eigen::VectorXd>(values.data(), n);
 
-  LinearResiduals residuals(design.regressor, design.measured);
   FitOptions fit_options = options.fit;
   if (!fit_options.advice) fit_options.advice = friction ? FrictionAdvice : InertiaAdvice;
   CDriveFitOutput out;
-  out.fit = FitLeastSquares(residuals, parameters, design.channels, fit_options);
+  out.fit = regression.Fit(parameters, fixed, fit_options);
   // fit% is of the measured sum/difference, not of the part left after the known terms.
   CDriveParameters fitted = start;
   out.section = start_section;
@@ -265,7 +256,7 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
     fitted.*(row.in_model) = out.fit.estimates[j].value;
     out.section.*(row.in_section) = out.fit.estimates[j].value;
   }
-  out.rows_used = static_cast<int>(design.channels.empty() ? 0 : n);
+  out.rows_used = n;
   out.rows_possible = design.rows_possible;
 
   if (inertia_nuisance) {

@@ -2,12 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
 #include "core/errors.h"
-#include "fit/linear_residuals.h"
+#include "fit/linear_regression.h"
 #include "io/csv_log.h"
 #include "signal/local_polynomial.h"
 
@@ -86,20 +87,22 @@ RobotFitOutput FitRobot(const std::vector<RobotLog>& logs, const PlanarRobotPara
     throw OptionError(fmt::format("--window = {}: violated constraint: > 0 s", options.half_window));
   }
   if (!(start.torque_constant > 0.0)) throw InputError("--params: planar_robot.k_t is needed (currents to torques)");
-  std::vector<int> free_columns;
   std::vector<FitParameter> parameters;
+  std::vector<std::string> column_names;
+  std::map<std::string, double> fixed;
   for (int j = 0; j < 3; ++j) {
-    if (!Contains(options.free, Column(j).spec.key)) continue;
-    free_columns.push_back(j);
     const double value = start.*(Column(j).in_model);
+    column_names.push_back(Column(j).spec.key);
+    fixed[Column(j).spec.key] = value;
+    if (!Contains(options.free, Column(j).spec.key)) continue;
     parameters.push_back({Column(j).spec.key, value > 0.0 ? value : 0.0, 0.0, value > 0.0 ? value : 1.0});
   }
-  const int p = static_cast<int>(free_columns.size());
+  const std::size_t p = parameters.size();
   const double n_g = start.gear_ratio, k_t = start.torque_constant;
 
   std::vector<std::vector<std::pair<std::size_t, Sample>>> kinematics;
-  std::vector<double> rows, values, measured_storage;
-  std::vector<FitChannel> channels;
+  // Per sample and Cartesian component: [G theta'', x'', n_g^2 G theta'] against n_g G tau.
+  LinearRegression regression(column_names);
   for (const auto& log : logs) {
     if (log.time.size() < 10) throw InputError(fmt::format("{}: {} samples: too few", log.path, log.time.size()));
     try {
@@ -137,7 +140,7 @@ RobotFitOutput FitRobot(const std::vector<RobotLog>& logs, const PlanarRobotPara
     const double mean_step = (log.time.back() - log.time.front()) / static_cast<double>(log.time.size() - 1);
     const std::size_t stride = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(options.half_window / mean_step)));
     for (int component = 0; component < 2; ++component) {
-      const int begin = static_cast<int>(values.size());
+      regression.BeginChannel(log.path + (component == 0 ? ":force_x" : ":force_y"));
       std::size_t counter = 0;
       for (const auto& [k, s] : kinematics.back()) {
         if (near_jump[k] || counter++ % stride != 0) continue;
@@ -148,24 +151,15 @@ RobotFitOutput FitRobot(const std::vector<RobotLog>& logs, const PlanarRobotPara
           projected_acceleration += g_row[i] * s.acceleration[i];
           projected_rate += g_row[i] * s.rate[i];
         }
-        const double columns[3] = {projected_acceleration, s.acceleration_xy[static_cast<std::size_t>(component)],
-                                   n_g * n_g * projected_rate};
-        double known = 0.0;
-        for (int j = 0; j < 3; ++j) {
-          if (!Contains(options.free, Column(j).spec.key)) known += (start.*(Column(j).in_model)) * columns[j];
-        }
-        for (int j : free_columns) rows.push_back(columns[j]);
-        values.push_back(n_g * projected_torque - known);
-        measured_storage.push_back(n_g * projected_torque);
+        regression.AddRow({projected_acceleration, s.acceleration_xy[static_cast<std::size_t>(component)],
+                           n_g * n_g * projected_rate},
+                          n_g * projected_torque);
       }
-      const int count = static_cast<int>(values.size()) - begin;
-      if (count > 0) channels.push_back({log.path + (component == 0 ? ":force_x" : ":force_y"), begin, count, nullptr});
     }
   }
-  const int n = static_cast<int>(values.size());
-  if (n <= p) throw IdentificationError("too few usable samples (logs shorter than the differentiator window)");
-  for (auto& c : channels) c.measured = measured_storage.data() + c.begin;
-  LinearResiduals residuals(Eigen::Map<RowMatrix>(rows.data(), n, p), Eigen::Map<Eigen::VectorXd>(values.data(), n));
+  if (regression.rows() <= p) {
+    throw IdentificationError("too few usable samples (logs shorter than the differentiator window)");
+  }
   FitOptions fit_options = options.fit;
   if (!fit_options.advice) {
     fit_options.advice = [](const std::vector<std::string>&) -> std::string {
@@ -173,9 +167,9 @@ RobotFitOutput FitRobot(const std::vector<RobotLog>& logs, const PlanarRobotPara
     };
   }
   RobotFitOutput out;
-  out.fit = FitLeastSquares(residuals, parameters, channels, fit_options);
+  out.fit = regression.Fit(parameters, fixed, fit_options);
   out.params = start;
-  for (std::size_t j = 0; j < free_columns.size(); ++j) out.params.*(Column(free_columns[j]).in_model) = out.fit.estimates[j].value;
+  for (const auto& e : out.fit.estimates) out.params.*(FindParameter(PlanarRobotParameterTable(), e.name)->in_model) = e.value;
 
   // Current prediction with the fitted parameters (Fig. 7 decomposition).
   const PlanarRobotParameters& r = out.params;

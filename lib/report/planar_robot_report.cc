@@ -4,14 +4,36 @@
 
 namespace driveid {
 
+namespace {
+
+// What both renderings show: the model at one pose.
+struct PoseQuantities {
+  Vector3 theta;  // joint angles [rad]
+  Matrix23 g;     // G [1/m]
+  Matrix2 m, c;   // Cartesian mass [kg] and damping [N s/m]
+  Vector3 n;      // null space of G
+};
+
+PoseQuantities CalcPoseQuantities(const PlanarRobotParameters& r, const Vector2& pose, const Vector2& velocity) {
+  PoseQuantities q;
+  q.theta = CalcInverseKinematics(r, pose);
+  q.g = CalcTransposedInverseJacobian(r, pose, q.theta);
+  q.m = CalcCartesianMass(r, q.g);
+  q.c = CalcCartesianDamping(r, q.g, CalcTransposedInverseJacobianRate(r, pose, q.theta, velocity));
+  q.n = CalcNullSpace(q.g);
+  return q;
+}
+
+}  // namespace
+
 std::string FormatPlanarRobotReport(const PlanarRobotParameters& r, const Vector2& pose, const Vector2& velocity,
                                     const std::string& source) {
-  const Vector3 theta = CalcInverseKinematics(r, pose);
-  const Matrix23 g = CalcTransposedInverseJacobian(r, pose, theta);
-  const Matrix23 g_rate = CalcTransposedInverseJacobianRate(r, pose, theta, velocity);
-  const Matrix2 m = CalcCartesianMass(r, g);
-  const Matrix2 c = CalcCartesianDamping(r, g, g_rate);
-  const Vector3 n = CalcNullSpace(g);
+  const PoseQuantities q = CalcPoseQuantities(r, pose, velocity);
+  const Vector3& theta = q.theta;
+  const Matrix23& g = q.g;
+  const Matrix2& m = q.m;
+  const Matrix2& c = q.c;
+  const Vector3& n = q.n;
   std::string out = fmt::format("planar robot from {} (seed 000 sections 2, 5; docs/models.md#planar-robot)\n", source);
   out += fmt::format("  Theta = {} kg m^2 (seed: 0.55), m_c = {} kg (0.5), d_g = {} N m s/rad (0.002), n_g = {}, k_t = {} N m/A\n",
                      r.output_inertia, r.center_mass, r.viscous_friction, r.gear_ratio, r.torque_constant);
@@ -28,12 +50,12 @@ std::string FormatPlanarRobotReport(const PlanarRobotParameters& r, const Vector
 
 Json PlanarRobotReportJson(const PlanarRobotParameters& r, const Vector2& pose, const Vector2& velocity,
                            const std::string& source) {
-  const Vector3 theta = CalcInverseKinematics(r, pose);
-  const Matrix23 g = CalcTransposedInverseJacobian(r, pose, theta);
-  const Matrix23 g_rate = CalcTransposedInverseJacobianRate(r, pose, theta, velocity);
-  const Matrix2 m = CalcCartesianMass(r, g);
-  const Matrix2 c = CalcCartesianDamping(r, g, g_rate);
-  const Vector3 n = CalcNullSpace(g);
+  const PoseQuantities q = CalcPoseQuantities(r, pose, velocity);
+  const Vector3& theta = q.theta;
+  const Matrix23& g = q.g;
+  const Matrix2& m = q.m;
+  const Matrix2& c = q.c;
+  const Vector3& n = q.n;
   Json out;
   out["source"] = source;
   out["parameters"] = {{"Theta", r.output_inertia}, {"m_c", r.center_mass}, {"d_g", r.viscous_friction},

@@ -1,0 +1,57 @@
+// One design for the inverse-dynamics fits (axis, C-drive, robot): a linear
+// model y = X p over named regressor columns, built row by row by a fit's
+// row builder and owning its data. Each row belongs to a measured channel
+// (RMSE and fit % are of what was measured). Columns that are not estimated
+// are fixed at known values and subtracted from y, as is a per-row part
+// known from outside the columns.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/fit_result.h"
+#include "fit/least_squares.h"
+
+namespace driveid {
+
+class LinearRegression {
+ public:
+  /// The regressor columns, by the names their parameters have in the fit.
+  explicit LinearRegression(std::vector<std::string> columns);
+
+  const std::vector<std::string>& columns() const { return columns_; }
+  /// Index of a column; throws std::logic_error for an unknown name.
+  std::size_t column(const std::string& name) const;
+
+  /// Starts a measured channel: the rows added next belong to it.
+  void BeginChannel(const std::string& name);
+  /// Appends a row: `regressor` has one value per column; `measured` is the
+  /// measured value; `known` a part of it from outside the columns.
+  void AddRow(const std::vector<double>& regressor, double measured, double known = 0.0);
+
+  std::size_t rows() const { return measured_.size(); }
+  double at(std::size_t row, std::size_t column) const { return regressor_[row * columns_.size() + column]; }
+  double measured(std::size_t row) const { return measured_[row]; }
+
+  /// Fits the columns named in `free` (in that order); every other column is
+  /// fixed at `fixed` (which must hold it). Channels without rows are left out.
+  FitResult Fit(const std::vector<FitParameter>& free, const std::map<std::string, double>& fixed,
+                const FitOptions& options) const;
+
+  /// The model at each row for column values `values` (all columns), known part included.
+  std::vector<double> Predict(const std::map<std::string, double>& values) const;
+
+ private:
+  struct Channel {
+    std::string name;
+    std::size_t begin = 0;
+  };
+  std::vector<std::string> columns_;
+  std::vector<double> regressor_;  ///< row-major, rows() x columns()
+  std::vector<double> measured_;
+  std::vector<double> known_;
+  std::vector<Channel> channels_;
+};
+
+}  // namespace driveid
