@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 #include <ceres/ceres.h>
+#include <boost/math/distributions/students_t.hpp>
 #include <fmt/format.h>
 
 #include "core/errors.h"
@@ -123,15 +124,9 @@ Collinearity RequireIdentifiable(const RowMatrix& jacobian, const std::vector<Fi
 }  // namespace
 
 double StudentT975(int dof) {
-  static const double kTable[] = {0, 12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228,
-                                  2.201, 2.179, 2.160, 2.145, 2.131, 2.120, 2.110, 2.101, 2.093, 2.086,
-                                  2.080, 2.074, 2.069, 2.064, 2.060, 2.056, 2.052, 2.048, 2.045, 2.042};
   if (dof < 1) return std::numeric_limits<double>::infinity();
-  if (dof <= 30) return kTable[dof];
-  // Cornish-Fisher expansion around the normal quantile, accurate to 1e-4 for dof > 30.
-  const double z = 1.959963984540054;
-  const double n = dof;
-  return z + (z * z * z + z) / (4 * n) + (5 * std::pow(z, 5) + 16 * z * z * z + 3 * z) / (96 * n * n);
+  const boost::math::students_t distribution(static_cast<double>(dof));
+  return boost::math::quantile(boost::math::complement(distribution, 0.025));
 }
 
 FitResult FitLeastSquares(ResidualModel& model, const std::vector<FitParameter>& parameters,

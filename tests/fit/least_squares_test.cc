@@ -3,6 +3,7 @@
 // message), not only that it failed.
 #include "fit/least_squares.h"
 
+#include <cmath>
 #include <string>
 
 #include <catch2/catch.hpp>
@@ -33,4 +34,15 @@ TEST_CASE("a model that cannot be evaluated: the reason and the parameter values
     CHECK(message.find("tau_c = 5") != std::string::npos);
     CHECK(message.find("convergence test failures") != std::string::npos);
   }
+}
+
+TEST_CASE("Student t 97.5 % quantiles: exact values at small and large degrees of freedom") {
+  // Reference values of the t distribution (two-sided 95 %).
+  CHECK(StudentT975(1) == Approx(12.7062047362).epsilon(1e-9));
+  CHECK(StudentT975(2) == Approx(4.30265272975).epsilon(1e-9));
+  CHECK(StudentT975(10) == Approx(2.22813885196).epsilon(1e-9));
+  CHECK(StudentT975(30) == Approx(2.04227245630).epsilon(1e-9));
+  CHECK(StudentT975(100) == Approx(1.98397151852).epsilon(1e-9));
+  CHECK(StudentT975(100000) == Approx(1.9599877).epsilon(1e-7));  // z + (z^3 + z) / (4 n)
+  CHECK(std::isinf(StudentT975(0)));
 }
