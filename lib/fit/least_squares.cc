@@ -1,5 +1,7 @@
 #include "fit/least_squares.h"
 
+#include "fit/scaled_cost.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -14,35 +16,6 @@ namespace driveid {
 namespace {
 
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-
-// Ceres sees the scaled parameters z = p / scale as one block.
-class ScaledCost final : public ceres::CostFunction {
- public:
-  ScaledCost(ResidualModel& model, std::vector<double> scale)
-      : model_(model), scale_(std::move(scale)), physical_(scale_.size()) {
-    set_num_residuals(model.residual_count());
-    mutable_parameter_block_sizes()->push_back(static_cast<int>(scale_.size()));
-  }
-
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
-    const std::size_t p = scale_.size();
-    for (std::size_t j = 0; j < p; ++j) physical_[j] = parameters[0][j] * scale_[j];
-    double* jacobian = (jacobians != nullptr) ? jacobians[0] : nullptr;
-    if (!model_.Evaluate(physical_.data(), residuals, jacobian)) return false;
-    if (jacobian != nullptr) {
-      const std::size_t n = static_cast<std::size_t>(num_residuals());
-      for (std::size_t i = 0; i < n; ++i) {
-        for (std::size_t j = 0; j < p; ++j) jacobian[i * p + j] *= scale_[j];
-      }
-    }
-    return true;
-  }
-
- private:
-  ResidualModel& model_;
-  const std::vector<double> scale_;
-  mutable std::vector<double> physical_;
-};
 
 class ProgressCallback final : public ceres::IterationCallback {
  public:

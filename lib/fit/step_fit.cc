@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -128,6 +129,12 @@ void CheckStepLog(const StepLog& log) {
 }
 
 }  // namespace
+
+std::unique_ptr<ResidualModel> MakeStepResiduals(const std::vector<StepLog>& logs, const DriveTrainParameters& start,
+                                                 DriveTrainModel model, std::vector<DriveTrainParameter> free,
+                                                 bool fit_offsets) {
+  return std::make_unique<StepResiduals>(logs, start, model, std::move(free), fit_offsets);
+}
 
 
 

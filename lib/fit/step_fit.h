@@ -6,6 +6,7 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,13 @@ struct StepFitOutput {
   FitResult fit;
   std::vector<std::vector<double>> simulated;  ///< model link torque per log, offset included
 };
+
+/// The step fit's residual model: simulated minus measured link torque of
+/// every log, with the sensitivities to `free` (then one offset per log if
+/// `fit_offsets`) as its Jacobian. `logs` must outlive it.
+std::unique_ptr<ResidualModel> MakeStepResiduals(const std::vector<StepLog>& logs, const DriveTrainParameters& start,
+                                                 DriveTrainModel model, std::vector<DriveTrainParameter> free,
+                                                 bool fit_offsets);
 
 /// Fits the free parameters to all logs jointly. Throws OptionError
 /// for an unknown name in `free`, InputError for unusable start values and
