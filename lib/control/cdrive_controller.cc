@@ -65,7 +65,7 @@ Vector2 CDriveController::Update(const Vector2& reference_angle, const Vector2& 
   filled_ = std::min(filled_ + 1, kHistory);
 
   const Vector2 compensation = compensator_.Update(rate_[0], rate_[1]);
-  Vector2 torque{};
+  Vector2 torque = Vector2::Zero();
   for (std::size_t i = 0; i < 2; ++i) {
     const double error = reference_angle[i] - encoder_angle[i];
     const double error_rate = reference_rate[i] - rate_[i];

@@ -53,8 +53,8 @@ class CDriveController {
   std::array<Vector2, kHistory> history_{};
   int head_ = 0;
   int filled_ = 0;
-  Vector2 integral_{};
-  Vector2 rate_{};
+  Vector2 integral_ = Vector2::Zero();
+  Vector2 rate_ = Vector2::Zero();
 };
 
 /// Encoder reading: the angle rounded down to whole counts.

@@ -144,14 +144,14 @@ RobotFitOutput FitRobot(const std::vector<RobotLog>& logs, const PlanarRobotPara
       std::size_t counter = 0;
       for (const auto& [k, s] : kinematics.back()) {
         if (near_jump[k] || counter++ % stride != 0) continue;
-        const double* g_row = &s.g[static_cast<std::size_t>(component * 3)];
         double projected_torque = 0.0, projected_acceleration = 0.0, projected_rate = 0.0;
-        for (std::size_t i = 0; i < 3; ++i) {
-          projected_torque += g_row[i] * k_t * current[i][k];
-          projected_acceleration += g_row[i] * s.acceleration[i];
-          projected_rate += g_row[i] * s.rate[i];
+        for (int i = 0; i < 3; ++i) {
+          const double g = s.g(component, i);
+          projected_torque += g * k_t * current[static_cast<std::size_t>(i)][k];
+          projected_acceleration += g * s.acceleration[i];
+          projected_rate += g * s.rate[i];
         }
-        regression.AddRow({projected_acceleration, s.acceleration_xy[static_cast<std::size_t>(component)],
+        regression.AddRow({projected_acceleration, s.acceleration_xy[component],
                            n_g * n_g * projected_rate},
                           n_g * projected_torque);
       }
@@ -180,25 +180,25 @@ RobotFitOutput FitRobot(const std::vector<RobotLog>& logs, const PlanarRobotPara
       const Matrix23 g_rate = CalcTransposedInverseJacobianRate(r, s.position, s.theta, s.velocity);
       const Vector3 centre = ApplyPseudoInverse(s.g, {r.center_mass * s.acceleration_xy[0], r.center_mass * s.acceleration_xy[1]});
       // G+ G i: the part of the measured current that moves the robot.
-      Vector2 projected{};
+      Vector2 projected = Vector2::Zero();
       for (std::size_t i = 0; i < 3; ++i) {
-        projected[0] += s.g[i] * logs[l].current[i][k];
-        projected[1] += s.g[3 + i] * logs[l].current[i][k];
+        projected[0] += s.g(0, i) * logs[l].current[i][k];
+        projected[1] += s.g(1, i) * logs[l].current[i][k];
       }
       const Vector3 motion = ApplyPseudoInverse(s.g, projected);
       // Centrifugal/Coriolis: Theta dG' x' has a null-space part; the motors
       // share the Cartesian force G Theta dG' x' by the minimum norm, G+ G.
-      Vector3 coriolis_joint{};
-      Vector2 coriolis_force{};
+      Vector3 coriolis_joint = Vector3::Zero();
+      Vector2 coriolis_force = Vector2::Zero();
       for (std::size_t i = 0; i < 3; ++i) {
-        coriolis_joint[i] = r.output_inertia * (g_rate[i] * s.velocity[0] + g_rate[3 + i] * s.velocity[1]);
-        coriolis_force[0] += s.g[i] * coriolis_joint[i];
-        coriolis_force[1] += s.g[3 + i] * coriolis_joint[i];
+        coriolis_joint[i] = r.output_inertia * (g_rate(0, i) * s.velocity[0] + g_rate(1, i) * s.velocity[1]);
+        coriolis_force[0] += s.g(0, i) * coriolis_joint[i];
+        coriolis_force[1] += s.g(1, i) * coriolis_joint[i];
       }
       const Vector3 coriolis_motion = ApplyPseudoInverse(s.g, coriolis_force);
       prediction.time.push_back(logs[l].time[k]);
       for (std::size_t i = 0; i < 3; ++i) {
-        const double inertia = (r.output_inertia * (s.g[i] * s.acceleration_xy[0] + s.g[3 + i] * s.acceleration_xy[1]) +
+        const double inertia = (r.output_inertia * (s.g(0, i) * s.acceleration_xy[0] + s.g(1, i) * s.acceleration_xy[1]) +
                                 centre[i]) * scale;
         const double coriolis = coriolis_motion[i] * scale;
         const double friction = n_g * n_g * r.viscous_friction * s.rate[i] * scale;

@@ -6,12 +6,12 @@ namespace driveid {
 
 Matrix2 CalcCDriveJacobian(double lead) {
   const double k = lead / (4.0 * M_PI);
-  return {k, -k, k, k};
+  return (Matrix2() << k, -k, k, k).finished();
 }
 
 Matrix2 CalcCDriveJacobianInverse(double lead) {
   const double k = 2.0 * M_PI / lead;
-  return {k, k, -k, k};
+  return (Matrix2() << k, k, -k, k).finished();
 }
 
 double CalcCollarTranslation(double lead, double psi_left, double psi_right) {
@@ -32,13 +32,13 @@ double CalcInertiaOffDiagonal(const CDriveParameters& p) {
 
 Matrix2 CalcCDriveInertiaMatrix(const CDriveParameters& p) {
   const double a = CalcInertiaDiagonal(p), b = CalcInertiaOffDiagonal(p);
-  return {a, b, b, a};
+  return (Matrix2() << a, b, b, a).finished();
 }
 
 Matrix2 CalcCDriveDampingMatrix(const CDriveParameters& p) {
   const double diagonal = p.viscous_motor + 0.5 * p.viscous_collar;
   const double off = -0.5 * p.viscous_collar;
-  return {diagonal, off, off, diagonal};
+  return (Matrix2() << diagonal, off, off, diagonal).finished();
 }
 
 Vector2 CalcCDriveCoulombTorque(const CDriveParameters& p, double rate_left, double rate_right) {
@@ -49,8 +49,8 @@ Vector2 CalcCDriveCoulombTorque(const CDriveParameters& p, double rate_left, dou
 double CalcCDriveDissipatedPower(const CDriveParameters& p, double rate_left, double rate_right) {
   const Matrix2 c = CalcCDriveDampingMatrix(p);
   const Vector2 coulomb = CalcCDriveCoulombTorque(p, rate_left, rate_right);
-  const double left = c[0] * rate_left + c[1] * rate_right + coulomb[0];
-  const double right = c[2] * rate_left + c[3] * rate_right + coulomb[1];
+  const double left = c(0, 0) * rate_left + c(0, 1) * rate_right + coulomb[0];
+  const double right = c(1, 0) * rate_left + c(1, 1) * rate_right + coulomb[1];
   return rate_left * left + rate_right * right;
 }
 
@@ -58,8 +58,8 @@ Vector2 CalcCDriveInverseDynamics(const CDriveParameters& p, const Vector2& rate
   const Matrix2 m = CalcCDriveInertiaMatrix(p);
   const Matrix2 c = CalcCDriveDampingMatrix(p);
   const Vector2 coulomb = CalcCDriveCoulombTorque(p, rate[0], rate[1]);
-  return {m[0] * acceleration[0] + m[1] * acceleration[1] + c[0] * rate[0] + c[1] * rate[1] + coulomb[0],
-          m[2] * acceleration[0] + m[3] * acceleration[1] + c[2] * rate[0] + c[3] * rate[1] + coulomb[1]};
+  return {m(0, 0) * acceleration[0] + m(0, 1) * acceleration[1] + c(0, 0) * rate[0] + c(0, 1) * rate[1] + coulomb[0],
+          m(1, 0) * acceleration[0] + m(1, 1) * acceleration[1] + c(1, 0) * rate[0] + c(1, 1) * rate[1] + coulomb[1]};
 }
 
 }  // namespace driveid

@@ -21,6 +21,8 @@
 #pragma once
 
 #include <array>
+
+#include <Eigen/Core>
 #include <optional>
 
 #include "models/parameter_table.h"
@@ -74,8 +76,8 @@ inline const ParameterTable<CDriveSection, CDriveParameters>& CDriveParameterTab
   return table;
 }
 
-using Vector2 = std::array<double, 2>;
-using Matrix2 = std::array<double, 4>;  ///< row-major [[0, 1], [2, 3]]
+using Vector2 = Eigen::Vector2d;
+using Matrix2 = Eigen::Matrix2d;
 
 /// Actuator Jacobian J (eq. 10), w = J psi.
 Matrix2 CalcCDriveJacobian(double lead);

@@ -13,7 +13,7 @@ std::array<Vector2, 3> CalcBaseJoints(double a) {
 
 Vector3 CalcInverseKinematics(const PlanarRobotParameters& p, const Vector2& c) {
   const auto bases = CalcBaseJoints(p.base_distance);
-  Vector3 theta{};
+  Vector3 theta = Vector3::Zero();
   for (std::size_t i = 0; i < 3; ++i) {
     const double dx = c[0] - bases[i][0], dy = c[1] - bases[i][1];
     const double distance = std::hypot(dx, dy);
@@ -57,13 +57,13 @@ Vector2 CalcForwardKinematics(const PlanarRobotParameters& p, const Vector3& the
 
 Matrix23 CalcTransposedInverseJacobian(const PlanarRobotParameters& p, const Vector2& c, const Vector3& theta) {
   const auto bases = CalcBaseJoints(p.base_distance);
-  Matrix23 g{};
+  Matrix23 g = Matrix23::Zero();
   for (std::size_t i = 0; i < 3; ++i) {
     const double ct = std::cos(theta[i]), st = std::sin(theta[i]);
     const double dx = c[0] - bases[i][0] - p.link_length * ct, dy = c[1] - bases[i][1] - p.link_length * st;
     const double s = p.link_length * (-dx * st + dy * ct);  // l d . e_perp
-    g[i] = dx / s;
-    g[3 + i] = dy / s;
+    g(0, i) = dx / s;
+    g(1, i) = dy / s;
   }
   return g;
 }
@@ -72,24 +72,24 @@ Matrix23 CalcTransposedInverseJacobianRate(const PlanarRobotParameters& p, const
                                            const Vector2& v) {
   const auto bases = CalcBaseJoints(p.base_distance);
   const Matrix23 g = CalcTransposedInverseJacobian(p, c, theta);
-  Matrix23 rate{};
+  Matrix23 rate = Matrix23::Zero();
   const double l = p.link_length;
   for (std::size_t i = 0; i < 3; ++i) {
     const double ct = std::cos(theta[i]), st = std::sin(theta[i]);
     const double dx = c[0] - bases[i][0] - l * ct, dy = c[1] - bases[i][1] - l * st;
-    const double theta_rate = g[i] * v[0] + g[3 + i] * v[1];
+    const double theta_rate = g(0, i) * v[0] + g(1, i) * v[1];
     // d' = x' - l e_perp theta', e_perp' = -e theta', s = l d . e_perp.
     const double ddx = v[0] + l * st * theta_rate, ddy = v[1] - l * ct * theta_rate;
     const double s = l * (-dx * st + dy * ct);
     const double s_rate = l * ((-ddx * st + ddy * ct) - (dx * ct + dy * st) * theta_rate);
-    rate[i] = ddx / s - dx * s_rate / (s * s);
-    rate[3 + i] = ddy / s - dy * s_rate / (s * s);
+    rate(0, i) = ddx / s - dx * s_rate / (s * s);
+    rate(1, i) = ddy / s - dy * s_rate / (s * s);
   }
   return rate;
 }
 
 Vector3 CalcNullSpace(const Matrix23& g) {
-  Vector3 n = {g[1] * g[5] - g[2] * g[4], g[2] * g[3] - g[0] * g[5], g[0] * g[4] - g[1] * g[3]};
+  Vector3 n = {g(0, 1) * g(1, 2) - g(0, 2) * g(1, 1), g(0, 2) * g(1, 0) - g(0, 0) * g(1, 2), g(0, 0) * g(1, 1) - g(0, 1) * g(1, 0)};
   const double norm = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   const double sign = n[0] >= 0.0 ? 1.0 : -1.0;
   for (double& v : n) v *= sign / norm;
@@ -97,36 +97,21 @@ Vector3 CalcNullSpace(const Matrix23& g) {
 }
 
 Vector3 ApplyPseudoInverse(const Matrix23& g, const Vector2& f) {
-  const double a = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
-  const double b = g[0] * g[3] + g[1] * g[4] + g[2] * g[5];
-  const double d = g[3] * g[3] + g[4] * g[4] + g[5] * g[5];
+  const double a = g(0, 0) * g(0, 0) + g(0, 1) * g(0, 1) + g(0, 2) * g(0, 2);
+  const double b = g(0, 0) * g(1, 0) + g(0, 1) * g(1, 1) + g(0, 2) * g(1, 2);
+  const double d = g(1, 0) * g(1, 0) + g(1, 1) * g(1, 1) + g(1, 2) * g(1, 2);
   const double det = a * d - b * b;
   const double y0 = (d * f[0] - b * f[1]) / det, y1 = (a * f[1] - b * f[0]) / det;  // (G G')^-1 f
-  return {g[0] * y0 + g[3] * y1, g[1] * y0 + g[4] * y1, g[2] * y0 + g[5] * y1};
+  return {g(0, 0) * y0 + g(1, 0) * y1, g(0, 1) * y0 + g(1, 1) * y1, g(0, 2) * y0 + g(1, 2) * y1};
 }
 
 Matrix2 CalcCartesianMass(const PlanarRobotParameters& p, const Matrix23& g) {
-  const double a = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
-  const double b = g[0] * g[3] + g[1] * g[4] + g[2] * g[5];
-  const double d = g[3] * g[3] + g[4] * g[4] + g[5] * g[5];
-  return {p.output_inertia * a + p.center_mass, p.output_inertia * b, p.output_inertia * b,
-          p.output_inertia * d + p.center_mass};
+  return p.output_inertia * g * g.transpose() + p.center_mass * Matrix2::Identity();
 }
 
 Matrix2 CalcCartesianDamping(const PlanarRobotParameters& p, const Matrix23& g, const Matrix23& r) {
   const double friction = p.gear_ratio * p.gear_ratio * p.viscous_friction;
-  Matrix2 c{};
-  for (int row = 0; row < 2; ++row) {
-    for (int col = 0; col < 2; ++col) {
-      double ggt = 0.0, ggr = 0.0;
-      for (int i = 0; i < 3; ++i) {
-        ggt += g[static_cast<std::size_t>(row * 3 + i)] * g[static_cast<std::size_t>(col * 3 + i)];
-        ggr += g[static_cast<std::size_t>(row * 3 + i)] * r[static_cast<std::size_t>(col * 3 + i)];
-      }
-      c[static_cast<std::size_t>(row * 2 + col)] = p.output_inertia * ggr + friction * ggt;
-    }
-  }
-  return c;
+  return p.output_inertia * g * r.transpose() + friction * g * g.transpose();
 }
 
 }  // namespace driveid

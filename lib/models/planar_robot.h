@@ -72,8 +72,8 @@ inline PlanarRobotParameters MakePlanarRobotParameters(const PlanarRobotSection&
   return p;
 }
 
-using Matrix23 = std::array<double, 6>;  ///< row-major 2 x 3 (G)
-using Vector3 = std::array<double, 3>;
+using Matrix23 = Eigen::Matrix<double, 2, 3>;  ///< G
+using Vector3 = Eigen::Vector3d;
 
 std::array<Vector2, 3> CalcBaseJoints(double base_distance);
 

@@ -44,11 +44,11 @@ std::string FormatCDriveReport(const CDriveSection& cdrive, const std::optional<
   const Matrix2 inverse = CalcCDriveJacobianInverse(p.lead);
   std::string out = fmt::format("C-drive from {} (seed 001; docs/models.md#c-drive), lead p = {} m\n\n", source, p.lead);
   out += "kinematics w = (u, v) = J psi, v = p theta / (2 pi):\n";
-  out += fmt::format("  J    = p/(4 pi) [[1, -1], [1, 1]]    = [[{:.6g}, {:.6g}], [{:.6g}, {:.6g}]] m/rad\n", j[0], j[1],
-                     j[2], j[3]);
+  out += fmt::format("  J    = p/(4 pi) [[1, -1], [1, 1]]    = [[{:.6g}, {:.6g}], [{:.6g}, {:.6g}]] m/rad\n", j(0, 0), j(0, 1),
+                     j(1, 0), j(1, 1));
   out += fmt::format("  J^-1 = (2 pi/p) [[1, 1], [-1, 1]]    = [[{:.6g}, {:.6g}], [{:.6g}, {:.6g}]] rad/m "
                      "(the seed prints pi/p, which gives J J^-1 = 1/2)\n",
-                     inverse[0], inverse[1], inverse[2], inverse[3]);
+                     inverse(0, 0), inverse(0, 1), inverse(1, 0), inverse(1, 1));
   out += fmt::format("  J'J  = p^2/(8 pi^2) 1 = {:.6g} 1 m^2/rad^2: isotropic, condition number 1\n",
                      p.lead * p.lead / (8 * M_PI * M_PI));
   if (InertiaGiven(p)) {
@@ -101,8 +101,8 @@ Json CDriveReportJson(const CDriveSection& cdrive, const std::vector<ParameterEs
   Json out;
   out["source"] = source;
   out["lead"] = p.lead;
-  out["jacobian"] = {j[0], j[1], j[2], j[3]};
-  out["jacobian_inverse"] = {inverse[0], inverse[1], inverse[2], inverse[3]};
+  out["jacobian"] = {j(0, 0), j(0, 1), j(1, 0), j(1, 1)};
+  out["jacobian_inverse"] = {inverse(0, 0), inverse(0, 1), inverse(1, 0), inverse(1, 1)};
   out["jtj"] = p.lead * p.lead / (8 * M_PI * M_PI);
   if (InertiaGiven(p)) {
     out["a"] = CalcInertiaDiagonal(p);

@@ -39,11 +39,11 @@ std::string FormatPlanarRobotReport(const PlanarRobotParameters& r, const Vector
                      r.output_inertia, r.center_mass, r.viscous_friction, r.gear_ratio, r.torque_constant);
   out += fmt::format("pose C = ({:.4f}, {:.4f}) m, velocity ({:.3f}, {:.3f}) m/s; joint angles ({:.4f}, {:.4f}, {:.4f}) rad\n",
                      pose[0], pose[1], velocity[0], velocity[1], theta[0], theta[1], theta[2]);
-  out += fmt::format("  G  = [[{:.5g}, {:.5g}, {:.5g}], [{:.5g}, {:.5g}, {:.5g}]] 1/m\n", g[0], g[1], g[2], g[3], g[4], g[5]);
+  out += fmt::format("  G  = [[{:.5g}, {:.5g}, {:.5g}], [{:.5g}, {:.5g}, {:.5g}]] 1/m\n", g(0, 0), g(0, 1), g(0, 2), g(1, 0), g(1, 1), g(1, 2));
   out += fmt::format("  null space of G (internal prestress): ({:.4f}, {:.4f}, {:.4f})\n", n[0], n[1], n[2]);
-  out += fmt::format("  M = Theta G G' + m_c 1          = [[{:.5g}, {:.5g}], [{:.5g}, {:.5g}]] kg\n", m[0], m[1], m[2], m[3]);
-  out += fmt::format("  C = Theta G dG' + n_g^2 d_g G G' = [[{:.5g}, {:.5g}], [{:.5g}, {:.5g}]] N s/m\n", c[0], c[1], c[2],
-                     c[3]);
+  out += fmt::format("  M = Theta G G' + m_c 1          = [[{:.5g}, {:.5g}], [{:.5g}, {:.5g}]] kg\n", m(0, 0), m(0, 1), m(1, 0), m(1, 1));
+  out += fmt::format("  C = Theta G dG' + n_g^2 d_g G G' = [[{:.5g}, {:.5g}], [{:.5g}, {:.5g}]] N s/m\n", c(0, 0), c(0, 1), c(1, 0),
+                     c(1, 1));
   out += "  (the seed prints G G^-1 in eq. (22) and a garbled eq. (23); docs/models.md gives the forms above)\n";
   return out;
 }
@@ -63,10 +63,10 @@ Json PlanarRobotReportJson(const PlanarRobotParameters& r, const Vector2& pose, 
   out["pose"] = {pose[0], pose[1]};
   out["velocity"] = {velocity[0], velocity[1]};
   out["joint_angles"] = {theta[0], theta[1], theta[2]};
-  out["G"] = {{g[0], g[1], g[2]}, {g[3], g[4], g[5]}};
+  out["G"] = {{g(0, 0), g(0, 1), g(0, 2)}, {g(1, 0), g(1, 1), g(1, 2)}};
   out["null_space"] = {n[0], n[1], n[2]};
-  out["M"] = {{m[0], m[1]}, {m[2], m[3]}};
-  out["C"] = {{c[0], c[1]}, {c[2], c[3]}};
+  out["M"] = {{m(0, 0), m(0, 1)}, {m(1, 0), m(1, 1)}};
+  out["C"] = {{c(0, 0), c(0, 1)}, {c(1, 0), c(1, 1)}};
   return out;
 }
 

@@ -32,11 +32,11 @@ class CDrivePlant::System final : public SensitivityOdeSystem {
  public:
   explicit System(const CDriveParameters& params) : params_(params) {
     const Matrix2 m = CalcCDriveInertiaMatrix(params);
-    const double determinant = m[0] * m[3] - m[1] * m[2];
-    if (!(determinant > 0.0) || !(m[0] > 0.0)) {
+    const double determinant = m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0);
+    if (!(determinant > 0.0) || !(m(0, 0) > 0.0)) {
       throw InputError("cdrive: the inertia matrix M is not positive definite (check I_h, I_c, m)");
     }
-    inverse_ = {m[3] / determinant, -m[1] / determinant, -m[2] / determinant, m[0] / determinant};
+    inverse_ << m(1, 1) / determinant, -m(0, 1) / determinant, -m(1, 0) / determinant, m(0, 0) / determinant;
     damping_ = CalcCDriveDampingMatrix(params);
     limit_ = {params.coulomb_motor, params.coulomb_motor, params.coulomb_collar};
     IntegratorOptions options;
@@ -127,8 +127,8 @@ class CDrivePlant::System final : public SensitivityOdeSystem {
   // Acceleration in `mode`; for one stuck contact, its constraint force.
   Vector2 Acceleration(const Mode& mode, const Vector2& rate, double* stuck_force) const {
     if (AllStuck(mode)) return {0.0, 0.0};
-    Vector2 force = {torque_[0] - damping_[0] * rate[0] - damping_[1] * rate[1],
-                     torque_[1] - damping_[2] * rate[0] - damping_[3] * rate[1]};
+    Vector2 force = {torque_[0] - damping_(0, 0) * rate[0] - damping_(0, 1) * rate[1],
+                     torque_[1] - damping_(1, 0) * rate[0] - damping_(1, 1) * rate[1]};
     int stuck = -1;
     for (int i = 0; i < kContacts; ++i) {
       const int s = mode[static_cast<std::size_t>(i)];
@@ -139,10 +139,11 @@ class CDrivePlant::System final : public SensitivityOdeSystem {
       force[0] -= limit_[static_cast<std::size_t>(i)] * s * kDirection[i][0];
       force[1] -= limit_[static_cast<std::size_t>(i)] * s * kDirection[i][1];
     }
-    const Vector2 free = {inverse_[0] * force[0] + inverse_[1] * force[1], inverse_[2] * force[0] + inverse_[3] * force[1]};
+    const Vector2 free(inverse_(0, 0) * force[0] + inverse_(0, 1) * force[1],
+                      inverse_(1, 0) * force[0] + inverse_(1, 1) * force[1]);
     if (stuck < 0) return free;
     const double* g = kDirection[stuck];
-    const Vector2 inverse_g = {inverse_[0] * g[0] + inverse_[1] * g[1], inverse_[2] * g[0] + inverse_[3] * g[1]};
+    const Vector2 inverse_g(inverse_(0, 0) * g[0] + inverse_(0, 1) * g[1], inverse_(1, 0) * g[0] + inverse_(1, 1) * g[1]);
     const double f = Dot(g, free) / Dot(g, inverse_g);
     if (stuck_force != nullptr) *stuck_force = f;
     return {free[0] - f * inverse_g[0], free[1] - f * inverse_g[1]};
@@ -230,12 +231,12 @@ class CDrivePlant::System final : public SensitivityOdeSystem {
   }
 
   CDriveParameters params_;
-  Matrix2 inverse_{};
-  Matrix2 damping_{};
+  Matrix2 inverse_ = Matrix2::Zero();
+  Matrix2 damping_ = Matrix2::Zero();
   std::array<double, kContacts> limit_{};
   std::unique_ptr<CvodesIntegrator> integrator_;
   CDrivePlantState state_;
-  Vector2 torque_{};
+  Vector2 torque_ = Vector2::Zero();
   Mode mode_{};
   int switches_ = 0;
 };

@@ -25,8 +25,8 @@
 namespace driveid {
 
 struct CDrivePlantState {
-  Vector2 angle{};  ///< psi [rad]
-  Vector2 rate{};   ///< psi' [rad/s]
+  Vector2 angle = Vector2::Zero();  ///< psi [rad]
+  Vector2 rate = Vector2::Zero();   ///< psi' [rad/s]
 };
 
 class CDrivePlant {

@@ -106,9 +106,9 @@ RobotLog SimulateRobotExperiment(const PlanarRobotParameters& robot, const Robot
     // theta' = G' x', theta'' = dG' x' + G' x''.
     Vector3 rate{}, acceleration{};
     for (std::size_t i = 0; i < 3; ++i) {
-      rate[i] = g[i] * path.velocity[0] + g[3 + i] * path.velocity[1];
-      acceleration[i] = g_rate[i] * path.velocity[0] + g_rate[3 + i] * path.velocity[1] + g[i] * path.acceleration[0] +
-                        g[3 + i] * path.acceleration[1];
+      rate[i] = g(0, i) * path.velocity[0] + g(1, i) * path.velocity[1];
+      acceleration[i] = g_rate(0, i) * path.velocity[0] + g_rate(1, i) * path.velocity[1] + g(0, i) * path.acceleration[0] +
+                        g(1, i) * path.acceleration[1];
     }
     const Vector3 centre_force = ApplyPseudoInverse(
         g, {robot.center_mass * path.acceleration[0], robot.center_mass * path.acceleration[1]});

@@ -42,28 +42,32 @@ TEST_CASE("theta' = G' x' and dG/dt against finite differences") {
   const Vector3 tm = CalcInverseKinematics(kRobot, {c[0] - h * v[0], c[1] - h * v[1]});
   const Matrix23 g = CalcTransposedInverseJacobian(kRobot, c, t0);
   for (std::size_t i = 0; i < 3; ++i) {
-    CHECK(g[i] * v[0] + g[3 + i] * v[1] == Approx((t1[i] - tm[i]) / (2 * h)).epsilon(1e-6));
+    CHECK(g(0, i) * v[0] + g(1, i) * v[1] == Approx((t1[i] - tm[i]) / (2 * h)).epsilon(1e-6));
   }
   const Matrix23 g1 = CalcTransposedInverseJacobian(kRobot, {c[0] + h * v[0], c[1] + h * v[1]}, t1);
   const Matrix23 gm = CalcTransposedInverseJacobian(kRobot, {c[0] - h * v[0], c[1] - h * v[1]}, tm);
   const Matrix23 rate = CalcTransposedInverseJacobianRate(kRobot, c, t0, v);
-  for (std::size_t k = 0; k < 6; ++k) CHECK(rate[k] == Approx((g1[k] - gm[k]) / (2 * h)).epsilon(1e-5).margin(1e-8));
+  for (int row = 0; row < 2; ++row) {
+    for (int col = 0; col < 3; ++col) {
+      CHECK(rate(row, col) == Approx((g1(row, col) - gm(row, col)) / (2 * h)).epsilon(1e-5).margin(1e-8));
+    }
+  }
 }
 
 TEST_CASE("null space, pseudo-inverse and the Cartesian mass matrix") {
   const Vector3 theta = CalcInverseKinematics(kRobot, kCentre);
   const Matrix23 g = CalcTransposedInverseJacobian(kRobot, kCentre, theta);
   const Vector3 n = CalcNullSpace(g);
-  CHECK(g[0] * n[0] + g[1] * n[1] + g[2] * n[2] == Approx(0.0).margin(1e-12));
-  CHECK(g[3] * n[0] + g[4] * n[1] + g[5] * n[2] == Approx(0.0).margin(1e-12));
+  CHECK(g(0, 0) * n[0] + g(0, 1) * n[1] + g(0, 2) * n[2] == Approx(0.0).margin(1e-12));
+  CHECK(g(1, 0) * n[0] + g(1, 1) * n[1] + g(1, 2) * n[2] == Approx(0.0).margin(1e-12));
   // G G+ f = f.
   const Vector2 f = {3.0, -2.0};
   const Vector3 tau = ApplyPseudoInverse(g, f);
-  CHECK(g[0] * tau[0] + g[1] * tau[1] + g[2] * tau[2] == Approx(f[0]));
-  CHECK(g[3] * tau[0] + g[4] * tau[1] + g[5] * tau[2] == Approx(f[1]));
+  CHECK(g(0, 0) * tau[0] + g(0, 1) * tau[1] + g(0, 2) * tau[2] == Approx(f[0]));
+  CHECK(g(1, 0) * tau[0] + g(1, 1) * tau[1] + g(1, 2) * tau[2] == Approx(f[1]));
   // At the symmetric centre G G' is isotropic, so M is a multiple of 1.
   const Matrix2 m = CalcCartesianMass(kRobot, g);
-  CHECK(m[1] == Approx(0.0).margin(1e-9));
-  CHECK(m[0] == Approx(m[3]));
-  CHECK(m[0] > kRobot.center_mass);
+  CHECK(m(0, 1) == Approx(0.0).margin(1e-9));
+  CHECK(m(0, 0) == Approx(m(1, 1)));
+  CHECK(m(0, 0) > kRobot.center_mass);
 }

@@ -71,7 +71,7 @@ TEST_CASE("eq. (31): viscous and Coulomb terms, dead zone and rate limit") {
   const auto p = TableOneCDrive();
   FrictionCompensator compensator(p, 0.5, 50.0, 0.001);
   // Far from zero and after the rate limiter has settled: eq. (31) exactly.
-  Vector2 tau{};
+  Vector2 tau = Vector2::Zero();
   for (int k = 0; k < 100; ++k) tau = compensator.Update(5.0, -3.0);
   CHECK(tau[0] == Approx(p.viscous_motor * 5 + p.coulomb_motor + 0.5 * p.viscous_collar * 8 + p.coulomb_collar));
   CHECK(tau[1] == Approx(p.viscous_motor * -3 - p.coulomb_motor - 0.5 * p.viscous_collar * 8 - p.coulomb_collar));
