@@ -105,13 +105,22 @@ Vector3 ApplyPseudoInverse(const Matrix23& g, const Vector2& f) {
   return {g(0, 0) * y0 + g(1, 0) * y1, g(0, 1) * y0 + g(1, 1) * y1, g(0, 2) * y0 + g(1, 2) * y1};
 }
 
+namespace {
+// G G', symmetric to the last bit (a general product need not be).
+Matrix2 CalcGramian(const Matrix23& g) {
+  Matrix2 gramian = g * g.transpose();
+  gramian(1, 0) = gramian(0, 1);
+  return gramian;
+}
+}  // namespace
+
 Matrix2 CalcCartesianMass(const PlanarRobotParameters& p, const Matrix23& g) {
-  return p.output_inertia * g * g.transpose() + p.center_mass * Matrix2::Identity();
+  return p.output_inertia * CalcGramian(g) + p.center_mass * Matrix2::Identity();
 }
 
 Matrix2 CalcCartesianDamping(const PlanarRobotParameters& p, const Matrix23& g, const Matrix23& r) {
   const double friction = p.gear_ratio * p.gear_ratio * p.viscous_friction;
-  return p.output_inertia * g * r.transpose() + friction * g * g.transpose();
+  return p.output_inertia * g * r.transpose() + friction * CalcGramian(g);
 }
 
 }  // namespace driveid

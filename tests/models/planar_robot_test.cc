@@ -70,4 +70,14 @@ TEST_CASE("null space, pseudo-inverse and the Cartesian mass matrix") {
   CHECK(m(0, 1) == Approx(0.0).margin(1e-9));
   CHECK(m(0, 0) == Approx(m(1, 1)));
   CHECK(m(0, 0) > kRobot.center_mass);
+  // Anywhere, M is symmetric to the last bit (a mass matrix), and so is the
+  // viscous part of C (the Theta G dG' part is not symmetric in general).
+  const Vector2 off_centre = {0.42, 0.21};
+  const Vector3 theta_off = CalcInverseKinematics(kRobot, off_centre);
+  const Matrix23 g_off = CalcTransposedInverseJacobian(kRobot, off_centre, theta_off);
+  const Matrix2 m_off = CalcCartesianMass(kRobot, g_off);
+  CHECK(m_off(0, 1) == m_off(1, 0));
+  CHECK(std::abs(m_off(0, 1)) > 1e-3);  // really off-diagonal there
+  const Matrix2 c_rest = CalcCartesianDamping(kRobot, g_off, Matrix23::Zero());
+  CHECK(c_rest(0, 1) == c_rest(1, 0));
 }
