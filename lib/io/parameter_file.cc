@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <functional>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -15,8 +16,6 @@
 
 namespace driveid {
 namespace {
-
-const char* const kKnownSections[] = {"drivetrain", "axis", "planar_robot", "cdrive", "fit"};
 
 std::string Where(const std::string& path, const YAML::Node& node) {
   const YAML::Mark mark = node.Mark();
@@ -143,6 +142,109 @@ std::string FormatSection(const Section& values, const ParameterTable<Section, M
   return out;
 }
 
+// How one model's section is read and written: everything but the extra
+// keys comes from the model's parameter table.
+struct SectionHandler {
+  std::string name;
+  std::function<bool(const ParameterFile&)> present;
+  std::function<void(const std::string& path, const YAML::Node& node, ParameterFile& file)> parse;
+  std::function<std::string(const ParameterFile& file)> format;
+};
+
+// A handler for the section `name` stored in `member`, read and written by
+// `table`; `extra_keys` are left to `parse_extra` and written by
+// `format_extra` (e.g. the robot's elbows, the C-drive's controller).
+template <class T>
+struct NotDeduced {
+  using type = T;
+};
+
+template <class Section, class Model>
+SectionHandler MakeSection(
+    const char* name, std::optional<Section> ParameterFile::*member,
+    const ParameterTable<Section, Model>& (*table)(), const char* comment, std::vector<std::string> extra_keys = {},
+    typename NotDeduced<std::function<void(const std::string&, const std::string&, const YAML::Node&, Section&,
+                                           ParameterFile&)>>::type parse_extra = {},
+    typename NotDeduced<std::function<std::string(const Section&, const ParameterFile&)>>::type format_extra = {}) {
+  SectionHandler handler;
+  handler.name = name;
+  handler.present = [member](const ParameterFile& file) { return (file.*member).has_value(); };
+  handler.parse = [=](const std::string& path, const YAML::Node& node, ParameterFile& file) {
+    Section section{};
+    for (const auto& [key, value] : ParseSection(path, name, node, table(), extra_keys, section)) {
+      parse_extra(path, key, value, section, file);
+    }
+    file.*member = section;
+  };
+  handler.format = [=](const ParameterFile& file) {
+    const Section& section = *(file.*member);
+    std::string body = FormatSection(section, table(), "  ");
+    if (format_extra) body += format_extra(section, file);
+    // A section with no value must still read back as a mapping.
+    const std::string key = body.empty() ? fmt::format("{}: {{}}", name) : fmt::format("{}:", name);
+    return fmt::format("{:<23}# {}\n", key, comment) + body;
+  };
+  return handler;
+}
+
+void ParseElbows(const std::string& path, const std::string&, const YAML::Node& value, PlanarRobotSection& robot,
+                 ParameterFile&) {
+  if (!value.IsSequence() || value.size() != 3) {
+    throw InputError(fmt::format("{}: planar_robot.elbow: expected [e1, e2, e3] with each +1 or -1", Where(path, value)));
+  }
+  std::array<int, 3> elbow{};
+  for (std::size_t i = 0; i < 3; ++i) {
+    const double e = ParseNumber(path, "planar_robot.elbow", value[i]);
+    if (e != 1.0 && e != -1.0) {
+      throw InputError(fmt::format("{}: planar_robot.elbow: each entry must be +1 or -1, got {}", Where(path, value[i]), e));
+    }
+    elbow[i] = static_cast<int>(e);
+  }
+  robot.elbow = elbow;
+}
+
+std::string FormatElbows(const PlanarRobotSection& robot, const ParameterFile&) {
+  const auto e = robot.elbow.value_or(std::array<int, 3>{1, 1, 1});
+  return fmt::format("{:<28} # {}\n", fmt::format("  elbow: [{}, {}, {}]", e[0], e[1], e[2]),
+                     "+1: B_i counter-clockwise of the ray A_i -> C");
+}
+
+void ParseControlKey(const std::string& path, const std::string&, const YAML::Node& value, CDriveSection&,
+                     ParameterFile& file) {
+  if (!value.IsNull()) file.cdrive_control = ParseControl(path, value);
+}
+
+std::string FormatControl(const CDriveSection&, const ParameterFile& file) {
+  if (!file.cdrive_control) return "";
+  std::string out = "  control:             # position controller and friction compensation, eq. (31)\n";
+  if (file.cdrive_control->law) {
+    out += fmt::format("{:<28} # {}\n", fmt::format("    law: {}", ControlLawName(*file.cdrive_control->law)),
+                       "how K_I is read: PI, PD or PID");
+  }
+  return out + FormatSection(*file.cdrive_control, CDriveControlParameterTable(), "    ");
+}
+
+// The registered model sections, in the order they are written: one line per model.
+const std::vector<SectionHandler>& Sections() {
+  static const std::vector<SectionHandler> sections = {
+      MakeSection("drivetrain", &ParameterFile::drivetrain, DriveTrainParameterTable,
+                  "seed 000 section 4; docs/models.md#drive-train"),
+      MakeSection("planar_robot", &ParameterFile::planar_robot, PlanarRobotParameterTable,
+                  "seed 000 sections 2, 5; docs/models.md#planar-robot", {"elbow"}, ParseElbows, FormatElbows),
+      MakeSection("axis", &ParameterFile::axis, AxisParameterTable,
+                  "docs/models.md#axis: tau = J q'' + b q' + tau_c sgn(q') + tau_0"),
+      MakeSection("cdrive", &ParameterFile::cdrive, CDriveParameterTable, "seed 001; docs/models.md#c-drive",
+                  {"control"}, ParseControlKey, FormatControl),
+  };
+  return sections;
+}
+
+std::string SectionNames() {
+  std::vector<std::string> names;
+  for (const auto& section : Sections()) names.push_back(section.name);
+  return fmt::format("{}", fmt::join(names, ", "));
+}
+
 }  // namespace
 
 namespace {
@@ -201,46 +303,12 @@ ParameterFile ParseParameterFile(const std::string& path, const std::string& tex
   ParameterFile file;
   for (const auto& item : root) {
     const std::string section = item.first.Scalar();
-    bool known = false;
-    for (const char* name : kKnownSections) known = known || section == name;
-    if (!known) {
-      throw InputError(fmt::format("{}: {}: unknown section (known: drivetrain, axis, planar_robot, cdrive, fit)",
-                                   Where(path, item.first), section));
+    const SectionHandler* handler = nullptr;
+    for (const auto& candidate : Sections()) {
+      if (candidate.name == section) handler = &candidate;
     }
-    if (section == "drivetrain") {
-      DriveTrainSection drivetrain;
-      ParseSection(path, "drivetrain", item.second, DriveTrainParameterTable(), {}, drivetrain);
-      file.drivetrain = drivetrain;
-    } else if (section == "planar_robot") {
-      PlanarRobotSection robot;
-      const auto others =
-          ParseSection(path, "planar_robot", item.second, PlanarRobotParameterTable(), {"elbow"}, robot);
-      for (const auto& [key, value] : others) {
-        if (!value.IsSequence() || value.size() != 3) {
-          throw InputError(fmt::format("{}: planar_robot.elbow: expected [e1, e2, e3] with each +1 or -1", Where(path, value)));
-        }
-        std::array<int, 3> elbow{};
-        for (std::size_t i = 0; i < 3; ++i) {
-          const double e = ParseNumber(path, "planar_robot.elbow", value[i]);
-          if (e != 1.0 && e != -1.0) {
-            throw InputError(fmt::format("{}: planar_robot.elbow: each entry must be +1 or -1, got {}", Where(path, value[i]), e));
-          }
-          elbow[i] = static_cast<int>(e);
-        }
-        robot.elbow = elbow;
-      }
-      file.planar_robot = robot;
-    } else if (section == "axis") {
-      AxisSection axis;
-      ParseSection(path, "axis", item.second, AxisParameterTable(), {}, axis);
-      file.axis = axis;
-    } else if (section == "cdrive") {
-      CDriveSection cdrive;
-      const auto others = ParseSection(path, "cdrive", item.second, CDriveParameterTable(), {"control"}, cdrive);
-      for (const auto& [key, value] : others) {
-        if (!value.IsNull()) file.cdrive_control = ParseControl(path, value);
-      }
-      file.cdrive = cdrive;
+    if (handler != nullptr) {
+      handler->parse(path, item.second, file);
     } else if (section == "fit") {
       // Provenance of an earlier fit: accepted so that a fit's output is a
       // valid input, and replaced when a new file is written.
@@ -265,13 +333,13 @@ ParameterFile ParseParameterFile(const std::string& path, const std::string& tex
         }
       }
     } else {
-      throw InputError(fmt::format("{}: {}: section not supported by this version of driveid",
-                                   Where(path, item.first), section));
+      throw InputError(fmt::format("{}: {}: unknown section (known: {}, fit)", Where(path, item.first), section,
+                                   SectionNames()));
     }
   }
-  if (!file.drivetrain && !file.axis && !file.planar_robot && !file.cdrive) {
-    throw InputError(fmt::format("{}: no model section (drivetrain, axis, planar_robot or cdrive)", path));
-  }
+  bool any_model = false;
+  for (const auto& section : Sections()) any_model = any_model || section.present(file);
+  if (!any_model) throw InputError(fmt::format("{}: no model section ({})", path, SectionNames()));
   return file;
 }
 
@@ -280,34 +348,8 @@ ParameterFile ReadParameterFile(const std::string& path) { return ParseParameter
 std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit, const FitProvenance* provenance,
                                 const std::vector<DerivedQuantity>& derived) {
   std::string out = "# driveid parameter file (docs/formats.md). Units: SI, radians.\n";
-  if (file.drivetrain) {
-    out += "drivetrain:            # seed 000 section 4; docs/models.md#drive-train\n";
-    out += FormatSection(*file.drivetrain, DriveTrainParameterTable(), "  ");
-  }
-  if (file.planar_robot) {
-    out += "planar_robot:          # seed 000 sections 2, 5; docs/models.md#planar-robot\n";
-    out += FormatSection(*file.planar_robot, PlanarRobotParameterTable(), "  ");
-    const auto e = file.planar_robot->elbow.value_or(std::array<int, 3>{1, 1, 1});
-    out += fmt::format("{:<28} # {}\n", fmt::format("  elbow: [{}, {}, {}]", e[0], e[1], e[2]),
-                       "+1: B_i counter-clockwise of the ray A_i -> C");
-  }
-  if (file.axis) {
-    // Every axis key is optional: an empty section must still read back as a mapping.
-    const std::string body = FormatSection(*file.axis, AxisParameterTable(), "  ");
-    out += body.empty() ? "axis: {}               # docs/models.md#axis: tau = J q'' + b q' + tau_c sgn(q') + tau_0\n"
-                        : "axis:                  # docs/models.md#axis: tau = J q'' + b q' + tau_c sgn(q') + tau_0\n" + body;
-  }
-  if (file.cdrive) {
-    out += "cdrive:                # seed 001; docs/models.md#c-drive\n";
-    out += FormatSection(*file.cdrive, CDriveParameterTable(), "  ");
-    if (file.cdrive_control) {
-      out += "  control:             # position controller and friction compensation, eq. (31)\n";
-      if (file.cdrive_control->law) {
-        out += fmt::format("{:<28} # {}\n", fmt::format("    law: {}", ControlLawName(*file.cdrive_control->law)),
-                           "how K_I is read: PI, PD or PID");
-      }
-      out += FormatSection(*file.cdrive_control, CDriveControlParameterTable(), "    ");
-    }
+  for (const auto& section : Sections()) {
+    if (section.present(file)) out += section.format(file);
   }
   if (fit != nullptr && provenance != nullptr) {
     out += "fit:\n";
