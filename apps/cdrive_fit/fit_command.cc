@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "common/command_registry.h"
 #include "core/errors.h"
 #include "fit/cdrive_fit.h"
 #include "io/csv_log.h"
@@ -100,5 +101,17 @@ void RunCDriveFitCommand(const CDriveFitCommandOptions& options, const std::stri
   outputs.plot_panels.push_back(std::move(residuals));
   EmitFitOutputs(options.output, outputs);
 }
+
+namespace {
+CDriveFitCommandOptions friction_options, inertia_options;
+const bool kFriction = RegisterCommand(
+    {"cdrive-fit", "", 10,
+     [](CLI::App& parent) { return SetupCDriveFitCommand(parent, friction_options, CDriveFitKind::kFriction); },
+     [](const std::string& line) { RunCDriveFitCommand(friction_options, line); }});
+const bool kInertia = RegisterCommand(
+    {"cdrive-fit", "", 20,
+     [](CLI::App& parent) { return SetupCDriveFitCommand(parent, inertia_options, CDriveFitKind::kInertia); },
+     [](const std::string& line) { RunCDriveFitCommand(inertia_options, line); }});
+}  // namespace
 
 }  // namespace driveid::cli

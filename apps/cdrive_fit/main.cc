@@ -1,29 +1,17 @@
 // cdrive-fit: identification and simulation of the two-motor ball-screw
-// C-drive (seed 001). Wiring only; the work is in lib/.
+// C-drive (seed 001). Wiring only: each subcommand registers itself in its
+// own file (common/command_registry.h); the work is in lib/.
 #include <CLI/CLI.hpp>
 
-#include "cdrive_fit/fit_command.h"
-#include "cdrive_fit/report_command.h"
-#include "cdrive_fit/simulate_command.h"
 #include "common/cli_support.h"
+#include "common/command_registry.h"
 
 int main(int argc, char** argv) {
   using namespace driveid::cli;
   CLI::App app{"Identify and simulate the C-drive (driveid " DRIVEID_VERSION ")", "cdrive-fit"};
   app.set_version_flag("--version", DRIVEID_VERSION);
   app.require_subcommand(1);
-  CDriveFitCommandOptions friction, inertia;
-  CDriveReportOptions report;
-  CDriveSimulateOptions simulate;
-  CLI::App* friction_command = SetupCDriveFitCommand(app, friction, CDriveFitKind::kFriction);
-  CLI::App* inertia_command = SetupCDriveFitCommand(app, inertia, CDriveFitKind::kInertia);
-  CLI::App* report_command = SetupCDriveReportCommand(app, report);
-  CLI::App* simulate_command = SetupCDriveSimulateCommand(app, simulate);
+  const auto run = SetupCommands(app, "cdrive-fit");
   const std::string command_line = CommandLine(argc, argv);
-  return RunMain(app, argc, argv, [&] {
-    if (*friction_command) RunCDriveFitCommand(friction, command_line);
-    if (*inertia_command) RunCDriveFitCommand(inertia, command_line);
-    if (*report_command) RunCDriveReportCommand(report);
-    if (*simulate_command) RunCDriveSimulateCommand(simulate, command_line);
-  });
+  return RunMain(app, argc, argv, [&] { run(command_line); });
 }

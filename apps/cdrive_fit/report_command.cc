@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "common/cli_support.h"
+#include "common/command_registry.h"
 #include "core/errors.h"
 #include "io/parameter_file.h"
 #include "report/cdrive_report.h"
@@ -27,5 +28,12 @@ void RunCDriveReportCommand(const CDriveReportOptions& options) {
                                         : FormatCDriveReport(*file.cdrive, file.cdrive_control, file.fit_estimates, options.params);
   WriteStdout(text);
 }
+
+namespace {
+CDriveReportOptions report_options;
+const bool kRegistered = RegisterCommand({"cdrive-fit", "", 30,
+                                          [](CLI::App& parent) { return SetupCDriveReportCommand(parent, report_options); },
+                                          [](const std::string&) { RunCDriveReportCommand(report_options); }});
+}  // namespace
 
 }  // namespace driveid::cli

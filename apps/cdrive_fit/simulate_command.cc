@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "common/cli_support.h"
+#include "common/command_registry.h"
 #include "core/errors.h"
 #include "io/atomic_file.h"
 #include "io/parameter_file.h"
@@ -110,5 +111,12 @@ void RunCDriveSimulateCommand(const CDriveSimulateOptions& options, const std::s
   }
   if (options.output.empty()) WriteStdout(log_text);
 }
+
+namespace {
+CDriveSimulateOptions simulate_options;
+const bool kRegistered = RegisterCommand(
+    {"cdrive-fit", "", 40, [](CLI::App& parent) { return SetupCDriveSimulateCommand(parent, simulate_options); },
+     [](const std::string& line) { RunCDriveSimulateCommand(simulate_options, line); }});
+}  // namespace
 
 }  // namespace driveid::cli

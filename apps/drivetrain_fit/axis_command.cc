@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "common/command_registry.h"
 #include "core/errors.h"
 #include "fit/axis_fit.h"
 #include "io/csv_log.h"
@@ -88,5 +89,12 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
                  result.relative_error_percent, result.samples_used, result.acceleration_content);
   }
 }
+
+namespace {
+AxisOptions axis_options;
+const bool kRegistered = RegisterCommand({"drivetrain-fit", "", 20,
+                                          [](CLI::App& parent) { return SetupAxisCommand(parent, axis_options); },
+                                          [](const std::string& line) { RunAxisCommand(axis_options, line); }});
+}  // namespace
 
 }  // namespace driveid::cli

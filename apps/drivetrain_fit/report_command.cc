@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "common/cli_support.h"
+#include "common/command_registry.h"
 #include "core/errors.h"
 #include "io/parameter_file.h"
 #include "report/drivetrain_report.h"
@@ -67,5 +68,12 @@ void RunReportCommand(const ReportOptions& options) {
   }
   WriteStdout(options.json ? DumpJson(json) : text);
 }
+
+namespace {
+ReportOptions report_options;
+const bool kRegistered = RegisterCommand({"drivetrain-fit", "", 50,
+                                          [](CLI::App& parent) { return SetupReportCommand(parent, report_options); },
+                                          [](const std::string&) { RunReportCommand(report_options); }});
+}  // namespace
 
 }  // namespace driveid::cli

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "common/command_registry.h"
 #include "core/errors.h"
 #include "fit/robot_fit.h"
 #include "io/csv_log.h"
@@ -78,5 +79,12 @@ void RunRobotCommand(const RobotOptions& options, const std::string& command_lin
   outputs.plot_panels = {figure, residual};
   EmitFitOutputs(options.output, outputs);
 }
+
+namespace {
+RobotOptions robot_options;
+const bool kRegistered = RegisterCommand({"drivetrain-fit", "", 30,
+                                          [](CLI::App& parent) { return SetupRobotCommand(parent, robot_options); },
+                                          [](const std::string& line) { RunRobotCommand(robot_options, line); }});
+}  // namespace
 
 }  // namespace driveid::cli

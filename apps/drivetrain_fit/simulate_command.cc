@@ -5,17 +5,15 @@
 #include <fmt/format.h>
 
 #include "common/cli_support.h"
+#include "common/command_registry.h"
 #include "core/errors.h"
 #include "io/atomic_file.h"
 #include "io/parameter_file.h"
 
 namespace driveid::cli {
 
-SimulateCommands SetupSimulateCommand(CLI::App& app, SimulateStepOptions& options, SimulateAxisOptions& axis_options,
-                                      SimulateRobotOptions& robot_options) {
-  CLI::App* simulate = app.add_subcommand("simulate", "Write synthetic logs in the input format");
-  simulate->require_subcommand(1);
-  CLI::App* step = simulate->add_subcommand(
+CLI::App* SetupSimulateStepCommand(CLI::App& simulate, SimulateStepOptions& options) {
+  CLI::App* step = simulate.add_subcommand(
       "step", "Motor-torque step with joint B fixed (default: the paper's -0.8 N m step, seed 000 Fig. 6)");
   step->add_option("--params", options.params, "parameter file with a drivetrain section")->required();
   step->add_option("-o,--output", options.output, "log file to write (default: stdout)");
@@ -32,8 +30,11 @@ SimulateCommands SetupSimulateCommand(CLI::App& app, SimulateStepOptions& option
   step->footer(
       "Example:\n"
       "  drivetrain-fit simulate step --params data/paper000.yaml --noise 0.1 --seed 1 -o step.csv");
+  return step;
+}
 
-  CLI::App* axis = simulate->add_subcommand("axis", "Rigid axis following a prescribed motion (docs/models.md#axis)");
+CLI::App* SetupSimulateAxisCommand(CLI::App& simulate, SimulateAxisOptions& axis_options) {
+  CLI::App* axis = simulate.add_subcommand("axis", "Rigid axis following a prescribed motion (docs/models.md#axis)");
   AxisExperiment& e = axis_options.experiment;
   axis->add_option("--params", axis_options.params, "parameter file with an axis section")->required();
   axis->add_option("-o,--output", axis_options.output, "log file to write (default: stdout)");
@@ -46,8 +47,11 @@ SimulateCommands SetupSimulateCommand(CLI::App& app, SimulateStepOptions& option
   axis->add_option("--noise", e.noise, "std of force noise")->capture_default_str();
   axis->add_option("--seed", e.seed, "noise seed")->capture_default_str();
   axis->footer("Example:\n  drivetrain-fit simulate axis --params data/axis_example.yaml --noise 0.05 -o axis.csv");
+  return axis;
+}
 
-  CLI::App* robot = simulate->add_subcommand(
+CLI::App* SetupSimulateRobotCommand(CLI::App& simulate, SimulateRobotOptions& robot_options) {
+  CLI::App* robot = simulate.add_subcommand(
       "robot", "Planar robot along the 250 mm triangle at 50 m/s^2 and 3 m/s (seed 000 section 6)");
   RobotExperiment& r = robot_options.experiment;
   robot->add_option("--params", robot_options.params, "parameter file with a planar_robot section")->required();
@@ -63,7 +67,7 @@ SimulateCommands SetupSimulateCommand(CLI::App& app, SimulateStepOptions& option
   robot->add_option("--noise", r.current_noise, "std of current noise [A]")->capture_default_str();
   robot->add_option("--seed", r.seed, "noise seed")->capture_default_str();
   robot->footer("Example:\n  drivetrain-fit simulate robot --params data/robot_paper000.yaml --noise 0.02 -o triangle.csv");
-  return {step, axis, robot};
+  return robot;
 }
 
 void RunSimulateRobotCommand(const SimulateRobotOptions& options, const std::string& command_line) {
@@ -136,5 +140,21 @@ void RunSimulateStepCommand(const SimulateStepOptions& options, const std::strin
     WriteFileAtomically(options.output, text);
   }
 }
+
+namespace {
+SimulateStepOptions step_options;
+SimulateAxisOptions axis_options;
+SimulateRobotOptions robot_options;
+const bool kGroup = RegisterGroup("drivetrain-fit", "simulate", 40, "Write synthetic logs in the input format");
+const bool kStep = RegisterCommand({"drivetrain-fit", "simulate", 1,
+                                    [](CLI::App& parent) { return SetupSimulateStepCommand(parent, step_options); },
+                                    [](const std::string& line) { RunSimulateStepCommand(step_options, line); }});
+const bool kAxis = RegisterCommand({"drivetrain-fit", "simulate", 2,
+                                    [](CLI::App& parent) { return SetupSimulateAxisCommand(parent, axis_options); },
+                                    [](const std::string& line) { RunSimulateAxisCommand(axis_options, line); }});
+const bool kRobot = RegisterCommand({"drivetrain-fit", "simulate", 3,
+                                     [](CLI::App& parent) { return SetupSimulateRobotCommand(parent, robot_options); },
+                                     [](const std::string& line) { RunSimulateRobotCommand(robot_options, line); }});
+}  // namespace
 
 }  // namespace driveid::cli

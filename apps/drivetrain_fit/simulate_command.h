@@ -30,14 +30,10 @@ struct SimulateRobotOptions {
   RobotExperiment experiment;
 };
 
-struct SimulateCommands {
-  CLI::App* step = nullptr;
-  CLI::App* axis = nullptr;
-  CLI::App* robot = nullptr;
-};
-
-SimulateCommands SetupSimulateCommand(CLI::App& app, SimulateStepOptions& step, SimulateAxisOptions& axis,
-                                      SimulateRobotOptions& robot);
+/// Each declares its subcommand on the `simulate` group.
+CLI::App* SetupSimulateStepCommand(CLI::App& simulate, SimulateStepOptions& options);
+CLI::App* SetupSimulateAxisCommand(CLI::App& simulate, SimulateAxisOptions& options);
+CLI::App* SetupSimulateRobotCommand(CLI::App& simulate, SimulateRobotOptions& options);
 void RunSimulateRobotCommand(const SimulateRobotOptions& options, const std::string& command_line);
 void RunSimulateStepCommand(const SimulateStepOptions& options, const std::string& command_line);
 void RunSimulateAxisCommand(const SimulateAxisOptions& options, const std::string& command_line);

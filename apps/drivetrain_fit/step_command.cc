@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "common/command_registry.h"
 #include "core/errors.h"
 #include "fit/step_fit.h"
 #include "io/csv_log.h"
@@ -72,5 +73,12 @@ void RunStepCommand(const StepOptions& options, const std::string& command_line)
       MakeFitPanels(series, {fmt::format("drive-train step fit ({} model)", options.model), "link torque [N m]"});
   EmitFitOutputs(options.output, outputs);
 }
+
+namespace {
+StepOptions step_options;
+const bool kRegistered = RegisterCommand({"drivetrain-fit", "", 10,
+                                          [](CLI::App& parent) { return SetupStepCommand(parent, step_options); },
+                                          [](const std::string& line) { RunStepCommand(step_options, line); }});
+}  // namespace
 
 }  // namespace driveid::cli
