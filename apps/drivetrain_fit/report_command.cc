@@ -47,8 +47,9 @@ void RunReportCommand(const ReportOptions& options) {
     const Vector2 velocity = options.velocity.size() == 2 ? Vector2{options.velocity[0], options.velocity[1]}
                                                            : Vector2{0.0, 0.0};
     try {
-      if (options.json) json["planar_robot"] = PlanarRobotReportJson(robot, pose, velocity, options.params);
-      else text += FormatPlanarRobotReport(robot, pose, velocity, options.params);
+      const PlanarRobotReport report = CalcPlanarRobotReport(robot, pose, velocity, options.params);
+      if (options.json) json["planar_robot"] = PlanarRobotReportJson(report);
+      else text += FormatPlanarRobotReport(report);
     } catch (const std::domain_error& e) {
       throw OptionError(fmt::format("--pose: {}", e.what()));
     }
@@ -63,8 +64,9 @@ void RunReportCommand(const ReportOptions& options) {
     std::optional<DriveTrainParameters> fitted_values;
     if (fitted.drivetrain) fitted_values = MakeDriveTrainParameters(*fitted.drivetrain);
     const DriveTrainParameters* fitted_params = fitted_values ? &*fitted_values : nullptr;
-    if (options.json) json["drivetrain"] = DriveTrainReportJson(params, options.params, fitted_params);
-    else text += FormatDriveTrainReport(params, options.params, fitted_params, options.fitted);
+    const DriveTrainReport report = CalcDriveTrainReport(params, options.params, fitted_params, options.fitted);
+    if (options.json) json["drivetrain"] = DriveTrainReportJson(report);
+    else text += FormatDriveTrainReport(report);
   }
   WriteStdout(options.json ? DumpJson(json) : text);
 }

@@ -20,16 +20,10 @@ constexpr double kPaperViscousFriction = 0.016;  // N m s/rad
 constexpr double kPaperCoulombFriction = 5.0;    // N m
 constexpr double kPaperSteadyState = -59.0;      // "-0.8 N m x 80 less the 5 N m Coulomb friction"
 
-struct Derived {
-  ReducedTransferFunction tf;
-  double series_stiffness;
-  double stuck_level;  // link torque after the paper's step, drive stuck, no overshoot [N m]
-  double overshoot;    // relative overshoot of the sliding phase
-  double stuck_link_frequency;
-};
+}  // namespace
 
-Derived Derive(const DriveTrainParameters& p) {
-  Derived d{};
+DriveTrainQuantities CalcDriveTrainQuantities(const DriveTrainParameters& p) {
+  DriveTrainQuantities d{};
   d.tf = CalcReducedTransferFunction(p);
   d.series_stiffness = CalcSeriesStiffness(p);
   const double drive = p.gear_ratio * kPaperStepTorque;
@@ -40,11 +34,22 @@ Derived Derive(const DriveTrainParameters& p) {
   return d;
 }
 
-}  // namespace
+DriveTrainReport CalcDriveTrainReport(const DriveTrainParameters& params, const std::string& source,
+                                      const DriveTrainParameters* fitted, const std::string& fitted_source) {
+  DriveTrainReport report{source, params, CalcDriveTrainQuantities(params), std::nullopt, std::nullopt, fitted_source};
+  if (fitted != nullptr) {
+    report.fitted = *fitted;
+    report.fitted_quantities = CalcDriveTrainQuantities(*fitted);
+  }
+  return report;
+}
 
-std::string FormatDriveTrainReport(const DriveTrainParameters& p, const std::string& source,
-                                   const DriveTrainParameters* fitted, const std::string& fitted_source) {
-  const Derived d = Derive(p);
+std::string FormatDriveTrainReport(const DriveTrainReport& report) {
+  const DriveTrainParameters& p = report.params;
+  const std::string& source = report.source;
+  const std::string& fitted_source = report.fitted_source;
+  const DriveTrainParameters* fitted = report.fitted ? &*report.fitted : nullptr;
+  const DriveTrainQuantities& d = report.recomputed;
   const double n2 = p.gear_ratio * p.gear_ratio;
   std::string out = fmt::format("drive train from {} (seed 000 section 4; docs/models.md#drive-train)\n", source);
   out += fmt::format("  n_g^2 Theta_motor = {:.4g} kg m^2, n_g^2 Theta_g = {:.4g} kg m^2, n_g^2 d_g = {:.4g} N m s/rad\n",
@@ -52,7 +57,7 @@ std::string FormatDriveTrainReport(const DriveTrainParameters& p, const std::str
   out += fmt::format("  k_eq = k_Tl k_Tg / (k_Tl + k_Tg) = {:.6g} N m/rad\n\n", d.series_stiffness);
   if (fitted != nullptr) out += fmt::format("fitted: {}\n", fitted_source);
   out += "eq. (16), reduced model: tau_link / tau_motor = K / (a2 s^2 + a1 s + 1)\n";
-  const Derived f = fitted != nullptr ? Derive(*fitted) : d;
+  const DriveTrainQuantities& f = report.fitted_quantities ? *report.fitted_quantities : d;
   auto row = [&](const char* name, double paper, double recomputed, double fit, const char* note) {
     std::string line = fmt::format("  {:<22} {:>11.6g} {:>12.6g}", name, paper, recomputed);
     if (fitted != nullptr) line += fmt::format(" {:>12.6g}", fit);
@@ -85,7 +90,7 @@ std::string FormatDriveTrainReport(const DriveTrainParameters& p, const std::str
 }
 
 namespace {
-Json DerivedJson(const Derived& d) {
+Json QuantitiesJson(const DriveTrainQuantities& d) {
   return {{"gain", d.tf.gain},
           {"a2", d.tf.lag_s2},
           {"a1", d.tf.lag_s1},
@@ -98,11 +103,11 @@ Json DerivedJson(const Derived& d) {
 }
 }  // namespace
 
-Json DriveTrainReportJson(const DriveTrainParameters& p, const std::string& source, const DriveTrainParameters* fitted) {
+Json DriveTrainReportJson(const DriveTrainReport& report) {
   Json out;
-  out["source"] = source;
-  out["recomputed"] = DerivedJson(Derive(p));
-  if (fitted != nullptr) out["fitted"] = DerivedJson(Derive(*fitted));
+  out["source"] = report.source;
+  out["recomputed"] = QuantitiesJson(report.recomputed);
+  if (report.fitted_quantities) out["fitted"] = QuantitiesJson(*report.fitted_quantities);
   out["paper"] = {{"d_g", kPaperViscousFriction},   {"tau_c", kPaperCoulombFriction},
                   {"gain", kPaperGain},             {"a2", kPaperLagS2},
                   {"a1", kPaperLagS1},              {"natural_frequency", kPaperNaturalFrequency},

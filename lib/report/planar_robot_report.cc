@@ -4,18 +4,13 @@
 
 namespace driveid {
 
-namespace {
-
-// What both renderings show: the model at one pose.
-struct PoseQuantities {
-  Vector3 theta;  // joint angles [rad]
-  Matrix23 g;     // G [1/m]
-  Matrix2 m, c;   // Cartesian mass [kg] and damping [N s/m]
-  Vector3 n;      // null space of G
-};
-
-PoseQuantities CalcPoseQuantities(const PlanarRobotParameters& r, const Vector2& pose, const Vector2& velocity) {
-  PoseQuantities q;
+PlanarRobotReport CalcPlanarRobotReport(const PlanarRobotParameters& r, const Vector2& pose, const Vector2& velocity,
+                                        const std::string& source) {
+  PlanarRobotReport q;
+  q.source = source;
+  q.robot = r;
+  q.pose = pose;
+  q.velocity = velocity;
   q.theta = CalcInverseKinematics(r, pose);
   q.g = CalcTransposedInverseJacobian(r, pose, q.theta);
   q.m = CalcCartesianMass(r, q.g);
@@ -24,11 +19,11 @@ PoseQuantities CalcPoseQuantities(const PlanarRobotParameters& r, const Vector2&
   return q;
 }
 
-}  // namespace
-
-std::string FormatPlanarRobotReport(const PlanarRobotParameters& r, const Vector2& pose, const Vector2& velocity,
-                                    const std::string& source) {
-  const PoseQuantities q = CalcPoseQuantities(r, pose, velocity);
+std::string FormatPlanarRobotReport(const PlanarRobotReport& q) {
+  const PlanarRobotParameters& r = q.robot;
+  const Vector2& pose = q.pose;
+  const Vector2& velocity = q.velocity;
+  const std::string& source = q.source;
   const Vector3& theta = q.theta;
   const Matrix23& g = q.g;
   const Matrix2& m = q.m;
@@ -48,9 +43,11 @@ std::string FormatPlanarRobotReport(const PlanarRobotParameters& r, const Vector
   return out;
 }
 
-Json PlanarRobotReportJson(const PlanarRobotParameters& r, const Vector2& pose, const Vector2& velocity,
-                           const std::string& source) {
-  const PoseQuantities q = CalcPoseQuantities(r, pose, velocity);
+Json PlanarRobotReportJson(const PlanarRobotReport& q) {
+  const PlanarRobotParameters& r = q.robot;
+  const Vector2& pose = q.pose;
+  const Vector2& velocity = q.velocity;
+  const std::string& source = q.source;
   const Vector3& theta = q.theta;
   const Matrix23& g = q.g;
   const Matrix2& m = q.m;

@@ -10,12 +10,22 @@
 
 namespace driveid {
 
-/// Text report. Throws std::domain_error if the pose is out of reach.
-std::string FormatPlanarRobotReport(const PlanarRobotParameters& robot, const Vector2& pose, const Vector2& velocity,
-                                    const std::string& source);
+/// The robot model at one pose.
+struct PlanarRobotReport {
+  std::string source;
+  PlanarRobotParameters robot;
+  Vector2 pose, velocity;  ///< centre joint [m], [m/s]
+  Vector3 theta;           ///< joint angles [rad]
+  Matrix23 g;              ///< G [1/m]
+  Matrix2 m;               ///< Cartesian mass matrix [kg]
+  Matrix2 c;               ///< Cartesian damping [N s/m]
+  Vector3 n;               ///< null space of G (prestress direction)
+};
 
-/// The same quantities as a JSON object.
-Json PlanarRobotReportJson(const PlanarRobotParameters& robot, const Vector2& pose, const Vector2& velocity,
-                           const std::string& source);
+/// Throws std::domain_error if the pose is out of reach.
+PlanarRobotReport CalcPlanarRobotReport(const PlanarRobotParameters& robot, const Vector2& pose,
+                                        const Vector2& velocity, const std::string& source);
+std::string FormatPlanarRobotReport(const PlanarRobotReport& report);
+Json PlanarRobotReportJson(const PlanarRobotReport& report);
 
 }  // namespace driveid
