@@ -24,9 +24,8 @@ CLI::App* SetupCDriveReportCommand(CLI::App& app, CDriveReportOptions& options) 
 void RunCDriveReportCommand(const CDriveReportOptions& options) {
   const ParameterFile file = ReadParameterFile(options.params);
   if (!file.cdrive) throw InputError(fmt::format("{}: no 'cdrive' section", options.params));
-  const std::string text = options.json ? DumpJson(CDriveReportJson(*file.cdrive, file.fit_estimates, options.params))
-                                        : FormatCDriveReport(*file.cdrive, file.cdrive_control, file.fit_estimates, options.params);
-  WriteStdout(text);
+  const CDriveReport report = CalcCDriveReport(*file.cdrive, file.cdrive_control, file.fit_estimates, options.params);
+  WriteStdout(options.json ? DumpJson(CDriveReportJson(report)) : FormatCDriveReport(report));
 }
 
 namespace {

@@ -1,59 +1,77 @@
 #include "report/cdrive_report.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
 
-#include "report/fit_summary.h"
-
 namespace driveid {
 namespace {
 
-// Seed 001 Table I.
+// Seed 001 Table I, in the order the report lists the dissipation parameters.
 struct PaperValue {
   const char* key;
   double value;
 };
 constexpr PaperValue kTableOne[] = {{"beta", 0.002655}, {"gamma", 0.004333}, {"delta", 0.1086}, {"eta", 0.1501}};
 
-double Lookup(const std::vector<ParameterEstimate>& estimates, const std::string& name) {
+std::optional<double> StandardError(const std::vector<ParameterEstimate>& estimates, const std::string& name) {
   for (const auto& e : estimates) {
     if (e.name == name) return e.standard_error;
   }
-  return std::nan("");
+  return std::nullopt;
 }
 
-bool IsGiven(double value) { return value == value; }
-
-bool InertiaGiven(const CDriveParameters& p) {
-  return IsGiven(p.hub_inertia) && IsGiven(p.collar_inertia) && IsGiven(p.collar_mass);
+const CDriveReport::Dissipation& Find(const CDriveReport& report, const std::string& key) {
+  for (const auto& d : report.dissipation) {
+    if (d.key == key) return d;
+  }
+  throw std::logic_error("CDriveReport: no " + key);
 }
 
-std::string Value(double value, double standard_error) {
-  if (!IsGiven(value)) return "-";
-  if (IsGiven(standard_error)) return fmt::format("{:.6g} +- {:.2g}", value, standard_error);
-  return fmt::format("{:.6g}", value);
+std::string Value(const CDriveReport::Dissipation& d) {
+  if (!d.value) return "-";
+  if (d.standard_error) return fmt::format("{:.6g} +- {:.2g}", *d.value, *d.standard_error);
+  return fmt::format("{:.6g}", *d.value);
 }
 
 }  // namespace
 
-std::string FormatCDriveReport(const CDriveSection& cdrive, const std::optional<CDriveControlSection>& control,
-                               const std::vector<ParameterEstimate>& estimates, const std::string& source) {
-  const CDriveParameters p = ModelValuesOrNaN(CDriveParameterTable(), cdrive);
-  const Matrix2 j = CalcCDriveJacobian(p.lead);
-  const Matrix2 inverse = CalcCDriveJacobianInverse(p.lead);
-  std::string out = fmt::format("C-drive from {} (seed 001; docs/models.md#c-drive), lead p = {} m\n\n", source, p.lead);
+CDriveReport CalcCDriveReport(const CDriveSection& cdrive, const std::optional<CDriveControlSection>& control,
+                              const std::vector<ParameterEstimate>& estimates, const std::string& source) {
+  CDriveReport report;
+  report.source = source;
+  report.lead = cdrive.lead.value_or(0.0);
+  report.jacobian = CalcCDriveJacobian(report.lead);
+  report.jacobian_inverse = CalcCDriveJacobianInverse(report.lead);
+  report.jtj = report.lead * report.lead / (8 * M_PI * M_PI);
+  if (cdrive.hub_inertia && cdrive.collar_inertia && cdrive.collar_mass) {
+    const CDriveParameters p = ModelValuesOrNaN(CDriveParameterTable(), cdrive);
+    report.inertia = CDriveReport::Inertia{CalcInertiaDiagonal(p), CalcInertiaOffDiagonal(p), p.collar_inertia,
+                                           std::pow(p.lead / (2 * M_PI), 2) * p.collar_mass};
+  }
+  for (const auto& paper : kTableOne) {
+    const auto* row = FindParameter(CDriveParameterTable(), paper.key);
+    report.dissipation.push_back({paper.key, cdrive.*(row->in_section), StandardError(estimates, paper.key), paper.value});
+  }
+  if (control) report.control = MakeControlSettings(*control);
+  return report;
+}
+
+std::string FormatCDriveReport(const CDriveReport& report) {
+  const Matrix2& j = report.jacobian;
+  const Matrix2& inverse = report.jacobian_inverse;
+  std::string out = fmt::format("C-drive from {} (seed 001; docs/models.md#c-drive), lead p = {} m\n\n", report.source,
+                                report.lead);
   out += "kinematics w = (u, v) = J psi, v = p theta / (2 pi):\n";
-  out += fmt::format("  J    = p/(4 pi) [[1, -1], [1, 1]]    = [[{:.6g}, {:.6g}], [{:.6g}, {:.6g}]] m/rad\n", j(0, 0), j(0, 1),
-                     j(1, 0), j(1, 1));
+  out += fmt::format("  J    = p/(4 pi) [[1, -1], [1, 1]]    = [[{:.6g}, {:.6g}], [{:.6g}, {:.6g}]] m/rad\n", j(0, 0),
+                     j(0, 1), j(1, 0), j(1, 1));
   out += fmt::format("  J^-1 = (2 pi/p) [[1, 1], [-1, 1]]    = [[{:.6g}, {:.6g}], [{:.6g}, {:.6g}]] rad/m "
                      "(the seed prints pi/p, which gives J J^-1 = 1/2)\n",
                      inverse(0, 0), inverse(0, 1), inverse(1, 0), inverse(1, 1));
-  out += fmt::format("  J'J  = p^2/(8 pi^2) 1 = {:.6g} 1 m^2/rad^2: isotropic, condition number 1\n",
-                     p.lead * p.lead / (8 * M_PI * M_PI));
-  if (InertiaGiven(p)) {
-    const double a = CalcInertiaDiagonal(p), b = CalcInertiaOffDiagonal(p);
-    const double isotropic_collar = std::pow(p.lead / (2 * M_PI), 2) * p.collar_mass;
+  out += fmt::format("  J'J  = p^2/(8 pi^2) 1 = {:.6g} 1 m^2/rad^2: isotropic, condition number 1\n", report.jtj);
+  if (report.inertia) {
+    const double a = report.inertia->a, b = report.inertia->b;
     out += "\ninertia (eq. 17): M = [[a, b], [b, a]]\n";
     out += fmt::format("  a = I_h + I_c/4 + p^2 m/(16 pi^2) = {:.6g} kg m^2\n", a);
     out += fmt::format("  b = I_c/4 - p^2 m/(16 pi^2)       = {:.6g} kg m^2\n", b);
@@ -61,30 +79,27 @@ std::string FormatCDriveReport(const CDriveSection& cdrive, const std::optional<
                        a + b, a - b, std::max(a + b, a - b) / std::min(a + b, a - b));
     out += fmt::format("  isotropic (M proportional to 1, eq. 18) needs I_c = (p/2pi)^2 m = {:.4g} kg m^2; here I_c = "
                        "{:.4g}: {}\n",
-                       isotropic_collar, p.collar_inertia,
+                       report.inertia->isotropic_collar_inertia, report.inertia->collar_inertia,
                        std::abs(b) <= 1e-3 * a ? "isotropic" : "not isotropic, the motors are coupled");
   } else {
     out += "\ninertia: I_h, I_c, m not all given\n";
   }
   out += "\ndissipation (Table I):\n";
   out += fmt::format("  {:<18} {:<34} {:<34}\n", "part", "viscous [N m s/rad]", "Coulomb [N m]");
-  out += fmt::format("  {:<18} {:<34} {:<34}\n", "rotational parts",
-                     "beta = " + Value(p.viscous_motor, Lookup(estimates, "beta")),
-                     "delta = " + Value(p.coulomb_motor, Lookup(estimates, "delta")));
-  out += fmt::format("  {:<18} {:<34} {:<34}\n", "collar",
-                     "gamma = " + Value(p.viscous_collar, Lookup(estimates, "gamma")),
-                     "eta = " + Value(p.coulomb_collar, Lookup(estimates, "eta")));
+  out += fmt::format("  {:<18} {:<34} {:<34}\n", "rotational parts", "beta = " + Value(Find(report, "beta")),
+                     "delta = " + Value(Find(report, "delta")));
+  out += fmt::format("  {:<18} {:<34} {:<34}\n", "collar", "gamma = " + Value(Find(report, "gamma")),
+                     "eta = " + Value(Find(report, "eta")));
   out += "  paper Table I:     beta = 0.002655, gamma = 0.004333, delta = 0.1086, eta = 0.1501\n";
-  const double values[] = {p.viscous_motor, p.viscous_collar, p.coulomb_motor, p.coulomb_collar};
   std::string deviations;
-  for (int i = 0; i < 4; ++i) {
-    if (!IsGiven(values[i])) continue;
-    deviations += fmt::format("{}{} {:+.2f} %", deviations.empty() ? "" : ", ", kTableOne[i].key,
-                              100.0 * (values[i] / kTableOne[i].value - 1.0));
+  for (const auto& d : report.dissipation) {
+    if (!d.value) continue;
+    deviations += fmt::format("{}{} {:+.2f} %", deviations.empty() ? "" : ", ", d.key,
+                              100.0 * (*d.value / d.table_one - 1.0));
   }
   if (!deviations.empty()) out += "  vs Table I:       " + deviations + "\n";
-  if (control) {
-    const CDriveControlSettings c = MakeControlSettings(*control);
+  if (report.control) {
+    const CDriveControlSettings& c = *report.control;
     out += fmt::format("\ncontroller: {} at {} Hz, K_P = {} N m/rad, K_I = {} ({}), dead zone {} rad/s, rate limit {} /s\n",
                        ControlLawName(c.law), 1.0 / c.sample_time, c.proportional_gain, c.second_gain,
                        c.law == ControlLaw::kPD ? "read as a derivative gain, N m s/rad"
@@ -94,26 +109,24 @@ std::string FormatCDriveReport(const CDriveSection& cdrive, const std::optional<
   return out;
 }
 
-Json CDriveReportJson(const CDriveSection& cdrive, const std::vector<ParameterEstimate>& estimates,
-                      const std::string& source) {
-  const CDriveParameters p = ModelValuesOrNaN(CDriveParameterTable(), cdrive);
-  const Matrix2 j = CalcCDriveJacobian(p.lead), inverse = CalcCDriveJacobianInverse(p.lead);
+Json CDriveReportJson(const CDriveReport& report) {
+  const Matrix2& j = report.jacobian;
+  const Matrix2& inverse = report.jacobian_inverse;
   Json out;
-  out["source"] = source;
-  out["lead"] = p.lead;
+  out["source"] = report.source;
+  out["lead"] = report.lead;
   out["jacobian"] = {j(0, 0), j(0, 1), j(1, 0), j(1, 1)};
   out["jacobian_inverse"] = {inverse(0, 0), inverse(0, 1), inverse(1, 0), inverse(1, 1)};
-  out["jtj"] = p.lead * p.lead / (8 * M_PI * M_PI);
-  if (InertiaGiven(p)) {
-    out["a"] = CalcInertiaDiagonal(p);
-    out["b"] = CalcInertiaOffDiagonal(p);
+  out["jtj"] = report.jtj;
+  if (report.inertia) {
+    out["a"] = report.inertia->a;
+    out["b"] = report.inertia->b;
   }
-  const double values[] = {p.viscous_motor, p.viscous_collar, p.coulomb_motor, p.coulomb_collar};
   out["dissipation"] = Json::object();
-  for (int i = 0; i < 4; ++i) {
-    out["dissipation"][kTableOne[i].key] = {{"value", IsGiven(values[i]) ? Json(values[i]) : Json(nullptr)},
-                                            {"std", Lookup(estimates, kTableOne[i].key)},
-                                            {"table_one", kTableOne[i].value}};
+  for (const auto& d : report.dissipation) {
+    out["dissipation"][d.key] = {{"value", d.value ? Json(*d.value) : Json(nullptr)},
+                                 {"std", d.standard_error ? Json(*d.standard_error) : Json(nullptr)},
+                                 {"table_one", d.table_one}};
   }
   return out;
 }
