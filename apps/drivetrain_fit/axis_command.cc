@@ -61,7 +61,7 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
   if (section.gear_ratio) {
     double viscous_std = 0.0;
     for (const auto& e : result.fit.estimates) {
-      if (e.name == "viscous") viscous_std = e.standard_error;
+      if (e.name == KeyOf(AxisParameterTable(), &AxisParameters::viscous)) viscous_std = e.standard_error;
     }
     const double n2 = *section.gear_ratio * *section.gear_ratio;
     derived.push_back({"d_g", result.params.viscous / n2, viscous_std / n2, "N m s/rad at the gear input, b / n_g^2"});

@@ -22,6 +22,8 @@ const ParameterRow<AxisSection, AxisParameters>& Column(int j) {
   return AxisParameterTable()[static_cast<std::size_t>(j)];
 }
 
+std::string Key(double AxisParameters::*member) { return KeyOf(AxisParameterTable(), member); }
+
 bool Contains(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
 }
@@ -93,7 +95,8 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
     // without acceleration content (checked below).
     fixed[spec.key] = value.value_or(0.0);
   }
-  const bool inertia_missing = !Contains(options.free, "inertia") && !start.inertia;
+  const std::string inertia = Key(&AxisParameters::inertia);
+  const bool inertia_missing = !Contains(options.free, inertia) && !start.inertia;
   const int p = static_cast<int>(parameters.size());
 
   AxisFitOutput out;
@@ -178,7 +181,7 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
     throw InputError(fmt::format("--params: axis.inertia is needed (fixed in this fit, and the logs accelerate: "
                                  "RMS(q'') / RMS(q') = {:.3g} 1/s)", ratio));
   }
-  if (Contains(options.free, "inertia")) {
+  if (Contains(options.free, inertia)) {
     if (!(ratio >= options.min_acceleration_content)) {
       throw IdentificationError(fmt::format(
           "not identifiable: inertia: the logs have no acceleration content (RMS(q'') / RMS(q') = {:.3g} 1/s, below "
@@ -189,8 +192,10 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
   FitOptions fit_options = options.fit;
   if (!fit_options.advice) {
     fit_options.advice = [](const std::vector<std::string>& involved) -> std::string {
-      if (Contains(involved, "inertia")) return "the log has no acceleration content: fit friction alone with --free viscous,coulomb,offset";
-      if (Contains(involved, "coulomb") && Contains(involved, "offset")) {
+      if (Contains(involved, Key(&AxisParameters::inertia))) {
+        return "the log has no acceleration content: fit friction alone with --free viscous,coulomb,offset";
+      }
+      if (Contains(involved, Key(&AxisParameters::coulomb)) && Contains(involved, Key(&AxisParameters::offset))) {
         return "coulomb and offset need motion in both directions";
       }
       return "";
@@ -201,7 +206,7 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
   for (const auto& e : out.fit.estimates) fitted[e.name] = e.value;
   for (int j = 0; j < 4; ++j) out.params.*(Column(j).in_model) = fitted[Column(j).spec.key];
   for (const auto& e : out.fit.estimates) {
-    if (e.name == "inertia" && !(e.standard_error <= options.max_relative_std * std::abs(e.value))) {
+    if (e.name == inertia && !(e.standard_error <= options.max_relative_std * std::abs(e.value))) {
       throw IdentificationError(fmt::format(
           "not identifiable: inertia = {:.4g} +- {:.2g}: the log has too little acceleration content (constant-rate "
           "motion identifies friction only): fit friction alone with --free viscous,coulomb,offset",

@@ -31,6 +31,8 @@ bool Contains(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
 }
 
+std::string Key(double CDriveParameters::*member) { return KeyOf(CDriveParameterTable(), member); }
+
 // The regressor columns: every model parameter of the table, then a + b and
 // a - b of eq. (17) for a friction fit without the inertias (nuisances).
 std::vector<std::string> RegressorColumns() {
@@ -66,8 +68,10 @@ SampleRows CalcSampleRows(double lead, double rate_left, double rate_right, doub
 enum class Kind { kFriction, kInertia };
 
 std::string FrictionAdvice(const std::vector<std::string>& involved) {
-  const bool motor = Contains(involved, "beta") || Contains(involved, "delta");
-  const bool collar = Contains(involved, "gamma") || Contains(involved, "eta");
+  const bool motor = Contains(involved, Key(&CDriveParameters::viscous_motor)) ||
+                     Contains(involved, Key(&CDriveParameters::coulomb_motor));
+  const bool collar = Contains(involved, Key(&CDriveParameters::viscous_collar)) ||
+                      Contains(involved, Key(&CDriveParameters::coulomb_collar));
   if (motor && collar) {
     return "pure translation (psi_L' = -psi_R') fixes only beta + gamma and delta + 2 eta: add a rotation or helical "
            "program to separate the motors' friction from the collar's";
@@ -80,7 +84,9 @@ std::string FrictionAdvice(const std::vector<std::string>& involved) {
 }
 
 std::string InertiaAdvice(const std::vector<std::string>& involved) {
-  const int count = Contains(involved, "I_h") + Contains(involved, "I_c") + Contains(involved, "m");
+  const int count = Contains(involved, Key(&CDriveParameters::hub_inertia)) +
+                    Contains(involved, Key(&CDriveParameters::collar_inertia)) +
+                    Contains(involved, Key(&CDriveParameters::collar_mass));
   if (count >= 2) {
     return "only a = I_h + I_c/4 + p^2 m/(16 pi^2) and b = I_c/4 - p^2 m/(16 pi^2) are identifiable from motor "
            "torques (a + b from rotation, a - b from translation): fix one of I_h, I_c, m with --params";

@@ -27,10 +27,13 @@ bool Contains(const std::vector<std::string>& names, const std::string& name) {
 // Model-specific advice for a non-identifiable set (docs/models.md#drive-train identifiability).
 std::string StepAdvice(const std::vector<std::string>& involved) {
   std::vector<std::string> advice;
-  if (Contains(involved, "k_Tl") && Contains(involved, "k_Tg")) {
+  const auto key = [](DriveTrainParameter parameter) { return std::string(DriveTrainParameterKey(parameter)); };
+  const bool link = Contains(involved, key(DriveTrainParameter::kLinkStiffness));
+  const bool gearbox = Contains(involved, key(DriveTrainParameter::kGearboxStiffness));
+  if (link && gearbox) {
     advice.push_back("fix k_Tl or k_Tg with --params: only their series combination enters a step response");
-  } else if ((Contains(involved, "k_Tl") || Contains(involved, "k_Tg")) &&
-             (Contains(involved, "Theta_motor") || Contains(involved, "d_g"))) {
+  } else if ((link || gearbox) && (Contains(involved, key(DriveTrainParameter::kMotorInertia)) ||
+                                    Contains(involved, key(DriveTrainParameter::kViscousFriction)))) {
     advice.push_back("a step response fixes only Theta_motor/k_eq and d_g/k_eq: fix the stiffness with --params");
   }
   if (Contains(involved, "offset") || Contains(involved, "offset_1")) {
@@ -146,7 +149,8 @@ StepFitOutput FitStepResponses(const std::vector<StepLog>& logs, const DriveTrai
   if (options.model == DriveTrainModel::kFull && !(start.gearbox_inertia > 0.0)) {
     throw InputError("the full model needs drivetrain.Theta_g > 0 in --params");
   }
-  if (options.model == DriveTrainModel::kReduced && Contains(options.free, "Theta_g")) {
+  if (options.model == DriveTrainModel::kReduced &&
+      Contains(options.free, DriveTrainParameterKey(DriveTrainParameter::kGearboxInertia))) {
     throw IdentificationError("Theta_g has no effect in the reduced model (it sets Theta_g = 0): use --model full");
   }
 

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -68,6 +69,16 @@ const ParameterRow<Section, Model>* FindParameter(const ParameterTable<Section, 
     if (key == row.spec.key) return &row;
   }
   return nullptr;
+}
+
+/// The key of the model parameter stored in `member` (so that code naming a
+/// parameter refers to the table, not to a restated string).
+template <class Section, class Model>
+std::string KeyOf(const ParameterTable<Section, Model>& table, double Model::*member) {
+  for (const auto& row : table) {
+    if (row.in_model == member) return row.spec.key;
+  }
+  throw std::logic_error("KeyOf: member not in the table");
 }
 
 /// Keys a fit estimates (all of them, or only its default --free set).

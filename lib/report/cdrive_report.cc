@@ -10,23 +10,19 @@ namespace {
 
 // Seed 001 Table I, in the order the report lists the dissipation parameters.
 struct PaperValue {
-  const char* key;
+  double CDriveParameters::*member;
   double value;
 };
-constexpr PaperValue kTableOne[] = {{"beta", 0.002655}, {"gamma", 0.004333}, {"delta", 0.1086}, {"eta", 0.1501}};
+constexpr PaperValue kTableOne[] = {{&CDriveParameters::viscous_motor, 0.002655},
+                                    {&CDriveParameters::viscous_collar, 0.004333},
+                                    {&CDriveParameters::coulomb_motor, 0.1086},
+                                    {&CDriveParameters::coulomb_collar, 0.1501}};
 
 std::optional<double> StandardError(const std::vector<ParameterEstimate>& estimates, const std::string& name) {
   for (const auto& e : estimates) {
     if (e.name == name) return e.standard_error;
   }
   return std::nullopt;
-}
-
-const CDriveReport::Dissipation& Find(const CDriveReport& report, const std::string& key) {
-  for (const auto& d : report.dissipation) {
-    if (d.key == key) return d;
-  }
-  throw std::logic_error("CDriveReport: no " + key);
 }
 
 std::string Value(const CDriveReport::Dissipation& d) {
@@ -51,8 +47,9 @@ CDriveReport CalcCDriveReport(const CDriveSection& cdrive, const std::optional<C
                                            std::pow(p.lead / (2 * M_PI), 2) * p.collar_mass};
   }
   for (const auto& paper : kTableOne) {
-    const auto* row = FindParameter(CDriveParameterTable(), paper.key);
-    report.dissipation.push_back({paper.key, cdrive.*(row->in_section), StandardError(estimates, paper.key), paper.value});
+    const std::string key = KeyOf(CDriveParameterTable(), paper.member);
+    const auto* row = FindParameter(CDriveParameterTable(), key);
+    report.dissipation.push_back({key, cdrive.*(row->in_section), StandardError(estimates, key), paper.value});
   }
   if (control) report.control = MakeControlSettings(*control);
   return report;
@@ -86,16 +83,19 @@ std::string FormatCDriveReport(const CDriveReport& report) {
   }
   out += "\ndissipation (Table I):\n";
   out += fmt::format("  {:<18} {:<34} {:<34}\n", "part", "viscous [N m s/rad]", "Coulomb [N m]");
-  out += fmt::format("  {:<18} {:<34} {:<34}\n", "rotational parts", "beta = " + Value(Find(report, "beta")),
-                     "delta = " + Value(Find(report, "delta")));
-  out += fmt::format("  {:<18} {:<34} {:<34}\n", "collar", "gamma = " + Value(Find(report, "gamma")),
-                     "eta = " + Value(Find(report, "eta")));
-  out += "  paper Table I:     beta = 0.002655, gamma = 0.004333, delta = 0.1086, eta = 0.1501\n";
+  // Table I's layout: viscous and Coulomb of the rotational parts, then of the collar.
+  const auto& d = report.dissipation;
+  out += fmt::format("  {:<18} {:<34} {:<34}\n", "rotational parts", d[0].key + " = " + Value(d[0]),
+                     d[2].key + " = " + Value(d[2]));
+  out += fmt::format("  {:<18} {:<34} {:<34}\n", "collar", d[1].key + " = " + Value(d[1]),
+                     d[3].key + " = " + Value(d[3]));
+  out += fmt::format("  paper Table I:     {} = {}, {} = {}, {} = {}, {} = {}\n", d[0].key, d[0].table_one, d[1].key,
+                     d[1].table_one, d[2].key, d[2].table_one, d[3].key, d[3].table_one);
   std::string deviations;
-  for (const auto& d : report.dissipation) {
-    if (!d.value) continue;
-    deviations += fmt::format("{}{} {:+.2f} %", deviations.empty() ? "" : ", ", d.key,
-                              100.0 * (*d.value / d.table_one - 1.0));
+  for (const auto& entry : d) {
+    if (!entry.value) continue;
+    deviations += fmt::format("{}{} {:+.2f} %", deviations.empty() ? "" : ", ", entry.key,
+                              100.0 * (*entry.value / entry.table_one - 1.0));
   }
   if (!deviations.empty()) out += "  vs Table I:       " + deviations + "\n";
   if (report.control) {

@@ -108,7 +108,9 @@ Json DriveTrainReportJson(const DriveTrainReport& report) {
   out["source"] = report.source;
   out["recomputed"] = QuantitiesJson(report.recomputed);
   if (report.fitted_quantities) out["fitted"] = QuantitiesJson(*report.fitted_quantities);
-  out["paper"] = {{"d_g", kPaperViscousFriction},   {"tau_c", kPaperCoulombFriction},
+  const auto key = [](double DriveTrainParameters::*member) { return KeyOf(DriveTrainParameterTable(), member); };
+  out["paper"] = {{key(&DriveTrainParameters::viscous_friction), kPaperViscousFriction},
+                  {key(&DriveTrainParameters::coulomb_friction), kPaperCoulombFriction},
                   {"gain", kPaperGain},             {"a2", kPaperLagS2},
                   {"a1", kPaperLagS1},              {"natural_frequency", kPaperNaturalFrequency},
                   {"damping_ratio", kPaperDampingRatio}, {"steady_state", kPaperSteadyState}};

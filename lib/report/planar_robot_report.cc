@@ -55,8 +55,8 @@ Json PlanarRobotReportJson(const PlanarRobotReport& q) {
   const Vector3& n = q.n;
   Json out;
   out["source"] = source;
-  out["parameters"] = {{"Theta", r.output_inertia}, {"m_c", r.center_mass}, {"d_g", r.viscous_friction},
-                       {"n_g", r.gear_ratio}, {"k_t", r.torque_constant}};
+  out["parameters"] = Json::object();
+  for (const auto& row : PlanarRobotParameterTable()) out["parameters"][row.spec.key] = r.*(row.in_model);
   out["pose"] = {pose[0], pose[1]};
   out["velocity"] = {velocity[0], velocity[1]};
   out["joint_angles"] = {theta[0], theta[1], theta[2]};
