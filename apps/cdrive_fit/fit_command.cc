@@ -46,7 +46,7 @@ CLI::App* SetupCDriveFitCommand(CLI::App& app, CDriveFitCommandOptions& options,
 void RunCDriveFitCommand(const CDriveFitCommandOptions& options, const std::string& command_line) {
   const bool friction = options.kind == CDriveFitKind::kFriction;
   const ParameterFile start = ReadParameterFile(options.params);
-  if (!start.cdrive) throw InputError(fmt::format("{}: no 'cdrive' section", options.params));
+  if (!start.Find<CDriveSection>()) throw InputError(fmt::format("{}: no 'cdrive' section", options.params));
   const auto column_map = ParseColumnMap(options.columns);
 
   FitOutputs outputs;
@@ -54,7 +54,7 @@ void RunCDriveFitCommand(const CDriveFitCommandOptions& options, const std::stri
   outputs.provenance.version = DRIVEID_VERSION;
   outputs.provenance.model = friction ? "cdrive friction (28)" : "cdrive inertia (17), (28)";
   const auto logs = LoadLogs<CDriveLog>(options.logs, outputs.provenance, [&](const std::string& path, const std::string& text) {
-    return ParseCDriveLog(path, text, column_map, start.cdrive->torque_constant.value_or(0.0));
+    return ParseCDriveLog(path, text, column_map, start.Find<CDriveSection>()->torque_constant.value_or(0.0));
   });
 
   CDriveFitOptions fit_options;
@@ -63,11 +63,11 @@ void RunCDriveFitCommand(const CDriveFitCommandOptions& options, const std::stri
   fit_options.min_rate = options.min_rate;
   fit_options.settle = options.settle;  // < 0: the fit's default
   SetProgress(fit_options.fit, options.output.verbose);
-  const CDriveFitOutput result = friction ? FitCDriveFriction(logs, *start.cdrive, fit_options)
-                                          : FitCDriveInertia(logs, *start.cdrive, fit_options);
+  const CDriveFitOutput result = friction ? FitCDriveFriction(logs, *start.Find<CDriveSection>(), fit_options)
+                                          : FitCDriveInertia(logs, *start.Find<CDriveSection>(), fit_options);
 
   ParameterFile fitted = start;
-  fitted.cdrive = result.section;
+  fitted.Set(result.section);
   outputs.fit = result.fit;
   outputs.parameter_file = FormatParameterFile(fitted, &outputs.fit, &outputs.provenance, result.derived);
   outputs.trace_csv = "# cdrive-fit trace: measured and model motor torques [N m]; used = entered the fit\n";

@@ -23,8 +23,8 @@ CLI::App* SetupCDriveReportCommand(CLI::App& app, CDriveReportOptions& options) 
 
 void RunCDriveReportCommand(const CDriveReportOptions& options) {
   const ParameterFile file = ReadParameterFile(options.params);
-  if (!file.cdrive) throw InputError(fmt::format("{}: no 'cdrive' section", options.params));
-  const CDriveReport report = CalcCDriveReport(*file.cdrive, file.cdrive_control, file.fit_estimates, options.params);
+  if (!file.Find<CDriveSection>()) throw InputError(fmt::format("{}: no 'cdrive' section", options.params));
+  const CDriveReport report = CalcCDriveReport(*file.Find<CDriveSection>(), file.Find<CDriveControlSection>(), file.fit_estimates, options.params);
   WriteStdout(options.json ? DumpJson(CDriveReportJson(report)) : FormatCDriveReport(report));
 }
 

@@ -45,10 +45,10 @@ CLI::App* SetupCDriveSimulateCommand(CLI::App& app, CDriveSimulateOptions& optio
 
 void RunCDriveSimulateCommand(const CDriveSimulateOptions& options, const std::string& command_line) {
   const ParameterFile file = ReadParameterFile(options.params);
-  if (!file.cdrive) throw InputError(fmt::format("{}: no 'cdrive' section", options.params));
-  RequireModelValues(CDriveParameterTable(), *file.cdrive, options.params, "cdrive", "the simulation");
-  const CDriveParameters params = MakeModelParameters(CDriveParameterTable(), *file.cdrive, CDriveParameters{}, "cdrive");
-  CDriveControlSettings settings = MakeControlSettings(file.cdrive_control.value_or(CDriveControlSection{}));
+  if (!file.Find<CDriveSection>()) throw InputError(fmt::format("{}: no 'cdrive' section", options.params));
+  RequireModelValues(CDriveParameterTable(), *file.Find<CDriveSection>(), options.params, "cdrive", "the simulation");
+  const CDriveParameters params = MakeModelParameters(CDriveParameterTable(), *file.Find<CDriveSection>(), CDriveParameters{}, "cdrive");
+  CDriveControlSettings settings = MakeControlSettings(file.Find<CDriveControlSection>() ? *file.Find<CDriveControlSection>() : CDriveControlSection{});
   if (options.law == "PI") settings.law = ControlLaw::kPI;
   if (options.law == "PD") settings.law = ControlLaw::kPD;
   if (options.law == "PID") settings.law = ControlLaw::kPID;

@@ -34,7 +34,7 @@ CLI::App* SetupAxisCommand(CLI::App& app, AxisOptions& options) {
 void RunAxisCommand(const AxisOptions& options, const std::string& command_line) {
   ParameterFile start;
   if (!options.params.empty()) start = ReadParameterFile(options.params);
-  const AxisSection section = start.axis.value_or(AxisSection{});
+  const AxisSection section = start.Find<AxisSection>() ? *start.Find<AxisSection>() : AxisSection{};
   const auto column_map = ParseColumnMap(options.columns);
 
   FitOutputs outputs;
@@ -54,7 +54,7 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
   ParameterFile fitted = start;
   AxisSection out_section = section;
   StoreModelParameters(AxisParameterTable(), result.params, out_section);
-  fitted.axis = out_section;
+  fitted.Set(out_section);
   outputs.fit = result.fit;
   std::vector<DerivedQuantity> derived;
   derived.push_back({"relative_error_percent", result.relative_error_percent, 0.0, "% |tau - model| / |tau|"});

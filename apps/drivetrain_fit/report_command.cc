@@ -33,14 +33,14 @@ CLI::App* SetupReportCommand(CLI::App& app, ReportOptions& options) {
 
 void RunReportCommand(const ReportOptions& options) {
   const ParameterFile file = ReadParameterFile(options.params);
-  if (!file.drivetrain && !file.planar_robot) {
+  if (!file.Find<DriveTrainSection>() && !file.Find<PlanarRobotSection>()) {
     throw InputError(fmt::format("{}: no 'drivetrain' or 'planar_robot' section", options.params));
   }
   // Text: one block per section. JSON: one document with a member per section.
   std::string text;
   Json json = Json::object();
-  if (file.planar_robot) {
-    const PlanarRobotParameters robot = MakePlanarRobotParameters(*file.planar_robot);
+  if (file.Find<PlanarRobotSection>()) {
+    const PlanarRobotParameters robot = MakePlanarRobotParameters(*file.Find<PlanarRobotSection>());
     const double a = robot.base_distance;
     const Vector2 pose = options.pose.size() == 2 ? Vector2{options.pose[0], options.pose[1]}
                                                    : Vector2{0.5 * a, a / (2.0 * std::sqrt(3.0))};
@@ -54,15 +54,15 @@ void RunReportCommand(const ReportOptions& options) {
       throw OptionError(fmt::format("--pose: {}", e.what()));
     }
   }
-  if (file.drivetrain) {
+  if (file.Find<DriveTrainSection>()) {
     ParameterFile fitted;
     if (!options.fitted.empty()) {
       fitted = ReadParameterFile(options.fitted);
-      if (!fitted.drivetrain) throw InputError(fmt::format("{}: no 'drivetrain' section", options.fitted));
+      if (!fitted.Find<DriveTrainSection>()) throw InputError(fmt::format("{}: no 'drivetrain' section", options.fitted));
     }
-    const DriveTrainParameters params = MakeDriveTrainParameters(*file.drivetrain);
+    const DriveTrainParameters params = MakeDriveTrainParameters(*file.Find<DriveTrainSection>());
     std::optional<DriveTrainParameters> fitted_values;
-    if (fitted.drivetrain) fitted_values = MakeDriveTrainParameters(*fitted.drivetrain);
+    if (fitted.Find<DriveTrainSection>()) fitted_values = MakeDriveTrainParameters(*fitted.Find<DriveTrainSection>());
     const DriveTrainParameters* fitted_params = fitted_values ? &*fitted_values : nullptr;
     const DriveTrainReport report = CalcDriveTrainReport(params, options.params, fitted_params, options.fitted);
     if (options.json) json["drivetrain"] = DriveTrainReportJson(report);

@@ -29,7 +29,7 @@ CLI::App* SetupRobotCommand(CLI::App& app, RobotOptions& options) {
 
 void RunRobotCommand(const RobotOptions& options, const std::string& command_line) {
   const ParameterFile start = ReadParameterFile(options.params);
-  if (!start.planar_robot) throw InputError(fmt::format("{}: no 'planar_robot' section", options.params));
+  if (!start.Find<PlanarRobotSection>()) throw InputError(fmt::format("{}: no 'planar_robot' section", options.params));
   const auto column_map = ParseColumnMap(options.columns);
   FitOutputs outputs;
   outputs.provenance.command = command_line;
@@ -42,9 +42,9 @@ void RunRobotCommand(const RobotOptions& options, const std::string& command_lin
   fit_options.free = options.free;
   fit_options.half_window = options.window;
   SetProgress(fit_options.fit, options.output.verbose);
-  const RobotFitOutput result = FitRobot(logs, MakePlanarRobotParameters(*start.planar_robot), fit_options);
+  const RobotFitOutput result = FitRobot(logs, MakePlanarRobotParameters(*start.Find<PlanarRobotSection>()), fit_options);
   ParameterFile fitted = start;
-  StoreModelParameters(PlanarRobotParameterTable(), result.params, *fitted.planar_robot);
+  StoreModelParameters(PlanarRobotParameterTable(), result.params, *fitted.Find<PlanarRobotSection>());
   outputs.fit = result.fit;
   outputs.parameter_file = FormatParameterFile(fitted, &outputs.fit, &outputs.provenance);
 

@@ -72,15 +72,15 @@ CLI::App* SetupSimulateRobotCommand(CLI::App& simulate, SimulateRobotOptions& ro
 
 void RunSimulateRobotCommand(const SimulateRobotOptions& options, const std::string& command_line) {
   const ParameterFile file = ReadParameterFile(options.params);
-  if (!file.planar_robot) throw InputError(fmt::format("{}: no 'planar_robot' section", options.params));
+  if (!file.Find<PlanarRobotSection>()) throw InputError(fmt::format("{}: no 'planar_robot' section", options.params));
   RobotLog log;
   try {
-    log = SimulateRobotExperiment(MakePlanarRobotParameters(*file.planar_robot), options.experiment);
+    log = SimulateRobotExperiment(MakePlanarRobotParameters(*file.Find<PlanarRobotSection>()), options.experiment);
   } catch (const std::domain_error& e) {
     throw InputError(fmt::format("{}: the triangle leaves the workspace: {}", options.params, e.what()));
   }
   const auto& r = options.experiment;
-  const PlanarRobotParameters p = MakePlanarRobotParameters(*file.planar_robot);
+  const PlanarRobotParameters p = MakePlanarRobotParameters(*file.Find<PlanarRobotSection>());
   const std::string text = FormatRobotLog(
       log, {"synthetic robot log (docs/formats.md#logs) made by: " + command_line,
             fmt::format("triangle side {} m, {} m/s^2, {} m/s, dwell {} s, {} loops, {} Hz, 13-bit encoders behind the "
@@ -97,9 +97,9 @@ void RunSimulateRobotCommand(const SimulateRobotOptions& options, const std::str
 
 void RunSimulateAxisCommand(const SimulateAxisOptions& options, const std::string& command_line) {
   const ParameterFile file = ReadParameterFile(options.params);
-  if (!file.axis) throw InputError(fmt::format("{}: no 'axis' section", options.params));
-  RequireModelValues(AxisParameterTable(), *file.axis, options.params, "axis", "the simulation");
-  const AxisParameters params = MakeModelParameters(AxisParameterTable(), *file.axis, AxisParameters{}, "axis");
+  if (!file.Find<AxisSection>()) throw InputError(fmt::format("{}: no 'axis' section", options.params));
+  RequireModelValues(AxisParameterTable(), *file.Find<AxisSection>(), options.params, "axis", "the simulation");
+  const AxisParameters params = MakeModelParameters(AxisParameterTable(), *file.Find<AxisSection>(), AxisParameters{}, "axis");
   const AxisLog log = SimulateAxisExperiment(params, options.experiment);
   const auto& e = options.experiment;
   const std::string text = FormatAxisLog(
@@ -117,10 +117,10 @@ void RunSimulateAxisCommand(const SimulateAxisOptions& options, const std::strin
 
 void RunSimulateStepCommand(const SimulateStepOptions& options, const std::string& command_line) {
   const ParameterFile file = ReadParameterFile(options.params);
-  if (!file.drivetrain) throw InputError(fmt::format("{}: no 'drivetrain' section", options.params));
+  if (!file.Find<DriveTrainSection>()) throw InputError(fmt::format("{}: no 'drivetrain' section", options.params));
   StepExperiment experiment = options.experiment;
   experiment.model = options.model == "full" ? DriveTrainModel::kFull : DriveTrainModel::kReduced;
-  const DriveTrainParameters p = MakeDriveTrainParameters(*file.drivetrain);
+  const DriveTrainParameters p = MakeDriveTrainParameters(*file.Find<DriveTrainSection>());
   if (experiment.model == DriveTrainModel::kFull && !(p.gearbox_inertia > 0.0)) {
     throw InputError(fmt::format("{}: the full model needs drivetrain.Theta_g > 0", options.params));
   }

@@ -32,7 +32,7 @@ CLI::App* SetupStepCommand(CLI::App& app, StepOptions& options) {
 
 void RunStepCommand(const StepOptions& options, const std::string& command_line) {
   const ParameterFile start_file = ReadParameterFile(options.params);
-  if (!start_file.drivetrain) {
+  if (!start_file.Find<DriveTrainSection>()) {
     throw InputError(fmt::format("{}: no 'drivetrain' section", options.params));
   }
   const auto column_map = ParseColumnMap(options.columns);
@@ -50,10 +50,10 @@ void RunStepCommand(const StepOptions& options, const std::string& command_line)
   fit_options.free = options.free;
   SetProgress(fit_options.fit, options.output.verbose);
   const StepFitOutput result =
-      FitStepResponses(logs, MakeDriveTrainParameters(*start_file.drivetrain), fit_options);
+      FitStepResponses(logs, MakeDriveTrainParameters(*start_file.Find<DriveTrainSection>()), fit_options);
 
   ParameterFile fitted = start_file;
-  StoreModelParameters(DriveTrainParameterTable(), result.params, *fitted.drivetrain);
+  StoreModelParameters(DriveTrainParameterTable(), result.params, *fitted.Find<DriveTrainSection>());
   outputs.fit = result.fit;
   outputs.parameter_file = FormatParameterFile(fitted, &outputs.fit, &outputs.provenance);
 

@@ -32,6 +32,7 @@ struct CDriveControlSettings {
 /// The parameter file's `cdrive.control` section as written; what is not
 /// given takes the defaults of CDriveControlSettings.
 struct CDriveControlSection {
+  static constexpr const char* kSectionName = "cdrive.control";
   std::optional<double> proportional_gain, second_gain, derivative_gain, dead_zone, rate_limit, velocity_window,
       sample_time, encoder_counts;
   std::optional<ControlLaw> law;

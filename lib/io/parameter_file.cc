@@ -151,8 +151,8 @@ struct SectionHandler {
   std::function<std::string(const ParameterFile& file)> format;
 };
 
-// A handler for the section `name` stored in `member`, read and written by
-// `table`; `extra_keys` are left to `parse_extra` and written by
+// A handler for the section of the table's section type (named by its
+// kSectionName), read and written by `table`; `extra_keys` are left to `parse_extra` and written by
 // `format_extra` (e.g. the robot's elbows, the C-drive's controller).
 template <class T>
 struct NotDeduced {
@@ -161,23 +161,23 @@ struct NotDeduced {
 
 template <class Section, class Model>
 SectionHandler MakeSection(
-    const char* name, std::optional<Section> ParameterFile::*member,
     const ParameterTable<Section, Model>& (*table)(), const char* comment, std::vector<std::string> extra_keys = {},
     typename NotDeduced<std::function<void(const std::string&, const std::string&, const YAML::Node&, Section&,
                                            ParameterFile&)>>::type parse_extra = {},
     typename NotDeduced<std::function<std::string(const Section&, const ParameterFile&)>>::type format_extra = {}) {
+  const char* name = Section::kSectionName;
   SectionHandler handler;
   handler.name = name;
-  handler.present = [member](const ParameterFile& file) { return (file.*member).has_value(); };
+  handler.present = [](const ParameterFile& file) { return file.Find<Section>() != nullptr; };
   handler.parse = [=](const std::string& path, const YAML::Node& node, ParameterFile& file) {
     Section section{};
     for (const auto& [key, value] : ParseSection(path, name, node, table(), extra_keys, section)) {
       parse_extra(path, key, value, section, file);
     }
-    file.*member = section;
+    file.Set(std::move(section));
   };
   handler.format = [=](const ParameterFile& file) {
-    const Section& section = *(file.*member);
+    const Section& section = *file.Find<Section>();
     std::string body = FormatSection(section, table(), "  ");
     if (format_extra) body += format_extra(section, file);
     // A section with no value must still read back as a mapping.
@@ -211,30 +211,29 @@ std::string FormatElbows(const PlanarRobotSection& robot, const ParameterFile&) 
 
 void ParseControlKey(const std::string& path, const std::string&, const YAML::Node& value, CDriveSection&,
                      ParameterFile& file) {
-  if (!value.IsNull()) file.cdrive_control = ParseControl(path, value);
+  if (!value.IsNull()) file.Set(ParseControl(path, value));
 }
 
 std::string FormatControl(const CDriveSection&, const ParameterFile& file) {
-  if (!file.cdrive_control) return "";
+  const auto* control = file.Find<CDriveControlSection>();
+  if (control == nullptr) return "";
   std::string out = "  control:             # position controller and friction compensation, eq. (31)\n";
-  if (file.cdrive_control->law) {
-    out += fmt::format("{:<28} # {}\n", fmt::format("    law: {}", ControlLawName(*file.cdrive_control->law)),
+  if (control->law) {
+    out += fmt::format("{:<28} # {}\n", fmt::format("    law: {}", ControlLawName(*control->law)),
                        "how K_I is read: PI, PD or PID");
   }
-  return out + FormatSection(*file.cdrive_control, CDriveControlParameterTable(), "    ");
+  return out + FormatSection(*control, CDriveControlParameterTable(), "    ");
 }
 
 // The registered model sections, in the order they are written: one line per model.
 const std::vector<SectionHandler>& Sections() {
   static const std::vector<SectionHandler> sections = {
-      MakeSection("drivetrain", &ParameterFile::drivetrain, DriveTrainParameterTable,
-                  "seed 000 section 4; docs/models.md#drive-train"),
-      MakeSection("planar_robot", &ParameterFile::planar_robot, PlanarRobotParameterTable,
-                  "seed 000 sections 2, 5; docs/models.md#planar-robot", {"elbow"}, ParseElbows, FormatElbows),
-      MakeSection("axis", &ParameterFile::axis, AxisParameterTable,
-                  "docs/models.md#axis: tau = J q'' + b q' + tau_c sgn(q') + tau_0"),
-      MakeSection("cdrive", &ParameterFile::cdrive, CDriveParameterTable, "seed 001; docs/models.md#c-drive",
-                  {"control"}, ParseControlKey, FormatControl),
+      MakeSection(DriveTrainParameterTable, "seed 000 section 4; docs/models.md#drive-train"),
+      MakeSection(PlanarRobotParameterTable, "seed 000 sections 2, 5; docs/models.md#planar-robot", {"elbow"},
+                  ParseElbows, FormatElbows),
+      MakeSection(AxisParameterTable, "docs/models.md#axis: tau = J q'' + b q' + tau_c sgn(q') + tau_0"),
+      MakeSection(CDriveParameterTable, "seed 001; docs/models.md#c-drive", {"control"}, ParseControlKey,
+                  FormatControl),
   };
   return sections;
 }

@@ -8,6 +8,8 @@
 // Keys that are absent (or written without a value) are not given.
 #pragma once
 
+#include <any>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,17 +23,34 @@
 
 namespace driveid {
 
-/// A parameter file: one optional section per model (the sections and
-/// their tables live beside the models), plus what a previous fit left.
-struct ParameterFile {
-  std::optional<DriveTrainSection> drivetrain;
-  std::optional<AxisSection> axis;
-  std::optional<PlanarRobotSection> planar_robot;
-  std::optional<CDriveSection> cdrive;
-  std::optional<CDriveControlSection> cdrive_control;  ///< `cdrive.control`
+/// A parameter file: the sections of the models it holds (each section
+/// struct names itself with `kSectionName` and is registered once in
+/// parameter_file.cc), plus what a previous fit left.
+class ParameterFile {
+ public:
+  /// The section of type S, or nullptr when the file has none.
+  template <class S>
+  const S* Find() const {
+    const auto it = sections_.find(S::kSectionName);
+    return it == sections_.end() ? nullptr : std::any_cast<S>(&it->second);
+  }
+  template <class S>
+  S* Find() {
+    const auto it = sections_.find(S::kSectionName);
+    return it == sections_.end() ? nullptr : std::any_cast<S>(&it->second);
+  }
+  /// Adds or replaces the section of type S.
+  template <class S>
+  void Set(S section) {
+    sections_[S::kSectionName] = std::move(section);
+  }
+
   bool had_fit_section = false;  ///< input carried a previous fit (replaced on output)
   /// fit.estimates of a previous fit (value, std, ci95), for reports.
   std::vector<ParameterEstimate> fit_estimates;
+
+ private:
+  std::map<std::string, std::any> sections_;
 };
 
 /// Parses YAML text; `path` is used in messages only.

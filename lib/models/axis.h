@@ -19,6 +19,7 @@ struct AxisParameters {
 
 /// The parameter file's `axis` section: every value optional.
 struct AxisSection {
+  static constexpr const char* kSectionName = "axis";
   std::optional<double> inertia, viscous, coulomb, offset;
   std::optional<double> torque_constant;  ///< k_t [N m/A], for logs of current
   std::optional<double> gear_ratio;       ///< n_g [-], to report d_g = b / n_g^2

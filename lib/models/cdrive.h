@@ -44,6 +44,7 @@ struct CDriveParameters {
 /// The parameter file's `cdrive` section as written (the controller
 /// settings, `cdrive.control`, are read beside it).
 struct CDriveSection {
+  static constexpr const char* kSectionName = "cdrive";
   std::optional<double> lead, hub_inertia, collar_inertia, collar_mass, viscous_motor, viscous_collar, coulomb_motor,
       coulomb_collar;
   std::optional<double> torque_constant;  ///< k_t [N m/A], for logs of currents

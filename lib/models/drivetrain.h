@@ -59,6 +59,7 @@ struct DriveTrainState {
 
 /// The parameter file's `drivetrain` section as written (optional values).
 struct DriveTrainSection {
+  static constexpr const char* kSectionName = "drivetrain";
   std::optional<double> gear_ratio, link_stiffness, gearbox_stiffness, motor_inertia, gearbox_inertia,
       viscous_friction, coulomb_friction;
 };

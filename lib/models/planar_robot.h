@@ -37,6 +37,7 @@ struct PlanarRobotParameters {
 
 /// The parameter file's `planar_robot` section as written.
 struct PlanarRobotSection {
+  static constexpr const char* kSectionName = "planar_robot";
   std::optional<double> base_distance, link_length, gear_ratio, output_inertia, center_mass, viscous_friction,
       torque_constant;
   std::optional<std::array<int, 3>> elbow;  ///< +1: B_i counter-clockwise of the ray A_i -> C

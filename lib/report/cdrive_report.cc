@@ -33,7 +33,7 @@ std::string Value(const CDriveReport::Dissipation& d) {
 
 }  // namespace
 
-CDriveReport CalcCDriveReport(const CDriveSection& cdrive, const std::optional<CDriveControlSection>& control,
+CDriveReport CalcCDriveReport(const CDriveSection& cdrive, const CDriveControlSection* control,
                               const std::vector<ParameterEstimate>& estimates, const std::string& source) {
   CDriveReport report;
   report.source = source;
@@ -51,7 +51,7 @@ CDriveReport CalcCDriveReport(const CDriveSection& cdrive, const std::optional<C
     const auto* row = FindParameter(CDriveParameterTable(), key);
     report.dissipation.push_back({key, cdrive.*(row->in_section), StandardError(estimates, key), paper.value});
   }
-  if (control) report.control = MakeControlSettings(*control);
+  if (control != nullptr) report.control = MakeControlSettings(*control);
   return report;
 }
 

@@ -38,7 +38,8 @@ struct CDriveReport {
   std::optional<CDriveControlSettings> control;
 };
 
-CDriveReport CalcCDriveReport(const CDriveSection& cdrive, const std::optional<CDriveControlSection>& control,
+/// `control` may be null (no controller section).
+CDriveReport CalcCDriveReport(const CDriveSection& cdrive, const CDriveControlSection* control,
                               const std::vector<ParameterEstimate>& estimates, const std::string& source);
 std::string FormatCDriveReport(const CDriveReport& report);
 Json CDriveReportJson(const CDriveReport& report);

@@ -29,15 +29,15 @@ std::string ErrorOf(const std::string& text) {
 
 TEST_CASE("reads the drivetrain section with units") {
   const auto file = ParseParameterFile("p.yaml", kValid);
-  REQUIRE(file.drivetrain);
-  CHECK(file.drivetrain->gear_ratio == 80.0);
-  CHECK(file.drivetrain->motor_inertia == 6.453e-5);
-  CHECK(file.drivetrain->coulomb_friction == 5.0);
+  REQUIRE(file.Find<DriveTrainSection>());
+  CHECK(file.Find<DriveTrainSection>()->gear_ratio == 80.0);
+  CHECK(file.Find<DriveTrainSection>()->motor_inertia == 6.453e-5);
+  CHECK(file.Find<DriveTrainSection>()->coulomb_friction == 5.0);
 }
 
 TEST_CASE("formatted files read back unchanged, with a fit section too") {
   auto file = ParseParameterFile("p.yaml", kValid);
-  file.drivetrain->viscous_friction = 0.015984787675731638;  // needs all 17 digits
+  file.Find<DriveTrainSection>()->viscous_friction = 0.015984787675731638;  // needs all 17 digits
   FitResult fit;
   fit.estimates.push_back({"d_g", 0.015984787675731638, 2e-5, 0.01594, 0.01602});
   fit.correlation = {1.0};
@@ -47,9 +47,9 @@ TEST_CASE("formatted files read back unchanged, with a fit section too") {
   FitProvenance provenance{"drivetrain-fit step 'a b.csv'", "0.1.0", "reduced", {{"a b.csv", "00ff", 201}}};
   const std::string text = FormatParameterFile(file, &fit, &provenance);
   const auto again = ParseParameterFile("q.yaml", text);
-  REQUIRE(again.drivetrain);
-  CHECK(again.drivetrain->viscous_friction == file.drivetrain->viscous_friction);
-  CHECK(again.drivetrain->link_stiffness == file.drivetrain->link_stiffness);
+  REQUIRE(again.Find<DriveTrainSection>());
+  CHECK(again.Find<DriveTrainSection>()->viscous_friction == file.Find<DriveTrainSection>()->viscous_friction);
+  CHECK(again.Find<DriveTrainSection>()->link_stiffness == file.Find<DriveTrainSection>()->link_stiffness);
   CHECK(again.had_fit_section);
   CHECK(FormatParameterFile(again) == FormatParameterFile(file));
 }
@@ -86,18 +86,18 @@ TEST_CASE("cdrive section with control reads back unchanged") {
       "  k_t: 0.5\n"
       "  control: {K_P: 7.17, K_I: 0.0239, law: PD, dead_zone: 0.5, rate_limit: 50}\n";
   const auto file = ParseParameterFile("c.yaml", text);
-  REQUIRE(file.cdrive);
-  CHECK(file.cdrive->coulomb_collar == 0.1501);
-  CHECK(file.cdrive->torque_constant == 0.5);
-  REQUIRE(file.cdrive_control);
-  CHECK(file.cdrive_control->law == ControlLaw::kPD);
-  CHECK(file.cdrive_control->second_gain == 0.0239);
+  REQUIRE(file.Find<CDriveSection>());
+  CHECK(file.Find<CDriveSection>()->coulomb_collar == 0.1501);
+  CHECK(file.Find<CDriveSection>()->torque_constant == 0.5);
+  REQUIRE(file.Find<CDriveControlSection>());
+  CHECK(file.Find<CDriveControlSection>()->law == ControlLaw::kPD);
+  CHECK(file.Find<CDriveControlSection>()->second_gain == 0.0239);
   const auto again = ParseParameterFile("d.yaml", FormatParameterFile(file));
   CHECK(FormatParameterFile(again) == FormatParameterFile(file));
-  CHECK(again.cdrive_control->law == ControlLaw::kPD);
+  CHECK(again.Find<CDriveControlSection>()->law == ControlLaw::kPD);
   // Absent optional values read as "not given" and are not written.
   const auto bare = ParseParameterFile("e.yaml", "cdrive:\n  p: 0.06\n");
-  CHECK_FALSE(bare.cdrive->viscous_motor);
+  CHECK_FALSE(bare.Find<CDriveSection>()->viscous_motor);
   CHECK(FormatParameterFile(bare).find("beta") == std::string::npos);
 }
 
@@ -129,9 +129,9 @@ TEST_CASE("fuzzer regression: a file with only a fit section has no model to use
 TEST_CASE("fuzzer regression: an axis section with every value empty reads back after formatting") {
   // Found by tests/fuzz/parameter_file_fuzzer (tests/fuzz/regressions/parameter_file_axis_all_empty.yaml).
   const auto file = ParseParameterFile("p.yaml", "axis:\n  inertia: \n  offset:\n");
-  REQUIRE(file.axis);
+  REQUIRE(file.Find<AxisSection>());
   const std::string formatted = FormatParameterFile(file);
   const auto again = ParseParameterFile("q.yaml", formatted);
-  CHECK(again.axis);
+  CHECK(again.Find<AxisSection>());
   CHECK(FormatParameterFile(again) == formatted);
 }
