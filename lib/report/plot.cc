@@ -1,7 +1,5 @@
 #include "report/plot.h"
 
-#include "core/errors.h"
-
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -16,6 +14,7 @@
 
 #include <fmt/format.h>
 
+#include "core/errors.h"
 #include "io/atomic_file.h"
 #include "io/csv_log.h"
 

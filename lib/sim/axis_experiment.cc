@@ -1,12 +1,11 @@
 #include "sim/axis_experiment.h"
 
-#include "core/errors.h"
-
 #include <cmath>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
+#include "core/errors.h"
 #include "core/option_check.h"
 
 #include "sim/noise.h"

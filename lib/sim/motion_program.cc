@@ -1,9 +1,9 @@
 #include "sim/motion_program.h"
 
-#include "core/errors.h"
-
 #include <cmath>
 #include <stdexcept>
+
+#include "core/errors.h"
 
 namespace driveid {
 
