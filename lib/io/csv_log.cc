@@ -6,6 +6,8 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <string_view>
+#include <unordered_set>
 
 #include <fmt/format.h>
 
@@ -98,6 +100,22 @@ CsvLog ParseCsvLog(const std::string& path, const std::string& text,
   log.path = path;
   log.names = required;
   log.columns.resize(required.size());
+  // Every --col must name a column of this log format.
+  std::vector<std::string> known;
+  for (const auto& entry : required) {
+    for (std::size_t start = 0;;) {
+      const std::size_t bar = entry.find('|', start);
+      known.push_back(entry.substr(start, bar == std::string::npos ? bar : bar - start));
+      if (bar == std::string::npos) break;
+      start = bar + 1;
+    }
+  }
+  for (const auto& [name, header_name] : options.column_map) {
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      throw OptionError(fmt::format("--col {}={}: this log has no column '{}' (its columns: {})", name, header_name,
+                                    name, fmt::join(known, ", ")));
+    }
+  }
 
   const char* p = text.data();
   const char* const end = text.data() + text.size();
@@ -130,14 +148,13 @@ CsvLog ParseCsvLog(const std::string& path, const std::string& text,
       header_line = line;
       field_count = header.size();
       slot_of_field.assign(field_count, -1);
+      std::unordered_set<std::string_view> seen;  // linear in the number of columns
       for (std::size_t i = 0; i < field_count; ++i) {
         if (header[i].empty()) {
           throw InputError(fmt::format("{}:{}: header field {} is empty", path, line, i + 1));
         }
-        for (std::size_t j = 0; j < i; ++j) {
-          if (header[j] == header[i]) {
-            throw InputError(fmt::format("{}:{}: column '{}' appears twice in the header", path, line, header[i]));
-          }
+        if (!seen.insert(header[i]).second) {
+          throw InputError(fmt::format("{}:{}: column '{}' appears twice in the header", path, line, header[i]));
         }
       }
       for (std::size_t k = 0; k < required.size(); ++k) {
@@ -168,6 +185,11 @@ CsvLog ParseCsvLog(const std::string& path, const std::string& text,
           for (std::size_t i = 0; i < field_count && i < 12; ++i) have += (i ? ", " : "") + Quote(header[i].data(), header[i].data() + header[i].size());
           throw InputError(fmt::format("{}:{}: missing column {}' (header has {}; map another name with --col {}=HEADER)",
                                        path, line, wanted_all, have, alternatives.front()));
+        }
+        if (slot_of_field[found] >= 0) {
+          throw OptionError(fmt::format("--col: '{}' and '{}' would both read column '{}' of {}",
+                                        log.names[static_cast<std::size_t>(slot_of_field[found])], log.names[k],
+                                        header[found], path));
         }
         slot_of_field[found] = static_cast<int>(k);
       }

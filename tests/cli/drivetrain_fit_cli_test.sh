@@ -69,6 +69,11 @@ expect 2 "png or .svg" -- step good.csv --params start.yaml --plot fit.jpg
 expect 2 "" -- step good.csv
 expect 2 "--rate = -5: violated constraint" -- simulate step --params paper.yaml --rate -5
 
+# Two logical columns on one header column, or an unknown logical name: exit 2 naming them.
+expect 2 "'tau_motor' and 'tau_link' would both read column 'tau_motor'" -- step good.csv --params start.yaml --col tau_link=tau_motor
+expect 2 "'t' and 'tau_motor' would both read column 'tau_motor'" -- step good.csv --params start.yaml --col t=tau_motor
+expect 2 "--col bogus=x: this log has no column 'bogus'" -- step good.csv --params start.yaml --col bogus=x
+
 # Output errors keep their class: exit 3 naming the file, not "internal error".
 expect 3 "nodir/p.png" -- step good.csv --params start.yaml --plot nodir/p.png
 mkdir -p nognuplot
@@ -109,6 +114,7 @@ expect 4 "inertia: the logs have no acceleration content" -- axis constant.csv -
 expect 3 "axis_current.csv: the log has a current column 'i': axis.k_t must be given" -- axis axis_current.csv
 expect 3 "axis.csv:[0-9]+: missing column 'force' or 'amps'" -- axis axis.csv --col tau=force --col i=amps
 expect 2 "not a parameter of the axis fit" -- axis axis.csv --free mass
+expect 2 "'q' and 'tau' would both read column 'tau'" -- axis axis.csv --col q=tau
 if "$bin" axis axis.csv --params axis.yaml -q -o axis_fit.yaml; then ok; else fail "axis fit"; fi
 grep -q "^    d_g: {value: 3.1" axis_fit.yaml && ok || fail "axis fit lacks d_g = b / n_g^2 near 3.1e-5"
 
@@ -120,6 +126,7 @@ cut -d, -f1-6 robot.csv > robot_missing.csv
 expect 3 "robot_missing.csv:[0-9]+: missing column 'i3'" -- robot robot_missing.csv --params robot_start.yaml
 expect 3 "no 'planar_robot' section" -- robot robot.csv --params paper.yaml
 expect 2 "not a parameter of the robot fit" -- robot robot.csv --params robot_start.yaml --free Theta,mass
+expect 2 "'theta1' and 'theta2' would both read column 'theta1'" -- robot robot.csv --params robot_start.yaml --col theta2=theta1
 expect 3 "triangle leaves the workspace" -- simulate robot --params robot.yaml --side 3
 if "$bin" robot robot.csv --params robot_start.yaml -q -o robot_fit.yaml --trace robot_trace.csv; then ok; else fail "robot fit"; fi
 theta=$(awk '/^  Theta:/ {print $2}' robot_fit.yaml)
