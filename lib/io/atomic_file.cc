@@ -1,7 +1,7 @@
 #include "io/atomic_file.h"
 
 #include <cerrno>
-#include <cstdio>
+#include <climits>
 #include <cstdlib>
 #include <cstring>
 #include <vector>
@@ -15,34 +15,93 @@
 #include "core/errors.h"
 
 namespace driveid {
+namespace {
 
-void WriteFileAtomically(const std::string& path, const std::string& contents) {
-  std::string pattern = path + ".tmp.XXXXXX";
-  std::vector<char> name(pattern.begin(), pattern.end());
-  name.push_back('\0');
-  const int fd = ::mkstemp(name.data());
-  if (fd < 0) throw InputError(fmt::format("{}: cannot create output file: {}", path, std::strerror(errno)));
-  const std::string temporary(name.data());
+// Writes all of `contents` to `fd`; false (errno set) on failure.
+bool WriteAll(int fd, const std::string& contents) {
   const char* data = contents.data();
   std::size_t left = contents.size();
-  bool ok = true;
   while (left > 0) {
     const ssize_t written = ::write(fd, data, left);
     if (written < 0) {
       if (errno == EINTR) continue;
-      ok = false;
-      break;
+      return false;
     }
     data += written;
     left -= static_cast<std::size_t>(written);
   }
-  const int saved_errno = errno;
-  ok = ok && ::fchmod(fd, 0644) == 0 && ::fsync(fd) == 0;
-  ok = (::close(fd) == 0) && ok;
-  if (!ok || ::rename(temporary.c_str(), path.c_str()) != 0) {
-    const int error = ok ? errno : saved_errno;
+  return true;
+}
+
+[[noreturn]] void Fail(const std::string& path, const char* what, int error) {
+  throw OutputError(fmt::format("{}: {}: {}", path, what, std::strerror(error)));
+}
+
+// A device, FIFO or socket is written in place: it is never replaced by a
+// regular file (as root, renaming over /dev/null would replace it). A FIFO
+// without a reader is an error, not a hang.
+void WriteInPlace(const std::string& path, const std::string& contents) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) Fail(path, "cannot open output", errno);
+  const int flags = ::fcntl(fd, F_GETFL);
+  if (flags >= 0) ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
+  const bool written = WriteAll(fd, contents);
+  const int error = errno;
+  const bool closed = ::close(fd) == 0;
+  if (!written) Fail(path, "cannot write output", error);
+  if (!closed) Fail(path, "cannot write output", errno);
+}
+
+mode_t CurrentUmask() {
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  return mask;
+}
+
+}  // namespace
+
+void WriteFileAtomically(const std::string& path, const std::string& contents) {
+  // A symbolic link is written through: its target is replaced, the link stays.
+  std::string destination = path;
+  struct stat link_status {};
+  if (::lstat(path.c_str(), &link_status) == 0 && S_ISLNK(link_status.st_mode)) {
+    std::vector<char> resolved(PATH_MAX + 1, '\0');
+    if (::realpath(path.c_str(), resolved.data()) == nullptr) Fail(path, "cannot follow the link", errno);
+    destination = resolved.data();
+  }
+  struct stat status {};
+  mode_t mode = 0666 & ~CurrentUmask();
+  if (::stat(destination.c_str(), &status) == 0) {
+    if (S_ISDIR(status.st_mode)) throw OutputError(fmt::format("{}: is a directory", path));
+    if (!S_ISREG(status.st_mode)) return WriteInPlace(destination, contents);
+    if ((status.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0) {
+      throw OutputError(fmt::format("{}: the file is read-only; not replaced", path));
+    }
+    mode = status.st_mode & 07777;  // an existing file keeps its permissions
+  }
+  std::string pattern = destination + ".tmp.XXXXXX";
+  std::vector<char> name(pattern.begin(), pattern.end());
+  name.push_back('\0');
+  const int fd = ::mkstemp(name.data());
+  if (fd < 0) Fail(path, "cannot create output file", errno);
+  const std::string temporary(name.data());
+  bool ok = WriteAll(fd, contents);
+  int error = errno;
+  if (ok && (::fchmod(fd, mode) != 0 || ::fsync(fd) != 0)) {
+    ok = false;
+    error = errno;
+  }
+  if (::close(fd) != 0 && ok) {
+    ok = false;
+    error = errno;
+  }
+  if (ok && ::rename(temporary.c_str(), destination.c_str()) != 0) {
+    ok = false;
+    error = errno;
+  }
+  if (!ok) {
     ::unlink(temporary.c_str());
-    throw InputError(fmt::format("{}: cannot write output file: {}", path, std::strerror(error)));
+    Fail(path, "cannot write output file", error);
   }
 }
 

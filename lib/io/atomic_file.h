@@ -1,14 +1,19 @@
 // Atomic file output: write to a temporary file in the same directory, flush
 // it to disk, then rename over the target. A reader never sees a partial
 // file, and on any failure the previous file (if any) is left untouched.
+// Only regular files are ever replaced: a device, FIFO or socket is written
+// in place (as root, renaming over /dev/null would replace the device), a
+// directory or a read-only file is refused, and a symbolic link is written
+// through to its target. A new file gets 0666 less the umask; an existing
+// file keeps its permissions.
 #pragma once
 
 #include <string>
 
 namespace driveid {
 
-/// Writes `contents` to `path` atomically; throws InputError naming the path
-/// when the directory is not writable or the disk is full.
+/// Writes `contents` to `path` as above; throws OutputError (exit 3) naming
+/// the path when it cannot (directory not writable, disk full, read-only).
 void WriteFileAtomically(const std::string& path, const std::string& contents);
 
 }  // namespace driveid

@@ -74,6 +74,16 @@ expect 2 "'tau_motor' and 'tau_link' would both read column 'tau_motor'" -- step
 expect 2 "'t' and 'tau_motor' would both read column 'tau_motor'" -- step good.csv --params start.yaml --col t=tau_motor
 expect 2 "--col bogus=x: this log has no column 'bogus'" -- step good.csv --params start.yaml --col bogus=x
 
+# Devices are written in place, never replaced (as root a rename would turn
+# them into regular files): a character device like /dev/null made here.
+if [ "$(id -u)" -eq 0 ] && mknod null_device c 1 3 2> /dev/null; then
+  "$bin" step good.csv --params start.yaml -q -o null_device --trace null_device.trace && [ -c null_device ] && ok ||
+    fail "-o onto a character device did not leave it a device"
+  rm -f null_device null_device.trace
+fi
+mkdir -p out_dir
+expect 3 "out_dir: is a directory" -- step good.csv --params start.yaml --trace out_dir
+
 # Output errors keep their class: exit 3 naming the file, not "internal error".
 expect 3 "nodir/p.png" -- step good.csv --params start.yaml --plot nodir/p.png
 mkdir -p nognuplot
