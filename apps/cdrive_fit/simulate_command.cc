@@ -71,15 +71,16 @@ void RunCDriveSimulateCommand(const CDriveSimulateOptions& options, const std::s
                   params.viscous_collar, params.coulomb_motor, params.coulomb_collar)};
   const std::string log_text = FormatCDriveLog(result.log, comments);
 
+  std::vector<std::pair<std::string, std::string>> files;  // written together, all or nothing
   if (!options.plot.empty()) {
     std::vector<double> millimetres(result.tracking.translation_error);
     for (double& v : millimetres) v *= 1e3;
-    RenderPanels(options.plot,
+    files.emplace_back(options.plot, RenderPanels(options.plot,
                  {{fmt::format("tracking error in u, {} ({})", loop.program.name, ControlLawName(settings.law)),
                    "u error [mm]", {{"u_ref - u", result.tracking.time, millimetres, false}}},
                   {"tracking error in theta", "theta error [rad]",
                    {{"theta_ref - theta", result.tracking.time, result.tracking.rotation_error, false}}}},
-                 "time [s]");
+                 "time [s]"));
   }
   if (!options.trace.empty()) {
     std::string trace = "# tracking errors from the encoder angles (docs/models.md#c-drive coordinates)\nt,u_error,theta_error\n";
@@ -87,9 +88,10 @@ void RunCDriveSimulateCommand(const CDriveSimulateOptions& options, const std::s
       trace += fmt::format("{},{:.6g},{:.6g}\n", result.tracking.time[k], result.tracking.translation_error[k],
                            result.tracking.rotation_error[k]);
     }
-    WriteFileAtomically(options.trace, trace);
+    files.emplace_back(options.trace, std::move(trace));
   }
-  if (!options.output.empty()) WriteFileAtomically(options.output, log_text);
+  if (!options.output.empty()) files.emplace_back(options.output, log_text);
+  WriteFilesAtomically(files);
 
   std::FILE* summary = options.output.empty() ? stderr : stdout;
   if (options.json) {

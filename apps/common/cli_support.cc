@@ -109,11 +109,12 @@ void AddFitOutputOptions(CLI::App& command, FitOutputOptions& options) {
 }
 
 void EmitFitOutputs(const FitOutputOptions& options, const FitOutputs& outputs) {
-  // Plot first: it is the step most likely to fail (gnuplot), and nothing
-  // has been written yet if it does.
-  if (!options.plot.empty()) RenderPanels(options.plot, outputs.plot_panels, "time [s]");
-  if (!options.trace.empty()) WriteFileAtomically(options.trace, outputs.trace_csv);
-  if (!options.output.empty()) WriteFileAtomically(options.output, outputs.parameter_file);
+  // All or nothing: render the plot, then write every file together.
+  std::vector<std::pair<std::string, std::string>> files;
+  if (!options.plot.empty()) files.emplace_back(options.plot, RenderPanels(options.plot, outputs.plot_panels, "time [s]"));
+  if (!options.trace.empty()) files.emplace_back(options.trace, outputs.trace_csv);
+  if (!options.output.empty()) files.emplace_back(options.output, outputs.parameter_file);
+  WriteFilesAtomically(files);
 
   std::FILE* summary = options.output.empty() ? stderr : stdout;
   if (options.json) {

@@ -60,31 +60,42 @@ mode_t CurrentUmask() {
 
 }  // namespace
 
-void WriteFileAtomically(const std::string& path, const std::string& contents) {
+namespace {
+
+// One output on its way: where it goes and, for a regular file, the
+// temporary file that holds it until the commit.
+struct StagedOutput {
+  std::string path;         // as given (for messages)
+  std::string destination;  // the link's target for a symbolic link
+  std::string temporary;    // "" for a device or FIFO (written in place at the commit)
+  const std::string* contents = nullptr;
+};
+
+StagedOutput Stage(const std::string& path, const std::string& contents) {
+  StagedOutput out{path, path, "", &contents};
   // A symbolic link is written through: its target is replaced, the link stays.
-  std::string destination = path;
   struct stat link_status {};
   if (::lstat(path.c_str(), &link_status) == 0 && S_ISLNK(link_status.st_mode)) {
     std::vector<char> resolved(PATH_MAX + 1, '\0');
     if (::realpath(path.c_str(), resolved.data()) == nullptr) Fail(path, "cannot follow the link", errno);
-    destination = resolved.data();
+    out.destination = resolved.data();
   }
   struct stat status {};
   mode_t mode = 0666 & ~CurrentUmask();
-  if (::stat(destination.c_str(), &status) == 0) {
+  if (::stat(out.destination.c_str(), &status) == 0) {
     if (S_ISDIR(status.st_mode)) throw OutputError(fmt::format("{}: is a directory", path));
-    if (!S_ISREG(status.st_mode)) return WriteInPlace(destination, contents);
+    if (!S_ISREG(status.st_mode)) return out;  // device, FIFO, socket: in place
     if ((status.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0) {
       throw OutputError(fmt::format("{}: the file is read-only; not replaced", path));
     }
     mode = status.st_mode & 07777;  // an existing file keeps its permissions
   }
-  std::string pattern = destination + ".tmp.XXXXXX";
+  std::string pattern = out.destination + ".tmp.XXXXXX";
   std::vector<char> name(pattern.begin(), pattern.end());
   name.push_back('\0');
   const int fd = ::mkstemp(name.data());
   if (fd < 0) Fail(path, "cannot create output file", errno);
-  const std::string temporary(name.data());
+  out.temporary = name.data();
   bool ok = WriteAll(fd, contents);
   int error = errno;
   if (ok && (::fchmod(fd, mode) != 0 || ::fsync(fd) != 0)) {
@@ -95,14 +106,50 @@ void WriteFileAtomically(const std::string& path, const std::string& contents) {
     ok = false;
     error = errno;
   }
-  if (ok && ::rename(temporary.c_str(), destination.c_str()) != 0) {
-    ok = false;
-    error = errno;
-  }
   if (!ok) {
-    ::unlink(temporary.c_str());
+    ::unlink(out.temporary.c_str());
     Fail(path, "cannot write output file", error);
   }
+  return out;
+}
+
+}  // namespace
+
+void WriteFilesAtomically(const std::vector<std::pair<std::string, std::string>>& files) {
+  std::vector<StagedOutput> staged;
+  auto discard = [&] {
+    for (const auto& s : staged) {
+      if (!s.temporary.empty()) ::unlink(s.temporary.c_str());
+    }
+  };
+  try {
+    for (const auto& [path, contents] : files) staged.push_back(Stage(path, contents));
+    // Everything is written: now replace the files, then write in place.
+    for (std::size_t i = 0; i < staged.size(); ++i) {
+      if (staged[i].temporary.empty()) continue;
+      if (::rename(staged[i].temporary.c_str(), staged[i].destination.c_str()) != 0) {
+        const int error = errno;
+        for (std::size_t j = i; j < staged.size(); ++j) {
+          if (!staged[j].temporary.empty()) ::unlink(staged[j].temporary.c_str());
+        }
+        Fail(staged[i].path, "cannot write output file", error);
+      }
+      staged[i].temporary = "committed";
+    }
+    for (const auto& s : staged) {
+      if (s.temporary.empty()) WriteInPlace(s.destination, *s.contents);
+    }
+  } catch (...) {
+    for (auto& s : staged) {
+      if (s.temporary == "committed") s.temporary.clear();
+    }
+    discard();
+    throw;
+  }
+}
+
+void WriteFileAtomically(const std::string& path, const std::string& contents) {
+  WriteFilesAtomically({{path, contents}});
 }
 
 }  // namespace driveid

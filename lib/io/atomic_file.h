@@ -9,11 +9,19 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace driveid {
 
 /// Writes `contents` to `path` as above; throws OutputError (exit 3) naming
 /// the path when it cannot (directory not writable, disk full, read-only).
 void WriteFileAtomically(const std::string& path, const std::string& contents);
+
+/// Writes several files (path, contents) all or nothing: each is first
+/// written to a temporary file beside it, and only when every one is written
+/// are they renamed into place (devices and FIFOs written last, in place).
+/// On a failure before the renames no file is changed.
+void WriteFilesAtomically(const std::vector<std::pair<std::string, std::string>>& files);
 
 }  // namespace driveid

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <stdexcept>
 #include <vector>
 
@@ -65,11 +66,13 @@ bool IsSupportedPlotPath(const std::string& path) {
   return EndsWith(lower, ".png") || EndsWith(lower, ".svg");
 }
 
-void RenderPanels(const std::string& path, const std::vector<PlotPanel>& panels, const std::string& x_label) {
+std::string RenderPanels(const std::string& path, const std::vector<PlotPanel>& panels, const std::string& x_label) {
   const bool svg = EndsWith(Lower(path), ".svg");
-  const std::string image = TemporaryName(path, svg ? ".svg" : ".png");
-  const std::string script_path = TemporaryName(path, ".gp");
-  const std::string error_path = TemporaryName(path, ".err");
+  // gnuplot's files live in the temporary directory, not beside the output.
+  const std::string base = (std::filesystem::temp_directory_path() / "driveid-plot").string();
+  const std::string image = TemporaryName(base, svg ? ".svg" : ".png");
+  const std::string script_path = TemporaryName(base, ".gp");
+  const std::string error_path = TemporaryName(base, ".err");
   auto cleanup = [&] {
     std::remove(script_path.c_str());
     std::remove(error_path.c_str());
@@ -145,10 +148,15 @@ void RenderPanels(const std::string& path, const std::vector<PlotPanel>& panels,
     first = first.substr(0, first.find('\n'));
     throw OutputError(fmt::format("{}: gnuplot failed: {}", path, first));
   }
-  if (std::rename(image.c_str(), path.c_str()) != 0) {
+  std::string bytes;
+  try {
+    bytes = ReadFileToString(image);
+  } catch (const InputError&) {
     std::remove(image.c_str());
-    throw OutputError(fmt::format("{}: cannot write plot", path));
+    throw OutputError(fmt::format("{}: gnuplot wrote no image", path));
   }
+  std::remove(image.c_str());
+  return bytes;
 }
 
 std::vector<PlotPanel> MakeFitPanels(const std::vector<PlotSeries>& series, const PlotLabels& labels) {

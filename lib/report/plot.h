@@ -36,9 +36,11 @@ struct PlotPanel {
   std::vector<PlotLine> lines;
 };
 
-/// Renders stacked panels into `path` (PNG or SVG); the last panel gets the
-/// x label. Throws OutputError if gnuplot is missing or fails.
-void RenderPanels(const std::string& path, const std::vector<PlotPanel>& panels, const std::string& x_label);
+/// Renders stacked panels as the image `path` will hold (PNG or SVG by its
+/// extension) and returns its bytes (the caller writes them with the other
+/// outputs); the last panel gets the x label. Throws OutputError if gnuplot
+/// is missing or fails.
+std::string RenderPanels(const std::string& path, const std::vector<PlotPanel>& panels, const std::string& x_label);
 
 /// True for a path ending in .png or .svg (case-insensitive).
 bool IsSupportedPlotPath(const std::string& path);

@@ -84,6 +84,14 @@ fi
 mkdir -p out_dir
 expect 3 "out_dir: is a directory" -- step good.csv --params start.yaml --trace out_dir
 
+# All outputs or none: a failing -o leaves no trace and no plot behind.
+rm -f trace_none.csv plot_none.png
+"$bin" step good.csv --params start.yaml -q -o nodir/out.yaml --trace trace_none.csv --plot plot_none.png 2> /dev/null
+code=$?
+[ "$code" -eq 3 ] && [ ! -e trace_none.csv ] && [ ! -e plot_none.png ] && ok ||
+  fail "failed run left outputs (exit $code): $(ls trace_none.csv plot_none.png 2> /dev/null)"
+ls ./*.tmp.* > /dev/null 2>&1 && fail "temporary files left: $(ls ./*.tmp.*)" || ok
+
 # Output errors keep their class: exit 3 naming the file, not "internal error".
 expect 3 "nodir/p.png" -- step good.csv --params start.yaml --plot nodir/p.png
 mkdir -p nognuplot
