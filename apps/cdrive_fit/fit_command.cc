@@ -44,6 +44,7 @@ CLI::App* SetupCDriveFitCommand(CLI::App& app, CDriveFitCommandOptions& options,
 }
 
 void RunCDriveFitCommand(const CDriveFitCommandOptions& options, const std::string& command_line) {
+  CheckFitOutputs(options.output, [&] { auto in = options.logs; in.push_back(options.params); return in; }());
   const bool friction = options.kind == CDriveFitKind::kFriction;
   const ParameterFile start = ReadParameterFile(options.params);
   if (!start.Find<CDriveSection>()) throw InputError(fmt::format("{}: no 'cdrive' section", options.params));

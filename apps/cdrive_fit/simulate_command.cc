@@ -44,6 +44,7 @@ CLI::App* SetupCDriveSimulateCommand(CLI::App& app, CDriveSimulateOptions& optio
 }
 
 void RunCDriveSimulateCommand(const CDriveSimulateOptions& options, const std::string& command_line) {
+  CheckDistinctFiles({options.params}, {{"-o", options.output}, {"--trace", options.trace}, {"--plot", options.plot}});
   const ParameterFile file = ReadParameterFile(options.params);
   if (!file.Find<CDriveSection>()) throw InputError(fmt::format("{}: no 'cdrive' section", options.params));
   RequireModelValues(CDriveParameterTable(), *file.Find<CDriveSection>(), options.params, "cdrive", "the simulation");

@@ -1,6 +1,10 @@
 #include "common/cli_support.h"
 
 #include <cstdio>
+#include <filesystem>
+#include <system_error>
+
+#include <sys/stat.h>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -94,6 +98,66 @@ void WriteStdout(const std::string& text) {
       std::ferror(stdout)) {
     throw OutputError("standard output: write error");
   }
+}
+
+namespace {
+
+// Identity of a file: device and inode if it exists, else its absolute path.
+struct FileIdentity {
+  bool exists = false;
+  bool regular = true;
+  dev_t device = 0;
+  ino_t inode = 0;
+  std::string absolute;
+  bool operator==(const FileIdentity& other) const {
+    if (exists != other.exists) return false;
+    return exists ? device == other.device && inode == other.inode : absolute == other.absolute;
+  }
+};
+
+FileIdentity IdentityOf(const std::string& path) {
+  FileIdentity id;
+  struct stat status {};
+  if (::stat(path.c_str(), &status) == 0) {
+    id.exists = true;
+    id.regular = S_ISREG(status.st_mode);
+    id.device = status.st_dev;
+    id.inode = status.st_ino;
+  } else {
+    std::error_code error;
+    id.absolute = std::filesystem::weakly_canonical(std::filesystem::absolute(path, error), error).string();
+  }
+  return id;
+}
+
+}  // namespace
+
+void CheckDistinctFiles(const std::vector<std::string>& inputs,
+                        const std::vector<std::pair<std::string, std::string>>& outputs) {
+  std::vector<std::pair<std::string, FileIdentity>> seen;  // option or "input", identity
+  for (const auto& input : inputs) {
+    if (!input.empty()) seen.emplace_back(input, IdentityOf(input));
+  }
+  const std::size_t input_count = seen.size();
+  for (const auto& [option, path] : outputs) {
+    if (path.empty()) continue;
+    const FileIdentity id = IdentityOf(path);
+    for (std::size_t i = 0; i < seen.size(); ++i) {
+      if (!(seen[i].second == id)) continue;
+      if (i < input_count) {
+        throw OptionError(fmt::format("{} {}: is an input of this run ({}); it would be overwritten", option, path,
+                                      seen[i].first));
+      }
+      if (id.regular) {
+        throw OptionError(fmt::format("{} {}: the same file as {}", option, path, seen[i].first));
+      }
+    }
+    seen.emplace_back(option + " " + path, id);
+  }
+}
+
+void CheckFitOutputs(const FitOutputOptions& options, std::vector<std::string> inputs) {
+  CheckDistinctFiles(inputs, {{"-o", options.output}, {"--trace", options.trace}, {"--plot", options.plot}});
 }
 
 void AddFitOutputOptions(CLI::App& command, FitOutputOptions& options) {

@@ -31,6 +31,13 @@ std::string CommandLine(int argc, char** argv);
 /// 3) when that fails (a full disk, a closed pipe).
 void WriteStdout(const std::string& text);
 
+/// Refuses (OptionError, exit 2) an output that is one of the inputs or
+/// another output: compared by device and inode where the file exists, by
+/// absolute path where it does not. `outputs` pairs an option name with its
+/// path ("" = not given); devices such as /dev/null may repeat.
+void CheckDistinctFiles(const std::vector<std::string>& inputs,
+                        const std::vector<std::pair<std::string, std::string>>& outputs);
+
 /// Output flags every fitting subcommand shares.
 struct FitOutputOptions {
   std::string output;  ///< parameter file ("" = stdout)
@@ -41,6 +48,8 @@ struct FitOutputOptions {
   bool verbose = false;
 };
 void AddFitOutputOptions(CLI::App& command, FitOutputOptions& options);
+/// CheckDistinctFiles for a fit's -o, --trace and --plot.
+void CheckFitOutputs(const FitOutputOptions& options, std::vector<std::string> inputs);
 
 /// Everything a fit produces; EmitFitOutputs writes it all or nothing.
 struct FitOutputs {

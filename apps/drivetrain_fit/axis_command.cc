@@ -32,6 +32,7 @@ CLI::App* SetupAxisCommand(CLI::App& app, AxisOptions& options) {
 }
 
 void RunAxisCommand(const AxisOptions& options, const std::string& command_line) {
+  CheckFitOutputs(options.output, [&] { auto in = options.logs; in.push_back(options.params); return in; }());
   ParameterFile start;
   if (!options.params.empty()) start = ReadParameterFile(options.params);
   const AxisSection section = start.Find<AxisSection>() ? *start.Find<AxisSection>() : AxisSection{};

@@ -28,6 +28,7 @@ CLI::App* SetupRobotCommand(CLI::App& app, RobotOptions& options) {
 }
 
 void RunRobotCommand(const RobotOptions& options, const std::string& command_line) {
+  CheckFitOutputs(options.output, [&] { auto in = options.logs; in.push_back(options.params); return in; }());
   const ParameterFile start = ReadParameterFile(options.params);
   if (!start.Find<PlanarRobotSection>()) throw InputError(fmt::format("{}: no 'planar_robot' section", options.params));
   const auto column_map = ParseColumnMap(options.columns);

@@ -71,6 +71,7 @@ CLI::App* SetupSimulateRobotCommand(CLI::App& simulate, SimulateRobotOptions& ro
 }
 
 void RunSimulateRobotCommand(const SimulateRobotOptions& options, const std::string& command_line) {
+  CheckDistinctFiles({options.params}, {{"-o", options.output}});
   const ParameterFile file = ReadParameterFile(options.params);
   if (!file.Find<PlanarRobotSection>()) throw InputError(fmt::format("{}: no 'planar_robot' section", options.params));
   RobotLog log;
@@ -96,6 +97,7 @@ void RunSimulateRobotCommand(const SimulateRobotOptions& options, const std::str
 }
 
 void RunSimulateAxisCommand(const SimulateAxisOptions& options, const std::string& command_line) {
+  CheckDistinctFiles({options.params}, {{"-o", options.output}});
   const ParameterFile file = ReadParameterFile(options.params);
   if (!file.Find<AxisSection>()) throw InputError(fmt::format("{}: no 'axis' section", options.params));
   RequireModelValues(AxisParameterTable(), *file.Find<AxisSection>(), options.params, "axis", "the simulation");
@@ -116,6 +118,7 @@ void RunSimulateAxisCommand(const SimulateAxisOptions& options, const std::strin
 }
 
 void RunSimulateStepCommand(const SimulateStepOptions& options, const std::string& command_line) {
+  CheckDistinctFiles({options.params}, {{"-o", options.output}});
   const ParameterFile file = ReadParameterFile(options.params);
   if (!file.Find<DriveTrainSection>()) throw InputError(fmt::format("{}: no 'drivetrain' section", options.params));
   StepExperiment experiment = options.experiment;

@@ -31,6 +31,7 @@ CLI::App* SetupStepCommand(CLI::App& app, StepOptions& options) {
 }
 
 void RunStepCommand(const StepOptions& options, const std::string& command_line) {
+  CheckFitOutputs(options.output, [&] { auto in = options.logs; in.push_back(options.params); return in; }());
   const ParameterFile start_file = ReadParameterFile(options.params);
   if (!start_file.Find<DriveTrainSection>()) {
     throw InputError(fmt::format("{}: no 'drivetrain' section", options.params));

@@ -84,6 +84,19 @@ fi
 mkdir -p out_dir
 expect 3 "out_dir: is a directory" -- step good.csv --params start.yaml --trace out_dir
 
+# Inputs and outputs never overwrite each other (compared by inode, not spelling).
+cp good.csv victim.csv
+expect 2 "is an input of this run" -- step victim.csv --params start.yaml --trace ./victim.csv
+cmp -s good.csv victim.csv && ok || fail "the input log was overwritten"
+expect 2 "is an input of this run" -- step good.csv --params start.yaml --trace start.yaml
+rm -f out.yaml
+"$bin" step good.csv --params start.yaml -o same_out.yaml --trace ./same_out.yaml > /dev/null 2> stderr.txt
+[ $? -eq 2 ] && grep -q "the same file as -o" stderr.txt && ok || fail "-o x --trace ./x: $(cat stderr.txt)"
+cp paper.yaml paper_copy.yaml
+"$bin" simulate step --params paper_copy.yaml -o ./paper_copy.yaml > /dev/null 2> stderr.txt
+[ $? -eq 2 ] && grep -q "is an input of this run" stderr.txt && cmp -s paper.yaml paper_copy.yaml && ok ||
+  fail "simulate -o onto its --params: $(cat stderr.txt)"
+
 # All outputs or none: a failing -o leaves no trace and no plot behind.
 rm -f trace_none.csv plot_none.png
 "$bin" step good.csv --params start.yaml -q -o nodir/out.yaml --trace trace_none.csv --plot plot_none.png 2> /dev/null
