@@ -28,13 +28,16 @@ CLI::App* SetupCDriveFitCommand(CLI::App& app, CDriveFitCommandOptions& options,
   command->add_option("--col", options.columns, "map a column: NAME=HEADER (e.g. psi_L=encoder_left)");
   command->add_option("--window", options.window,
                       friction ? "half window of the zero-phase differentiator [s] (default 0.01)"
-                               : "half window of the zero-phase differentiator [s] (default 0.005)");
+                               : "half window of the zero-phase differentiator [s] (default 0.005)")
+      ->check(FiniteAbove(0.0));
   command->add_option("--min-rate", options.min_rate,
                       "use samples whose motor rates (and their difference, for the collar) exceed this [rad/s]")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteAtLeast(0.0));
   command->add_option("--settle", options.settle,
                       "also leave out this long around each reversal (stick/slip and controller transients) [s] "
-                      "(default 0.1 for friction, 0 for inertia)");
+                      "(default 0.1 for friction, 0 for inertia)")
+      ->check(FiniteAtLeast(0.0));
   AddFitOutputOptions(*command, options.output);
   command->footer(friction ? "Example:\n  cdrive-fit friction data/cdrive_slow_translation.csv data/cdrive_slow_rotation.csv "
                              "data/cdrive_slow_helical.csv \\\n      --params data/cdrive_table1.yaml -o friction.yaml --plot friction.png"

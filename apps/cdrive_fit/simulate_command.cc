@@ -27,8 +27,8 @@ CLI::App* SetupCDriveSimulateCommand(CLI::App& app, CDriveSimulateOptions& optio
   command->add_option("--stroke", options.stroke, "stroke time T [s]; one cycle is 2 T (seed: 1 s, 0.5 Hz)")
       ->capture_default_str();
   command->add_option("--cycles", options.cycles, "forward-and-back cycles")->capture_default_str();
-  command->add_option("--noise", options.noise, "std of noise added to the logged torques [N m]")->capture_default_str();
-  command->add_option("--seed", options.seed, "noise seed")->capture_default_str();
+  command->add_option("--noise", options.noise, "std of noise added to the logged torques [N m]")->check(FiniteAtLeast(0.0))->capture_default_str();
+  command->add_option("--seed", options.seed, "noise seed")->check(Seed())->capture_default_str();
   command->add_option("--law", options.law, "override cdrive.control.law: PI, PD or PID")
       ->check(CLI::IsMember({"PI", "PD", "PID"}));
   command->add_option("--trace", options.trace, "CSV of the tracking errors in u [m] and theta [rad]");

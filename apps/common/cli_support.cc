@@ -1,6 +1,11 @@
 #include "common/cli_support.h"
 
+#include <charconv>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <limits>
+#include <optional>
 #include <filesystem>
 #include <system_error>
 
@@ -98,6 +103,52 @@ void WriteStdout(const std::string& text) {
       std::ferror(stdout)) {
     throw OutputError("standard output: write error");
   }
+}
+
+namespace {
+
+// The number an option value holds, or nullopt when it is not one (whole text).
+std::optional<double> ParseDouble(const std::string& text) {
+  double value = 0.0;
+  const char* begin = text.data();
+  const char* end = text.data() + text.size();
+  if (begin != end && *begin == '+') ++begin;
+  const auto result = std::from_chars(begin, end, value);
+  if (result.ec != std::errc() || result.ptr != end) return std::nullopt;
+  return value;
+}
+
+}  // namespace
+
+CLI::Validator FiniteAbove(double minimum) {
+  return CLI::Validator(
+      [minimum](std::string& text) -> std::string {
+        const auto value = ParseDouble(text);
+        if (value && std::isfinite(*value) && *value > minimum) return {};
+        return fmt::format("{}: must be a finite number > {}", text, minimum);
+      },
+      fmt::format("NUMBER > {}", minimum));
+}
+
+CLI::Validator FiniteAtLeast(double minimum) {
+  return CLI::Validator(
+      [minimum](std::string& text) -> std::string {
+        const auto value = ParseDouble(text);
+        if (value && std::isfinite(*value) && *value >= minimum) return {};
+        return fmt::format("{}: must be a finite number >= {}", text, minimum);
+      },
+      fmt::format("NUMBER >= {}", minimum));
+}
+
+CLI::Validator Seed() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        std::uint64_t value = 0;
+        const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (result.ec == std::errc() && result.ptr == text.data() + text.size()) return {};
+        return fmt::format("{}: a seed is a whole number from 0 to {}", text, std::numeric_limits<std::uint64_t>::max());
+      },
+      "SEED");
 }
 
 namespace {

@@ -31,6 +31,12 @@ std::string CommandLine(int argc, char** argv);
 /// 3) when that fails (a full disk, a closed pipe).
 void WriteStdout(const std::string& text);
 
+/// Validators for option values (exit 2 with the option named): a finite
+/// number above (or at least) `minimum`; a seed, a whole number 0 .. 2^64 - 1.
+CLI::Validator FiniteAbove(double minimum);
+CLI::Validator FiniteAtLeast(double minimum);
+CLI::Validator Seed();
+
 /// Refuses (OptionError, exit 2) an output that is one of the inputs or
 /// another output: compared by device and inode where the file exists, by
 /// absolute path where it does not. `outputs` pairs an option name with its

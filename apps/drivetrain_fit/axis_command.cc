@@ -21,8 +21,11 @@ CLI::App* SetupAxisCommand(CLI::App& app, AxisOptions& options) {
   command->add_option("--free", options.free, FreeOptionHelp(AxisParameterTable(), "axis"))
       ->delimiter(',');
   command->add_option("--col", options.columns, "map a column: NAME=HEADER (e.g. q=position)");
-  command->add_option("--cutoff", options.cutoff, "position low-pass cutoff [Hz] (default: sampling rate / 40)");
-  command->add_option("--decimation", options.decimation, "parallel decimation factor")->capture_default_str();
+  command->add_option("--cutoff", options.cutoff, "position low-pass cutoff [Hz] (default: sampling rate / 40)")
+      ->check(FiniteAbove(0.0));
+  command->add_option("--decimation", options.decimation, "parallel decimation factor")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
   AddFitOutputOptions(*command, options.output);
   command->footer(
       "Example:\n  drivetrain-fit simulate axis --params data/axis_example.yaml --noise 0.05 -o axis.csv\n"

@@ -19,7 +19,8 @@ CLI::App* SetupRobotCommand(CLI::App& app, RobotOptions& options) {
   command->add_option("--free", options.free, FreeOptionHelp(PlanarRobotParameterTable(), "robot"))->delimiter(',');
   command->add_option("--col", options.columns, "map a column: NAME=HEADER");
   command->add_option("--window", options.window, "half window of the zero-phase differentiator [s]")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(FiniteAbove(0.0));
   AddFitOutputOptions(*command, options.output);
   command->footer(
       "Example:\n  drivetrain-fit robot data/robot_triangle.csv --params data/robot_start.yaml -o robot.yaml \\\n"

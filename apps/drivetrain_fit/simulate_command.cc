@@ -23,9 +23,9 @@ CLI::App* SetupSimulateStepCommand(CLI::App& simulate, SimulateStepOptions& opti
   step->add_option("--step-time", options.experiment.step_time, "time of the step [s]")->capture_default_str();
   step->add_option("--step-torque", options.experiment.step_torque, "motor torque after the step [N m]")
       ->capture_default_str();
-  step->add_option("--noise", options.experiment.noise, "std of Gaussian noise on tau_link [N m]")
+  step->add_option("--noise", options.experiment.noise, "std of Gaussian noise on tau_link [N m]")->check(FiniteAtLeast(0.0))
       ->capture_default_str();
-  step->add_option("--seed", options.experiment.seed, "noise seed")->capture_default_str();
+  step->add_option("--seed", options.experiment.seed, "noise seed")->check(Seed())->capture_default_str();
   step->add_option("--offset", options.experiment.offset, "constant strain-gauge bias [N m]")->capture_default_str();
   step->footer(
       "Example:\n"
@@ -44,8 +44,8 @@ CLI::App* SetupSimulateAxisCommand(CLI::App& simulate, SimulateAxisOptions& axis
   axis->add_option("--amplitude", e.amplitude, "multisine amplitude [rad or m]")->capture_default_str();
   axis->add_option("--speed", e.speed, "constant profile rate [rad/s or m/s]")->capture_default_str();
   axis->add_option("--resolution", e.resolution, "position quantum (0: none)")->capture_default_str();
-  axis->add_option("--noise", e.noise, "std of force noise")->capture_default_str();
-  axis->add_option("--seed", e.seed, "noise seed")->capture_default_str();
+  axis->add_option("--noise", e.noise, "std of force noise")->check(FiniteAtLeast(0.0))->capture_default_str();
+  axis->add_option("--seed", e.seed, "noise seed")->check(Seed())->capture_default_str();
   axis->footer("Example:\n  drivetrain-fit simulate axis --params data/axis_example.yaml --noise 0.05 -o axis.csv");
   return axis;
 }
@@ -64,8 +64,8 @@ CLI::App* SetupSimulateRobotCommand(CLI::App& simulate, SimulateRobotOptions& ro
   robot->add_option("--rate", r.rate, "sampling rate [Hz]")->capture_default_str();
   robot->add_option("--prestress", r.prestress, "null-space joint torque at the gear output [N m]")
       ->capture_default_str();
-  robot->add_option("--noise", r.current_noise, "std of current noise [A]")->capture_default_str();
-  robot->add_option("--seed", r.seed, "noise seed")->capture_default_str();
+  robot->add_option("--noise", r.current_noise, "std of current noise [A]")->check(FiniteAtLeast(0.0))->capture_default_str();
+  robot->add_option("--seed", r.seed, "noise seed")->check(Seed())->capture_default_str();
   robot->footer("Example:\n  drivetrain-fit simulate robot --params data/robot_paper000.yaml --noise 0.02 -o triangle.csv");
   return robot;
 }

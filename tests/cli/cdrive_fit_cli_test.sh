@@ -27,6 +27,8 @@ printf 't,psi_L,psi_R,i_L,tau_R\n0,0,0,0,0\n' > mixed.csv
 printf 't,psi_L,psi_R,tau_L,tau_R\n0,0,0,0,0\n0,0,0,0,0\n' > time.csv
 expect 3 "missing.csv:1: missing column 'tau_R' or 'i_R'" -- friction missing.csv --params table1.yaml
 expect 2 "'psi_L' and 'psi_R' would both read column 'psi_L'" -- friction translation.csv --params table1.yaml --col psi_R=psi_L
+for bad in 0 nan; do expect 2 "--window.*must be a finite number > 0" -- friction translation.csv --params table1.yaml --window "$bad"; done
+for bad in -1 nan; do expect 2 "--settle.*must be a finite number >= 0" -- friction translation.csv --params table1.yaml --settle "$bad"; done
 expect 3 "not_number.csv:3: column 'psi_R': not a number" -- friction not_number.csv --params table1.yaml
 expect 3 "inf.csv:3: column 'tau_L': not a finite number" -- friction inf.csv --params table1.yaml
 expect 3 "currents.csv: the log has currents i_L, i_R: cdrive.k_t must be given" -- friction currents.csv --params table1.yaml

@@ -68,6 +68,9 @@ expect 2 "" -- step good.csv --params start.yaml --bogus
 expect 2 "png or .svg" -- step good.csv --params start.yaml --plot fit.jpg
 expect 2 "" -- step good.csv
 expect 2 "--rate = -5: violated constraint" -- simulate step --params paper.yaml --rate -5
+expect 2 "a seed is a whole number" -- simulate step --params paper.yaml --seed -1
+expect 2 "a seed is a whole number" -- simulate step --params paper.yaml --seed 18446744073709551616
+"$bin" simulate step --params paper.yaml --seed 18446744073709551615 -o max_seed.csv && ok || fail "largest seed refused"
 
 # Two logical columns on one header column, or an unknown logical name: exit 2 naming them.
 expect 2 "'tau_motor' and 'tau_link' would both read column 'tau_motor'" -- step good.csv --params start.yaml --col tau_link=tau_motor
@@ -146,6 +149,7 @@ expect 3 "axis_current.csv: the log has a current column 'i': axis.k_t must be g
 expect 3 "axis.csv:[0-9]+: missing column 'force' or 'amps'" -- axis axis.csv --col tau=force --col i=amps
 expect 2 "not a parameter of the axis fit" -- axis axis.csv --free mass
 expect 2 "'q' and 'tau' would both read column 'tau'" -- axis axis.csv --col q=tau
+for bad in 0 -5 nan inf; do expect 2 "--cutoff.*must be a finite number > 0" -- axis axis.csv --cutoff "$bad"; done
 if "$bin" axis axis.csv --params axis.yaml -q -o axis_fit.yaml; then ok; else fail "axis fit"; fi
 grep -q "^    d_g: {value: 3.1" axis_fit.yaml && ok || fail "axis fit lacks d_g = b / n_g^2 near 3.1e-5"
 
