@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "core/errors.h"
 #include "core/fit_result.h"
 #include "models/parameter_table.h"
 #include "fit/least_squares.h"
@@ -88,14 +89,23 @@ std::string FreeOptionHelp(const ParameterTable<Section, Model>& table, const st
 void SetProgress(FitOptions& fit, bool verbose);
 
 /// Reads each log once, parses it with `parse(path, text)` and records its
-/// provenance (file, SHA-256, samples) in `provenance`.
+/// provenance (file, SHA-256, samples) in `provenance`; refuses (exit 2) a
+/// log whose contents were given already.
 template <typename Log, typename Parse>
 std::vector<Log> LoadLogs(const std::vector<std::string>& paths, FitProvenance& provenance, Parse parse) {
   std::vector<Log> logs;
   for (const auto& path : paths) {
     const std::string text = ReadFileToString(path);
+    const std::string hash = Sha256Hex(text);
+    // The same data twice would count twice and shrink every std by sqrt(2).
+    for (const auto& earlier : provenance.data) {
+      if (earlier.sha256 == hash) {
+        throw OptionError(fmt::format("{}: the same data as {} (sha256 {}): give each log once", path, earlier.file,
+                                      hash.substr(0, 12)));
+      }
+    }
     logs.push_back(parse(path, text));
-    provenance.data.push_back({path, Sha256Hex(text), static_cast<int>(logs.back().time.size())});
+    provenance.data.push_back({path, hash, static_cast<int>(logs.back().time.size())});
   }
   return logs;
 }

@@ -100,6 +100,10 @@ cp paper.yaml paper_copy.yaml
 [ $? -eq 2 ] && grep -q "is an input of this run" stderr.txt && cmp -s paper.yaml paper_copy.yaml && ok ||
   fail "simulate -o onto its --params: $(cat stderr.txt)"
 
+# The same log twice (by content, not name) is refused: it would count twice.
+cp good.csv good_copy.csv
+expect 2 "good_copy.csv: the same data as good.csv" -- step good.csv good_copy.csv --params start.yaml
+
 # All outputs or none: a failing -o leaves no trace and no plot behind.
 rm -f trace_none.csv plot_none.png
 "$bin" step good.csv --params start.yaml -q -o nodir/out.yaml --trace trace_none.csv --plot plot_none.png 2> /dev/null
