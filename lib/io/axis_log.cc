@@ -23,6 +23,7 @@ AxisLog ParseAxisLog(const std::string& path, const std::string& text,
 }
 
 std::string FormatAxisLog(const AxisLog& log, const std::vector<std::string>& comments) {
+  RequireFiniteColumns({{"t", &log.time}, {"q", &log.position}, {"tau", &log.force}}, log.time);
   std::string out;
   for (const auto& line : comments) out += "# " + line + "\n";
   out += "t,q,tau\n";

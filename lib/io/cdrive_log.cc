@@ -34,6 +34,9 @@ CDriveLog ParseCDriveLog(const std::string& path, const std::string& text,
 }
 
 std::string FormatCDriveLog(const CDriveLog& log, const std::vector<std::string>& comments) {
+  RequireFiniteColumns({{"t", &log.time}, {"psi_L", &log.angle_left}, {"psi_R", &log.angle_right},
+                        {"tau_L", &log.torque_left}, {"tau_R", &log.torque_right}},
+                       log.time);
   std::string out;
   for (const auto& line : comments) out += "# " + line + "\n";
   out += "t,psi_L,psi_R,tau_L,tau_R\n";

@@ -82,6 +82,20 @@ std::string ReadFileToString(const std::string& path) {
   return std::move(buffer).str();
 }
 
+void RequireFiniteColumns(const std::vector<std::pair<std::string, const std::vector<double>*>>& columns,
+                          const std::vector<double>& time) {
+  for (const auto& [name, values] : columns) {
+    for (std::size_t k = 0; k < values->size(); ++k) {
+      if (!std::isfinite((*values)[k])) {
+        throw OutputError(fmt::format(
+            "column '{}' would be {} at t = {} s (sample {}): the parameters or options overflow the simulation; "
+            "nothing written",
+            name, (*values)[k], k < time.size() ? time[k] : 0.0, k + 1));
+      }
+    }
+  }
+}
+
 std::map<std::string, std::string> ParseColumnMap(const std::vector<std::string>& entries) {
   std::map<std::string, std::string> map;
   for (const auto& entry : entries) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <map>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,12 @@ CsvLog ParseCsvLog(const std::string& path, const std::string& text,
 /// Reads and parses a file (see ParseCsvLog). Throws InputError if unreadable.
 CsvLog ReadCsvLog(const std::string& path, const std::vector<std::string>& required,
                   const CsvReadOptions& options = {});
+
+/// A writer's check: throws OutputError (exit 3) naming the column and time
+/// of the first non-finite value, which the tools' own reader would refuse.
+/// `columns` pairs a column name with its values; `time` gives the sample times.
+void RequireFiniteColumns(const std::vector<std::pair<std::string, const std::vector<double>*>>& columns,
+                          const std::vector<double>& time);
 
 /// Reads a whole file into memory; throws InputError naming the file.
 std::string ReadFileToString(const std::string& path);

@@ -129,12 +129,16 @@ std::string Quoted(const std::string& text) {
 std::string Number(double value) { return fmt::format("{}", value); }
 std::string Short(double value) { return fmt::format("{:.6g}", value); }
 
-template <class Section, class Model>
-std::string FormatSection(const Section& values, const ParameterTable<Section, Model>& table, const std::string& indent) {
+template <class Values, class Model>
+std::string FormatSection(const Values& values, const ParameterTable<Values, Model>& table, const std::string& indent) {
   std::string out;
   for (const auto& row : table) {
     const std::optional<double>& value = values.*(row.in_section);
     if (!value) continue;
+    if (!std::isfinite(*value)) {
+      throw OutputError(fmt::format("{}: {} is {}: a parameter file holds finite numbers only; nothing written",
+                                    Values::kSectionName, row.spec.key, *value));
+    }
     const std::string line = fmt::format("{}{}: {}", indent, row.spec.key, Number(*value));
     const std::string symbol = row.spec.symbol == std::string(row.spec.key) ? "" : std::string(row.spec.symbol) + ", ";
     out += fmt::format("{:<28} # {}{}\n", line, symbol, row.spec.Doc());
@@ -362,6 +366,12 @@ std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit,
     }
     out += "  estimates:\n";
     for (const auto& e : fit->estimates) {
+      for (double v : {e.value, e.standard_error, e.ci95_low, e.ci95_high}) {
+        if (!std::isfinite(v)) {
+          throw OutputError(fmt::format("fit.estimates.{}: not finite ({} +- {}); nothing written", e.name, e.value,
+                                        e.standard_error));
+        }
+      }
       out += fmt::format("    {}: {{value: {}, std: {}, ci95: [{}, {}]}}\n", e.name, Number(e.value),
                          Short(e.standard_error), Short(e.ci95_low), Short(e.ci95_high));
     }

@@ -23,6 +23,9 @@ RobotLog ParseRobotLog(const std::string& path, const std::string& text,
 }
 
 std::string FormatRobotLog(const RobotLog& log, const std::vector<std::string>& comments) {
+  RequireFiniteColumns({{"t", &log.time}, {"theta1", &log.angle[0]}, {"theta2", &log.angle[1]}, {"theta3", &log.angle[2]},
+                        {"i1", &log.current[0]}, {"i2", &log.current[1]}, {"i3", &log.current[2]}},
+                       log.time);
   std::string out;
   for (const auto& line : comments) out += "# " + line + "\n";
   out += "t,theta1,theta2,theta3,i1,i2,i3\n";

@@ -21,6 +21,7 @@ StepLog ParseStepLog(const std::string& path, const std::string& text,
 }
 
 std::string FormatStepLog(const StepLog& log, const std::vector<std::string>& comments) {
+  RequireFiniteColumns({{"t", &log.time}, {"tau_motor", &log.motor_torque}, {"tau_link", &log.link_torque}}, log.time);
   std::string out;
   for (const auto& line : comments) out += "# " + line + "\n";
   out += "t,tau_motor,tau_link\n";

@@ -100,6 +100,11 @@ cp paper.yaml paper_copy.yaml
 [ $? -eq 2 ] && grep -q "is an input of this run" stderr.txt && cmp -s paper.yaml paper_copy.yaml && ok ||
   fail "simulate -o onto its --params: $(cat stderr.txt)"
 
+# Writers refuse non-finite numbers (the tools' own reader would refuse them).
+sed 's/^  k_Tl: .*/  k_Tl: 1e308/' paper.yaml > huge.yaml
+expect 3 "would be .*nan|would be .*inf" -- simulate step --params huge.yaml
+expect 3 "column 'tau_link' would be inf" -- simulate step --params paper.yaml --noise 1e308
+
 # The same log twice (by content, not name) is refused: it would count twice.
 cp good.csv good_copy.csv
 expect 2 "good_copy.csv: the same data as good.csv" -- step good.csv good_copy.csv --params start.yaml
