@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 #include <string_view>
 #include <unordered_set>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <fmt/format.h>
 
@@ -73,13 +76,58 @@ const std::vector<double>& CsvLog::column(const std::string& name) const {
   throw std::out_of_range("CsvLog::column: no column '" + name + "'");
 }
 
-std::string ReadFileToString(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot open file for reading", path));
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw InputError(fmt::format("{}: read error", path));
-  return std::move(buffer).str();
+std::string ReadFileToString(const std::string& path, const ReadLimits& limits) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw InputError(fmt::format("{}: cannot open file for reading: {}", path, std::strerror(errno)));
+  struct stat status {};
+  if (::fstat(fd, &status) == 0 && S_ISDIR(status.st_mode)) {
+    ::close(fd);
+    throw InputError(fmt::format("{}: is a directory, not a file", path));
+  }
+  // Read in chunks with the limits enforced as the bytes arrive, so that an
+  // endless input (/dev/zero, a FIFO) fails fast instead of filling memory.
+  std::string text;
+  if (S_ISREG(status.st_mode) && status.st_size > 0) {
+    text.reserve(static_cast<std::size_t>(std::min<off_t>(status.st_size, static_cast<off_t>(limits.max_bytes) + 1)));
+  }
+  std::size_t line_length = 0;
+  std::vector<char> chunk(1 << 16);
+  for (;;) {
+    const ssize_t got = ::read(fd, chunk.data(), chunk.size());
+    if (got < 0) {
+      if (errno == EINTR) continue;
+      const int error = errno;
+      ::close(fd);
+      throw InputError(fmt::format("{}: read error: {}", path, std::strerror(error)));
+    }
+    if (got == 0) break;
+    const std::size_t n = static_cast<std::size_t>(got);
+    if (text.size() + n > limits.max_bytes) {
+      ::close(fd);
+      throw InputError(fmt::format("{}: larger than {} bytes ({})", path, limits.max_bytes, limits.max_bytes_hint));
+    }
+    if (limits.max_line_bytes > 0) {
+      const char* begin = chunk.data();
+      const char* end = begin + n;
+      while (begin < end) {
+        const char* newline = static_cast<const char*>(std::memchr(begin, '\n', static_cast<std::size_t>(end - begin)));
+        line_length += static_cast<std::size_t>((newline ? newline : end) - begin);
+        if (line_length > limits.max_line_bytes) {
+          ::close(fd);
+          throw InputError(fmt::format("{}:{}: line longer than {} bytes", path,
+                                       1 + std::count(text.begin(), text.end(), '\n') +
+                                           std::count(static_cast<const char*>(chunk.data()), begin, '\n'),
+                                       limits.max_line_bytes));
+        }
+        if (newline == nullptr) break;
+        line_length = 0;
+        begin = newline + 1;
+      }
+    }
+    text.append(chunk.data(), n);
+  }
+  ::close(fd);
+  return text;
 }
 
 void RequireFiniteColumns(const std::vector<std::pair<std::string, const std::vector<double>*>>& columns,

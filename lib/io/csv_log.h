@@ -52,8 +52,16 @@ CsvLog ReadCsvLog(const std::string& path, const std::vector<std::string>& requi
 void RequireFiniteColumns(const std::vector<std::pair<std::string, const std::vector<double>*>>& columns,
                           const std::vector<double>& time);
 
-/// Reads a whole file into memory; throws InputError naming the file.
-std::string ReadFileToString(const std::string& path);
+/// Limits enforced while a file is read (an endless input fails fast).
+struct ReadLimits {
+  std::size_t max_bytes = std::size_t{4} << 30;  ///< whole file (default 4 GiB)
+  std::size_t max_line_bytes = 1 << 20;         ///< one line; 0 = no limit (binary files)
+  std::string max_bytes_hint = "a log may be at most 4 GiB";  ///< how to raise max_bytes, for the message
+};
+
+/// Reads a whole file into memory; throws InputError naming the file (and
+/// the line) when it cannot be read, is a directory or exceeds `limits`.
+std::string ReadFileToString(const std::string& path, const ReadLimits& limits = {});
 
 /// Parses `--col NAME=HEADER` entries; throws InputError on a malformed entry.
 std::map<std::string, std::string> ParseColumnMap(const std::vector<std::string>& entries);

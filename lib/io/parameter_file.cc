@@ -346,7 +346,13 @@ ParameterFile ParseParameterFile(const std::string& path, const std::string& tex
   return file;
 }
 
-ParameterFile ReadParameterFile(const std::string& path) { return ParseParameterFile(path, ReadFileToString(path)); }
+ParameterFile ReadParameterFile(const std::string& path) {
+  ReadLimits limits;
+  limits.max_bytes = 1 << 20;
+  limits.max_line_bytes = 1 << 16;
+  limits.max_bytes_hint = "a parameter file may be at most 1 MiB";
+  return ParseParameterFile(path, ReadFileToString(path, limits));
+}
 
 std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit, const FitProvenance* provenance,
                                 const std::vector<DerivedQuantity>& derived) {

@@ -150,7 +150,9 @@ std::string RenderPanels(const std::string& path, const std::vector<PlotPanel>& 
   }
   std::string bytes;
   try {
-    bytes = ReadFileToString(image);
+    ReadLimits binary;
+    binary.max_line_bytes = 0;  // an image has no lines
+    bytes = ReadFileToString(image, binary);
   } catch (const InputError&) {
     std::remove(image.c_str());
     throw OutputError(fmt::format("{}: gnuplot wrote no image", path));

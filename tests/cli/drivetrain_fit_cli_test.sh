@@ -105,6 +105,13 @@ sed 's/^  k_Tl: .*/  k_Tl: 1e308/' paper.yaml > huge.yaml
 expect 3 "would be .*nan|would be .*inf" -- simulate step --params huge.yaml
 expect 3 "column 'tau_link' would be inf" -- simulate step --params paper.yaml --noise 1e308
 
+# Endless or odd inputs fail fast (limits enforced while reading), never fill memory.
+( ulimit -v 4000000
+  expect 3 "/dev/zero:1: line longer than" -- step /dev/zero --params start.yaml
+  expect 3 "/dev/zero:1: line longer than" -- step good.csv --params /dev/zero
+  expect 3 "is a directory, not a file" -- step out_dir --params start.yaml
+  finish > /dev/null ) || fail "endless inputs"
+
 # The same log twice (by content, not name) is refused: it would count twice.
 cp good.csv good_copy.csv
 expect 2 "good_copy.csv: the same data as good.csv" -- step good.csv good_copy.csv --params start.yaml

@@ -75,7 +75,7 @@ TEST_CASE("binary garbage and huge lines are refused without echoing them") {
 
 TEST_CASE("unreadable file") {
   CHECK_THROWS_WITH(driveid::ReadCsvLog("/nonexistent/x.csv", kStep),
-                    "/nonexistent/x.csv: cannot open file for reading");
+                    "/nonexistent/x.csv: cannot open file for reading: No such file or directory");
 }
 
 TEST_CASE("alternatives: the first present column wins, names tell which") {
