@@ -112,6 +112,14 @@ expect 3 "column 'tau_link' would be inf" -- simulate step --params paper.yaml -
   expect 3 "is a directory, not a file" -- step out_dir --params start.yaml
   finish > /dev/null ) || fail "endless inputs"
 
+# Write errors on standard output are reported (exit 3), not lost.
+if [ -w /dev/full ]; then
+  "$bin" report paper.yaml > /dev/full 2> stderr.txt
+  [ $? -eq 3 ] && grep -q "standard output: write error" stderr.txt && ok || fail "report > /dev/full: $(cat stderr.txt)"
+fi
+"$bin" report paper.yaml >&- 2> stderr.txt
+[ $? -eq 3 ] && ok || fail "report with stdout closed: $(cat stderr.txt)"
+
 # The same log twice (by content, not name) is refused: it would count twice.
 cp good.csv good_copy.csv
 expect 2 "good_copy.csv: the same data as good.csv" -- step good.csv good_copy.csv --params start.yaml
