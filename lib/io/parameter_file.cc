@@ -110,15 +110,41 @@ CDriveControlSection ParseControl(const std::string& path, const YAML::Node& nod
   return control;
 }
 
+// Length of the valid UTF-8 sequence starting at text[i], or 0.
+std::size_t Utf8Length(const std::string& text, std::size_t i) {
+  const unsigned char lead = static_cast<unsigned char>(text[i]);
+  std::size_t length = 0;
+  if (lead >= 0xC2 && lead <= 0xDF) length = 2;
+  else if (lead >= 0xE0 && lead <= 0xEF) length = 3;
+  else if (lead >= 0xF0 && lead <= 0xF4) length = 4;
+  else return 0;
+  if (i + length > text.size()) return 0;
+  for (std::size_t k = 1; k < length; ++k) {
+    if ((static_cast<unsigned char>(text[i + k]) & 0xC0) != 0x80) return 0;
+  }
+  return length;
+}
+
+// A YAML double-quoted string: control characters and bytes that are not
+// UTF-8 (a file name may hold any bytes) are escaped as \xNN.
 std::string Quoted(const std::string& text) {
   std::string out = "\"";
-  for (char c : text) {
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
     const unsigned char u = static_cast<unsigned char>(c);
     if (c == '"' || c == '\\') {
       out += '\\';
       out += c;
-    } else if (u < 0x20) {
+    } else if (u < 0x20 || u == 0x7F) {
       out += fmt::format("\\x{:02x}", u);
+    } else if (u >= 0x80) {
+      const std::size_t length = Utf8Length(text, i);
+      if (length == 0) {
+        out += fmt::format("\\x{:02x}", u);
+      } else {
+        out.append(text, i, length);
+        i += length - 1;
+      }
     } else {
       out += c;
     }
@@ -295,7 +321,12 @@ ParameterFile ParseParameterFile(const std::string& path, const std::string& tex
   CheckNesting(path, text);
   YAML::Node root;
   try {
-    root = YAML::Load(text);
+    const std::vector<YAML::Node> documents = YAML::LoadAll(text);
+    if (documents.size() > 1) {
+      throw InputError(fmt::format("{}:{}: a second YAML document ('---'): a parameter file holds one", path,
+                                   documents[1].Mark().is_null() ? 0 : documents[1].Mark().line + 1));
+    }
+    if (!documents.empty()) root = documents.front();
   } catch (const YAML::ParserException& e) {
     throw InputError(fmt::format("{}:{}:{}: invalid YAML: {}", path, e.mark.line + 1, e.mark.column + 1, e.msg));
   } catch (const YAML::Exception& e) {
@@ -316,6 +347,16 @@ ParameterFile ParseParameterFile(const std::string& path, const std::string& tex
       // Provenance of an earlier fit: accepted so that a fit's output is a
       // valid input, and replaced when a new file is written.
       CheckMapping(path, "fit", item.second);
+      static const char* const kFitKeys[] = {"command", "version", "model", "data", "estimates", "derived",
+                                             "correlation", "rmse", "fit_percent", "singular_values",
+                                             "iterations", "converged"};
+      for (const auto& entry : item.second) {
+        const std::string key = entry.first.Scalar();
+        if (std::find(std::begin(kFitKeys), std::end(kFitKeys), key) == std::end(kFitKeys)) {
+          throw InputError(fmt::format("{}: fit.{}: unknown key (the fit section is written by the tools; known: {})",
+                                       Where(path, entry.first), key, fmt::join(kFitKeys, ", ")));
+        }
+      }
       file.had_fit_section = true;
       const YAML::Node estimates = item.second["estimates"];
       if (estimates && estimates.IsMap()) {

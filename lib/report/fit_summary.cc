@@ -10,9 +10,11 @@ std::string FormatFitTable(const FitResult& fit, const FitProvenance& provenance
   std::string out;
   out += fmt::format("{:<14} {:>14} {:>12} {:>9}   {:<27}\n", "parameter", "estimate", "std", "rel.std", "95 % interval");
   for (const auto& e : fit.estimates) {
-    const double relative = e.value != 0.0 ? 100.0 * e.standard_error / std::abs(e.value) : 0.0;
-    out += fmt::format("{:<14} {:>14.6g} {:>12.3g} {:>8.3f}%   [{:.6g}, {:.6g}]\n", e.name, e.value,
-                       e.standard_error, relative, e.ci95_low, e.ci95_high);
+    // At zero (e.g. a friction stuck at its bound) a relative std means nothing.
+    const std::string relative =
+        e.value != 0.0 ? fmt::format("{:>8.3f}%", 100.0 * e.standard_error / std::abs(e.value)) : fmt::format("{:>9}", "-");
+    out += fmt::format("{:<14} {:>14.6g} {:>12.3g} {}   [{:.6g}, {:.6g}]\n", e.name, e.value, e.standard_error,
+                       relative, e.ci95_low, e.ci95_high);
   }
   out += "\n";
   for (const auto& c : fit.channels) {

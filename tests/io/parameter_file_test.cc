@@ -135,3 +135,21 @@ TEST_CASE("fuzzer regression: an axis section with every value empty reads back 
   CHECK(again.Find<AxisSection>());
   CHECK(FormatParameterFile(again) == formatted);
 }
+
+TEST_CASE("one YAML document only; the fit section's keys are checked") {
+  CHECK_THAT(ErrorOf(std::string(kValid) + "---\naxis: {}\n"), Catch::Contains("a second YAML document"));
+  CHECK_THAT(ErrorOf(std::string(kValid) + "fit:\n  converged: true\n  comand: x\n"),
+             Catch::Contains("fit.comand: unknown key"));
+}
+
+TEST_CASE("a file name that is not UTF-8 is escaped in the provenance and reads back") {
+  auto file = ParseParameterFile("p.yaml", kValid);
+  FitResult fit;
+  fit.estimates.push_back({"d_g", 0.016, 2e-5, 0.01594, 0.01602});
+  fit.correlation = {1.0};
+  fit.singular_values = {1.0};
+  FitProvenance provenance{"drivetrain-fit step", "0.1.0", "reduced", {{"log\xff\xfe-\xc3\xa9.csv", "00ff", 3}}};
+  const std::string text = FormatParameterFile(file, &fit, &provenance);
+  CHECK(text.find("log\\xff\\xfe-\xc3\xa9.csv") != std::string::npos);  // raw bytes escaped, UTF-8 kept
+  CHECK(ParseParameterFile("q.yaml", text).had_fit_section);
+}
