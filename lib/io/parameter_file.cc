@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <set>
+#include <string_view>
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
@@ -319,14 +320,29 @@ void CheckNesting(const std::string& path, const std::string& text) {
 
 ParameterFile ParseParameterFile(const std::string& path, const std::string& text) {
   CheckNesting(path, text);
+  // YAML::Load reads the first document only: refuse a second one, marked by
+  // a line "---" (or "...") after content. (YAML::LoadAll can loop on
+  // hostile input, so the markers are found here.)
+  {
+    bool content = false;
+    int line = 0;
+    for (std::size_t begin = 0; begin < text.size();) {
+      const std::size_t end = std::min(text.find('\n', begin), text.size());
+      const std::string_view row(text.data() + begin, end - begin);
+      ++line;
+      const bool marker = (row.rfind("---", 0) == 0 || row.rfind("...", 0) == 0) &&
+                          (row.size() == 3 || row[3] == ' ' || row[3] == '\t' || row[3] == '\r');
+      if (marker && content) {
+        throw InputError(fmt::format("{}:{}: a second YAML document: a parameter file holds one", path, line));
+      }
+      const std::size_t first = row.find_first_not_of(" \t\r");
+      if (!marker && first != std::string_view::npos && row[first] != '#') content = true;
+      begin = end + 1;
+    }
+  }
   YAML::Node root;
   try {
-    const std::vector<YAML::Node> documents = YAML::LoadAll(text);
-    if (documents.size() > 1) {
-      throw InputError(fmt::format("{}:{}: a second YAML document ('---'): a parameter file holds one", path,
-                                   documents[1].Mark().is_null() ? 0 : documents[1].Mark().line + 1));
-    }
-    if (!documents.empty()) root = documents.front();
+    root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     throw InputError(fmt::format("{}:{}:{}: invalid YAML: {}", path, e.mark.line + 1, e.mark.column + 1, e.msg));
   } catch (const YAML::Exception& e) {
