@@ -194,8 +194,9 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
 
   // Every column not free is fixed: at its given value, the inertias at 0
   // when a + b and a - b stand in for them, the nuisances at 0 otherwise.
+  const std::vector<std::string> columns = RegressorColumns();
   std::map<std::string, double> fixed;
-  for (const auto& name : RegressorColumns()) {
+  for (const auto& name : columns) {
     const auto* row = FindParameter(CDriveParameterTable(), name);
     const bool nuisance_inertia = inertia_nuisance && row != nullptr && row->spec.InFit("inertia");
     fixed[name] = row == nullptr || nuisance_inertia ? 0.0 : (start_section.*(row->in_section)).value_or(0.0);
@@ -203,7 +204,7 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
 
   // Rows: per log the sum rows, then the difference rows.
   Derivatives design;
-  LinearRegression regression(RegressorColumns());
+  LinearRegression regression(columns);
   for (const auto& log : logs) {
     if (log.time.size() < 5) {
       throw InputError(fmt::format("{}: {} samples: too few to differentiate", log.path, log.time.size()));
