@@ -39,6 +39,33 @@ struct Sample {
   Matrix23 g;
 };
 
+// Refuses a log whose joint angles do not close the robot at some sample
+// (wrong l or a, angles in degrees, swapped columns, another robot): names the
+// first such line.
+void CheckClosure(const PlanarRobotParameters& robot, const RobotLog& log) {
+  const double a = robot.base_distance;
+  Vector2 guess = {0.5 * a, a / (2.0 * std::sqrt(3.0))};
+  for (std::size_t k = 0; k < log.time.size(); ++k) {
+    const Vector3 theta{log.angle[0][k], log.angle[1][k], log.angle[2][k]};
+    const Vector2 c = CalcForwardKinematics(robot, theta, guess);
+    const ClosureCheck check = CalcClosure(robot, theta, c);
+    const std::string where = k < log.line_numbers.size() ? fmt::format("{}:{}", log.path, log.line_numbers[k])
+                                                          : fmt::format("{}: sample {}", log.path, k + 1);
+    if (!(check.length_error <= kClosureTolerance)) {
+      throw InputError(fmt::format(
+          "{}: the joint angles do not close the robot (a leg misses the centre joint by {:.3g} % of l = {} m; "
+          "tolerance {} %): check base_distance and l in --params, that the angles are in radians at the gear "
+          "output, and the column order (docs/models.md#planar-robot)",
+          where, 100.0 * check.length_error, robot.link_length, 100.0 * kClosureTolerance));
+    }
+    if (check.wrong_elbow != 0) {
+      throw InputError(fmt::format("{}: leg {}'s elbow is on the other side of the one given by elbow in --params",
+                                   where, check.wrong_elbow));
+    }
+    guess = c;
+  }
+}
+
 // Differentiates a log; returns the valid samples and their indices.
 std::vector<std::pair<std::size_t, Sample>> Kinematics(const PlanarRobotParameters& robot, const RobotLog& log,
                                                        double half_window) {
@@ -105,6 +132,7 @@ RobotFitOutput FitRobot(const std::vector<RobotLog>& logs, const PlanarRobotPara
   LinearRegression regression(column_names);
   for (const auto& log : logs) {
     if (log.time.size() < 10) throw InputError(fmt::format("{}: {} samples: too few", log.path, log.time.size()));
+    CheckClosure(start, log);
     try {
       kinematics.push_back(Kinematics(start, log, options.half_window));
     } catch (const std::domain_error& e) {

@@ -15,6 +15,7 @@ RobotLog ParseRobotLog(const std::string& path, const std::string& text,
   RobotLog log;
   log.path = path;
   log.time = std::move(csv.columns[0]);
+  log.line_numbers = std::move(csv.line_numbers);
   for (std::size_t i = 0; i < 3; ++i) {
     log.angle[i] = std::move(csv.columns[1 + i]);
     log.current[i] = std::move(csv.columns[4 + i]);

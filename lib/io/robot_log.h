@@ -14,6 +14,7 @@ struct RobotLog {
   std::vector<double> time;
   std::array<std::vector<double>, 3> angle;    ///< theta_i [rad]
   std::array<std::vector<double>, 3> current;  ///< i_i [A]
+  std::vector<int> line_numbers;               ///< file line of each sample (empty: not read from a file)
 };
 
 /// Parses t, theta1..3, i1..3. Throws InputError.

@@ -55,6 +55,24 @@ Vector2 CalcForwardKinematics(const PlanarRobotParameters& p, const Vector3& the
   return c;
 }
 
+ClosureCheck CalcClosure(const PlanarRobotParameters& p, const Vector3& theta, const Vector2& c) {
+  const auto bases = CalcBaseJoints(p.base_distance);
+  ClosureCheck out;
+  const double l = p.link_length;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const Vector2 b{bases[i][0] + l * std::cos(theta[i]), bases[i][1] + l * std::sin(theta[i])};
+    const double error = std::abs((c - b).norm() - l) / l;
+    // Not (error <= ...) so that NaN counts as the worst mismatch.
+    if (!(error <= out.length_error)) out.length_error = std::isnan(error) ? INFINITY : error;
+    const Vector2 to_centre = c - bases[i], to_elbow = b - bases[i];
+    const double cross = to_centre[0] * to_elbow[1] - to_centre[1] * to_elbow[0];
+    if (out.wrong_elbow == 0 && p.elbow[i] * cross < -kClosureTolerance * to_centre.norm() * l) {
+      out.wrong_elbow = static_cast<int>(i) + 1;
+    }
+  }
+  return out;
+}
+
 Matrix23 CalcTransposedInverseJacobian(const PlanarRobotParameters& p, const Vector2& c, const Vector3& theta) {
   const auto bases = CalcBaseJoints(p.base_distance);
   Matrix23 g = Matrix23::Zero();

@@ -86,6 +86,18 @@ Vector3 CalcInverseKinematics(const PlanarRobotParameters& p, const Vector2& c);
 /// circles |C - B_i| = l by Gauss-Newton from `guess`.
 Vector2 CalcForwardKinematics(const PlanarRobotParameters& p, const Vector3& theta, const Vector2& guess);
 
+/// How far joint angles are from an assembled robot, for the centre joint `c`
+/// from CalcForwardKinematics: the largest leg-length mismatch
+/// max_i | |C - B_i| - l | / l, and whether every elbow is on its side
+/// (elbow_i (C - A_i) x (B_i - A_i) >= -kClosureTolerance |C - A_i| l).
+struct ClosureCheck {
+  double length_error = 0.0;  ///< relative to l [-]
+  int wrong_elbow = 0;        ///< 1-based leg whose elbow is on the other side, 0 if none
+};
+/// Largest accepted relative mismatch (1 % of l; docs/models.md#planar-robot).
+inline constexpr double kClosureTolerance = 0.01;
+ClosureCheck CalcClosure(const PlanarRobotParameters& p, const Vector3& theta, const Vector2& c);
+
 /// G at a pose (c with its joint angles theta).
 Matrix23 CalcTransposedInverseJacobian(const PlanarRobotParameters& p, const Vector2& c, const Vector3& theta);
 /// dG/dt at a pose moving with x' (theta' = G' x').

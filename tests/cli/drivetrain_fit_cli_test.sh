@@ -189,6 +189,15 @@ expect 3 "no 'planar_robot' section" -- robot robot.csv --params paper.yaml
 expect 2 "not a parameter of the robot fit" -- robot robot.csv --params robot_start.yaml --free Theta,mass
 expect 2 "'theta1' and 'theta2' would both read column 'theta1'" -- robot robot.csv --params robot_start.yaml --col theta2=theta1
 expect 3 "triangle leaves the workspace" -- simulate robot --params robot.yaml --side 3
+# Angles that do not close the robot (issue 9 item 12): a wrong link length,
+# an elbow on the other side, random angles; the first bad line is named.
+sed 's/^\( *l:\).*/\1 0.1/' robot_start.yaml > robot_short.yaml
+expect 3 "robot.csv:[0-9]+: the joint angles do not close the robot .*% of l = 0.1 m" -- robot robot.csv --params robot_short.yaml
+sed 's/^\( *elbow:\).*/\1 [1, -1, 1]/' robot_start.yaml > robot_elbow.yaml
+expect 3 "robot.csv:[0-9]+: leg 2's elbow is on the other side" -- robot robot.csv --params robot_elbow.yaml
+awk 'BEGIN { srand(3); print "t,theta1,theta2,theta3,i1,i2,i3";
+  for (k = 0; k < 300; ++k) printf "%g,%g,%g,%g,0,0,0\n", k / 1000, 6 * rand() - 3, 6 * rand() - 3, 6 * rand() - 3 }' > robot_random.csv
+expect 3 "robot_random.csv:2: the joint angles do not close the robot" -- robot robot_random.csv --params robot_start.yaml
 if "$bin" robot robot.csv --params robot_start.yaml -q -o robot_fit.yaml --trace robot_trace.csv; then ok; else fail "robot fit"; fi
 theta=$(awk '/^  Theta:/ {print $2}' robot_fit.yaml)
 awk -v v="$theta" 'BEGIN { exit !(v > 0.5335 && v < 0.5665) }' && ok || fail "robot Theta $theta not within 3 % of 0.55"

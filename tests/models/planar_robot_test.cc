@@ -33,6 +33,28 @@ TEST_CASE("inverse and forward kinematics agree; links have length l; elbow side
   CHECK_THROWS_AS(CalcInverseKinematics(kRobot, {2.5, 0.0}), std::domain_error);
 }
 
+TEST_CASE("closure: zero for assembled angles, the leg mismatch for a moved joint, the elbow side") {
+  const Vector2 c = {kCentre[0] + 0.07, kCentre[1] - 0.02};
+  const Vector3 theta = CalcInverseKinematics(kRobot, c);
+  const ClosureCheck closed = CalcClosure(kRobot, theta, CalcForwardKinematics(kRobot, theta, kCentre));
+  CHECK(closed.length_error < 1e-12);
+  CHECK(closed.wrong_elbow == 0);
+  // Elbow B_1 rotated by 0.1 rad about A_1 while C stays: |C - B_1| changes
+  // by the chord geometry, computed here independently.
+  Vector3 moved = theta;
+  moved[0] += 0.1;
+  const double bx = 0.488 * std::cos(moved[0]), by = 0.488 * std::sin(moved[0]);
+  const double expected = std::abs(std::hypot(c[0] - bx, c[1] - by) - 0.488) / 0.488;
+  CHECK(CalcClosure(kRobot, moved, c).length_error == Approx(expected));
+  // The mirror-image elbow of leg 3 closes the robot too, on the other side.
+  PlanarRobotParameters mirrored = kRobot;
+  mirrored.elbow[2] = -1;
+  const Vector3 other = CalcInverseKinematics(mirrored, c);
+  const ClosureCheck flipped = CalcClosure(kRobot, other, c);
+  CHECK(flipped.length_error < 1e-12);
+  CHECK(flipped.wrong_elbow == 3);
+}
+
 TEST_CASE("theta' = G' x' and dG/dt against finite differences") {
   const Vector2 c = {kCentre[0] + 0.05, kCentre[1] - 0.03};
   const Vector2 v = {0.7, -1.3};
