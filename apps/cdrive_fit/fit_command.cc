@@ -21,10 +21,9 @@ CLI::App* SetupCDriveFitCommand(CLI::App& app, CDriveFitCommandOptions& options,
   command->add_option("logs", options.logs, "C-drive logs: CSV with t, psi_L, psi_R, tau_L, tau_R (or i_L, i_R)")
       ->required();
   command->add_option("--params", options.params, "parameter file with a cdrive section")->required();
-  command->add_option("--free", options.free,
-                      FreeOptionHelp(CDriveParameterTable(), friction ? "friction" : "inertia",
-                                     friction ? "" : "; all three of I_h, I_c, m are not identifiable"))
-      ->delimiter(',');
+  AddFreeOption(*command, options.free,
+                FreeOptionHelp(CDriveParameterTable(), friction ? "friction" : "inertia",
+                               friction ? "" : "; all three of I_h, I_c, m are not identifiable"));
   command->add_option("--col", options.columns, "map a column: NAME=HEADER (e.g. psi_L=encoder_left)");
   command->add_option("--window", options.window,
                       friction ? "half window of the zero-phase differentiator [s] (default 0.01)"

@@ -51,6 +51,9 @@ int RunMain(CLI::App& app, int argc, char** argv, const std::function<void()>& d
   } catch (const CLI::ParseError& e) {
     Fail(program, std::string(e.what()) + " (see --help)");
     return kUsage;
+  } catch (const OptionError& e) {  // from an option's callback
+    Fail(program, e.what());
+    return kUsage;
   }
   try {
     dispatch();
@@ -119,6 +122,26 @@ std::optional<double> ParseDouble(const std::string& text) {
 }
 
 }  // namespace
+
+void AddFreeOption(CLI::App& command, std::vector<std::string>& free, const std::string& help) {
+  command
+      .add_option_function<std::string>(
+          "--free",
+          [&free](const std::string& text) {
+            std::size_t begin = 0;
+            while (true) {
+              const std::size_t end = text.find(',', begin);
+              const std::string name = text.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+              if (name.empty()) throw CLI::ValidationError("--free", fmt::format("'{}' holds an empty parameter name", text));
+              free.push_back(name);
+              if (end == std::string::npos) break;
+              begin = end + 1;
+            }
+          },
+          help)
+      ->type_name("NAMES")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+}
 
 CLI::Validator FiniteAbove(double minimum) {
   return CLI::Validator(

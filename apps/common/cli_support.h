@@ -85,6 +85,10 @@ std::string FreeOptionHelp(const ParameterTable<Section, Model>& table, const st
                      fmt::join(FitParameterKeys(table, fit, true), ","));
 }
 
+/// Adds --free NAMES (comma-separated, repeatable) collecting into `free`;
+/// an empty name (`--free ,`, `--free a,,b`) is a CLI::ValidationError (exit 2).
+void AddFreeOption(CLI::App& command, std::vector<std::string>& free, const std::string& help);
+
 /// With -v, logs every solver iteration of the fit to stderr.
 void SetProgress(FitOptions& fit, bool verbose);
 

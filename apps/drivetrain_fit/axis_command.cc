@@ -18,8 +18,7 @@ CLI::App* SetupAxisCommand(CLI::App& app, AxisOptions& options) {
       "axis", "Inertia, viscous and Coulomb friction and offset of a rigid axis by IDIM-LS (docs/models.md#axis)");
   command->add_option("logs", options.logs, "axis logs: CSV with t, q and tau (or i with axis.k_t)")->required();
   command->add_option("--params", options.params, "parameter file with an axis section (start values, k_t, n_g)");
-  command->add_option("--free", options.free, FreeOptionHelp(AxisParameterTable(), "axis"))
-      ->delimiter(',');
+  AddFreeOption(*command, options.free, FreeOptionHelp(AxisParameterTable(), "axis"));
   command->add_option("--col", options.columns, "map a column: NAME=HEADER (e.g. q=position)");
   command->add_option("--cutoff", options.cutoff, "position low-pass cutoff [Hz] (default: sampling rate / 40)")
       ->check(FiniteAbove(0.0));

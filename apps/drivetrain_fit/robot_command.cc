@@ -16,7 +16,7 @@ CLI::App* SetupRobotCommand(CLI::App& app, RobotOptions& options) {
       "robot", "Theta, m_c, d_g of the planar robot from joint angles and motor currents (docs/models.md#planar-robot)");
   command->add_option("logs", options.logs, "robot logs: CSV with t, theta1..3, i1..3")->required();
   command->add_option("--params", options.params, "parameter file with a planar_robot section")->required();
-  command->add_option("--free", options.free, FreeOptionHelp(PlanarRobotParameterTable(), "robot"))->delimiter(',');
+  AddFreeOption(*command, options.free, FreeOptionHelp(PlanarRobotParameterTable(), "robot"));
   command->add_option("--col", options.columns, "map a column: NAME=HEADER");
   command->add_option("--window", options.window, "half window of the zero-phase differentiator [s]")
       ->capture_default_str()

@@ -19,8 +19,7 @@ CLI::App* SetupStepCommand(CLI::App& app, StepOptions& options) {
       ->required();
   command->add_option("--model", options.model, "reduced (eq. 16, second order) or full (eqs. 13-14)")
       ->check(CLI::IsMember({"reduced", "full"}));
-  command->add_option("--free", options.free, FreeOptionHelp(DriveTrainParameterTable(), "step", ", offset (a bias per log)"))
-      ->delimiter(',');
+  AddFreeOption(*command, options.free, FreeOptionHelp(DriveTrainParameterTable(), "step", ", offset (a bias per log)"));
   command->add_option("--col", options.columns, "map a column: NAME=HEADER (e.g. tau_link=strain_gauge)");
   AddFitOutputOptions(*command, options.output);
   command->footer(

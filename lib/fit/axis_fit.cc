@@ -100,7 +100,7 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
   LinearRegression regression(column_names);  // [q'', q', sgn q', 1] per decimated sample
   for (std::size_t i = 0; i < logs.size(); ++i) {
     const AxisLog& log = logs[i];
-    if (log.time.size() < 20) throw InputError(fmt::format("{}: {} samples: too few for IDIM-LS", log.path, log.time.size()));
+    if (log.time.size() < kMinAxisLogSamples) throw InputError(fmt::format("{}: {} samples: too few for IDIM-LS", log.path, log.time.size()));
     const Derivatives d = Differentiate(log, options.cutoff);
     out.method = d.rate_hz > 0.0 ? "IDIM-LS: Butterworth zero-phase, central differences, parallel decimation"
                                  : "IDIM-LS on irregular samples: local-polynomial rates, subsampling";

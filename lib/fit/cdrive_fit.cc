@@ -206,7 +206,7 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
   Derivatives design;
   LinearRegression regression(columns);
   for (const auto& log : logs) {
-    if (log.time.size() < 5) {
+    if (log.time.size() < kMinCDriveLogSamples) {
       throw InputError(fmt::format("{}: {} samples: too few to differentiate", log.path, log.time.size()));
     }
     // Rates and accelerations from the +-half_window fit. When a + b and

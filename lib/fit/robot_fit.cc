@@ -131,7 +131,7 @@ RobotFitOutput FitRobot(const std::vector<RobotLog>& logs, const PlanarRobotPara
   // Per sample and Cartesian component: [G theta'', x'', n_g^2 G theta'] against n_g G tau.
   LinearRegression regression(column_names);
   for (const auto& log : logs) {
-    if (log.time.size() < 10) throw InputError(fmt::format("{}: {} samples: too few", log.path, log.time.size()));
+    if (log.time.size() < kMinRobotLogSamples) throw InputError(fmt::format("{}: {} samples: too few", log.path, log.time.size()));
     CheckClosure(start, log);
     try {
       kinematics.push_back(Kinematics(start, log, options.half_window));

@@ -119,8 +119,9 @@ class StepResiduals final : public ResidualModel {
 };
 
 void CheckStepLog(const StepLog& log) {
-  if (log.time.size() < 3) {
-    throw InputError(fmt::format("{}: {} samples: a step log needs at least 3", log.path, log.time.size()));
+  if (log.time.size() < kMinStepLogSamples) {
+    throw InputError(fmt::format("{}: {} samples: a step log needs at least {}", log.path, log.time.size(),
+                                 kMinStepLogSamples));
   }
   const bool steps = std::any_of(log.motor_torque.begin(), log.motor_torque.end(),
                                  [&](double u) { return u != log.motor_torque.front(); });

@@ -8,6 +8,9 @@
 
 namespace driveid {
 
+/// Fewest samples the axis fit accepts in a log.
+inline constexpr std::size_t kMinAxisLogSamples = 20;
+
 struct AxisLog {
   std::string path;
   std::vector<double> time;      ///< [s]

@@ -9,6 +9,9 @@
 namespace driveid {
 
 /// A C-drive log (docs/formats.md#logs): motor angles and torques (or currents x k_t).
+/// Fewest samples the C-drive fits accept in a log.
+inline constexpr std::size_t kMinCDriveLogSamples = 5;
+
 struct CDriveLog {
   std::string path;
   std::vector<double> time;         ///< [s]

@@ -8,6 +8,9 @@
 
 namespace driveid {
 
+/// Fewest samples the robot fit accepts in a log.
+inline constexpr std::size_t kMinRobotLogSamples = 10;
+
 /// A robot log (docs/formats.md#logs): joint angles at the gear output and motor currents.
 struct RobotLog {
   std::string path;

@@ -9,6 +9,9 @@
 namespace driveid {
 
 /// A logged step response (docs/formats.md#logs, step log).
+/// Fewest samples the step fit accepts in a log.
+inline constexpr std::size_t kMinStepLogSamples = 3;
+
 struct StepLog {
   std::string path;
   std::vector<double> time;          ///< t [s], strictly increasing

@@ -91,7 +91,8 @@ RobotLog SimulateRobotExperiment(const PlanarRobotParameters& robot, const Robot
   RequireOption(e.current_noise >= 0.0 && std::isfinite(e.current_noise), "--noise", e.current_noise, ">= 0 A");
   RequireOption(std::isfinite(e.prestress), "--prestress", e.prestress, "finite");
   const double duration = CalcTriangleDuration(e);
-  RequireOption(duration * e.rate <= 1e7, "--loops", e.loops, "at most 1e7 samples");
+  RequireSampleCount(std::round(duration * e.rate) + 1, kMinRobotLogSamples,
+                     fmt::format("--rate {} with --loops {} (a {:.4g} s triangle program)", e.rate, e.loops, duration));
   GaussianNoise noise(e.seed);
   const double quantum = 2.0 * M_PI / (e.encoder_counts * robot.gear_ratio);
   RobotLog log;

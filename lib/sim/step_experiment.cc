@@ -12,14 +12,13 @@
 
 namespace driveid {
 namespace {
-constexpr double kMaxSamples = 1e7;
-
 }  // namespace
 
 void ValidateStepExperiment(const StepExperiment& e) {
   RequireOption(std::isfinite(e.rate) && e.rate > 0.0, "--rate", e.rate, "rate > 0 Hz");
   RequireOption(std::isfinite(e.duration) && e.duration > 0.0, "--duration", e.duration, "duration > 0 s");
-  RequireOption(e.duration * e.rate <= kMaxSamples, "--duration", e.duration, "duration * rate <= 1e7 samples");
+  RequireSampleCount(std::round(e.duration * e.rate) + 1, kMinStepLogSamples,
+                     fmt::format("--duration {} at --rate {}", e.duration, e.rate));
   RequireOption(std::isfinite(e.step_time) && e.step_time >= 0.0 && e.step_time < e.duration, "--step-time", e.step_time,
           "0 <= step time < duration");
   RequireOption(std::isfinite(e.step_torque), "--step-torque", e.step_torque, "finite");

@@ -27,6 +27,9 @@ printf 't,psi_L,psi_R,i_L,tau_R\n0,0,0,0,0\n' > mixed.csv
 printf 't,psi_L,psi_R,tau_L,tau_R\n0,0,0,0,0\n0,0,0,0,0\n' > time.csv
 expect 3 "missing.csv:1: missing column 'tau_R' or 'i_R'" -- friction missing.csv --params table1.yaml
 expect 2 "'psi_L' and 'psi_R' would both read column 'psi_L'" -- friction translation.csv --params table1.yaml --col psi_R=psi_L
+expect 2 "--free: 'beta,' holds an empty parameter name" -- friction translation.csv --params table1.yaml --free beta,
+expect 2 "--stroke 1e-09 with --cycles 1 at cdrive.control.sample_time .* gives 1 samples: the fit of such a log needs at least 5" -- \
+  simulate --program helical --params table1.yaml --stroke 1e-9
 for bad in 0 nan; do expect 2 "--window.*must be a finite number > 0" -- friction translation.csv --params table1.yaml --window "$bad"; done
 for bad in -1 nan; do expect 2 "--settle.*must be a finite number >= 0" -- friction translation.csv --params table1.yaml --settle "$bad"; done
 expect 3 "not_number.csv:3: column 'psi_R': not a number" -- friction not_number.csv --params table1.yaml

@@ -64,6 +64,16 @@ expect 4 "Theta_g has no effect in the reduced model" -- step good.csv --params 
 
 # Usage errors: exit 2.
 expect 2 "not a parameter of the step fit" -- step good.csv --params start.yaml --free d_g,mass
+expect 2 "--free: ',' holds an empty parameter name" -- step good.csv --params start.yaml --free ,
+expect 2 "--free: 'd_g,,tau_c' holds an empty parameter name" -- step good.csv --params start.yaml --free d_g,,tau_c
+# Simulated logs: never fewer samples than the fit accepts, never more than
+# the bound, and the message names the options that set the count.
+expect 2 "--duration 0.001 at --rate 1000 gives 2 samples: the fit of such a log needs at least 20" -- \
+  simulate axis --params "$src/data/axis_example.yaml" --duration 1e-3
+expect 2 "--duration 0.001 at --rate 1000 gives 2 samples: the fit of such a log needs at least 3" -- \
+  simulate step --params "$src/data/paper000.yaml" --duration 1e-3 --step-time 0
+expect 2 "--rate 1000000000 with --loops 3 .* gives 1.79e\+09 samples: at most" -- \
+  simulate robot --params "$src/data/robot_paper000.yaml" --rate 1e9
 expect 2 "" -- step good.csv --params start.yaml --bogus
 expect 2 "png or .svg" -- step good.csv --params start.yaml --plot fit.jpg
 expect 2 "" -- step good.csv
