@@ -36,6 +36,12 @@ double ParseNumber(const std::string& path, const std::string& name, const YAML:
     throw InputError(fmt::format("{}: {}: not a finite number: \"{}\"", Where(path, node), name,
                                  text.substr(0, 40)));
   }
+  // Products and quotients of a few parameters (k_eq, omega_n, ...) must stay
+  // finite: values are 0 or within 1e-100 <= |v| <= 1e100 (docs/formats.md).
+  if (value != 0.0 && !(std::abs(value) >= kSmallestParameterMagnitude && std::abs(value) <= kLargestParameterMagnitude)) {
+    throw InputError(fmt::format("{}: {} = {}: outside the range of parameter values (0 or 1e-100 <= |value| <= 1e100)",
+                                 Where(path, node), name, text.substr(0, 40)));
+  }
   return value;
 }
 

@@ -23,6 +23,10 @@
 
 namespace driveid {
 
+/// Numbers in parameter files are 0 or within these magnitudes (docs/formats.md).
+inline constexpr double kSmallestParameterMagnitude = 1e-100;
+inline constexpr double kLargestParameterMagnitude = 1e100;
+
 /// A parameter file: the sections of the models it holds (each section
 /// struct names itself with `kSectionName` and is registered once in
 /// parameter_file.cc), plus what a previous fit left.

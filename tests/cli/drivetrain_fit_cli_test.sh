@@ -112,13 +112,18 @@ cp paper.yaml paper_copy.yaml
 
 # Writers refuse non-finite numbers (the tools' own reader would refuse them).
 sed 's/^  k_Tl: .*/  k_Tl: 1e308/' paper.yaml > huge.yaml
-expect 3 "would be .*nan|would be .*inf" -- simulate step --params huge.yaml
+# Parameter values whose products overflow are refused where they are read.
+expect 3 "huge.yaml:[0-9]+:[0-9]+: drivetrain.k_Tl = 1e308: outside the range" -- simulate step --params huge.yaml
+"$bin" report huge.yaml > stdout.txt 2> stderr.txt
+[ $? -eq 3 ] && [ ! -s stdout.txt ] && grep -q "drivetrain.k_Tl = 1e308: outside the range" stderr.txt && ok ||
+  fail "report of an overflowing parameter: $(cat stderr.txt)"
 expect 3 "column 'tau_link' would be inf" -- simulate step --params paper.yaml --noise 1e308
 
 # Endless or odd inputs fail fast (limits enforced while reading), never fill memory.
 # (Memory capped with ulimit -v, except under AddressSanitizer, whose shadow
 # memory cannot be reserved under such a cap.)
 ( ldd "$bin" 2> /dev/null | grep -q libasan || ulimit -v 4000000
+  failed=0
   expect 3 "/dev/zero:1: line longer than" -- step /dev/zero --params start.yaml
   expect 3 "/dev/zero:1: line longer than" -- step good.csv --params /dev/zero
   expect 3 "is a directory, not a file" -- step out_dir --params start.yaml

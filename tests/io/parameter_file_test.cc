@@ -60,6 +60,12 @@ TEST_CASE("bad parameter files name file, line, column and key") {
   CHECK_THAT(ErrorOf("drivetrain:\n  n_g: 80\n  k_Tl: -15000\n"),
              Catch::StartsWith("p.yaml:3:9: drivetrain.k_Tl: must be > 0, got -15000"));
   CHECK(ErrorOf("drivetrain:\n  n_g: 80\n  k_Tl: .nan\n") == "p.yaml:3:9: drivetrain.k_Tl: not a finite number: \".nan\"");
+  CHECK_THAT(ErrorOf("drivetrain:\n  n_g: 80\n  k_Tl: 1e101\n"),
+             Catch::StartsWith("p.yaml:3:9: drivetrain.k_Tl = 1e101: outside the range of parameter values"));
+  CHECK_THAT(ErrorOf("drivetrain:\n  n_g: 80\n  k_Tl: -1e-101\n"), Catch::Contains("outside the range"));
+  std::string zero = kValid;
+  zero.replace(zero.find("tau_c: 5.0"), 10, "tau_c: 0");
+  CHECK(ErrorOf(zero) == "no error");  // 0 is in range
   CHECK(ErrorOf("drivetrain:\n  n_g: eighty\n") == "p.yaml:2:8: drivetrain.n_g: not a finite number: \"eighty\"");
   CHECK_THAT(ErrorOf("drivetrain:\n  n_g: 80\n"), Catch::Contains("drivetrain.k_Tl: missing value"));
   CHECK_THAT(ErrorOf("drivetrain: [1, 2\n"), Catch::StartsWith("p.yaml:"));
