@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <system_error>
 
+#include <signal.h>
 #include <sys/stat.h>
 #include <stdexcept>
 
@@ -16,6 +17,7 @@
 
 #include "core/errors.h"
 #include "io/atomic_file.h"
+#include "io/temporary_files.h"
 #include "report/fit_summary.h"
 
 namespace driveid::cli {
@@ -36,10 +38,33 @@ void Fail(const std::string& program, const std::string& message) {
   std::fprintf(stderr, "%s: %s\n", program.c_str(), OneLine(message).c_str());
 }
 
+// SIGINT, SIGTERM, SIGHUP: remove the run's temporary files (and stop
+// gnuplot), then die of the signal as if there were no handler (exit status
+// 128 + signal in a shell). A signal ignored at start (nohup, a background
+// job of a script) stays ignored.
+void DieOfSignal(int signal_number) {
+  RemoveTemporaryFilesNow();
+  ::signal(signal_number, SIG_DFL);
+  ::raise(signal_number);
+}
+
+void InstallSignalCleanup() {
+  for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction previous {};
+    if (::sigaction(signal_number, nullptr, &previous) == 0 && previous.sa_handler == SIG_IGN) continue;
+    struct sigaction action {};
+    action.sa_handler = DieOfSignal;
+    sigemptyset(&action.sa_mask);
+    for (int other : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&action.sa_mask, other);
+    ::sigaction(signal_number, &action, nullptr);
+  }
+}
+
 }  // namespace
 
 int RunMain(CLI::App& app, int argc, char** argv, const std::function<void()>& dispatch) {
   const std::string program = app.get_name();
+  InstallSignalCleanup();
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

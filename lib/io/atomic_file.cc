@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "io/temporary_files.h"
 
 namespace driveid {
 namespace {
@@ -90,12 +91,10 @@ StagedOutput Stage(const std::string& path, const std::string& contents) {
     }
     mode = status.st_mode & 07777;  // an existing file keeps its permissions
   }
-  std::string pattern = out.destination + ".tmp.XXXXXX";
-  std::vector<char> name(pattern.begin(), pattern.end());
-  name.push_back('\0');
-  const int fd = ::mkstemp(name.data());
+  std::string name = out.destination + ".tmp.XXXXXX";
+  const int fd = CreateTemporaryFile(name);
   if (fd < 0) Fail(path, "cannot create output file", errno);
-  out.temporary = name.data();
+  out.temporary = name;
   bool ok = WriteAll(fd, contents);
   int error = errno;
   if (ok && (::fchmod(fd, mode) != 0 || ::fsync(fd) != 0)) {
@@ -107,7 +106,7 @@ StagedOutput Stage(const std::string& path, const std::string& contents) {
     error = errno;
   }
   if (!ok) {
-    ::unlink(out.temporary.c_str());
+    RemoveTemporaryFile(out.temporary);
     Fail(path, "cannot write output file", error);
   }
   return out;
@@ -119,22 +118,24 @@ void WriteFilesAtomically(const std::vector<std::pair<std::string, std::string>>
   std::vector<StagedOutput> staged;
   auto discard = [&] {
     for (const auto& s : staged) {
-      if (!s.temporary.empty()) ::unlink(s.temporary.c_str());
+      if (!s.temporary.empty()) RemoveTemporaryFile(s.temporary);
     }
   };
   try {
     for (const auto& [path, contents] : files) staged.push_back(Stage(path, contents));
-    // Everything is written: now replace the files, then write in place.
-    for (std::size_t i = 0; i < staged.size(); ++i) {
-      if (staged[i].temporary.empty()) continue;
-      if (::rename(staged[i].temporary.c_str(), staged[i].destination.c_str()) != 0) {
-        const int error = errno;
-        for (std::size_t j = i; j < staged.size(); ++j) {
-          if (!staged[j].temporary.empty()) ::unlink(staged[j].temporary.c_str());
+    // Everything is written: now replace the files (with the termination
+    // signals held back, so that a signal commits all or none), then write
+    // in place.
+    {
+      TerminationSignalsBlocked blocked;
+      for (std::size_t i = 0; i < staged.size(); ++i) {
+        if (staged[i].temporary.empty()) continue;
+        if (::rename(staged[i].temporary.c_str(), staged[i].destination.c_str()) != 0) {
+          Fail(staged[i].path, "cannot write output file", errno);  // the rest is discarded below
         }
-        Fail(staged[i].path, "cannot write output file", error);
+        ForgetTemporaryFile(staged[i].temporary);
+        staged[i].temporary = "committed";
       }
-      staged[i].temporary = "committed";
     }
     for (const auto& s : staged) {
       if (s.temporary.empty()) WriteInPlace(s.destination, *s.contents);

@@ -1,6 +1,7 @@
 #include "report/plot.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
@@ -18,6 +19,7 @@
 #include "core/errors.h"
 #include "io/atomic_file.h"
 #include "io/csv_log.h"
+#include "io/temporary_files.h"
 
 extern char** environ;
 
@@ -44,19 +46,11 @@ std::string GnuplotString(const std::string& text) {
 }
 
 std::string TemporaryName(const std::string& base, const std::string& suffix) {
-  std::string pattern = base + ".tmp.XXXXXX";
-  std::vector<char> name(pattern.begin(), pattern.end());
-  name.push_back('\0');
-  const int fd = ::mkstemp(name.data());
+  std::string name = base + ".tmp.XXXXXX" + suffix;
+  const int fd = CreateTemporaryFile(name, static_cast<int>(suffix.size()));
   if (fd < 0) throw OutputError(fmt::format("{}: cannot create temporary file", base));
   ::close(fd);
-  const std::string created(name.data());
-  const std::string renamed = created + suffix;
-  if (std::rename(created.c_str(), renamed.c_str()) != 0) {
-    std::remove(created.c_str());
-    throw OutputError(fmt::format("{}: cannot create temporary file", base));
-  }
-  return renamed;
+  return name;
 }
 
 }  // namespace
@@ -74,8 +68,8 @@ std::string RenderPanels(const std::string& path, const std::vector<PlotPanel>& 
   const std::string script_path = TemporaryName(base, ".gp");
   const std::string error_path = TemporaryName(base, ".err");
   auto cleanup = [&] {
-    std::remove(script_path.c_str());
-    std::remove(error_path.c_str());
+    RemoveTemporaryFile(script_path);
+    RemoveTemporaryFile(error_path);
   };
   const int height = 150 + 330 * static_cast<int>(panels.size());
   std::string script;
@@ -119,7 +113,7 @@ std::string RenderPanels(const std::string& path, const std::vector<PlotPanel>& 
     WriteFileAtomically(script_path, script);
   } catch (...) {
     cleanup();
-    std::remove(image.c_str());
+    RemoveTemporaryFile(image);
     throw;
   }
 
@@ -129,11 +123,29 @@ std::string RenderPanels(const std::string& path, const std::vector<PlotPanel>& 
   posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, error_path.c_str(), O_WRONLY | O_TRUNC, 0644);
   std::string program = "gnuplot";
   std::vector<char*> argv = {program.data(), const_cast<char*>(script_path.c_str()), nullptr};
+  // gnuplot is registered as the writer of the image (killed by a
+  // termination signal before the files go); it starts with no signal blocked.
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  sigset_t none;
+  sigemptyset(&none);
+  posix_spawnattr_setsigmask(&attributes, &none);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK);
   pid_t pid = 0;
-  const int spawned = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv.data(), environ);
+  int spawned = 0;
+  {
+    TerminationSignalsBlocked blocked;
+    spawned = posix_spawnp(&pid, "gnuplot", &actions, &attributes, argv.data(), environ);
+    if (spawned == 0) SetTemporaryFileWriter(pid);
+  }
   posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attributes);
   int status = 0;
-  if (spawned == 0) ::waitpid(pid, &status, 0);
+  if (spawned == 0) {
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    SetTemporaryFileWriter(0);
+  }
   std::string error_text;
   try {
     error_text = ReadFileToString(error_path);
@@ -141,7 +153,7 @@ std::string RenderPanels(const std::string& path, const std::vector<PlotPanel>& 
   }
   cleanup();
   if (spawned != 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    std::remove(image.c_str());
+    RemoveTemporaryFile(image);
     if (spawned != 0) throw OutputError("cannot run gnuplot for --plot (install the Debian package gnuplot-nox)");
     std::string first = error_text;
     while (!first.empty() && (first.front() == '\n' || first.front() == ' ')) first.erase(first.begin());
@@ -154,10 +166,10 @@ std::string RenderPanels(const std::string& path, const std::vector<PlotPanel>& 
     binary.max_line_bytes = 0;  // an image has no lines
     bytes = ReadFileToString(image, binary);
   } catch (const InputError&) {
-    std::remove(image.c_str());
+    RemoveTemporaryFile(image);
     throw OutputError(fmt::format("{}: gnuplot wrote no image", path));
   }
-  std::remove(image.c_str());
+  RemoveTemporaryFile(image);
   return bytes;
 }
 

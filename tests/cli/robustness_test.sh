@@ -55,6 +55,48 @@ for attempt in 1 2 3; do
 done
 [ "$interrupted" -gt 0 ] && ok || fail "no kill landed during a write: the test proved nothing"
 
+# SIGINT, SIGTERM, SIGHUP (issue 9 item 3): while an output is being written,
+# the tool dies of the signal (status 128 + n), its temporary file is gone and
+# the old file is unchanged. Job control puts background jobs in their own
+# process group, where SIGINT is not ignored.
+set -m
+for signal in INT TERM HUP; do
+  "$dt" simulate step --params "$src/data/paper000.yaml" --rate 200000 --duration 20 -o big.csv &
+  pid=$!
+  while kill -0 "$pid" 2> /dev/null && ! ls big.csv.tmp.* > /dev/null 2>&1; do sleep 0.001; done
+  ls big.csv.tmp.* > /dev/null 2>&1 || fail "SIG$signal: no temporary file was seen (the test proved nothing)"
+  kill -s "$signal" "$pid"
+  wait "$pid"
+  code=$?
+  expected=$((128 + $(kill -l "$signal")))
+  [ "$code" -eq "$expected" ] && ok || fail "SIG$signal: exit status $code, expected $expected"
+  ls big.csv.tmp.* > /dev/null 2>&1 && fail "SIG$signal left $(ls big.csv.tmp.*)" || ok
+  cmp -s big.csv old.csv && ok || fail "SIG$signal changed the old file"
+  rm -f big.csv.tmp.*
+done
+# During a plot: a stand-in gnuplot that hangs; the signal stops it and
+# removes the script, its error file and the image from TMPDIR.
+mkdir -p fakebin plot_tmp
+printf '#!/bin/sh\nexec sleep 60\n' > fakebin/gnuplot
+chmod +x fakebin/gnuplot
+"$dt" simulate step --params "$src/data/paper000.yaml" --noise 0.1 -o plotted.csv
+for signal in INT TERM HUP; do
+  PATH="$work/fakebin:$PATH" TMPDIR="$work/plot_tmp" "$dt" step plotted.csv --params "$src/data/paper000_start.yaml" -q \
+    -o plotted.yaml --plot plotted.png &
+  pid=$!
+  while kill -0 "$pid" 2> /dev/null && ! pgrep -P "$pid" sleep > /dev/null 2>&1; do sleep 0.01; done
+  ls plot_tmp/driveid-plot.tmp.* > /dev/null 2>&1 || fail "SIG$signal: no plot file was seen (the test proved nothing)"
+  sleeper=$(pgrep -P "$pid" sleep)
+  kill -s "$signal" "$pid"
+  wait "$pid"
+  code=$?
+  [ "$code" -eq $((128 + $(kill -l "$signal"))) ] && ok || fail "SIG$signal during a plot: exit status $code"
+  [ -z "$(ls plot_tmp)" ] && ok || fail "SIG$signal during a plot left $(ls plot_tmp)"
+  { [ -z "$sleeper" ] || ! kill -0 "$sleeper" 2> /dev/null; } && ok || fail "SIG$signal: gnuplot still runs"
+  [ ! -e plotted.yaml ] && [ ! -e plotted.png ] && ok || fail "SIG$signal during a plot wrote outputs"
+done
+set +m
+
 # Byte-identical reruns of every fitting subcommand (same command line).
 rerun() {
   local name="$1"

@@ -1,0 +1,49 @@
+// Temporary files of a run (staged outputs, gnuplot's script and image) and
+// the child process writing one, kept where a signal handler can reach them:
+// on SIGINT/SIGTERM/SIGHUP the tools remove them before they die
+// (README, "Robustness and the error bars"). The library installs no handler;
+// the applications call RemoveTemporaryFilesNow() from theirs.
+#pragma once
+
+#include <string>
+
+#include <signal.h>
+#include <sys/types.h>
+
+namespace driveid {
+
+/// Creates a file from a mkstemps pattern ("...XXXXXX" followed by
+/// `suffix_length` characters; the X's are replaced in place) and
+/// registers it, with the termination signals blocked in between so that no
+/// signal can leave it behind. Returns the open descriptor, or -1 (errno set).
+int CreateTemporaryFile(std::string& pattern, int suffix_length = 0);
+
+/// Forgets a temporary file (after it was renamed into place or removed).
+void ForgetTemporaryFile(const std::string& path);
+
+/// Removes a temporary file and forgets it.
+void RemoveTemporaryFile(const std::string& path);
+
+/// The child process writing into temporary files (0: none); killed and
+/// reaped by RemoveTemporaryFilesNow().
+void SetTemporaryFileWriter(pid_t child);
+
+/// Async-signal-safe: kills the registered child and unlinks every registered
+/// temporary file. For signal handlers only.
+void RemoveTemporaryFilesNow() noexcept;
+
+/// Blocks SIGINT, SIGTERM and SIGHUP while alive (e.g. during a commit of
+/// several outputs, so that a signal cannot leave some committed and some
+/// not); a signal that arrives meanwhile is delivered at the end.
+class TerminationSignalsBlocked {
+ public:
+  TerminationSignalsBlocked();
+  ~TerminationSignalsBlocked();
+  TerminationSignalsBlocked(const TerminationSignalsBlocked&) = delete;
+  TerminationSignalsBlocked& operator=(const TerminationSignalsBlocked&) = delete;
+
+ private:
+  sigset_t saved_;
+};
+
+}  // namespace driveid
