@@ -56,7 +56,7 @@ void RunCDriveFitCommand(const CDriveFitCommandOptions& options, const std::stri
   outputs.provenance.command = command_line;
   outputs.provenance.version = DRIVEID_VERSION;
   outputs.provenance.model = friction ? "cdrive friction (28)" : "cdrive inertia (17), (28)";
-  const auto logs = LoadLogs<CDriveLog>(options.logs, outputs.provenance, [&](const std::string& path, const std::string& text) {
+  const auto logs = LoadLogs<CDriveLog>(options.logs, options.output, outputs.provenance, [&](const std::string& path, const std::string& text) {
     return ParseCDriveLog(path, text, column_map, start.Find<CDriveSection>()->torque_constant.value_or(0.0));
   });
 

@@ -168,6 +168,16 @@ void AddFreeOption(CLI::App& command, std::vector<std::string>& free, const std:
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
 }
 
+CLI::Validator FiniteWithin(double minimum, double maximum) {
+  return CLI::Validator(
+      [minimum, maximum](std::string& text) -> std::string {
+        const auto value = ParseDouble(text);
+        if (value && *value >= minimum && *value <= maximum) return {};  // NaN fails both
+        return fmt::format("{}: must be a number in [{}, {}]", text, minimum, maximum);
+      },
+      fmt::format("NUMBER in [{}, {}]", minimum, maximum));
+}
+
 CLI::Validator FiniteAbove(double minimum) {
   return CLI::Validator(
       [minimum](std::string& text) -> std::string {
@@ -269,6 +279,11 @@ void AddFitOutputOptions(CLI::App& command, FitOutputOptions& options) {
   command.add_flag("--json", options.json, "print the summary as one JSON object instead of the table");
   command.add_flag("-q,--quiet", options.quiet, "print no summary table");
   command.add_flag("-v,--verbose", options.verbose, "log solver iterations on stderr");
+  command
+      .add_option("--max-log-size", options.max_log_gib,
+                  "largest log to read [GiB]; a fit holds about 3 times its logs' size in memory")
+      ->capture_default_str()
+      ->check(FiniteWithin(1e-6, 1024.0));
 }
 
 void EmitFitOutputs(const FitOutputOptions& options, const FitOutputs& outputs) {

@@ -33,8 +33,10 @@ std::string CommandLine(int argc, char** argv);
 void WriteStdout(const std::string& text);
 
 /// Validators for option values (exit 2 with the option named): a finite
-/// number above (or at least) `minimum`; a seed, a whole number 0 .. 2^64 - 1.
+/// number above (or at least) `minimum`, or within [minimum, maximum]; a
+/// seed, a whole number 0 .. 2^64 - 1.
 CLI::Validator FiniteAbove(double minimum);
+CLI::Validator FiniteWithin(double minimum, double maximum);
 CLI::Validator FiniteAtLeast(double minimum);
 CLI::Validator Seed();
 
@@ -53,7 +55,9 @@ struct FitOutputOptions {
   bool json = false;
   bool quiet = false;
   bool verbose = false;
+  double max_log_gib = 4.0;  ///< --max-log-size: largest log read [GiB]
 };
+/// Adds -o, --trace, --plot, --json, -q, -v and --max-log-size.
 void AddFitOutputOptions(CLI::App& command, FitOutputOptions& options);
 /// CheckDistinctFiles for a fit's -o, --trace and --plot.
 void CheckFitOutputs(const FitOutputOptions& options, std::vector<std::string> inputs);
@@ -92,14 +96,18 @@ void AddFreeOption(CLI::App& command, std::vector<std::string>& free, const std:
 /// With -v, logs every solver iteration of the fit to stderr.
 void SetProgress(FitOptions& fit, bool verbose);
 
-/// Reads each log once, parses it with `parse(path, text)` and records its
+/// Reads each log once (at most --max-log-size bytes), parses it with `parse(path, text)` and records its
 /// provenance (file, SHA-256, samples) in `provenance`; refuses (exit 2) a
 /// log whose contents were given already.
 template <typename Log, typename Parse>
-std::vector<Log> LoadLogs(const std::vector<std::string>& paths, FitProvenance& provenance, Parse parse) {
+std::vector<Log> LoadLogs(const std::vector<std::string>& paths, const FitOutputOptions& options,
+                          FitProvenance& provenance, Parse parse) {
+  ReadLimits limits;
+  limits.max_bytes = static_cast<std::size_t>(options.max_log_gib * 1073741824.0);
+  limits.max_bytes_hint = fmt::format("a log may be at most {} GiB (raise with --max-log-size)", options.max_log_gib);
   std::vector<Log> logs;
   for (const auto& path : paths) {
-    const std::string text = ReadFileToString(path);
+    const std::string text = ReadFileToString(path, limits);
     const std::string hash = Sha256Hex(text);
     // The same data twice would count twice and shrink every std by sqrt(2).
     for (const auto& earlier : provenance.data) {

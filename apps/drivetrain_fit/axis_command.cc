@@ -44,7 +44,7 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
   outputs.provenance.command = command_line;
   outputs.provenance.version = DRIVEID_VERSION;
   outputs.provenance.model = "axis (docs/models.md#axis), IDIM-LS";
-  const auto logs = LoadLogs<AxisLog>(options.logs, outputs.provenance, [&](const std::string& path, const std::string& text) {
+  const auto logs = LoadLogs<AxisLog>(options.logs, options.output, outputs.provenance, [&](const std::string& path, const std::string& text) {
     return ParseAxisLog(path, text, column_map, section.torque_constant.value_or(0.0));
   });
   AxisFitOptions fit_options;

@@ -37,7 +37,7 @@ void RunRobotCommand(const RobotOptions& options, const std::string& command_lin
   outputs.provenance.command = command_line;
   outputs.provenance.version = DRIVEID_VERSION;
   outputs.provenance.model = "planar robot, rigid body (docs/models.md#planar-robot), projected with G";
-  const auto logs = LoadLogs<RobotLog>(options.logs, outputs.provenance, [&](const std::string& path, const std::string& text) {
+  const auto logs = LoadLogs<RobotLog>(options.logs, options.output, outputs.provenance, [&](const std::string& path, const std::string& text) {
     return ParseRobotLog(path, text, column_map);
   });
   RobotFitOptions fit_options;

@@ -41,7 +41,7 @@ void RunStepCommand(const StepOptions& options, const std::string& command_line)
   outputs.provenance.command = command_line;
   outputs.provenance.version = DRIVEID_VERSION;
   outputs.provenance.model = options.model;
-  const auto logs = LoadLogs<StepLog>(options.logs, outputs.provenance, [&](const std::string& path, const std::string& text) {
+  const auto logs = LoadLogs<StepLog>(options.logs, options.output, outputs.provenance, [&](const std::string& path, const std::string& text) {
     return ParseStepLog(path, text, column_map);
   });
 

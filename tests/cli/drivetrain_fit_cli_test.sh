@@ -127,6 +127,9 @@ expect 3 "column 'tau_link' would be inf" -- simulate step --params paper.yaml -
   expect 3 "/dev/zero:1: line longer than" -- step /dev/zero --params start.yaml
   expect 3 "/dev/zero:1: line longer than" -- step good.csv --params /dev/zero
   expect 3 "is a directory, not a file" -- step out_dir --params start.yaml
+  expect 3 "good.csv: larger than 1073 bytes \(a log may be at most 1e-06 GiB \(raise with --max-log-size\)\)" -- \
+    step good.csv --params start.yaml --max-log-size 1e-6
+  expect 2 "--max-log-size: nan: must be a number in" -- step good.csv --params start.yaml --max-log-size nan
   finish > /dev/null ) || fail "endless inputs"
 
 # Write errors on standard output are reported (exit 3), not lost.
