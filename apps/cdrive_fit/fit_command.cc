@@ -24,7 +24,7 @@ CLI::App* SetupCDriveFitCommand(CLI::App& app, CDriveFitCommandOptions& options,
   AddFreeOption(*command, options.free,
                 FreeOptionHelp(CDriveParameterTable(), friction ? "friction" : "inertia",
                                friction ? "" : "; all three of I_h, I_c, m are not identifiable"));
-  command->add_option("--col", options.columns, "map a column: NAME=HEADER (e.g. psi_L=encoder_left)");
+  AddLogInputOptions(*command, options.input, "psi_L=encoder_left");
   command->add_option("--window", options.window,
                       friction ? "half window of the zero-phase differentiator [s] (default 0.01)"
                                : "half window of the zero-phase differentiator [s] (default 0.005)")
@@ -46,19 +46,22 @@ CLI::App* SetupCDriveFitCommand(CLI::App& app, CDriveFitCommandOptions& options,
 }
 
 void RunCDriveFitCommand(const CDriveFitCommandOptions& options, const std::string& command_line) {
-  CheckFitOutputs(options.output, [&] { auto in = options.logs; in.push_back(options.params); return in; }());
+  CheckFitOutputs(options.output, [&] {
+    auto in = options.logs;
+    in.push_back(options.params);
+    in.insert(in.end(), options.input.join.begin(), options.input.join.end());
+    return in;
+  }());
   const bool friction = options.kind == CDriveFitKind::kFriction;
   const ParameterFile start = ReadParameterFile(options.params);
   if (!start.Find<CDriveSection>()) throw InputError(fmt::format("{}: no 'cdrive' section", options.params));
-  const auto column_map = ParseColumnMap(options.columns);
 
   FitOutputs outputs;
   outputs.provenance.command = command_line;
   outputs.provenance.version = DRIVEID_VERSION;
   outputs.provenance.model = friction ? "cdrive friction (28)" : "cdrive inertia (17), (28)";
-  const auto logs = LoadLogs<CDriveLog>(options.logs, options.output, outputs.provenance, [&](const std::string& path, const std::string& text) {
-    return ParseCDriveLog(path, text, column_map, start.Find<CDriveSection>()->torque_constant.value_or(0.0));
-  });
+  const auto logs = LoadLogs<CDriveLog>(options.logs, options.input, options.output, outputs.provenance, CDriveLogColumns(),
+                                        [&](CsvLog csv) { return MakeCDriveLog(std::move(csv), start.Find<CDriveSection>()->torque_constant.value_or(0.0)); });
 
   CDriveFitOptions fit_options;
   fit_options.free = options.free;

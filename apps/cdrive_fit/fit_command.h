@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "common/cli_support.h"
+#include "common/log_input_options.h"
 
 namespace driveid::cli {
 
@@ -17,7 +18,7 @@ struct CDriveFitCommandOptions {
   std::vector<std::string> logs;
   std::string params;
   std::vector<std::string> free;
-  std::vector<std::string> columns;
+  LogInputCli input;
   double window = 0.0;     ///< differentiator half window [s]; 0 = the fit's default
   double min_rate = 0.5;   ///< [rad/s]
   double settle = -1.0;    ///< [s]; < 0 = the fit's default

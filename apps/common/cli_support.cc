@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <filesystem>
 #include <system_error>
@@ -150,21 +151,28 @@ std::optional<double> ParseDouble(const std::string& text) {
 
 void AddFreeOption(CLI::App& command, std::vector<std::string>& free, const std::string& help) {
   command
-      .add_option_function<std::string>(
+      .add_option_function<std::vector<std::string>>(
           "--free",
-          [&free](const std::string& text) {
-            std::size_t begin = 0;
-            while (true) {
-              const std::size_t end = text.find(',', begin);
-              const std::string name = text.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
-              if (name.empty()) throw CLI::ValidationError("--free", fmt::format("'{}' holds an empty parameter name", text));
-              free.push_back(name);
-              if (end == std::string::npos) break;
-              begin = end + 1;
+          [&free](const std::vector<std::string>& texts) {
+            free.clear();  // given: replaces the default set
+            for (const std::string& text : texts) {
+              std::size_t begin = 0;
+              while (true) {
+                const std::size_t end = text.find(',', begin);
+                const std::string name = text.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+                if (name.empty()) {
+                  throw CLI::ValidationError("--free", fmt::format("'{}' holds an empty parameter name", text));
+                }
+                free.push_back(name);
+                if (end == std::string::npos) break;
+                begin = end + 1;
+              }
             }
           },
           help)
       ->type_name("NAMES")
+      ->expected(1)
+      ->allow_extra_args(false)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
 }
 

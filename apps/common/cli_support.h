@@ -89,37 +89,12 @@ std::string FreeOptionHelp(const ParameterTable<Section, Model>& table, const st
                      fmt::join(FitParameterKeys(table, fit, true), ","));
 }
 
-/// Adds --free NAMES (comma-separated, repeatable) collecting into `free`;
+/// Adds --free NAMES (comma-separated, repeatable) collecting into `free`
+/// (which holds the default set until the first --free replaces it);
 /// an empty name (`--free ,`, `--free a,,b`) is a CLI::ValidationError (exit 2).
 void AddFreeOption(CLI::App& command, std::vector<std::string>& free, const std::string& help);
 
 /// With -v, logs every solver iteration of the fit to stderr.
 void SetProgress(FitOptions& fit, bool verbose);
-
-/// Reads each log once (at most --max-log-size bytes), parses it with `parse(path, text)` and records its
-/// provenance (file, SHA-256, samples) in `provenance`; refuses (exit 2) a
-/// log whose contents were given already.
-template <typename Log, typename Parse>
-std::vector<Log> LoadLogs(const std::vector<std::string>& paths, const FitOutputOptions& options,
-                          FitProvenance& provenance, Parse parse) {
-  ReadLimits limits;
-  limits.max_bytes = static_cast<std::size_t>(options.max_log_gib * 1073741824.0);
-  limits.max_bytes_hint = fmt::format("a log may be at most {} GiB (raise with --max-log-size)", options.max_log_gib);
-  std::vector<Log> logs;
-  for (const auto& path : paths) {
-    const std::string text = ReadFileToString(path, limits);
-    const std::string hash = Sha256Hex(text);
-    // The same data twice would count twice and shrink every std by sqrt(2).
-    for (const auto& earlier : provenance.data) {
-      if (earlier.sha256 == hash) {
-        throw OptionError(fmt::format("{}: the same data as {} (sha256 {}): give each log once", path, earlier.file,
-                                      hash.substr(0, 12)));
-      }
-    }
-    logs.push_back(parse(path, text));
-    provenance.data.push_back({path, hash, static_cast<int>(logs.back().time.size())});
-  }
-  return logs;
-}
 
 }  // namespace driveid::cli

@@ -19,7 +19,7 @@ CLI::App* SetupAxisCommand(CLI::App& app, AxisOptions& options) {
   command->add_option("logs", options.logs, "axis logs: CSV with t, q and tau (or i with axis.k_t)")->required();
   command->add_option("--params", options.params, "parameter file with an axis section (start values, k_t, n_g)");
   AddFreeOption(*command, options.free, FreeOptionHelp(AxisParameterTable(), "axis"));
-  command->add_option("--col", options.columns, "map a column: NAME=HEADER (e.g. q=position)");
+  AddLogInputOptions(*command, options.input, "q=pi/180*#2, tau=10*#14");
   command->add_option("--cutoff", options.cutoff, "position low-pass cutoff [Hz] (default: sampling rate / 40)")
       ->check(FiniteAbove(0.0));
   command->add_option("--decimation", options.decimation, "parallel decimation factor")
@@ -34,19 +34,22 @@ CLI::App* SetupAxisCommand(CLI::App& app, AxisOptions& options) {
 }
 
 void RunAxisCommand(const AxisOptions& options, const std::string& command_line) {
-  CheckFitOutputs(options.output, [&] { auto in = options.logs; in.push_back(options.params); return in; }());
+  CheckFitOutputs(options.output, [&] {
+    auto in = options.logs;
+    in.push_back(options.params);
+    in.insert(in.end(), options.input.join.begin(), options.input.join.end());
+    return in;
+  }());
   ParameterFile start;
   if (!options.params.empty()) start = ReadParameterFile(options.params);
   const AxisSection section = start.Find<AxisSection>() ? *start.Find<AxisSection>() : AxisSection{};
-  const auto column_map = ParseColumnMap(options.columns);
 
   FitOutputs outputs;
   outputs.provenance.command = command_line;
   outputs.provenance.version = DRIVEID_VERSION;
   outputs.provenance.model = "axis (docs/models.md#axis), IDIM-LS";
-  const auto logs = LoadLogs<AxisLog>(options.logs, options.output, outputs.provenance, [&](const std::string& path, const std::string& text) {
-    return ParseAxisLog(path, text, column_map, section.torque_constant.value_or(0.0));
-  });
+  const auto logs = LoadLogs<AxisLog>(options.logs, options.input, options.output, outputs.provenance, AxisLogColumns(),
+                                        [&](CsvLog csv) { return MakeAxisLog(std::move(csv), section.torque_constant.value_or(0.0)); });
   AxisFitOptions fit_options;
   fit_options.free = options.free;
   fit_options.cutoff = options.cutoff;

@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "common/cli_support.h"
+#include "common/log_input_options.h"
 #include "models/axis.h"
 
 namespace driveid::cli {
@@ -15,7 +16,7 @@ struct AxisOptions {
   std::vector<std::string> logs;
   std::string params;
   std::vector<std::string> free = FitParameterKeys(AxisParameterTable(), "axis", true);
-  std::vector<std::string> columns;
+  LogInputCli input;
   double cutoff = 0.0;
   int decimation = 10;
   FitOutputOptions output;

@@ -17,7 +17,7 @@ CLI::App* SetupRobotCommand(CLI::App& app, RobotOptions& options) {
   command->add_option("logs", options.logs, "robot logs: CSV with t, theta1..3, i1..3")->required();
   command->add_option("--params", options.params, "parameter file with a planar_robot section")->required();
   AddFreeOption(*command, options.free, FreeOptionHelp(PlanarRobotParameterTable(), "robot"));
-  command->add_option("--col", options.columns, "map a column: NAME=HEADER");
+  AddLogInputOptions(*command, options.input, "theta1=#2");
   command->add_option("--window", options.window, "half window of the zero-phase differentiator [s]")
       ->capture_default_str()
       ->check(FiniteAbove(0.0));
@@ -29,17 +29,20 @@ CLI::App* SetupRobotCommand(CLI::App& app, RobotOptions& options) {
 }
 
 void RunRobotCommand(const RobotOptions& options, const std::string& command_line) {
-  CheckFitOutputs(options.output, [&] { auto in = options.logs; in.push_back(options.params); return in; }());
+  CheckFitOutputs(options.output, [&] {
+    auto in = options.logs;
+    in.push_back(options.params);
+    in.insert(in.end(), options.input.join.begin(), options.input.join.end());
+    return in;
+  }());
   const ParameterFile start = ReadParameterFile(options.params);
   if (!start.Find<PlanarRobotSection>()) throw InputError(fmt::format("{}: no 'planar_robot' section", options.params));
-  const auto column_map = ParseColumnMap(options.columns);
   FitOutputs outputs;
   outputs.provenance.command = command_line;
   outputs.provenance.version = DRIVEID_VERSION;
   outputs.provenance.model = "planar robot, rigid body (docs/models.md#planar-robot), projected with G";
-  const auto logs = LoadLogs<RobotLog>(options.logs, options.output, outputs.provenance, [&](const std::string& path, const std::string& text) {
-    return ParseRobotLog(path, text, column_map);
-  });
+  const auto logs = LoadLogs<RobotLog>(options.logs, options.input, options.output, outputs.provenance, RobotLogColumns(),
+                                        [&](CsvLog csv) { return MakeRobotLog(std::move(csv)); });
   RobotFitOptions fit_options;
   fit_options.free = options.free;
   fit_options.half_window = options.window;

@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "common/cli_support.h"
+#include "common/log_input_options.h"
 #include "models/planar_robot.h"
 
 namespace driveid::cli {
@@ -15,7 +16,7 @@ struct RobotOptions {
   std::vector<std::string> logs;
   std::string params;
   std::vector<std::string> free = FitParameterKeys(PlanarRobotParameterTable(), "robot", true);
-  std::vector<std::string> columns;
+  LogInputCli input;
   double window = 0.005;
   FitOutputOptions output;
 };

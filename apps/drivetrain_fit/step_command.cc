@@ -20,7 +20,7 @@ CLI::App* SetupStepCommand(CLI::App& app, StepOptions& options) {
   command->add_option("--model", options.model, "reduced (eq. 16, second order) or full (eqs. 13-14)")
       ->check(CLI::IsMember({"reduced", "full"}));
   AddFreeOption(*command, options.free, FreeOptionHelp(DriveTrainParameterTable(), "step", ", offset (a bias per log)"));
-  command->add_option("--col", options.columns, "map a column: NAME=HEADER (e.g. tau_link=strain_gauge)");
+  AddLogInputOptions(*command, options.input, "tau_link=strain_gauge");
   AddFitOutputOptions(*command, options.output);
   command->footer(
       "Example:\n"
@@ -30,20 +30,23 @@ CLI::App* SetupStepCommand(CLI::App& app, StepOptions& options) {
 }
 
 void RunStepCommand(const StepOptions& options, const std::string& command_line) {
-  CheckFitOutputs(options.output, [&] { auto in = options.logs; in.push_back(options.params); return in; }());
+  CheckFitOutputs(options.output, [&] {
+    auto in = options.logs;
+    in.push_back(options.params);
+    in.insert(in.end(), options.input.join.begin(), options.input.join.end());
+    return in;
+  }());
   const ParameterFile start_file = ReadParameterFile(options.params);
   if (!start_file.Find<DriveTrainSection>()) {
     throw InputError(fmt::format("{}: no 'drivetrain' section", options.params));
   }
-  const auto column_map = ParseColumnMap(options.columns);
 
   FitOutputs outputs;
   outputs.provenance.command = command_line;
   outputs.provenance.version = DRIVEID_VERSION;
   outputs.provenance.model = options.model;
-  const auto logs = LoadLogs<StepLog>(options.logs, options.output, outputs.provenance, [&](const std::string& path, const std::string& text) {
-    return ParseStepLog(path, text, column_map);
-  });
+  const auto logs = LoadLogs<StepLog>(options.logs, options.input, options.output, outputs.provenance, StepLogColumns(),
+                                        [&](CsvLog csv) { return MakeStepLog(std::move(csv)); });
 
   StepFitOptions fit_options;
   fit_options.model = options.model == "full" ? DriveTrainModel::kFull : DriveTrainModel::kReduced;

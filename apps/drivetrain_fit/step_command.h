@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "common/cli_support.h"
+#include "common/log_input_options.h"
 #include "models/drivetrain.h"
 
 namespace driveid::cli {
@@ -16,7 +17,7 @@ struct StepOptions {
   std::string params;
   std::string model = "reduced";
   std::vector<std::string> free = FitParameterKeys(DriveTrainParameterTable(), "step", true);
-  std::vector<std::string> columns;
+  LogInputCli input;
   FitOutputOptions output;
 };
 

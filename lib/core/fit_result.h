@@ -50,6 +50,8 @@ struct DataFileRecord {
   std::string file;
   std::string sha256;
   int samples = 0;
+  std::string segment;             ///< part of the file ("slow-forward"), "" for all of it
+  std::vector<std::string> notes;  ///< expressions, crops, joins (with their sha256), reader notes
 };
 
 /// What produced a fit (goes into the parameter file's `fit` section).

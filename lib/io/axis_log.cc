@@ -7,11 +7,20 @@
 
 namespace driveid {
 
+const std::vector<std::string>& AxisLogColumns() {
+  static const std::vector<std::string> columns = {"t", "q", "tau|i"};
+  return columns;
+}
+
 AxisLog ParseAxisLog(const std::string& path, const std::string& text,
                      const std::map<std::string, std::string>& column_map, double torque_constant) {
   CsvReadOptions options;
   options.column_map = column_map;
-  CsvLog csv = ParseCsvLog(path, text, {"t", "q", "tau|i"}, options);
+  return MakeAxisLog(ParseCsvLog(path, text, AxisLogColumns(), options), torque_constant);
+}
+
+AxisLog MakeAxisLog(CsvLog csv, double torque_constant) {
+  const std::string path = csv.segment.empty() ? csv.path : csv.path + " [" + csv.segment + "]";
   AxisLog log{path, std::move(csv.columns[0]), std::move(csv.columns[1]), std::move(csv.columns[2])};
   if (csv.names[2] == "i") {
     if (!(torque_constant > 0.0)) {

@@ -8,6 +8,8 @@
 
 namespace driveid {
 
+struct CsvLog;
+
 /// Fewest samples the axis fit accepts in a log.
 inline constexpr std::size_t kMinAxisLogSamples = 20;
 
@@ -17,6 +19,13 @@ struct AxisLog {
   std::vector<double> position;  ///< q [rad or m]
   std::vector<double> force;     ///< tau [N m or N] (from i x k_t if given as current)
 };
+
+/// The logical columns of the log (an entry "a|b": a, or else b).
+const std::vector<std::string>& AxisLogColumns();
+
+/// The log from columns read by ReadLogs (io/log_input.h) with AxisLogColumns().
+/// Throws InputError.
+AxisLog MakeAxisLog(CsvLog csv, double torque_constant);
 
 /// Parses an axis log: t, q and tau, or i with `torque_constant`. Throws InputError.
 AxisLog ParseAxisLog(const std::string& path, const std::string& text,

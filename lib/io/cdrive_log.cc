@@ -7,11 +7,20 @@
 
 namespace driveid {
 
+const std::vector<std::string>& CDriveLogColumns() {
+  static const std::vector<std::string> columns = {"t", "psi_L", "psi_R", "tau_L|i_L", "tau_R|i_R"};
+  return columns;
+}
+
 CDriveLog ParseCDriveLog(const std::string& path, const std::string& text,
                          const std::map<std::string, std::string>& column_map, double torque_constant) {
   CsvReadOptions options;
   options.column_map = column_map;
-  CsvLog csv = ParseCsvLog(path, text, {"t", "psi_L", "psi_R", "tau_L|i_L", "tau_R|i_R"}, options);
+  return MakeCDriveLog(ParseCsvLog(path, text, CDriveLogColumns(), options), torque_constant);
+}
+
+CDriveLog MakeCDriveLog(CsvLog csv, double torque_constant) {
+  const std::string path = csv.segment.empty() ? csv.path : csv.path + " [" + csv.segment + "]";
   CDriveLog log;
   log.path = path;
   log.time = std::move(csv.columns[0]);

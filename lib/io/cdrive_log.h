@@ -8,6 +8,8 @@
 
 namespace driveid {
 
+struct CsvLog;
+
 /// A C-drive log (docs/formats.md#logs): motor angles and torques (or currents x k_t).
 /// Fewest samples the C-drive fits accept in a log.
 inline constexpr std::size_t kMinCDriveLogSamples = 5;
@@ -20,6 +22,13 @@ struct CDriveLog {
   std::vector<double> torque_left;  ///< tau_L [N m]
   std::vector<double> torque_right; ///< tau_R [N m]
 };
+
+/// The logical columns of the log (an entry "a|b": a, or else b).
+const std::vector<std::string>& CDriveLogColumns();
+
+/// The log from columns read by ReadLogs (io/log_input.h) with CDriveLogColumns().
+/// Throws InputError.
+CDriveLog MakeCDriveLog(CsvLog csv, double torque_constant);
 
 /// Parses a C-drive log; columns t, psi_L, psi_R and tau_L, tau_R or i_L,
 /// i_R (then `torque_constant` k_t [N m/A] must be given). Throws InputError.

@@ -14,12 +14,14 @@ namespace driveid {
 /// stored column-major. Names are the logical names (after --col mapping).
 struct CsvLog {
   std::string path;                        ///< file the data came from (for messages)
+  std::string segment;                     ///< part of the file ("slow-forward/left"), "" for all of it
   std::vector<std::string> names;          ///< logical column names, as requested
   std::vector<std::vector<double>> columns;  ///< columns[k][row], SI units
-  std::vector<int> line_numbers;           ///< 1-based file line of each data row
-  std::vector<std::string> comments;       ///< comment lines without the leading '#'
+  std::vector<int> line_numbers;           ///< 1-based file line of each row (empty for MAT and JSON)
+  std::vector<std::string> comments;       ///< comment lines and the reader's notes on the source
+  std::vector<std::string> notes;          ///< expressions, --rate, crops applied (for the provenance)
 
-  std::size_t rows() const { return line_numbers.size(); }
+  std::size_t rows() const { return columns.empty() ? 0 : columns.front().size(); }
   /// Column by logical name; throws std::out_of_range for a name not requested.
   const std::vector<double>& column(const std::string& name) const;
 };
@@ -34,11 +36,11 @@ struct CsvReadOptions {
   std::size_t max_line_bytes = 1 << 20;
 };
 
-/// Parses CSV text already in memory. `path` is used in messages only.
-/// `required` lists the logical names that must be present; an entry
-/// "a|b" accepts column a or, if absent, column b (log.names tells which).
-/// Every row must have exactly as many fields as the header, and the
-/// requested fields must be finite numbers.
+/// Parses a log already in memory (CSV, or any format of ReadLogs that
+/// holds one log). `path` is used in messages only. `required` lists the
+/// logical names that must be present; an entry "a|b" accepts column a or,
+/// if absent, column b (log.names tells which). Every row must have exactly
+/// as many fields as the header, and the requested fields must be finite.
 CsvLog ParseCsvLog(const std::string& path, const std::string& text,
                    const std::vector<std::string>& required, const CsvReadOptions& options = {});
 

@@ -430,8 +430,15 @@ std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit,
     if (!provenance->model.empty()) out += fmt::format("  model: {}\n", provenance->model);
     out += "  data:\n";
     for (const auto& record : provenance->data) {
-      out += fmt::format("    - {{file: {}, sha256: {}, samples: {}}}\n", Quoted(record.file), record.sha256,
+      out += fmt::format("    - {{file: {}, sha256: {}, samples: {}", Quoted(record.file), record.sha256,
                          record.samples);
+      if (!record.segment.empty()) out += fmt::format(", segment: {}", Quoted(record.segment));
+      if (!record.notes.empty()) {
+        std::vector<std::string> quoted;
+        for (const auto& note : record.notes) quoted.push_back(Quoted(note));
+        out += fmt::format(", notes: [{}]", fmt::join(quoted, ", "));
+      }
+      out += "}\n";
     }
     out += "  estimates:\n";
     for (const auto& e : fit->estimates) {

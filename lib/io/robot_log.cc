@@ -7,11 +7,20 @@
 
 namespace driveid {
 
+const std::vector<std::string>& RobotLogColumns() {
+  static const std::vector<std::string> columns = {"t", "theta1", "theta2", "theta3", "i1", "i2", "i3"};
+  return columns;
+}
+
 RobotLog ParseRobotLog(const std::string& path, const std::string& text,
                        const std::map<std::string, std::string>& column_map) {
   CsvReadOptions options;
   options.column_map = column_map;
-  CsvLog csv = ParseCsvLog(path, text, {"t", "theta1", "theta2", "theta3", "i1", "i2", "i3"}, options);
+  return MakeRobotLog(ParseCsvLog(path, text, RobotLogColumns(), options));
+}
+
+RobotLog MakeRobotLog(CsvLog csv) {
+  const std::string path = csv.segment.empty() ? csv.path : csv.path + " [" + csv.segment + "]";
   RobotLog log;
   log.path = path;
   log.time = std::move(csv.columns[0]);

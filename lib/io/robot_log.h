@@ -8,6 +8,8 @@
 
 namespace driveid {
 
+struct CsvLog;
+
 /// Fewest samples the robot fit accepts in a log.
 inline constexpr std::size_t kMinRobotLogSamples = 10;
 
@@ -19,6 +21,13 @@ struct RobotLog {
   std::array<std::vector<double>, 3> current;  ///< i_i [A]
   std::vector<int> line_numbers;               ///< file line of each sample (empty: not read from a file)
 };
+
+/// The logical columns of the log (an entry "a|b": a, or else b).
+const std::vector<std::string>& RobotLogColumns();
+
+/// The log from columns read by ReadLogs (io/log_input.h) with RobotLogColumns().
+/// Throws InputError.
+RobotLog MakeRobotLog(CsvLog csv);
 
 /// Parses t, theta1..3, i1..3. Throws InputError.
 RobotLog ParseRobotLog(const std::string& path, const std::string& text,

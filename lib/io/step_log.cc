@@ -7,11 +7,20 @@
 
 namespace driveid {
 
+const std::vector<std::string>& StepLogColumns() {
+  static const std::vector<std::string> columns = {"t", "tau_motor", "tau_link"};
+  return columns;
+}
+
 StepLog ParseStepLog(const std::string& path, const std::string& text,
                      const std::map<std::string, std::string>& column_map) {
   CsvReadOptions options;
   options.column_map = column_map;
-  CsvLog csv = ParseCsvLog(path, text, {"t", "tau_motor", "tau_link"}, options);
+  return MakeStepLog(ParseCsvLog(path, text, StepLogColumns(), options));
+}
+
+StepLog MakeStepLog(CsvLog csv) {
+  const std::string path = csv.segment.empty() ? csv.path : csv.path + " [" + csv.segment + "]";
   StepLog log;
   log.path = path;
   log.time = std::move(csv.columns[0]);

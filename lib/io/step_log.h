@@ -8,16 +8,25 @@
 
 namespace driveid {
 
-/// A logged step response (docs/formats.md#logs, step log).
+struct CsvLog;
+
 /// Fewest samples the step fit accepts in a log.
 inline constexpr std::size_t kMinStepLogSamples = 3;
 
+/// A logged step response (docs/formats.md#logs, step log).
 struct StepLog {
   std::string path;
   std::vector<double> time;          ///< t [s], strictly increasing
   std::vector<double> motor_torque;  ///< tau_motor [N m], held between samples
   std::vector<double> link_torque;   ///< tau_link [N m], strain gauge
 };
+
+/// The logical columns of the log (an entry "a|b": a, or else b).
+const std::vector<std::string>& StepLogColumns();
+
+/// The log from columns read by ReadLogs (io/log_input.h) with StepLogColumns().
+/// Throws InputError.
+StepLog MakeStepLog(CsvLog csv);
 
 /// Parses a step log already read into memory; `column_map` from --col.
 /// Throws InputError.

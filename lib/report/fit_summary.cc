@@ -42,7 +42,12 @@ Json FitJson(const FitResult& fit, const FitProvenance& provenance) {
   out["version"] = provenance.version;
   out["model"] = provenance.model;
   out["data"] = Json::array();
-  for (const auto& d : provenance.data) out["data"].push_back({{"file", d.file}, {"sha256", d.sha256}, {"samples", d.samples}});
+  for (const auto& d : provenance.data) {
+    Json record = {{"file", d.file}, {"sha256", d.sha256}, {"samples", d.samples}};
+    if (!d.segment.empty()) record["segment"] = d.segment;
+    if (!d.notes.empty()) record["notes"] = d.notes;
+    out["data"].push_back(record);
+  }
   out["estimates"] = Json::object();
   for (const auto& e : fit.estimates) {
     out["estimates"][e.name] = {{"value", e.value}, {"std", e.standard_error}, {"ci95", {e.ci95_low, e.ci95_high}}};

@@ -66,6 +66,10 @@ expect 4 "Theta_g has no effect in the reduced model" -- step good.csv --params 
 expect 2 "not a parameter of the step fit" -- step good.csv --params start.yaml --free d_g,mass
 expect 2 "--free: ',' holds an empty parameter name" -- step good.csv --params start.yaml --free ,
 expect 2 "--free: 'd_g,,tau_c' holds an empty parameter name" -- step good.csv --params start.yaml --free d_g,,tau_c
+# --free replaces the default set (and may be repeated): exactly the named estimates.
+"$bin" step good.csv --params start.yaml --free d_g --free tau_c -q -o free_only.yaml 2> /dev/null
+[ "$(awk '/^  estimates:/ {on = 1; next} on && /^  [a-z]/ {on = 0} on && /^    [A-Za-z_]+:/ {print $1}' free_only.yaml | tr -d ':' | sort | tr '\n' ' ')" = "d_g tau_c " ] \
+  && ok || fail "--free d_g --free tau_c estimated $(grep -A12 '^  estimates:' free_only.yaml)"
 # Simulated logs: never fewer samples than the fit accepts, never more than
 # the bound, and the message names the options that set the count.
 expect 2 "--duration 0.001 at --rate 1000 gives 2 samples: the fit of such a log needs at least 20" -- \

@@ -1,0 +1,58 @@
+#include "common/log_input_options.h"
+
+namespace driveid::cli {
+
+void AddLogInputOptions(CLI::App& command, LogInputCli& options, const std::string& example) {
+  command.add_option("--col", options.columns,
+                     fmt::format("map a column: NAME=EXPR, EXPR a column (header name, #k position, MAT variable "
+                                 "path) times or divided by numbers, pi or MAT scalars (e.g. {}; docs/formats.md)",
+                                 example));
+  command.add_flag("--no-header", options.no_header, "CSV: the first row is data; columns are #1, #2, ...");
+  command.add_option("--delimiter", options.delimiter, "CSV: comma, semicolon, tab or space (default: detected)")
+      ->check(CLI::IsMember({"comma", "semicolon", "tab", "space", ",", ";"}));
+  command.add_option("--rate", options.rate, "samples at this rate [Hz] from t = 0, for logs without a time column")
+      ->check(FiniteAbove(0.0));
+  command.add_option("--from", options.from, "use samples from this time on [s, log time]")->check(FiniteAtLeast(-1e300));
+  command.add_option("--to", options.to, "use samples up to this time [s, log time]")->check(FiniteAtLeast(-1e300));
+  command.add_option("--join", options.join,
+                     "add the columns of this file row by row (positions #k count on); once, or once per log")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->allow_extra_args(false);
+  command.add_option("--side", options.side, "SysId Drivetrain files: left, right or both (two logs per test)")
+      ->check(CLI::IsMember({"left", "right", "both"}));
+}
+
+LogInputOptions MakeLogInputOptions(const LogInputCli& options) {
+  LogInputOptions out;
+  // Each --col entry once per logical name.
+  for (const auto& entry : options.columns) {
+    const auto eq = entry.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == entry.size()) {
+      throw OptionError(fmt::format("--col {}: expected NAME=EXPR", entry));
+    }
+    const std::string name = entry.substr(0, eq);
+    if (!out.columns.emplace(name, entry.substr(eq + 1)).second) {
+      throw OptionError(fmt::format("--col {}: '{}' is mapped twice", entry, name));
+    }
+  }
+  out.csv.no_header = options.no_header;
+  const std::string& d = options.delimiter;
+  out.csv.delimiter = d == "comma" || d == "," ? ',' : d == "semicolon" || d == ";" ? ';' : d == "tab" ? '\t'
+                      : d == "space" ? ' ' : 0;
+  out.sysid.side = options.side;
+  out.rate = options.rate;
+  if (std::isfinite(options.from)) out.from = options.from;
+  if (std::isfinite(options.to)) out.to = options.to;
+  if (out.from && out.to && !(*out.from < *out.to)) {
+    throw OptionError(fmt::format("--from {} --to {}: need from < to", options.from, options.to));
+  }
+  return out;
+}
+
+std::string JoinFor(const LogInputCli& options, std::size_t k, std::size_t count) {
+  if (options.join.empty()) return {};
+  if (options.join.size() == count) return options.join[k];
+  throw OptionError(fmt::format("--join given {} times for {} logs: give it once per log", options.join.size(), count));
+}
+
+}  // namespace driveid::cli

@@ -1,0 +1,31 @@
+// Column expressions of `--col NAME=EXPR` (docs/formats.md#column-expressions):
+// a source column times or divided by constant factors, e.g. `10*#14`,
+// `pi/180*pos_deg`, `pos/32`, `gtau*vir` (gtau a scalar of the MAT file).
+// A factor is a number, `pi`, a scalar of the source, or the one column
+// reference: a header name, a 1-based position `#k`, or a MAT variable path
+// (`rec.pos(1,:)`). The column may not be a divisor.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace driveid {
+
+struct ColumnExpression {
+  std::string text;       ///< as given (recorded in the provenance)
+  std::string reference;  ///< the source column
+  double factor = 1.0;    ///< constant the column is multiplied by
+};
+
+/// Parses EXPR. `is_column(word)` tells whether a word names a column of
+/// the source (checked first, so that a header containing '*' or '/' can be
+/// named whole); `scalar(word)` gives a named constant of the source. Throws
+/// OptionError naming `option` ("--col tau=...") on a malformed expression,
+/// no or two column references, a column divisor, or a zero divisor.
+ColumnExpression ParseColumnExpression(const std::string& option, const std::string& text,
+                                       const std::function<bool(const std::string&)>& is_column,
+                                       const std::function<std::optional<double>(const std::string&)>& scalar);
+
+}  // namespace driveid

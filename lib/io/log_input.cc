@@ -1,0 +1,220 @@
+#include "io/log_input.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "io/column_expression.h"
+
+namespace driveid {
+namespace {
+
+std::vector<std::string> Alternatives(const std::string& entry) {
+  std::vector<std::string> out;
+  for (std::size_t start = 0;;) {
+    const std::size_t bar = entry.find('|', start);
+    out.push_back(entry.substr(start, bar == std::string::npos ? bar : bar - start));
+    if (bar == std::string::npos) break;
+    start = bar + 1;
+  }
+  return out;
+}
+
+bool IsPlainWord(const std::string& text) { return text.find_first_of("*/") == std::string::npos; }
+
+// What the source offers, for messages: the first 12 column names.
+std::string Offered(const TableSource& source) {
+  const auto names = source.column_names();
+  const bool unnamed = std::all_of(names.begin(), names.end(), [](const std::string& n) { return n.empty(); });
+  if (unnamed) {
+    return fmt::format("the file has no header: name its {} columns by position, e.g. --col t=#1", names.size());
+  }
+  std::string have;
+  for (std::size_t i = 0; i < names.size() && i < 12; ++i) {
+    have += fmt::format("{}\"{}\"", i ? ", " : "", names[i].empty() ? fmt::format("#{}", i + 1) : names[i]);
+  }
+  if (names.size() > 12) have += fmt::format(", ... ({} columns)", names.size());
+  return (source.format() == "csv" ? "header has " : "the file has ") + have;
+}
+
+std::string Where(const TableSource& source) {
+  return source.segment().empty() ? source.path() : fmt::format("{} [{}]", source.path(), source.segment());
+}
+
+}  // namespace
+
+CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>& required,
+                      const LogInputOptions& options) {
+  const std::string where = Where(source);
+  // Every --col must name a column of this log format.
+  std::vector<std::string> known;
+  for (const auto& entry : required) {
+    for (const auto& name : Alternatives(entry)) known.push_back(name);
+  }
+  for (const auto& [name, expression] : options.columns) {
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      throw OptionError(fmt::format("--col {}={}: this log has no column '{}' (its columns: {})", name, expression,
+                                    name, fmt::join(known, ", ")));
+    }
+  }
+  CsvLog log;
+  log.path = source.path();
+  log.segment = source.segment();
+  log.names = required;
+  std::vector<ColumnExpression> expressions(required.size());
+  std::vector<std::size_t> indices(required.size());
+  std::vector<char> generated_time(required.size(), 0);
+  const auto is_column = [&](const std::string& word) { return source.Find(word).has_value(); };
+  const auto scalar = [&](const std::string& word) { return source.scalar(word); };
+  for (std::size_t k = 0; k < required.size(); ++k) {
+    const auto alternatives = Alternatives(required[k]);
+    bool found = false;
+    std::string wanted_all;
+    for (const auto& name : alternatives) {
+      const auto mapped = options.columns.find(name);
+      std::string text = mapped != options.columns.end() ? mapped->second : source.DefaultReference(name);
+      if (text.empty()) text = name;
+      wanted_all += (wanted_all.empty() ? "'" : "' or '") + text;
+      if (name == options.time_column && options.rate > 0.0) {
+        if (mapped != options.columns.end()) {
+          throw OptionError(fmt::format("--rate and --col {}={}: give the time column or the rate, not both", name,
+                                        mapped->second));
+        }
+        if (is_column(text)) {
+          throw OptionError(fmt::format("--rate: {} has a time column '{}'; --rate is for logs without one", where,
+                                        text));
+        }
+        generated_time[k] = 1;
+        log.names[k] = name;
+        found = true;
+        break;
+      }
+      if (mapped == options.columns.end() || IsPlainWord(text)) {
+        if (!is_column(text)) continue;  // try the next alternative
+      }
+      expressions[k] = ParseColumnExpression(fmt::format("--col {}={}", name, text), text, is_column, scalar);
+      indices[k] = *source.Find(expressions[k].reference);
+      log.names[k] = name;
+      found = true;
+      break;
+    }
+    if (!found) {
+      const bool time = alternatives.front() == options.time_column;
+      throw InputError(fmt::format("{}{}: missing column {}' ({}; map another name with --col {}=COLUMN{})", where,
+                                   source.header_line() > 0 ? fmt::format(":{}", source.header_line()) : "", wanted_all, Offered(source),
+                                   alternatives.front(), time ? ", or give --rate HZ" : ""));
+    }
+  }
+  // Two logical columns may not read one source column.
+  for (std::size_t a = 0; a < required.size(); ++a) {
+    for (std::size_t b = a + 1; b < required.size(); ++b) {
+      if (!generated_time[a] && !generated_time[b] && indices[a] == indices[b]) {
+        throw OptionError(fmt::format("--col: '{}' and '{}' would both read column '{}' of {}", log.names[a],
+                                      log.names[b], expressions[a].reference, where));
+      }
+    }
+  }
+  std::vector<std::size_t> to_read;
+  for (std::size_t k = 0; k < required.size(); ++k) {
+    if (!generated_time[k]) to_read.push_back(indices[k]);
+  }
+  TableData data = source.Read(to_read);
+  std::size_t rows = 0;
+  bool first = true;
+  std::string first_name;
+  for (std::size_t k = 0, r = 0; k < required.size(); ++k) {
+    if (generated_time[k]) continue;
+    const std::size_t n = data.columns[r++].size();
+    if (first) {
+      rows = n;
+      first_name = expressions[k].reference;
+      first = false;
+    } else if (n != rows) {
+      throw InputError(fmt::format("{}: column '{}' has {} values but '{}' has {}: the columns of a log have one value "
+                                   "per sample",
+                                   where, expressions[k].reference, n, first_name, rows));
+    }
+  }
+  if (first) rows = source.column_lengths().empty() ? 0 : source.column_lengths().front();
+  log.columns.resize(required.size());
+  for (std::size_t k = 0, r = 0; k < required.size(); ++k) {
+    if (generated_time[k]) {
+      log.columns[k].resize(rows);
+      for (std::size_t i = 0; i < rows; ++i) log.columns[k][i] = static_cast<double>(i) / options.rate;
+      log.notes.push_back(fmt::format("{}: samples at {} Hz from 0 s (--rate)", log.names[k], options.rate));
+      continue;
+    }
+    log.columns[k] = std::move(data.columns[r++]);
+    const ColumnExpression& e = expressions[k];
+    if (e.factor != 1.0) {
+      for (double& v : log.columns[k]) v *= e.factor;
+      for (std::size_t i = 0; i < rows; ++i) {
+        if (!std::isfinite(log.columns[k][i])) {
+          throw InputError(fmt::format("{}: --col {}={}: the value at sample {} overflows", where, log.names[k], e.text,
+                                       i + 1));
+        }
+      }
+    }
+    if (e.text != log.names[k]) log.notes.push_back(fmt::format("{} = {}", log.names[k], e.text));
+  }
+  log.line_numbers = std::move(data.line_numbers);
+  if (rows == 0) throw InputError(fmt::format("{}: no samples", where));
+  // Time strictly increasing.
+  const auto label = [&](std::size_t i) {
+    return i < log.line_numbers.size() ? fmt::format("{}:{}", where, log.line_numbers[i])
+                                       : fmt::format("{}: sample {}", where, i + 1);
+  };
+  for (std::size_t k = 0; k < required.size(); ++k) {
+    if (log.names[k] != options.time_column) continue;
+    const auto& time = log.columns[k];
+    for (std::size_t i = 1; i < time.size(); ++i) {
+      if (!(time[i] > time[i - 1])) {
+        throw InputError(fmt::format("{}: column '{}': time not strictly increasing ({} after {})", label(i),
+                                     options.time_column, time[i], time[i - 1]));
+      }
+    }
+    // Crop.
+    if (options.from || options.to) {
+      const double from = options.from.value_or(-INFINITY), to = options.to.value_or(INFINITY);
+      std::size_t begin = 0, end = time.size();
+      while (begin < end && time[begin] < from) ++begin;
+      while (end > begin && time[end - 1] > to) --end;
+      if (begin == end) {
+        throw InputError(fmt::format("{}: no samples between --from {} s and --to {} s (the log spans {} .. {} s)",
+                                     where, from, to, time.front(), time.back()));
+      }
+      for (auto& c : log.columns) c = std::vector<double>(c.begin() + static_cast<std::ptrdiff_t>(begin),
+                                                           c.begin() + static_cast<std::ptrdiff_t>(end));
+      if (!log.line_numbers.empty()) {
+        log.line_numbers = std::vector<int>(log.line_numbers.begin() + static_cast<std::ptrdiff_t>(begin),
+                                            log.line_numbers.begin() + static_cast<std::ptrdiff_t>(end));
+      }
+      log.notes.push_back(fmt::format("cropped to {} .. {} s (--from/--to): samples {} .. {} of {}",
+                                      log.columns[k].front(), log.columns[k].back(), begin + 1, end, rows));
+    }
+    break;
+  }
+  log.comments = source.comments();
+  const auto source_notes = source.notes();
+  log.notes.insert(log.notes.begin(), source_notes.begin(), source_notes.end());
+  return log;
+}
+
+std::vector<CsvLog> ReadLogs(const std::string& path, const std::string& text, const std::vector<JoinedFile>& joins,
+                             const std::vector<std::string>& required, const LogInputOptions& options) {
+  auto sources = OpenTableSources(path, text, options.csv, options.sysid);
+  for (const auto& join : joins) {
+    auto joined = OpenTableSources(join.path, *join.text, options.csv, SysIdFormat{});
+    if (joined.size() != 1 || sources.size() != 1) {
+      throw OptionError(fmt::format("--join {}: only single-table files (CSV, MAT) can be joined", join.path));
+    }
+    sources.front() = JoinSources(std::move(sources.front()), std::move(joined.front()));
+  }
+  std::vector<CsvLog> logs;
+  for (const auto& source : sources) logs.push_back(ReadLogColumns(*source, required, options));
+  return logs;
+}
+
+}  // namespace driveid

@@ -1,0 +1,45 @@
+// One input layer for every log (docs/formats.md#logs): a file (CSV, MAT,
+// SysId JSON; plus files joined row by row) becomes one or more logs with
+// the logical columns a model needs. Logical columns are mapped with
+// `--col NAME=EXPR` (column expressions), time comes from a column or from
+// `--rate`, and `--from/--to` crop each log. Everything applied is recorded
+// in the log's notes for the provenance.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/csv_log.h"
+#include "io/table_source.h"
+
+namespace driveid {
+
+struct LogInputOptions {
+  /// Logical column name -> expression (`--col NAME=EXPR`).
+  std::map<std::string, std::string> columns;
+  CsvFormat csv;
+  SysIdFormat sysid;
+  double rate = 0.0;  ///< --rate [Hz]: samples at this rate from t = 0 (0: the time column)
+  std::optional<double> from, to;  ///< --from, --to [s]: crop in the log's time
+  std::string time_column = "t";   ///< strictly increasing
+};
+
+/// A file joined row by row (`--join`): its name and contents.
+struct JoinedFile {
+  std::string path;
+  const std::string* text = nullptr;
+};
+
+/// Reads the logs of one file. `required` lists logical names; "a|b" takes
+/// a, or b when a is neither mapped nor present. Throws InputError naming
+/// the file and line (or variable), OptionError for a bad --col.
+std::vector<CsvLog> ReadLogs(const std::string& path, const std::string& text, const std::vector<JoinedFile>& joins,
+                             const std::vector<std::string>& required, const LogInputOptions& options);
+
+/// The same for sources already open (one log per source).
+CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>& required,
+                      const LogInputOptions& options);
+
+}  // namespace driveid

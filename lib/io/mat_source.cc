@@ -1,0 +1,292 @@
+// MAT files (v5 and v7.3) through libmatio: vector variables are columns,
+// matrices give their columns `name(:,k)` and rows `name(k,:)`, struct fields
+// are reached by dotted paths, 1 x 1 numbers are scalars for expressions.
+// Cells, characters, sparse, objects and function handles are skipped with a
+// note. matio reads from a file: the bytes already read (and hashed) are
+// written to a registered temporary file first, so the data read is the data
+// recorded, and a FIFO works too.
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <mutex>
+
+#include <unistd.h>
+
+#include <fmt/format.h>
+#include <matio.h>
+
+#include "core/errors.h"
+#include "io/table_source.h"
+#include "io/temporary_files.h"
+
+namespace driveid {
+namespace {
+
+// matio logs through a global function: keep its last message for ours
+// (the library prints nothing).
+std::mutex log_mutex;
+std::string last_matio_message;
+
+void CaptureMatioLog(int, char* message) {
+  if (message != nullptr) last_matio_message = message;
+}
+
+// Elements one file may expand to (2 GiB of doubles): a compressed variable
+// can claim far more than its bytes.
+constexpr std::size_t kMaxElements = std::size_t{1} << 28;
+
+struct Variable {
+  std::string name;  // dotted path
+  std::size_t rows = 0, cols = 0;
+  std::vector<double> data;  // column-major
+};
+
+struct ColumnRef {
+  std::string name;
+  std::size_t variable = 0;
+  std::size_t offset = 0, stride = 1, length = 0;
+};
+
+template <typename T>
+void Convert(const void* data, std::size_t n, std::vector<double>& out) {
+  const T* p = static_cast<const T*>(data);
+  out.resize(n);
+  for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<double>(p[i]);
+}
+
+bool ConvertNumeric(const matvar_t* v, std::size_t n, std::vector<double>& out) {
+  if (v->data == nullptr) return false;
+  switch (v->class_type) {
+    case MAT_C_DOUBLE: Convert<double>(v->data, n, out); return true;
+    case MAT_C_SINGLE: Convert<float>(v->data, n, out); return true;
+    case MAT_C_INT8: Convert<std::int8_t>(v->data, n, out); return true;
+    case MAT_C_UINT8: Convert<std::uint8_t>(v->data, n, out); return true;
+    case MAT_C_INT16: Convert<std::int16_t>(v->data, n, out); return true;
+    case MAT_C_UINT16: Convert<std::uint16_t>(v->data, n, out); return true;
+    case MAT_C_INT32: Convert<std::int32_t>(v->data, n, out); return true;
+    case MAT_C_UINT32: Convert<std::uint32_t>(v->data, n, out); return true;
+    case MAT_C_INT64: Convert<std::int64_t>(v->data, n, out); return true;
+    case MAT_C_UINT64: Convert<std::uint64_t>(v->data, n, out); return true;
+    default: return false;
+  }
+}
+
+const char* ClassName(matio_classes c) {
+  switch (c) {
+    case MAT_C_CELL: return "cell array";
+    case MAT_C_STRUCT: return "struct array";
+    case MAT_C_OBJECT: return "object";
+    case MAT_C_CHAR: return "text";
+    case MAT_C_SPARSE: return "sparse matrix";
+    case MAT_C_FUNCTION: return "function handle";
+    case MAT_C_OPAQUE: return "opaque object";
+    case MAT_C_EMPTY: return "empty array";
+    default: return "numeric";
+  }
+}
+
+class MatSource : public TableSource {
+ public:
+  MatSource(std::string path, const std::string& text) : path_(std::move(path)) {
+    // The bytes go to a temporary file for matio.
+    std::string name = (std::filesystem::temp_directory_path() / "driveid-mat.tmp.XXXXXX").string();
+    const int fd = CreateTemporaryFile(name);
+    if (fd < 0) throw InputError(fmt::format("{}: cannot create a temporary copy for the MAT reader", path_));
+    std::size_t written = 0;
+    bool ok = true;
+    while (written < text.size()) {
+      const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
+      if (n <= 0) {
+        ok = false;
+        break;
+      }
+      written += static_cast<std::size_t>(n);
+    }
+    ::close(fd);
+    try {
+      if (!ok) throw InputError(fmt::format("{}: cannot write a temporary copy for the MAT reader", path_));
+      Load(name);
+    } catch (...) {
+      RemoveTemporaryFile(name);
+      throw;
+    }
+    RemoveTemporaryFile(name);
+    for (std::size_t v = 0; v < variables_.size(); ++v) {
+      const Variable& var = variables_[v];
+      if (var.rows == 1 && var.cols == 1) continue;  // a scalar
+      if (var.rows == 1 || var.cols == 1) {
+        columns_.push_back({var.name, v, 0, 1, var.rows * var.cols});
+      } else {
+        for (std::size_t k = 0; k < var.cols; ++k) {
+          columns_.push_back({fmt::format("{}(:,{})", var.name, k + 1), v, k * var.rows, 1, var.rows});
+        }
+        notes_.push_back(fmt::format("{}: {} x {} matrix (columns {}(:,k), rows {}(k,:))", var.name, var.rows,
+                                     var.cols, var.name, var.name));
+      }
+    }
+    listed_ = columns_.size();
+    if (columns_.empty()) {
+      throw InputError(fmt::format("{}: the MAT file has no numeric vector or matrix variable{}", path_,
+                                   notes_.empty() ? "" : fmt::format(" ({})", fmt::join(notes_, "; "))));
+    }
+  }
+
+  std::string path() const override { return path_; }
+  std::string format() const override { return "mat"; }
+  std::vector<std::string> column_names() const override {
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < listed_; ++i) names.push_back(columns_[i].name);
+    return names;
+  }
+  std::vector<std::size_t> column_lengths() const override {
+    std::vector<std::size_t> lengths;
+    for (std::size_t i = 0; i < listed_; ++i) lengths.push_back(columns_[i].length);
+    return lengths;
+  }
+  std::optional<double> scalar(const std::string& name) const override {
+    for (const auto& v : variables_) {
+      if (v.name == name && v.rows == 1 && v.cols == 1) return v.data[0];
+    }
+    return std::nullopt;
+  }
+  std::vector<std::string> notes() const override { return notes_; }
+
+  std::optional<std::size_t> Find(const std::string& reference) const override {
+    if (auto found = TableSource::Find(reference)) return found;
+    // name(k,:): a row of a matrix, added on first use.
+    const std::size_t open = reference.rfind('(');
+    if (open == std::string::npos || reference.size() < open + 5 || reference.compare(reference.size() - 3, 3, ",:)") != 0) {
+      return std::nullopt;
+    }
+    const std::string var_name = reference.substr(0, open);
+    std::size_t k = 0;
+    const char* b = reference.data() + open + 1;
+    const char* e = reference.data() + reference.size() - 3;
+    const auto result = std::from_chars(b, e, k);
+    if (result.ec != std::errc() || result.ptr != e || k == 0) return std::nullopt;
+    for (std::size_t v = 0; v < variables_.size(); ++v) {
+      const Variable& var = variables_[v];
+      if (var.name != var_name || k > var.rows || var.cols < 2) continue;
+      for (std::size_t i = listed_; i < columns_.size(); ++i) {
+        if (columns_[i].name == reference) return i;
+      }
+      columns_.push_back({reference, v, k - 1, var.rows, var.cols});
+      return columns_.size() - 1;
+    }
+    return std::nullopt;
+  }
+
+  TableData Read(const std::vector<std::size_t>& columns) const override {
+    TableData out;
+    for (auto c : columns) {
+      const ColumnRef& ref = columns_.at(c);
+      const Variable& var = variables_[ref.variable];
+      std::vector<double> values(ref.length);
+      for (std::size_t i = 0; i < ref.length; ++i) {
+        const double v = var.data[ref.offset + i * ref.stride];
+        if (!std::isfinite(v)) {
+          throw InputError(fmt::format("{}: variable {}: element {} is not a finite number ({})", path_, ref.name,
+                                       i + 1, v));
+        }
+        values[i] = v;
+      }
+      out.columns.push_back(std::move(values));
+    }
+    return out;
+  }
+
+ private:
+  void Load(const std::string& file) {
+    std::lock_guard<std::mutex> lock(log_mutex);
+    Mat_LogInitFunc("driveid", CaptureMatioLog);
+    last_matio_message.clear();
+    mat_t* mat = Mat_Open(file.c_str(), MAT_ACC_RDONLY);
+    if (mat == nullptr) {
+      throw InputError(fmt::format("{}: not a readable MAT file{}", path_,
+                                   last_matio_message.empty() ? "" : ": " + last_matio_message));
+    }
+    std::vector<std::string> names;
+    while (matvar_t* info = Mat_VarReadNextInfo(mat)) {
+      if (info->name != nullptr) names.emplace_back(info->name);
+      Mat_VarFree(info);
+      if (names.size() > 10000) break;
+    }
+    std::size_t elements = 0;
+    try {
+      for (const auto& name : names) {
+        matvar_t* var = Mat_VarRead(mat, name.c_str());
+        if (var == nullptr) {
+          notes_.push_back(fmt::format("{}: skipped (matio cannot read it{})", name,
+                                       last_matio_message.empty() ? "" : ": " + last_matio_message));
+          continue;
+        }
+        try {
+          Add(var, name, 0, elements);
+        } catch (...) {
+          Mat_VarFree(var);
+          throw;
+        }
+        Mat_VarFree(var);
+      }
+    } catch (...) {
+      Mat_Close(mat);
+      throw;
+    }
+    Mat_Close(mat);
+  }
+
+  void Add(matvar_t* var, const std::string& name, int depth, std::size_t& elements) {
+    if (var->rank != 2 || var->dims == nullptr) {
+      notes_.push_back(fmt::format("{}: skipped ({}-dimensional)", name, var->rank));
+      return;
+    }
+    const std::size_t rows = var->dims[0], cols = var->dims[1];
+    if (var->class_type == MAT_C_STRUCT) {
+      if (rows * cols != 1 || depth > 16) {
+        notes_.push_back(fmt::format("{}: skipped (struct array {} x {}; give one struct)", name, rows, cols));
+        return;
+      }
+      const unsigned count = Mat_VarGetNumberOfFields(var);
+      char* const* fields = Mat_VarGetStructFieldnames(var);
+      for (unsigned f = 0; f < count && fields != nullptr; ++f) {
+        matvar_t* field = Mat_VarGetStructFieldByIndex(var, f, 0);
+        if (field != nullptr && fields[f] != nullptr) Add(field, name + "." + fields[f], depth + 1, elements);
+      }
+      return;
+    }
+    if (var->isComplex) {
+      notes_.push_back(fmt::format("{}: skipped (complex numbers)", name));
+      return;
+    }
+    Variable v{name, rows, cols, {}};
+    if (rows == 0 || cols == 0 || rows > kMaxElements / std::max<std::size_t>(cols, 1) ||
+        elements + rows * cols > kMaxElements) {
+      notes_.push_back(fmt::format("{}: skipped ({} x {} {})", name, rows, cols,
+                                   rows == 0 || cols == 0 ? "empty" : "too large"));
+      return;
+    }
+    if (!ConvertNumeric(var, rows * cols, v.data)) {
+      notes_.push_back(fmt::format("{}: skipped ({})", name, ClassName(var->class_type)));
+      return;
+    }
+    elements += rows * cols;
+    variables_.push_back(std::move(v));
+  }
+
+  std::string path_;
+  std::vector<Variable> variables_;
+  mutable std::vector<ColumnRef> columns_;  // listed ones first, then rows asked for
+  std::size_t listed_ = 0;
+  std::vector<std::string> notes_;
+};
+
+}  // namespace
+
+std::unique_ptr<TableSource> OpenMatSource(const std::string& path, const std::string& text) {
+  return std::make_unique<MatSource>(path, text);
+}
+
+}  // namespace driveid

@@ -1,0 +1,362 @@
+#include "io/table_source.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <string_view>
+#include <unordered_map>
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+
+namespace driveid {
+namespace {
+
+bool IsBlank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+
+void Trim(const char*& begin, const char*& end) {
+  while (begin < end && IsBlank(*begin)) ++begin;
+  while (end > begin && IsBlank(end[-1])) --end;
+}
+
+// A field for an error message: at most 40 characters, control and non-ASCII
+// bytes escaped so that binary garbage cannot mess up a terminal.
+std::string Quote(const char* begin, const char* end) {
+  std::string out = "\"";
+  const std::size_t length = static_cast<std::size_t>(end - begin);
+  const std::size_t shown = std::min<std::size_t>(length, 40);
+  for (std::size_t i = 0; i < shown; ++i) {
+    const unsigned char c = static_cast<unsigned char>(begin[i]);
+    if (c < 0x20 || c >= 0x7f || c == '"' || c == '\\') out += fmt::format("\\x{:02x}", c);
+    else out += static_cast<char>(c);
+  }
+  return shown < length ? out + fmt::format("...\" ({} bytes)", length) : out + "\"";
+}
+
+// Splits [begin, end) into trimmed fields at `delimiter` (' ' = runs of blanks).
+template <typename Visit>
+void SplitFields(const char* begin, const char* end, char delimiter, Visit visit) {
+  if (delimiter == ' ') {
+    const char* p = begin;
+    while (p < end) {
+      while (p < end && IsBlank(*p)) ++p;
+      if (p == end) break;
+      const char* field = p;
+      while (p < end && !IsBlank(*p)) ++p;
+      visit(field, p);
+    }
+    return;
+  }
+  const char* field = begin;
+  for (const char* p = begin;; ++p) {
+    if (p == end || *p == delimiter) {
+      const char* b = field;
+      const char* e = p;
+      Trim(b, e);
+      visit(b, e);
+      if (p == end) break;
+      field = p + 1;
+    }
+  }
+}
+
+bool ParseNumber(const char* begin, const char* end, double& value, bool& out_of_range) {
+  const char* b = (begin < end && *begin == '+' && end - begin > 1) ? begin + 1 : begin;
+  const auto result = std::from_chars(b, end, value);
+  out_of_range = result.ec == std::errc::result_out_of_range;
+  return b != end && result.ec == std::errc() && result.ptr == end;
+}
+
+std::string DelimiterText(char d) {
+  switch (d) {
+    case '\t': return "tab";
+    case ' ': return "blanks";
+    default: return std::string("'") + d + "'";
+  }
+}
+
+class CsvSource : public TableSource {
+ public:
+  CsvSource(std::string path, std::string_view text, const CsvFormat& format)
+      : path_(std::move(path)), text_(text), max_line_bytes_(format.max_line_bytes) {
+    std::size_t p = 0;
+    if (text_.size() >= 3 && std::memcmp(text_.data(), "\xEF\xBB\xBF", 3) == 0) p = 3;  // UTF-8 BOM
+    int line = 0;
+    bool first = true;
+    while (p < text_.size()) {
+      const char* b = nullptr;
+      const char* e = nullptr;
+      const std::size_t next = NextLine(p, ++line, b, e);
+      const std::size_t line_start = p;
+      p = next;
+      if (b == e) continue;
+      if (*b == '#') {
+        comments_.emplace_back(b + 1, e);
+        continue;
+      }
+      if (first) {
+        first = false;
+        delimiter_ = format.delimiter ? format.delimiter : Detect(b, e);
+        std::vector<std::string> fields;
+        bool numeric = true;
+        SplitFields(b, e, delimiter_, [&](const char* fb, const char* fe) {
+          double v = 0.0;
+          bool range = false;
+          if (!ParseNumber(fb, fe, v, range)) numeric = false;
+          if (fe - fb >= 2 && *fb == '"' && fe[-1] == '"') {
+            ++fb;
+            --fe;
+          }
+          fields.emplace_back(fb, fe);
+        });
+        field_count_ = fields.size();
+        if (format.no_header || numeric) {
+          names_.assign(field_count_, "");
+          data_start_ = line_start;
+          data_line_ = line - 1;
+          if (!format.no_header) notes_.push_back("no header row: the first row holds numbers (columns are #1 .. #n)");
+          ++rows_;
+        } else {
+          names_ = std::move(fields);
+          header_line_ = line;
+          data_start_ = next;
+          data_line_ = line;
+          CheckHeader();
+        }
+        continue;
+      }
+      ++rows_;
+    }
+    if (first) throw InputError(fmt::format("{}: empty file: no header row", path_));
+    if (rows_ == 0) throw InputError(fmt::format("{}:{}: no data rows after the header", path_, header_line_));
+    if (delimiter_ != ',') notes_.push_back("delimiter: " + DelimiterText(delimiter_));
+  }
+
+  std::string path() const override { return path_; }
+  std::string format() const override { return "csv"; }
+  int header_line() const override { return header_line_; }
+  std::vector<std::string> column_names() const override { return names_; }
+  std::vector<std::size_t> column_lengths() const override { return std::vector<std::size_t>(field_count_, rows_); }
+  std::vector<std::string> notes() const override { return notes_; }
+  std::vector<std::string> comments() const override { return comments_; }
+
+  TableData Read(const std::vector<std::size_t>& columns) const override {
+    TableData out;
+    out.columns.resize(columns.size());
+    for (auto& c : out.columns) c.reserve(rows_);
+    out.line_numbers.reserve(rows_);
+    std::vector<int> slot(field_count_, -1);
+    for (std::size_t k = 0; k < columns.size(); ++k) {
+      if (slot[columns[k]] < 0) slot[columns[k]] = static_cast<int>(k);
+    }
+    std::size_t p = data_start_;
+    int line = data_line_;
+    while (p < text_.size()) {
+      const char* b = nullptr;
+      const char* e = nullptr;
+      p = NextLine(p, ++line, b, e);
+      if (b == e || *b == '#') continue;
+      std::size_t field = 0;
+      SplitFields(b, e, delimiter_, [&](const char* fb, const char* fe) {
+        if (field >= field_count_) {  // counted for the message below
+          ++field;
+          return;
+        }
+        const int s = slot[field];
+        if (s >= 0) {
+          const std::string name = ColumnLabel(field);
+          if (fb == fe) throw InputError(fmt::format("{}:{}: column {}: empty cell", path_, line, name));
+          double value = 0.0;
+          bool out_of_range = false;
+          if (!ParseNumber(fb, fe, value, out_of_range)) {
+            throw InputError(fmt::format("{}:{}: column {}: {}: {}", path_, line, name,
+                                         out_of_range ? "number out of range" : "not a number", Quote(fb, fe)));
+          }
+          if (!std::isfinite(value)) {
+            throw InputError(fmt::format("{}:{}: column {}: not a finite number: {}", path_, line, name, Quote(fb, fe)));
+          }
+          out.columns[static_cast<std::size_t>(s)].push_back(value);
+        }
+        ++field;
+      });
+      if (field != field_count_) {
+        throw InputError(fmt::format("{}:{}: {} fields, but the {} has {}", path_, line, field,
+                                     header_line_ ? fmt::format("header (line {})", header_line_) : "first row",
+                                     field_count_));
+      }
+      out.line_numbers.push_back(line);
+    }
+    for (std::size_t k = 0; k < columns.size(); ++k) {
+      const int s = slot[columns[k]];
+      if (static_cast<std::size_t>(s) != k) out.columns[k] = out.columns[static_cast<std::size_t>(s)];
+    }
+    return out;
+  }
+
+ private:
+  // The line starting at p: its trimmed bounds; returns the start of the next.
+  std::size_t NextLine(std::size_t p, int line, const char*& b, const char*& e) const {
+    const char* start = text_.data() + p;
+    const char* end = text_.data() + text_.size();
+    const char* newline = static_cast<const char*>(std::memchr(start, '\n', static_cast<std::size_t>(end - start)));
+    const char* line_end = newline ? newline : end;
+    if (static_cast<std::size_t>(line_end - start) > max_line_bytes_) {
+      throw InputError(fmt::format("{}:{}: line longer than {} bytes", path_, line, max_line_bytes_));
+    }
+    b = start;
+    e = line_end;
+    Trim(b, e);
+    return newline ? static_cast<std::size_t>(newline - text_.data()) + 1 : text_.size();
+  }
+
+  static char Detect(const char* b, const char* e) {
+    for (char d : {',', ';', '\t'}) {
+      if (std::find(b, e, d) != e) return d;
+    }
+    return ' ';
+  }
+
+  void CheckHeader() const {
+    std::unordered_map<std::string_view, std::size_t> seen;  // linear in the number of columns
+    for (std::size_t i = 0; i < names_.size(); ++i) {
+      if (names_[i].empty()) throw InputError(fmt::format("{}:{}: header field {} is empty", path_, header_line_, i + 1));
+      if (!seen.emplace(names_[i], i).second) {
+        throw InputError(fmt::format("{}:{}: column '{}' appears twice in the header", path_, header_line_, names_[i]));
+      }
+    }
+  }
+
+  std::string ColumnLabel(std::size_t field) const {
+    return names_[field].empty() ? fmt::format("#{}", field + 1) : "'" + names_[field] + "'";
+  }
+
+  std::string path_;
+  std::string_view text_;
+  std::size_t max_line_bytes_;
+  char delimiter_ = ',';
+  std::vector<std::string> names_;
+  std::vector<std::string> comments_;
+  std::vector<std::string> notes_;
+  std::size_t field_count_ = 0;
+  std::size_t rows_ = 0;
+  std::size_t data_start_ = 0;
+  int data_line_ = 0;
+  int header_line_ = 0;
+};
+
+class JoinedSource : public TableSource {
+ public:
+  JoinedSource(std::unique_ptr<TableSource> a, std::unique_ptr<TableSource> b) : a_(std::move(a)), b_(std::move(b)) {
+    const auto la = a_->column_lengths(), lb = b_->column_lengths();
+    const std::size_t rows_a = la.empty() ? 0 : la.front(), rows_b = lb.empty() ? 0 : lb.front();
+    if (rows_a != rows_b) {
+      throw InputError(fmt::format("{}: {} rows, but {} (joined with --join) has {}: a joined file must have one row "
+                                   "per row of the log",
+                                   a_->path(), rows_a, b_->path(), rows_b));
+    }
+  }
+  std::string path() const override { return a_->path(); }
+  std::string segment() const override { return a_->segment(); }
+  std::string format() const override { return a_->format(); }
+  int header_line() const override { return a_->header_line(); }
+  std::vector<std::string> column_names() const override {
+    auto names = a_->column_names();
+    for (const auto& n : b_->column_names()) names.push_back(n);
+    return names;
+  }
+  std::vector<std::size_t> column_lengths() const override {
+    auto lengths = a_->column_lengths();
+    for (auto n : b_->column_lengths()) lengths.push_back(n);
+    return lengths;
+  }
+  std::optional<double> scalar(const std::string& name) const override {
+    auto v = a_->scalar(name);
+    return v ? v : b_->scalar(name);
+  }
+  std::vector<std::string> comments() const override { return a_->comments(); }
+  std::vector<std::string> notes() const override {
+    auto notes = a_->notes();
+    notes.push_back("joined row by row with " + b_->path());
+    for (const auto& n : b_->notes()) notes.push_back(b_->path() + ": " + n);
+    return notes;
+  }
+  TableData Read(const std::vector<std::size_t>& columns) const override {
+    const std::size_t split = a_->column_names().size();
+    std::vector<std::size_t> in_a, in_b;
+    for (auto c : columns) (c < split ? in_a : in_b).push_back(c < split ? c : c - split);
+    TableData da = a_->Read(in_a), db = b_->Read(in_b);
+    TableData out;
+    out.line_numbers = !da.line_numbers.empty() ? std::move(da.line_numbers) : std::move(db.line_numbers);
+    std::size_t ia = 0, ib = 0;
+    for (auto c : columns) out.columns.push_back(c < split ? std::move(da.columns[ia++]) : std::move(db.columns[ib++]));
+    return out;
+  }
+
+ private:
+  std::unique_ptr<TableSource> a_, b_;
+};
+
+bool LooksLikeMat(const std::string& text) {
+  // v5 and v7.3 files start with a 116-byte text header "MATLAB 5.0 MAT-file" / "MATLAB 7.3 MAT-file".
+  return text.size() >= 128 && (text.compare(0, 10, "MATLAB 5.0") == 0 || text.compare(0, 10, "MATLAB 7.3") == 0);
+}
+
+bool LooksLikeJson(const std::string& text) {
+  for (char c : text) {
+    if (c == ' ' || c == '\n' || c == '\r' || c == '\t') continue;
+    return c == '{';
+  }
+  return false;
+}
+
+}  // namespace
+
+std::optional<std::size_t> TableSource::Find(const std::string& reference) const {
+  const auto names = column_names();
+  if (reference.size() >= 2 && reference[0] == '#') {
+    std::size_t k = 0;
+    const auto result = std::from_chars(reference.data() + 1, reference.data() + reference.size(), k);
+    if (result.ec == std::errc() && result.ptr == reference.data() + reference.size() && k >= 1 && k <= names.size()) {
+      return k - 1;
+    }
+    return std::nullopt;
+  }
+  std::optional<std::size_t> found;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (names[i] != reference) continue;
+    if (found) {
+      throw InputError(fmt::format("{}: column '{}' occurs at #{} and #{}: name it by position", path(), reference,
+                                   *found + 1, i + 1));
+    }
+    found = i;
+  }
+  return found;
+}
+
+std::unique_ptr<TableSource> OpenCsvSource(const std::string& path, const std::string& text, const CsvFormat& format) {
+  return std::make_unique<CsvSource>(path, text, format);
+}
+
+std::unique_ptr<TableSource> JoinSources(std::unique_ptr<TableSource> first, std::unique_ptr<TableSource> second) {
+  return std::make_unique<JoinedSource>(std::move(first), std::move(second));
+}
+
+std::vector<std::unique_ptr<TableSource>> OpenTableSources(const std::string& path, const std::string& text,
+                                                           const CsvFormat& csv, const SysIdFormat& sysid) {
+  std::vector<std::unique_ptr<TableSource>> out;
+  if (LooksLikeMat(text)) {
+    out.push_back(OpenMatSource(path, text));
+  } else if (LooksLikeJson(text)) {
+    out = OpenSysIdSources(path, text, sysid);
+  } else {
+    if (text.size() >= 8 && text.compare(0, 8, "\x89HDF\r\n\x1a\n") == 0) {
+      throw InputError(fmt::format("{}: an HDF5 file without a MAT header: not a MAT v7.3 file", path));
+    }
+    out.push_back(OpenCsvSource(path, text, csv));
+  }
+  return out;
+}
+
+}  // namespace driveid

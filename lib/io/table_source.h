@@ -1,0 +1,96 @@
+// Where a log's columns come from (docs/formats.md#logs): a CSV file (with or
+// without a header row; comma, semicolon, tab or blank separated), a MATLAB
+// MAT file (v5, v7.3) or one test of a WPILib SysId JSON file. A source has
+// columns addressed by name, by 1-based position `#k`, or (MAT) by variable
+// path, and may have named scalars for column expressions.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace driveid {
+
+/// Columns read from a source: values per requested column, and the file
+/// line of each row where the source is text (empty otherwise).
+struct TableData {
+  std::vector<std::vector<double>> columns;
+  std::vector<int> line_numbers;
+};
+
+class TableSource {
+ public:
+  virtual ~TableSource() = default;
+  /// The file, and the part of it ("slow-forward", "left") this source is.
+  virtual std::string path() const = 0;
+  virtual std::string segment() const { return {}; }
+  /// "csv", "mat" or "sysid".
+  virtual std::string format() const = 0;
+  /// The line of a CSV header row (0: none).
+  virtual int header_line() const { return 0; }
+  /// Addressable columns in position order (`#k` is the k-th); "" for a
+  /// column without a name (a CSV without header).
+  virtual std::vector<std::string> column_names() const = 0;
+  /// Rows of each column (0 when they differ, as in a MAT file of several
+  /// variables; then only columns of equal length can make a log).
+  virtual std::vector<std::size_t> column_lengths() const = 0;
+  /// A named constant (MAT scalar variables), for column expressions.
+  virtual std::optional<double> scalar(const std::string& name) const {
+    (void)name;
+    return std::nullopt;
+  }
+  /// Reads the columns with the given indices; throws InputError naming the
+  /// file (and line, or variable) of a value that is not a finite number.
+  virtual TableData Read(const std::vector<std::size_t>& columns) const = 0;
+  /// Things a reader skipped or assumed (no header row, a delimiter, a
+  /// variable it cannot read): shown by `inspect`, kept in the provenance.
+  virtual std::vector<std::string> notes() const { return {}; }
+  /// Comment lines of a text log, without the leading '#'.
+  virtual std::vector<std::string> comments() const { return {}; }
+  /// Default references for logical columns ("q" -> "position"), e.g. from
+  /// a SysId file's layout; "" when the name is used as it is.
+  virtual std::string DefaultReference(const std::string& logical) const {
+    (void)logical;
+    return {};
+  }
+
+  /// The index of a reference: `#k` (1-based), or a name that occurs once.
+  /// Returns nullopt when absent; throws InputError for an ambiguous name.
+  /// (The MAT reader also resolves rows of matrices, `name(k,:)`.)
+  virtual std::optional<std::size_t> Find(const std::string& reference) const;
+};
+
+/// How to read text sources.
+struct CsvFormat {
+  char delimiter = 0;      ///< 0: detect (',', ';', tab, else blanks)
+  bool no_header = false;  ///< the first row is data (also detected: a first row of numbers)
+  std::size_t max_line_bytes = 1 << 20;
+};
+
+/// Options of the SysId reader.
+struct SysIdFormat {
+  std::string side;  ///< "left", "right" or "both" for the Drivetrain layout
+};
+
+/// Opens a file already in memory (`text` must outlive the sources) as one or more sources (a SysId file has
+/// one per test, and per side with --side both). The format is taken from
+/// the contents (MAT header, a JSON object) and otherwise is CSV. Throws
+/// InputError naming the file.
+std::vector<std::unique_ptr<TableSource>> OpenTableSources(const std::string& path, const std::string& text,
+                                                           const CsvFormat& csv, const SysIdFormat& sysid);
+
+/// The CSV reader alone.
+std::unique_ptr<TableSource> OpenCsvSource(const std::string& path, const std::string& text, const CsvFormat& format);
+/// The MAT reader alone (v5 and v7.3 through libmatio).
+std::unique_ptr<TableSource> OpenMatSource(const std::string& path, const std::string& text);
+/// The SysId JSON reader alone.
+std::vector<std::unique_ptr<TableSource>> OpenSysIdSources(const std::string& path, const std::string& text,
+                                                           const SysIdFormat& format);
+
+/// Two sources side by side, row by row (`--join`): positions count on
+/// across them. Throws InputError when their row counts differ.
+std::unique_ptr<TableSource> JoinSources(std::unique_ptr<TableSource> first, std::unique_ptr<TableSource> second);
+
+}  // namespace driveid
