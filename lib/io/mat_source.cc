@@ -153,6 +153,11 @@ class MatSource : public TableSource {
     return std::nullopt;
   }
   std::vector<std::string> notes() const override { return notes_; }
+  // Without --col t=..., a variable `t` or else `time` is the time base.
+  std::string DefaultReference(const std::string& logical) const override {
+    if (logical == "t" && !TableSource::Find("t") && TableSource::Find("time")) return "time";
+    return {};
+  }
 
   std::optional<std::size_t> Find(const std::string& reference) const override {
     if (auto found = TableSource::Find(reference)) return found;

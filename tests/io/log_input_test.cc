@@ -1,0 +1,233 @@
+// The input layer (docs/formats.md#logs): header-less and other-delimiter
+// CSV, column expressions, --rate, crops, joins, MAT v5 and v7.3 files
+// written here with matio, WPILib SysId JSON; values and error messages.
+#include "io/log_input.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <catch2/catch.hpp>
+#include <matio.h>
+
+#include "core/errors.h"
+
+using namespace driveid;
+
+namespace {
+
+const std::vector<std::string> kAxis = {"t", "q", "tau|i"};
+
+CsvLog ReadOne(const std::string& path, const std::string& text, const LogInputOptions& options,
+               const std::vector<JoinedFile>& joins = {}) {
+  auto logs = ReadLogs(path, text, joins, kAxis, options);
+  REQUIRE(logs.size() == 1);
+  return std::move(logs.front());
+}
+
+template <typename Error = InputError>
+std::string ErrorOf(const std::string& text, const LogInputOptions& options, const std::string& path = "log.csv") {
+  try {
+    ReadLogs(path, text, {}, kAxis, options);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+LogInputOptions Columns(std::map<std::string, std::string> columns) {
+  LogInputOptions options;
+  options.columns = std::move(columns);
+  return options;
+}
+
+std::string Slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A MAT file written by matio (independent of the reader under test).
+std::string WriteMat(mat_ft version) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / (version == MAT_FT_MAT73 ? "driveid_test73.mat" : "driveid_test5.mat"))
+          .string();
+  std::remove(path.c_str());
+  mat_t* mat = Mat_CreateVer(path.c_str(), nullptr, version);
+  REQUIRE(mat != nullptr);
+  // time: 1 x 5 row vector; data: 5 x 3 (columns t, position [deg], current);
+  // gain: scalar; rec: struct with pos (2 x 5) and time_cont (5 x 1); a cell.
+  double time[5] = {0.0, 0.01, 0.02, 0.03, 0.04};
+  std::size_t row_dims[2] = {1, 5};
+  Mat_VarWrite(mat, Mat_VarCreate("time", MAT_C_DOUBLE, MAT_T_DOUBLE, 2, row_dims, time, 0), MAT_COMPRESSION_NONE);
+  double data[15] = {0, 0.01, 0.02, 0.03, 0.04, 10, 20, 30, 40, 50, 1, 2, 3, 4, 5};  // column-major
+  std::size_t data_dims[2] = {5, 3};
+  Mat_VarWrite(mat, Mat_VarCreate("data", MAT_C_DOUBLE, MAT_T_DOUBLE, 2, data_dims, data, 0), MAT_COMPRESSION_ZLIB);
+  double gain = 2.5;
+  std::size_t scalar_dims[2] = {1, 1};
+  Mat_VarWrite(mat, Mat_VarCreate("gain", MAT_C_DOUBLE, MAT_T_DOUBLE, 2, scalar_dims, &gain, 0), MAT_COMPRESSION_NONE);
+  double pos[10] = {1, 100, 2, 200, 3, 300, 4, 400, 5, 500};  // 2 x 5, column-major: row 1 = 1..5
+  std::size_t pos_dims[2] = {2, 5};
+  double tc[5] = {0.0, 0.1, 0.2, 0.3, 0.4};
+  std::size_t tc_dims[2] = {5, 1};
+  const char* fields[2] = {"pos", "time_cont"};
+  std::size_t struct_dims[2] = {1, 1};
+  matvar_t* rec = Mat_VarCreateStruct("rec", 2, struct_dims, fields, 2);
+  Mat_VarSetStructFieldByName(rec, "pos", 0, Mat_VarCreate(nullptr, MAT_C_DOUBLE, MAT_T_DOUBLE, 2, pos_dims, pos, 0));
+  Mat_VarSetStructFieldByName(rec, "time_cont", 0,
+                              Mat_VarCreate(nullptr, MAT_C_DOUBLE, MAT_T_DOUBLE, 2, tc_dims, tc, 0));
+  Mat_VarWrite(mat, rec, MAT_COMPRESSION_NONE);
+  Mat_VarFree(rec);
+  double re[5] = {1, 2, 3, 4, 5}, im[5] = {0, 0, 0, 0, 1};
+  mat_complex_split_t z = {re, im};
+  Mat_VarWrite(mat, Mat_VarCreate("z", MAT_C_DOUBLE, MAT_T_DOUBLE, 2, row_dims, &z, MAT_F_COMPLEX),
+               MAT_COMPRESSION_NONE);
+  Mat_Close(mat);
+  std::string bytes = Slurp(path);
+  std::remove(path.c_str());
+  return bytes;
+}
+
+}  // namespace
+
+TEST_CASE("CSV without header: columns by position, detected or forced") {
+  const auto log = ReadOne("u.csv", "0,1.5,3\n0.01,1.6,4\n0.02,1.7,5\n",
+                           Columns({{"t", "#1"}, {"q", "#2"}, {"tau", "10*#3"}}));
+  CHECK(log.columns[1][2] == 1.7);
+  CHECK(log.columns[2][0] == 30.0);
+  CHECK(log.line_numbers == std::vector<int>{1, 2, 3});
+  CHECK(log.notes.front() == "no header row: the first row holds numbers (columns are #1 .. #n)");
+  CHECK(std::find(log.notes.begin(), log.notes.end(), "tau = 10*#3") != log.notes.end());
+  // Forced: a first row that is text is data, and refused as a number.
+  LogInputOptions forced = Columns({{"t", "#1"}, {"q", "#2"}, {"tau", "#3"}});
+  forced.csv.no_header = true;
+  CHECK(ErrorOf("t,q,tau\n0,1,2\n", forced) == "log.csv:1: column #1: not a number: \"t\"");
+  CHECK_THAT(ErrorOf("0,1,2\n1,2,3\n", {}), Catch::StartsWith("log.csv: missing column 't' (the file has no header: "
+                                                                "name its 3 columns by position"));
+  CHECK(ErrorOf("0,1,2\n1,2\n", forced) == "log.csv:2: 2 fields, but the first row has 3");
+}
+
+TEST_CASE("delimiters: semicolon, tab and blanks detected, or given") {
+  for (const std::string& text : {"t;q;tau\n0;1;2\n1;2;3\n", "t\tq\ttau\n0\t1\t2\n1\t2\t3\n", "t  q tau\n0 1   2\n1 2 3\n"}) {
+    const auto log = ReadOne("d.csv", text, {});
+    CHECK(log.columns[0] == std::vector<double>{0, 1});
+    CHECK(log.columns[2] == std::vector<double>{2, 3});
+  }
+  LogInputOptions semicolon;
+  semicolon.csv.delimiter = ';';
+  CHECK_THAT(ErrorOf("t,q,tau\n0,1,2\n", semicolon), Catch::Contains("missing column 't'"));
+}
+
+TEST_CASE("column expressions: factors, pi, division; refused forms are named") {
+  const std::string text = "t,pos_deg,amps\n0,90,1\n1,180,2\n";
+  const auto log = ReadOne("e.csv", text, Columns({{"q", "pi/180*pos_deg"}, {"i", "amps / 4"}}));
+  CHECK(log.names[2] == "i");
+  CHECK(log.columns[1][0] == Approx(M_PI / 2));
+  CHECK(log.columns[2][1] == 0.5);
+  CHECK(ErrorOf<OptionError>(text, Columns({{"q", "pos_deg*amps"}, {"tau", "amps"}})) ==
+        "--col q=pos_deg*amps: two columns ('pos_deg' and 'amps'); an expression scales one column");
+  CHECK(ErrorOf<OptionError>(text, Columns({{"q", "1/pos_deg"}, {"tau", "amps"}})) ==
+        "--col q=1/pos_deg: the column 'pos_deg' may not be a divisor");
+  CHECK(ErrorOf<OptionError>(text, Columns({{"q", "pos_deg/0"}, {"tau", "amps"}})) ==
+        "--col q=pos_deg/0: division by zero ('0')");
+  CHECK(ErrorOf<OptionError>(text, Columns({{"q", "2*degrees"}, {"tau", "amps"}})) ==
+        "--col q=2*degrees: 'degrees' is neither a column of the log, a number, pi, nor a scalar of the file");
+  CHECK(ErrorOf<OptionError>(text, Columns({{"q", "pos_deg*"}, {"tau", "amps"}})).find("an operand is missing") !=
+        std::string::npos);
+  CHECK(ErrorOf<OptionError>(text, Columns({{"q", "pos_deg"}, {"tau", "2*pos_deg"}})) ==
+        "--col: 'q' and 'tau' would both read column 'pos_deg' of log.csv");
+  CHECK_THAT(ErrorOf(text, Columns({{"q", "position"}})), Catch::StartsWith("log.csv:1: missing column 'position'"));
+}
+
+TEST_CASE("--rate makes the time base; crops keep [from, to] in log time") {
+  LogInputOptions rate = Columns({{"q", "#1"}, {"tau", "#2"}});
+  rate.rate = 100.0;
+  const auto log = ReadOne("r.csv", "1,2\n3,4\n5,6\n7,8\n", rate);
+  CHECK(log.columns[0] == std::vector<double>{0.0, 0.01, 0.02, 0.03});
+  LogInputOptions crop = rate;
+  crop.from = 0.005;
+  crop.to = 0.025;
+  const auto cropped = ReadOne("r.csv", "1,2\n3,4\n5,6\n7,8\n", crop);
+  CHECK(cropped.columns[1] == std::vector<double>{3, 5});
+  CHECK(cropped.line_numbers == std::vector<int>{2, 3});
+  crop.from = 5.0;
+  crop.to = 6.0;
+  CHECK(ErrorOf("1,2\n3,4\n", crop) == "log.csv: no samples between --from 5 s and --to 6 s (the log spans 0 .. 0.01 s)");
+  LogInputOptions both;
+  both.rate = 10.0;
+  CHECK_THAT(ErrorOf<OptionError>("t,q,tau\n0,1,2\n", both), Catch::Contains("--rate is for logs without one"));
+  CHECK(ErrorOf("t,q,tau\n0,1,2\n0,2,3\n", {}) == "log.csv:3: column 't': time not strictly increasing (0 after 0)");
+}
+
+TEST_CASE("--join: a second file's columns row by row, positions count on") {
+  const std::string positions = "t,q\n0,1\n1,2\n2,3\n";
+  const std::string currents = "0.5\n0.6\n0.7\n";
+  const std::string short_file = "0.5\n0.6\n";
+  const auto log = ReadOne("p.csv", positions, Columns({{"tau", "#3"}}), {{"c.csv", &currents}});
+  CHECK(log.columns[2] == std::vector<double>{0.5, 0.6, 0.7});
+  CHECK(std::find(log.notes.begin(), log.notes.end(), "joined row by row with c.csv") != log.notes.end());
+  CHECK_THROWS_WITH(ReadOne("p.csv", positions, Columns({{"tau", "#3"}}), {{"c.csv", &short_file}}),
+                    "p.csv: 3 rows, but c.csv (joined with --join) has 2: a joined file must have one row per row "
+                    "of the log");
+}
+
+TEST_CASE("MAT v5 and v7.3: vectors, matrix columns and rows, struct fields, scalars in expressions") {
+  for (mat_ft version : {MAT_FT_MAT5, MAT_FT_MAT73}) {
+    const std::string bytes = WriteMat(version);
+    INFO((version == MAT_FT_MAT73 ? "v7.3" : "v5"));
+    // Without --col t=..., the variable `time` is the time base.
+    const auto a = ReadOne("m.mat", bytes, Columns({{"q", "pi/180*data(:,2)"}, {"i", "gain*data(:,3)"}}));
+    CHECK(a.columns[0][4] == 0.04);
+    CHECK(a.columns[1][1] == Approx(20 * M_PI / 180));
+    CHECK(a.columns[2] == std::vector<double>{2.5, 5, 7.5, 10, 12.5});
+    CHECK(a.line_numbers.empty());
+    const auto b = ReadOne("m.mat", bytes, Columns({{"t", "rec.time_cont"}, {"q", "rec.pos(1,:)"}, {"tau", "rec.pos(2,:)"}}));
+    CHECK(b.columns[1] == std::vector<double>{1, 2, 3, 4, 5});
+    CHECK(b.columns[2][4] == 500);
+    // The complex variable is skipped with a note; asking for it fails, listing what the file has.
+    CHECK(std::find(b.notes.begin(), b.notes.end(), "z: skipped (complex numbers)") != b.notes.end());
+    // (v7.3 lists variables in HDF5's alphabetical order.)
+    const std::string missing = ErrorOf(bytes, Columns({{"t", "time"}, {"q", "z"}, {"tau", "data(:,3)"}}), "m.mat");
+    CHECK_THAT(missing, Catch::StartsWith("m.mat: missing column 'z' (the file has "));
+    CHECK_THAT(missing, Catch::Contains("\"time\"") && Catch::Contains("\"data(:,1)\"") &&
+                            Catch::Contains("\"rec.time_cont\""));
+    CHECK(ErrorOf(bytes, Columns({{"t", "time"}, {"q", "rec.pos(1,:)"}, {"tau", "rec.time_cont"}}), "m.mat") ==
+          "no error");
+    CHECK(ErrorOf(bytes, Columns({{"t", "time"}, {"q", "rec.pos(1,:)"}, {"tau", "data(2,:)"}}), "m.mat") ==
+          "m.mat: column 'data(2,:)' has 3 values but 'time' has 5: the columns of a log have one value per sample");
+  }
+  CHECK_THAT(ErrorOf(std::string("MATLAB 5.0 MAT-file") + std::string(200, '\0'), {}, "bad.mat"),
+             Catch::StartsWith("bad.mat:"));
+}
+
+TEST_CASE("SysId JSON: four tests as logs, positions in units, sides of a drivetrain") {
+  const std::string simple = R"({"test": "Simple", "units": "Radians", "unitsPerRotation": 6.0, "sysid": true,
+    "slow-forward": [[0, 1, 0.5, 0.1], [0.005, 1.1, 0.6, 0.2]], "slow-backward": [[1, -1, 2, -0.1], [1.005, -1.1, 1.9, -0.2]],
+    "fast-forward": [[2, 7, 0, 0], [2.005, 7, 0.1, 1]], "fast-backward": [[3, -7, 0, 0], [3.005, -7, -0.1, -1]]})";
+  const auto logs = ReadLogs("s.json", simple, {}, kAxis, {});
+  REQUIRE(logs.size() == 4);
+  CHECK(logs[0].segment == "slow-forward");
+  CHECK(logs[0].columns[1][0] == 3.0);
+  CHECK(logs[0].columns[1][1] == Approx(3.6));
+  CHECK(logs[1].columns[2] == std::vector<double>{-1, -1.1});
+  CHECK(logs[3].segment == "fast-backward");
+  const std::string drive = R"({"test": "Drivetrain", "units": "Meters", "unitsPerRotation": 0.5,
+    "slow-forward": [[0, 1, 2, 10, 20, 0, 0, 0, 0], [1, 1, 2, 11, 21, 1, 1, 0, 0]],
+    "slow-backward": [[0, 1, 2, 10, 20, 0, 0, 0, 0], [1, 1, 2, 11, 21, 1, 1, 0, 0]],
+    "fast-forward": [[0, 1, 2, 10, 20, 0, 0, 0, 0], [1, 1, 2, 11, 21, 1, 1, 0, 0]],
+    "fast-backward": [[0, 1, 2, 10, 20, 0, 0, 0, 0], [1, 1, 2, 11, 21, 1, 1, 0, 0]]})";
+  LogInputOptions both;
+  both.sysid.side = "both";
+  const auto sides = ReadLogs("d.json", drive, {}, kAxis, both);
+  REQUIRE(sides.size() == 8);
+  CHECK(sides[1].segment == "slow-forward/right");
+  CHECK(sides[1].columns[1] == std::vector<double>{10, 10.5});
+  CHECK(sides[1].columns[2] == std::vector<double>{2, 2});
+  CHECK_THAT(ErrorOf<OptionError>(drive, {}, "d.json"), Catch::Contains("give --side left, right or both"));
+  CHECK(ErrorOf(R"({"test": "Simple", "unitsPerRotation": 1, "slow-forward": [[0, 1]]})", {}, "x.json") ==
+        "x.json: slow-forward[0]: expected 4 numbers per sample for the Simple layout");
+  CHECK(ErrorOf("{\"test\": ", {}, "x.json").rfind("x.json: invalid JSON at byte", 0) == 0);
+}
