@@ -137,7 +137,10 @@ CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>&
                                    where, expressions[k].reference, n, first_name, rows));
     }
   }
-  if (first) rows = source.column_lengths().empty() ? 0 : source.column_lengths().front();
+  if (first) {
+    const auto lengths = source.column_lengths();
+    rows = lengths.empty() ? 0 : lengths.front();
+  }
   log.columns.resize(required.size());
   for (std::size_t k = 0, r = 0; k < required.size(); ++k) {
     if (generated_time[k]) {

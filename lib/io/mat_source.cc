@@ -128,6 +128,11 @@ class MatSource : public TableSource {
       }
     }
     listed_ = columns_.size();
+    std::vector<std::string> scalars;
+    for (const auto& var : variables_) {
+      if (var.rows == 1 && var.cols == 1 && scalars.size() < 40) scalars.push_back(fmt::format("{} = {:.6g}", var.name, var.data[0]));
+    }
+    if (!scalars.empty()) notes_.push_back(fmt::format("scalars (for expressions): {}", fmt::join(scalars, ", ")));
     if (columns_.empty()) {
       throw InputError(fmt::format("{}: the MAT file has no numeric vector or matrix variable{}", path_,
                                    notes_.empty() ? "" : fmt::format(" ({})", fmt::join(notes_, "; "))));

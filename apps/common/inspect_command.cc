@@ -1,0 +1,79 @@
+// `inspect LOG...`: what the tools would read from a log file — columns,
+// samples, rate and jitter, time span, ranges, segments, and the
+// expressions and crops applied (docs/formats.md#logs). Registered in both
+// tools; the first command a new user runs on their own data.
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "common/cli_support.h"
+#include "common/command_registry.h"
+#include "common/log_input_options.h"
+#include "report/log_inspection.h"
+
+namespace driveid::cli {
+namespace {
+
+struct InspectOptions {
+  std::vector<std::string> logs;
+  LogInputCli input;
+  double max_log_gib = 4.0;
+  bool json = false;
+};
+
+CLI::App* SetupInspect(CLI::App& app, InspectOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "inspect", "Show what the tools read from log files: columns, samples, rate, span, ranges, expressions, crops");
+  command->add_option("logs", options.logs, "log files: CSV, MAT (v5, v7.3) or WPILib SysId JSON")->required();
+  AddLogInputOptions(*command, options.input, "q=pi/180*#2");
+  command->add_option("--max-log-size", options.max_log_gib, "largest log to read [GiB]")
+      ->capture_default_str()
+      ->check(FiniteWithin(1e-6, 1024.0));
+  command->add_flag("--json", options.json, "print one JSON object");
+  command->footer(
+      "Examples:\n  " + app.get_name() + " inspect data/fig6_step.csv\n  " + app.get_name() +
+      " inspect arm.csv --no-header --col t=#1 --col q=#2 --col tau=10*#14 --from 5");
+  return command;
+}
+
+void RunInspect(const InspectOptions& options) {
+  ReadLimits limits;
+  limits.max_bytes = static_cast<std::size_t>(options.max_log_gib * 1073741824.0);
+  limits.max_bytes_hint = fmt::format("a log may be at most {} GiB (raise with --max-log-size)", options.max_log_gib);
+  const LogInputOptions input = MakeLogInputOptions(options.input);
+  std::string text_out;
+  Json json = Json::array();
+  for (std::size_t i = 0; i < options.logs.size(); ++i) {
+    const std::string text = ReadFileToString(options.logs[i], limits);
+    auto sources = OpenTableSources(options.logs[i], text, input.csv, input.sysid);
+    std::string join_text;
+    const std::string join_path = JoinFor(options.input, i, options.logs.size());
+    if (!join_path.empty()) {
+      join_text = ReadFileToString(join_path, limits);
+      auto joined = OpenTableSources(join_path, join_text, input.csv, SysIdFormat{});
+      if (joined.size() != 1 || sources.size() != 1) {
+        throw OptionError(fmt::format("--join {}: only single-table files (CSV, MAT) can be joined", join_path));
+      }
+      sources.front() = JoinSources(std::move(sources.front()), std::move(joined.front()));
+    }
+    for (const auto& source : sources) {
+      const InspectedLog inspected = InspectLog(*source, input);
+      if (options.json) json.push_back(LogInspectionJson(inspected));
+      else text_out += FormatLogInspection(inspected);
+    }
+  }
+  WriteStdout(options.json ? DumpJson(json) : text_out);
+}
+
+InspectOptions inspect_options;
+const bool kDrivetrain = RegisterCommand({"drivetrain-fit", "", 5,
+                                          [](CLI::App& parent) { return SetupInspect(parent, inspect_options); },
+                                          [](const std::string&) { RunInspect(inspect_options); }});
+const bool kCDrive = RegisterCommand({"cdrive-fit", "", 5,
+                                      [](CLI::App& parent) { return SetupInspect(parent, inspect_options); },
+                                      [](const std::string&) { RunInspect(inspect_options); }});
+
+}  // namespace
+}  // namespace driveid::cli
