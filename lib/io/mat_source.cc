@@ -6,6 +6,9 @@
 // written to a registered temporary file first, so the data read is the data
 // recorded, and a FIFO works too.
 #include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstdint>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -13,6 +16,10 @@
 #include <map>
 #include <mutex>
 
+#include <poll.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -21,6 +28,16 @@
 #include "core/errors.h"
 #include "io/table_source.h"
 #include "io/temporary_files.h"
+
+// AddressSanitizer reserves its shadow memory up front: an address-space
+// cap would make every allocation fail, so the cap is left out there.
+#if defined(__SANITIZE_ADDRESS__)
+#define DRIVEID_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define DRIVEID_ASAN 1
+#endif
+#endif
 
 namespace driveid {
 namespace {
@@ -209,7 +226,135 @@ class MatSource : public TableSource {
   }
 
  private:
+  // matio (and HDF5 below it) trust the sizes a file claims: a corrupt file
+  // can make them allocate terabytes or crash. They run in a child process
+  // (address space capped where no sanitizer needs it, 60 s at most); the
+  // variables come back through a pipe, and a child that dies is an
+  // unreadable file, not a dead tool.
   void Load(const std::string& file) {
+    int fds[2];
+    if (::pipe(fds) != 0) throw InputError(fmt::format("{}: cannot start the MAT reader", path_));
+    const pid_t child = ::fork();
+    if (child < 0) {
+      ::close(fds[0]);
+      ::close(fds[1]);
+      throw InputError(fmt::format("{}: cannot start the MAT reader", path_));
+    }
+    if (child == 0) {
+      ::close(fds[0]);
+#if !defined(DRIVEID_ASAN)
+      const rlim_t cap = static_cast<rlim_t>(kMaxElements) * 8 * 3;
+      const struct rlimit limit = {cap, cap};
+      ::setrlimit(RLIMIT_AS, &limit);
+#endif
+      std::string message;
+      try {
+        LoadHere(file);
+        message = Serialise();
+      } catch (const std::exception& e) {
+        message = std::string(1, '\1') + e.what();
+      } catch (...) {
+        message = std::string(1, '\1') + "the MAT reader failed";
+      }
+      std::size_t written = 0;
+      while (written < message.size()) {
+        const ssize_t n = ::write(fds[1], message.data() + written, message.size() - written);
+        if (n <= 0) break;
+        written += static_cast<std::size_t>(n);
+      }
+      ::_exit(written == message.size() ? 0 : 1);
+    }
+    ::close(fds[1]);
+    std::string reply;
+    std::vector<char> chunk(1 << 16);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    bool timed_out = false;
+    while (true) {
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+      if (left.count() <= 0) {
+        timed_out = true;
+        break;
+      }
+      struct pollfd p = {fds[0], POLLIN, 0};
+      const int ready = ::poll(&p, 1, static_cast<int>(left.count()));
+      if (ready < 0 && errno == EINTR) continue;
+      if (ready <= 0) {
+        timed_out = ready == 0;
+        break;
+      }
+      const ssize_t n = ::read(fds[0], chunk.data(), chunk.size());
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;
+      reply.append(chunk.data(), static_cast<std::size_t>(n));
+      if (reply.size() > kMaxElements * 8 + (std::size_t{64} << 20)) break;
+    }
+    ::close(fds[0]);
+    if (timed_out) ::kill(child, SIGKILL);
+    int status = 0;
+    while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (timed_out) throw InputError(fmt::format("{}: the MAT reader took longer than 60 s", path_));
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || reply.empty()) {
+      throw InputError(fmt::format("{}: not a readable MAT file (the reader {})", path_,
+                                   WIFSIGNALED(status) ? fmt::format("died of signal {}", WTERMSIG(status))
+                                                       : "failed"));
+    }
+    if (reply[0] == '\1') throw InputError(reply.substr(1));
+    Deserialise(reply);
+  }
+
+  // The reply: 0, then per variable its name, rows, cols and values, then the notes.
+  std::string Serialise() const {
+    std::string out(1, '\0');
+    const auto put = [&](std::uint64_t v) { out.append(reinterpret_cast<const char*>(&v), sizeof v); };
+    const auto put_text = [&](const std::string& s) {
+      put(s.size());
+      out += s;
+    };
+    put(variables_.size());
+    for (const auto& v : variables_) {
+      put_text(v.name);
+      put(v.rows);
+      put(v.cols);
+      out.append(reinterpret_cast<const char*>(v.data.data()), v.data.size() * sizeof(double));
+    }
+    put(notes_.size());
+    for (const auto& n : notes_) put_text(n);
+    return out;
+  }
+
+  void Deserialise(const std::string& in) {
+    std::size_t at = 1;
+    const auto get = [&]() {
+      std::uint64_t v = 0;
+      if (in.size() - at < sizeof v) throw InputError(fmt::format("{}: the MAT reader's reply is cut short", path_));
+      std::memcpy(&v, in.data() + at, sizeof v);
+      at += sizeof v;
+      return v;
+    };
+    const auto get_bytes = [&](std::uint64_t n) {
+      if (in.size() - at < n) throw InputError(fmt::format("{}: the MAT reader's reply is cut short", path_));
+      std::string s = in.substr(at, n);
+      at += n;
+      return s;
+    };
+    const std::uint64_t count = get();
+    for (std::uint64_t i = 0; i < count; ++i) {
+      Variable v;
+      v.name = get_bytes(get());
+      v.rows = get();
+      v.cols = get();
+      if (v.cols != 0 && v.rows > kMaxElements / v.cols) throw InputError(fmt::format("{}: variable too large", path_));
+      const std::string bytes = get_bytes(v.rows * v.cols * sizeof(double));
+      v.data.resize(v.rows * v.cols);
+      std::memcpy(v.data.data(), bytes.data(), bytes.size());
+      variables_.push_back(std::move(v));
+    }
+    const std::uint64_t notes = get();
+    for (std::uint64_t i = 0; i < notes; ++i) notes_.push_back(get_bytes(get()));
+  }
+
+  void LoadHere(const std::string& file) {
     std::lock_guard<std::mutex> lock(log_mutex);
     Mat_LogInitFunc("driveid", CaptureMatioLog);
     last_matio_message.clear();

@@ -1,0 +1,43 @@
+// libFuzzer target: the readers of real-world logs (docs/formats.md#logs) —
+// MAT v5/v7.3 through libmatio, WPILib SysId JSON, header-less CSV with
+// column expressions — must accept or refuse (InputError, OptionError) any
+// bytes, never crash, hang or throw anything else. The first byte picks the
+// reader: 0 MAT, 1 SysId JSON, 2 CSV.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "core/errors.h"
+#include "io/log_input.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  if (size < 1) return 0;
+  const std::string text(reinterpret_cast<const char*>(data) + 1, size - 1);
+  driveid::LogInputOptions options;
+  try {
+    switch (data[0] % 3) {
+      case 0: {
+        const auto source = driveid::OpenMatSource("fuzz.mat", text);
+        options.columns = {{"t", "data(:,1)"}, {"q", "J*data(:,2)"}, {"tau", "data(1,:)"}};
+        driveid::ReadLogColumns(*source, {"t", "q", "tau|i"}, options);
+        break;
+      }
+      case 1: {
+        driveid::SysIdFormat sides{"both"};
+        for (const auto& source : driveid::OpenSysIdSources("fuzz.json", text, sides)) {
+          driveid::ReadLogColumns(*source, {"t", "q", "tau|i"}, options);
+        }
+        break;
+      }
+      default: {
+        options.columns = {{"t", "#1"}, {"q", "pi/180*#2"}, {"tau", "10*#5"}};
+        options.from = 1297.495;
+        driveid::ReadLogs("fuzz.csv", text, {}, {"t", "q", "tau|i"}, options);
+        break;
+      }
+    }
+  } catch (const driveid::InputError&) {
+  } catch (const driveid::OptionError&) {
+  }
+  return 0;
+}
