@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# Logs as they come (docs/formats.md#logs) through the command line: a
+# header-less, a semicolon and a blank-separated copy of a simulated axis log,
+# positions in degrees read by an expression, two-file logs, --rate, crops,
+# SysId JSON, `inspect`, the provenance and byte-identical reruns.
+# Usage: log_input_cli_test.sh DRIVETRAIN_FIT SRC
+set -u
+bin="$1"
+src="$2"
+program=drivetrain-fit
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work" || exit 1
+# shellcheck source=cli_test_lib.sh
+. "$src/tests/cli/cli_test_lib.sh"
+
+"$bin" simulate axis --params "$src/data/axis_example.yaml" --noise 0.05 --seed 3 -o axis.csv || fail "simulate axis"
+"$bin" axis axis.csv -q -o reference.yaml || fail "reference fit"
+inertia() { awk '/^  inertia:/ {print $2}' "$1"; }
+same() {  # same estimate within 1e-6 relative (degrees round-trip in the 10th digit)
+  awk -v a="$(inertia "$1")" -v b="$(inertia reference.yaml)" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(a != "" && d <= 1e-6 * b) }'
+}
+
+# No header, positions in degrees, read back with an expression.
+grep -v '^#' axis.csv | tail -n +2 | awk -F, '{ printf "%s,%.12g,%s\n", $1, $2 * 180 / 3.14159265358979324, $3 }' > bare.csv
+"$bin" axis bare.csv --col t=#1 --col 'q=pi/180*#2' --col tau=#3 -q -o bare.yaml && same bare.yaml && ok ||
+  fail "header-less log with a degree expression: inertia $(inertia bare.yaml) vs $(inertia reference.yaml)"
+grep -q 'notes: \["no header row: the first row holds numbers (columns are #1 .. #n)", "t = #1", "q = pi/180\*#2", "tau = #3"\]' bare.yaml \
+  && ok || fail "provenance of the expressions: $(grep 'file:' bare.yaml)"
+cp bare.yaml bare_first.yaml
+"$bin" axis bare.csv --col t=#1 --col 'q=pi/180*#2' --col tau=#3 -q -o bare.yaml && cmp -s bare.yaml bare_first.yaml \
+  && ok || fail "rerun of a header-less fit differs"
+# Semicolons and blanks, detected.
+grep -v '^#' axis.csv | tr ',' ';' > semicolon.csv
+"$bin" axis semicolon.csv -q -o semicolon.yaml && same semicolon.yaml && ok || fail "semicolon-separated log"
+grep -v '^#' axis.csv | tr ',' ' ' > blanks.txt
+"$bin" axis blanks.txt -q -o blanks.yaml && same blanks.yaml && ok || fail "blank-separated log"
+# Two files row by row; positions count on.
+cut -d, -f1,2 bare.csv > positions.csv
+cut -d, -f3 bare.csv > torques.csv
+"$bin" axis positions.csv --join torques.csv --col t=#1 --col 'q=pi/180*#2' --col tau=#3 -q -o joined.yaml &&
+  same joined.yaml && ok || fail "joined log"
+grep -q "joined with torques.csv (sha256 " joined.yaml && ok || fail "join not in the provenance"
+head -5 torques.csv > short.csv
+expect 3 "positions.csv: [0-9]+ rows, but short.csv \(joined with --join\) has 5" -- \
+  axis positions.csv --join short.csv --col t=#1 --col q=#2 --col tau=#3
+# No time column: --rate (the simulated log is 1 kHz).
+cut -d, -f2,3 bare.csv > untimed.csv
+"$bin" axis untimed.csv --rate 1000 --col 'q=pi/180*#1' --col tau=#2 -q -o untimed.yaml && same untimed.yaml && ok ||
+  fail "--rate: inertia $(inertia untimed.yaml)"
+expect 2 "--rate: axis.csv has a time column 't'" -- axis axis.csv --rate 1000
+# Crops: fewer samples, recorded.
+"$bin" axis axis.csv --from 2 --to 6 -q -o cropped.yaml && grep -q "samples: 4001, notes: \[\"cropped to 2 .. 6 s" cropped.yaml \
+  && ok || fail "crop: $(grep 'file:' cropped.yaml)"
+expect 3 "axis.csv: no samples between --from 50 s and --to 60 s" -- axis axis.csv --from 50 --to 60
+expect 2 "--from 6 --to 2: need from < to" -- axis axis.csv --from 6 --to 2
+# Refusals name the file and line, or the option.
+sed '7s/,[^,]*$/,x7/' bare.csv > bad.csv
+expect 3 "bad.csv:7: column #3: not a number: \"x7\"" -- axis bad.csv --col t=#1 --col q=#2 --col tau=#3
+expect 3 "bare.csv: missing column 't' \(the file has no header: name its 3 columns by position" -- axis bare.csv
+expect 2 "--col q=#2\*#3: two columns" -- axis bare.csv --col t=#1 --col 'q=#2*#3' --col tau=#1
+expect 2 "--col q=2\*degrees: 'degrees' is neither a column" -- axis bare.csv --col t=#1 --col 'q=2*degrees' --col tau=#3
+# SysId JSON: the four tests are logs; a drivetrain needs a side.
+awk -F, 'NR > 1 && !/^#/ { n++; s = s (n > 1 ? ", " : "") sprintf("[%s, %s, %.12g, 0]", $1, $3, $2 / 6.283185307179586) }
+  END { printf "{\"test\": \"Simple\", \"units\": \"Radians\", \"unitsPerRotation\": 6.283185307179586, \"slow-forward\": [%s], \"slow-backward\": [[0, 0, 0, 0], [0.001, 0, 0, 0]], \"fast-forward\": [[0, 0, 0, 0], [0.001, 0, 0, 0]], \"fast-backward\": [[0, 0, 0, 0], [0.001, 0, 0, 0]]}\n", s }' \
+  <(grep -v '^#' axis.csv) > sysid.json
+"$bin" inspect sysid.json > inspect.txt && grep -q "sysid.json \[slow-forward\] (sysid)" inspect.txt && ok ||
+  fail "inspect of a SysId file: $(head -3 inspect.txt)"
+sed 's/"Simple"/"Drivetrain"/' sysid.json > drive.json
+expect 2 "drive.json: a SysId Drivetrain file: give --side left, right or both" -- axis drive.json
+# inspect: columns, rate, and the columns as a fit reads them.
+"$bin" inspect bare.csv --col t=#1 --col 'q=pi/180*#2' > inspect.txt && grep -q "10001 samples, t = 0 .. 10 s (10 s), rate 1000 Hz" inspect.txt \
+  && grep -q "q = pi/180\*#2" inspect.txt && ok || fail "inspect: $(cat inspect.txt)"
+finish
