@@ -46,6 +46,7 @@ std::vector<Log> LoadLogs(const std::vector<std::string>& paths, const LogInputC
                           const FitOutputOptions& output, FitProvenance& provenance,
                           const std::vector<std::string>& columns, Make make) {
   ReadLimits limits;
+  limits.lines_unless_structured = true;  // logs may be JSON or MAT
   limits.max_bytes = static_cast<std::size_t>(output.max_log_gib * 1073741824.0);
   limits.max_bytes_hint = fmt::format("a log may be at most {} GiB (raise with --max-log-size)", output.max_log_gib);
   const LogInputOptions options = MakeLogInputOptions(input);

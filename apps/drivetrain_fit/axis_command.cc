@@ -1,5 +1,6 @@
 #include "drivetrain_fit/axis_command.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include <fmt/format.h>
@@ -48,8 +49,12 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
   outputs.provenance.command = command_line;
   outputs.provenance.version = DRIVEID_VERSION;
   outputs.provenance.model = "axis (docs/models.md#axis), IDIM-LS";
+  std::vector<std::string> sysid_units;  // per log: the SysId file's units, "" for other logs
   const auto logs = LoadLogs<AxisLog>(options.logs, options.input, options.output, outputs.provenance, AxisLogColumns(),
-                                        [&](CsvLog csv) { return MakeAxisLog(std::move(csv), section.torque_constant.value_or(0.0)); });
+                                        [&](CsvLog csv) {
+                                          sysid_units.push_back(csv.format == "sysid" ? csv.units : "");
+                                          return MakeAxisLog(std::move(csv), section.torque_constant.value_or(0.0));
+                                        });
   AxisFitOptions fit_options;
   fit_options.free = options.free;
   fit_options.cutoff = options.cutoff;
@@ -71,6 +76,28 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
     }
     const double n2 = *section.gear_ratio * *section.gear_ratio;
     derived.push_back({"d_g", result.params.viscous / n2, viscous_std / n2, "N m s/rad at the gear input, b / n_g^2"});
+  }
+  // SysId logs (voltage as torque): the feed-forward gains in the log's units.
+  const bool sysid = std::all_of(sysid_units.begin(), sysid_units.end(),
+                                 [&](const std::string& u) { return !u.empty() && u == sysid_units.front(); });
+  if (sysid) {
+    const std::string unit = sysid_units.front();
+    const auto std_of = [&](double AxisParameters::*member) {
+      for (const auto& e : result.fit.estimates) {
+        if (e.name == KeyOf(AxisParameterTable(), member)) return e.standard_error;
+      }
+      return 0.0;
+    };
+    derived.push_back({"Ks", result.params.coulomb, std_of(&AxisParameters::coulomb), "V, SysId's Ks = coulomb"});
+    derived.push_back({"Kv", result.params.viscous, std_of(&AxisParameters::viscous),
+                       fmt::format("V s/{}, SysId's Kv = viscous", unit)});
+    const bool inertia_known = section.inertia.has_value() ||
+                               std::find(options.free.begin(), options.free.end(),
+                                         KeyOf(AxisParameterTable(), &AxisParameters::inertia)) != options.free.end();
+    if (inertia_known) {
+      derived.push_back({"Ka", result.params.inertia, std_of(&AxisParameters::inertia),
+                         fmt::format("V s^2/{}, SysId's Ka = inertia", unit)});
+    }
   }
   outputs.parameter_file = FormatParameterFile(fitted, &outputs.fit, &outputs.provenance, derived);
   outputs.trace_csv = fmt::format("# drivetrain-fit axis trace: decimated samples used by IDIM-LS ({}, cutoff {} Hz)\n",

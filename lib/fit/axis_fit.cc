@@ -48,8 +48,18 @@ Derivatives Differentiate(const AxisLog& log, double cutoff_request) {
       throw OptionError(fmt::format("--cutoff = {}: violated constraint: below half the sampling rate {} Hz", cutoff,
                                     d.rate_hz));
     }
-    const std::vector<double> q = ZeroPhaseLowPass(log.position, cutoff, d.rate_hz);
     const double dt = 1.0 / d.rate_hz;
+    if (!log.rate.empty()) {
+      // A measured rate: filtered, and differentiated once for q''.
+      const std::vector<double> v = ZeroPhaseLowPass(log.rate, cutoff, d.rate_hz);
+      for (std::size_t k = 1; k + 1 < n; ++k) {
+        d.rate[k] = v[k];
+        d.acceleration[k] = (v[k + 1] - v[k - 1]) / (2.0 * dt);
+        d.valid[k] = 1;
+      }
+      return d;
+    }
+    const std::vector<double> q = ZeroPhaseLowPass(log.position, cutoff, d.rate_hz);
     for (std::size_t k = 1; k + 1 < n; ++k) {
       d.rate[k] = (q[k + 1] - q[k - 1]) / (2.0 * dt);
       d.acceleration[k] = (q[k + 1] - 2.0 * q[k] + q[k - 1]) / (dt * dt);
@@ -60,10 +70,17 @@ Derivatives Differentiate(const AxisLog& log, double cutoff_request) {
     const double span = log.time.back() - log.time.front();
     const double mean_rate = static_cast<double>(n - 1) / span;
     const double cutoff = cutoff_request > 0.0 ? cutoff_request : mean_rate / 40.0;
-    const SignalDerivatives s = EstimateDerivatives(log.time, log.position, 0.5 / cutoff);
-    d.rate = s.rate;
-    d.acceleration = s.acceleration;
-    d.valid = s.valid;
+    if (!log.rate.empty()) {
+      const SignalDerivatives s = EstimateDerivatives(log.time, log.rate, 0.5 / cutoff);
+      d.rate = s.value;
+      d.acceleration = s.rate;
+      d.valid = s.valid;
+    } else {
+      const SignalDerivatives s = EstimateDerivatives(log.time, log.position, 0.5 / cutoff);
+      d.rate = s.rate;
+      d.acceleration = s.acceleration;
+      d.valid = s.valid;
+    }
   }
   return d;
 }
@@ -104,6 +121,7 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
     const Derivatives d = Differentiate(log, options.cutoff);
     out.method = d.rate_hz > 0.0 ? "IDIM-LS: Butterworth zero-phase, central differences, parallel decimation"
                                  : "IDIM-LS on irregular samples: local-polynomial rates, subsampling";
+    if (!log.rate.empty()) out.method += "; measured rate qd (q'' from it)";
     out.cutoff = options.cutoff > 0.0 ? options.cutoff : d.rate_hz / 40.0;
     const std::size_t n = log.time.size();
     double max_rate = 0.0;

@@ -8,7 +8,7 @@
 namespace driveid {
 
 const std::vector<std::string>& AxisLogColumns() {
-  static const std::vector<std::string> columns = {"t", "q", "tau|i"};
+  static const std::vector<std::string> columns = {"t", "q", "tau|i", "?qd"};
   return columns;
 }
 
@@ -21,7 +21,8 @@ AxisLog ParseAxisLog(const std::string& path, const std::string& text,
 
 AxisLog MakeAxisLog(CsvLog csv, double torque_constant) {
   const std::string path = csv.segment.empty() ? csv.path : csv.path + " [" + csv.segment + "]";
-  AxisLog log{path, std::move(csv.columns[0]), std::move(csv.columns[1]), std::move(csv.columns[2])};
+  AxisLog log{path, std::move(csv.columns[0]), std::move(csv.columns[1]), std::move(csv.columns[2]),
+              std::move(csv.columns[3])};
   if (csv.names[2] == "i") {
     if (!(torque_constant > 0.0)) {
       throw InputError(fmt::format("{}: the log has a current column 'i': axis.k_t must be given in --params", path));

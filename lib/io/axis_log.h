@@ -18,6 +18,7 @@ struct AxisLog {
   std::vector<double> time;      ///< [s]
   std::vector<double> position;  ///< q [rad or m]
   std::vector<double> force;     ///< tau [N m or N] (from i x k_t if given as current)
+  std::vector<double> rate;      ///< qd [rad/s or m/s], a measured rate (empty: q is differentiated)
 };
 
 /// The logical columns of the log (an entry "a|b": a, or else b).

@@ -41,6 +41,8 @@ std::string ReadFileToString(const std::string& path, const ReadLimits& limits) 
     text.reserve(static_cast<std::size_t>(std::min<off_t>(status.st_size, static_cast<off_t>(limits.max_bytes) + 1)));
   }
   std::size_t line_length = 0;
+  std::size_t max_line_bytes = limits.max_line_bytes;
+  bool first_chunk = limits.lines_unless_structured;
   std::vector<char> chunk(1 << 16);
   for (;;) {
     const ssize_t got = ::read(fd, chunk.data(), chunk.size());
@@ -56,18 +58,28 @@ std::string ReadFileToString(const std::string& path, const ReadLimits& limits) 
       ::close(fd);
       throw InputError(fmt::format("{}: larger than {} bytes ({})", path, limits.max_bytes, limits.max_bytes_hint));
     }
-    if (limits.max_line_bytes > 0) {
+    if (first_chunk) {
+      // JSON (SysId writes one long line), MAT and HDF5 files are not lines.
+      first_chunk = false;
+      std::size_t i = 0;
+      while (i < n && (chunk[i] == ' ' || chunk[i] == '\n' || chunk[i] == '\r' || chunk[i] == '\t')) ++i;
+      const std::string_view head(chunk.data() + i, n - i);
+      if (head.substr(0, 1) == "{" || head.substr(0, 7) == "MATLAB " || head.substr(0, 4) == "\x89HDF") {
+        max_line_bytes = 0;
+      }
+    }
+    if (max_line_bytes > 0) {
       const char* begin = chunk.data();
       const char* end = begin + n;
       while (begin < end) {
         const char* newline = static_cast<const char*>(std::memchr(begin, '\n', static_cast<std::size_t>(end - begin)));
         line_length += static_cast<std::size_t>((newline ? newline : end) - begin);
-        if (line_length > limits.max_line_bytes) {
+        if (line_length > max_line_bytes) {
           ::close(fd);
           throw InputError(fmt::format("{}:{}: line longer than {} bytes", path,
                                        1 + std::count(text.begin(), text.end(), '\n') +
                                            std::count(static_cast<const char*>(chunk.data()), begin, '\n'),
-                                       limits.max_line_bytes));
+                                       max_line_bytes));
         }
         if (newline == nullptr) break;
         line_length = 0;

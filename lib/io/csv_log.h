@@ -15,6 +15,8 @@ namespace driveid {
 struct CsvLog {
   std::string path;                        ///< file the data came from (for messages)
   std::string segment;                     ///< part of the file ("slow-forward/left"), "" for all of it
+  std::string format = "csv";              ///< "csv", "mat" or "sysid"
+  std::string units;                       ///< position unit the file declares (SysId `units`), "" if none
   std::vector<std::string> names;          ///< logical column names, as requested
   std::vector<std::vector<double>> columns;  ///< columns[k][row], SI units
   std::vector<int> line_numbers;           ///< 1-based file line of each row (empty for MAT and JSON)
@@ -58,6 +60,9 @@ void RequireFiniteColumns(const std::vector<std::pair<std::string, const std::ve
 struct ReadLimits {
   std::size_t max_bytes = std::size_t{4} << 30;  ///< whole file (default 4 GiB)
   std::size_t max_line_bytes = 1 << 20;         ///< one line; 0 = no limit (binary files)
+  /// Drop the line limit when the file starts as JSON ('{'), MAT or HDF5
+  /// (files of logs; the whole-file limit still holds).
+  bool lines_unless_structured = false;
   std::string max_bytes_hint = "a log may be at most 4 GiB";  ///< how to raise max_bytes, for the message
 };
 

@@ -13,7 +13,7 @@ namespace {
 
 std::vector<std::string> Alternatives(const std::string& entry) {
   std::vector<std::string> out;
-  for (std::size_t start = 0;;) {
+  for (std::size_t start = entry.rfind('?', 0) == 0 ? 1 : 0;;) {
     const std::size_t bar = entry.find('|', start);
     out.push_back(entry.substr(start, bar == std::string::npos ? bar : bar - start));
     if (bar == std::string::npos) break;
@@ -62,10 +62,13 @@ CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>&
   CsvLog log;
   log.path = source.path();
   log.segment = source.segment();
+  log.format = source.format();
+  log.units = source.units();
   log.names = required;
   std::vector<ColumnExpression> expressions(required.size());
   std::vector<std::size_t> indices(required.size());
   std::vector<char> generated_time(required.size(), 0);
+  std::vector<char> absent(required.size(), 0);  // an optional column ("?name") the log does not have
   const auto is_column = [&](const std::string& word) { return source.Find(word).has_value(); };
   const auto scalar = [&](const std::string& word) { return source.scalar(word); };
   for (std::size_t k = 0; k < required.size(); ++k) {
@@ -100,6 +103,11 @@ CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>&
       found = true;
       break;
     }
+    if (!found && required[k].rfind('?', 0) == 0) {
+      absent[k] = 1;
+      log.names[k] = alternatives.front();
+      continue;
+    }
     if (!found) {
       const bool time = alternatives.front() == options.time_column;
       throw InputError(fmt::format("{}{}: missing column {}' ({}; map another name with --col {}=COLUMN{})", where,
@@ -110,7 +118,7 @@ CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>&
   // Two logical columns may not read one source column.
   for (std::size_t a = 0; a < required.size(); ++a) {
     for (std::size_t b = a + 1; b < required.size(); ++b) {
-      if (!generated_time[a] && !generated_time[b] && indices[a] == indices[b]) {
+      if (!generated_time[a] && !generated_time[b] && !absent[a] && !absent[b] && indices[a] == indices[b]) {
         throw OptionError(fmt::format("--col: '{}' and '{}' would both read column '{}' of {}", log.names[a],
                                       log.names[b], expressions[a].reference, where));
       }
@@ -118,14 +126,14 @@ CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>&
   }
   std::vector<std::size_t> to_read;
   for (std::size_t k = 0; k < required.size(); ++k) {
-    if (!generated_time[k]) to_read.push_back(indices[k]);
+    if (!generated_time[k] && !absent[k]) to_read.push_back(indices[k]);
   }
   TableData data = source.Read(to_read);
   std::size_t rows = 0;
   bool first = true;
   std::string first_name;
   for (std::size_t k = 0, r = 0; k < required.size(); ++k) {
-    if (generated_time[k]) continue;
+    if (generated_time[k] || absent[k]) continue;
     const std::size_t n = data.columns[r++].size();
     if (first) {
       rows = n;
@@ -143,6 +151,7 @@ CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>&
   }
   log.columns.resize(required.size());
   for (std::size_t k = 0, r = 0; k < required.size(); ++k) {
+    if (absent[k]) continue;  // left empty
     if (generated_time[k]) {
       log.columns[k].resize(rows);
       for (std::size_t i = 0; i < rows; ++i) log.columns[k][i] = static_cast<double>(i) / options.rate;
@@ -188,8 +197,10 @@ CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>&
         throw InputError(fmt::format("{}: no samples between --from {} s and --to {} s (the log spans {} .. {} s)",
                                      where, from, to, time.front(), time.back()));
       }
-      for (auto& c : log.columns) c = std::vector<double>(c.begin() + static_cast<std::ptrdiff_t>(begin),
-                                                           c.begin() + static_cast<std::ptrdiff_t>(end));
+      for (auto& c : log.columns) {
+        if (c.empty()) continue;  // an absent optional column
+        c = std::vector<double>(c.begin() + static_cast<std::ptrdiff_t>(begin), c.begin() + static_cast<std::ptrdiff_t>(end));
+      }
       if (!log.line_numbers.empty()) {
         log.line_numbers = std::vector<int>(log.line_numbers.begin() + static_cast<std::ptrdiff_t>(begin),
                                             log.line_numbers.begin() + static_cast<std::ptrdiff_t>(end));

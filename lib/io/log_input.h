@@ -33,7 +33,8 @@ struct JoinedFile {
 };
 
 /// Reads the logs of one file. `required` lists logical names; "a|b" takes
-/// a, or b when a is neither mapped nor present. Throws InputError naming
+/// a, or b when a is neither mapped nor present; "?a" is optional (left
+/// empty when neither mapped nor present). Throws InputError naming
 /// the file and line (or variable), OptionError for a bad --col.
 std::vector<CsvLog> ReadLogs(const std::string& path, const std::string& text, const std::vector<JoinedFile>& joins,
                              const std::vector<std::string>& required, const LogInputOptions& options);

@@ -21,10 +21,11 @@ const char* const kTests[] = {"slow-forward", "slow-backward", "fast-forward", "
 
 class SysIdSource : public TableSource {
  public:
-  SysIdSource(std::string path, std::string segment, std::vector<std::string> names,
+  SysIdSource(std::string path, std::string segment, std::string units, std::vector<std::string> names,
               std::vector<std::vector<double>> columns, std::vector<std::string> notes)
-      : path_(std::move(path)), segment_(std::move(segment)), names_(std::move(names)), columns_(std::move(columns)),
-        notes_(std::move(notes)) {}
+      : path_(std::move(path)), segment_(std::move(segment)), units_(std::move(units)), names_(std::move(names)),
+        columns_(std::move(columns)), notes_(std::move(notes)) {}
+  std::string units() const override { return units_; }
   std::string path() const override { return path_; }
   std::string segment() const override { return segment_; }
   std::string format() const override { return "sysid"; }
@@ -35,7 +36,6 @@ class SysIdSource : public TableSource {
   std::vector<std::string> notes() const override { return notes_; }
   std::string DefaultReference(const std::string& logical) const override {
     if (logical == "q") return "position";
-    if (logical == "qd") return "velocity";
     if (logical == "tau") return "voltage";
     return {};
   }
@@ -46,7 +46,7 @@ class SysIdSource : public TableSource {
   }
 
  private:
-  std::string path_, segment_;
+  std::string path_, segment_, units_;
   std::vector<std::string> names_;
   std::vector<std::vector<double>> columns_;
   std::vector<std::string> notes_;
@@ -123,7 +123,7 @@ std::vector<std::unique_ptr<TableSource>> OpenSysIdSources(const std::string& pa
       std::vector<std::string> notes = {
           fmt::format("SysId {} test, units {}: position and velocity x unitsPerRotation = {}", layout, units,
                       per_rotation)};
-      out.push_back(std::make_unique<SysIdSource>(path, side.empty() ? test : std::string(test) + "/" + side,
+      out.push_back(std::make_unique<SysIdSource>(path, side.empty() ? test : std::string(test) + "/" + side, units,
                                                   std::move(names), std::move(columns), std::move(notes)));
     }
   }

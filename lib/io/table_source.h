@@ -28,6 +28,8 @@ class TableSource {
   virtual std::string segment() const { return {}; }
   /// "csv", "mat" or "sysid".
   virtual std::string format() const = 0;
+  /// The position unit the file declares (SysId `units`), "" if none.
+  virtual std::string units() const { return {}; }
   /// The line of a CSV header row (0: none).
   virtual int header_line() const { return 0; }
   /// Addressable columns in position order (`#k` is the k-th); "" for a

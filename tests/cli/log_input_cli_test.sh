@@ -30,6 +30,13 @@ grep -q 'notes: \["no header row: the first row holds numbers (columns are #1 ..
 cp bare.yaml bare_first.yaml
 "$bin" axis bare.csv --col t=#1 --col 'q=pi/180*#2' --col tau=#3 -q -o bare.yaml && cmp -s bare.yaml bare_first.yaml \
   && ok || fail "rerun of a header-less fit differs"
+# A measured rate (--col qd=...) instead of differentiating q: a central
+# difference of q as the "velocity sensor"; the inertia stays within 5 %.
+awk -F, 'NR > 1 { t[NR] = $1; q[NR] = $2; u[NR] = $3 } END { for (k = 3; k < NR; ++k)
+  printf "%s,%s,%s,%.12g\n", t[k], q[k], u[k], (q[k + 1] - q[k - 1]) / (t[k + 1] - t[k - 1]) }' <(grep -v '^#' axis.csv) > rate.csv
+"$bin" axis rate.csv --col t=#1 --col q=#2 --col tau=#3 --col qd=#4 -q -o rate.yaml &&
+  awk -v a="$(inertia rate.yaml)" -v b="$(inertia reference.yaml)" 'BEGIN { exit !(a > 0.95 * b && a < 1.05 * b) }' &&
+  grep -q '"qd = #4"' rate.yaml && ok || fail "measured rate: inertia $(inertia rate.yaml) vs $(inertia reference.yaml)"
 # Semicolons and blanks, detected.
 grep -v '^#' axis.csv | tr ',' ';' > semicolon.csv
 "$bin" axis semicolon.csv -q -o semicolon.yaml && same semicolon.yaml && ok || fail "semicolon-separated log"
@@ -62,10 +69,14 @@ expect 2 "--col q=#2\*#3: two columns" -- axis bare.csv --col t=#1 --col 'q=#2*#
 expect 2 "--col q=2\*degrees: 'degrees' is neither a column" -- axis bare.csv --col t=#1 --col 'q=2*degrees' --col tau=#3
 # SysId JSON: the four tests are logs; a drivetrain needs a side.
 awk -F, 'NR > 1 && !/^#/ { n++; s = s (n > 1 ? ", " : "") sprintf("[%s, %s, %.12g, 0]", $1, $3, $2 / 6.283185307179586) }
-  END { printf "{\"test\": \"Simple\", \"units\": \"Radians\", \"unitsPerRotation\": 6.283185307179586, \"slow-forward\": [%s], \"slow-backward\": [[0, 0, 0, 0], [0.001, 0, 0, 0]], \"fast-forward\": [[0, 0, 0, 0], [0.001, 0, 0, 0]], \"fast-backward\": [[0, 0, 0, 0], [0.001, 0, 0, 0]]}\n", s }' \
+  END { printf "{\"test\": \"Simple\", \"units\": \"Radians\", \"unitsPerRotation\": 6.283185307179586, \"slow-forward\": [%s], \"slow-backward\": [%s], \"fast-forward\": [%s], \"fast-backward\": [%s]}\n", s, s, s, s }' \
   <(grep -v '^#' axis.csv) > sysid.json
 "$bin" inspect sysid.json > inspect.txt && grep -q "sysid.json \[slow-forward\] (sysid)" inspect.txt && ok ||
   fail "inspect of a SysId file: $(head -3 inspect.txt)"
+# Fitted from SysId logs, the axis terms are also written as SysId's gains.
+"$bin" axis sysid.json -q -o sysid.yaml 2> /dev/null
+grep -q "^    Ks: {value: .*# V, SysId's Ks = coulomb" sysid.yaml && grep -q "^    Kv: .*# V s/Radians" sysid.yaml &&
+  grep -q "^    Ka: .*# V s^2/Radians" sysid.yaml && ok || fail "SysId gains: $(grep -A5 'derived:' sysid.yaml)"
 sed 's/"Simple"/"Drivetrain"/' sysid.json > drive.json
 expect 2 "drive.json: a SysId Drivetrain file: give --side left, right or both" -- axis drive.json
 # inspect: columns, rate, and the columns as a fit reads them.
