@@ -110,6 +110,14 @@ CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>&
     }
     if (!found) {
       const bool time = alternatives.front() == options.time_column;
+      // A variable the reader skipped says why (complex, text, a cell ...).
+      for (const auto& note : source.notes()) {
+        for (const auto& name : alternatives) {
+          const auto mapped = options.columns.find(name);
+          const std::string text = mapped != options.columns.end() ? mapped->second : name;
+          if (note.rfind(text + ": skipped", 0) == 0) throw InputError(fmt::format("{}: {}", where, note));
+        }
+      }
       throw InputError(fmt::format("{}{}: missing column {}' ({}; map another name with --col {}=COLUMN{})", where,
                                    source.header_line() > 0 ? fmt::format(":{}", source.header_line()) : "", wanted_all, Offered(source),
                                    alternatives.front(), time ? ", or give --rate HZ" : ""));
