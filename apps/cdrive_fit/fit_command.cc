@@ -18,7 +18,7 @@ CLI::App* SetupCDriveFitCommand(CLI::App& app, CDriveFitCommandOptions& options,
       friction ? "friction" : "inertia",
       friction ? "Fit the dissipation parameters beta, gamma, delta, eta from slow-motion logs (inertia from --params)"
                : "Fit the inertia I_h, I_c, m (a and b of eq. 17) from fast-motion logs (friction from --params)");
-  command->add_option("logs", options.logs, "C-drive logs: CSV with t, psi_L, psi_R, tau_L, tau_R (or i_L, i_R)")
+  command->add_option("logs", options.logs, "C-drive logs (CSV, MAT; docs/formats.md#logs) with t, psi_L, psi_R, tau_L, tau_R (or i_L, i_R)")
       ->required();
   command->add_option("--params", options.params, "parameter file with a cdrive section")->required();
   AddFreeOption(*command, options.free,

@@ -14,7 +14,7 @@ namespace driveid::cli {
 CLI::App* SetupRobotCommand(CLI::App& app, RobotOptions& options) {
   CLI::App* command = app.add_subcommand(
       "robot", "Theta, m_c, d_g of the planar robot from joint angles and motor currents (docs/models.md#planar-robot)");
-  command->add_option("logs", options.logs, "robot logs: CSV with t, theta1..3, i1..3")->required();
+  command->add_option("logs", options.logs, "robot logs (CSV, MAT; docs/formats.md#logs) with t, theta1..3, i1..3")->required();
   command->add_option("--params", options.params, "parameter file with a planar_robot section")->required();
   AddFreeOption(*command, options.free, FreeOptionHelp(PlanarRobotParameterTable(), "robot"));
   AddLogInputOptions(*command, options.input, "theta1=#2");

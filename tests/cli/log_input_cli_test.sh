@@ -77,6 +77,9 @@ awk -F, 'NR > 1 && !/^#/ { n++; s = s (n > 1 ? ", " : "") sprintf("[%s, %s, %.12
 "$bin" axis sysid.json -q -o sysid.yaml 2> /dev/null
 grep -q "^    Ks: {value: .*# V, SysId's Ks = coulomb" sysid.yaml && grep -q "^    Kv: .*# V s/Radians" sysid.yaml &&
   grep -q "^    Ka: .*# V s^2/Radians" sysid.yaml && ok || fail "SysId gains: $(grep -A5 'derived:' sysid.yaml)"
+[ "$(grep -c 'segment: "' sysid.yaml)" -eq 4 ] && ok || fail "SysId provenance: one entry per test expected"
+cp sysid.yaml sysid_first.yaml
+"$bin" axis sysid.json -q -o sysid.yaml 2> /dev/null && cmp -s sysid.yaml sysid_first.yaml && ok || fail "SysId rerun differs"
 sed 's/"Simple"/"Drivetrain"/' sysid.json > drive.json
 expect 2 "drive.json: a SysId Drivetrain file: give --side left, right or both" -- axis drive.json
 # inspect: columns, rate, and the columns as a fit reads them.
