@@ -51,6 +51,13 @@ std::string Slurp(const std::string& path) {
 }
 
 // A MAT file written by matio (independent of the reader under test).
+// Writes one variable and frees it.
+void Put(mat_t* mat, matvar_t* var, matio_compression compression = MAT_COMPRESSION_NONE) {
+  REQUIRE(var != nullptr);
+  Mat_VarWrite(mat, var, compression);
+  Mat_VarFree(var);
+}
+
 std::string WriteMat(mat_ft version) {
   const std::string path =
       (std::filesystem::temp_directory_path() / (version == MAT_FT_MAT73 ? "driveid_test73.mat" : "driveid_test5.mat"))
@@ -62,13 +69,13 @@ std::string WriteMat(mat_ft version) {
   // gain: scalar; rec: struct with pos (2 x 5) and time_cont (5 x 1); a cell.
   double time[5] = {0.0, 0.01, 0.02, 0.03, 0.04};
   std::size_t row_dims[2] = {1, 5};
-  Mat_VarWrite(mat, Mat_VarCreate("time", MAT_C_DOUBLE, MAT_T_DOUBLE, 2, row_dims, time, 0), MAT_COMPRESSION_NONE);
+  Put(mat, Mat_VarCreate("time", MAT_C_DOUBLE, MAT_T_DOUBLE, 2, row_dims, time, 0), MAT_COMPRESSION_NONE);
   double data[15] = {0, 0.01, 0.02, 0.03, 0.04, 10, 20, 30, 40, 50, 1, 2, 3, 4, 5};  // column-major
   std::size_t data_dims[2] = {5, 3};
-  Mat_VarWrite(mat, Mat_VarCreate("data", MAT_C_DOUBLE, MAT_T_DOUBLE, 2, data_dims, data, 0), MAT_COMPRESSION_ZLIB);
+  Put(mat, Mat_VarCreate("data", MAT_C_DOUBLE, MAT_T_DOUBLE, 2, data_dims, data, 0), MAT_COMPRESSION_ZLIB);
   double gain = 2.5;
   std::size_t scalar_dims[2] = {1, 1};
-  Mat_VarWrite(mat, Mat_VarCreate("gain", MAT_C_DOUBLE, MAT_T_DOUBLE, 2, scalar_dims, &gain, 0), MAT_COMPRESSION_NONE);
+  Put(mat, Mat_VarCreate("gain", MAT_C_DOUBLE, MAT_T_DOUBLE, 2, scalar_dims, &gain, 0), MAT_COMPRESSION_NONE);
   double pos[10] = {1, 100, 2, 200, 3, 300, 4, 400, 5, 500};  // 2 x 5, column-major: row 1 = 1..5
   std::size_t pos_dims[2] = {2, 5};
   double tc[5] = {0.0, 0.1, 0.2, 0.3, 0.4};
@@ -83,8 +90,7 @@ std::string WriteMat(mat_ft version) {
   Mat_VarFree(rec);
   double re[5] = {1, 2, 3, 4, 5}, im[5] = {0, 0, 0, 0, 1};
   mat_complex_split_t z = {re, im};
-  Mat_VarWrite(mat, Mat_VarCreate("z", MAT_C_DOUBLE, MAT_T_DOUBLE, 2, row_dims, &z, MAT_F_COMPLEX),
-               MAT_COMPRESSION_NONE);
+  Put(mat, Mat_VarCreate("z", MAT_C_DOUBLE, MAT_T_DOUBLE, 2, row_dims, &z, MAT_F_COMPLEX));
   Mat_Close(mat);
   std::string bytes = Slurp(path);
   std::remove(path.c_str());
