@@ -22,6 +22,9 @@ struct ChannelStatistics {
   int samples = 0;
   double rmse = 0.0;         ///< root mean square residual, channel unit
   double fit_percent = 0.0;  ///< NRMSE fit, 100 (1 - |y - yhat| / |y - mean(y)|)
+  double autocorrelation = 0.0;  ///< lag-1 autocorrelation of the residuals
+  int bandwidth = 0;             ///< Newey-West lags used (Andrews' AR(1) rule; 0: none)
+  double inflation = 1.0;        ///< std with / without the correlation of residuals (trace ratio, sqrt)
 };
 
 struct FitResult {

@@ -15,8 +15,6 @@
 namespace driveid {
 namespace {
 
-using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-
 class ProgressCallback final : public ceres::IterationCallback {
  public:
   explicit ProgressCallback(const std::function<void(const FitIteration&)>& progress) : progress_(progress) {}
@@ -95,6 +93,36 @@ Collinearity RequireIdentifiable(const RowMatrix& jacobian, const std::vector<Fi
 }
 
 }  // namespace
+
+LongRunCovariance CalcLongRunCovariance(const Eigen::Ref<const RowMatrix>& jacobian,
+                                        const Eigen::Ref<const Eigen::VectorXd>& residuals) {
+  LongRunCovariance out;
+  const Eigen::Index n = residuals.size();
+  const Eigen::Index p = jacobian.cols();
+  out.covariance = Eigen::MatrixXd::Zero(p, p);
+  if (n == 0) return out;
+  // Stationary, homoscedastic errors with autocovariance gamma(l) estimated
+  // from the residuals: B = sum_{|l|<=L} w_l gamma(l) sum_t J_t' J_{t-l}
+  // (more stable than the scores' outer products where a few samples carry
+  // a parameter, as the step's transient carries Theta_motor).
+  const double r0 = residuals.squaredNorm();
+  out.covariance = (r0 / static_cast<double>(n)) * (jacobian.transpose() * jacobian);
+  if (n < 3 || r0 <= 0.0) return out;
+  const double r1 = residuals.head(n - 1).dot(residuals.tail(n - 1));
+  out.autocorrelation = r1 / r0;
+  // Kept inside (-0.999, 0.999) so that alpha stays finite.
+  const double rho = std::clamp(out.autocorrelation, -0.999, 0.999);
+  const double alpha = 4.0 * rho * rho / ((1.0 - rho) * (1.0 - rho) * (1.0 + rho) * (1.0 + rho));
+  const double bandwidth = 1.1447 * std::cbrt(alpha * static_cast<double>(n));
+  out.bandwidth = static_cast<int>(std::min<double>(std::floor(bandwidth), static_cast<double>(n - 1)));
+  for (int lag = 1; lag <= out.bandwidth; ++lag) {
+    const double weight = 1.0 - static_cast<double>(lag) / (out.bandwidth + 1.0);
+    const double gamma = residuals.head(n - lag).dot(residuals.tail(n - lag)) / static_cast<double>(n);
+    const Eigen::MatrixXd g = jacobian.bottomRows(n - lag).transpose() * jacobian.topRows(n - lag);
+    out.covariance += weight * gamma * (g + g.transpose());
+  }
+  return out;
+}
 
 double StudentT975(int dof) {
   if (dof < 1) return std::numeric_limits<double>::infinity();
@@ -188,9 +216,15 @@ FitResult FitLeastSquares(ResidualModel& model, const std::vector<FitParameter>&
   result.singular_values.assign(collinearity.singular_values.data(),
                                 collinearity.singular_values.data() + collinearity.singular_values.size());
 
-  // Covariance of the (unweighted) least-squares estimate with a residual
-  // variance per channel: sandwich A B A, A = (J'J)^-1, B = sum_c s_c^2 J_c'J_c,
-  // s_c^2 = SSR_c / (N_c (N - P) / N). With one channel: s^2 (J'J)^-1.
+  // Covariance of the (unweighted) least-squares estimate, robust to
+  // residuals correlated in time (docs/models.md#identification): sandwich
+  // A B A, A = (J'J)^-1, B = sum over channels of the long-run covariance
+  //   B_c = N/(N-P) sum_{|l|<=L} (1 - |l|/(L+1)) gamma_c(l) sum_t J_t' J_{t-l},
+  // gamma_c(l) the residuals' autocovariance (Bartlett weights),
+  // with Andrews' (1991) AR(1) plug-in bandwidth for the Bartlett kernel,
+  //   L = 1.1447 (alpha N_c)^(1/3),  alpha = 4 rho^2 / ((1 - rho)^2 (1 + rho)^2),
+  // rho the residuals' lag-1 autocorrelation. Uncorrelated residuals give
+  // L ~ 0: the per-channel s_c^2 J_c'J_c of white noise.
   const Eigen::VectorXd column_scale = jacobian.colwise().norm().transpose();
   const RowMatrix scaled = jacobian * column_scale.cwiseInverse().asDiagonal();
   const Eigen::MatrixXd information = scaled.transpose() * scaled;
@@ -201,11 +235,18 @@ FitResult FitLeastSquares(ResidualModel& model, const std::vector<FitParameter>&
   if (all.empty()) all.push_back({"residual", 0, n, nullptr});
   for (const auto& channel : all) {
     const auto rows = scaled.middleRows(channel.begin, channel.count);
-    const double ssr = residuals.segment(channel.begin, channel.count).squaredNorm();
+    const auto r = residuals.segment(channel.begin, channel.count);
+    const double ssr = r.squaredNorm();
     const double variance = ssr / (channel.count * dof_fraction);
-    middle += variance * rows.transpose() * rows;
+    const Eigen::MatrixXd white = variance * rows.transpose() * rows;
+    const LongRunCovariance hac = CalcLongRunCovariance(rows, r);
+    const Eigen::MatrixXd robust = hac.covariance / dof_fraction;
+    middle += robust;
 
     ChannelStatistics stats;
+    stats.autocorrelation = hac.autocorrelation;
+    stats.bandwidth = hac.bandwidth;
+    stats.inflation = white.trace() > 0.0 ? std::sqrt(std::max(0.0, robust.trace() / white.trace())) : 1.0;
     stats.name = channel.name;
     stats.samples = channel.count;
     stats.rmse = std::sqrt(ssr / channel.count);

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "core/fit_result.h"
 
 namespace driveid {
@@ -66,6 +68,20 @@ struct FitOptions {
 /// them), when the solver fails or does not converge.
 FitResult FitLeastSquares(ResidualModel& model, const std::vector<FitParameter>& parameters,
                           const std::vector<FitChannel>& channels, const FitOptions& options);
+
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+/// Long-run covariance of the scores J_t' r_t of one channel (rows in time
+/// order) for stationary errors: the residuals' autocovariances with
+/// Bartlett weights, Andrews' AR(1) plug-in bandwidth from their lag-1
+/// autocorrelation (least_squares.cc).
+struct LongRunCovariance {
+  Eigen::MatrixXd covariance;  ///< sum_{|l|<=L} w_l gamma(l) sum_t J_t' J_{t-l}
+  double autocorrelation = 0.0;
+  int bandwidth = 0;
+};
+LongRunCovariance CalcLongRunCovariance(const Eigen::Ref<const RowMatrix>& jacobian,
+                                        const Eigen::Ref<const Eigen::VectorXd>& residuals);
 
 /// Two-sided 97.5 % quantile of Student's t with `dof` degrees of freedom.
 double StudentT975(int dof);

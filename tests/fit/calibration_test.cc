@@ -6,6 +6,8 @@
 // time. With 400 seeds the ratio itself scatters by about 3.5 % (1 / sqrt(2 N)),
 // so the band is over four of its standard deviations wide on each side.
 #include <cmath>
+#include <cstdlib>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -77,4 +79,66 @@ TEST_CASE("step fit, reduced model, white strain-gauge noise: reported std calib
   CheckCalibrated("d_g", viscous);
   CheckCalibrated("Theta_motor", inertia);
   CheckCalibrated("tau_c", coulomb);
+}
+
+namespace {
+
+// An axis log from its own generator (not lib/sim): a two-sine position
+// q = 0.8 sin(2 pi 0.4 t) + 0.3 sin(2 pi 1.3 t + 0.5) [rad] read by a 13-bit
+// encoder (2 pi / 8192 quanta), and tau = J q'' + b q' + tau_c sgn(q') + tau_0
+// + AR(1) noise e_k = rho e_{k-1} + sqrt(1 - rho^2) sigma w_k (stationary std
+// sigma), 1 kHz for 20 s. quantum: the encoder's step (2 pi / 8192 for 13 bits).
+AxisLog MakeAxisLog(double rho, double sigma, double quantum, unsigned seed) {
+  const double J = 0.05, b = 0.2, tau_c = 0.3, tau_0 = 0.1;
+  std::mt19937_64 random(seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  AxisLog log;
+  log.path = "mc.csv";
+  double e = sigma * normal(random);
+  for (int k = 0; k <= 20000; ++k) {
+    const double t = k / 1000.0;
+    const double w1 = 2.0 * M_PI * 0.4, w2 = 2.0 * M_PI * 1.3;
+    const double q = 0.8 * std::sin(w1 * t) + 0.3 * std::sin(w2 * t + 0.5);
+    const double qd = 0.8 * w1 * std::cos(w1 * t) + 0.3 * w2 * std::cos(w2 * t + 0.5);
+    const double qdd = -0.8 * w1 * w1 * std::sin(w1 * t) - 0.3 * w2 * w2 * std::sin(w2 * t + 0.5);
+    if (k > 0) e = rho * e + std::sqrt(1.0 - rho * rho) * sigma * normal(random);
+    log.time.push_back(t);
+    log.position.push_back(std::round(q / quantum) * quantum);
+    log.force.push_back(J * qdd + b * qd + tau_c * ((qd > 0) - (qd < 0)) + tau_0 + e);
+  }
+  return log;
+}
+
+void AxisCoverage(double rho, double quantum, int seeds, double low, double high) {
+  Sample inertia, viscous, coulomb, offset;
+  for (int seed = 0; seed < seeds; ++seed) {
+    const auto out = FitAxis({MakeAxisLog(rho, 0.05, quantum, 7000u + static_cast<unsigned>(seed))}, AxisSection{}, {});
+    inertia.Add(Find(out.fit, "inertia"), 0.05);
+    viscous.Add(Find(out.fit, "viscous"), 0.2);
+    coulomb.Add(Find(out.fit, "coulomb"), 0.3);
+    offset.Add(Find(out.fit, "offset"), 0.1);
+  }
+  for (const auto& [name, s] : {std::pair<const char*, const Sample*>{"inertia", &inertia}, {"viscous", &viscous},
+                                {"coulomb", &coulomb}, {"offset", &offset}}) {
+    INFO("rho " << rho << ", " << name << ": empirical / reported std = " << s->Ratio() << ", 95 % coverage "
+                << s->Coverage());
+    CHECK(s->Coverage() >= low);
+    CHECK(s->Coverage() <= high);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("axis fit, white and AR(1) 0.9 torque noise, fine encoder: intervals cover over 200 seeds") {
+  AxisCoverage(0.0, 1e-9, 200, 0.93, 0.97);
+  AxisCoverage(0.9, 1e-9, 200, 0.90, 0.98);
+}
+
+// Work in progress (issue 11): with rho 0.99 the offset covers 86.5 %; with a
+// 13-bit encoder the default cutoff lets quantisation noise into q'' and the
+// inertia is biased (62 % coverage with white noise).
+TEST_CASE("axis fit, AR(1) 0.99 and a 13-bit encoder: intervals cover over 200 seeds", "[!mayfail]") {
+  AxisCoverage(0.99, 1e-9, 200, 0.90, 0.98);
+  AxisCoverage(0.0, 2.0 * M_PI / 8192.0, 200, 0.90, 0.98);
+  AxisCoverage(0.9, 2.0 * M_PI / 8192.0, 200, 0.90, 0.98);
 }
