@@ -370,7 +370,7 @@ ParameterFile ParseParameterFile(const std::string& path, const std::string& tex
       // valid input, and replaced when a new file is written.
       CheckMapping(path, "fit", item.second);
       static const char* const kFitKeys[] = {"command", "version", "model", "data", "estimates", "derived",
-                                             "correlation", "rmse", "fit_percent", "singular_values",
+                                             "correlation", "rmse", "fit_percent", "autocorrelation", "inflation", "singular_values",
                                              "iterations", "converged"};
       for (const auto& entry : item.second) {
         const std::string key = entry.first.Scalar();
@@ -469,6 +469,10 @@ std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit,
     for (const auto& c : fit->channels) out += fmt::format("    {}: {}\n", Quoted(c.name), Short(c.rmse));
     out += "  fit_percent:\n";
     for (const auto& c : fit->channels) out += fmt::format("    {}: {:.3f}\n", Quoted(c.name), c.fit_percent);
+    out += "  autocorrelation:  # residual lag-1, per channel\n";
+    for (const auto& c : fit->channels) out += fmt::format("    {}: {:.4f}\n", Quoted(c.name), c.autocorrelation);
+    out += "  inflation:  # std with / without the correlation of the residuals (docs/models.md#identification)\n";
+    for (const auto& c : fit->channels) out += fmt::format("    {}: {:.4f}\n", Quoted(c.name), c.inflation);
     out += "  singular_values: [";
     for (std::size_t i = 0; i < fit->singular_values.size(); ++i) {
       out += fmt::format("{}{:.4g}", i ? ", " : "", fit->singular_values[i]);

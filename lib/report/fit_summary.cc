@@ -18,7 +18,9 @@ std::string FormatFitTable(const FitResult& fit, const FitProvenance& provenance
   }
   out += "\n";
   for (const auto& c : fit.channels) {
-    out += fmt::format("{}: {} samples, rmse {:.4g}, fit {:.2f} %\n", c.name, c.samples, c.rmse, c.fit_percent);
+    out += fmt::format("{}: {} samples, rmse {:.4g}, fit {:.2f} %, residual lag-1 autocorrelation {:.3f}, std x {:.2f} "
+                       "for it ({} lags)\n",
+                       c.name, c.samples, c.rmse, c.fit_percent, c.autocorrelation, c.inflation, c.bandwidth);
   }
   const std::size_t p = fit.estimates.size();
   if (p > 1) {
@@ -61,9 +63,13 @@ Json FitJson(const FitResult& fit, const FitProvenance& provenance) {
   }
   out["rmse"] = Json::object();
   out["fit_percent"] = Json::object();
+  out["autocorrelation"] = Json::object();  // residual lag-1, per channel
+  out["inflation"] = Json::object();        // std with / without it
   for (const auto& c : fit.channels) {
     out["rmse"][c.name] = c.rmse;
     out["fit_percent"][c.name] = c.fit_percent;
+    out["autocorrelation"][c.name] = c.autocorrelation;
+    out["inflation"][c.name] = c.inflation;
   }
   out["singular_values"] = fit.singular_values;
   out["iterations"] = fit.iterations;
