@@ -68,6 +68,8 @@ std::vector<std::unique_ptr<TableSource>> OpenSysIdSources(const std::string& pa
     doc = nlohmann::json::parse(text, nullptr, true, false);
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(fmt::format("{}: invalid JSON at byte {}", path, e.byte));
+  } catch (const nlohmann::json::exception& e) {  // e.g. a number out of range (1e999)
+    throw InputError(fmt::format("{}: invalid JSON: {}", path, e.what()));
   }
   if (!doc.is_object() || !doc.contains("test") || !doc["test"].is_string()) {
     throw InputError(fmt::format("{}: not a WPILib SysId file (a JSON object with 'test', 'units', "
