@@ -48,18 +48,14 @@ void RunInspect(const InspectOptions& options) {
   Json json = Json::array();
   for (std::size_t i = 0; i < options.logs.size(); ++i) {
     const std::string text = ReadFileToString(options.logs[i], limits);
-    auto sources = OpenTableSources(options.logs[i], text, input.csv, input.sysid);
     std::string join_text;
+    std::vector<JoinedFile> joins;
     const std::string join_path = JoinFor(options.input, i, options.logs.size());
     if (!join_path.empty()) {
       join_text = ReadFileToString(join_path, limits);
-      auto joined = OpenTableSources(join_path, join_text, input.csv, SysIdFormat{});
-      if (joined.size() != 1 || sources.size() != 1) {
-        throw OptionError(fmt::format("--join {}: only single-table files (CSV, MAT) can be joined", join_path));
-      }
-      sources.front() = JoinSources(std::move(sources.front()), std::move(joined.front()));
+      joins.push_back({join_path, &join_text});
     }
-    for (const auto& source : sources) {
+    for (const auto& source : OpenLogSources(options.logs[i], text, joins, input)) {
       const InspectedLog inspected = InspectLog(*source, input);
       if (options.json) json.push_back(LogInspectionJson(inspected));
       else text_out += FormatLogInspection(inspected);

@@ -224,8 +224,9 @@ CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>&
   return log;
 }
 
-std::vector<CsvLog> ReadLogs(const std::string& path, const std::string& text, const std::vector<JoinedFile>& joins,
-                             const std::vector<std::string>& required, const LogInputOptions& options) {
+std::vector<std::unique_ptr<TableSource>> OpenLogSources(const std::string& path, const std::string& text,
+                                                         const std::vector<JoinedFile>& joins,
+                                                         const LogInputOptions& options) {
   auto sources = OpenTableSources(path, text, options.csv, options.sysid);
   for (const auto& join : joins) {
     auto joined = OpenTableSources(join.path, *join.text, options.csv, SysIdFormat{});
@@ -234,8 +235,13 @@ std::vector<CsvLog> ReadLogs(const std::string& path, const std::string& text, c
     }
     sources.front() = JoinSources(std::move(sources.front()), std::move(joined.front()));
   }
+  return sources;
+}
+
+std::vector<CsvLog> ReadLogs(const std::string& path, const std::string& text, const std::vector<JoinedFile>& joins,
+                             const std::vector<std::string>& required, const LogInputOptions& options) {
   std::vector<CsvLog> logs;
-  for (const auto& source : sources) logs.push_back(ReadLogColumns(*source, required, options));
+  for (const auto& source : OpenLogSources(path, text, joins, options)) logs.push_back(ReadLogColumns(*source, required, options));
   return logs;
 }
 

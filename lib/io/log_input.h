@@ -7,6 +7,7 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -38,6 +39,12 @@ struct JoinedFile {
 /// the file and line (or variable), OptionError for a bad --col.
 std::vector<CsvLog> ReadLogs(const std::string& path, const std::string& text, const std::vector<JoinedFile>& joins,
                              const std::vector<std::string>& required, const LogInputOptions& options);
+
+/// The sources of one file with its joined files (a SysId file has several;
+/// only a single-table file can be joined: OptionError otherwise).
+std::vector<std::unique_ptr<TableSource>> OpenLogSources(const std::string& path, const std::string& text,
+                                                         const std::vector<JoinedFile>& joins,
+                                                         const LogInputOptions& options);
 
 /// The same for sources already open (one log per source).
 CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>& required,
