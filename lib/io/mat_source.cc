@@ -91,6 +91,34 @@ bool ConvertNumeric(const matvar_t* v, std::size_t n, std::vector<double>& out) 
   }
 }
 
+// The bytes a variable's header claims (dimensions × element size), summed
+// over struct fields and cells; overflow and absurd ranks count as infinite.
+double ClaimedBytes(matvar_t* var, int depth) {
+  if (var == nullptr) return 0.0;
+  if (depth > 16 || var->rank < 0 || var->rank > 32 || (var->rank > 0 && var->dims == nullptr)) return HUGE_VAL;
+  double elements = 1.0;
+  for (int k = 0; k < var->rank; ++k) elements *= static_cast<double>(var->dims[k]);
+  if (var->class_type == MAT_C_STRUCT) {
+    const unsigned fields = Mat_VarGetNumberOfFields(var);
+    double total = 64.0 * elements * fields;
+    if (elements > 1e6 || var->data == nullptr) return total;
+    for (std::size_t i = 0; i < static_cast<std::size_t>(elements) && total < HUGE_VAL; ++i) {
+      for (unsigned f = 0; f < fields; ++f) total += ClaimedBytes(Mat_VarGetStructFieldByIndex(var, f, i), depth + 1);
+    }
+    return total;
+  }
+  if (var->class_type == MAT_C_CELL) {
+    double total = 64.0 * elements;
+    if (elements > 1e6 || var->data == nullptr) return total;
+    for (std::size_t i = 0; i < static_cast<std::size_t>(elements) && total < HUGE_VAL; ++i) {
+      total += ClaimedBytes(Mat_VarGetCell(var, static_cast<int>(i)), depth + 1);
+    }
+    return total;
+  }
+  const double size = static_cast<double>(std::max<std::size_t>(Mat_SizeOfClass(var->class_type), 1));
+  return elements * size * (var->isComplex ? 2.0 : 1.0);
+}
+
 const char* ClassName(matio_classes c) {
   switch (c) {
     case MAT_C_CELL: return "cell array";
@@ -125,7 +153,7 @@ class MatSource : public TableSource {
     ::close(fd);
     try {
       if (!ok) throw InputError(fmt::format("{}: cannot write a temporary copy for the MAT reader", path_));
-      Load(name);
+      Load(name, text.size());
     } catch (...) {
       RemoveTemporaryFile(name);
       throw;
@@ -231,7 +259,7 @@ class MatSource : public TableSource {
   // (address space capped where no sanitizer needs it, 60 s at most); the
   // variables come back through a pipe, and a child that dies is an
   // unreadable file, not a dead tool.
-  void Load(const std::string& file) {
+  void Load(const std::string& file, std::size_t text_size) {
     int fds[2];
     if (::pipe(fds) != 0) throw InputError(fmt::format("{}: cannot start the MAT reader", path_));
     const pid_t child = ::fork();
@@ -243,9 +271,15 @@ class MatSource : public TableSource {
     if (child == 0) {
       ::close(fds[0]);
 #if !defined(DRIVEID_ASAN)
-      const rlim_t cap = static_cast<rlim_t>(kMaxElements) * 8 * 3;
+      // 1 GiB for the process itself plus three copies of what the file
+      // could inflate to, at most three copies of the element cap.
+      const double budget = 3.0 * (1100.0 * static_cast<double>(text_size) + 4096.0);
+      const rlim_t cap = (rlim_t{1} << 30) +
+                         static_cast<rlim_t>(std::min(budget, 3.0 * 8.0 * static_cast<double>(kMaxElements)));
       const struct rlimit limit = {cap, cap};
       ::setrlimit(RLIMIT_AS, &limit);
+#else
+      static_cast<void>(text_size);  // the sanitizer's shadow memory needs the whole address space
 #endif
       std::string message;
       try {
@@ -363,9 +397,24 @@ class MatSource : public TableSource {
       throw InputError(fmt::format("{}: not a readable MAT file{}", path_,
                                    last_matio_message.empty() ? "" : ": " + last_matio_message));
     }
+    // Sizes claimed in the headers are checked before anything is read: a
+    // variable cannot hold more bytes than the file could inflate to (zlib
+    // expands at most ~1032-fold), so a hostile header never makes matio
+    // allocate gigabytes.
+    std::error_code error;
+    const std::uintmax_t file_size = std::filesystem::file_size(file, error);
+    const double byte_budget = 1100.0 * static_cast<double>(error ? 0 : file_size) + 4096.0;
     std::vector<std::string> names;
     while (matvar_t* info = Mat_VarReadNextInfo(mat)) {
-      if (info->name != nullptr) names.emplace_back(info->name);
+      if (info->name != nullptr) {
+        const double claimed = ClaimedBytes(info, 0);
+        if (claimed <= byte_budget && claimed <= 8.0 * static_cast<double>(kMaxElements)) {
+          names.emplace_back(info->name);
+        } else {
+          notes_.push_back(fmt::format("{}: skipped (its header claims {:.3g} bytes in a file of {} bytes)", info->name,
+                                       claimed, file_size));
+        }
+      }
       Mat_VarFree(info);
       if (names.size() > 10000) break;
     }

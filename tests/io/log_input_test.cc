@@ -3,7 +3,9 @@
 // written here with matio, WPILib SysId JSON; values and error messages.
 #include "io/log_input.h"
 
+#include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -117,7 +119,7 @@ TEST_CASE("CSV without header: columns by position, detected or forced") {
 }
 
 TEST_CASE("delimiters: semicolon, tab and blanks detected, or given") {
-  for (const std::string& text : {"t;q;tau\n0;1;2\n1;2;3\n", "t\tq\ttau\n0\t1\t2\n1\t2\t3\n", "t  q tau\n0 1   2\n1 2 3\n"}) {
+  for (const char* text : {"t;q;tau\n0;1;2\n1;2;3\n", "t\tq\ttau\n0\t1\t2\n1\t2\t3\n", "t  q tau\n0 1   2\n1 2 3\n"}) {
     const auto log = ReadOne("d.csv", text, {});
     CHECK(log.columns[0] == std::vector<double>{0, 1});
     CHECK(log.columns[2] == std::vector<double>{2, 3});
@@ -240,4 +242,33 @@ TEST_CASE("SysId JSON: four tests as logs, positions in units, sides of a drivet
   CHECK(ErrorOf("{\"test\": ", {}, "x.json").rfind("x.json: invalid JSON at byte", 0) == 0);
   // Fuzzer regression: a number beyond double's range is an input error, not a crash.
   CHECK(ErrorOf(R"({"test": "Simple", "unitsPerRotation": 1e999})", {}, "x.json").rfind("x.json: invalid JSON", 0) == 0);
+}
+
+TEST_CASE("fuzzer regression: a MAT variable whose compressed data claims 2 GB is refused in well under a second") {
+  // tests/fuzz/regressions/log_input_mat_inflated_tag.bin: a 4 x 3 double whose
+  // inner tag makes matio allocate 2 GB; the reader's child process has an
+  // address-space cap scaled to the file, so the allocation fails at once.
+  const char* source_dir = std::getenv("DRIVEID_SOURCE_DIR");
+  REQUIRE(source_dir != nullptr);
+  std::ifstream in(std::string(source_dir) + "/tests/fuzz/regressions/log_input_mat_inflated_tag.bin",
+                   std::ios::binary);
+  REQUIRE(in);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  const std::string text = bytes.str().substr(1);  // the first byte picks the fuzzer's reader
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    OpenMatSource("hostile.mat", text);
+  } catch (const InputError&) {
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  bool sanitized = false;  // no address-space cap under AddressSanitizer
+#if defined(__SANITIZE_ADDRESS__)
+  sanitized = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+  sanitized = true;
+#endif
+#endif
+  CHECK(seconds < (sanitized ? 30.0 : 0.5));
 }
