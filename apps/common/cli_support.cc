@@ -292,9 +292,21 @@ void AddFitOutputOptions(CLI::App& command, FitOutputOptions& options) {
                   "largest log to read [GiB]; a fit holds about 3 times its logs' size in memory")
       ->capture_default_str()
       ->check(FiniteWithin(1e-6, 1024.0));
+  command.add_flag("--strict", options.strict,
+                   "adequacy warnings (docs/models.md#adequacy) fail the run: exit 4, nothing written");
 }
 
 void EmitFitOutputs(const FitOutputOptions& options, const FitOutputs& outputs) {
+  // On stderr once: the summary table lists them when it goes there itself.
+  const bool table_on_stderr = options.output.empty() && !options.quiet && !options.json;
+  if (!table_on_stderr) {
+    for (const auto& w : outputs.fit.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  }
+  if (options.strict && !outputs.fit.warnings.empty()) {
+    throw IdentificationError(fmt::format("--strict: {} adequacy warning{}; nothing written: {}",
+                                          outputs.fit.warnings.size(), outputs.fit.warnings.size() > 1 ? "s" : "",
+                                          fmt::join(outputs.fit.warnings, "; ")));
+  }
   // All or nothing: render the plot, then write every file together.
   std::vector<std::pair<std::string, std::string>> files;
   if (!options.plot.empty()) files.emplace_back(options.plot, RenderPanels(options.plot, outputs.plot_panels, "time [s]"));

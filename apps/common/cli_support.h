@@ -56,8 +56,9 @@ struct FitOutputOptions {
   bool quiet = false;
   bool verbose = false;
   double max_log_gib = 4.0;  ///< --max-log-size: largest log read [GiB]
+  bool strict = false;       ///< --strict: adequacy warnings exit 4, nothing written
 };
-/// Adds -o, --trace, --plot, --json, -q, -v and --max-log-size.
+/// Adds -o, --trace, --plot, --json, -q, -v, --max-log-size and --strict.
 void AddFitOutputOptions(CLI::App& command, FitOutputOptions& options);
 /// CheckDistinctFiles for a fit's -o, --trace and --plot.
 void CheckFitOutputs(const FitOutputOptions& options, std::vector<std::string> inputs);
@@ -71,9 +72,10 @@ struct FitOutputs {
   FitProvenance provenance;
 };
 
-/// Renders the plot, writes trace and parameter file (atomically), and
-/// prints the summary (table or JSON) on stdout, or on stderr when the
-/// parameter file itself goes to stdout.
+/// Prints the adequacy warnings on stderr (with --strict they end the run:
+/// IdentificationError, nothing written), renders the plot, writes trace and
+/// parameter file (atomically), and prints the summary (table or JSON) on
+/// stdout, or on stderr when the parameter file itself goes to stdout.
 void EmitFitOutputs(const FitOutputOptions& options, const FitOutputs& outputs);
 
 /// Help text of --free from a model's table: the parameters the fit can

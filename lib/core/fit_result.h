@@ -27,6 +27,24 @@ struct ChannelStatistics {
   double inflation = 1.0;        ///< std with / without the correlation of residuals (trace ratio, sqrt)
 };
 
+/// Estimates of one log fitted alone (or why that fit failed).
+struct LogEstimates {
+  std::string log;
+  std::vector<ParameterEstimate> estimates;
+  std::string failure;
+};
+
+/// Cochran's Q for one parameter over the logs that estimated it:
+/// Q = sum_i (b_i - b_w)^2 / s_i^2 with b_w the inverse-variance mean,
+/// chi^2(m - 1) when the logs agree; I^2 = max(0, (Q - dof) / Q).
+struct HeterogeneityTest {
+  std::string parameter;
+  double q = 0.0;
+  int dof = 0;
+  double p_value = 1.0;
+  double i_squared = 0.0;
+};
+
 struct FitResult {
   std::vector<ParameterEstimate> estimates;
   std::vector<double> covariance;        ///< row-major P x P, physical units
@@ -37,6 +55,11 @@ struct FitResult {
   bool converged = false;
   double cost = 0.0;                     ///< 1/2 sum of squared residuals
   std::string termination;               ///< solver's reason for stopping
+  /// Adequacy warnings (docs/models.md#adequacy): the fit ran, but the data
+  /// say the model misses something; `--strict` turns them into exit 4.
+  std::vector<std::string> warnings;
+  std::vector<LogEstimates> per_log;             ///< several logs: each fitted alone
+  std::vector<HeterogeneityTest> heterogeneity;  ///< per parameter, over per_log
 };
 
 /// A quantity derived from the estimates (e.g. the C-drive's a and b), with

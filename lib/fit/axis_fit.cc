@@ -9,6 +9,7 @@
 
 #include "core/errors.h"
 #include "fit/linear_regression.h"
+#include "fit/omitted_terms.h"
 #include "io/csv_log.h"
 #include "signal/butterworth.h"
 #include "signal/local_polynomial.h"
@@ -16,8 +17,15 @@
 namespace driveid {
 namespace {
 
-// The regressor columns [q'', q', sgn q', 1] in the order of the first four
-// rows of the axis table: inertia, viscous, coulomb, offset.
+// The regressor columns [q'', q', sgn q', 1, cos q, sin q] in the order of
+// the first six rows of the axis table: inertia, viscous, coulomb, offset,
+// gravity_cos, gravity_sin.
+constexpr int kModelColumns = 6;
+// Diagnostic columns (never fitted): |q'| for direction-dependent friction
+// and the time from the log's middle for drift.
+constexpr const char* kAbsRateColumn = "|q'|";
+constexpr const char* kTimeColumn = "t - t_mid";
+
 const ParameterRow<AxisSection, AxisParameters>& Column(int j) {
   return AxisParameterTable()[static_cast<std::size_t>(j)];
 }
@@ -85,6 +93,57 @@ Derivatives Differentiate(const AxisLog& log, double cutoff_request) {
   return d;
 }
 
+std::string JoinFree(const std::vector<std::string>& free, const std::vector<std::string>& more) {
+  std::vector<std::string> all = free;
+  for (const auto& m : more) {
+    if (!Contains(all, m)) all.push_back(m);
+  }
+  return fmt::format("{}", fmt::join(all, ","));
+}
+
+// Terms the residuals ask for (omitted_terms.h), with what to do.
+std::vector<std::string> CheckAxisAdequacy(const LinearRegression& regression, const FitResult& fit,
+                                           const std::vector<std::string>& free,
+                                           const std::map<std::string, double>& values) {
+  std::vector<std::string> warnings = CheckFitPercent(fit);
+  const auto evidence = [](const OmittedTermTest& t) {
+    return fmt::format("explain {:.0f} % of the residual; robust Wald {:.3g} > {:.3g}", 100.0 * t.share, t.wald,
+                       t.critical);
+  };
+  const std::string gravity_cos = Key(&AxisParameters::gravity_cos), gravity_sin = Key(&AxisParameters::gravity_sin);
+  const std::string inertia = Key(&AxisParameters::inertia);
+  if (!Contains(free, gravity_cos) && !Contains(free, gravity_sin)) {
+    const auto t = TestOmittedTerm(regression, free, values, "gravity", {gravity_cos, gravity_sin});
+    if (t.missing) {
+      warnings.push_back(fmt::format("gravity missing?: the residual follows the position (cos q and sin q {}): try the "
+                                     "gravity term: --free {}",
+                                     evidence(t), JoinFree(free, {gravity_cos, gravity_sin})));
+    }
+  }
+  if (!Contains(free, inertia)) {
+    const auto t = TestOmittedTerm(regression, free, values, "inertia", {inertia});
+    if (t.missing) {
+      warnings.push_back(fmt::format("inertia: the residual follows the acceleration (q'' {}): the fixed J = {:.4g} is "
+                                     "off: try --free {}",
+                                     evidence(t), values.at(inertia), JoinFree(free, {inertia})));
+    }
+  }
+  const auto direction = TestOmittedTerm(regression, free, values, "direction", {kAbsRateColumn});
+  if (direction.missing) {
+    warnings.push_back(fmt::format("direction-dependent friction: the residual follows |q'| ({}): friction differs "
+                                   "between the directions of motion; fit each direction on its own (SysId: the "
+                                   "-forward and -backward segments as separate runs; else --from/--to)",
+                                   evidence(direction)));
+  }
+  const auto drift = TestOmittedTerm(regression, free, values, "drift", {kTimeColumn});
+  if (drift.missing) {
+    warnings.push_back(fmt::format("drift: the residual follows time within the logs ({}): friction or a sensor "
+                                   "changed during the log (warm-up?); fit shorter windows with --from/--to",
+                                   evidence(drift)));
+  }
+  return warnings;
+}
+
 }  // namespace
 
 AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options) {
@@ -96,25 +155,28 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
   std::vector<FitParameter> parameters;
   std::vector<std::string> column_names;
   std::map<std::string, double> fixed;
-  for (int j = 0; j < 4; ++j) {
+  for (int j = 0; j < kModelColumns; ++j) {
     const ParameterSpec& spec = Column(j).spec;
     const std::optional<double> value = start.*(Column(j).in_section);
     column_names.push_back(spec.key);
     if (Contains(options.free, spec.key)) {
       parameters.push_back({spec.key, std::max(spec.lower_bound, value.value_or(0.0)), spec.lower_bound, 0.0});
-    } else if (!value && j != 0) {
+    } else if (!value && spec.default_free && j != 0) {
       throw InputError(fmt::format("--params: axis.{} is needed (fixed in this fit)", spec.key));
     }
-    // A fixed inertia that is not given counts as 0, which is only harmless
-    // without acceleration content (checked below).
+    // A fixed inertia or gravity term that is not given counts as 0; the
+    // adequacy checks say when the residuals contradict that.
     fixed[spec.key] = value.value_or(0.0);
   }
-  const std::string inertia = Key(&AxisParameters::inertia);
-  const bool inertia_missing = !Contains(options.free, inertia) && !start.inertia;
+  // Diagnostic columns, always held at 0: the adequacy checks' candidates.
+  for (const char* name : {kAbsRateColumn, kTimeColumn}) {
+    column_names.emplace_back(name);
+    fixed[name] = 0.0;
+  }
   const int p = static_cast<int>(parameters.size());
 
   AxisFitOutput out;
-  LinearRegression regression(column_names);  // [q'', q', sgn q', 1] per decimated sample
+  LinearRegression regression(column_names);  // [q'', q', sgn q', 1, cos q, sin q, |q'|, t] per decimated sample
   for (std::size_t i = 0; i < logs.size(); ++i) {
     const AxisLog& log = logs[i];
     if (log.time.size() < kMinAxisLogSamples) throw InputError(fmt::format("{}: {} samples: too few for IDIM-LS", log.path, log.time.size()));
@@ -129,15 +191,21 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
       if (d.valid[k]) max_rate = std::max(max_rate, std::abs(d.rate[k]));
     }
     const double min_rate = options.min_rate_fraction * max_rate;
-    // Full-rate columns [q'', q', sgn q', 1] and the force; invalid ends hold their neighbours.
-    std::vector<std::vector<double>> columns(4, std::vector<double>(n, 0.0));
+    // Full-rate columns [q'', q', sgn q', 1, cos q, sin q, |q'|, t - t_mid]
+    // and the force; invalid ends hold their neighbours.
+    std::vector<std::vector<double>> columns(kModelColumns + 2, std::vector<double>(n, 0.0));
     std::vector<char> slow(n, 0);
+    const double middle_time = 0.5 * (log.time.front() + log.time.back());
     for (std::size_t k = 0; k < n; ++k) {
       const std::size_t m = d.valid[k] ? k : (k == 0 ? 1 : n - 2);
       columns[0][k] = d.acceleration[m];
       columns[1][k] = d.rate[m];
       columns[2][k] = static_cast<double>((d.rate[m] > 0.0) - (d.rate[m] < 0.0));
       columns[3][k] = 1.0;
+      columns[4][k] = std::cos(log.position[k]);
+      columns[5][k] = std::sin(log.position[k]);
+      columns[6][k] = std::abs(d.rate[m]);
+      columns[7][k] = log.time[k] - middle_time;
       slow[k] = std::abs(d.rate[m]) < min_rate;
     }
     std::vector<double> force = log.force;
@@ -171,7 +239,9 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
     const std::size_t margin = reach + 2;  // filter start-up at the ends
     for (std::size_t k = margin; k + margin < n; k += static_cast<std::size_t>(decimation)) {
       if (!clear[k]) continue;
-      regression.AddRow({columns[0][k], columns[1][k], columns[2][k], columns[3][k]}, force[k]);
+      std::vector<double> row(columns.size());
+      for (std::size_t c = 0; c < columns.size(); ++c) row[c] = columns[c][k];
+      regression.AddRow(row, force[k]);
       out.time.push_back(log.time[k]);
       out.measured.push_back(force[k]);
       out.log_index.push_back(static_cast<int>(i));
@@ -192,18 +262,6 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
   }
   const double ratio = rate_square > 0.0 ? std::sqrt(acceleration_square / rate_square) : 0.0;
   out.acceleration_content = ratio;
-  if (inertia_missing && ratio >= options.min_acceleration_content) {
-    throw InputError(fmt::format("--params: axis.inertia is needed (fixed in this fit, and the logs accelerate: "
-                                 "RMS(q'') / RMS(q') = {:.3g} 1/s)", ratio));
-  }
-  if (Contains(options.free, inertia)) {
-    if (!(ratio >= options.min_acceleration_content)) {
-      throw IdentificationError(fmt::format(
-          "not identifiable: inertia: the logs have no acceleration content (RMS(q'') / RMS(q') = {:.3g} 1/s, below "
-          "{:.3g}): constant-rate motion identifies friction only: fit it with --free viscous,coulomb,offset",
-          ratio, options.min_acceleration_content));
-    }
-  }
   FitOptions fit_options = options.fit;
   if (!fit_options.advice) {
     fit_options.advice = [](const std::vector<std::string>& involved) -> std::string {
@@ -219,15 +277,30 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
   out.fit = regression.Fit(parameters, fixed, fit_options);
   std::map<std::string, double> fitted = fixed;
   for (const auto& e : out.fit.estimates) fitted[e.name] = e.value;
-  for (int j = 0; j < 4; ++j) out.params.*(Column(j).in_model) = fitted[Column(j).spec.key];
-  for (const auto& e : out.fit.estimates) {
-    if (e.name == inertia && !(e.standard_error <= options.max_relative_std * std::abs(e.value))) {
-      throw IdentificationError(fmt::format(
-          "not identifiable: inertia = {:.4g} +- {:.2g}: the log has too little acceleration content (constant-rate "
-          "motion identifies friction only): fit friction alone with --free viscous,coulomb,offset",
-          e.value, e.standard_error));
+  for (int j = 0; j < kModelColumns; ++j) out.params.*(Column(j).in_model) = fitted[Column(j).spec.key];
+  std::vector<std::string> free_names;
+  for (const auto& e : out.fit.estimates) free_names.push_back(e.name);
+  out.fit.warnings = CheckAxisAdequacy(regression, out.fit, free_names, fitted);
+  if (options.per_log && logs.size() > 1) {
+    AxisFitOptions alone = options;
+    alone.per_log = false;
+    for (const auto& log : logs) {
+      LogEstimates estimates{log.path, {}, ""};
+      try {
+        estimates.estimates = FitAxis({log}, start, alone).fit.estimates;
+      } catch (const std::exception& e) {
+        estimates.failure = e.what();
+      }
+      out.fit.per_log.push_back(std::move(estimates));
     }
+    out.fit.heterogeneity = TestHeterogeneity(out.fit.per_log);
+    for (auto& w : HeterogeneityWarnings(out.fit.heterogeneity)) out.fit.warnings.push_back(std::move(w));
   }
+  std::vector<std::string> nonnegative;
+  for (int j = 0; j < kModelColumns; ++j) {
+    if (Column(j).spec.lower_bound == 0.0) nonnegative.emplace_back(Column(j).spec.key);
+  }
+  RequireDetermined(out.fit, nonnegative, options.max_relative_std, out.fit.warnings);
   // Model at the used samples and the relative error.
   double residual_norm = 0.0, force_norm = 0.0;
   out.model = regression.Predict(fitted);

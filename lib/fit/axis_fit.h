@@ -12,14 +12,18 @@
 // largest rate, anywhere within the decimation filter's reach) are left out.
 // Irregularly sampled logs are differentiated with the local-polynomial
 // differentiator instead of the Butterworth path (no constant rate assumed).
-// A log without acceleration content (constant rate) identifies friction
-// only: with `inertia` free the fit refuses and names it.
+// Identifiability comes from the data: the Jacobian's near-null directions
+// and, for a free J, b or tau_c, the robust relative std (adequacy.h). The
+// adequacy checks warn of a term the residuals ask for (gravity, the
+// inertia when fixed, direction-dependent friction, drift), a low fit and
+// logs that disagree (fit.warnings, docs/models.md#adequacy).
 #pragma once
 
 #include <map>
 #include <string>
 #include <vector>
 
+#include "fit/adequacy.h"
 #include "fit/least_squares.h"
 #include "io/axis_log.h"
 #include "models/axis.h"
@@ -34,8 +38,8 @@ struct AxisFitOptions {
   double cutoff = 0.0;                ///< position low-pass [Hz]; 0 = rate / 40
   int decimation = 10;                ///< keep every n-th sample after parallel filtering
   double min_rate_fraction = 0.01;    ///< exclude |q'| below this fraction of max |q'|
-  double max_relative_std = 0.25;     ///< refuse a free inertia less certain than this
-  double min_acceleration_content = 1.0;  ///< RMS(q'') / RMS(q') [1/s] needed for a free inertia
+  double max_relative_std = kMaxRelativeStd;  ///< refuse a free J, b or tau_c less certain than this
+  bool per_log = true;                ///< with several logs, also fit each alone and compare
   FitOptions fit;
 };
 

@@ -33,6 +33,12 @@ class LinearRegression {
   std::size_t rows() const { return measured_.size(); }
   double at(std::size_t row, std::size_t column) const { return regressor_[row * columns_.size() + column]; }
   double measured(std::size_t row) const { return measured_[row]; }
+  /// First row of each channel, in order (channels without rows included).
+  std::vector<std::size_t> channel_begins() const {
+    std::vector<std::size_t> begins;
+    for (const auto& c : channels_) begins.push_back(c.begin);
+    return begins;
+  }
 
   /// Fits the columns named in `free` (in that order); every other column is
   /// fixed at `fixed` (which must hold it). Channels without rows are left out.

@@ -129,11 +129,14 @@ Model MakeModelParameters(const ParameterTable<Section, Model>& table, const Sec
 }
 
 /// Throws InputError "<where>: section.key: needed by <purpose>" for the
-/// first model parameter (a row with a model member) that is not given.
+/// first model parameter (a row with a model member) that is not given,
+/// except `zero_unless_given` (terms such as gravity that are 0 when absent).
 template <class Section, class Model>
 void RequireModelValues(const ParameterTable<Section, Model>& table, const Section& section, const std::string& where,
-                        const char* section_name, const std::string& purpose) {
+                        const char* section_name, const std::string& purpose,
+                        const std::vector<std::string>& zero_unless_given = {}) {
   for (const auto& row : table) {
+    if (std::find(zero_unless_given.begin(), zero_unless_given.end(), row.spec.key) != zero_unless_given.end()) continue;
     if (row.in_model != nullptr && !(section.*(row.in_section))) {
       throw InputError(
           fmt::format("{}: {}.{}: needed by {} ({})", where, section_name, row.spec.key, purpose, row.spec.Doc()));

@@ -35,6 +35,34 @@ std::string FormatFitTable(const FitResult& fit, const FitProvenance& provenance
                      fmt::join(fit.singular_values, ", "));
   out += fmt::format("solver: {} after {} iterations ({}); model {}\n", fit.converged ? "converged" : "NOT converged",
                      fit.iterations, fit.termination, provenance.model.empty() ? "-" : provenance.model);
+  out += FormatPerLogTable(fit);
+  if (!fit.warnings.empty()) {
+    out += fmt::format("adequacy (docs/models.md#adequacy): {} warning{}\n", fit.warnings.size(),
+                       fit.warnings.size() > 1 ? "s" : "");
+    for (const auto& w : fit.warnings) out += "  " + w + "\n";
+  } else {
+    out += "adequacy (docs/models.md#adequacy): no warnings\n";
+  }
+  return out;
+}
+
+std::string FormatPerLogTable(const FitResult& fit) {
+  if (fit.per_log.empty()) return {};
+  std::string out = "per log (each fitted alone):\n";
+  for (const auto& log : fit.per_log) {
+    out += fmt::format("  {}\n", log.log);
+    if (!log.failure.empty()) {
+      out += fmt::format("    not fitted: {}\n", log.failure.substr(0, log.failure.find('\n')));
+      continue;
+    }
+    for (const auto& e : log.estimates) {
+      out += fmt::format("    {:<14} {:>14.6g} +- {:.3g}\n", e.name, e.value, e.standard_error);
+    }
+  }
+  for (const auto& t : fit.heterogeneity) {
+    out += fmt::format("  {:<14} Cochran Q {:.3g} on {} dof, p = {:.2g}, I^2 = {:.0f} %\n", t.parameter, t.q, t.dof,
+                       t.p_value, 100.0 * t.i_squared);
+  }
   return out;
 }
 
@@ -74,6 +102,21 @@ Json FitJson(const FitResult& fit, const FitProvenance& provenance) {
   out["singular_values"] = fit.singular_values;
   out["iterations"] = fit.iterations;
   out["converged"] = fit.converged;
+  out["warnings"] = fit.warnings;
+  if (!fit.per_log.empty()) {
+    out["per_log"] = Json::array();
+    for (const auto& log : fit.per_log) {
+      Json entry = {{"log", log.log}};
+      if (!log.failure.empty()) entry["failure"] = log.failure;
+      entry["estimates"] = Json::object();
+      for (const auto& e : log.estimates) entry["estimates"][e.name] = {{"value", e.value}, {"std", e.standard_error}};
+      out["per_log"].push_back(entry);
+    }
+    out["heterogeneity"] = Json::object();
+    for (const auto& t : fit.heterogeneity) {
+      out["heterogeneity"][t.parameter] = {{"q", t.q}, {"dof", t.dof}, {"p", t.p_value}, {"i_squared", t.i_squared}};
+    }
+  }
   return out;
 }
 

@@ -10,8 +10,12 @@
 namespace driveid {
 
 /// Human-readable table: estimates with std, 95 % interval and relative
-/// error, per-channel RMSE and fit %, correlations, solver status.
+/// error, per-channel RMSE and fit %, correlations, solver status, per-log
+/// estimates and the adequacy warnings.
 std::string FormatFitTable(const FitResult& fit, const FitProvenance& provenance);
+
+/// Per-log estimates and heterogeneity statistics ("" with one log).
+std::string FormatPerLogTable(const FitResult& fit);
 
 /// The same content as one JSON object (deterministic key order).
 Json FitJson(const FitResult& fit, const FitProvenance& provenance);

@@ -42,7 +42,7 @@ AxisLog SimulateAxisExperiment(const AxisParameters& params, const AxisExperimen
     }
     log.time.push_back(t);
     log.position.push_back(e.resolution > 0.0 ? std::floor(q / e.resolution) * e.resolution : q);
-    log.force.push_back(CalcAxisForce(params, rate, acceleration) + (e.noise > 0.0 ? noise.Next(e.noise) : 0.0));
+    log.force.push_back(CalcAxisForce(params, q, rate, acceleration) + (e.noise > 0.0 ? noise.Next(e.noise) : 0.0));
   }
   return log;
 }

@@ -272,3 +272,24 @@ TEST_CASE("fuzzer regression: a MAT variable whose compressed data claims 2 GB i
 #endif
   CHECK(seconds < (sanitized ? 30.0 : 0.5));
 }
+
+TEST_CASE("fuzzer regression: a MAT v7.3 file on which HDF5 spins is refused after the reader's 5 s") {
+  // tests/fuzz/regressions/log_input_mat73_spin.bin: HDF5 loops on it; the
+  // reader's child is killed after 5 s + 1 s per 10 MB.
+  const char* source_dir = std::getenv("DRIVEID_SOURCE_DIR");
+  REQUIRE(source_dir != nullptr);
+  std::ifstream in(std::string(source_dir) + "/tests/fuzz/regressions/log_input_mat73_spin.bin", std::ios::binary);
+  REQUIRE(in);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  const auto start = std::chrono::steady_clock::now();
+  std::string message;
+  try {
+    OpenMatSource("spin.mat", bytes.str().substr(1));
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  CHECK(message == "spin.mat: the MAT reader took longer than 5 s (a corrupt file?)");
+  CHECK(seconds < 7.0);
+}

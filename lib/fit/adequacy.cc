@@ -1,0 +1,96 @@
+#include "fit/adequacy.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <boost/math/distributions/chi_squared.hpp>
+#include <fmt/format.h>
+
+#include "core/errors.h"
+
+namespace driveid {
+
+void RequireDetermined(const FitResult& fit, const std::vector<std::string>& nonnegative, double max_relative_std,
+                       const std::vector<std::string>& context) {
+  std::vector<std::string> undetermined;
+  for (const auto& e : fit.estimates) {
+    if (std::find(nonnegative.begin(), nonnegative.end(), e.name) == nonnegative.end()) continue;
+    if (e.standard_error <= max_relative_std * std::abs(e.value)) continue;
+    undetermined.push_back(e.value != 0.0 ? fmt::format("{} = {:.4g} +- {:.2g} (relative std {:.0f} %)", e.name,
+                                                        e.value, e.standard_error,
+                                                        100.0 * e.standard_error / std::abs(e.value))
+                                          : fmt::format("{} = 0 +- {:.2g} (at its bound 0)", e.name, e.standard_error));
+  }
+  if (undetermined.empty()) return;
+  std::string message = fmt::format(
+      "not identifiable: {}: the logs do not determine {} (robust relative std above {:.0f} %, docs/models.md#adequacy): "
+      "fix {} in --params and leave {} out of --free, or log motion that excites {}",
+      fmt::join(undetermined, "; "), undetermined.size() > 1 ? "them" : "it", 100.0 * max_relative_std,
+      undetermined.size() > 1 ? "them" : "it", undetermined.size() > 1 ? "them" : "it",
+      undetermined.size() > 1 ? "them" : "it");
+  for (const auto& c : context) message += "\n  warning: " + c;
+  throw IdentificationError(message);
+}
+
+std::vector<std::string> CheckFitPercent(const FitResult& fit) {
+  std::vector<std::string> warnings;
+  for (const auto& c : fit.channels) {
+    if (c.fit_percent < kLowFitPercent) {
+      warnings.push_back(fmt::format("low fit: {}: fit {:.1f} % (below {:.0f} %): the model explains little of what "
+                                     "was measured",
+                                     c.name, c.fit_percent, kLowFitPercent));
+    }
+  }
+  return warnings;
+}
+
+std::vector<HeterogeneityTest> TestHeterogeneity(const std::vector<LogEstimates>& logs) {
+  std::vector<HeterogeneityTest> tests;
+  std::vector<std::string> names;
+  for (const auto& log : logs) {
+    for (const auto& e : log.estimates) {
+      if (std::find(names.begin(), names.end(), e.name) == names.end()) names.push_back(e.name);
+    }
+  }
+  for (const auto& name : names) {
+    std::vector<std::pair<double, double>> values;  // estimate, std
+    for (const auto& log : logs) {
+      for (const auto& e : log.estimates) {
+        if (e.name == name && e.standard_error > 0.0 && std::isfinite(e.standard_error)) {
+          values.emplace_back(e.value, e.standard_error);
+        }
+      }
+    }
+    if (values.size() < 2) continue;
+    double weight_sum = 0.0, weighted = 0.0;
+    for (const auto& [b, s] : values) {
+      weight_sum += 1.0 / (s * s);
+      weighted += b / (s * s);
+    }
+    const double mean = weighted / weight_sum;
+    HeterogeneityTest t;
+    t.parameter = name;
+    for (const auto& [b, s] : values) t.q += std::pow((b - mean) / s, 2);
+    t.dof = static_cast<int>(values.size()) - 1;
+    const boost::math::chi_squared distribution(t.dof);
+    t.p_value = std::isfinite(t.q) ? boost::math::cdf(boost::math::complement(distribution, t.q)) : 0.0;
+    t.i_squared = t.q > 0.0 ? std::max(0.0, (t.q - t.dof) / t.q) : 0.0;
+    tests.push_back(t);
+  }
+  return tests;
+}
+
+std::vector<std::string> HeterogeneityWarnings(const std::vector<HeterogeneityTest>& tests) {
+  std::vector<std::string> warnings;
+  for (const auto& t : tests) {
+    if (t.p_value < 1e-3) {
+      warnings.push_back(fmt::format("logs disagree: {}: the per-log estimates differ beyond their uncertainty "
+                                     "(Cochran Q = {:.3g} on {} dof, p = {:.2g}, I^2 = {:.0f} %): the joint estimate "
+                                     "averages different behaviour; compare the per-log table",
+                                     t.parameter, t.q, t.dof, t.p_value, 100.0 * t.i_squared));
+    }
+  }
+  return warnings;
+}
+
+}  // namespace driveid

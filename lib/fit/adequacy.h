@@ -1,0 +1,38 @@
+// Checks every fit kind can run on its result (docs/models.md#adequacy):
+//  - RequireDetermined: a free parameter with a physical lower bound of 0
+//    (an inertia, a friction coefficient) whose robust standard error is
+//    more than `max_relative_std` of its value is not determined by the
+//    data: the fit refuses it by name (exit 4);
+//  - low fit %: a channel whose fit is below kLowFitPercent;
+//  - heterogeneity: the same parameters fitted per log disagree beyond
+//    their uncertainties (Cochran's Q, I^2).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/fit_result.h"
+
+namespace driveid {
+
+/// Bound on the robust relative standard error of a free non-negative parameter.
+constexpr double kMaxRelativeStd = 0.5;
+/// A channel fitted below this percentage draws a warning.
+constexpr double kLowFitPercent = 50.0;
+
+/// Throws IdentificationError naming every free parameter with lower bound 0
+/// (per `nonnegative`) whose standard error exceeds `max_relative_std` of
+/// its magnitude. `context` is appended to the message (e.g. the warnings).
+void RequireDetermined(const FitResult& fit, const std::vector<std::string>& nonnegative, double max_relative_std,
+                       const std::vector<std::string>& context);
+
+/// One warning per channel fitted below kLowFitPercent.
+std::vector<std::string> CheckFitPercent(const FitResult& fit);
+
+/// Tests each parameter of `logs` (where at least two logs estimated it).
+std::vector<HeterogeneityTest> TestHeterogeneity(const std::vector<LogEstimates>& logs);
+
+/// A warning for each test with p below 0.001.
+std::vector<std::string> HeterogeneityWarnings(const std::vector<HeterogeneityTest>& tests);
+
+}  // namespace driveid
