@@ -117,9 +117,10 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
   outputs.plot_panels = MakeFitPanels(series, {"axis IDIM-LS fit (filtered, decimated)", "force or torque"});
   EmitFitOutputs(options.output, outputs);
   if (!options.output.quiet && !options.output.json) {
-    std::fprintf(options.output.output.empty() ? stderr : stdout,
-                 "relative error of the fit %.2f %%, %d decimated samples, acceleration content %.3g 1/s\n",
+    std::FILE* summary = options.output.output.empty() ? stderr : stdout;
+    std::fprintf(summary, "relative error of the fit %.2f %%, %d decimated samples, acceleration content %.3g 1/s\n",
                  result.relative_error_percent, result.samples_used, result.acceleration_content);
+    std::fprintf(summary, "position cutoff %.4g Hz (%s)\n", result.cutoff, result.cutoff_rule.c_str());
   }
 }
 

@@ -27,9 +27,10 @@ struct ChannelStatistics {
   double inflation = 1.0;        ///< std with / without the correlation of residuals (trace ratio, sqrt)
 };
 
-/// Estimates of one log fitted alone (or why that fit failed).
-struct LogEstimates {
-  std::string log;
+/// Estimates of a variant of the fit (one log alone, another cutoff) or why
+/// that fit failed; `label` says which.
+struct EstimateSet {
+  std::string label;
   std::vector<ParameterEstimate> estimates;
   std::string failure;
 };
@@ -58,7 +59,8 @@ struct FitResult {
   /// Adequacy warnings (docs/models.md#adequacy): the fit ran, but the data
   /// say the model misses something; `--strict` turns them into exit 4.
   std::vector<std::string> warnings;
-  std::vector<LogEstimates> per_log;             ///< several logs: each fitted alone
+  std::vector<EstimateSet> per_log;             ///< several logs: each fitted alone
+  std::vector<EstimateSet> sensitivity;         ///< the same fit with other processing (cutoffs)
   std::vector<HeterogeneityTest> heterogeneity;  ///< per parameter, over per_log
 };
 

@@ -44,7 +44,7 @@ std::vector<std::string> CheckFitPercent(const FitResult& fit) {
   return warnings;
 }
 
-std::vector<HeterogeneityTest> TestHeterogeneity(const std::vector<LogEstimates>& logs) {
+std::vector<HeterogeneityTest> TestHeterogeneity(const std::vector<EstimateSet>& logs) {
   std::vector<HeterogeneityTest> tests;
   std::vector<std::string> names;
   for (const auto& log : logs) {

@@ -30,7 +30,7 @@ void RequireDetermined(const FitResult& fit, const std::vector<std::string>& non
 std::vector<std::string> CheckFitPercent(const FitResult& fit);
 
 /// Tests each parameter of `logs` (where at least two logs estimated it).
-std::vector<HeterogeneityTest> TestHeterogeneity(const std::vector<LogEstimates>& logs);
+std::vector<HeterogeneityTest> TestHeterogeneity(const std::vector<EstimateSet>& logs);
 
 /// A warning for each test with p below 0.001.
 std::vector<std::string> HeterogeneityWarnings(const std::vector<HeterogeneityTest>& tests);

@@ -105,7 +105,7 @@ std::string JoinFree(const std::vector<std::string>& free, const std::vector<std
 std::vector<std::string> CheckAxisAdequacy(const LinearRegression& regression, const FitResult& fit,
                                            const std::vector<std::string>& free,
                                            const std::map<std::string, double>& values) {
-  std::vector<std::string> warnings = CheckFitPercent(fit);
+  std::vector<std::string> warnings = fit.warnings;  // the core's (low fit)
   const auto evidence = [](const OmittedTermTest& t) {
     return fmt::format("explain {:.0f} % of the residual; robust Wald {:.3g} > {:.3g}", 100.0 * t.share, t.wald,
                        t.critical);
@@ -144,9 +144,142 @@ std::vector<std::string> CheckAxisAdequacy(const LinearRegression& regression, c
   return warnings;
 }
 
+// The logs' motion frequency f_m = RMS(q') / (2 pi RMS(q - linear trend))
+// [Hz] (the largest over the logs): for q = A sin(2 pi f t) exactly f.
+// Rates come from a first differentiation at the sampling rate / 40.
+double MotionFrequency(const std::vector<AxisLog>& logs) {
+  double largest = 0.0;
+  for (const auto& log : logs) {
+    if (log.time.size() < kMinAxisLogSamples) continue;
+    const Derivatives d = Differentiate(log, 0.0);
+    const std::size_t n = log.time.size();
+    // Least-squares line through q(t).
+    double st = 0.0, sq = 0.0, stt = 0.0, stq = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double t = log.time[k] - log.time.front();
+      st += t;
+      sq += log.position[k];
+      stt += t * t;
+      stq += t * log.position[k];
+    }
+    const double nn = static_cast<double>(n);
+    const double denominator = nn * stt - st * st;
+    const double slope = denominator > 0.0 ? (nn * stq - st * sq) / denominator : 0.0;
+    const double intercept = (sq - slope * st) / nn;
+    double position_square = 0.0, rate_square = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double t = log.time[k] - log.time.front();
+      position_square += std::pow(log.position[k] - intercept - slope * t, 2);
+      if (d.valid[k]) rate_square += std::pow(d.rate[k], 2);
+    }
+    if (position_square > 0.0) largest = std::max(largest, std::sqrt(rate_square / position_square) / (2.0 * M_PI));
+  }
+  return largest;
+}
+
+// The sampling rate of the logs (the lowest; mean rate for irregular logs).
+double SamplingRate(const std::vector<AxisLog>& logs) {
+  double lowest = HUGE_VAL;
+  for (const auto& log : logs) {
+    if (log.time.size() < 2) continue;
+    double rate = ConstantRate(log.time);
+    if (!(rate > 0.0)) rate = static_cast<double>(log.time.size() - 1) / (log.time.back() - log.time.front());
+    lowest = std::min(lowest, rate);
+  }
+  return lowest;
+}
+
 }  // namespace
 
+double ChooseAxisCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options) {
+  const double rate = SamplingRate(logs);
+  if (!std::isfinite(rate) || !(rate > 0.0)) return 0.0;
+  const double motion = MotionFrequency(logs);
+  // No higher than the band the decimated samples keep (the parallel
+  // decimation filter's cutoff): above it only noise would change.
+  const double top = 0.8 * rate / (2.0 * std::max(1, options.decimation));
+  if (!(motion > 0.0) || !std::isfinite(motion)) return rate / 40.0;
+  // Candidates kCutoffPerMotionFrequency x f_m x 2^k up to the top; the one
+  // whose fit leaves the smallest mean squared residual of the (identically
+  // filtered) torque wins: lower cutoffs distort the motion, higher ones
+  // let the encoder's noise into q''.
+  std::vector<double> candidates;
+  for (double c = kCutoffPerMotionFrequency * motion; c < top && candidates.size() < 12; c *= 2.0) {
+    candidates.push_back(c);
+  }
+  if (candidates.empty() || candidates.back() < top) candidates.push_back(top);
+  AxisFitOptions trial = options;
+  trial.per_log = false;
+  trial.sensitivity = false;
+  double best = candidates.front(), best_residual = HUGE_VAL;
+  for (const double c : candidates) {
+    trial.cutoff = c;
+    try {
+      const FitResult fit = FitAxisAtCutoff(logs, start, trial).fit;
+      int rows = 0;
+      for (const auto& channel : fit.channels) rows += channel.samples;
+      const double mean_square = rows > 0 ? 2.0 * fit.cost / rows : HUGE_VAL;
+      if (mean_square < best_residual) {
+        best_residual = mean_square;
+        best = c;
+      }
+    } catch (const std::exception&) {
+      // A candidate the data refuse does not win; FitAxis reports the chosen one's errors.
+    }
+  }
+  return best;
+}
+
 AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options) {
+  if (logs.empty()) throw OptionError("no logs given");
+  AxisFitOptions central = options;
+  central.sensitivity = false;
+  CheckFreeNames(AxisParameterTable(), "axis", options.free);
+  central.cutoff = options.cutoff > 0.0 ? options.cutoff : ChooseAxisCutoff(logs, start, central);
+  AxisFitOutput out = FitAxisAtCutoff(logs, start, central);
+  out.cutoff_rule = options.cutoff > 0.0
+                        ? "given (--cutoff)"
+                        : "from the data: of 5, 10, 20, ... x the motion frequency RMS(q')/(2 pi RMS(q)) up to the "
+                          "decimated band 0.8 x rate / (2 x decimation), the one with the smallest residual";
+  if (!options.sensitivity) return out;
+  // The same fit at half and at twice the cutoff (twice: if below Nyquist).
+  const double rate = SamplingRate(logs);
+  for (const double factor : {0.5, 2.0}) {
+    AxisFitOptions other = central;
+    other.cutoff = factor * central.cutoff;
+    other.per_log = false;
+    if (!(other.cutoff < 0.4 * rate)) continue;
+    EstimateSet entry{fmt::format("cutoff {:.3g} Hz", other.cutoff), {}, ""};
+    try {
+      entry.estimates = FitAxisAtCutoff(logs, start, other).fit.estimates;
+    } catch (const std::exception& e) {
+      entry.failure = e.what();
+    }
+    out.fit.sensitivity.push_back(std::move(entry));
+  }
+  // Warn where the processing moves an estimate by more than 2 of its std.
+  for (const auto& e : out.fit.estimates) {
+    std::vector<std::string> moves;
+    double largest = 0.0;
+    for (const auto& other : out.fit.sensitivity) {
+      for (const auto& o : other.estimates) {
+        if (o.name != e.name) continue;
+        largest = std::max(largest, std::abs(o.value - e.value));
+        moves.push_back(fmt::format("{:.4g} at the {}", o.value, other.label));
+      }
+    }
+    if (e.standard_error > 0.0 && largest > 2.0 * e.standard_error) {
+      out.fit.warnings.push_back(fmt::format(
+          "processing: {} = {:.4g} +- {:.2g} at the cutoff {:.3g} Hz moves to {} (more than 2 std): the estimate "
+          "depends on the differentiation filter; its std does not include that (try a measured rate qd, or check "
+          "the cutoff with --cutoff)",
+          e.name, e.value, e.standard_error, out.cutoff, fmt::join(moves, ", ")));
+    }
+  }
+  return out;
+}
+
+AxisFitOutput FitAxisAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options) {
   if (logs.empty()) throw OptionError("no logs given");
   CheckFreeNames(AxisParameterTable(), "axis", options.free);
   if (options.decimation < 1) {
@@ -184,7 +317,7 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
     out.method = d.rate_hz > 0.0 ? "IDIM-LS: Butterworth zero-phase, central differences, parallel decimation"
                                  : "IDIM-LS on irregular samples: local-polynomial rates, subsampling";
     if (!log.rate.empty()) out.method += "; measured rate qd (q'' from it)";
-    out.cutoff = options.cutoff > 0.0 ? options.cutoff : d.rate_hz / 40.0;
+    out.cutoff = options.cutoff;
     const std::size_t n = log.time.size();
     double max_rate = 0.0;
     for (std::size_t k = 0; k < n; ++k) {
@@ -285,7 +418,7 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
     AxisFitOptions alone = options;
     alone.per_log = false;
     for (const auto& log : logs) {
-      LogEstimates estimates{log.path, {}, ""};
+      EstimateSet estimates{log.path, {}, ""};
       try {
         estimates.estimates = FitAxis({log}, start, alone).fit.estimates;
       } catch (const std::exception& e) {

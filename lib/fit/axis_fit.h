@@ -1,6 +1,8 @@
 // Inverse-dynamics identification of a rigid axis (docs/models.md#axis) by IDIM-LS:
 //   1. zero-phase low-pass of the position (Butterworth, forward-backward),
-//      cutoff `cutoff` (default rate/40: 25 Hz at 1 kHz);
+//      cutoff `cutoff` (default from the data: the smallest residual over
+//      multiples of the motion frequency, ChooseAxisCutoff), and the same fit at half and twice the cutoff: an
+//      estimate that moves by more than 2 std draws a warning;
 //   2. central-difference velocity and acceleration;
 //   3. parallel decimation: the regressor columns [q'', q', sgn(q'), 1] and
 //      the measured force pass the same zero-phase low-pass at 0.8 of the
@@ -35,7 +37,8 @@ namespace driveid {
 
 struct AxisFitOptions {
   std::vector<std::string> free = FitParameterKeys(AxisParameterTable(), "axis", true);
-  double cutoff = 0.0;                ///< position low-pass [Hz]; 0 = rate / 40
+  double cutoff = 0.0;                ///< position low-pass [Hz]; 0 = ChooseAxisCutoff
+  bool sensitivity = true;            ///< also fit at half and twice the cutoff
   int decimation = 10;                ///< keep every n-th sample after parallel filtering
   double min_rate_fraction = 0.01;    ///< exclude |q'| below this fraction of max |q'|
   double max_relative_std = kMaxRelativeStd;  ///< refuse a free J, b or tau_c less certain than this
@@ -50,10 +53,24 @@ struct AxisFitOutput {
   double acceleration_content = 0.0;    ///< RMS(q'') / RMS(q') [1/s] of the used samples
   std::string method;                   ///< how rates were obtained
   double cutoff = 0.0;
+  std::string cutoff_rule;                        ///< how the cutoff was chosen
   int samples_used = 0;
   std::vector<double> time, measured, model;  ///< decimated samples used, for traces and plots
   std::vector<int> log_index;
 };
+
+/// The default position cutoff [Hz], from the data: candidates
+/// kCutoffPerMotionFrequency x 2^k x the logs' motion frequency
+/// f_m = RMS(q') / (2 pi RMS(q - trend)), up to the decimated band
+/// 0.8 x rate / (2 x decimation); the fit at each, and the cutoff whose fit
+/// leaves the smallest mean squared torque residual (rate / 40 for logs
+/// that do not move).
+constexpr double kCutoffPerMotionFrequency = 5.0;
+double ChooseAxisCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options);
+
+/// The fit at options.cutoff (> 0), without the sensitivity fits.
+AxisFitOutput FitAxisAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& start,
+                              const AxisFitOptions& options);
 
 /// Fits the free parameters jointly over all logs; fixed ones come from `start`.
 /// Start values and fixed values come from `start` (a fixed parameter other

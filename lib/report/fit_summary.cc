@@ -46,11 +46,12 @@ std::string FormatFitTable(const FitResult& fit, const FitProvenance& provenance
   return out;
 }
 
-std::string FormatPerLogTable(const FitResult& fit) {
-  if (fit.per_log.empty()) return {};
-  std::string out = "per log (each fitted alone):\n";
-  for (const auto& log : fit.per_log) {
-    out += fmt::format("  {}\n", log.log);
+namespace {
+
+std::string FormatEstimateSets(const std::vector<EstimateSet>& sets) {
+  std::string out;
+  for (const auto& log : sets) {
+    out += fmt::format("  {}\n", log.label);
     if (!log.failure.empty()) {
       out += fmt::format("    not fitted: {}\n", log.failure.substr(0, log.failure.find('\n')));
       continue;
@@ -59,6 +60,28 @@ std::string FormatPerLogTable(const FitResult& fit) {
       out += fmt::format("    {:<14} {:>14.6g} +- {:.3g}\n", e.name, e.value, e.standard_error);
     }
   }
+  return out;
+}
+
+Json EstimateSetsJson(const std::vector<EstimateSet>& sets) {
+  Json out = Json::array();
+  for (const auto& set : sets) {
+    Json entry = {{"label", set.label}};
+    if (!set.failure.empty()) entry["failure"] = set.failure;
+    entry["estimates"] = Json::object();
+    for (const auto& e : set.estimates) entry["estimates"][e.name] = {{"value", e.value}, {"std", e.standard_error}};
+    out.push_back(entry);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string FormatPerLogTable(const FitResult& fit) {
+  std::string out;
+  if (!fit.sensitivity.empty()) out += "processing sensitivity (the same fit at other cutoffs):\n" + FormatEstimateSets(fit.sensitivity);
+  if (fit.per_log.empty()) return out;
+  out += "per log (each fitted alone):\n" + FormatEstimateSets(fit.per_log);
   for (const auto& t : fit.heterogeneity) {
     out += fmt::format("  {:<14} Cochran Q {:.3g} on {} dof, p = {:.2g}, I^2 = {:.0f} %\n", t.parameter, t.q, t.dof,
                        t.p_value, 100.0 * t.i_squared);
@@ -103,15 +126,9 @@ Json FitJson(const FitResult& fit, const FitProvenance& provenance) {
   out["iterations"] = fit.iterations;
   out["converged"] = fit.converged;
   out["warnings"] = fit.warnings;
+  if (!fit.sensitivity.empty()) out["sensitivity"] = EstimateSetsJson(fit.sensitivity);
   if (!fit.per_log.empty()) {
-    out["per_log"] = Json::array();
-    for (const auto& log : fit.per_log) {
-      Json entry = {{"log", log.log}};
-      if (!log.failure.empty()) entry["failure"] = log.failure;
-      entry["estimates"] = Json::object();
-      for (const auto& e : log.estimates) entry["estimates"][e.name] = {{"value", e.value}, {"std", e.standard_error}};
-      out["per_log"].push_back(entry);
-    }
+    out["per_log"] = EstimateSetsJson(fit.per_log);
     out["heterogeneity"] = Json::object();
     for (const auto& t : fit.heterogeneity) {
       out["heterogeneity"][t.parameter] = {{"q", t.q}, {"dof", t.dof}, {"p", t.p_value}, {"i_squared", t.i_squared}};

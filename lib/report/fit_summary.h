@@ -14,7 +14,7 @@ namespace driveid {
 /// estimates and the adequacy warnings.
 std::string FormatFitTable(const FitResult& fit, const FitProvenance& provenance);
 
-/// Per-log estimates and heterogeneity statistics ("" with one log).
+/// Processing-sensitivity and per-log estimates, heterogeneity statistics ("" if none).
 std::string FormatPerLogTable(const FitResult& fit);
 
 /// The same content as one JSON object (deterministic key order).

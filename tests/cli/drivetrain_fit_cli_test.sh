@@ -192,9 +192,9 @@ cp "$src/data/axis_example.yaml" axis.yaml
 "$bin" simulate axis --params axis.yaml --profile constant --speed 1 --noise 0.05 -o constant.csv && ok \
   || fail "simulate axis constant"
 printf 't,q,i\n0,0,1\n0.001,0,1\n' > axis_current.csv
-expect 4 "not identifiable from these logs: viscous, coulomb, offset.*coulomb and offset need motion in both directions" \
+expect 4 "not identifiable from these logs: (viscous, )?coulomb, offset.*coulomb and offset need motion in both directions" \
   -- axis constant.csv --params axis.yaml
-expect 4 "not identifiable: inertia = 0 \\+- .*at its bound.*the logs do not determine it" \
+expect 4 "not identifiable: inertia = [-0-9.e]+ \\+- .*the logs do not determine it" \
   -- axis constant.csv --params axis.yaml --free inertia,viscous
 expect 3 "axis_current.csv: the log has a current column 'i': axis.k_t must be given" -- axis axis_current.csv
 expect 3 "axis.csv:[0-9]+: missing column 'force' or 'amps'" -- axis axis.csv --col tau=force --col i=amps

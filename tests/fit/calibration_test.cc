@@ -133,3 +133,9 @@ TEST_CASE("axis fit, white and AR(1) 0.9 torque noise, fine encoder: intervals c
   AxisCoverage(0.0, 1e-9, 200, 0.93, 0.97);
   AxisCoverage(0.9, 1e-9, 200, 0.90, 0.98);
 }
+
+TEST_CASE("axis fit, 13-bit encoder, AR(1) 0.9 and 0.99 noise: intervals cover") {
+  const double quantum = 2.0 * M_PI / 8192.0;
+  AxisCoverage(0.9, quantum, 200, 0.90, 0.98);
+  AxisCoverage(0.99, quantum, 200, 0.90, 0.98);
+}
