@@ -297,15 +297,15 @@ void AddFitOutputOptions(CLI::App& command, FitOutputOptions& options) {
 }
 
 void EmitFitOutputs(const FitOutputOptions& options, const FitOutputs& outputs) {
-  // On stderr once: the summary table lists them when it goes there itself.
-  const bool table_on_stderr = options.output.empty() && !options.quiet && !options.json;
-  if (!table_on_stderr) {
-    for (const auto& w : outputs.fit.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-  }
   if (options.strict && !outputs.fit.warnings.empty()) {
     throw IdentificationError(fmt::format("--strict: {} adequacy warning{}; nothing written: {}",
                                           outputs.fit.warnings.size(), outputs.fit.warnings.size() > 1 ? "s" : "",
                                           fmt::join(outputs.fit.warnings, "; ")));
+  }
+  // On stderr once: the summary table lists them when it goes there itself.
+  const bool table_on_stderr = options.output.empty() && !options.quiet && !options.json;
+  if (!table_on_stderr) {
+    for (const auto& w : outputs.fit.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   }
   // All or nothing: render the plot, then write every file together.
   std::vector<std::pair<std::string, std::string>> files;

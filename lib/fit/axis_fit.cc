@@ -257,7 +257,8 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
     }
     out.fit.sensitivity.push_back(std::move(entry));
   }
-  // Warn where the processing moves an estimate by more than 2 of its std.
+  // Warn where the processing moves an estimate by more than 2 of its std
+  // and by more than 5 % (clean logs move by a fraction of a percent).
   for (const auto& e : out.fit.estimates) {
     std::vector<std::string> moves;
     double largest = 0.0;
@@ -268,10 +269,10 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
         moves.push_back(fmt::format("{:.4g} at the {}", o.value, other.label));
       }
     }
-    if (e.standard_error > 0.0 && largest > 2.0 * e.standard_error) {
+    if (e.standard_error > 0.0 && largest > 2.0 * e.standard_error && largest > 0.05 * std::abs(e.value)) {
       out.fit.warnings.push_back(fmt::format(
           "processing: {} = {:.4g} +- {:.2g} at the cutoff {:.3g} Hz moves to {} (more than 2 std): the estimate "
-          "depends on the differentiation filter; its std does not include that (try a measured rate qd, or check "
+          "depends on the differentiation filter by more than 5 %; its std does not include that (try a measured rate qd, or check "
           "the cutoff with --cutoff)",
           e.name, e.value, e.standard_error, out.cutoff, fmt::join(moves, ", ")));
     }

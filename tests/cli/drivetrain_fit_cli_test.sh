@@ -197,6 +197,19 @@ expect 4 "not identifiable from these logs: (viscous, )?coulomb, offset.*coulomb
 expect 4 "not identifiable: inertia = [-0-9.e]+ \\+- .*the logs do not determine it" \
   -- axis constant.csv --params axis.yaml --free inertia,viscous
 expect 3 "axis_current.csv: the log has a current column 'i': axis.k_t must be given" -- axis axis_current.csv
+# Adequacy (docs/models.md#adequacy): a log with gravity fitted without the
+# gravity terms warns on stderr and in JSON; --strict makes it exit 4 and write nothing.
+{ cat axis.yaml; printf '  gravity_cos: -2.0\n  gravity_sin: 0.5\n'; } | grep -v "^  gravity_.*: 0 " > gravity.yaml
+"$bin" simulate axis --params gravity.yaml --noise 0.05 --duration 25 -o gravity.csv && ok || fail "simulate axis with gravity"
+"$bin" axis gravity.csv -q -o gravity_fit.yaml 2> stderr.txt && grep -q "^warning: gravity missing?.*--free inertia,viscous,coulomb,offset,gravity_cos,gravity_sin" stderr.txt \
+  && ok || fail "gravity warning: $(cat stderr.txt)"
+"$bin" axis gravity.csv --json -o gravity_fit.yaml 2> /dev/null | grep -q '"warnings":\[[^]]*gravity missing?' \
+  && ok || fail "gravity warning in JSON"
+expect 4 "--strict: 1 adequacy warning; nothing written: gravity missing?" -- axis gravity.csv --strict
+[ ! -e out.yaml ] && ok || fail "--strict wrote its output"
+"$bin" axis gravity.csv --free inertia,viscous,coulomb,offset,gravity_cos,gravity_sin --strict -q -o strict.yaml \
+  && grep -q "gravity_sin: 0.4[0-9]*\|gravity_sin: 0.5[0-9]*" strict.yaml && ok || fail "gravity terms fitted: $(cat strict.yaml)"
+
 expect 3 "axis.csv:[0-9]+: missing column 'force' or 'amps'" -- axis axis.csv --col tau=force --col i=amps
 expect 2 "not a parameter of the axis fit" -- axis axis.csv --free mass
 expect 2 "'q' and 'tau' would both read column 'tau'" -- axis axis.csv --col q=tau

@@ -3,6 +3,8 @@
 #include "fit/axis_fit.h"
 
 #include <cmath>
+#include <random>
+#include <string>
 
 #include <catch2/catch.hpp>
 
@@ -92,4 +94,75 @@ TEST_CASE("axis: constant-rate logs identify friction only, a free inertia is re
   CHECK(out.params.viscous == Approx(kTruth.viscous).epsilon(0.01));
   CHECK(out.params.coulomb == Approx(kTruth.coulomb).epsilon(0.01));
   CHECK(out.params.offset == Approx(kTruth.offset).epsilon(0.01));
+}
+
+namespace {
+
+// Adequacy tests' own generator (not lib/sim): a joint swinging about the
+// horizontal, q = 0.6 sin(2 pi 0.5 t) + 0.2 sin(2 pi 1.7 t), 1 kHz for 20 s,
+// tau = J q'' + b q' + tau_c sgn q' + tau_0 + g_c cos q + g_s sin q
+// + (drift_rate t) + white noise 0.02.
+AxisLog SwingLog(double viscous, double gravity_cos, double gravity_sin, double drift_rate, unsigned seed) {
+  std::mt19937 random(seed);
+  std::normal_distribution<double> noise(0.0, 0.02);
+  AxisLog log;
+  log.path = "swing.csv";
+  for (int k = 0; k <= 20000; ++k) {
+    const double t = k / 1000.0, w1 = 2 * M_PI * 0.5, w2 = 2 * M_PI * 1.7;
+    const double q = 0.6 * std::sin(w1 * t) + 0.2 * std::sin(w2 * t);
+    const double qd = 0.6 * w1 * std::cos(w1 * t) + 0.2 * w2 * std::cos(w2 * t);
+    const double qdd = -0.6 * w1 * w1 * std::sin(w1 * t) - 0.2 * w2 * w2 * std::sin(w2 * t);
+    log.time.push_back(t);
+    log.position.push_back(q);
+    log.force.push_back(0.05 * qdd + viscous * qd + 0.3 * ((qd > 0) - (qd < 0)) + 0.1 + gravity_cos * std::cos(q) +
+                        gravity_sin * std::sin(q) + drift_rate * t + noise(random));
+  }
+  return log;
+}
+
+bool HasWarning(const FitResult& fit, const std::string& start) {
+  for (const auto& w : fit.warnings) {
+    if (w.rfind(start, 0) == 0) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("axis adequacy: missing gravity is named, the gravity terms recover it and silence the warning") {
+  const AxisLog log = SwingLog(0.2, -3.0, 0.8, 0.0, 11);
+  const AxisFitOutput without = FitAxis({log}, AxisSection{}, {});
+  CHECK(HasWarning(without.fit, "gravity missing?"));
+  AxisFitOptions with_gravity;
+  with_gravity.free = {"inertia", "viscous", "coulomb", "offset", "gravity_cos", "gravity_sin"};
+  const AxisFitOutput with = FitAxis({log}, AxisSection{}, with_gravity);
+  CHECK_FALSE(HasWarning(with.fit, "gravity missing?"));
+  // Offset and gravity_cos are close to collinear for |q| < 0.8: checked
+  // through their sum at q = 0 and the shape terms.
+  CHECK(with.params.gravity_sin == Approx(0.8).epsilon(0.05));
+  CHECK(with.params.offset + with.params.gravity_cos == Approx(0.1 - 3.0).epsilon(0.02));
+  CHECK(with.params.inertia == Approx(0.05).epsilon(0.03));
+  CHECK(with.params.viscous == Approx(0.2).epsilon(0.03));
+  CHECK(with.fit.warnings.empty());
+}
+
+TEST_CASE("axis adequacy: drift within a log and logs that disagree draw warnings; consistent logs do not") {
+  const AxisFitOutput drifting = FitAxis({SwingLog(0.2, 0.0, 0.0, 0.02, 12)}, AxisSection{}, {});
+  CHECK(HasWarning(drifting.fit, "drift"));
+  const AxisFitOutput same = FitAxis({SwingLog(0.2, 0.0, 0.0, 0.0, 13), SwingLog(0.2, 0.0, 0.0, 0.0, 14)},
+                                     AxisSection{}, {});
+  CHECK(same.fit.warnings.empty());
+  REQUIRE(same.fit.per_log.size() == 2);
+  const AxisFitOutput differ = FitAxis({SwingLog(0.2, 0.0, 0.0, 0.0, 15), SwingLog(0.3, 0.0, 0.0, 0.0, 16)},
+                                       AxisSection{}, {});
+  CHECK(HasWarning(differ.fit, "logs disagree: viscous"));
+  bool viscous_tested = false;
+  for (const auto& t : differ.fit.heterogeneity) {
+    if (t.parameter == "viscous") {
+      viscous_tested = true;
+      CHECK(t.p_value < 1e-6);
+      CHECK(t.dof == 1);
+    }
+  }
+  CHECK(viscous_tested);
 }
