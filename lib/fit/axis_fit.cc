@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "fit/axis_rows.h"
 #include "fit/linear_regression.h"
 #include "fit/omitted_terms.h"
 #include "io/csv_log.h"
@@ -34,63 +35,6 @@ std::string Key(double AxisParameters::*member) { return KeyOf(AxisParameterTabl
 
 bool Contains(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
-}
-
-// Rates and accelerations at the log's samples, and which method made them.
-struct Derivatives {
-  std::vector<double> rate, acceleration;
-  std::vector<char> valid;
-  double rate_hz = 0.0;  // 0 for irregular sampling
-};
-
-Derivatives Differentiate(const AxisLog& log, double cutoff_request) {
-  Derivatives d;
-  const std::size_t n = log.time.size();
-  d.rate_hz = ConstantRate(log.time);
-  d.rate.assign(n, 0.0);
-  d.acceleration.assign(n, 0.0);
-  d.valid.assign(n, 0);
-  if (d.rate_hz > 0.0) {
-    const double cutoff = cutoff_request > 0.0 ? cutoff_request : d.rate_hz / 40.0;
-    if (!(cutoff < 0.5 * d.rate_hz)) {
-      throw OptionError(fmt::format("--cutoff = {}: violated constraint: below half the sampling rate {} Hz", cutoff,
-                                    d.rate_hz));
-    }
-    const double dt = 1.0 / d.rate_hz;
-    if (!log.rate.empty()) {
-      // A measured rate: filtered, and differentiated once for q''.
-      const std::vector<double> v = ZeroPhaseLowPass(log.rate, cutoff, d.rate_hz);
-      for (std::size_t k = 1; k + 1 < n; ++k) {
-        d.rate[k] = v[k];
-        d.acceleration[k] = (v[k + 1] - v[k - 1]) / (2.0 * dt);
-        d.valid[k] = 1;
-      }
-      return d;
-    }
-    const std::vector<double> q = ZeroPhaseLowPass(log.position, cutoff, d.rate_hz);
-    for (std::size_t k = 1; k + 1 < n; ++k) {
-      d.rate[k] = (q[k + 1] - q[k - 1]) / (2.0 * dt);
-      d.acceleration[k] = (q[k + 1] - 2.0 * q[k] + q[k - 1]) / (dt * dt);
-      d.valid[k] = 1;
-    }
-  } else {
-    // Irregular sampling: local quadratic fits on the time stamps.
-    const double span = log.time.back() - log.time.front();
-    const double mean_rate = static_cast<double>(n - 1) / span;
-    const double cutoff = cutoff_request > 0.0 ? cutoff_request : mean_rate / 40.0;
-    if (!log.rate.empty()) {
-      const SignalDerivatives s = EstimateDerivatives(log.time, log.rate, 0.5 / cutoff);
-      d.rate = s.value;
-      d.acceleration = s.rate;
-      d.valid = s.valid;
-    } else {
-      const SignalDerivatives s = EstimateDerivatives(log.time, log.position, 0.5 / cutoff);
-      d.rate = s.rate;
-      d.acceleration = s.acceleration;
-      d.valid = s.valid;
-    }
-  }
-  return d;
 }
 
 std::string JoinFree(const std::vector<std::string>& free, const std::vector<std::string>& more) {
@@ -151,7 +95,7 @@ double MotionFrequency(const std::vector<AxisLog>& logs) {
   double largest = 0.0;
   for (const auto& log : logs) {
     if (log.time.size() < kMinAxisLogSamples) continue;
-    const Derivatives d = Differentiate(log, 0.0);
+    const AxisDerivatives d = DifferentiateAxisLog(log, 0.0);
     const std::size_t n = log.time.size();
     // Least-squares line through q(t).
     double st = 0.0, sq = 0.0, stt = 0.0, stq = 0.0;
@@ -310,77 +254,13 @@ AxisFitOutput FitAxisAtCutoff(const std::vector<AxisLog>& logs, const AxisSectio
   const int p = static_cast<int>(parameters.size());
 
   AxisFitOutput out;
-  LinearRegression regression(column_names);  // [q'', q', sgn q', 1, cos q, sin q, |q'|, t] per decimated sample
-  for (std::size_t i = 0; i < logs.size(); ++i) {
-    const AxisLog& log = logs[i];
-    if (log.time.size() < kMinAxisLogSamples) throw InputError(fmt::format("{}: {} samples: too few for IDIM-LS", log.path, log.time.size()));
-    const Derivatives d = Differentiate(log, options.cutoff);
-    out.method = d.rate_hz > 0.0 ? "IDIM-LS: Butterworth zero-phase, central differences, parallel decimation"
-                                 : "IDIM-LS on irregular samples: local-polynomial rates, subsampling";
-    if (!log.rate.empty()) out.method += "; measured rate qd (q'' from it)";
-    out.cutoff = options.cutoff;
-    const std::size_t n = log.time.size();
-    double max_rate = 0.0;
-    for (std::size_t k = 0; k < n; ++k) {
-      if (d.valid[k]) max_rate = std::max(max_rate, std::abs(d.rate[k]));
-    }
-    const double min_rate = options.min_rate_fraction * max_rate;
-    // Full-rate columns [q'', q', sgn q', 1, cos q, sin q, |q'|, t - t_mid]
-    // and the force; invalid ends hold their neighbours.
-    std::vector<std::vector<double>> columns(kModelColumns + 2, std::vector<double>(n, 0.0));
-    std::vector<char> slow(n, 0);
-    const double middle_time = 0.5 * (log.time.front() + log.time.back());
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::size_t m = d.valid[k] ? k : (k == 0 ? 1 : n - 2);
-      columns[0][k] = d.acceleration[m];
-      columns[1][k] = d.rate[m];
-      columns[2][k] = static_cast<double>((d.rate[m] > 0.0) - (d.rate[m] < 0.0));
-      columns[3][k] = 1.0;
-      columns[4][k] = std::cos(log.position[k]);
-      columns[5][k] = std::sin(log.position[k]);
-      columns[6][k] = std::abs(d.rate[m]);
-      columns[7][k] = log.time[k] - middle_time;
-      slow[k] = std::abs(d.rate[m]) < min_rate;
-    }
-    std::vector<double> force = log.force;
-    const int decimation = options.decimation;
-    if (d.rate_hz > 0.0 && decimation > 1) {
-      const double cutoff = 0.8 * d.rate_hz / (2.0 * decimation);
-      for (auto& c : columns) c = ZeroPhaseLowPass(c, cutoff, d.rate_hz);
-      force = ZeroPhaseLowPass(force, cutoff, d.rate_hz);
-    }
-    // A kept sample must be clear of slow samples by the filter's reach.
-    const std::size_t reach = static_cast<std::size_t>(std::max(1, 2 * decimation));
-    std::vector<char> clear(n, 1);
-    std::size_t last_slow = 0;
-    bool seen = false;
-    for (std::size_t k = 0; k < n; ++k) {
-      if (slow[k]) {
-        seen = true;
-        last_slow = k;
-      }
-      if (seen && k - last_slow <= reach) clear[k] = 0;
-    }
-    seen = false;
-    for (std::size_t k = n; k-- > 0;) {
-      if (slow[k]) {
-        seen = true;
-        last_slow = k;
-      }
-      if (seen && last_slow - k <= reach) clear[k] = 0;
-    }
-    regression.BeginChannel(log.path + ":tau");
-    const std::size_t margin = reach + 2;  // filter start-up at the ends
-    for (std::size_t k = margin; k + margin < n; k += static_cast<std::size_t>(decimation)) {
-      if (!clear[k]) continue;
-      std::vector<double> row(columns.size());
-      for (std::size_t c = 0; c < columns.size(); ++c) row[c] = columns[c][k];
-      regression.AddRow(row, force[k]);
-      out.time.push_back(log.time[k]);
-      out.measured.push_back(force[k]);
-      out.log_index.push_back(static_cast<int>(i));
-    }
-  }
+  AxisRows rows = BuildAxisRows(logs, options.cutoff, options.decimation, options.min_rate_fraction, column_names);
+  LinearRegression& regression = rows.regression;
+  out.method = rows.method;
+  out.cutoff = options.cutoff;
+  out.time = std::move(rows.time);
+  out.measured = std::move(rows.measured);
+  out.log_index = std::move(rows.log_index);
   const int rows_used = static_cast<int>(regression.rows());
   if (rows_used <= p) {
     throw IdentificationError(fmt::format("{} usable samples after decimation cannot determine {} parameters (the logs "

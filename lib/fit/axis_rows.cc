@@ -1,0 +1,139 @@
+#include "fit/axis_rows.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "signal/butterworth.h"
+#include "signal/local_polynomial.h"
+
+namespace driveid {
+
+AxisDerivatives DifferentiateAxisLog(const AxisLog& log, double cutoff_request) {
+  AxisDerivatives d;
+  const std::size_t n = log.time.size();
+  d.rate_hz = ConstantRate(log.time);
+  d.rate.assign(n, 0.0);
+  d.acceleration.assign(n, 0.0);
+  d.valid.assign(n, 0);
+  if (d.rate_hz > 0.0) {
+    const double cutoff = cutoff_request > 0.0 ? cutoff_request : d.rate_hz / 40.0;
+    if (!(cutoff < 0.5 * d.rate_hz)) {
+      throw OptionError(fmt::format("--cutoff = {}: violated constraint: below half the sampling rate {} Hz", cutoff,
+                                    d.rate_hz));
+    }
+    const double dt = 1.0 / d.rate_hz;
+    if (!log.rate.empty()) {
+      // A measured rate: filtered, and differentiated once for q''.
+      const std::vector<double> v = ZeroPhaseLowPass(log.rate, cutoff, d.rate_hz);
+      for (std::size_t k = 1; k + 1 < n; ++k) {
+        d.rate[k] = v[k];
+        d.acceleration[k] = (v[k + 1] - v[k - 1]) / (2.0 * dt);
+        d.valid[k] = 1;
+      }
+      return d;
+    }
+    const std::vector<double> q = ZeroPhaseLowPass(log.position, cutoff, d.rate_hz);
+    for (std::size_t k = 1; k + 1 < n; ++k) {
+      d.rate[k] = (q[k + 1] - q[k - 1]) / (2.0 * dt);
+      d.acceleration[k] = (q[k + 1] - 2.0 * q[k] + q[k - 1]) / (dt * dt);
+      d.valid[k] = 1;
+    }
+  } else {
+    // Irregular sampling: local quadratic fits on the time stamps.
+    const double span = log.time.back() - log.time.front();
+    const double mean_rate = static_cast<double>(n - 1) / span;
+    const double cutoff = cutoff_request > 0.0 ? cutoff_request : mean_rate / 40.0;
+    if (!log.rate.empty()) {
+      const SignalDerivatives s = EstimateDerivatives(log.time, log.rate, 0.5 / cutoff);
+      d.rate = s.value;
+      d.acceleration = s.rate;
+      d.valid = s.valid;
+    } else {
+      const SignalDerivatives s = EstimateDerivatives(log.time, log.position, 0.5 / cutoff);
+      d.rate = s.rate;
+      d.acceleration = s.acceleration;
+      d.valid = s.valid;
+    }
+  }
+  return d;
+}
+
+AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int decimation, double min_rate_fraction,
+                       const std::vector<std::string>& column_names) {
+  AxisRows out{LinearRegression(column_names), {}, {}, {}, ""};
+  LinearRegression& regression = out.regression;
+  for (std::size_t i = 0; i < logs.size(); ++i) {
+    const AxisLog& log = logs[i];
+    if (log.time.size() < kMinAxisLogSamples) throw InputError(fmt::format("{}: {} samples: too few for IDIM-LS", log.path, log.time.size()));
+    const AxisDerivatives d = DifferentiateAxisLog(log, cutoff);
+    out.method = d.rate_hz > 0.0 ? "IDIM-LS: Butterworth zero-phase, central differences, parallel decimation"
+                                 : "IDIM-LS on irregular samples: local-polynomial rates, subsampling";
+    if (!log.rate.empty()) out.method += "; measured rate qd (q'' from it)";
+    const std::size_t n = log.time.size();
+    double max_rate = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      if (d.valid[k]) max_rate = std::max(max_rate, std::abs(d.rate[k]));
+    }
+    const double min_rate = min_rate_fraction * max_rate;
+    // Full-rate columns [q'', q', sgn q', 1, cos q, sin q, |q'|, t - t_mid]
+    // and the force; invalid ends hold their neighbours.
+    std::vector<std::vector<double>> columns(8, std::vector<double>(n, 0.0));
+    std::vector<char> slow(n, 0);
+    const double middle_time = 0.5 * (log.time.front() + log.time.back());
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t m = d.valid[k] ? k : (k == 0 ? 1 : n - 2);
+      columns[0][k] = d.acceleration[m];
+      columns[1][k] = d.rate[m];
+      columns[2][k] = static_cast<double>((d.rate[m] > 0.0) - (d.rate[m] < 0.0));
+      columns[3][k] = 1.0;
+      columns[4][k] = std::cos(log.position[k]);
+      columns[5][k] = std::sin(log.position[k]);
+      columns[6][k] = std::abs(d.rate[m]);
+      columns[7][k] = log.time[k] - middle_time;
+      slow[k] = std::abs(d.rate[m]) < min_rate;
+    }
+    std::vector<double> force = log.force;
+    if (d.rate_hz > 0.0 && decimation > 1) {
+      const double band = 0.8 * d.rate_hz / (2.0 * decimation);
+      for (auto& c : columns) c = ZeroPhaseLowPass(c, band, d.rate_hz);
+      force = ZeroPhaseLowPass(force, band, d.rate_hz);
+    }
+    // A kept sample must be clear of slow samples by the filter's reach.
+    const std::size_t reach = static_cast<std::size_t>(std::max(1, 2 * decimation));
+    std::vector<char> clear(n, 1);
+    std::size_t last_slow = 0;
+    bool seen = false;
+    for (std::size_t k = 0; k < n; ++k) {
+      if (slow[k]) {
+        seen = true;
+        last_slow = k;
+      }
+      if (seen && k - last_slow <= reach) clear[k] = 0;
+    }
+    seen = false;
+    for (std::size_t k = n; k-- > 0;) {
+      if (slow[k]) {
+        seen = true;
+        last_slow = k;
+      }
+      if (seen && last_slow - k <= reach) clear[k] = 0;
+    }
+    regression.BeginChannel(log.path + ":tau");
+    const std::size_t margin = reach + 2;  // filter start-up at the ends
+    for (std::size_t k = margin; k + margin < n; k += static_cast<std::size_t>(decimation)) {
+      if (!clear[k]) continue;
+      std::vector<double> row(columns.size());
+      for (std::size_t c = 0; c < columns.size(); ++c) row[c] = columns[c][k];
+      regression.AddRow(row, force[k]);
+      out.time.push_back(log.time[k]);
+      out.measured.push_back(force[k]);
+      out.log_index.push_back(static_cast<int>(i));
+    }
+  }
+  return out;
+}
+
+}  // namespace driveid
