@@ -8,6 +8,7 @@
 #include "common/command_registry.h"
 #include "core/errors.h"
 #include "fit/axis_fit.h"
+#include "fit/validation.h"
 #include "io/csv_log.h"
 #include "io/parameter_file.h"
 #include "io/sha256.h"
@@ -21,7 +22,11 @@ CLI::App* SetupAxisCommand(CLI::App& app, AxisOptions& options) {
   command->add_option("--params", options.params, "parameter file with an axis section (start values, k_t, n_g)");
   AddFreeOption(*command, options.free, FreeOptionHelp(AxisParameterTable(), "axis"));
   AddLogInputOptions(*command, options.input, "q=pi/180*#2, tau=10*#14");
-  command->add_option("--cutoff", options.cutoff, "position low-pass cutoff [Hz] (default: sampling rate / 40)")
+  command->add_option("--validate", options.validate,
+                      "held-out logs (same columns) to predict with the fitted parameters: fit %, RMSE, lag-1 per log "
+                      "(docs/models.md#validation)");
+  command->add_option("--cutoff", options.cutoff,
+                      "position low-pass cutoff [Hz] (default: from the data, docs/models.md#axis-cutoff-from-the-data)")
       ->check(FiniteAbove(0.0));
   command->add_option("--decimation", options.decimation, "parallel decimation factor")
       ->capture_default_str()
@@ -39,6 +44,7 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
     auto in = options.logs;
     in.push_back(options.params);
     in.insert(in.end(), options.input.join.begin(), options.input.join.end());
+    in.insert(in.end(), options.validate.begin(), options.validate.end());
     return in;
   }());
   ParameterFile start;
@@ -67,6 +73,15 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
   StoreModelParameters(AxisParameterTable(), result.params, out_section);
   fitted.Set(out_section);
   outputs.fit = result.fit;
+  if (!options.validate.empty()) {
+    FitProvenance held_out;
+    const auto validation_logs = LoadLogs<AxisLog>(
+        options.validate, options.input, options.output, held_out, AxisLogColumns(),
+        [&](CsvLog csv) { return MakeAxisLog(std::move(csv), section.torque_constant.value_or(0.0)); });
+    for (const auto& v : ValidateAxis(validation_logs, result.params, result.cutoff, options.decimation)) {
+      outputs.fit.validation.push_back(v.stats);
+    }
+  }
   std::vector<DerivedQuantity> derived;
   derived.push_back({"relative_error_percent", result.relative_error_percent, 0.0, "% |tau - model| / |tau|"});
   if (section.gear_ratio) {

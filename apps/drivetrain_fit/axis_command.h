@@ -19,6 +19,7 @@ struct AxisOptions {
   LogInputCli input;
   double cutoff = 0.0;
   int decimation = 10;
+  std::vector<std::string> validate;  ///< held-out logs predicted by the fit
   FitOutputOptions output;
 };
 

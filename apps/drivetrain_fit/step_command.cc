@@ -5,6 +5,7 @@
 #include "common/command_registry.h"
 #include "core/errors.h"
 #include "fit/step_fit.h"
+#include "fit/validation.h"
 #include "io/csv_log.h"
 #include "io/parameter_file.h"
 #include "io/sha256.h"
@@ -21,6 +22,9 @@ CLI::App* SetupStepCommand(CLI::App& app, StepOptions& options) {
       ->check(CLI::IsMember({"reduced", "full"}));
   AddFreeOption(*command, options.free, FreeOptionHelp(DriveTrainParameterTable(), "step", ", offset (a bias per log)"));
   AddLogInputOptions(*command, options.input, "tau_link=strain_gauge");
+  command->add_option("--validate", options.validate,
+                      "held-out logs (same columns) to simulate with the fitted parameters: fit %, RMSE, lag-1 per log "
+                      "(docs/models.md#validation)");
   AddFitOutputOptions(*command, options.output);
   command->footer(
       "Example:\n"
@@ -34,6 +38,7 @@ void RunStepCommand(const StepOptions& options, const std::string& command_line)
     auto in = options.logs;
     in.push_back(options.params);
     in.insert(in.end(), options.input.join.begin(), options.input.join.end());
+    in.insert(in.end(), options.validate.begin(), options.validate.end());
     return in;
   }());
   const ParameterFile start_file = ReadParameterFile(options.params);
@@ -58,6 +63,15 @@ void RunStepCommand(const StepOptions& options, const std::string& command_line)
   ParameterFile fitted = start_file;
   StoreModelParameters(DriveTrainParameterTable(), result.params, *fitted.Find<DriveTrainSection>());
   outputs.fit = result.fit;
+  if (!options.validate.empty()) {
+    FitProvenance held_out;
+    const auto validation_logs = LoadLogs<StepLog>(options.validate, options.input, options.output, held_out,
+                                                   StepLogColumns(),
+                                                   [&](CsvLog csv) { return MakeStepLog(std::move(csv)); });
+    for (const auto& v : ValidateSteps(validation_logs, result.params, fit_options.model)) {
+      outputs.fit.validation.push_back(v.stats);
+    }
+  }
   outputs.parameter_file = FormatParameterFile(fitted, &outputs.fit, &outputs.provenance);
 
   outputs.trace_csv = "# drivetrain-fit step trace: measured and model link torque [N m]\n";

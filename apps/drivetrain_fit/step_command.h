@@ -18,6 +18,7 @@ struct StepOptions {
   std::string model = "reduced";
   std::vector<std::string> free = FitParameterKeys(DriveTrainParameterTable(), "step", true);
   LogInputCli input;
+  std::vector<std::string> validate;  ///< held-out logs predicted by the fit
   FitOutputOptions output;
 };
 

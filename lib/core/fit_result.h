@@ -62,6 +62,7 @@ struct FitResult {
   std::vector<EstimateSet> per_log;             ///< several logs: each fitted alone
   std::vector<EstimateSet> sensitivity;         ///< the same fit with other processing (cutoffs)
   std::vector<HeterogeneityTest> heterogeneity;  ///< per parameter, over per_log
+  std::vector<ChannelStatistics> validation;     ///< held-out logs (--validate) predicted by the fit
 };
 
 /// A quantity derived from the estimates (e.g. the C-drive's a and b), with

@@ -32,13 +32,37 @@ void RequireDetermined(const FitResult& fit, const std::vector<std::string>& non
   throw IdentificationError(message);
 }
 
+ChannelStatistics DescribeResiduals(const std::string& name, const double* measured, const double* residuals,
+                                    int count) {
+  ChannelStatistics stats;
+  stats.name = name;
+  stats.samples = count;
+  if (count <= 0) return stats;
+  double ssr = 0.0, lag1 = 0.0, mean = 0.0, spread = 0.0;
+  for (int k = 0; k < count; ++k) {
+    ssr += residuals[k] * residuals[k];
+    if (k > 0) lag1 += residuals[k] * residuals[k - 1];
+    if (measured != nullptr) mean += measured[k];
+  }
+  stats.rmse = std::sqrt(ssr / count);
+  stats.autocorrelation = ssr > 0.0 ? lag1 / ssr : 0.0;
+  if (measured != nullptr) {
+    mean /= count;
+    for (int k = 0; k < count; ++k) spread += (measured[k] - mean) * (measured[k] - mean);
+    stats.fit_percent = spread > 0.0 ? 100.0 * (1.0 - std::sqrt(ssr / spread)) : 0.0;
+  }
+  return stats;
+}
+
 std::vector<std::string> CheckFitPercent(const FitResult& fit) {
   std::vector<std::string> warnings;
   for (const auto& c : fit.channels) {
-    if (c.fit_percent < kLowFitPercent) {
-      warnings.push_back(fmt::format("low fit: {}: fit {:.1f} % (below {:.0f} %): the model explains little of what "
-                                     "was measured",
-                                     c.name, c.fit_percent, kLowFitPercent));
+    // White residuals at a low fit % mean the channel varies little beyond
+    // its noise (a constant torque), not a model that misses something.
+    if (c.fit_percent < kLowFitPercent && c.autocorrelation >= kLowFitMinAutocorrelation) {
+      warnings.push_back(fmt::format("low fit: {}: fit {:.1f} % (below {:.0f} %, residual lag-1 {:.2f}): the model "
+                                     "misses what was measured",
+                                     c.name, c.fit_percent, kLowFitPercent, c.autocorrelation));
     }
   }
   return warnings;

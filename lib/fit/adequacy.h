@@ -3,7 +3,8 @@
 //    (an inertia, a friction coefficient) whose robust standard error is
 //    more than `max_relative_std` of its value is not determined by the
 //    data: the fit refuses it by name (exit 4);
-//  - low fit %: a channel whose fit is below kLowFitPercent;
+//  - low fit %: a channel whose fit is below kLowFitPercent with
+//    correlated residuals;
 //  - heterogeneity: the same parameters fitted per log disagree beyond
 //    their uncertainties (Cochran's Q, I^2).
 #pragma once
@@ -17,14 +18,23 @@ namespace driveid {
 
 /// Bound on the robust relative standard error of a free non-negative parameter.
 constexpr double kMaxRelativeStd = 0.5;
-/// A channel fitted below this percentage draws a warning.
+/// A channel fitted below this percentage draws a warning, when its
+/// residuals are correlated (lag-1 at least kLowFitMinAutocorrelation):
+/// white residuals at a low fit % only say the channel hardly varies.
 constexpr double kLowFitPercent = 50.0;
+constexpr double kLowFitMinAutocorrelation = 0.3;
 
 /// Throws IdentificationError naming every free parameter with lower bound 0
 /// (per `nonnegative`) whose standard error exceeds `max_relative_std` of
 /// its magnitude. `context` is appended to the message (e.g. the warnings).
 void RequireDetermined(const FitResult& fit, const std::vector<std::string>& nonnegative, double max_relative_std,
                        const std::vector<std::string>& context);
+
+/// RMSE, fit % = 100 (1 - |r| / |y - mean(y)|) and the lag-1
+/// autocorrelation of the residuals r = y - model of one channel (`measured`
+/// may be null: fit % 0).
+ChannelStatistics DescribeResiduals(const std::string& name, const double* measured, const double* residuals,
+                                    int count);
 
 /// One warning per channel fitted below kLowFitPercent.
 std::vector<std::string> CheckFitPercent(const FitResult& fit);

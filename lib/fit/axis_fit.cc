@@ -22,10 +22,6 @@ namespace {
 // the first six rows of the axis table: inertia, viscous, coulomb, offset,
 // gravity_cos, gravity_sin.
 constexpr int kModelColumns = 6;
-// Diagnostic columns (never fitted): |q'| for direction-dependent friction
-// and the time from the log's middle for drift.
-constexpr const char* kAbsRateColumn = "|q'|";
-constexpr const char* kTimeColumn = "t - t_mid";
 
 const ParameterRow<AxisSection, AxisParameters>& Column(int j) {
   return AxisParameterTable()[static_cast<std::size_t>(j)];
@@ -72,14 +68,14 @@ std::vector<std::string> CheckAxisAdequacy(const LinearRegression& regression, c
                                      evidence(t), values.at(inertia), JoinFree(free, {inertia})));
     }
   }
-  const auto direction = TestOmittedTerm(regression, free, values, "direction", {kAbsRateColumn});
+  const auto direction = TestOmittedTerm(regression, free, values, "direction", {kAxisAbsRateColumn});
   if (direction.missing) {
     warnings.push_back(fmt::format("direction-dependent friction: the residual follows |q'| ({}): friction differs "
                                    "between the directions of motion; fit each direction on its own (SysId: the "
                                    "-forward and -backward segments as separate runs; else --from/--to)",
                                    evidence(direction)));
   }
-  const auto drift = TestOmittedTerm(regression, free, values, "drift", {kTimeColumn});
+  const auto drift = TestOmittedTerm(regression, free, values, "drift", {kAxisTimeColumn});
   if (drift.missing) {
     warnings.push_back(fmt::format("drift: the residual follows time within the logs ({}): friction or a sensor "
                                    "changed during the log (warm-up?); fit shorter windows with --from/--to",
@@ -88,70 +84,14 @@ std::vector<std::string> CheckAxisAdequacy(const LinearRegression& regression, c
   return warnings;
 }
 
-// The logs' motion frequency f_m = RMS(q') / (2 pi RMS(q - linear trend))
-// [Hz] (the largest over the logs): for q = A sin(2 pi f t) exactly f.
-// Rates come from a first differentiation at the sampling rate / 40.
-double MotionFrequency(const std::vector<AxisLog>& logs) {
-  double largest = 0.0;
-  for (const auto& log : logs) {
-    if (log.time.size() < kMinAxisLogSamples) continue;
-    const AxisDerivatives d = DifferentiateAxisLog(log, 0.0);
-    const std::size_t n = log.time.size();
-    // Least-squares line through q(t).
-    double st = 0.0, sq = 0.0, stt = 0.0, stq = 0.0;
-    for (std::size_t k = 0; k < n; ++k) {
-      const double t = log.time[k] - log.time.front();
-      st += t;
-      sq += log.position[k];
-      stt += t * t;
-      stq += t * log.position[k];
-    }
-    const double nn = static_cast<double>(n);
-    const double denominator = nn * stt - st * st;
-    const double slope = denominator > 0.0 ? (nn * stq - st * sq) / denominator : 0.0;
-    const double intercept = (sq - slope * st) / nn;
-    double position_square = 0.0, rate_square = 0.0;
-    for (std::size_t k = 0; k < n; ++k) {
-      const double t = log.time[k] - log.time.front();
-      position_square += std::pow(log.position[k] - intercept - slope * t, 2);
-      if (d.valid[k]) rate_square += std::pow(d.rate[k], 2);
-    }
-    if (position_square > 0.0) largest = std::max(largest, std::sqrt(rate_square / position_square) / (2.0 * M_PI));
-  }
-  return largest;
-}
-
-// The sampling rate of the logs (the lowest; mean rate for irregular logs).
-double SamplingRate(const std::vector<AxisLog>& logs) {
-  double lowest = HUGE_VAL;
-  for (const auto& log : logs) {
-    if (log.time.size() < 2) continue;
-    double rate = ConstantRate(log.time);
-    if (!(rate > 0.0)) rate = static_cast<double>(log.time.size() - 1) / (log.time.back() - log.time.front());
-    lowest = std::min(lowest, rate);
-  }
-  return lowest;
-}
-
 }  // namespace
 
 double ChooseAxisCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options) {
-  const double rate = SamplingRate(logs);
-  if (!std::isfinite(rate) || !(rate > 0.0)) return 0.0;
-  const double motion = MotionFrequency(logs);
-  // No higher than the band the decimated samples keep (the parallel
-  // decimation filter's cutoff): above it only noise would change.
-  const double top = 0.8 * rate / (2.0 * std::max(1, options.decimation));
-  if (!(motion > 0.0) || !std::isfinite(motion)) return rate / 40.0;
-  // Candidates kCutoffPerMotionFrequency x f_m x 2^k up to the top; the one
-  // whose fit leaves the smallest mean squared residual of the (identically
-  // filtered) torque wins: lower cutoffs distort the motion, higher ones
-  // let the encoder's noise into q''.
-  std::vector<double> candidates;
-  for (double c = kCutoffPerMotionFrequency * motion; c < top && candidates.size() < 12; c *= 2.0) {
-    candidates.push_back(c);
-  }
-  if (candidates.empty() || candidates.back() < top) candidates.push_back(top);
+  // Of the candidates (axis_rows.h), the one whose fit leaves the smallest
+  // mean squared residual of the (identically filtered) torque: lower
+  // cutoffs distort the motion, higher ones let the encoder's noise into q''.
+  const std::vector<double> candidates = AxisCutoffCandidates(logs, options.decimation);
+  if (candidates.size() < 2) return candidates.empty() ? 0.0 : candidates.front();
   AxisFitOptions trial = options;
   trial.per_log = false;
   trial.sensitivity = false;
@@ -187,7 +127,7 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
                           "decimated band 0.8 x rate / (2 x decimation), the one with the smallest residual";
   if (!options.sensitivity) return out;
   // The same fit at half and at twice the cutoff (twice: if below Nyquist).
-  const double rate = SamplingRate(logs);
+  const double rate = AxisSamplingRate(logs);
   for (const double factor : {0.5, 2.0}) {
     AxisFitOptions other = central;
     other.cutoff = factor * central.cutoff;
@@ -231,12 +171,11 @@ AxisFitOutput FitAxisAtCutoff(const std::vector<AxisLog>& logs, const AxisSectio
     throw OptionError(fmt::format("--decimation = {}: violated constraint: >= 1", options.decimation));
   }
   std::vector<FitParameter> parameters;
-  std::vector<std::string> column_names;
+  const std::vector<std::string> column_names = AxisRowColumnNames();
   std::map<std::string, double> fixed;
   for (int j = 0; j < kModelColumns; ++j) {
     const ParameterSpec& spec = Column(j).spec;
     const std::optional<double> value = start.*(Column(j).in_section);
-    column_names.push_back(spec.key);
     if (Contains(options.free, spec.key)) {
       parameters.push_back({spec.key, std::max(spec.lower_bound, value.value_or(0.0)), spec.lower_bound, 0.0});
     } else if (!value && spec.default_free && j != 0) {
@@ -247,10 +186,7 @@ AxisFitOutput FitAxisAtCutoff(const std::vector<AxisLog>& logs, const AxisSectio
     fixed[spec.key] = value.value_or(0.0);
   }
   // Diagnostic columns, always held at 0: the adequacy checks' candidates.
-  for (const char* name : {kAbsRateColumn, kTimeColumn}) {
-    column_names.emplace_back(name);
-    fixed[name] = 0.0;
-  }
+  for (const char* name : {kAxisAbsRateColumn, kAxisTimeColumn}) fixed[name] = 0.0;
   const int p = static_cast<int>(parameters.size());
 
   AxisFitOutput out;

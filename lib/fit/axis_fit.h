@@ -65,7 +65,6 @@ struct AxisFitOutput {
 /// 0.8 x rate / (2 x decimation); the fit at each, and the cutoff whose fit
 /// leaves the smallest mean squared torque residual (rate / 40 for logs
 /// that do not move).
-constexpr double kCutoffPerMotionFrequency = 5.0;
 double ChooseAxisCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options);
 
 /// The fit at options.cutoff (> 0), without the sensitivity fits.

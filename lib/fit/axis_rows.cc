@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "models/axis.h"
 #include "signal/butterworth.h"
 #include "signal/local_polynomial.h"
 
@@ -59,6 +60,77 @@ AxisDerivatives DifferentiateAxisLog(const AxisLog& log, double cutoff_request) 
     }
   }
   return d;
+}
+
+// (axis_rows.h) The logs' motion frequency f_m = RMS(q') / (2 pi RMS(q - linear trend))
+// [Hz] (the largest over the logs): for q = A sin(2 pi f t) exactly f.
+// Rates come from a first differentiation at the sampling rate / 40.
+double AxisMotionFrequency(const std::vector<AxisLog>& logs) {
+  double largest = 0.0;
+  for (const auto& log : logs) {
+    if (log.time.size() < kMinAxisLogSamples) continue;
+    const AxisDerivatives d = DifferentiateAxisLog(log, 0.0);
+    const std::size_t n = log.time.size();
+    // Least-squares line through q(t).
+    double st = 0.0, sq = 0.0, stt = 0.0, stq = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double t = log.time[k] - log.time.front();
+      st += t;
+      sq += log.position[k];
+      stt += t * t;
+      stq += t * log.position[k];
+    }
+    const double nn = static_cast<double>(n);
+    const double denominator = nn * stt - st * st;
+    const double slope = denominator > 0.0 ? (nn * stq - st * sq) / denominator : 0.0;
+    const double intercept = (sq - slope * st) / nn;
+    double position_square = 0.0, rate_square = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double t = log.time[k] - log.time.front();
+      position_square += std::pow(log.position[k] - intercept - slope * t, 2);
+      if (d.valid[k]) rate_square += std::pow(d.rate[k], 2);
+    }
+    if (position_square > 0.0) largest = std::max(largest, std::sqrt(rate_square / position_square) / (2.0 * M_PI));
+  }
+  return largest;
+}
+
+
+double AxisSamplingRate(const std::vector<AxisLog>& logs) {
+  double lowest = HUGE_VAL;
+  for (const auto& log : logs) {
+    if (log.time.size() < 2) continue;
+    double rate = ConstantRate(log.time);
+    if (!(rate > 0.0)) rate = static_cast<double>(log.time.size() - 1) / (log.time.back() - log.time.front());
+    lowest = std::min(lowest, rate);
+  }
+  return lowest;
+}
+
+std::vector<double> AxisCutoffCandidates(const std::vector<AxisLog>& logs, int decimation) {
+  const double rate = AxisSamplingRate(logs);
+  if (!std::isfinite(rate) || !(rate > 0.0)) return {};
+  const double motion = AxisMotionFrequency(logs);
+  if (!(motion > 0.0) || !std::isfinite(motion)) return {rate / 40.0};
+  // No higher than the band the decimated samples keep (the parallel
+  // decimation filter's cutoff): above it only noise would change.
+  const double top = 0.8 * rate / (2.0 * std::max(1, decimation));
+  std::vector<double> candidates;
+  for (double c = kCutoffPerMotionFrequency * motion; c < top && candidates.size() < 12; c *= 2.0) {
+    candidates.push_back(c);
+  }
+  if (candidates.empty() || candidates.back() < top) candidates.push_back(top);
+  return candidates;
+}
+
+std::vector<std::string> AxisRowColumnNames() {
+  std::vector<std::string> names;
+  for (const auto& row : AxisParameterTable()) {
+    if (row.in_model != nullptr) names.emplace_back(row.spec.key);
+  }
+  names.emplace_back(kAxisAbsRateColumn);
+  names.emplace_back(kAxisTimeColumn);
+  return names;
 }
 
 AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int decimation, double min_rate_fraction,

@@ -26,6 +26,29 @@ struct AxisDerivatives {
 /// low-pass `cutoff_request` [Hz] (0: rate / 40). OptionError above Nyquist.
 AxisDerivatives DifferentiateAxisLog(const AxisLog& log, double cutoff_request);
 
+/// The logs' motion frequency f_m = RMS(q') / (2 pi RMS(q - linear trend))
+/// [Hz], the largest over the logs (exactly f for q = A sin(2 pi f t)).
+double AxisMotionFrequency(const std::vector<AxisLog>& logs);
+
+/// The lowest sampling rate of the logs [Hz] (the mean rate where irregular).
+double AxisSamplingRate(const std::vector<AxisLog>& logs);
+
+/// Position cutoffs a fit or validation chooses from [Hz]:
+/// kCutoffPerMotionFrequency x f_m x 2^k below the decimated band
+/// 0.8 x rate / (2 x decimation), then that band; {rate / 40} for logs
+/// that do not move; {} without a usable rate.
+constexpr double kCutoffPerMotionFrequency = 5.0;
+std::vector<double> AxisCutoffCandidates(const std::vector<AxisLog>& logs, int decimation);
+
+/// The diagnostic columns' names (never fitted: the adequacy checks'
+/// candidates for direction-dependent friction and drift).
+constexpr const char* kAxisAbsRateColumn = "|q'|";
+constexpr const char* kAxisTimeColumn = "t - t_mid";
+
+/// The eight column names: the axis table's six model keys in order, then
+/// the two diagnostic ones.
+std::vector<std::string> AxisRowColumnNames();
+
 struct AxisRows {
   LinearRegression regression;  ///< one channel per log ("path:tau")
   std::vector<double> time, measured;

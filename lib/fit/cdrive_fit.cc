@@ -329,6 +329,37 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
 
 
 
+std::vector<CDriveTrace> PredictCDriveTorques(const std::vector<CDriveLog>& logs, const CDriveParameters& params,
+                                              const CDriveFitOptions& options) {
+  if (!(options.half_window > 0.0) || !std::isfinite(options.half_window)) {
+    throw OptionError(fmt::format("--window = {}: violated constraint: window > 0 s", options.half_window));
+  }
+  const double settle = options.settle >= 0.0 ? options.settle : 0.1;
+  std::vector<CDriveTrace> traces;
+  for (const auto& log : logs) {
+    if (log.time.size() < kMinCDriveLogSamples) {
+      throw InputError(fmt::format("{}: {} samples: too few to differentiate", log.path, log.time.size()));
+    }
+    const SignalDerivatives left = EstimateDerivatives(log.time, log.angle_left, options.half_window);
+    const SignalDerivatives right = EstimateDerivatives(log.time, log.angle_right, options.half_window);
+    const auto usable = UsableSamples(log.time, left, right, options.min_rate, options.half_window, settle);
+    CDriveTrace trace;
+    for (std::size_t k = 0; k < log.time.size(); ++k) {
+      if (!left.valid[k] || !right.valid[k]) continue;
+      const Vector2 model = CalcCDriveInverseDynamics(params, {left.rate[k], right.rate[k]},
+                                                      {left.acceleration[k], right.acceleration[k]});
+      trace.time.push_back(log.time[k]);
+      trace.measured_left.push_back(log.torque_left[k]);
+      trace.measured_right.push_back(log.torque_right[k]);
+      trace.model_left.push_back(model[0]);
+      trace.model_right.push_back(model[1]);
+      trace.used.push_back(usable.sum[k]);
+    }
+    traces.push_back(std::move(trace));
+  }
+  return traces;
+}
+
 CDriveFitOutput FitCDriveFriction(const std::vector<CDriveLog>& logs, const CDriveSection& start,
                                   const CDriveFitOptions& options) {
   return Fit(logs, start, options, Kind::kFriction);

@@ -65,6 +65,14 @@ struct CDriveFitOutput {
 CDriveFitOutput FitCDriveFriction(const std::vector<CDriveLog>& logs, const CDriveSection& start,
                                   const CDriveFitOptions& options);
 
+/// The torques (28) predicted from `params` at each log's samples, rates and
+/// accelerations from the fit's differentiator (`options.half_window`);
+/// `used` marks the samples a friction fit would use (both rates above
+/// options.min_rate, clear of reversals by the window and 0.1 s, or
+/// options.settle). For validation (fit/validation.h).
+std::vector<CDriveTrace> PredictCDriveTorques(const std::vector<CDriveLog>& logs, const CDriveParameters& params,
+                                              const CDriveFitOptions& options);
+
 /// Fits I_h, I_c, m (or the `free` subset; default I_h, I_c with m fixed)
 /// with the friction coefficients from `start`. Reports a and b always.
 CDriveFitOutput FitCDriveInertia(const std::vector<CDriveLog>& logs, const CDriveSection& start,

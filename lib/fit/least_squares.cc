@@ -248,7 +248,8 @@ FitResult FitLeastSquares(ResidualModel& model, const std::vector<FitParameter>&
   // residuals correlated in time (docs/models.md#identification): sandwich
   // A B A, A = (J'J)^-1, B = sum over channels of the long-run covariance
   //   B_c = N/(N-P) sum_{|l|<=L} (1 - |l|/(L+1)) gamma_c(l) sum_t J_t' J_{t-l},
-  // gamma_c(l) the residuals' autocovariance (Bartlett weights),
+  // gamma_c(l) the residuals' autocovariance (Bartlett weights; persistent
+  // residuals AR(1)-prewhitened first, see CalcLongRunCovariance),
   // with Andrews' (1991) AR(1) plug-in bandwidth for the Bartlett kernel,
   //   L = 1.1447 (alpha N_c)^(1/3),  alpha = 4 rho^2 / ((1 - rho)^2 (1 + rho)^2),
   // rho the residuals' lag-1 autocorrelation. Uncorrelated residuals give
@@ -271,18 +272,13 @@ FitResult FitLeastSquares(ResidualModel& model, const std::vector<FitParameter>&
     const Eigen::MatrixXd robust = hac.covariance / dof_fraction;
     middle += robust;
 
-    ChannelStatistics stats;
+    // Residuals here are model - measured; the statistics use measured - model.
+    const Eigen::VectorXd measured_minus_model = -r;
+    ChannelStatistics stats =
+        DescribeResiduals(channel.name, channel.measured, measured_minus_model.data(), channel.count);
     stats.autocorrelation = hac.autocorrelation;
     stats.bandwidth = hac.bandwidth;
     stats.inflation = white.trace() > 0.0 ? std::sqrt(std::max(0.0, robust.trace() / white.trace())) : 1.0;
-    stats.name = channel.name;
-    stats.samples = channel.count;
-    stats.rmse = std::sqrt(ssr / channel.count);
-    if (channel.measured != nullptr) {
-      const Eigen::Map<const Eigen::VectorXd> y(channel.measured, channel.count);
-      const double spread = (y.array() - y.mean()).matrix().norm();
-      stats.fit_percent = spread > 0.0 ? 100.0 * (1.0 - std::sqrt(ssr) / spread) : 0.0;
-    }
     result.channels.push_back(stats);
   }
   Eigen::MatrixXd covariance = inverse * middle * inverse;

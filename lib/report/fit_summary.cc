@@ -36,6 +36,7 @@ std::string FormatFitTable(const FitResult& fit, const FitProvenance& provenance
   out += fmt::format("solver: {} after {} iterations ({}); model {}\n", fit.converged ? "converged" : "NOT converged",
                      fit.iterations, fit.termination, provenance.model.empty() ? "-" : provenance.model);
   out += FormatPerLogTable(fit);
+  if (!fit.validation.empty()) out += FormatValidationTable(fit.validation);
   if (!fit.warnings.empty()) {
     out += fmt::format("adequacy (docs/models.md#adequacy): {} warning{}\n", fit.warnings.size(),
                        fit.warnings.size() > 1 ? "s" : "");
@@ -76,6 +77,28 @@ Json EstimateSetsJson(const std::vector<EstimateSet>& sets) {
 }
 
 }  // namespace
+
+std::string FormatValidationTable(const std::vector<ChannelStatistics>& logs) {
+  std::string out = fmt::format("{:<40} {:>8} {:>12} {:>8} {:>8}\n", "validation: log", "samples", "rmse", "fit %",
+                                "lag-1");
+  for (const auto& c : logs) {
+    out += fmt::format("{:<40} {:>8} {:>12.4g} {:>8.2f} {:>8.3f}\n", c.name, c.samples, c.rmse, c.fit_percent,
+                       c.autocorrelation);
+  }
+  return out;
+}
+
+Json ValidationJson(const std::vector<ChannelStatistics>& logs) {
+  Json out = Json::array();
+  for (const auto& c : logs) {
+    out.push_back({{"log", c.name},
+                   {"samples", c.samples},
+                   {"rmse", c.rmse},
+                   {"fit_percent", c.fit_percent},
+                   {"autocorrelation", c.autocorrelation}});
+  }
+  return out;
+}
 
 std::string FormatPerLogTable(const FitResult& fit) {
   std::string out;
@@ -126,6 +149,7 @@ Json FitJson(const FitResult& fit, const FitProvenance& provenance) {
   out["iterations"] = fit.iterations;
   out["converged"] = fit.converged;
   out["warnings"] = fit.warnings;
+  if (!fit.validation.empty()) out["validation"] = ValidationJson(fit.validation);
   if (!fit.sensitivity.empty()) out["sensitivity"] = EstimateSetsJson(fit.sensitivity);
   if (!fit.per_log.empty()) {
     out["per_log"] = EstimateSetsJson(fit.per_log);

@@ -17,6 +17,11 @@ std::string FormatFitTable(const FitResult& fit, const FitProvenance& provenance
 /// Processing-sensitivity and per-log estimates, heterogeneity statistics ("" if none).
 std::string FormatPerLogTable(const FitResult& fit);
 
+/// Validation of logs predicted from a parameter file: per log samples,
+/// RMSE, fit % and residual lag-1 autocorrelation (docs/models.md#validation).
+std::string FormatValidationTable(const std::vector<ChannelStatistics>& logs);
+Json ValidationJson(const std::vector<ChannelStatistics>& logs);
+
 /// The same content as one JSON object (deterministic key order).
 Json FitJson(const FitResult& fit, const FitProvenance& provenance);
 

@@ -82,4 +82,17 @@ cp fitted.yaml first.yaml
 for sub in friction inertia simulate report; do
   "$bin" "$sub" --help | grep -q "Example:" && ok || fail "$sub --help lacks an example"
 done
+# validate (docs/models.md#validation): the true parameters predict both
+# motors of the simulated logs; wrong ones fit worse; refusals.
+"$bin" validate table1.yaml helical.csv translation.csv --json > validate.json || fail "validate"
+[ "$(grep -o '"fit_percent":[0-9.]*' validate.json | wc -l)" -eq 4 ] \
+  && grep -o '"fit_percent":[-0-9.]*' validate.json | awk -F: '$2 < 90 { bad = 1 } END { exit bad }' && ok \
+  || fail "validate fit %: $(cat validate.json)"
+sed 's/^\(  beta: \).*/\10.5/' table1.yaml > wrong.yaml
+"$bin" validate wrong.yaml helical.csv --json | grep -o '"fit_percent":[-0-9.]*' | awk -F: '$2 > 90 { bad = 1 } END { exit bad }' \
+  && ok || fail "validate with a wrong beta"
+printf 'axis:\n  inertia: 1\n' > no_cdrive.yaml
+EXPECT_OUTPUT=--trace expect 3 "no_cdrive.yaml: no 'cdrive' section" -- validate no_cdrive.yaml helical.csv
+EXPECT_OUTPUT=--trace expect 3 "missing.csv:1: missing column 'tau_R' or 'i_R'" -- validate table1.yaml missing.csv
+
 finish

@@ -7,12 +7,13 @@ fail() { echo "FAIL: $*"; failed=$((failed + 1)); }
 ok() { passed=$((passed + 1)); }
 
 # expect CODE PATTERN -- ARGS...: exit code, a single stderr line starting
-# with the program name and matching PATTERN, and no out.yaml written.
+# with the program name and matching PATTERN, and no out.yaml written
+# (passed as `-o out.yaml`, or with the option in EXPECT_OUTPUT, e.g. --trace).
 expect() {
   local code="$1" pattern="$2"
   shift 3
   rm -f out.yaml
-  "$bin" "$@" -o out.yaml > stdout.txt 2> stderr.txt
+  "$bin" "$@" "${EXPECT_OUTPUT:--o}" out.yaml > stdout.txt 2> stderr.txt
   local got=$?
   local lines
   lines=$(wc -l < stderr.txt)

@@ -197,6 +197,24 @@ expect 4 "not identifiable from these logs: (viscous, )?coulomb, offset.*coulomb
 expect 4 "not identifiable: inertia = [-0-9.e]+ \\+- .*the logs do not determine it" \
   -- axis constant.csv --params axis.yaml --free inertia,viscous
 expect 3 "axis_current.csv: the log has a current column 'i': axis.k_t must be given" -- axis axis_current.csv
+# validate (docs/models.md#validation): the fitted file predicts its own log
+# with the fit's fit %; --validate reports held-out logs; refusals.
+"$bin" step "$src/data/fig6_step.csv" --params "$src/data/paper000_start.yaml" --json -o step_fit.yaml > step_fit.json \
+  && ok || fail "step fit for validate"
+fit_pct=$(grep -o '"fit_percent":{[^}]*}' step_fit.json | grep -o '[0-9.]*}$' | tr -d '}')
+"$bin" validate step_fit.yaml "$src/data/fig6_step.csv" --json > validate.json \
+  && grep -q "\"fit_percent\":$fit_pct" validate.json && ok || fail "validate: fit % $(cat validate.json) vs $fit_pct"
+"$bin" validate step_fit.yaml "$src/data/fig6_step.csv" --plot validate.svg --trace validate.csv > validate.txt \
+  && grep -q "fig6_step.csv:tau_link  *1001 " validate.txt && [ -s validate.svg ] && grep -q "^1,0,"  validate.csv \
+  && ok || fail "validate table, plot, trace: $(cat validate.txt)"
+"$bin" axis axis.csv --validate constant.csv --json -o /dev/null 2> /dev/null | grep -q '"validation":\[{"log":"constant.csv:tau"' \
+  && ok || fail "axis --validate"
+{ cat step_fit.yaml; grep -v "^#" axis.yaml; } > both.yaml
+EXPECT_OUTPUT=--trace expect 2 "both.yaml has an axis and a drivetrain section: give --model axis or --model step" \
+  -- validate both.yaml axis.csv
+EXPECT_OUTPUT=--trace expect 3 "step_fit.yaml: no 'axis' section" -- validate step_fit.yaml axis.csv --model axis
+EXPECT_OUTPUT=--trace expect 3 "axis.csv:[0-9]+: missing column 'tau_motor'" -- validate step_fit.yaml axis.csv
+
 # Adequacy (docs/models.md#adequacy): a log with gravity fitted without the
 # gravity terms warns on stderr and in JSON; --strict makes it exit 4 and write nothing.
 { cat axis.yaml; printf '  gravity_cos: -2.0\n  gravity_sin: 0.5\n'; } | grep -v "^  gravity_.*: 0 " > gravity.yaml

@@ -58,7 +58,7 @@ TEST_CASE("axis: irregular sampling is detected and handled without assuming a r
   e.duration = 25.0;
   AxisLog log = SimulateAxisExperiment(kTruth, e);
   // Drop every 7th sample: the rate is no longer constant.
-  AxisLog irregular{log.path, {}, {}, {}};
+  AxisLog irregular{log.path, {}, {}, {}, {}};
   for (std::size_t k = 0; k < log.time.size(); ++k) {
     if (k % 7 == 3) continue;
     irregular.time.push_back(log.time[k]);

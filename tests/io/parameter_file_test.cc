@@ -44,7 +44,7 @@ TEST_CASE("formatted files read back unchanged, with a fit section too") {
   fit.channels.push_back({"a \"quoted\" log.csv:tau_link", 201, 0.1, 99.5});
   fit.singular_values = {1.0};
   fit.converged = true;
-  FitProvenance provenance{"drivetrain-fit step 'a b.csv'", "0.1.0", "reduced", {{"a b.csv", "00ff", 201}}};
+  FitProvenance provenance{"drivetrain-fit step 'a b.csv'", "0.1.0", "reduced", {{"a b.csv", "00ff", 201, "", {}}}};
   const std::string text = FormatParameterFile(file, &fit, &provenance);
   const auto again = ParseParameterFile("q.yaml", text);
   REQUIRE(again.Find<DriveTrainSection>());
@@ -154,7 +154,7 @@ TEST_CASE("a file name that is not UTF-8 is escaped in the provenance and reads 
   fit.estimates.push_back({"d_g", 0.016, 2e-5, 0.01594, 0.01602});
   fit.correlation = {1.0};
   fit.singular_values = {1.0};
-  FitProvenance provenance{"drivetrain-fit step", "0.1.0", "reduced", {{"log\xff\xfe-\xc3\xa9.csv", "00ff", 3}}};
+  FitProvenance provenance{"drivetrain-fit step", "0.1.0", "reduced", {{"log\xff\xfe-\xc3\xa9.csv", "00ff", 3, "", {}}}};
   const std::string text = FormatParameterFile(file, &fit, &provenance);
   CHECK(text.find("log\\xff\\xfe-\xc3\xa9.csv") != std::string::npos);  // raw bytes escaped, UTF-8 kept
   CHECK(ParseParameterFile("q.yaml", text).had_fit_section);

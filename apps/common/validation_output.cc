@@ -1,0 +1,56 @@
+#include "common/validation_output.h"
+
+#include <fmt/format.h>
+
+#include "io/atomic_file.h"
+#include "report/fit_summary.h"
+#include "report/plot.h"
+
+namespace driveid::cli {
+
+void AddValidationOutputOptions(CLI::App& command, FitOutputOptions& options) {
+  command.add_option("--trace", options.trace, "write a CSV of time, measured, predicted and residual per log");
+  command.add_option("--plot", options.plot, "render measured vs predicted and residuals (.png or .svg)")
+      ->check([](const std::string& path) {
+        return IsSupportedPlotPath(path) ? std::string() : std::string("--plot needs a .png or .svg file name");
+      });
+  command.add_flag("--json", options.json, "print the result as one JSON object instead of the table");
+  command.add_flag("-q,--quiet", options.quiet, "print no table");
+  command.add_option("--max-log-size", options.max_log_gib, "largest log to read [GiB]")
+      ->capture_default_str()
+      ->check(FiniteWithin(1e-6, 1024.0));
+}
+
+void EmitValidation(const FitOutputOptions& options, const ValidationReport& report,
+                    const std::vector<ValidatedLog>& logs) {
+  std::vector<ChannelStatistics> stats;
+  std::vector<PlotSeries> series;
+  std::string trace =
+      fmt::format("# {} validate: {} (docs/models.md#validation)\nlog,t,measured,predicted,residual\n",
+                  report.program, report.method);
+  for (std::size_t i = 0; i < logs.size(); ++i) {
+    const ValidatedLog& v = logs[i];
+    stats.push_back(v.stats);
+    series.push_back({v.stats.name, v.time, v.measured, v.model});
+    for (std::size_t k = 0; k < v.time.size(); ++k) {
+      trace += fmt::format("{},{},{:.7g},{:.7g},{:.7g}\n", i + 1, v.time[k], v.measured[k], v.model[k],
+                           v.measured[k] - v.model[k]);
+    }
+  }
+  std::vector<std::pair<std::string, std::string>> files;
+  if (!options.plot.empty()) {
+    files.emplace_back(options.plot, RenderPanels(options.plot, MakeFitPanels(series, {report.title, report.unit}),
+                                                  "time [s]"));
+  }
+  if (!options.trace.empty()) files.emplace_back(options.trace, trace);
+  WriteFilesAtomically(files);
+  if (options.json) {
+    Json document = {{"command", report.command_line}, {"version", DRIVEID_VERSION}, {"model", report.method}};
+    document["logs"] = ValidationJson(stats);
+    WriteStdout(DumpJson(document));
+  } else if (!options.quiet) {
+    WriteStdout(fmt::format("{}\n{}", report.method, FormatValidationTable(stats)));
+  }
+}
+
+}  // namespace driveid::cli

@@ -1,0 +1,29 @@
+// drivetrain-fit validate: predict logs from a parameter file and report how
+// well the prediction matches (docs/models.md#validation).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "common/cli_support.h"
+#include "common/log_input_options.h"
+
+namespace driveid::cli {
+
+struct ValidateOptions {
+  std::string params;
+  std::vector<std::string> logs;
+  std::string model;              ///< "axis" or "step"; "" = from the parameter file's sections
+  std::string step_model = "reduced";
+  LogInputCli input;
+  double cutoff = 0.0;
+  int decimation = 10;
+  FitOutputOptions output;        ///< --plot, --trace, --json, -q, --max-log-size (no -o)
+};
+
+CLI::App* SetupValidateCommand(CLI::App& app, ValidateOptions& options);
+void RunValidateCommand(const ValidateOptions& options, const std::string& command_line);
+
+}  // namespace driveid::cli

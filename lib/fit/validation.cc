@@ -1,0 +1,119 @@
+#include "fit/validation.h"
+
+#include <cmath>
+#include <map>
+
+#include "fit/adequacy.h"
+#include "fit/axis_rows.h"
+#include "fit/linear_regression.h"
+#include "fit/step_fit.h"
+
+namespace driveid {
+namespace {
+
+std::map<std::string, double> AxisColumnValues(const AxisParameters& params) {
+  std::map<std::string, double> values;
+  for (const auto& row : AxisParameterTable()) {
+    if (row.in_model != nullptr) values[row.spec.key] = params.*(row.in_model);
+  }
+  values[kAxisAbsRateColumn] = 0.0;
+  values[kAxisTimeColumn] = 0.0;
+  return values;
+}
+
+// Minimum |q'| kept, as a fraction of the largest (the fit's default).
+constexpr double kMinRateFraction = 0.01;
+
+}  // namespace
+
+std::vector<ValidatedLog> ValidateAxis(const std::vector<AxisLog>& logs, const AxisParameters& params, double cutoff,
+                                       int decimation) {
+  const AxisRows rows = BuildAxisRows(logs, cutoff, decimation, kMinRateFraction, AxisRowColumnNames());
+  const std::vector<double> model = rows.regression.Predict(AxisColumnValues(params));
+  std::vector<ValidatedLog> out(logs.size());
+  for (std::size_t r = 0; r < model.size(); ++r) {
+    ValidatedLog& log = out[static_cast<std::size_t>(rows.log_index[r])];
+    log.time.push_back(rows.time[r]);
+    log.measured.push_back(rows.measured[r]);
+    log.model.push_back(model[r]);
+  }
+  for (std::size_t i = 0; i < logs.size(); ++i) {
+    std::vector<double> residuals(out[i].measured.size());
+    for (std::size_t k = 0; k < residuals.size(); ++k) residuals[k] = out[i].measured[k] - out[i].model[k];
+    out[i].stats = DescribeResiduals(logs[i].path + ":tau", out[i].measured.data(), residuals.data(),
+                                     static_cast<int>(residuals.size()));
+  }
+  return out;
+}
+
+double ChooseAxisValidationCutoff(const std::vector<AxisLog>& logs, const AxisParameters& params, int decimation) {
+  const std::vector<double> candidates = AxisCutoffCandidates(logs, decimation);
+  double best = candidates.empty() ? 0.0 : candidates.front(), best_residual = HUGE_VAL;
+  for (const double c : candidates) {
+    double ssr = 0.0;
+    int count = 0;
+    for (const auto& log : ValidateAxis(logs, params, c, decimation)) {
+      ssr += log.stats.rmse * log.stats.rmse * log.stats.samples;
+      count += log.stats.samples;
+    }
+    if (count > 0 && ssr / count < best_residual) {
+      best_residual = ssr / count;
+      best = c;
+    }
+  }
+  return best;
+}
+
+std::vector<ValidatedLog> ValidateCDrive(const std::vector<CDriveLog>& logs, const CDriveParameters& params,
+                                         const CDriveFitOptions& options) {
+  const std::vector<CDriveTrace> traces = PredictCDriveTorques(logs, params, options);
+  std::vector<ValidatedLog> out;
+  for (std::size_t i = 0; i < logs.size(); ++i) {
+    const CDriveTrace& trace = traces[i];
+    for (const bool left : {true, false}) {
+      ValidatedLog v;
+      std::vector<double> residuals;
+      for (std::size_t k = 0; k < trace.time.size(); ++k) {
+        if (!trace.used[k]) continue;
+        v.time.push_back(trace.time[k]);
+        v.measured.push_back(left ? trace.measured_left[k] : trace.measured_right[k]);
+        v.model.push_back(left ? trace.model_left[k] : trace.model_right[k]);
+        residuals.push_back(v.measured.back() - v.model.back());
+      }
+      v.stats = DescribeResiduals(logs[i].path + (left ? ":tau_L" : ":tau_R"), v.measured.data(), residuals.data(),
+                                  static_cast<int>(residuals.size()));
+      out.push_back(std::move(v));
+    }
+  }
+  return out;
+}
+
+std::vector<ValidatedLog> ValidateSteps(const std::vector<StepLog>& logs, const DriveTrainParameters& params,
+                                        DriveTrainModel model) {
+  const auto residual_model = MakeStepResiduals(logs, params, model, {}, false);
+  std::vector<double> residuals(static_cast<std::size_t>(residual_model->residual_count()));
+  if (!residual_model->Evaluate(nullptr, residuals.data(), nullptr)) {
+    throw IdentificationError("the drive train cannot be simulated with these parameters: " +
+                              residual_model->LastFailure());
+  }
+  std::vector<ValidatedLog> out;
+  std::size_t base = 0;
+  for (const auto& log : logs) {
+    ValidatedLog v;
+    v.time = log.time;
+    v.measured = log.link_torque;
+    std::vector<double> measured_minus_model(log.time.size());
+    for (std::size_t k = 0; k < log.time.size(); ++k) {
+      // The residual model gives simulated - measured.
+      v.model.push_back(log.link_torque[k] + residuals[base + k]);
+      measured_minus_model[k] = -residuals[base + k];
+    }
+    v.stats = DescribeResiduals(log.path + ":tau_link", v.measured.data(), measured_minus_model.data(),
+                                static_cast<int>(log.time.size()));
+    base += log.time.size();
+    out.push_back(std::move(v));
+  }
+  return out;
+}
+
+}  // namespace driveid

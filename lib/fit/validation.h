@@ -1,0 +1,49 @@
+// Validation (MATLAB's `compare`): predict logs from a parameter file and
+// say how well the prediction matches (docs/models.md#validation).
+//  - axis: inverse dynamics, the torque from the logged motion through the
+//    same differentiation, filtering and decimation as the fit (axis_rows.h);
+//  - step: simulation of the drive train from the logged motor torque
+//    (CVODES, stick-slip), compared with the logged link torque;
+//  - C-drive: inverse dynamics (28) of both motor torques from the angles.
+// Per log: samples, RMSE, fit % and the residual lag-1 autocorrelation, and
+// the measured and predicted series for plots and traces.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/fit_result.h"
+#include "fit/cdrive_fit.h"
+#include "io/axis_log.h"
+#include "io/step_log.h"
+#include "models/axis.h"
+#include "models/drivetrain.h"
+
+namespace driveid {
+
+struct ValidatedLog {
+  ChannelStatistics stats;  ///< name "path:channel"; bandwidth 0, inflation 1
+  std::vector<double> time, measured, model;
+};
+
+/// The axis logs predicted by `params` at the position cutoff `cutoff` [Hz]
+/// (> 0; the fit's, or ChooseAxisValidationCutoff) and `decimation`.
+std::vector<ValidatedLog> ValidateAxis(const std::vector<AxisLog>& logs, const AxisParameters& params, double cutoff,
+                                       int decimation);
+
+/// The cutoff for validating without a fit: of the candidates of the fit's
+/// rule (ChooseAxisCutoff), the one whose prediction leaves the smallest
+/// mean squared residual.
+double ChooseAxisValidationCutoff(const std::vector<AxisLog>& logs, const AxisParameters& params, int decimation);
+
+/// The C-drive logs' motor torques tau_L, tau_R predicted by inverse
+/// dynamics (28) from the logged angles (two entries per log, "path:tau_L"
+/// and "path:tau_R"), on the samples a friction fit would use.
+std::vector<ValidatedLog> ValidateCDrive(const std::vector<CDriveLog>& logs, const CDriveParameters& params,
+                                         const CDriveFitOptions& options);
+
+/// The step logs simulated from their motor torque with `params`.
+std::vector<ValidatedLog> ValidateSteps(const std::vector<StepLog>& logs, const DriveTrainParameters& params,
+                                        DriveTrainModel model);
+
+}  // namespace driveid
