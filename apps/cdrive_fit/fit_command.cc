@@ -46,12 +46,7 @@ CLI::App* SetupCDriveFitCommand(CLI::App& app, CDriveFitCommandOptions& options,
 }
 
 void RunCDriveFitCommand(const CDriveFitCommandOptions& options, const std::string& command_line) {
-  CheckFitOutputs(options.output, [&] {
-    auto in = options.logs;
-    in.push_back(options.params);
-    in.insert(in.end(), options.input.join.begin(), options.input.join.end());
-    return in;
-  }());
+  CheckFitOutputs(options.output, LogCommandInputs(options.logs, options.params, options.input));
   const bool friction = options.kind == CDriveFitKind::kFriction;
   const ParameterFile start = ReadParameterFile(options.params);
   if (!start.Find<CDriveSection>()) throw InputError(fmt::format("{}: no 'cdrive' section", options.params));

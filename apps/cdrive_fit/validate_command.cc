@@ -55,12 +55,7 @@ CLI::App* SetupCDriveValidate(CLI::App& app, CDriveValidateOptions& options) {
 }
 
 void RunCDriveValidate(const CDriveValidateOptions& options, const std::string& command_line) {
-  CheckFitOutputs(options.output, [&] {
-    auto in = options.logs;
-    in.push_back(options.params);
-    in.insert(in.end(), options.input.join.begin(), options.input.join.end());
-    return in;
-  }());
+  CheckFitOutputs(options.output, LogCommandInputs(options.logs, options.params, options.input));
   const ParameterFile file = ReadParameterFile(options.params);
   const CDriveSection* section = file.Find<CDriveSection>();
   if (section == nullptr) throw InputError(fmt::format("{}: no 'cdrive' section", options.params));

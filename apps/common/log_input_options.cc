@@ -2,6 +2,15 @@
 
 namespace driveid::cli {
 
+std::vector<std::string> LogCommandInputs(const std::vector<std::string>& logs, const std::string& params,
+                                          const LogInputCli& input, const std::vector<std::string>& more) {
+  std::vector<std::string> in = logs;
+  in.push_back(params);
+  in.insert(in.end(), input.join.begin(), input.join.end());
+  in.insert(in.end(), more.begin(), more.end());
+  return in;
+}
+
 void AddLogInputOptions(CLI::App& command, LogInputCli& options, const std::string& example) {
   command.add_option("--col", options.columns,
                      fmt::format("map a column: NAME=EXPR, EXPR a column (header name, #k position, MAT variable "

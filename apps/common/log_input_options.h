@@ -27,6 +27,11 @@ struct LogInputCli {
   std::string side;
 };
 
+/// Every input file of a command reading logs: the logs, the parameter file,
+/// the --join files and `more` (e.g. --validate logs), for CheckFitOutputs.
+std::vector<std::string> LogCommandInputs(const std::vector<std::string>& logs, const std::string& params,
+                                          const LogInputCli& input, const std::vector<std::string>& more = {});
+
 /// Adds the options; `example` shows a --col for this log kind.
 void AddLogInputOptions(CLI::App& command, LogInputCli& options, const std::string& example);
 

@@ -40,13 +40,7 @@ CLI::App* SetupAxisCommand(CLI::App& app, AxisOptions& options) {
 }
 
 void RunAxisCommand(const AxisOptions& options, const std::string& command_line) {
-  CheckFitOutputs(options.output, [&] {
-    auto in = options.logs;
-    in.push_back(options.params);
-    in.insert(in.end(), options.input.join.begin(), options.input.join.end());
-    in.insert(in.end(), options.validate.begin(), options.validate.end());
-    return in;
-  }());
+  CheckFitOutputs(options.output, LogCommandInputs(options.logs, options.params, options.input, options.validate));
   ParameterFile start;
   if (!options.params.empty()) start = ReadParameterFile(options.params);
   const AxisSection section = start.Find<AxisSection>() ? *start.Find<AxisSection>() : AxisSection{};

@@ -29,12 +29,7 @@ CLI::App* SetupRobotCommand(CLI::App& app, RobotOptions& options) {
 }
 
 void RunRobotCommand(const RobotOptions& options, const std::string& command_line) {
-  CheckFitOutputs(options.output, [&] {
-    auto in = options.logs;
-    in.push_back(options.params);
-    in.insert(in.end(), options.input.join.begin(), options.input.join.end());
-    return in;
-  }());
+  CheckFitOutputs(options.output, LogCommandInputs(options.logs, options.params, options.input));
   const ParameterFile start = ReadParameterFile(options.params);
   if (!start.Find<PlanarRobotSection>()) throw InputError(fmt::format("{}: no 'planar_robot' section", options.params));
   FitOutputs outputs;

@@ -34,13 +34,7 @@ CLI::App* SetupStepCommand(CLI::App& app, StepOptions& options) {
 }
 
 void RunStepCommand(const StepOptions& options, const std::string& command_line) {
-  CheckFitOutputs(options.output, [&] {
-    auto in = options.logs;
-    in.push_back(options.params);
-    in.insert(in.end(), options.input.join.begin(), options.input.join.end());
-    in.insert(in.end(), options.validate.begin(), options.validate.end());
-    return in;
-  }());
+  CheckFitOutputs(options.output, LogCommandInputs(options.logs, options.params, options.input, options.validate));
   const ParameterFile start_file = ReadParameterFile(options.params);
   if (!start_file.Find<DriveTrainSection>()) {
     throw InputError(fmt::format("{}: no 'drivetrain' section", options.params));

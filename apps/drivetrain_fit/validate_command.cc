@@ -43,12 +43,7 @@ CLI::App* SetupValidateCommand(CLI::App& app, ValidateOptions& options) {
 }
 
 void RunValidateCommand(const ValidateOptions& options, const std::string& command_line) {
-  CheckFitOutputs(options.output, [&] {
-    auto in = options.logs;
-    in.push_back(options.params);
-    in.insert(in.end(), options.input.join.begin(), options.input.join.end());
-    return in;
-  }());
+  CheckFitOutputs(options.output, LogCommandInputs(options.logs, options.params, options.input));
   const ParameterFile file = ReadParameterFile(options.params);
   const AxisSection* axis = file.Find<AxisSection>();
   const DriveTrainSection* drivetrain = file.Find<DriveTrainSection>();
