@@ -81,6 +81,30 @@ TEST_CASE("step fit, reduced model, white strain-gauge noise: reported std calib
   CheckCalibrated("tau_c", coulomb);
 }
 
+TEST_CASE("step fit, reduced model, AR(1) 0.9 strain-gauge noise: intervals cover over 200 seeds") {
+  const reference::DriveTrain truth;
+  const double true_inertia = truth.J / (truth.n_g * truth.n_g);
+  DriveTrainParameters start = testing_support::PaperDriveTrain();
+  start.motor_inertia = true_inertia * 2.5;
+  start.viscous_friction = truth.d_g / 3.0;
+  start.coulomb_friction = truth.tau_c * 2.0;
+  Sample viscous, inertia, coulomb;
+  for (unsigned seed = 3000; seed < 3200; ++seed) {
+    const auto log = reference::SimulateStep(truth, 1000.0, 0.2, 0.02, -0.8, 0.1, 0.0, seed, 0.9);
+    const auto out = FitStepResponses({{"mc.csv", log.t, log.tau_motor, log.tau_link}}, start, {});
+    viscous.Add(Find(out.fit, "d_g"), truth.d_g);
+    inertia.Add(Find(out.fit, "Theta_motor"), true_inertia);
+    coulomb.Add(Find(out.fit, "tau_c"), truth.tau_c);
+  }
+  for (const auto& [name, s] : {std::pair<const char*, const Sample*>{"d_g", &viscous}, {"Theta_motor", &inertia},
+                                {"tau_c", &coulomb}}) {
+    INFO("step, AR(1) 0.9, " << name << ": empirical / reported std = " << s->Ratio() << ", 95 % coverage "
+                             << s->Coverage());
+    CHECK(s->Coverage() >= 0.90);
+    CHECK(s->Coverage() <= 0.98);
+  }
+}
+
 namespace {
 
 // An axis log from its own generator (not lib/sim): a two-sine position

@@ -55,9 +55,10 @@ struct Plant {
 }  // namespace
 
 Log SimulateStep(const DriveTrain& d, double rate, double duration, double step_time, double amplitude,
-                 double sigma, double offset, unsigned seed) {
+                 double sigma, double offset, unsigned seed, double rho) {
   std::mt19937 engine(seed);
   std::normal_distribution<double> noise(0.0, sigma);
+  double error = 0.0;
   Log log;
   State x{0, 0, 0, 0};
   Plant plant{d, 0.0, 0};
@@ -69,7 +70,8 @@ Log SimulateStep(const DriveTrain& d, double rate, double duration, double step_
     const double u = t >= step_time - 1e-12 ? amplitude : 0.0;
     log.t.push_back(t);
     log.tau_motor.push_back(u);
-    log.tau_link.push_back(link + offset + (sigma > 0 ? noise(engine) : 0.0));
+    if (sigma > 0) error = k == 0 ? noise(engine) : rho * error + std::sqrt(1.0 - rho * rho) * noise(engine);
+    log.tau_link.push_back(link + offset + error);
     plant.u = u;
     if (plant.mode == 0 || x[1] == 0.0) plant.Decide(x);
     const double h = 1.0 / rate / substeps;

@@ -22,8 +22,10 @@ struct Log {
 };
 
 /// Step of `amplitude` N m at `step_time`, sampled at `rate` Hz for `duration` s,
-/// link torque plus `offset` and Gaussian noise `sigma` from `seed`.
+/// link torque plus `offset` and Gaussian noise of std `sigma` from `seed`,
+/// AR(1) with lag-1 correlation `rho` (e_k = rho e_{k-1} + sqrt(1 - rho^2) sigma w_k;
+/// rho 0: white, the same draws).
 Log SimulateStep(const DriveTrain& d, double rate, double duration, double step_time, double amplitude,
-                 double sigma, double offset, unsigned seed);
+                 double sigma, double offset, unsigned seed, double rho = 0.0);
 
 }  // namespace reference
