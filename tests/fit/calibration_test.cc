@@ -61,43 +61,46 @@ void CheckCalibrated(const std::string& name, const Sample& sample) {
 
 }  // namespace
 
-TEST_CASE("step fit, reduced model, white strain-gauge noise: reported std calibrated over 400 seeds") {
+namespace {
+
+// The step fit (reduced model, start 2-3x off) over seeds [first, first +
+// count) of the reference generator with strain-gauge noise sigma 0.1 N m,
+// AR(1) with lag-1 `rho`: d_g, Theta_motor, tau_c.
+struct StepSamples {
+  Sample viscous, inertia, coulomb;
+};
+
+StepSamples FitStepSeeds(unsigned first, unsigned count, double rho) {
   const reference::DriveTrain truth;
   const double true_inertia = truth.J / (truth.n_g * truth.n_g);
   DriveTrainParameters start = testing_support::PaperDriveTrain();
   start.motor_inertia = true_inertia * 2.5;
   start.viscous_friction = truth.d_g / 3.0;
   start.coulomb_friction = truth.tau_c * 2.0;
-  Sample viscous, inertia, coulomb;
-  for (unsigned seed = 1000; seed < 1400; ++seed) {
-    const auto log = reference::SimulateStep(truth, 1000.0, 0.2, 0.02, -0.8, 0.1, 0.0, seed);
-    const auto out = FitStepResponses({{"mc.csv", log.t, log.tau_motor, log.tau_link}}, start, {});
-    viscous.Add(Find(out.fit, "d_g"), truth.d_g);
-    inertia.Add(Find(out.fit, "Theta_motor"), true_inertia);
-    coulomb.Add(Find(out.fit, "tau_c"), truth.tau_c);
+  StepSamples out;
+  for (unsigned seed = first; seed < first + count; ++seed) {
+    const auto log = reference::SimulateStep(truth, 1000.0, 0.2, 0.02, -0.8, 0.1, 0.0, seed, rho);
+    const auto fit = FitStepResponses({{"mc.csv", log.t, log.tau_motor, log.tau_link}}, start, {});
+    out.viscous.Add(Find(fit.fit, "d_g"), truth.d_g);
+    out.inertia.Add(Find(fit.fit, "Theta_motor"), true_inertia);
+    out.coulomb.Add(Find(fit.fit, "tau_c"), truth.tau_c);
   }
-  CheckCalibrated("d_g", viscous);
-  CheckCalibrated("Theta_motor", inertia);
-  CheckCalibrated("tau_c", coulomb);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("step fit, reduced model, white strain-gauge noise: reported std calibrated over 400 seeds") {
+  const StepSamples s = FitStepSeeds(1000, 400, 0.0);
+  CheckCalibrated("d_g", s.viscous);
+  CheckCalibrated("Theta_motor", s.inertia);
+  CheckCalibrated("tau_c", s.coulomb);
 }
 
 TEST_CASE("step fit, reduced model, AR(1) 0.9 strain-gauge noise: intervals cover over 200 seeds") {
-  const reference::DriveTrain truth;
-  const double true_inertia = truth.J / (truth.n_g * truth.n_g);
-  DriveTrainParameters start = testing_support::PaperDriveTrain();
-  start.motor_inertia = true_inertia * 2.5;
-  start.viscous_friction = truth.d_g / 3.0;
-  start.coulomb_friction = truth.tau_c * 2.0;
-  Sample viscous, inertia, coulomb;
-  for (unsigned seed = 3000; seed < 3200; ++seed) {
-    const auto log = reference::SimulateStep(truth, 1000.0, 0.2, 0.02, -0.8, 0.1, 0.0, seed, 0.9);
-    const auto out = FitStepResponses({{"mc.csv", log.t, log.tau_motor, log.tau_link}}, start, {});
-    viscous.Add(Find(out.fit, "d_g"), truth.d_g);
-    inertia.Add(Find(out.fit, "Theta_motor"), true_inertia);
-    coulomb.Add(Find(out.fit, "tau_c"), truth.tau_c);
-  }
-  for (const auto& [name, s] : {std::pair<const char*, const Sample*>{"d_g", &viscous}, {"Theta_motor", &inertia},
-                                {"tau_c", &coulomb}}) {
+  const StepSamples samples = FitStepSeeds(3000, 200, 0.9);
+  for (const auto& [name, s] : {std::pair<const char*, const Sample*>{"d_g", &samples.viscous},
+                                {"Theta_motor", &samples.inertia}, {"tau_c", &samples.coulomb}}) {
     INFO("step, AR(1) 0.9, " << name << ": empirical / reported std = " << s->Ratio() << ", 95 % coverage "
                              << s->Coverage());
     CHECK(s->Coverage() >= 0.90);
