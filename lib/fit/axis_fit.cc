@@ -18,10 +18,8 @@
 namespace driveid {
 namespace {
 
-// The regressor columns [q'', q', sgn q', 1, cos q, sin q] in the order of
-// the first six rows of the axis table: inertia, viscous, coulomb, offset,
-// gravity_cos, gravity_sin.
-constexpr int kModelColumns = 6;
+// The regressor columns: the axis table's model rows, in order.
+constexpr int kModelColumns = static_cast<int>(kAxisTerms);
 
 const ParameterRow<AxisSection, AxisParameters>& Column(int j) {
   return AxisParameterTable()[static_cast<std::size_t>(j)];
@@ -39,6 +37,19 @@ std::string JoinFree(const std::vector<std::string>& free, const std::vector<std
     if (!Contains(all, m)) all.push_back(m);
   }
   return fmt::format("{}", fmt::join(all, ","));
+}
+
+// The free set with the direction-dependent terms in place of coulomb,
+// viscous and offset (an offset and both Coulomb directions are collinear).
+std::string DirectionFree(const std::vector<std::string>& free) {
+  const std::string coulomb = Key(&AxisParameters::coulomb), viscous = Key(&AxisParameters::viscous),
+                    offset = Key(&AxisParameters::offset);
+  std::vector<std::string> kept;
+  for (const auto& f : free) {
+    if (f != coulomb && f != viscous && f != offset) kept.push_back(f);
+  }
+  return JoinFree(kept, {Key(&AxisParameters::coulomb_pos), Key(&AxisParameters::coulomb_neg),
+                         Key(&AxisParameters::viscous_pos), Key(&AxisParameters::viscous_neg)});
 }
 
 // Terms the residuals ask for (omitted_terms.h), with what to do.
@@ -71,9 +82,9 @@ std::vector<std::string> CheckAxisAdequacy(const LinearRegression& regression, c
   const auto direction = TestOmittedTerm(regression, free, values, "direction", {kAxisAbsRateColumn});
   if (direction.missing) {
     warnings.push_back(fmt::format("direction-dependent friction: the residual follows |q'| ({}): friction differs "
-                                   "between the directions of motion; fit each direction on its own (SysId: the "
-                                   "-forward and -backward segments as separate runs; else --from/--to)",
-                                   evidence(direction)));
+                                   "between the directions of motion: try the direction-dependent terms in place of "
+                                   "coulomb, viscous and the offset they absorb: --free {}",
+                                   evidence(direction), DirectionFree(free)));
   }
   const auto drift = TestOmittedTerm(regression, free, values, "drift", {kAxisTimeColumn});
   if (drift.missing) {
@@ -173,16 +184,28 @@ AxisFitOutput FitAxisAtCutoff(const std::vector<AxisLog>& logs, const AxisSectio
   std::vector<FitParameter> parameters;
   const std::vector<std::string> column_names = AxisRowColumnNames();
   std::map<std::string, double> fixed;
+  // Parameters a free direction-dependent pair replaces (coulomb, viscous).
+  std::vector<std::string> replaced;
+  for (const auto& key : options.free) {
+    const std::string original = AxisReplacedBy(key);
+    if (original.empty()) continue;
+    if (Contains(options.free, original)) {
+      throw OptionError(fmt::format("--free: {} and {} describe the same friction: give one or the other", original,
+                                    key));
+    }
+    replaced.push_back(original);
+  }
   for (int j = 0; j < kModelColumns; ++j) {
     const ParameterSpec& spec = Column(j).spec;
     const std::optional<double> value = start.*(Column(j).in_section);
     if (Contains(options.free, spec.key)) {
       parameters.push_back({spec.key, std::max(spec.lower_bound, value.value_or(0.0)), spec.lower_bound, 0.0});
-    } else if (!value && spec.default_free && j != 0) {
+    } else if (!value && spec.default_free && j != 0 && !Contains(replaced, spec.key)) {
       throw InputError(fmt::format("--params: axis.{} is needed (fixed in this fit)", spec.key));
     }
-    // A fixed inertia or gravity term that is not given counts as 0; the
-    // adequacy checks say when the residuals contradict that.
+    // A fixed inertia, a gravity or direction term, or a replaced friction
+    // term that is not given counts as 0; the adequacy checks say when the
+    // residuals contradict that.
     fixed[spec.key] = value.value_or(0.0);
   }
   // Diagnostic columns, always held at 0: the adequacy checks' candidates.

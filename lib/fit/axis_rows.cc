@@ -150,21 +150,17 @@ AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int deci
       if (d.valid[k]) max_rate = std::max(max_rate, std::abs(d.rate[k]));
     }
     const double min_rate = min_rate_fraction * max_rate;
-    // Full-rate columns [q'', q', sgn q', 1, cos q, sin q, |q'|, t - t_mid]
-    // and the force; invalid ends hold their neighbours.
-    std::vector<std::vector<double>> columns(8, std::vector<double>(n, 0.0));
+    // Full-rate columns: the model's regressors (CalcAxisRegressors), then
+    // |q'| and t - t_mid; invalid ends hold their neighbours.
+    std::vector<std::vector<double>> columns(kAxisTerms + 2, std::vector<double>(n, 0.0));
     std::vector<char> slow(n, 0);
     const double middle_time = 0.5 * (log.time.front() + log.time.back());
     for (std::size_t k = 0; k < n; ++k) {
       const std::size_t m = d.valid[k] ? k : (k == 0 ? 1 : n - 2);
-      columns[0][k] = d.acceleration[m];
-      columns[1][k] = d.rate[m];
-      columns[2][k] = static_cast<double>((d.rate[m] > 0.0) - (d.rate[m] < 0.0));
-      columns[3][k] = 1.0;
-      columns[4][k] = std::cos(log.position[k]);
-      columns[5][k] = std::sin(log.position[k]);
-      columns[6][k] = std::abs(d.rate[m]);
-      columns[7][k] = log.time[k] - middle_time;
+      const auto phi = CalcAxisRegressors(log.position[k], d.rate[m], d.acceleration[m]);
+      for (std::size_t j = 0; j < kAxisTerms; ++j) columns[j][k] = phi[j];
+      columns[kAxisTerms][k] = std::abs(d.rate[m]);
+      columns[kAxisTerms + 1][k] = log.time[k] - middle_time;
       slow[k] = std::abs(d.rate[m]) < min_rate;
     }
     std::vector<double> force = log.force;

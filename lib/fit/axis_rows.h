@@ -1,7 +1,7 @@
 // The rows of the axis IDIM-LS (docs/models.md#axis): rates and
 // accelerations from the logged position (or a measured rate), the
-// full-rate regressor columns [q'', q', sgn q', 1, cos q, sin q, |q'|,
-// t - t_mid] and the force through the same parallel-decimation filter,
+// full-rate regressor columns (the model's terms, CalcAxisRegressors, then
+// |q'| and t - t_mid) and the force through the same parallel-decimation filter,
 // every `decimation`-th sample clear of velocity reversals. Shared by the
 // fit (axis_fit.h) and the validation of a parameter file (validation.h).
 #pragma once
@@ -45,8 +45,8 @@ std::vector<double> AxisCutoffCandidates(const std::vector<AxisLog>& logs, int d
 constexpr const char* kAxisAbsRateColumn = "|q'|";
 constexpr const char* kAxisTimeColumn = "t - t_mid";
 
-/// The eight column names: the axis table's six model keys in order, then
-/// the two diagnostic ones.
+/// The column names: the axis table's model keys in order, then the two
+/// diagnostic ones.
 std::vector<std::string> AxisRowColumnNames();
 
 struct AxisRows {
@@ -56,8 +56,8 @@ struct AxisRows {
   std::string method;           ///< how rates were obtained
 };
 
-/// Builds the rows over all logs; `column_names` names the eight columns in
-/// the order above. InputError for a log shorter than kMinAxisLogSamples.
+/// Builds the rows over all logs; `column_names` names the columns in the
+/// order above (AxisRowColumnNames). InputError for a log shorter than kMinAxisLogSamples.
 AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int decimation, double min_rate_fraction,
                        const std::vector<std::string>& column_names);
 

@@ -1,13 +1,21 @@
 // Rigid single axis (docs/models.md#axis; seed 000 section 5 per actuator,
 // friction at constant rates):
-//   tau = J q'' + b q' + tau_c sgn(q') + tau_0 + g_c cos q + g_s sin q,
+//   tau = J q'' + b q' + tau_c sgn(q') + tau_0 + g_c cos q + g_s sin q
+//         + tau_c+ [q' > 0] - tau_c- [q' < 0] + b+ max(q', 0) + b- min(q', 0),
 //   sgn(0) = 0.
+// The direction-dependent terms (coulomb_pos/neg, viscous_pos/neg; tau_c-
+// and b- are magnitudes) replace coulomb and viscous when fitted: both at
+// once are collinear and refused by the fit; so are an offset and both
+// Coulomb directions (offset = tau_c+ [q' > 0] + ... spans the same columns
+// where the axis never rests).
 // The gravity terms g_c cos q + g_s sin q = A cos(q - phi) (A = hypot(g_c,
 // g_s), phi = atan2(g_s, g_c)) hold for a joint whose other joints stand
 // still, q in rad; they are 0 unless given or fitted.
 // Unit-agnostic: rotary (rad, N m, kg m^2) or linear (m, N, kg) axes.
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -24,12 +32,17 @@ struct AxisParameters {
   double offset = 0.0;   ///< tau_0 [N m or N]
   double gravity_cos = 0.0;  ///< g_c [N m]: gravity torque g_c cos q
   double gravity_sin = 0.0;  ///< g_s [N m]: gravity torque g_s sin q
+  double coulomb_pos = 0.0;  ///< tau_c+ [N m]: Coulomb friction moving forward (q' > 0)
+  double coulomb_neg = 0.0;  ///< tau_c- [N m]: its magnitude moving backward (q' < 0)
+  double viscous_pos = 0.0;  ///< b+ [N m s/rad]: viscous friction moving forward
+  double viscous_neg = 0.0;  ///< b- [N m s/rad]: viscous friction moving backward
 };
 
 /// The parameter file's `axis` section: every value optional.
 struct AxisSection {
   static constexpr const char* kSectionName = "axis";
   std::optional<double> inertia, viscous, coulomb, offset, gravity_cos, gravity_sin;
+  std::optional<double> coulomb_pos, coulomb_neg, viscous_pos, viscous_neg;
   std::optional<double> torque_constant;  ///< k_t [N m/A], for logs of current
   std::optional<double> gear_ratio;       ///< n_g [-], to report d_g = b / n_g^2
 };
@@ -51,6 +64,18 @@ inline const ParameterTable<AxisSection, AxisParameters>& AxisParameterTable() {
       {{"gravity_sin", "g_s", "N m", "gravity torque amplitude of sin q (q in rad)", kUnbounded, false, false, "axis",
         false, 0.0},
        &AxisSection::gravity_sin, &AxisParameters::gravity_sin},
+      {{"coulomb_pos", "tau_c+", "N m (linear: N)", "Coulomb friction moving forward (q' > 0)", 0.0, false, false,
+        "axis", false, 0.0},
+       &AxisSection::coulomb_pos, &AxisParameters::coulomb_pos},
+      {{"coulomb_neg", "tau_c-", "N m (linear: N)", "Coulomb friction moving backward (magnitude, q' < 0)", 0.0, false,
+        false, "axis", false, 0.0},
+       &AxisSection::coulomb_neg, &AxisParameters::coulomb_neg},
+      {{"viscous_pos", "b+", "N m s/rad (linear: N s/m)", "viscous friction moving forward", 0.0, false, false,
+        "axis", false, 0.0},
+       &AxisSection::viscous_pos, &AxisParameters::viscous_pos},
+      {{"viscous_neg", "b-", "N m s/rad (linear: N s/m)", "viscous friction moving backward", 0.0, false, false,
+        "axis", false, 0.0},
+       &AxisSection::viscous_neg, &AxisParameters::viscous_neg},
       {{"k_t", "k_t", "N m/A", "torque constant for logs of current", 0.0, true, false, "", false, 0.0},
        &AxisSection::torque_constant, nullptr},
       {{"n_g", "n_g", "-", "gear ratio, to report d_g = b / n_g^2", 0.0, true, false, "", false, 0.0},
@@ -59,17 +84,49 @@ inline const ParameterTable<AxisSection, AxisParameters>& AxisParameterTable() {
   return table;
 }
 
-/// Terms that are 0 unless the parameter file gives them.
+/// The model terms (table rows with a model member), in table order.
+constexpr std::size_t kAxisTerms = 10;
+
+/// Terms that are 0 unless the parameter file gives them (all but J, b,
+/// tau_c, tau_0, which the classic axis needs).
 inline std::vector<std::string> AxisTermsZeroUnlessGiven() {
-  return {KeyOf(AxisParameterTable(), &AxisParameters::gravity_cos),
-          KeyOf(AxisParameterTable(), &AxisParameters::gravity_sin)};
+  std::vector<std::string> keys;
+  for (const auto& row : AxisParameterTable()) {
+    if (row.in_model != nullptr && !row.spec.default_free) keys.emplace_back(row.spec.key);
+  }
+  return keys;
 }
 
-/// Force/torque of the axis at a position, rate and acceleration (sgn(0) = 0).
+/// The parameter a direction-dependent pair replaces ("" for others):
+/// coulomb_pos/neg replace coulomb, viscous_pos/neg replace viscous.
+inline std::string AxisReplacedBy(const std::string& key) {
+  const auto& table = AxisParameterTable();
+  if (key == KeyOf(table, &AxisParameters::coulomb_pos) || key == KeyOf(table, &AxisParameters::coulomb_neg)) {
+    return KeyOf(table, &AxisParameters::coulomb);
+  }
+  if (key == KeyOf(table, &AxisParameters::viscous_pos) || key == KeyOf(table, &AxisParameters::viscous_neg)) {
+    return KeyOf(table, &AxisParameters::viscous);
+  }
+  return "";
+}
+
+/// The regressor of each term at a position, rate and acceleration, in table
+/// order: tau = sum_j p_j phi_j (sgn(0) = 0; at rest neither direction).
+inline std::array<double, kAxisTerms> CalcAxisRegressors(double position, double rate, double acceleration) {
+  const double forward = rate > 0.0 ? 1.0 : 0.0, backward = rate < 0.0 ? 1.0 : 0.0;
+  return {acceleration, rate, forward - backward, 1.0, std::cos(position), std::sin(position),
+          forward, -backward, std::max(rate, 0.0), std::min(rate, 0.0)};
+}
+
+/// Force/torque of the axis at a position, rate and acceleration.
 inline double CalcAxisForce(const AxisParameters& p, double position, double rate, double acceleration) {
-  const double sign = static_cast<double>((rate > 0.0) - (rate < 0.0));
-  return p.inertia * acceleration + p.viscous * rate + p.coulomb * sign + p.offset +
-         p.gravity_cos * std::cos(position) + p.gravity_sin * std::sin(position);
+  const std::array<double, kAxisTerms> phi = CalcAxisRegressors(position, rate, acceleration);
+  double tau = 0.0;
+  std::size_t j = 0;
+  for (const auto& row : AxisParameterTable()) {
+    if (row.in_model != nullptr) tau += p.*(row.in_model) * phi[j++];
+  }
+  return tau;
 }
 
 }  // namespace driveid

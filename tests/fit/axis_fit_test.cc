@@ -43,7 +43,7 @@ TEST_CASE("axis: multisine logs recover the truth within 1 % with the defaults")
     e.noise = 0.05;
     e.duration = 25.0;
     e.seed = seed;
-    const AxisFitOutput out = FitAxis({SimulateAxisExperiment(kTruth, e)}, AxisSection{0.1, 0.5, 2.0, 0.0, {}, {}, {}, {}}, {});
+    const AxisFitOutput out = FitAxis({SimulateAxisExperiment(kTruth, e)}, AxisSection{0.1, 0.5, 2.0, 0.0, {}, {}, {}, {}, {}, {}, {}, {}}, {});
     CHECK(out.params.inertia == Approx(kTruth.inertia).epsilon(0.01));
     CHECK(out.params.viscous == Approx(kTruth.viscous).epsilon(0.01));
     CHECK(out.params.coulomb == Approx(kTruth.coulomb).epsilon(0.01));
@@ -65,7 +65,7 @@ TEST_CASE("axis: irregular sampling is detected and handled without assuming a r
     irregular.position.push_back(log.position[k]);
     irregular.force.push_back(log.force[k]);
   }
-  const AxisFitOutput out = FitAxis({irregular}, AxisSection{0.1, 0.5, 2.0, 0.0, {}, {}, {}, {}}, {});
+  const AxisFitOutput out = FitAxis({irregular}, AxisSection{0.1, 0.5, 2.0, 0.0, {}, {}, {}, {}, {}, {}, {}, {}}, {});
   CHECK(out.method.find("irregular") != std::string::npos);
   CHECK(out.params.inertia == Approx(kTruth.inertia).epsilon(0.02));
   CHECK(out.params.coulomb == Approx(kTruth.coulomb).epsilon(0.02));
@@ -81,7 +81,7 @@ TEST_CASE("axis: constant-rate logs identify friction only, a free inertia is re
     e.duration = 5.0;
     logs.push_back(SimulateAxisExperiment(kTruth, e));
   }
-  AxisSection start{std::nullopt, 0.5, 2.0, 0.0, {}, {}, {}, {}};  // inertia not given
+  AxisSection start{std::nullopt, 0.5, 2.0, 0.0, {}, {}, {}, {}, {}, {}, {}, {}};  // inertia not given
   try {
     FitAxis(logs, start, {});
     FAIL("fitted an inertia from constant-rate logs");
@@ -165,4 +165,67 @@ TEST_CASE("axis adequacy: drift within a log and logs that disagree draw warning
     }
   }
   CHECK(viscous_tested);
+}
+
+namespace {
+
+// Direction-dependent friction from its own generator: the two-sine swing
+// of SwingLog with tau_c+ 0.4 / tau_c- 0.2 and b+ 0.25 / b- 0.15.
+AxisLog AsymmetricLog(unsigned seed) {
+  std::mt19937 random(seed);
+  std::normal_distribution<double> noise(0.0, 0.02);
+  AxisLog log;
+  log.path = "asymmetric.csv";
+  for (int k = 0; k <= 20000; ++k) {
+    const double t = k / 1000.0, w1 = 2 * M_PI * 0.5, w2 = 2 * M_PI * 1.7;
+    const double q = 0.6 * std::sin(w1 * t) + 0.2 * std::sin(w2 * t);
+    const double qd = 0.6 * w1 * std::cos(w1 * t) + 0.2 * w2 * std::cos(w2 * t);
+    const double qdd = -0.6 * w1 * w1 * std::sin(w1 * t) - 0.2 * w2 * w2 * std::sin(w2 * t);
+    const double friction = qd > 0 ? 0.4 + 0.25 * qd : (qd < 0 ? -0.2 + 0.15 * qd : 0.0);
+    log.time.push_back(t);
+    log.position.push_back(q);
+    log.force.push_back(0.05 * qdd + friction + noise(random));
+  }
+  return log;
+}
+
+}  // namespace
+
+TEST_CASE("axis: direction-dependent friction is named by the adequacy check and recovered by its terms") {
+  const AxisLog log = AsymmetricLog(41);
+  const AxisFitOutput classic = FitAxis({log}, AxisSection{}, {});
+  CHECK(HasWarning(classic.fit, "direction-dependent friction"));
+  AxisFitOptions options;
+  options.free = {"inertia", "coulomb_pos", "coulomb_neg", "viscous_pos", "viscous_neg"};
+  AxisSection no_offset;
+  no_offset.offset = 0.0;
+  const AxisFitOutput out = FitAxis({log}, no_offset, options);
+  CHECK(out.params.coulomb_pos == Approx(0.4).epsilon(0.03));
+  CHECK(out.params.coulomb_neg == Approx(0.2).epsilon(0.05));
+  CHECK(out.params.viscous_pos == Approx(0.25).epsilon(0.03));
+  CHECK(out.params.viscous_neg == Approx(0.15).epsilon(0.05));
+  CHECK(out.params.inertia == Approx(0.05).epsilon(0.03));
+  CHECK_FALSE(HasWarning(out.fit, "direction-dependent friction"));
+  // The model function agrees with the generator.
+  CHECK(CalcAxisForce(out.params, 0.0, 1.0, 0.0) == Approx(0.4 + 0.25).epsilon(0.03));
+  CHECK(CalcAxisForce(out.params, 0.0, -1.0, 0.0) == Approx(-0.2 - 0.15).epsilon(0.05));
+}
+
+TEST_CASE("axis: an offset with both Coulomb directions, or coulomb with its replacement, is refused by name") {
+  const AxisLog log = AsymmetricLog(42);
+  AxisFitOptions both;
+  both.free = {"inertia", "offset", "coulomb_pos", "coulomb_neg"};
+  try {
+    FitAxis({log}, AxisSection{{}, 0.2, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}}, both);
+    FAIL("no refusal");
+  } catch (const IdentificationError& e) {
+    const std::string message = e.what();
+    CHECK(message.find("offset") != std::string::npos);
+    CHECK(message.find("coulomb_pos") != std::string::npos);
+    CHECK(message.find("coulomb_neg") != std::string::npos);
+  }
+  AxisFitOptions twice;
+  twice.free = {"inertia", "coulomb", "coulomb_pos", "viscous"};
+  CHECK_THROWS_AS(FitAxis({log}, AxisSection{}, twice), OptionError);
+  CHECK(kAxisTerms == AxisTermsZeroUnlessGiven().size() + 4);
 }
