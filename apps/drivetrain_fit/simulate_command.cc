@@ -101,7 +101,7 @@ void RunSimulateAxisCommand(const SimulateAxisOptions& options, const std::strin
   const ParameterFile file = ReadParameterFile(options.params);
   if (!file.Find<AxisSection>()) throw InputError(fmt::format("{}: no 'axis' section", options.params));
   RequireModelValues(AxisParameterTable(), *file.Find<AxisSection>(), options.params, "axis", "the simulation",
-                     AxisTermsZeroUnlessGiven());
+                     AxisTermsZeroUnlessGiven(*file.Find<AxisSection>()));
   const AxisParameters params = MakeModelParameters(AxisParameterTable(), *file.Find<AxisSection>(), AxisParameters{}, "axis");
   const AxisLog log = SimulateAxisExperiment(params, options.experiment);
   const auto& e = options.experiment;

@@ -64,7 +64,8 @@ void RunValidateCommand(const ValidateOptions& options, const std::string& comma
   std::vector<ValidatedLog> validated;
   std::string title, unit, method;
   if (model == "axis") {
-    RequireModelValues(AxisParameterTable(), *axis, options.params, "axis", "the prediction", AxisTermsZeroUnlessGiven());
+    RequireModelValues(AxisParameterTable(), *axis, options.params, "axis", "the prediction",
+                       AxisTermsZeroUnlessGiven(*axis));
     const AxisParameters params = MakeModelParameters(AxisParameterTable(), *axis, AxisParameters{}, "axis");
     const auto logs = LoadLogs<AxisLog>(options.logs, options.input, options.output, provenance, AxisLogColumns(),
                                         [&](CsvLog csv) { return MakeAxisLog(std::move(csv), axis->torque_constant.value_or(0.0)); });

@@ -195,6 +195,12 @@ AxisFitOutput FitAxisAtCutoff(const std::vector<AxisLog>& logs, const AxisSectio
     }
     replaced.push_back(original);
   }
+  // Both Coulomb directions span the offset where the axis never rests: an
+  // offset not given is then 0 (the refusal below names it if it is free).
+  if (Contains(options.free, Key(&AxisParameters::coulomb_pos)) &&
+      Contains(options.free, Key(&AxisParameters::coulomb_neg))) {
+    replaced.push_back(Key(&AxisParameters::offset));
+  }
   for (int j = 0; j < kModelColumns; ++j) {
     const ParameterSpec& spec = Column(j).spec;
     const std::optional<double> value = start.*(Column(j).in_section);

@@ -87,16 +87,6 @@ inline const ParameterTable<AxisSection, AxisParameters>& AxisParameterTable() {
 /// The model terms (table rows with a model member), in table order.
 constexpr std::size_t kAxisTerms = 10;
 
-/// Terms that are 0 unless the parameter file gives them (all but J, b,
-/// tau_c, tau_0, which the classic axis needs).
-inline std::vector<std::string> AxisTermsZeroUnlessGiven() {
-  std::vector<std::string> keys;
-  for (const auto& row : AxisParameterTable()) {
-    if (row.in_model != nullptr && !row.spec.default_free) keys.emplace_back(row.spec.key);
-  }
-  return keys;
-}
-
 /// The parameter a direction-dependent pair replaces ("" for others):
 /// coulomb_pos/neg replace coulomb, viscous_pos/neg replace viscous.
 inline std::string AxisReplacedBy(const std::string& key) {
@@ -108,6 +98,23 @@ inline std::string AxisReplacedBy(const std::string& key) {
     return KeyOf(table, &AxisParameters::viscous);
   }
   return "";
+}
+
+/// Terms that are 0 unless the parameter file gives them: all but J, b,
+/// tau_c, tau_0, which the classic axis needs; also b or tau_c where the
+/// file gives a direction-dependent term in its place, and tau_0 where it
+/// gives both Coulomb directions (which span it).
+inline std::vector<std::string> AxisTermsZeroUnlessGiven(const AxisSection& given = {}) {
+  std::vector<std::string> keys;
+  const auto& table = AxisParameterTable();
+  for (const auto& row : table) {
+    if (row.in_model == nullptr) continue;
+    const std::string key = row.spec.key;
+    if (!row.spec.default_free) keys.push_back(key);
+    if (given.*(row.in_section) && !AxisReplacedBy(key).empty()) keys.push_back(AxisReplacedBy(key));
+  }
+  if (given.coulomb_pos && given.coulomb_neg) keys.push_back(KeyOf(table, &AxisParameters::offset));
+  return keys;
 }
 
 /// The regressor of each term at a position, rate and acceleration, in table

@@ -228,6 +228,19 @@ expect 4 "--strict: 1 adequacy warning; nothing written: gravity missing?" -- ax
 "$bin" axis gravity.csv --free inertia,viscous,coulomb,offset,gravity_cos,gravity_sin --strict -q -o strict.yaml \
   && grep -q "gravity_sin: 0.4[0-9]*\|gravity_sin: 0.5[0-9]*" strict.yaml && ok || fail "gravity terms fitted: $(cat strict.yaml)"
 
+# Direction-dependent friction (docs/models.md#axis): the default fit warns
+# and advises the four terms; with them it recovers both directions; an
+# offset beside both Coulomb directions is refused by name.
+{ grep -v "^  \(coulomb\|viscous\|offset\):" axis.yaml; printf '  coulomb_pos: 0.6\n  coulomb_neg: 0.3\n  viscous_pos: 0.2\n  viscous_neg: 0.1\n  offset: 0\n'; } > direction.yaml
+"$bin" simulate axis --params direction.yaml --noise 0.05 --duration 25 -o direction.csv && ok || fail "simulate direction"
+"$bin" axis direction.csv -q -o /dev/null 2> stderr.txt; grep -q "^warning: direction-dependent friction.*--free inertia,coulomb_pos,coulomb_neg,viscous_pos,viscous_neg" stderr.txt \
+  && ok || fail "direction warning: $(cat stderr.txt)"
+"$bin" axis direction.csv --free inertia,coulomb_pos,coulomb_neg,viscous_pos,viscous_neg -q -o direction_fit.yaml \
+  && grep -q "coulomb_neg: {value: 0\.[23]" direction_fit.yaml && grep -q "coulomb_pos: {value: 0\.[56]" direction_fit.yaml \
+  && ok || fail "direction terms fitted: $(cat direction_fit.yaml)"
+expect 4 "not identifiable.*coulomb_pos, coulomb_neg, offset|not identifiable.*offset, coulomb_pos, coulomb_neg" \
+  -- axis direction.csv --free inertia,viscous,offset,coulomb_pos,coulomb_neg
+expect 2 "coulomb and coulomb_pos describe the same friction" -- axis direction.csv --free coulomb,coulomb_pos
 expect 3 "axis.csv:[0-9]+: missing column 'force' or 'amps'" -- axis axis.csv --col tau=force --col i=amps
 expect 2 "not a parameter of the axis fit" -- axis axis.csv --free mass
 expect 2 "'q' and 'tau' would both read column 'tau'" -- axis axis.csv --col q=tau
