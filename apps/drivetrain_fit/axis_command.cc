@@ -12,6 +12,7 @@
 #include "io/csv_log.h"
 #include "io/parameter_file.h"
 #include "io/sha256.h"
+#include "report/axis_feedforward.h"
 
 namespace driveid::cli {
 
@@ -86,28 +87,16 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
     const double n2 = *section.gear_ratio * *section.gear_ratio;
     derived.push_back({"d_g", result.params.viscous / n2, viscous_std / n2, "N m s/rad at the gear input, b / n_g^2"});
   }
-  // SysId logs (voltage as torque): the feed-forward gains in the log's units.
+  // Feed-forward gains in the log's units (docs/models.md#feed-forward): SysId
+  // logs carry voltage and their own position unit.
   const bool sysid = std::all_of(sysid_units.begin(), sysid_units.end(),
                                  [&](const std::string& u) { return !u.empty() && u == sysid_units.front(); });
-  if (sysid) {
-    const std::string unit = sysid_units.front();
-    const auto std_of = [&](double AxisParameters::*member) {
-      for (const auto& e : result.fit.estimates) {
-        if (e.name == KeyOf(AxisParameterTable(), member)) return e.standard_error;
-      }
-      return 0.0;
-    };
-    derived.push_back({"Ks", result.params.coulomb, std_of(&AxisParameters::coulomb), "V, SysId's Ks = coulomb"});
-    derived.push_back({"Kv", result.params.viscous, std_of(&AxisParameters::viscous),
-                       fmt::format("V s/{}, SysId's Kv = viscous", unit)});
-    const bool inertia_known = section.inertia.has_value() ||
-                               std::find(options.free.begin(), options.free.end(),
-                                         KeyOf(AxisParameterTable(), &AxisParameters::inertia)) != options.free.end();
-    if (inertia_known) {
-      derived.push_back({"Ka", result.params.inertia, std_of(&AxisParameters::inertia),
-                         fmt::format("V s^2/{}, SysId's Ka = inertia", unit)});
-    }
-  }
+  const bool with_inertia = section.inertia.value_or(0.0) > 0.0 ||
+                            std::any_of(result.fit.estimates.begin(), result.fit.estimates.end(), [](const auto& e) {
+                              return e.name == KeyOf(AxisParameterTable(), &AxisParameters::inertia);
+                            });
+  fitted.feedforward = CalcAxisFeedforward(result.params, result.fit, sysid ? "V" : "N m",
+                                           sysid ? sysid_units.front() : "rad", with_inertia);
   outputs.parameter_file = FormatParameterFile(fitted, &outputs.fit, &outputs.provenance, derived);
   outputs.trace_csv = fmt::format("# drivetrain-fit axis trace: decimated samples used by IDIM-LS ({}, cutoff {} Hz)\n",
                                   result.method, result.cutoff);

@@ -10,6 +10,7 @@
 #include "common/command_registry.h"
 #include "core/errors.h"
 #include "io/parameter_file.h"
+#include "report/axis_feedforward.h"
 #include "report/drivetrain_report.h"
 #include "report/planar_robot_report.h"
 
@@ -17,7 +18,8 @@ namespace driveid::cli {
 
 CLI::App* SetupReportCommand(CLI::App& app, ReportOptions& options) {
   CLI::App* command = app.add_subcommand(
-      "report", "Transfer function (eq. 16), omega_n, zeta, gain; the paper's eq. (17) beside the recomputed values");
+      "report", "Transfer function (eq. 16), omega_n, zeta, gain; the paper's eq. (17) beside the recomputed values; "
+      "a fitted axis' feed-forward gains (docs/models.md#feed-forward)");
   command->add_option("params", options.params, "parameter file")->required();
   command->add_option("--fitted", options.fitted, "a fitted parameter file to show in a further column");
   command->add_option("--pose", options.pose, "robot: centre joint x,y [m] (default: the workspace centre)")
@@ -33,8 +35,9 @@ CLI::App* SetupReportCommand(CLI::App& app, ReportOptions& options) {
 
 void RunReportCommand(const ReportOptions& options) {
   const ParameterFile file = ReadParameterFile(options.params);
-  if (!file.Find<DriveTrainSection>() && !file.Find<PlanarRobotSection>()) {
-    throw InputError(fmt::format("{}: no 'drivetrain' or 'planar_robot' section", options.params));
+  if (!file.Find<DriveTrainSection>() && !file.Find<PlanarRobotSection>() && file.feedforward.gains.empty()) {
+    throw InputError(fmt::format("{}: no 'drivetrain', 'planar_robot' or 'feedforward' section (an axis fit writes "
+                                 "the feed-forward section)", options.params));
   }
   // Text: one block per section. JSON: one document with a member per section.
   std::string text;
@@ -67,6 +70,10 @@ void RunReportCommand(const ReportOptions& options) {
     const DriveTrainReport report = CalcDriveTrainReport(params, options.params, fitted_params, options.fitted);
     if (options.json) json["drivetrain"] = DriveTrainReportJson(report);
     else text += FormatDriveTrainReport(report);
+  }
+  if (!file.feedforward.gains.empty()) {
+    if (options.json) json["feedforward"] = FeedforwardReportJson(file.feedforward);
+    else text += FormatFeedforwardReport(file.feedforward);
   }
   WriteStdout(options.json ? DumpJson(json) : text);
 }

@@ -324,6 +324,51 @@ void CheckNesting(const std::string& path, const std::string& text) {
 
 }  // namespace
 
+namespace {
+
+// The feed-forward section (models/feedforward.h): units as strings, each
+// gain {value, std}. Written by the tools; read back for `report`.
+Feedforward ParseFeedforward(const std::string& path, const YAML::Node& node) {
+  CheckMapping(path, "feedforward", node);
+  Feedforward out;
+  for (const auto& item : node) {
+    const std::string key = item.first.Scalar();
+    const std::string name = "feedforward." + key;
+    if (key == "effort_unit" || key == "position_unit") {
+      if (!item.second.IsScalar()) throw InputError(fmt::format("{}: {}: expected a unit name", Where(path, item.second), name));
+      (key == "effort_unit" ? out.effort_unit : out.position_unit) = item.second.Scalar().substr(0, 64);
+      continue;
+    }
+    if (std::find(kFeedforwardKeys.begin(), kFeedforwardKeys.end(), key) == kFeedforwardKeys.end()) {
+      throw InputError(fmt::format("{}: {}: unknown key (known: effort_unit, position_unit, {})",
+                                   Where(path, item.first), name, fmt::join(kFeedforwardKeys, ", ")));
+    }
+    CheckMapping(path, name, item.second);
+    if (!item.second["value"]) throw InputError(fmt::format("{}: {}: needs a value", Where(path, item.second), name));
+    FeedforwardGain gain;
+    gain.key = key;
+    gain.value = ParseNumber(path, name + ".value", item.second["value"]);
+    if (item.second["std"]) gain.standard_error = ParseNumber(path, name + ".std", item.second["std"]);
+    out.gains.push_back(gain);
+  }
+  for (auto& gain : out.gains) gain.unit = FeedforwardUnit(gain.key, out.effort_unit, out.position_unit);
+  return out;
+}
+
+std::string FormatFeedforward(const Feedforward& f) {
+  std::string out =
+      "feedforward:  # u = Ks sgn(v) + Kv v + Ka a + Kg cos(q - Kg_angle) + offset, "
+      "docs/models.md#feed-forward\n";
+  out += fmt::format("  effort_unit: {}\n  position_unit: {}\n", Quoted(f.effort_unit), Quoted(f.position_unit));
+  for (const auto& g : f.gains) {
+    out += fmt::format("  {}: {{value: {}, std: {}}}  # {}\n", g.key, Number(g.value), Short(g.standard_error),
+                       FeedforwardUnit(g.key, f.effort_unit, f.position_unit));
+  }
+  return out;
+}
+
+}  // namespace
+
 ParameterFile ParseParameterFile(const std::string& path, const std::string& text) {
   CheckNesting(path, text);
   // YAML::Load reads the first document only: refuse a second one, marked by
@@ -365,6 +410,8 @@ ParameterFile ParseParameterFile(const std::string& path, const std::string& tex
     }
     if (handler != nullptr) {
       handler->parse(path, item.second, file);
+    } else if (section == "feedforward") {
+      file.feedforward = ParseFeedforward(path, item.second);
     } else if (section == "fit") {
       // Provenance of an earlier fit: accepted so that a fit's output is a
       // valid input, and replaced when a new file is written.
@@ -423,6 +470,7 @@ std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit,
   for (const auto& section : Sections()) {
     if (section.present(file)) out += section.format(file);
   }
+  if (!file.feedforward.gains.empty()) out += FormatFeedforward(file.feedforward);
   if (fit != nullptr && provenance != nullptr) {
     out += "fit:\n";
     out += fmt::format("  command: {}\n", Quoted(provenance->command));

@@ -19,6 +19,7 @@
 #include "models/axis.h"
 #include "models/cdrive.h"
 #include "models/drivetrain.h"
+#include "models/feedforward.h"
 #include "models/planar_robot.h"
 
 namespace driveid {
@@ -52,6 +53,9 @@ class ParameterFile {
   bool had_fit_section = false;  ///< input carried a previous fit (replaced on output)
   /// fit.estimates of a previous fit (value, std, ci95), for reports.
   std::vector<ParameterEstimate> fit_estimates;
+  /// Feed-forward gains (docs/models.md#feed-forward), written by the axis
+  /// fit; none when `gains` is empty.
+  Feedforward feedforward;
 
  private:
   std::map<std::string, std::any> sections_;

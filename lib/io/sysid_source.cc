@@ -37,6 +37,7 @@ class SysIdSource : public TableSource {
   std::string DefaultReference(const std::string& logical) const override {
     if (logical == "q") return "position";
     if (logical == "tau") return "voltage";
+    if (logical == "qd") return "velocity";  // the logged rate, as SysId uses it
     return {};
   }
   TableData Read(const std::vector<std::size_t>& columns) const override {

@@ -68,15 +68,21 @@ expect 3 "bare.csv: missing column 't' \(the file has no header: name its 3 colu
 expect 2 "--col q=#2\*#3: two columns" -- axis bare.csv --col t=#1 --col 'q=#2*#3' --col tau=#1
 expect 2 "--col q=2\*degrees: 'degrees' is neither a column" -- axis bare.csv --col t=#1 --col 'q=2*degrees' --col tau=#3
 # SysId JSON: the four tests are logs; a drivetrain needs a side.
-awk -F, 'NR > 1 && !/^#/ { n++; s = s (n > 1 ? ", " : "") sprintf("[%s, %s, %.12g, 0]", $1, $3, $2 / 6.283185307179586) }
-  END { printf "{\"test\": \"Simple\", \"units\": \"Radians\", \"unitsPerRotation\": 6.283185307179586, \"slow-forward\": [%s], \"slow-backward\": [%s], \"fast-forward\": [%s], \"fast-backward\": [%s]}\n", s, s, s, s }' \
+# The velocity column (rotations/s) by central differences of q.
+awk -F, 'NR > 1 && !/^#/ { n++; t[n] = $1; q[n] = $2; u[n] = $3 }
+  END { r = 6.283185307179586
+        for (k = 1; k <= n; k++) { a = k > 1 ? k - 1 : k; b = k < n ? k + 1 : k
+          s = s (k > 1 ? ", " : "") sprintf("[%s, %s, %.12g, %.12g]", t[k], u[k], q[k] / r, (q[b] - q[a]) / (t[b] - t[a]) / r) }
+        printf "{\"test\": \"Simple\", \"units\": \"Radians\", \"unitsPerRotation\": 6.283185307179586, \"slow-forward\": [%s], \"slow-backward\": [%s], \"fast-forward\": [%s], \"fast-backward\": [%s]}\n", s, s, s, s }' \
   <(grep -v '^#' axis.csv) > sysid.json
 "$bin" inspect sysid.json > inspect.txt && grep -q "sysid.json \[slow-forward\] (sysid)" inspect.txt && ok ||
   fail "inspect of a SysId file: $(head -3 inspect.txt)"
-# Fitted from SysId logs, the axis terms are also written as SysId's gains.
+# Fitted from SysId logs (the logged velocity as qd), the feed-forward
+# section holds SysId's gains in its units (docs/models.md#feed-forward).
 "$bin" axis sysid.json -q -o sysid.yaml 2> /dev/null
-grep -q "^    Ks: {value: .*# V, SysId's Ks = coulomb" sysid.yaml && grep -q "^    Kv: .*# V s/Radians" sysid.yaml &&
-  grep -q "^    Ka: .*# V s^2/Radians" sysid.yaml && ok || fail "SysId gains: $(grep -A5 'derived:' sysid.yaml)"
+grep -q '^  effort_unit: "V"' sysid.yaml && grep -q "^  Ks: {value: 0\.9[0-9]*, std: .*# V$" sysid.yaml &&
+  grep -q "^  Kv: {value: 0\.[12][0-9]*, .*# V s/Radians$" sysid.yaml && grep -q "^  Ka: {value: 0\.0[45].*# V s^2/Radians" sysid.yaml &&
+  grep -q "^  offset: {value: 0\.[23].*# V$" sysid.yaml && ok || fail "SysId gains: $(grep -A7 'feedforward:' sysid.yaml)"
 [ "$(grep -c 'segment: "' sysid.yaml)" -eq 4 ] && ok || fail "SysId provenance: one entry per test expected"
 cp sysid.yaml sysid_first.yaml
 "$bin" axis sysid.json -q -o sysid.yaml 2> /dev/null && cmp -s sysid.yaml sysid_first.yaml && ok || fail "SysId rerun differs"

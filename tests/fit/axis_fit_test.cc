@@ -3,12 +3,14 @@
 #include "fit/axis_fit.h"
 
 #include <cmath>
+#include <map>
 #include <random>
 #include <string>
 
 #include <catch2/catch.hpp>
 
 #include "core/errors.h"
+#include "report/axis_feedforward.h"
 #include "signal/butterworth.h"
 #include "sim/axis_experiment.h"
 
@@ -228,4 +230,83 @@ TEST_CASE("axis: an offset with both Coulomb directions, or coulomb with its rep
   twice.free = {"inertia", "coulomb", "coulomb_pos", "viscous"};
   CHECK_THROWS_AS(FitAxis({log}, AxisSection{}, twice), OptionError);
   CHECK(kAxisTerms == AxisTermsZeroUnlessGiven().size() + 4);
+}
+
+TEST_CASE("feed-forward: Kg and Kg_angle from the gravity terms cover the truth; first-order std matches sampling") {
+  // SwingLog's gravity -3.0 cos q + 0.8 sin q = Kg cos(q - Kg_angle).
+  const double kg = std::hypot(-3.0, 0.8), angle = std::atan2(0.8, -3.0);
+  AxisFitOptions with_gravity;
+  with_gravity.free = {"inertia", "viscous", "coulomb", "gravity_cos", "gravity_sin"};
+  AxisSection known_offset;
+  known_offset.offset = 0.1;
+  int covered_kg = 0, covered_angle = 0;
+  for (unsigned seed : {51u, 52u, 53u, 54u}) {
+    const AxisFitOutput out = FitAxis({SwingLog(0.2, -3.0, 0.8, 0.0, seed)}, known_offset, with_gravity);
+    const Feedforward ff = CalcAxisFeedforward(out.params, out.fit, "N m", "rad", true);
+    std::map<std::string, FeedforwardGain> gain;
+    for (const auto& g : ff.gains) gain[g.key] = g;
+    REQUIRE(gain.count("Kg") == 1);
+    REQUIRE(gain.count("Kg_angle") == 1);
+    REQUIRE(gain.count("offset") == 1);  // given, so fixed: std 0
+    CHECK(gain["offset"].value == 0.1);
+    CHECK(gain["offset"].standard_error == 0.0);
+    CHECK(gain["Ks"].value == Approx(0.3).epsilon(0.05));
+    CHECK(gain["Kv"].unit == "N m s/rad");
+    CHECK(gain["Ka"].unit == "N m s^2/rad");
+    covered_kg += std::abs(gain["Kg"].value - kg) < 2.0 * gain["Kg"].standard_error;
+    covered_angle += std::abs(gain["Kg_angle"].value - angle) < 2.0 * gain["Kg_angle"].standard_error;
+  }
+  CHECK(covered_kg >= 3);
+  CHECK(covered_angle >= 3);
+  // The first-order std against sampling the estimates from N(value, C).
+  FitResult fit;
+  fit.estimates = {{"gravity_cos", -3.0, 0.05}, {"gravity_sin", 0.8, 0.08}};
+  fit.covariance = {0.05 * 0.05, 0.3 * 0.05 * 0.08, 0.3 * 0.05 * 0.08, 0.08 * 0.08};
+  AxisParameters p;
+  p.gravity_cos = -3.0;
+  p.gravity_sin = 0.8;
+  const Feedforward ff = CalcAxisFeedforward(p, fit, "N m", "rad", false);
+  std::mt19937 random(7);
+  std::normal_distribution<double> z(0.0, 1.0);
+  const double l11 = 0.05, l21 = 0.3 * 0.08, l22 = 0.08 * std::sqrt(1.0 - 0.09);
+  double s_kg = 0.0, s2_kg = 0.0, s_angle = 0.0, s2_angle = 0.0;
+  const int n = 200000;
+  for (int k = 0; k < n; ++k) {
+    const double z1 = z(random), z2 = z(random);
+    const double gc = -3.0 + l11 * z1, gs = 0.8 + l21 * z1 + l22 * z2;
+    const double a = std::hypot(gc, gs), phi = std::atan2(gs, gc);
+    s_kg += a;
+    s2_kg += a * a;
+    s_angle += phi;
+    s2_angle += phi * phi;
+  }
+  const double sd_kg = std::sqrt(s2_kg / n - (s_kg / n) * (s_kg / n));
+  const double sd_angle = std::sqrt(s2_angle / n - (s_angle / n) * (s_angle / n));
+  REQUIRE(ff.gains.size() == 4);  // Ks, Kv (fixed: std 0), Kg, Kg_angle
+  CHECK(ff.gains[0].standard_error == 0.0);
+  CHECK(ff.gains[2].key == "Kg");
+  CHECK(ff.gains[2].standard_error == Approx(sd_kg).epsilon(0.02));
+  CHECK(ff.gains[3].standard_error == Approx(sd_angle).epsilon(0.02));
+}
+
+TEST_CASE("feed-forward: direction-dependent terms give Ks and Kv per direction with summed variance") {
+  FitResult fit;
+  fit.estimates = {{"coulomb", 0.3, 0.02}, {"coulomb_pos", 0.1, 0.03}};
+  fit.covariance = {0.0004, -0.0002, -0.0002, 0.0009};
+  AxisParameters p;
+  p.coulomb = 0.3;
+  p.coulomb_pos = 0.1;
+  p.offset = 0.05;  // given, not fitted: std 0
+  const Feedforward ff = CalcAxisFeedforward(p, fit, "V", "Meters", false);
+  REQUIRE(ff.gains.size() == 4);
+  CHECK(ff.gains[0].key == "Ks_forward");
+  CHECK(ff.gains[0].value == Approx(0.4));
+  CHECK(ff.gains[0].standard_error == Approx(std::sqrt(0.0004 + 0.0009 - 2 * 0.0002)));
+  CHECK(ff.gains[1].key == "Ks_backward");
+  CHECK(ff.gains[1].standard_error == Approx(0.02));
+  CHECK(ff.gains[2].key == "Kv");
+  CHECK(ff.gains[2].unit == "V s/Meters");
+  CHECK(ff.gains[3].key == "offset");
+  CHECK(ff.gains[3].value == 0.05);
+  CHECK(ff.gains[3].standard_error == 0.0);
 }

@@ -1,0 +1,51 @@
+// Feed-forward gains of a rigid axis (docs/models.md#feed-forward), the
+// form WPILib SysId and most motion controllers load:
+//   u = Ks sgn(v) + Kv v + Ka a + Kg cos(q - Kg_angle) + offset
+// (an elevator's constant Kg is the offset)
+// in the log's units: u is the logged effort (V for SysId logs, N m or N
+// otherwise), q, v, a the position, rate and acceleration in the log's
+// position unit. From the axis model (models/axis.h):
+//   Ks = tau_c, Kv = b, Ka = J; with direction-dependent friction Ks and Kv
+//   per direction: Ks_forward = tau_c + tau_c+, Ks_backward = tau_c + tau_c-,
+//   Kv_forward = b + b+, Kv_backward = b + b-;
+//   gravity g_c cos q + g_s sin q = Kg cos(q - Kg_angle) with
+//   Kg = hypot(g_c, g_s), Kg_angle = atan2(g_s, g_c) [rad]; offset = tau_0
+//   (an elevator's Kg, or a bias if the axis is level: the data cannot tell).
+// Each gain carries the standard error propagated from the fit's
+// covariance (first order, docs/models.md#feed-forward).
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace driveid {
+
+/// The gain keys a feed-forward section may hold, in the order written.
+inline constexpr std::array<const char*, 10> kFeedforwardKeys = {
+    "Ks", "Ks_forward", "Ks_backward", "Kv", "Kv_forward", "Kv_backward", "Ka", "Kg", "Kg_angle", "offset"};
+
+/// The unit of a gain: Ks, Kg, offset in the effort unit, Kv per rate,
+/// Ka per acceleration, Kg_angle in rad.
+inline std::string FeedforwardUnit(const std::string& key, const std::string& effort, const std::string& position) {
+  if (key.rfind("Kv", 0) == 0) return effort + " s/" + position;
+  if (key == "Ka") return effort + " s^2/" + position;
+  if (key == "Kg_angle") return "rad";
+  return effort;
+}
+
+struct FeedforwardGain {
+  std::string key;           ///< Ks, Ks_forward, Ks_backward, Kv..., Ka, Kg, Kg_angle, offset
+  double value = 0.0;
+  double standard_error = 0.0;  ///< 0 where every parameter it uses was held fixed
+  std::string unit;          ///< in the log's units, e.g. "V s/Meters"
+};
+
+/// The feed-forward section of a parameter file.
+struct Feedforward {
+  std::string effort_unit;    ///< unit of u: "V", "N m", "N"
+  std::string position_unit;  ///< unit of q: "rad", "m", SysId's "Meters", ...
+  std::vector<FeedforwardGain> gains;
+};
+
+}  // namespace driveid
