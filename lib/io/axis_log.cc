@@ -8,7 +8,7 @@
 namespace driveid {
 
 const std::vector<std::string>& AxisLogColumns() {
-  static const std::vector<std::string> columns = {"t", "q", "tau|i", "?qd"};
+  static const std::vector<std::string> columns = {"t", "q", "tau|i", "?qd", "?tau_known"};
   return columns;
 }
 
@@ -28,6 +28,12 @@ AxisLog MakeAxisLog(CsvLog csv, double torque_constant) {
       throw InputError(fmt::format("{}: the log has a current column 'i': axis.k_t must be given in --params", path));
     }
     for (double& v : log.force) v *= torque_constant;
+  }
+  // A known torque (a spring, a counterweight, a load cell's other side): the
+  // model explains the rest (docs/models.md#axis).
+  const std::vector<double>& known = csv.columns[4];
+  if (!known.empty()) {
+    for (std::size_t k = 0; k < log.force.size() && k < known.size(); ++k) log.force[k] -= known[k];
   }
   return log;
 }

@@ -1,4 +1,5 @@
-// Axis logs (docs/formats.md): t, q and tau, or i with k_t.
+// Axis logs (docs/formats.md): t, q and tau, or i with k_t; optional qd and
+// tau_known (a known torque, subtracted).
 #pragma once
 
 #include <array>
@@ -17,7 +18,7 @@ struct AxisLog {
   std::string path;
   std::vector<double> time;      ///< [s]
   std::vector<double> position;  ///< q [rad or m]
-  std::vector<double> force;     ///< tau [N m or N] (from i x k_t if given as current)
+  std::vector<double> force;     ///< tau [N m or N] (from i x k_t if given as current) minus tau_known if logged
   std::vector<double> rate;      ///< qd [rad/s or m/s], a measured rate (empty: q is differentiated)
 };
 

@@ -241,6 +241,13 @@ expect 4 "--strict: 1 adequacy warning; nothing written: gravity missing?" -- ax
 expect 4 "not identifiable.*coulomb_pos, coulomb_neg, offset|not identifiable.*offset, coulomb_pos, coulomb_neg" \
   -- axis direction.csv --free inertia,viscous,offset,coulomb_pos,coulomb_neg
 expect 2 "coulomb and coulomb_pos describe the same friction" -- axis direction.csv --free coulomb,coulomb_pos
+# A known torque column (docs/models.md#axis): a spring 3 q added to tau
+# and logged as tau_known is subtracted; the fit finds the same axis.
+awk -F, '/^#/ { next } !h { print $0 ",tau_known"; h = 1; next } { k = 3 * $2; printf "%s,%s,%.7g,%.7g\n", $1, $2, $3 + k, k }' \
+  axis.csv > known.csv
+"$bin" axis known.csv --params axis.yaml -q -o known_fit.yaml && grep -q "^  inertia: 0\.0[45]" known_fit.yaml \
+  && grep -q "^  coulomb: \(0\.9[5-9]\|1\.0[0-5]\)" known_fit.yaml && ok || fail "tau_known: $(head -8 known_fit.yaml)"
+"$bin" axis known.csv --params axis.yaml --col tau_known=#4 -q -o /dev/null && ok || fail "tau_known by position"
 expect 3 "axis.csv:[0-9]+: missing column 'force' or 'amps'" -- axis axis.csv --col tau=force --col i=amps
 expect 2 "not a parameter of the axis fit" -- axis axis.csv --free mass
 expect 2 "'q' and 'tau' would both read column 'tau'" -- axis axis.csv --col q=tau
