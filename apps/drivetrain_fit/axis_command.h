@@ -17,6 +17,7 @@ struct AxisOptions {
   std::string params;
   std::vector<std::string> free = FitParameterKeys(AxisParameterTable(), "axis", true);
   LogInputCli input;
+  std::string method = "auto";  ///< auto, idim, oe
   double cutoff = 0.0;
   int decimation = 10;
   std::vector<std::string> validate;  ///< held-out logs predicted by the fit

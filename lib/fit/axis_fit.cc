@@ -175,6 +175,40 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
   return out;
 }
 
+std::vector<AxisTerm> ResolveAxisTerms(const AxisSection& start, const std::vector<std::string>& free) {
+  // Parameters a free direction-dependent pair replaces (coulomb, viscous).
+  std::vector<std::string> replaced;
+  for (const auto& key : free) {
+    const std::string original = AxisReplacedBy(key);
+    if (original.empty()) continue;
+    if (Contains(free, original)) {
+      throw OptionError(fmt::format("--free: {} and {} describe the same friction: give one or the other", original,
+                                    key));
+    }
+    replaced.push_back(original);
+  }
+  // Both Coulomb directions span the offset where the axis never rests: an
+  // offset not given is then 0 (the fit refuses it by name if it is free).
+  if (Contains(free, Key(&AxisParameters::coulomb_pos)) && Contains(free, Key(&AxisParameters::coulomb_neg))) {
+    replaced.push_back(Key(&AxisParameters::offset));
+  }
+  std::vector<AxisTerm> terms;
+  for (int j = 0; j < kModelColumns; ++j) {
+    const ParameterSpec& spec = Column(j).spec;
+    const std::optional<double> value = start.*(Column(j).in_section);
+    const bool is_free = Contains(free, spec.key);
+    if (!is_free && !value && spec.default_free && j != 0 && !Contains(replaced, spec.key)) {
+      throw InputError(fmt::format("--params: axis.{} is needed (fixed in this fit)", spec.key));
+    }
+    // A fixed inertia, a gravity or direction term, or a replaced friction
+    // term that is not given counts as 0; the adequacy checks say when the
+    // residuals contradict that.
+    const double v = is_free ? std::max(spec.lower_bound, value.value_or(0.0)) : value.value_or(0.0);
+    terms.push_back({spec.key, static_cast<std::size_t>(j), is_free, v});
+  }
+  return terms;
+}
+
 AxisFitOutput FitAxisAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options) {
   if (logs.empty()) throw OptionError("no logs given");
   CheckFreeNames(AxisParameterTable(), "axis", options.free);
@@ -184,35 +218,11 @@ AxisFitOutput FitAxisAtCutoff(const std::vector<AxisLog>& logs, const AxisSectio
   std::vector<FitParameter> parameters;
   const std::vector<std::string> column_names = AxisRowColumnNames();
   std::map<std::string, double> fixed;
-  // Parameters a free direction-dependent pair replaces (coulomb, viscous).
-  std::vector<std::string> replaced;
-  for (const auto& key : options.free) {
-    const std::string original = AxisReplacedBy(key);
-    if (original.empty()) continue;
-    if (Contains(options.free, original)) {
-      throw OptionError(fmt::format("--free: {} and {} describe the same friction: give one or the other", original,
-                                    key));
+  for (const auto& term : ResolveAxisTerms(start, options.free)) {
+    if (term.free) {
+      parameters.push_back({term.key, term.value, AxisParameterTable()[term.index].spec.lower_bound, 0.0});
     }
-    replaced.push_back(original);
-  }
-  // Both Coulomb directions span the offset where the axis never rests: an
-  // offset not given is then 0 (the refusal below names it if it is free).
-  if (Contains(options.free, Key(&AxisParameters::coulomb_pos)) &&
-      Contains(options.free, Key(&AxisParameters::coulomb_neg))) {
-    replaced.push_back(Key(&AxisParameters::offset));
-  }
-  for (int j = 0; j < kModelColumns; ++j) {
-    const ParameterSpec& spec = Column(j).spec;
-    const std::optional<double> value = start.*(Column(j).in_section);
-    if (Contains(options.free, spec.key)) {
-      parameters.push_back({spec.key, std::max(spec.lower_bound, value.value_or(0.0)), spec.lower_bound, 0.0});
-    } else if (!value && spec.default_free && j != 0 && !Contains(replaced, spec.key)) {
-      throw InputError(fmt::format("--params: axis.{} is needed (fixed in this fit)", spec.key));
-    }
-    // A fixed inertia, a gravity or direction term, or a replaced friction
-    // term that is not given counts as 0; the adequacy checks say when the
-    // residuals contradict that.
-    fixed[spec.key] = value.value_or(0.0);
+    fixed[term.key] = term.value;
   }
   // Diagnostic columns, always held at 0: the adequacy checks' candidates.
   for (const char* name : {kAxisAbsRateColumn, kAxisTimeColumn}) fixed[name] = 0.0;

@@ -67,6 +67,20 @@ struct AxisFitOutput {
 /// that do not move).
 double ChooseAxisCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options);
 
+/// One model term of a fit: free (with its start value) or fixed.
+struct AxisTerm {
+  std::string key;
+  std::size_t index = 0;  ///< in AxisTermMembers / CalcAxisRegressors
+  bool free = false;
+  double value = 0.0;     ///< start value if free, else the fixed value
+};
+
+/// The terms of a fit with free set `free` (table order): refuses a term with
+/// its direction-dependent replacement (OptionError) and a fixed J's
+/// siblings b, tau_c, tau_0 not given (InputError); fixed terms not given
+/// (J, the others, the replaced ones) count as 0.
+std::vector<AxisTerm> ResolveAxisTerms(const AxisSection& start, const std::vector<std::string>& free);
+
 /// The fit at options.cutoff (> 0), without the sensitivity fits.
 AxisFitOutput FitAxisAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& start,
                               const AxisFitOptions& options);

@@ -86,6 +86,11 @@ inline const ParameterTable<AxisSection, AxisParameters>& AxisParameterTable() {
 
 /// The model terms (table rows with a model member), in table order.
 constexpr std::size_t kAxisTerms = 10;
+/// Index of each term in CalcAxisRegressors and AxisTermMembers.
+enum AxisTermIndex : int {
+  kAxisInertia, kAxisViscous, kAxisCoulomb, kAxisOffset, kAxisGravityCos, kAxisGravitySin,
+  kAxisCoulombPos, kAxisCoulombNeg, kAxisViscousPos, kAxisViscousNeg
+};
 
 /// The parameter a direction-dependent pair replaces ("" for others):
 /// coulomb_pos/neg replace coulomb, viscous_pos/neg replace viscous.
@@ -117,12 +122,33 @@ inline std::vector<std::string> AxisTermsZeroUnlessGiven(const AxisSection& give
   return keys;
 }
 
-/// The regressor of each term at a position, rate and acceleration, in table
-/// order: tau = sum_j p_j phi_j (sgn(0) = 0; at rest neither direction).
-inline std::array<double, kAxisTerms> CalcAxisRegressors(double position, double rate, double acceleration) {
-  const double forward = rate > 0.0 ? 1.0 : 0.0, backward = rate < 0.0 ? 1.0 : 0.0;
+/// The regressor of each term at a position, rate, acceleration and
+/// direction of motion (+1 forward, -1 backward, 0 at rest), in table order:
+/// tau = sum_j p_j phi_j. The direction is sgn(rate) except in a simulation
+/// at the instant the rate crosses 0 (sim/axis_simulator.h).
+inline std::array<double, kAxisTerms> CalcAxisRegressors(double position, double rate, double acceleration,
+                                                         int direction) {
+  const double forward = direction > 0 ? 1.0 : 0.0, backward = direction < 0 ? 1.0 : 0.0;
   return {acceleration, rate, forward - backward, 1.0, std::cos(position), std::sin(position),
-          forward, -backward, std::max(rate, 0.0), std::min(rate, 0.0)};
+          forward, -backward, forward * rate, backward * rate};
+}
+
+/// The regressors with the direction sgn(rate) (sgn(0) = 0: at rest neither).
+inline std::array<double, kAxisTerms> CalcAxisRegressors(double position, double rate, double acceleration) {
+  return CalcAxisRegressors(position, rate, acceleration, (rate > 0.0) - (rate < 0.0));
+}
+
+/// The model members in table order (index j of the regressors).
+inline const std::array<double AxisParameters::*, kAxisTerms>& AxisTermMembers() {
+  static const std::array<double AxisParameters::*, kAxisTerms> members = [] {
+    std::array<double AxisParameters::*, kAxisTerms> out{};
+    std::size_t j = 0;
+    for (const auto& row : AxisParameterTable()) {
+      if (row.in_model != nullptr) out[j++] = row.in_model;
+    }
+    return out;
+  }();
+  return members;
 }
 
 /// Force/torque of the axis at a position, rate and acceleration.

@@ -1,0 +1,229 @@
+#include "fit/axis_oe_fit.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "fit/adequacy.h"
+#include "fit/axis_fit.h"
+#include "sim/axis_simulator.h"
+
+namespace driveid {
+namespace {
+
+// Samples over which the start rate is taken when qd is not logged.
+constexpr std::size_t kStartRateSamples = 10;
+
+double RmsDeviation(const std::vector<double>& x) {
+  double mean = 0.0;
+  for (double v : x) mean += v;
+  mean /= static_cast<double>(x.size());
+  double sum = 0.0;
+  for (double v : x) sum += (v - mean) * (v - mean);
+  return std::sqrt(sum / static_cast<double>(x.size()));
+}
+
+// One log's channels: position, and rate if logged; weights 1 / RMS deviation.
+struct OeLog {
+  const AxisLog* log = nullptr;
+  double q0 = 0.0, v0 = 0.0;
+  double position_weight = 1.0, rate_weight = 0.0;  // rate_weight 0: no rate channel
+  int first_row = 0;
+  std::vector<double> weighted_position, weighted_rate;  // measured x weight, for fit %
+};
+
+class AxisOeResiduals final : public ResidualModel {
+ public:
+  AxisOeResiduals(std::vector<OeLog>& logs, const AxisParameters& fixed, std::vector<int> terms,
+                  double position_tolerance, double rate_tolerance)
+      : logs_(logs), params_(fixed), terms_(terms), simulator_(std::move(terms), position_tolerance, rate_tolerance) {
+    for (auto& l : logs_) {
+      l.first_row = rows_;
+      rows_ += static_cast<int>(l.log->time.size()) * (l.rate_weight > 0.0 ? 2 : 1);
+    }
+  }
+  int residual_count() const override { return rows_; }
+
+  bool Evaluate(const double* parameters, double* residuals, double* jacobian) override {
+    const std::size_t p = terms_.size();
+    Set(parameters);
+    try {
+      for (const auto& l : logs_) {
+        const AxisLog& log = *l.log;
+        simulator_.Simulate(params_, log.time, log.force, l.q0, l.v0, jacobian != nullptr, &response_);
+        const std::size_t n = log.time.size(), base = static_cast<std::size_t>(l.first_row);
+        for (std::size_t k = 0; k < n; ++k) {
+          residuals[base + k] = l.position_weight * (response_.position[k] - log.position[k]);
+          if (l.rate_weight > 0.0) residuals[base + n + k] = l.rate_weight * (response_.rate[k] - log.rate[k]);
+          if (jacobian == nullptr) continue;
+          for (std::size_t j = 0; j < p; ++j) {
+            jacobian[(base + k) * p + j] = l.position_weight * response_.position_sensitivity[k * p + j];
+            if (l.rate_weight > 0.0) {
+              jacobian[(base + n + k) * p + j] = l.rate_weight * response_.rate_sensitivity[k * p + j];
+            }
+          }
+        }
+      }
+    } catch (const IdentificationError& e) {
+      last_failure_ = e.what();
+      return false;
+    }
+    for (int i = 0; i < rows_; ++i) {
+      if (!std::isfinite(residuals[i])) {
+        last_failure_ = "the simulated position is not finite";
+        return false;
+      }
+    }
+    last_failure_.clear();
+    return true;
+  }
+  std::string LastFailure() const override { return last_failure_; }
+
+  void Simulate(const double* parameters, std::size_t i, std::vector<double>* position, std::vector<double>* rate) {
+    Set(parameters);
+    const OeLog& l = logs_[i];
+    simulator_.Simulate(params_, l.log->time, l.log->force, l.q0, l.v0, false, &response_);
+    *position = response_.position;
+    *rate = response_.rate;
+  }
+  const AxisParameters& params() const { return params_; }
+
+ private:
+  void Set(const double* parameters) {
+    const auto& members = AxisTermMembers();
+    for (std::size_t j = 0; j < terms_.size(); ++j) params_.*members[static_cast<std::size_t>(terms_[j])] = parameters[j];
+  }
+
+  std::vector<OeLog>& logs_;
+  AxisParameters params_;
+  std::vector<int> terms_;
+  AxisSimulator simulator_;
+  AxisResponse response_;
+  int rows_ = 0;
+  std::string last_failure_;
+};
+
+std::string OeAdvice(const std::vector<std::string>& involved) {
+  std::vector<std::string> advice;
+  const auto has = [&](const char* key) { return std::find(involved.begin(), involved.end(), key) != involved.end(); };
+  if (has("offset") && has("coulomb")) {
+    advice.push_back("offset and Coulomb friction separate only with motion in both directions");
+  }
+  if (has("coulomb_pos") && has("coulomb_neg") && has("offset")) {
+    advice.push_back("an offset and both Coulomb directions span the same torque: fix the offset");
+  }
+  if (has("inertia")) advice.push_back("the inertia needs accelerating motion: torque steps or changes");
+  return fmt::format("{}", fmt::join(advice, "; "));
+}
+
+}  // namespace
+
+bool IsTorqueStepLog(const AxisLog& log) {
+  if (log.force.size() < 2) return false;
+  std::size_t changes = 0;
+  for (std::size_t k = 1; k < log.force.size(); ++k) changes += log.force[k] != log.force[k - 1];
+  return static_cast<double>(changes) < 0.02 * static_cast<double>(log.force.size());
+}
+
+AxisOeOutput FitAxisOutputError(const std::vector<AxisLog>& logs, const AxisSection& start,
+                                const AxisParameters* initial, const AxisOeOptions& options) {
+  if (logs.empty()) throw OptionError("no logs given");
+  CheckFreeNames(AxisParameterTable(), "axis", options.free);
+  const std::vector<AxisTerm> resolved = ResolveAxisTerms(start, options.free);
+  AxisParameters fixed;
+  std::vector<int> terms;
+  std::vector<FitParameter> parameters;
+  const auto& members = AxisTermMembers();
+  for (const auto& term : resolved) {
+    double value = term.value;
+    if (term.free && initial != nullptr) value = (*initial).*members[term.index];
+    const double lower = AxisParameterTable()[term.index].spec.lower_bound;
+    if (term.free) {
+      value = std::max(value, lower);
+      if (term.index == kAxisInertia) {
+        if (!(value > 0.0)) {
+          throw InputError("--method oe: the inertia needs a start value > 0 (axis.inertia in --params)");
+        }
+        parameters.push_back({term.key, value, 1e-6 * value, 0.0});
+      } else {
+        double scale = std::abs(value);
+        if (scale == 0.0) scale = 1e-3;  // refined by the solver; friction scales of real axes
+        parameters.push_back({term.key, value, lower, scale});
+      }
+      terms.push_back(static_cast<int>(term.index));
+    }
+    fixed.*members[term.index] = value;
+  }
+  if (!(fixed.inertia > 0.0)) {
+    throw InputError("--method oe: the axis needs an inertia > 0: give axis.inertia or free it");
+  }
+
+  std::vector<OeLog> oe(logs.size());
+  double position_range = 0.0, rate_range = 0.0;
+  for (std::size_t i = 0; i < logs.size(); ++i) {
+    const AxisLog& log = logs[i];
+    if (log.time.size() < kMinAxisLogSamples) {
+      throw InputError(fmt::format("{}: {} samples: the axis fit needs at least {}", log.path, log.time.size(),
+                                   kMinAxisLogSamples));
+    }
+    OeLog& l = oe[i];
+    l.log = &log;
+    l.q0 = log.position.front();
+    if (!log.rate.empty()) {
+      l.v0 = log.rate.front();
+    } else {
+      const std::size_t m = std::min(kStartRateSamples, log.time.size() - 1);
+      l.v0 = (log.position[m] - log.position[0]) / (log.time[m] - log.time[0]);
+    }
+    const double q_scale = RmsDeviation(log.position);
+    if (!(q_scale > 0.0)) {
+      throw IdentificationError(fmt::format("{}: the position never changes: output error has nothing to fit",
+                                            log.path));
+    }
+    l.position_weight = 1.0 / q_scale;
+    position_range = std::max(position_range, q_scale);
+    if (!log.rate.empty()) {
+      const double v_scale = RmsDeviation(log.rate);
+      if (v_scale > 0.0) l.rate_weight = 1.0 / v_scale;
+      rate_range = std::max(rate_range, v_scale);
+    }
+    for (double q : log.position) l.weighted_position.push_back(q * l.position_weight);
+    for (double v : log.rate) l.weighted_rate.push_back(v * l.rate_weight);
+    const double duration = log.time.back() - log.time.front();
+    rate_range = std::max(rate_range, q_scale / std::max(duration, 1e-9));
+  }
+  AxisOeResiduals residuals(oe, fixed, terms, 1e-8 * position_range, 1e-8 * rate_range);
+  std::vector<FitChannel> channels;
+  for (const auto& l : oe) {
+    const int n = static_cast<int>(l.log->time.size());
+    channels.push_back({l.log->path + ":q", l.first_row, n, l.weighted_position.data()});
+    if (l.rate_weight > 0.0) channels.push_back({l.log->path + ":qd", l.first_row + n, n, l.weighted_rate.data()});
+  }
+  FitOptions fit_options = options.fit;
+  if (!fit_options.advice) fit_options.advice = OeAdvice;
+  AxisOeOutput out;
+  out.fit = FitLeastSquares(residuals, parameters, channels, fit_options);
+  std::vector<std::string> nonnegative;
+  for (const auto& row : AxisParameterTable()) {
+    if (row.in_model != nullptr && row.spec.lower_bound == 0.0) nonnegative.emplace_back(row.spec.key);
+  }
+  RequireDetermined(out.fit, nonnegative, kMaxRelativeStd, out.fit.warnings);
+  // RMSE back in the channels' units (fit % and lag-1 do not depend on the weight).
+  for (std::size_t c = 0, i = 0; i < oe.size(); ++i) {
+    out.fit.channels[c++].rmse /= oe[i].position_weight;
+    if (oe[i].rate_weight > 0.0) out.fit.channels[c++].rmse /= oe[i].rate_weight;
+  }
+  std::vector<double> estimate;
+  for (const auto& e : out.fit.estimates) estimate.push_back(e.value);
+  out.params = fixed;
+  for (std::size_t j = 0; j < terms.size(); ++j) out.params.*members[static_cast<std::size_t>(terms[j])] = estimate[j];
+  out.position.resize(oe.size());
+  out.rate.resize(oe.size());
+  for (std::size_t i = 0; i < oe.size(); ++i) residuals.Simulate(estimate.data(), i, &out.position[i], &out.rate[i]);
+  out.start_from = initial != nullptr ? "IDIM-LS estimates" : "the parameter file";
+  return out;
+}
+
+}  // namespace driveid

@@ -1,0 +1,160 @@
+// Output-error axis fit (docs/models.md#axis-output-error): the simulator's
+// sensitivities against finite differences, recovery from torque steps made
+// by the test's own generator, refusals by name.
+#include "fit/axis_oe_fit.h"
+
+#include <cmath>
+#include <random>
+#include <string>
+
+#include <catch2/catch.hpp>
+
+#include "core/errors.h"
+#include "sim/axis_simulator.h"
+
+using namespace driveid;
+
+namespace {
+
+// The test's own generator: the axis J v' = u - b v - tau_c sgn v - tau_0
+// (optionally per direction), explicit Euler with 1e-5 s steps; at rest it
+// sticks while |u - tau_0| is within the Coulomb limit of that side; a step
+// that would carry v through 0 ends at rest. Torque held per 1 ms sample.
+struct Truth {
+  double inertia = 0.05, viscous = 0.2, coulomb = 1.0, offset = 0.3;
+  double coulomb_pos = 0.0, coulomb_neg = 0.0;
+};
+
+AxisLog StepLog(const Truth& p, double quantum, double rate_noise, unsigned seed, bool with_rate) {
+  std::mt19937 random(seed);
+  std::normal_distribution<double> noise(0.0, rate_noise);
+  const double steps[][2] = {{0.2, 0.0}, {1.0, 2.0}, {1.0, -2.0}, {0.5, 0.6}, {1.0, -1.6}, {0.8, 1.9}};
+  AxisLog log;
+  log.path = "steps.csv";
+  double q = 0.4, v = 0.0, t = 0.0;
+  const int substeps = 100;
+  const double dt = 1e-3 / substeps;
+  for (const auto& step : steps) {
+    const int samples = static_cast<int>(std::lround(step[0] * 1000));
+    for (int s = 0; s < samples; ++s) {
+      log.time.push_back(t);
+      log.position.push_back(quantum > 0 ? quantum * std::round(q / quantum) : q);
+      if (with_rate) log.rate.push_back(v + noise(random));
+      const double u = step[1];
+      log.force.push_back(u);
+      for (int m = 0; m < substeps; ++m) {
+        const double forward = p.coulomb + p.coulomb_pos, backward = p.coulomb + p.coulomb_neg;
+        if (v == 0.0) {
+          const double net = u - p.offset;
+          if (net <= forward && net >= -backward) continue;  // sticks
+          const double friction = net > 0 ? forward : -backward;
+          v += dt * (net - friction) / p.inertia;
+        } else {
+          const double friction = v > 0 ? forward : -backward;
+          const double next = v + dt * (u - p.offset - p.viscous * v - friction) / p.inertia;
+          q += dt * v;
+          v = (next > 0) != (v > 0) ? 0.0 : next;
+          continue;
+        }
+        q += dt * v;
+      }
+      t += 1e-3;
+    }
+  }
+  return log;
+}
+
+}  // namespace
+
+TEST_CASE("axis simulator: sensitivities match central differences through stick/slip events") {
+  AxisParameters p{0.05, 0.2, 1.0, 0.3, 0.4, -0.2, 0.1, 0.05, 0.03, 0.02};
+  const AxisLog log = StepLog({}, 0.0, 0.0, 1, false);
+  std::vector<int> all;
+  for (int j = 0; j < static_cast<int>(kAxisTerms); ++j) all.push_back(j);
+  AxisSimulator simulator(all, 1e-12, 1e-10);
+  AxisResponse base;
+  simulator.Simulate(p, log.time, log.force, 0.4, 0.0, true, &base);
+  CHECK(base.switch_count >= 3);  // sticks and reverses
+  const auto& members = AxisTermMembers();
+  for (std::size_t j = 0; j < kAxisTerms; ++j) {
+    const double h = 1e-6 * std::max(1.0, std::abs(p.*members[j]));
+    AxisParameters plus = p, minus = p;
+    plus.*members[j] += h;
+    minus.*members[j] -= h;
+    AxisResponse a, b;
+    simulator.Simulate(plus, log.time, log.force, 0.4, 0.0, false, &a);
+    simulator.Simulate(minus, log.time, log.force, 0.4, 0.0, false, &b);
+    double worst = 0.0, scale = 0.0;
+    for (std::size_t k = 0; k < log.time.size(); ++k) {
+      const double fd = (a.position[k] - b.position[k]) / (2 * h);
+      const double analytic = base.position_sensitivity[k * kAxisTerms + j];
+      worst = std::max(worst, std::abs(fd - analytic));
+      scale = std::max(scale, std::abs(fd));
+    }
+    INFO("term " << j << ": max |fd - analytic| " << worst << " of " << scale);
+    CHECK(scale > 0.0);
+    CHECK(worst <= 2e-3 * scale);
+  }
+}
+
+TEST_CASE("axis OE: torque steps from an independent generator recover J, b, tau_c, tau_0 with covering intervals") {
+  AxisOeOptions options;
+  options.free = {"inertia", "viscous", "coulomb", "offset"};
+  AxisSection start{0.08, 0.1, 0.5, 0.0, {}, {}, {}, {}, {}, {}, {}, {}};
+  int covered = 0, total = 0;
+  for (unsigned seed : {1u, 2u, 3u}) {
+    const AxisLog log = StepLog({}, 2 * M_PI / 4096, 0.05, seed, true);
+    const AxisOeOutput out = FitAxisOutputError({log}, start, nullptr, options);
+    CHECK(out.params.inertia == Approx(0.05).epsilon(0.02));
+    CHECK(out.params.viscous == Approx(0.2).epsilon(0.02));
+    CHECK(out.params.coulomb == Approx(1.0).epsilon(0.02));
+    CHECK(out.params.offset == Approx(0.3).epsilon(0.05));
+    const double truth[] = {0.05, 0.2, 1.0, 0.3};
+    for (std::size_t j = 0; j < 4; ++j) {
+      const auto& e = out.fit.estimates[j];
+      covered += truth[j] >= e.ci95_low && truth[j] <= e.ci95_high;
+      ++total;
+    }
+    REQUIRE(out.fit.channels.size() == 2);
+    CHECK(out.fit.channels[0].fit_percent > 95.0);
+  }
+  CHECK(covered >= total - 2);
+}
+
+TEST_CASE("axis OE: per-direction Coulomb from position alone") {
+  Truth truth;
+  truth.coulomb = 0.0;
+  truth.offset = 0.0;
+  truth.coulomb_pos = 1.1;
+  truth.coulomb_neg = 0.7;
+  const AxisLog log = StepLog(truth, 2 * M_PI / 4096, 0.0, 4, false);
+  AxisOeOptions options;
+  options.free = {"inertia", "viscous", "coulomb_pos", "coulomb_neg"};
+  AxisSection start{0.08, 0.1, {}, {}, {}, {}, 0.5, 0.5, {}, {}, {}, {}};
+  const AxisOeOutput out = FitAxisOutputError({log}, start, nullptr, options);
+  CHECK(out.params.coulomb_pos == Approx(1.1).epsilon(0.02));
+  CHECK(out.params.coulomb_neg == Approx(0.7).epsilon(0.02));
+  CHECK(out.params.inertia == Approx(0.05).epsilon(0.02));
+  CHECK(out.fit.channels.size() == 1);
+}
+
+TEST_CASE("axis OE: one direction of motion cannot separate offset and Coulomb: refused by name") {
+  AxisLog log = StepLog({}, 2 * M_PI / 4096, 0.0, 5, false);
+  // Keep the first two steps only (rest, then forward).
+  log.time.resize(1200);
+  log.position.resize(1200);
+  log.force.resize(1200);
+  AxisOeOptions options;
+  options.free = {"inertia", "viscous", "coulomb", "offset"};
+  AxisSection start{0.08, 0.1, 0.5, 0.0, {}, {}, {}, {}, {}, {}, {}, {}};
+  try {
+    FitAxisOutputError({log}, start, nullptr, options);
+    FAIL("no refusal");
+  } catch (const IdentificationError& e) {
+    const std::string message = e.what();
+    CHECK(message.find("coulomb") != std::string::npos);
+    CHECK(message.find("offset") != std::string::npos);
+  }
+  CHECK_THROWS_AS(FitAxisOutputError({log}, AxisSection{}, nullptr, options), InputError);  // no inertia start
+  CHECK(IsTorqueStepLog(log));
+}
