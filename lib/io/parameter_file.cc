@@ -271,6 +271,7 @@ const std::vector<SectionHandler>& Sections() {
       MakeSection(AxisParameterTable, "docs/models.md#axis: tau = J q'' + b q' + tau_c sgn(q') + tau_0"),
       MakeSection(CDriveParameterTable, "seed 001; docs/models.md#c-drive", {"control"}, ParseControlKey,
                   FormatControl),
+      MakeSection(JointParameterTable, "docs/models.md#elastic-joint: two masses, link side"),
   };
   return sections;
 }
@@ -446,7 +447,7 @@ ParameterFile ParseParameterFile(const std::string& path, const std::string& tex
         }
       }
     } else {
-      throw InputError(fmt::format("{}: {}: unknown section (known: {}, fit)", Where(path, item.first), section,
+      throw InputError(fmt::format("{}: {}: unknown section (known: {}, feedforward, fit)", Where(path, item.first), section,
                                    SectionNames()));
     }
   }

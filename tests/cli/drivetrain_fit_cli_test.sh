@@ -279,6 +279,23 @@ for bad in 0 -5 nan inf; do expect 2 "--cutoff.*must be a finite number > 0" -- 
 if "$bin" axis axis.csv --params axis.yaml -q -o axis_fit.yaml; then ok; else fail "axis fit"; fi
 grep -q "^    d_g: {value: 3.1" axis_fit.yaml && ok || fail "axis fit lacks d_g = b / n_g^2 near 3.1e-5"
 
+# joint (docs/models.md#elastic-joint): the shipped simulated joint (truth
+# k 20, d 0.05, J_m 0.02, J_l 0.05), refusals by name.
+"$bin" joint "$src/data/joint_example.csv" --params "$src/data/joint_start.yaml" -o joint_fit.yaml --plot joint_fit.svg \
+  > joint.txt 2>&1 && grep -q "^  stiffness: \(19\.[6-9]\|20\.[0-3]\)" joint_fit.yaml && grep -q "^  damping: 0\.0\(4[5-9]\|5[0-4]\)" joint_fit.yaml \
+  && grep -q "resonance.* = 5\.9[0-9]* Hz" joint.txt && [ -s joint_fit.svg ] && ok || fail "joint fit: $(cat joint.txt)"
+"$bin" joint "$src/data/joint_example.csv" --params joint_fit.yaml --free stiffness,damping -q -o /dev/null && ok \
+  || fail "joint refit from its own output"
+printf 'joint:\n  motor_inertia: 0.02\n' > joint_nogear.yaml
+expect 3 "joint.gear_ratio: missing value" -- joint "$src/data/joint_example.csv" --params joint_nogear.yaml
+expect 3 "joint.link_inertia is needed \\(fixed in this fit\\)" -- joint "$src/data/joint_example.csv" \
+  --params "$src/data/joint_start.yaml" --free motor_inertia,stiffness
+cut -d, -f1,2,4 "$src/data/joint_example.csv" > joint_nolink.csv
+expect 3 "joint_nolink.csv:[0-9]+: missing column 'q_link'" -- joint joint_nolink.csv --params "$src/data/joint_start.yaml"
+awk -F, 'BEGIN { OFS = "," } /^#/ { next } NR > 2 { $3 = 0 } { print }' "$src/data/joint_example.csv" > joint_still.csv
+expect 4 "not identifiable.*link_inertia" -- joint joint_still.csv --params "$src/data/joint_start.yaml"
+expect 2 "not a parameter of the joint fit" -- joint "$src/data/joint_example.csv" --params "$src/data/joint_start.yaml" --free mass
+
 # robot (docs/models.md#planar-robot).
 cp "$src/data/robot_paper000.yaml" robot.yaml
 cp "$src/data/robot_start.yaml" robot_start.yaml

@@ -1,0 +1,27 @@
+// Elastic-joint logs (docs/formats.md#logs): t, q_motor (motor shaft angle),
+// q_link (link angle) and tau (motor shaft torque), or i with joint.k_t.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace driveid {
+
+struct CsvLog;
+
+struct JointLog {
+  std::string path;
+  std::vector<double> time;            ///< [s]
+  std::vector<double> motor_position;  ///< q_motor [rad], motor shaft
+  std::vector<double> link_position;   ///< q_link [rad]
+  std::vector<double> torque;          ///< tau [N m], motor shaft (from i x k_t if given as current)
+};
+
+/// The logical columns (an entry "a|b": a, or else b).
+const std::vector<std::string>& JointLogColumns();
+
+/// The log from columns read by ReadLogs (io/log_input.h) with JointLogColumns().
+/// Throws InputError (a current column without k_t).
+JointLog MakeJointLog(CsvLog csv, double torque_constant);
+
+}  // namespace driveid

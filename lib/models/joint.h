@@ -1,0 +1,101 @@
+// Elastic joint, two masses (docs/models.md#elastic-joint): a motor and a
+// link coupled by a spring-damper through a gear of known ratio n. Referred
+// to the link side, theta_m = q_motor / n and tau_m = n tau:
+//   J_m theta_m'' = tau_m - k (theta_m - theta_l) - d (theta_m' - theta_l')
+//                   - b_m theta_m' - c_m sgn(theta_m') - tau_0
+//   J_l theta_l'' = k (theta_m - theta_l) + d (theta_m' - theta_l')
+//                   - b_l theta_l' - c_l sgn(theta_l') - g_c cos theta_l - g_s sin theta_l
+// Units: kg m^2, N m/rad, N m s/rad, N m, rad (link side).
+// The identification (fit/joint_fit.h) uses the motor equation and the sum
+// of both (the spring cancels), each with the measured tau_m as its target:
+//   motor: tau_m = J_m theta_m'' + k D + d D' + b_m theta_m' + c_m sgn theta_m' + tau_0
+//   total: tau_m = J_m theta_m'' + J_l theta_l'' + b_m theta_m' + c_m sgn theta_m'
+//                  + b_l theta_l' + c_l sgn theta_l' + tau_0 + g_c cos theta_l + g_s sin theta_l
+// with D = theta_m - theta_l. Both are linear in the parameters.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <optional>
+
+#include "models/parameter_table.h"
+
+namespace driveid {
+
+struct JointParameters {
+  double motor_inertia = 0.0;  ///< J_m [kg m^2], link side (n^2 x the rotor's)
+  double link_inertia = 0.0;   ///< J_l [kg m^2]
+  double stiffness = 0.0;      ///< k [N m/rad]
+  double damping = 0.0;        ///< d [N m s/rad], of the spring
+  double motor_viscous = 0.0;  ///< b_m [N m s/rad]
+  double motor_coulomb = 0.0;  ///< c_m [N m]
+  double link_viscous = 0.0;   ///< b_l [N m s/rad]
+  double link_coulomb = 0.0;   ///< c_l [N m]
+  double offset = 0.0;         ///< tau_0 [N m], on the motor side
+  double gravity_cos = 0.0;    ///< g_c [N m]
+  double gravity_sin = 0.0;    ///< g_s [N m]
+};
+
+struct JointSection {
+  static constexpr const char* kSectionName = "joint";
+  std::optional<double> motor_inertia, link_inertia, stiffness, damping, motor_viscous, motor_coulomb, link_viscous,
+      link_coulomb, offset, gravity_cos, gravity_sin;
+  std::optional<double> gear_ratio;       ///< n [-], q_motor = n theta_m (required)
+  std::optional<double> torque_constant;  ///< k_t [N m/A] for logs of current i
+};
+
+inline const ParameterTable<JointSection, JointParameters>& JointParameterTable() {
+  using S = JointSection;
+  using P = JointParameters;
+  static const ParameterTable<S, P> table = {
+      {{"motor_inertia", "J_m", "kg m^2", "motor inertia, link side", 0.0, false, false, "joint", true, 0.0},
+       &S::motor_inertia, &P::motor_inertia},
+      {{"link_inertia", "J_l", "kg m^2", "link inertia", 0.0, false, false, "joint", true, 0.0},
+       &S::link_inertia, &P::link_inertia},
+      {{"stiffness", "k", "N m/rad", "joint stiffness", 0.0, false, false, "joint", true, 0.0}, &S::stiffness,
+       &P::stiffness},
+      {{"damping", "d", "N m s/rad", "joint damping (of the spring)", 0.0, false, false, "joint", true, 0.0},
+       &S::damping, &P::damping},
+      {{"motor_viscous", "b_m", "N m s/rad", "motor-side viscous friction", 0.0, false, false, "joint", true, 0.0},
+       &S::motor_viscous, &P::motor_viscous},
+      {{"motor_coulomb", "c_m", "N m", "motor-side Coulomb friction", 0.0, false, false, "joint", true, 0.0},
+       &S::motor_coulomb, &P::motor_coulomb},
+      {{"link_viscous", "b_l", "N m s/rad", "link-side viscous friction", 0.0, false, false, "joint", true, 0.0},
+       &S::link_viscous, &P::link_viscous},
+      {{"link_coulomb", "c_l", "N m", "link-side Coulomb friction", 0.0, false, false, "joint", true, 0.0},
+       &S::link_coulomb, &P::link_coulomb},
+      {{"offset", "tau_0", "N m", "constant torque offset (motor side)", kUnbounded, false, false, "joint", true, 0.0},
+       &S::offset, &P::offset},
+      {{"gravity_cos", "g_c", "N m", "gravity torque amplitude of cos q_link", kUnbounded, false, false, "joint",
+        false, 0.0},
+       &S::gravity_cos, &P::gravity_cos},
+      {{"gravity_sin", "g_s", "N m", "gravity torque amplitude of sin q_link", kUnbounded, false, false, "joint",
+        false, 0.0},
+       &S::gravity_sin, &P::gravity_sin},
+      {{"gear_ratio", "n", "-", "gear ratio, q_motor = n theta_m", 0.0, true, true, "", false, 0.0},
+       &S::gear_ratio, nullptr},
+      {{"k_t", "k_t", "N m/A", "torque constant for logs of current", 0.0, true, false, "", false, 0.0},
+       &S::torque_constant, nullptr},
+  };
+  return table;
+}
+
+constexpr std::size_t kJointTerms = 11;
+
+/// Regressor rows of the motor and the total equation at one sample (table
+/// order; link-side angles and rates):
+/// motor = [theta_m'', 0, D, D', theta_m', sgn theta_m', 0, 0, 1, 0, 0],
+/// total = [theta_m'', theta_l'', 0, 0, theta_m', sgn theta_m', theta_l', sgn theta_l', 1, cos, sin].
+struct JointRegressors {
+  std::array<double, kJointTerms> motor, total;
+};
+inline JointRegressors CalcJointRegressors(double motor_angle, double motor_rate, double motor_acceleration,
+                                           double link_angle, double link_rate, double link_acceleration) {
+  const auto sgn = [](double x) { return static_cast<double>((x > 0.0) - (x < 0.0)); };
+  const double deflection = motor_angle - link_angle, deflection_rate = motor_rate - link_rate;
+  return {{motor_acceleration, 0.0, deflection, deflection_rate, motor_rate, sgn(motor_rate), 0.0, 0.0, 1.0, 0.0, 0.0},
+          {motor_acceleration, link_acceleration, 0.0, 0.0, motor_rate, sgn(motor_rate), link_rate, sgn(link_rate), 1.0,
+           std::cos(link_angle), std::sin(link_angle)}};
+}
+
+}  // namespace driveid
