@@ -104,11 +104,21 @@ AxisRun RunOutputError(const std::vector<AxisLog>& logs, const AxisSection& sect
   // Start values from inverse dynamics where it gives a usable inertia.
   std::optional<AxisParameters> initial;
   try {
+    // The linear terms only: the Stribeck pair is the output-error fit's.
     AxisFitOptions idim;
-    idim.free = options.free;
+    idim.free.clear();
+    for (const auto& key : options.free) {
+      if (key != KeyOf(AxisParameterTable(), &AxisParameters::stribeck) &&
+          key != KeyOf(AxisParameterTable(), &AxisParameters::stribeck_velocity)) {
+        idim.free.push_back(key);
+      }
+    }
     idim.sensitivity = false;
     idim.per_log = false;
-    const AxisFitOutput start = FitAxis(logs, section, idim);
+    AxisSection linear = section;
+    linear.stribeck.reset();
+    linear.stribeck_velocity.reset();
+    const AxisFitOutput start = FitAxis(logs, linear, idim);
     if (start.params.inertia > 0.0) initial = start.params;
   } catch (const std::exception&) {
     // Inverse dynamics refused these logs: start from the parameter file.

@@ -193,9 +193,9 @@ std::vector<AxisTerm> ResolveAxisTerms(const AxisSection& start, const std::vect
     replaced.push_back(Key(&AxisParameters::offset));
   }
   std::vector<AxisTerm> terms;
-  for (int j = 0; j < kModelColumns; ++j) {
-    const ParameterSpec& spec = Column(j).spec;
-    const std::optional<double> value = start.*(Column(j).in_section);
+  for (int j = 0; j < kAxisAllTerms; ++j) {
+    const ParameterSpec& spec = AxisTermRow(j).spec;
+    const std::optional<double> value = start.*(AxisTermRow(j).in_section);
     const bool is_free = Contains(free, spec.key);
     if (!is_free && !value && spec.default_free && j != 0 && !Contains(replaced, spec.key)) {
       throw InputError(fmt::format("--params: axis.{} is needed (fixed in this fit)", spec.key));
@@ -219,6 +219,18 @@ AxisFitOutput FitAxisAtCutoff(const std::vector<AxisLog>& logs, const AxisSectio
   const std::vector<std::string> column_names = AxisRowColumnNames();
   std::map<std::string, double> fixed;
   for (const auto& term : ResolveAxisTerms(start, options.free)) {
+    if (term.index >= kAxisTerms) {
+      // The Stribeck pair is nonlinear: inverse dynamics neither fits nor subtracts it.
+      if (term.free) {
+        throw OptionError(fmt::format("--free {}: the Stribeck term is nonlinear in the rate: fit it with --method oe",
+                                      term.key));
+      }
+      if (term.key == Key(&AxisParameters::stribeck) && term.value != 0.0) {
+        throw InputError(fmt::format("--params: axis.stribeck = {}: the Stribeck term needs --method oe (inverse "
+                                     "dynamics would ignore it)", term.value));
+      }
+      continue;
+    }
     if (term.free) {
       parameters.push_back({term.key, term.value, AxisParameterTable()[term.index].spec.lower_bound, 0.0});
     }

@@ -70,7 +70,7 @@ double ChooseAxisCutoff(const std::vector<AxisLog>& logs, const AxisSection& sta
 /// One model term of a fit: free (with its start value) or fixed.
 struct AxisTerm {
   std::string key;
-  std::size_t index = 0;  ///< in AxisTermMembers / CalcAxisRegressors
+  std::size_t index = 0;  ///< term index: AxisTermRow; < kAxisTerms: CalcAxisRegressors
   bool free = false;
   double value = 0.0;     ///< start value if free, else the fixed value
 };

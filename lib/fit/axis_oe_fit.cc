@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -92,8 +93,7 @@ class AxisOeResiduals final : public ResidualModel {
 
  private:
   void Set(const double* parameters) {
-    const auto& members = AxisTermMembers();
-    for (std::size_t j = 0; j < terms_.size(); ++j) params_.*members[static_cast<std::size_t>(terms_[j])] = parameters[j];
+    for (std::size_t j = 0; j < terms_.size(); ++j) params_.*(AxisTermRow(terms_[j]).in_model) = parameters[j];
   }
 
   std::vector<OeLog>& logs_;
@@ -135,11 +135,11 @@ AxisOeOutput FitAxisOutputError(const std::vector<AxisLog>& logs, const AxisSect
   AxisParameters fixed;
   std::vector<int> terms;
   std::vector<FitParameter> parameters;
-  const auto& members = AxisTermMembers();
   for (const auto& term : resolved) {
     double value = term.value;
-    if (term.free && initial != nullptr) value = (*initial).*members[term.index];
-    const double lower = AxisParameterTable()[term.index].spec.lower_bound;
+    const auto& row = AxisTermRow(static_cast<int>(term.index));
+    if (term.free && initial != nullptr && term.index < kAxisTerms) value = (*initial).*(row.in_model);
+    const double lower = row.spec.lower_bound;
     if (term.free) {
       value = std::max(value, lower);
       if (term.index == kAxisInertia) {
@@ -147,6 +147,8 @@ AxisOeOutput FitAxisOutputError(const std::vector<AxisLog>& logs, const AxisSect
           throw InputError("--method oe: the inertia needs a start value > 0 (axis.inertia in --params)");
         }
         parameters.push_back({term.key, value, 1e-6 * value, 0.0});
+      } else if (term.index == static_cast<std::size_t>(kAxisStribeckVelocity)) {
+        parameters.push_back({term.key, value, 1e-6 * std::max(value, 1e-9), 0.0});
       } else {
         double scale = std::abs(value);
         if (scale == 0.0) scale = 1e-3;  // refined by the solver; friction scales of real axes
@@ -154,7 +156,15 @@ AxisOeOutput FitAxisOutputError(const std::vector<AxisLog>& logs, const AxisSect
       }
       terms.push_back(static_cast<int>(term.index));
     }
-    fixed.*members[term.index] = value;
+    fixed.*(row.in_model) = value;
+  }
+  const bool stribeck_free = std::find(terms.begin(), terms.end(), kAxisStribeck) != terms.end();
+  if ((stribeck_free || fixed.stribeck != 0.0) && !(fixed.stribeck_velocity > 0.0)) {
+    throw InputError("--params: axis.stribeck_velocity must be > 0 (a start value if free) with the Stribeck term");
+  }
+  if (stribeck_free && fixed.stribeck == 0.0) {
+    throw InputError("--free stribeck: give a start value > 0 in --params (axis.stribeck): at 0 the fit cannot "
+                     "tell which way to move stribeck_velocity");
   }
   if (!(fixed.inertia > 0.0)) {
     throw InputError("--method oe: the axis needs an inertia > 0: give axis.inertia or free it");
@@ -204,10 +214,54 @@ AxisOeOutput FitAxisOutputError(const std::vector<AxisLog>& logs, const AxisSect
   FitOptions fit_options = options.fit;
   if (!fit_options.advice) fit_options.advice = OeAdvice;
   AxisOeOutput out;
-  out.fit = FitLeastSquares(residuals, parameters, channels, fit_options);
+  // The Stribeck velocity has a plateau (v_s -> infinity: the excess joins
+  // the Coulomb term) that attracts the solver from poor linear terms: with
+  // it free, the other terms are fitted first with the pair held at its
+  // start, then all from there, starting v_s also at a quarter and four
+  // times its value; the lowest cost wins.
+  const auto vs = std::find(terms.begin(), terms.end(), kAxisStribeckVelocity);
+  if (vs == terms.end()) {
+    out.fit = FitLeastSquares(residuals, parameters, channels, fit_options);
+  } else {
+    std::vector<int> linear_terms;
+    std::vector<FitParameter> linear_parameters;
+    for (std::size_t j = 0; j < terms.size(); ++j) {
+      if (terms[j] < static_cast<int>(kAxisTerms)) {
+        linear_terms.push_back(terms[j]);
+        linear_parameters.push_back(parameters[j]);
+      }
+    }
+    if (!linear_terms.empty()) {
+      AxisOeResiduals stage(oe, fixed, linear_terms, 1e-8 * position_range, 1e-8 * rate_range);
+      FitOptions quiet = fit_options;
+      quiet.identifiability_threshold = 0.0;  // judged on the full fit
+      try {
+        const FitResult first = FitLeastSquares(stage, linear_parameters, channels, quiet);
+        for (std::size_t j = 0, m = 0; j < terms.size(); ++j) {
+          if (terms[j] < static_cast<int>(kAxisTerms)) parameters[j].initial = first.estimates[m++].value;
+        }
+      } catch (const IdentificationError&) {
+        // The full fit from the given start reports what is wrong.
+      }
+    }
+    std::optional<FitResult> best;
+    std::string first_failure;
+    for (double factor : {1.0, 0.25, 4.0}) {
+      std::vector<FitParameter> from = parameters;
+      from[static_cast<std::size_t>(vs - terms.begin())].initial *= factor;
+      try {
+        FitResult fit = FitLeastSquares(residuals, from, channels, fit_options);
+        if (!best || fit.cost < best->cost) best = std::move(fit);
+      } catch (const IdentificationError& e) {
+        if (first_failure.empty()) first_failure = e.what();
+      }
+    }
+    if (!best) throw IdentificationError(first_failure);
+    out.fit = std::move(*best);
+  }
   std::vector<std::string> nonnegative;
-  for (const auto& row : AxisParameterTable()) {
-    if (row.in_model != nullptr && row.spec.lower_bound == 0.0) nonnegative.emplace_back(row.spec.key);
+  for (int j = 0; j < kAxisAllTerms; ++j) {
+    if (AxisTermRow(j).spec.lower_bound == 0.0) nonnegative.emplace_back(AxisTermRow(j).spec.key);
   }
   RequireDetermined(out.fit, nonnegative, kMaxRelativeStd, out.fit.warnings);
   // RMSE back in the channels' units (fit % and lag-1 do not depend on the weight).
@@ -218,7 +272,7 @@ AxisOeOutput FitAxisOutputError(const std::vector<AxisLog>& logs, const AxisSect
   std::vector<double> estimate;
   for (const auto& e : out.fit.estimates) estimate.push_back(e.value);
   out.params = fixed;
-  for (std::size_t j = 0; j < terms.size(); ++j) out.params.*members[static_cast<std::size_t>(terms[j])] = estimate[j];
+  for (std::size_t j = 0; j < terms.size(); ++j) out.params.*(AxisTermRow(terms[j]).in_model) = estimate[j];
   out.position.resize(oe.size());
   out.rate.resize(oe.size());
   for (std::size_t i = 0; i < oe.size(); ++i) residuals.Simulate(estimate.data(), i, &out.position[i], &out.rate[i]);

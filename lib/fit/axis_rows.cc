@@ -125,9 +125,7 @@ std::vector<double> AxisCutoffCandidates(const std::vector<AxisLog>& logs, int d
 
 std::vector<std::string> AxisRowColumnNames() {
   std::vector<std::string> names;
-  for (const auto& row : AxisParameterTable()) {
-    if (row.in_model != nullptr) names.emplace_back(row.spec.key);
-  }
+  for (std::size_t j = 0; j < kAxisTerms; ++j) names.emplace_back(AxisParameterTable()[j].spec.key);
   names.emplace_back(kAxisAbsRateColumn);
   names.emplace_back(kAxisTimeColumn);
   return names;

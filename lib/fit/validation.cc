@@ -3,6 +3,7 @@
 #include <cmath>
 #include <map>
 
+#include "core/errors.h"
 #include "fit/adequacy.h"
 #include "fit/axis_rows.h"
 #include "fit/linear_regression.h"
@@ -28,6 +29,10 @@ constexpr double kMinRateFraction = 0.01;
 
 std::vector<ValidatedLog> ValidateAxis(const std::vector<AxisLog>& logs, const AxisParameters& params, double cutoff,
                                        int decimation) {
+  if (params.stribeck != 0.0) {
+    throw InputError("axis.stribeck is not 0: the inverse-dynamics prediction has no Stribeck term (an output-error "
+                     "validation is not built)");
+  }
   const AxisRows rows = BuildAxisRows(logs, cutoff, decimation, kMinRateFraction, AxisRowColumnNames());
   const std::vector<double> model = rows.regression.Predict(AxisColumnValues(params));
   std::vector<ValidatedLog> out(logs.size());

@@ -1,8 +1,10 @@
 // Rigid single axis (docs/models.md#axis; seed 000 section 5 per actuator,
 // friction at constant rates):
 //   tau = J q'' + b q' + tau_c sgn(q') + tau_0 + g_c cos q + g_s sin q
-//         + tau_c+ [q' > 0] - tau_c- [q' < 0] + b+ max(q', 0) + b- min(q', 0),
-//   sgn(0) = 0.
+//         + tau_c+ [q' > 0] - tau_c- [q' < 0] + b+ max(q', 0) + b- min(q', 0)
+//         + tau_s exp(-(q'/v_s)^2) sgn(q'),
+//   sgn(0) = 0. The Stribeck term (breakaway tau_c + tau_s) is nonlinear in
+//   v_s: only the output-error fit estimates it.
 // The direction-dependent terms (coulomb_pos/neg, viscous_pos/neg; tau_c-
 // and b- are magnitudes) replace coulomb and viscous when fitted: both at
 // once are collinear and refused by the fit; so are an offset and both
@@ -36,6 +38,8 @@ struct AxisParameters {
   double coulomb_neg = 0.0;  ///< tau_c- [N m]: its magnitude moving backward (q' < 0)
   double viscous_pos = 0.0;  ///< b+ [N m s/rad]: viscous friction moving forward
   double viscous_neg = 0.0;  ///< b- [N m s/rad]: viscous friction moving backward
+  double stribeck = 0.0;           ///< tau_s [N m]: breakaway excess over Coulomb, fading with speed
+  double stribeck_velocity = 0.0;  ///< v_s [rad/s]: speed over which it fades, exp(-(q'/v_s)^2)
 };
 
 /// The parameter file's `axis` section: every value optional.
@@ -45,6 +49,7 @@ struct AxisSection {
   std::optional<double> coulomb_pos, coulomb_neg, viscous_pos, viscous_neg;
   std::optional<double> torque_constant;  ///< k_t [N m/A], for logs of current
   std::optional<double> gear_ratio;       ///< n_g [-], to report d_g = b / n_g^2
+  std::optional<double> stribeck, stribeck_velocity;
 };
 
 /// The axis parameters: key, symbol, unit, bound, fit membership.
@@ -80,11 +85,20 @@ inline const ParameterTable<AxisSection, AxisParameters>& AxisParameterTable() {
        &AxisSection::torque_constant, nullptr},
       {{"n_g", "n_g", "-", "gear ratio, to report d_g = b / n_g^2", 0.0, true, false, "", false, 0.0},
        &AxisSection::gear_ratio, nullptr},
+      // Nonlinear terms after the settings, so that rows 0 .. kAxisTerms - 1
+      // are the linear ones (CalcAxisRegressors).
+      {{"stribeck", "tau_s", "N m (linear: N)", "Stribeck breakaway excess over Coulomb (output error only)", 0.0,
+        false, false, "axis", false, 0.0},
+       &AxisSection::stribeck, &AxisParameters::stribeck},
+      {{"stribeck_velocity", "v_s", "rad/s (linear: m/s)", "Stribeck velocity: the excess fades as exp(-(q'/v_s)^2)",
+        0.0, false, false, "axis", false, 0.0},
+       &AxisSection::stribeck_velocity, &AxisParameters::stribeck_velocity},
   };
   return table;
 }
 
-/// The model terms (table rows with a model member), in table order.
+/// The linear model terms: the table's first rows, in table order (the
+/// Stribeck pair follows the settings k_t, n_g).
 constexpr std::size_t kAxisTerms = 10;
 /// Index of each term in CalcAxisRegressors and AxisTermMembers.
 enum AxisTermIndex : int {
@@ -142,24 +156,43 @@ inline std::array<double, kAxisTerms> CalcAxisRegressors(double position, double
 inline const std::array<double AxisParameters::*, kAxisTerms>& AxisTermMembers() {
   static const std::array<double AxisParameters::*, kAxisTerms> members = [] {
     std::array<double AxisParameters::*, kAxisTerms> out{};
-    std::size_t j = 0;
-    for (const auto& row : AxisParameterTable()) {
-      if (row.in_model != nullptr) out[j++] = row.in_model;
-    }
+    for (std::size_t j = 0; j < kAxisTerms; ++j) out[j] = AxisParameterTable()[j].in_model;
     return out;
   }();
   return members;
 }
 
+/// Term indices after the linear ones: the Stribeck pair (nonlinear).
+constexpr int kAxisStribeck = static_cast<int>(kAxisTerms), kAxisStribeckVelocity = kAxisStribeck + 1;
+constexpr int kAxisAllTerms = kAxisStribeckVelocity + 1;
+
+/// The table row of term index `term` (0 .. kAxisAllTerms - 1).
+inline const ParameterRow<AxisSection, AxisParameters>& AxisTermRow(int term) {
+  const auto& table = AxisParameterTable();
+  if (term < static_cast<int>(kAxisTerms)) return table[static_cast<std::size_t>(term)];
+  const double AxisParameters::*member =
+      term == kAxisStribeck ? &AxisParameters::stribeck : &AxisParameters::stribeck_velocity;
+  for (const auto& row : table) {
+    if (row.in_model == member) return row;
+  }
+  throw std::logic_error("AxisTermRow: no such term");
+}
+
+/// The Stribeck excess tau_s exp(-(v/v_s)^2) in the direction of motion
+/// (0 at rest and where v_s <= 0).
+inline double CalcStribeckForce(const AxisParameters& p, double rate, int direction) {
+  if (p.stribeck == 0.0 || !(p.stribeck_velocity > 0.0) || direction == 0) return 0.0;
+  const double x = rate / p.stribeck_velocity;
+  return direction * p.stribeck * std::exp(-x * x);
+}
+
 /// Force/torque of the axis at a position, rate and acceleration.
 inline double CalcAxisForce(const AxisParameters& p, double position, double rate, double acceleration) {
   const std::array<double, kAxisTerms> phi = CalcAxisRegressors(position, rate, acceleration);
+  const auto& members = AxisTermMembers();
   double tau = 0.0;
-  std::size_t j = 0;
-  for (const auto& row : AxisParameterTable()) {
-    if (row.in_model != nullptr) tau += p.*(row.in_model) * phi[j++];
-  }
-  return tau;
+  for (std::size_t j = 0; j < kAxisTerms; ++j) tau += p.*members[j] * phi[j];
+  return tau + CalcStribeckForce(p, rate, (rate > 0.0) - (rate < 0.0));
 }
 
 }  // namespace driveid

@@ -24,7 +24,7 @@ class AxisSimulator::System final : public SensitivityOdeSystem {
  public:
   System(std::vector<int> terms, double position_tolerance, double rate_tolerance) : terms_(std::move(terms)) {
     for (int j : terms_) {
-      if (j < 0 || j >= static_cast<int>(kAxisTerms)) throw std::logic_error("AxisSimulator: term index out of range");
+      if (j < 0 || j >= kAxisAllTerms) throw std::logic_error("AxisSimulator: term index out of range");
     }
     IntegratorOptions options;
     options.relative_tolerance = 1e-8;
@@ -53,8 +53,18 @@ class AxisSimulator::System final : public SensitivityOdeSystem {
     double dq = 0.0, dv = 0.0;
     ForceGradient(x, &dq, &dv);
     const int term = terms_[static_cast<std::size_t>(j)];
-    const double forcing =
-        term == kAxisInertia ? -Acceleration(x) / theta_[kAxisInertia] : -Regressors(x)[static_cast<std::size_t>(term)] / theta_[kAxisInertia];
+    double forcing = 0.0;
+    if (term == kAxisInertia) {
+      forcing = -Acceleration(x) / theta_[kAxisInertia];
+    } else if (term < static_cast<int>(kAxisTerms)) {
+      forcing = -Regressors(x)[static_cast<std::size_t>(term)] / theta_[kAxisInertia];
+    } else if (StribeckActive()) {
+      // d/d tau_s and d/d v_s of tau_s m exp(-(v/v_s)^2).
+      const double vs = theta_[kAxisStribeckVelocity], e = std::exp(-(x[kV] / vs) * (x[kV] / vs));
+      forcing = term == kAxisStribeck ? -mode_ * e / theta_[kAxisInertia]
+                                      : -theta_[kAxisStribeck] * mode_ * e * 2.0 * x[kV] * x[kV] / (vs * vs * vs) /
+                                            theta_[kAxisInertia];
+    }
     ds[kQ] = s[kV];
     ds[kV] = (-dq * s[kQ] - dv * s[kV]) / theta_[kAxisInertia] + forcing;
   }
@@ -62,8 +72,7 @@ class AxisSimulator::System final : public SensitivityOdeSystem {
 
   void Simulate(const AxisParameters& p, const std::vector<double>& time, const std::vector<double>& torque, double q0,
                 double v0, bool with_sensitivities, AxisResponse* out) {
-    const auto& members = AxisTermMembers();
-    for (std::size_t j = 0; j < kAxisTerms; ++j) theta_[j] = p.*members[j];
+    for (int j = 0; j < kAxisAllTerms; ++j) theta_[static_cast<std::size_t>(j)] = p.*(AxisTermRow(j).in_model);
     if (!(theta_[kAxisInertia] > 0.0)) throw IdentificationError("simulation: the axis needs inertia > 0");
     const std::size_t samples = time.size(), np = terms_.size();
     with_sensitivities = with_sensitivities && np > 0;
@@ -132,21 +141,34 @@ class AxisSimulator::System final : public SensitivityOdeSystem {
   std::array<double, kAxisTerms> Regressors(const double* x) const {
     return CalcAxisRegressors(x[kQ], x[kV], 0.0, mode_);
   }
+  bool StribeckActive() const { return theta_[kAxisStribeck] != 0.0 && theta_[kAxisStribeckVelocity] > 0.0; }
+  double StribeckFactor(double v) const {
+    const double r = v / theta_[kAxisStribeckVelocity];
+    return std::exp(-r * r);
+  }
   // J v' = u - F, F the sum of all terms but the inertia.
   double Acceleration(const double* x) const {
     const auto phi = Regressors(x);
     double force = 0.0;
     for (std::size_t j = 1; j < kAxisTerms; ++j) force += theta_[j] * phi[j];
+    if (StribeckActive()) force += theta_[kAxisStribeck] * mode_ * StribeckFactor(x[kV]);
     return (u_ - force) / theta_[kAxisInertia];
   }
   void ForceGradient(const double* x, double* dq, double* dv) const {
     *dq = -theta_[kAxisGravityCos] * std::sin(x[kQ]) + theta_[kAxisGravitySin] * std::cos(x[kQ]);
     *dv = theta_[kAxisViscous] + (mode_ > 0 ? theta_[kAxisViscousPos] : 0.0) + (mode_ < 0 ? theta_[kAxisViscousNeg] : 0.0);
+    if (StribeckActive()) {
+      const double vs = theta_[kAxisStribeckVelocity];
+      *dv += theta_[kAxisStribeck] * mode_ * StribeckFactor(x[kV]) * (-2.0 * x[kV] / (vs * vs));
+    }
   }
   // v = 0: stuck if friction holds the static torque, else slide towards it.
   void DecideModeAtRest() {
     const double net = u_ - theta_[kAxisOffset] - theta_[kAxisGravityCos] * std::cos(x_[kQ]) - theta_[kAxisGravitySin] * std::sin(x_[kQ]);
-    const double forward = theta_[kAxisCoulomb] + theta_[kAxisCoulombPos], backward = theta_[kAxisCoulomb] + theta_[kAxisCoulombNeg];
+    // Breakaway: Coulomb plus the Stribeck excess (its value at v = 0).
+    const double excess = StribeckActive() ? theta_[kAxisStribeck] : 0.0;
+    const double forward = theta_[kAxisCoulomb] + theta_[kAxisCoulombPos] + excess,
+                 backward = theta_[kAxisCoulomb] + theta_[kAxisCoulombNeg] + excess;
     mode_ = net > forward ? 1 : (net < -backward ? -1 : 0);
   }
   void Restart(double t, bool with_sensitivities) {
@@ -192,7 +214,7 @@ class AxisSimulator::System final : public SensitivityOdeSystem {
 
   std::vector<int> terms_;
   std::unique_ptr<CvodesIntegrator> integrator_;
-  std::array<double, kAxisTerms> theta_{};
+  std::array<double, kAxisAllTerms> theta_{};
   std::array<double, 2> x_{};
   std::vector<double> s_;
   std::vector<const double*> pointers_;

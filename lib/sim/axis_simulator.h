@@ -3,11 +3,11 @@
 // sensitivities of position and rate to chosen axis terms
 // (docs/models.md#axis-output-error). States x = (q, v):
 //   q' = v,  J v' = u(t) - F(q, v, m),
-//   F = sum_{j != J} p_j phi_j(q, v, m)   (models/axis.h regressors, m the mode)
+//   F = sum_{j != J} p_j phi_j(q, v, m) + tau_s exp(-(v/v_s)^2) m   (models/axis.h; m the mode)
 // Modes as in the drive train (sim/drivetrain_simulator.h): sliding m = +-1
 // with root g = v; at v = 0 the axis sticks if the static torque
 //   N = u - tau_0 - g_c cos q - g_s sin q
-// lies within [-(tau_c + tau_c-), tau_c + tau_c+], else it slides towards N.
+// lies within [-(tau_c + tau_c- + tau_s), tau_c + tau_c+ + tau_s], else it slides towards N.
 // Stuck, x is constant (no dynamics), and N changes only when u does, at the
 // sample times. Sensitivity jumps at a state event t*(p):
 //   s+ = s- + (f- - f+) dt*/dp, dt*/dp = -s_v- / v'-,

@@ -229,7 +229,7 @@ TEST_CASE("axis: an offset with both Coulomb directions, or coulomb with its rep
   AxisFitOptions twice;
   twice.free = {"inertia", "coulomb", "coulomb_pos", "viscous"};
   CHECK_THROWS_AS(FitAxis({log}, AxisSection{}, twice), OptionError);
-  CHECK(kAxisTerms == AxisTermsZeroUnlessGiven().size() + 4);
+  CHECK(static_cast<std::size_t>(kAxisAllTerms) == AxisTermsZeroUnlessGiven().size() + 4);  // J, b, tau_c, tau_0 needed
 }
 
 TEST_CASE("feed-forward: Kg and Kg_angle from the gravity terms cover the truth; first-order std matches sampling") {
@@ -309,4 +309,24 @@ TEST_CASE("feed-forward: direction-dependent terms give Ks and Kv per direction 
   CHECK(ff.gains[3].key == "offset");
   CHECK(ff.gains[3].value == 0.05);
   CHECK(ff.gains[3].standard_error == 0.0);
+}
+
+TEST_CASE("axis IDIM-LS: the nonlinear Stribeck term is refused by name, fixed or free") {
+  const AxisLog log = AsymmetricLog(43);
+  AxisFitOptions free_stribeck;
+  free_stribeck.free = {"inertia", "viscous", "coulomb", "offset", "stribeck"};
+  CHECK_THROWS_WITH(FitAxis({log}, AxisSection{}, free_stribeck),
+                    Catch::Contains("--free stribeck") && Catch::Contains("--method oe"));
+  AxisSection given;
+  given.stribeck = 0.2;
+  given.stribeck_velocity = 0.5;
+  CHECK_THROWS_WITH(FitAxis({log}, given, {}), Catch::Contains("axis.stribeck = 0.2") && Catch::Contains("--method oe"));
+  // The model function carries the excess: at v = v_s it is tau_s / e.
+  AxisParameters p;
+  p.coulomb = 1.0;
+  p.stribeck = 0.2;
+  p.stribeck_velocity = 0.5;
+  CHECK(CalcAxisForce(p, 0.0, 0.5, 0.0) == Approx(1.0 + 0.2 / std::exp(1.0)));
+  CHECK(CalcAxisForce(p, 0.0, -0.5, 0.0) == Approx(-1.0 - 0.2 / std::exp(1.0)));
+  CHECK(CalcAxisForce(p, 0.0, 0.0, 0.0) == 0.0);
 }
