@@ -248,18 +248,12 @@ awk -F, '/^#/ { next } !h { print $0 ",tau_known"; h = 1; next } { k = 3 * $2; p
 "$bin" axis known.csv --params axis.yaml -q -o known_fit.yaml && grep -q "^  inertia: 0\.0[45]" known_fit.yaml \
   && grep -q "^  coulomb: \(0\.9[5-9]\|1\.0[0-5]\)" known_fit.yaml && ok || fail "tau_known: $(head -8 known_fit.yaml)"
 "$bin" axis known.csv --params axis.yaml --col tau_known=#4 -q -o /dev/null && ok || fail "tau_known by position"
-# Output error (docs/models.md#axis-output-error): torque steps, made here by
-# explicit Euler (J 0.05, b 0.2, tau_c 1, tau_0 0.3; sticks at rest while
-# |u - tau_0| <= tau_c), position quantised to 1e-3 rad. --method auto
-# picks output error and says so.
-awk 'BEGIN { print "t,q,tau"; J = 0.05; b = 0.2; c = 1; o = 0.3; q = 0; v = 0; t = 0; n = split("0 2 -2 0.6 -1.6 1.9", u, " ")
-  for (i = 1; i <= n; i++) for (s = 0; s < 600; s++) {
-    printf "%.3f,%.3f,%s\n", t, int(q * 1000 + (q < 0 ? -0.5 : 0.5)) / 1000, u[i]
-    for (m = 0; m < 100; m++) {
-      if (v == 0) { f = u[i] - o; if (f <= c && f >= -c) continue; v += 1e-5 * (f - (f > 0 ? c : -c)) / J }
-      else { w = v + 1e-5 * (u[i] - o - b * v - (v > 0 ? c : -c)) / J; q += 1e-5 * v; v = ((w > 0) != (v > 0)) ? 0 : w; continue }
-      q += 1e-5 * v }
-    t += 0.001 } }' > steps.csv
+# Output error (docs/models.md#axis-output-error): torque steps made by
+# scripts/make-axis-steps (explicit Euler: J 0.05, b 0.2, tau_c 1, tau_0 0.3;
+# sticks at rest while |u - tau_0| <= tau_c; q quantised to 1e-3 rad).
+# --method auto picks output error and says so.
+"$src/scripts/make-axis-steps" steps.csv
+cmp -s steps.csv "$src/data/axis_steps.csv" && ok || fail "data/axis_steps.csv differs from scripts/make-axis-steps"
 printf 'axis:\n  inertia: 0.08\n' > steps_start.yaml
 "$bin" axis steps.csv --params steps_start.yaml -o steps_fit.yaml --plot steps_fit.svg > steps.txt 2>&1 \
   && grep -q "^method: output error (auto: the torque is held in steps" steps.txt && grep -q "^  inertia: 0\.0\(49\|50\)" steps_fit.yaml \
@@ -270,7 +264,7 @@ printf 'axis:\n  inertia: 0.08\n' > steps_start.yaml
 expect 2 "--validate predicts by inverse dynamics: use it with --method idim" -- axis steps.csv --method oe --validate steps.csv
 expect 2 "--cutoff applies to --method idim only" -- axis steps.csv --method oe --cutoff 5
 expect 3 "--method oe: the axis needs an inertia > 0" -- axis steps.csv --method oe --free viscous,coulomb,offset
-head -1202 steps.csv > steps_forward.csv
+head -1203 steps.csv > steps_forward.csv
 expect 4 "not identifiable.*(coulomb.*offset|offset.*coulomb)" -- axis steps_forward.csv --params steps_start.yaml --method oe
 expect 3 "axis.csv:[0-9]+: missing column 'force' or 'amps'" -- axis axis.csv --col tau=force --col i=amps
 expect 2 "not a parameter of the axis fit" -- axis axis.csv --free mass
