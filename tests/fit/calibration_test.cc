@@ -14,6 +14,7 @@
 #include <catch2/catch.hpp>
 
 #include "fit/axis_fit.h"
+#include "fit/axis_oe_fit.h"
 #include "fit/step_fit.h"
 #include "support/paper000.h"
 #include "support/reference_drivetrain.h"
@@ -165,4 +166,79 @@ TEST_CASE("axis fit, 13-bit encoder, AR(1) 0.9 and 0.99 noise: intervals cover")
   const double quantum = 2.0 * M_PI / 8192.0;
   AxisCoverage(0.9, quantum, 200, 0.90, 0.98);
   AxisCoverage(0.99, quantum, 200, 0.90, 0.98);
+}
+
+namespace {
+
+// Output error's own generator (not lib/sim): an axis J 0.05, b 0.2,
+// tau_c 1, tau_0 0.3 under held torque steps (0, 2, -2, 0.6, -1.6, 1.9 N m,
+// 0.6 s each, 1 kHz), explicit Euler with 1e-6 s steps, sticking at rest
+// while |u - tau_0| <= tau_c. Logged: q with white noise 2e-4 rad, then a
+// 13-bit encoder's quantisation; the rate with AR(1) noise (rho, std 0.05).
+AxisLog MakeStepAxisLog(double rho, unsigned seed) {
+  const double J = 0.05, b = 0.2, c = 1.0, o = 0.3, quantum = 2.0 * M_PI / 8192.0;
+  const double torque[] = {0.0, 2.0, -2.0, 0.6, -1.6, 1.9};
+  std::mt19937_64 random(seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  AxisLog log;
+  log.path = "oe_mc.csv";
+  double q = 0.0, v = 0.0, e = 0.05 * normal(random);
+  for (int k = 0; k < 3600; ++k) {
+    const double u = torque[k / 600];
+    e = rho * e + std::sqrt(1.0 - rho * rho) * 0.05 * normal(random);
+    log.time.push_back(k / 1000.0);
+    log.position.push_back(std::round((q + 2e-4 * normal(random)) / quantum) * quantum);
+    log.rate.push_back(v + e);
+    log.force.push_back(u);
+    for (int m = 0; m < 1000; ++m) {
+      if (v == 0.0) {
+        const double net = u - o;
+        if (std::abs(net) <= c) continue;
+        v += 1e-6 * (net - (net > 0 ? c : -c)) / J;
+      } else {
+        const double next = v + 1e-6 * (u - o - b * v - (v > 0 ? c : -c)) / J;
+        q += 1e-6 * v;
+        v = (next > 0) != (v > 0) ? 0.0 : next;
+        continue;
+      }
+      q += 1e-6 * v;
+    }
+  }
+  return log;
+}
+
+void OutputErrorCoverage(double rho, int seeds, double low, double high) {
+  Sample inertia, viscous, coulomb, offset;
+  AxisOeOptions options;
+  options.free = {"inertia", "viscous", "coulomb", "offset"};
+  AxisSection start;
+  start.inertia = 0.08;
+  start.viscous = 0.1;
+  start.coulomb = 0.5;
+  start.offset = 0.0;
+  for (int seed = 0; seed < seeds; ++seed) {
+    const auto out = FitAxisOutputError({MakeStepAxisLog(rho, 9000u + static_cast<unsigned>(seed))}, start, nullptr,
+                                        options);
+    inertia.Add(Find(out.fit, "inertia"), 0.05);
+    viscous.Add(Find(out.fit, "viscous"), 0.2);
+    coulomb.Add(Find(out.fit, "coulomb"), 1.0);
+    offset.Add(Find(out.fit, "offset"), 0.3);
+  }
+  for (const auto& [name, s] : {std::pair<const char*, const Sample*>{"inertia", &inertia}, {"viscous", &viscous},
+                                {"coulomb", &coulomb}, {"offset", &offset}}) {
+    INFO("OE rho " << rho << ", " << name << ": empirical / reported std = " << s->Ratio() << ", 95 % coverage "
+                << s->Coverage());
+    CHECK(s->Coverage() >= low);
+    CHECK(s->Coverage() <= high);
+  }
+}
+
+}  // namespace
+
+// Measured (docs/models.md#axis-output-error): coverage 0.88-0.96, empirical
+// / reported std 0.96-1.23 with the rate logged. Position alone covers worse
+// (0.83-0.91, std ratio up to 2.6: quantisation errors are constant while
+// the axis sticks), which the docs state.
+TEST_CASE("axis output error, torque steps, 13-bit encoder, AR(1) rate noise: intervals cover") {
+  OutputErrorCoverage(0.9, 100, 0.85, 0.99);
 }
