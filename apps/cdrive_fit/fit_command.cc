@@ -8,6 +8,7 @@
 #include "io/csv_log.h"
 #include "io/parameter_file.h"
 #include "io/sha256.h"
+#include "report/cdrive_compensation.h"
 
 namespace driveid::cli {
 
@@ -70,6 +71,13 @@ void RunCDriveFitCommand(const CDriveFitCommandOptions& options, const std::stri
   ParameterFile fitted = start;
   fitted.Set(result.section);
   outputs.fit = result.fit;
+  if (friction) {
+    // Eq. (31) as a controller loads it, with the fit's uncertainty (docs/models.md#c-drive).
+    const auto* control = start.Find<CDriveControlSection>();
+    fitted.feedforward = CalcCDriveCompensation(
+        MakeModelParameters(CDriveParameterTable(), result.section, CDriveParameters{}, "cdrive"),
+        control ? MakeControlSettings(*control) : CDriveControlSettings{}, result.fit);  // seed's DZ, RL by default
+  }
   outputs.parameter_file = FormatParameterFile(fitted, &outputs.fit, &outputs.provenance, result.derived);
   outputs.trace_csv = "# cdrive-fit trace: measured and model motor torques [N m]; used = entered the fit\n";
   outputs.trace_csv += "log,t,tau_L_measured,tau_L_model,tau_R_measured,tau_R_model,used\n";

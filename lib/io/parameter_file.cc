@@ -335,13 +335,18 @@ Feedforward ParseFeedforward(const std::string& path, const YAML::Node& node) {
   for (const auto& item : node) {
     const std::string key = item.first.Scalar();
     const std::string name = "feedforward." + key;
-    if (key == "effort_unit" || key == "position_unit") {
-      if (!item.second.IsScalar()) throw InputError(fmt::format("{}: {}: expected a unit name", Where(path, item.second), name));
-      (key == "effort_unit" ? out.effort_unit : out.position_unit) = item.second.Scalar().substr(0, 64);
+    if (key == "effort_unit" || key == "position_unit" || key == "law") {
+      if (!item.second.IsScalar()) throw InputError(fmt::format("{}: {}: expected a name", Where(path, item.second), name));
+      const std::string value = item.second.Scalar().substr(0, 64);
+      if (key == "law" && value != kAxisFeedforwardLaw && value != kCDriveCompensationLaw) {
+        throw InputError(fmt::format("{}: {}: \"{}\": expected {} or {}", Where(path, item.second), name, value,
+                                     kAxisFeedforwardLaw, kCDriveCompensationLaw));
+      }
+      (key == "effort_unit" ? out.effort_unit : key == "law" ? out.law : out.position_unit) = value;
       continue;
     }
     if (std::find(kFeedforwardKeys.begin(), kFeedforwardKeys.end(), key) == kFeedforwardKeys.end()) {
-      throw InputError(fmt::format("{}: {}: unknown key (known: effort_unit, position_unit, {})",
+      throw InputError(fmt::format("{}: {}: unknown key (known: law, effort_unit, position_unit, {})",
                                    Where(path, item.first), name, fmt::join(kFeedforwardKeys, ", ")));
     }
     CheckMapping(path, name, item.second);
@@ -358,9 +363,13 @@ Feedforward ParseFeedforward(const std::string& path, const YAML::Node& node) {
 
 std::string FormatFeedforward(const Feedforward& f) {
   std::string out =
-      "feedforward:  # u = Ks sgn(v) + Kv v + Ka a + Kg cos(q - Kg_angle) + offset, "
-      "docs/models.md#feed-forward\n";
-  out += fmt::format("  effort_unit: {}\n  position_unit: {}\n", Quoted(f.effort_unit), Quoted(f.position_unit));
+      f.law == kCDriveCompensationLaw
+          ? "feedforward:  # eq. (31): tau_I = beta w_I + delta RL{sgn DZ(w_I)} + gamma_half (w_I - w_J) + eta "
+            "RL{sgn DZ(w_I - w_J)}, docs/models.md#c-drive\n"
+          : "feedforward:  # u = Ks sgn(v) + Kv v + Ka a + Kg cos(q - Kg_angle) + offset, "
+            "docs/models.md#feed-forward\n";
+  out += fmt::format("  law: {}\n  effort_unit: {}\n  position_unit: {}\n", f.law, Quoted(f.effort_unit),
+                     Quoted(f.position_unit));
   for (const auto& g : f.gains) {
     out += fmt::format("  {}: {{value: {}, std: {}}}  # {}\n", g.key, Number(g.value), Short(g.standard_error),
                        FeedforwardUnit(g.key, f.effort_unit, f.position_unit));

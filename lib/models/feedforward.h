@@ -13,6 +13,12 @@
 //   (an elevator's Kg, or a bias if the axis is level: the data cannot tell).
 // Each gain carries the standard error propagated from the fit's
 // covariance (first order, docs/models.md#feed-forward).
+//
+// The C-drive's friction compensation, seed 001 eq. (31) (law "cdrive",
+// docs/models.md#c-drive), per motor I with the other J:
+//   tau_I = beta w_I + delta RL{sgn DZ(w_I)} + gamma_half (w_I - w_J) + eta RL{sgn DZ(w_I - w_J)}
+// with gamma_half = gamma / 2, the dead zone DZ and rate limit RL of the
+// controller settings (cdrive.control).
 #pragma once
 
 #include <array>
@@ -22,13 +28,22 @@
 namespace driveid {
 
 /// The gain keys a feed-forward section may hold, in the order written.
-inline constexpr std::array<const char*, 10> kFeedforwardKeys = {
-    "Ks", "Ks_forward", "Ks_backward", "Kv", "Kv_forward", "Kv_backward", "Ka", "Kg", "Kg_angle", "offset"};
+/// Axis: Ks ... offset; C-drive eq. (31) (law "cdrive"): beta, gamma_half,
+/// delta, eta, dead_zone, rate_limit.
+inline constexpr std::array<const char*, 16> kFeedforwardKeys = {
+    "Ks",   "Ks_forward", "Ks_backward", "Kv",    "Kv_forward", "Kv_backward", "Ka",        "Kg",
+    "Kg_angle", "offset", "beta",        "gamma_half", "delta", "eta",         "dead_zone", "rate_limit"};
+
+/// The compensation laws a feed-forward section holds.
+inline constexpr const char* kAxisFeedforwardLaw = "axis";
+inline constexpr const char* kCDriveCompensationLaw = "cdrive";
 
 /// The unit of a gain: Ks, Kg, offset in the effort unit, Kv per rate,
 /// Ka per acceleration, Kg_angle in rad.
 inline std::string FeedforwardUnit(const std::string& key, const std::string& effort, const std::string& position) {
-  if (key.rfind("Kv", 0) == 0) return effort + " s/" + position;
+  if (key.rfind("Kv", 0) == 0 || key == "beta" || key == "gamma_half") return effort + " s/" + position;
+  if (key == "dead_zone") return position + "/s";
+  if (key == "rate_limit") return "1/s";
   if (key == "Ka") return effort + " s^2/" + position;
   if (key == "Kg_angle") return "rad";
   return effort;
@@ -43,6 +58,7 @@ struct FeedforwardGain {
 
 /// The feed-forward section of a parameter file.
 struct Feedforward {
+  std::string law = kAxisFeedforwardLaw;  ///< "axis" or "cdrive" (eq. 31)
   std::string effort_unit;    ///< unit of u: "V", "N m", "N"
   std::string position_unit;  ///< unit of q: "rad", "m", SysId's "Meters", ...
   std::vector<FeedforwardGain> gains;

@@ -38,7 +38,7 @@ bool Estimated(const FitResult& fit, double AxisParameters::*member) {
 Feedforward CalcAxisFeedforward(const AxisParameters& p, const FitResult& fit, const std::string& effort_unit,
                                 const std::string& position_unit, bool with_inertia) {
   using P = AxisParameters;
-  Feedforward out{effort_unit, position_unit, {}};
+  Feedforward out{kAxisFeedforwardLaw, effort_unit, position_unit, {}};
   const auto used = [&](double P::*member) { return Estimated(fit, member) || p.*member != 0.0; };
   const auto add = [&](const std::string& key, double value, std::vector<std::pair<std::string, double>> gradient) {
     out.gains.push_back(
@@ -69,10 +69,13 @@ Feedforward CalcAxisFeedforward(const AxisParameters& p, const FitResult& fit, c
 }
 
 std::string FormatFeedforwardReport(const Feedforward& f) {
-  std::string out = fmt::format(
-      "feed-forward (docs/models.md#feed-forward), u [{}] from q [{}]:\n"
-      "  u = Ks sgn(v) + Kv v + Ka a + Kg cos(q - Kg_angle) + offset   (elevator: Kg = offset)\n",
-      f.effort_unit, f.position_unit);
+  std::string out =
+      f.law == kCDriveCompensationLaw
+          ? std::string("friction compensation, eq. (31) (docs/models.md#c-drive), per motor I with the other J:\n"
+                        "  tau_I = beta w_I + delta RL{sgn DZ(w_I)} + gamma_half (w_I - w_J) + eta RL{sgn DZ(w_I - w_J)}\n")
+          : fmt::format("feed-forward (docs/models.md#feed-forward), u [{}] from q [{}]:\n"
+                        "  u = Ks sgn(v) + Kv v + Ka a + Kg cos(q - Kg_angle) + offset   (elevator: Kg = offset)\n",
+                        f.effort_unit, f.position_unit);
   for (const auto& g : f.gains) {
     out += fmt::format("  {:<12} {:>13.6g} +- {:<11.3g} {}\n", g.key, g.value, g.standard_error, g.unit);
   }
@@ -82,7 +85,7 @@ std::string FormatFeedforwardReport(const Feedforward& f) {
 Json FeedforwardReportJson(const Feedforward& f) {
   Json gains = Json::object();
   for (const auto& g : f.gains) gains[g.key] = {{"value", g.value}, {"std", g.standard_error}, {"unit", g.unit}};
-  return {{"effort_unit", f.effort_unit}, {"position_unit", f.position_unit}, {"gains", gains}};
+  return {{"law", f.law}, {"effort_unit", f.effort_unit}, {"position_unit", f.position_unit}, {"gains", gains}};
 }
 
 }  // namespace driveid

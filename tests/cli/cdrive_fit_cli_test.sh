@@ -77,6 +77,14 @@ cp fitted.yaml first.yaml
   && cmp -s fitted.yaml first.yaml && ok || fail "rerun differs"
 "$bin" report fitted.yaml > report.txt && grep -q "beta = 0.00" report.txt && grep -q "+-" report.txt && ok \
   || fail "report lacks the fitted table with uncertainties"
+# The eq. (31) compensation block (docs/models.md#c-drive): gamma_half is
+# gamma / 2 with half its std; the controller's dead zone and rate limit.
+gamma=$(awk '/^    gamma: \{value/ { gsub(/[{},]/, " "); print $3, $5 }' fitted.yaml)
+half=$(awk '/^  gamma_half: \{value/ { gsub(/[{},]/, " "); print $3, $5 }' fitted.yaml)
+awk -v g="$gamma" -v h="$half" 'BEGIN { split(g, a, " "); split(h, b, " ")
+  exit !(a[1] > 0 && (b[1] / a[1] - 0.5)^2 < 1e-10 && (b[2] / a[2] - 0.5)^2 < 1e-6) }' \
+  && grep -q "^  law: cdrive" fitted.yaml && grep -q "^  dead_zone: {value: 0.5, std: 0}  # rad/s" fitted.yaml \
+  && grep -q "^  gamma_half .* N m s/rad" report.txt && ok || fail "compensation block: gamma '$gamma', half '$half'"
 "$bin" friction translation.csv rotation.csv helical.csv --params fitted.yaml -q -o refit.yaml && ok \
   || fail "fit output is not a valid --params input"
 for sub in friction inertia simulate report; do

@@ -162,7 +162,7 @@ TEST_CASE("a file name that is not UTF-8 is escaped in the provenance and reads 
 
 TEST_CASE("the feed-forward section reads back unchanged; bad keys are named with file and line") {
   auto file = ParseParameterFile("p.yaml", "axis:\n  inertia: 0.05\n");
-  file.feedforward = {"V", "Meters", {{"Ks", 0.0600394, 0.0123, ""}, {"Kv", 0.22421, 0.002, ""}, {"Kg_angle", -2.9, 0.1, ""}}};
+  file.feedforward = {kAxisFeedforwardLaw, "V", "Meters", {{"Ks", 0.0600394, 0.0123, ""}, {"Kv", 0.22421, 0.002, ""}, {"Kg_angle", -2.9, 0.1, ""}}};
   const std::string text = FormatParameterFile(file);
   const ParameterFile back = ParseParameterFile("p.yaml", text);
   REQUIRE(back.feedforward.gains.size() == 3);
@@ -175,8 +175,10 @@ TEST_CASE("the feed-forward section reads back unchanged; bad keys are named wit
   CHECK(back.feedforward.gains[2].unit == "rad");
   CHECK(FormatParameterFile(back) == text);
   CHECK(ErrorOf("axis:\n  inertia: 1\nfeedforward:\n  Kx: {value: 1}\n") ==
-        "p.yaml:4:3: feedforward.Kx: unknown key (known: effort_unit, position_unit, Ks, Ks_forward, Ks_backward, Kv, "
-        "Kv_forward, Kv_backward, Ka, Kg, Kg_angle, offset)");
+        "p.yaml:4:3: feedforward.Kx: unknown key (known: law, effort_unit, position_unit, Ks, Ks_forward, Ks_backward, "
+        "Kv, Kv_forward, Kv_backward, Ka, Kg, Kg_angle, offset, beta, gamma_half, delta, eta, dead_zone, rate_limit)");
+  CHECK(ErrorOf("axis:\n  inertia: 1\nfeedforward:\n  law: pid\n") ==
+        "p.yaml:4:8: feedforward.law: \"pid\": expected axis or cdrive");
   CHECK(ErrorOf("axis:\n  inertia: 1\nfeedforward:\n  Ks: {std: 1}\n") == "p.yaml:4:7: feedforward.Ks: needs a value");
   CHECK(ErrorOf("axis:\n  inertia: 1\nfeedforward:\n  Ks: {value: nan}\n").find("p.yaml:4:15: feedforward.Ks.value") == 0);
 }
