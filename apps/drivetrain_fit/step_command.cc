@@ -15,7 +15,8 @@ namespace driveid::cli {
 CLI::App* SetupStepCommand(CLI::App& app, StepOptions& options) {
   CLI::App* command = app.add_subcommand(
       "step", "Fit d_g, Theta_motor, tau_c (and more) to logged motor-torque step responses (docs/models.md#drive-train)");
-  command->add_option("logs", options.logs, "step logs (CSV, MAT; docs/formats.md#logs) with t, tau_motor, tau_link")->required();
+  command->add_option("logs", options.logs, "step logs (CSV, MAT; docs/formats.md#logs) with t, tau_motor, tau_link; optional q_motor (motor encoder) "
+                      "and q_link (gear output angle), which separate k_Tl and k_Tg (docs/models.md#drive-train)")->required();
   command->add_option("--params", options.params, "parameter file with known values and starting guesses")
       ->required();
   command->add_option("--model", options.model, "reduced (eq. 16, second order) or full (eqs. 13-14)")

@@ -5,6 +5,7 @@
 #include <limits>
 #include <memory>
 #include <stdexcept>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -31,7 +32,8 @@ std::string StepAdvice(const std::vector<std::string>& involved) {
   const bool link = Contains(involved, key(DriveTrainParameter::kLinkStiffness));
   const bool gearbox = Contains(involved, key(DriveTrainParameter::kGearboxStiffness));
   if (link && gearbox) {
-    advice.push_back("fix k_Tl or k_Tg with --params: only their series combination enters a step response");
+    advice.push_back("fix k_Tl or k_Tg with --params: only their series combination enters the strain gauge's step "
+                     "response; a logged link angle q_link separates them (docs/models.md#drive-train)");
   } else if ((link || gearbox) && (Contains(involved, key(DriveTrainParameter::kMotorInertia)) ||
                                     Contains(involved, key(DriveTrainParameter::kViscousFriction)))) {
     advice.push_back("a step response fixes only Theta_motor/k_eq and d_g/k_eq: fix the stiffness with --params");
@@ -42,15 +44,46 @@ std::string StepAdvice(const std::vector<std::string>& involved) {
   return fmt::format("{}", fmt::join(advice, "; "));
 }
 
+double RmsDeviation(const std::vector<double>& x) {
+  double mean = 0.0, sum = 0.0;
+  for (double v : x) mean += v / static_cast<double>(x.size());
+  for (double v : x) sum += (v - mean) * (v - mean);
+  return std::sqrt(sum / static_cast<double>(x.size()));
+}
+
+// The residual channels of one log: the strain gauge, then (when logged and
+// used) the motor encoder q_motor = n_g phi and the link angle q_link = Delta,
+// each angle weighted by RMS(tau_link) / RMS(angle) so that all count alike
+// and tau_link keeps its unit.
+struct StepChannels {
+  int first_row = 0;
+  double motor_weight = 0.0, link_weight = 0.0;  // 0: channel not used
+  std::vector<double> weighted_motor, weighted_link;
+};
+
 class StepResiduals final : public ResidualModel {
  public:
   StepResiduals(const std::vector<StepLog>& logs, const DriveTrainParameters& start, DriveTrainModel model,
-                std::vector<DriveTrainParameter> ode_parameters, bool fit_offsets)
+                std::vector<DriveTrainParameter> ode_parameters, bool fit_offsets, bool use_angles)
       : logs_(logs), params_(start), ode_parameters_(ode_parameters), fit_offsets_(fit_offsets),
         simulator_(model, start, std::move(ode_parameters)) {
     for (const auto& log : logs_) {
-      first_row_.push_back(rows_);
-      rows_ += static_cast<int>(log.time.size());
+      StepChannels c;
+      c.first_row = rows_;
+      const int n = static_cast<int>(log.time.size());
+      rows_ += n;
+      const double torque_scale = RmsDeviation(log.link_torque);
+      if (use_angles && !log.motor_angle.empty() && RmsDeviation(log.motor_angle) > 0.0 && torque_scale > 0.0) {
+        c.motor_weight = torque_scale / RmsDeviation(log.motor_angle);
+        for (double q : log.motor_angle) c.weighted_motor.push_back(q * c.motor_weight);
+        rows_ += n;
+      }
+      if (use_angles && !log.link_angle.empty() && RmsDeviation(log.link_angle) > 0.0 && torque_scale > 0.0) {
+        c.link_weight = torque_scale / RmsDeviation(log.link_angle);
+        for (double q : log.link_angle) c.weighted_link.push_back(q * c.link_weight);
+        rows_ += n;
+      }
+      channels_.push_back(std::move(c));
     }
   }
 
@@ -66,15 +99,34 @@ class StepResiduals final : public ResidualModel {
     try {
       for (std::size_t i = 0; i < logs_.size(); ++i) {
         const StepLog& log = logs_[i];
+        const StepChannels& c = channels_[i];
         simulator_.Simulate(params_, log.time, log.motor_torque, jacobian != nullptr, &response_);
         const double offset = fit_offsets_ ? parameters[q + i] : 0.0;
-        const std::size_t base = static_cast<std::size_t>(first_row_[i]);
-        for (std::size_t k = 0; k < log.time.size(); ++k) {
+        const std::size_t n = log.time.size();
+        std::size_t base = static_cast<std::size_t>(c.first_row);
+        for (std::size_t k = 0; k < n; ++k) {
           residuals[base + k] = response_.link_torque[k] + offset - log.link_torque[k];
           if (jacobian == nullptr) continue;
           double* row = jacobian + (base + k) * p;
           for (std::size_t j = 0; j < q; ++j) row[j] = response_.link_torque_sensitivity[k * q + j];
           for (std::size_t m = q; m < p; ++m) row[m] = (fit_offsets_ && m - q == i) ? 1.0 : 0.0;
+        }
+        // Angle channels: q_motor = n_g phi, q_link = Delta (no strain-gauge offset).
+        const double n_g = params_.gear_ratio;
+        for (const auto& [weight, measured, model, sensitivity, scale] :
+             {std::tuple{c.motor_weight, &log.motor_angle, &response_.motor_angle,
+                         &response_.motor_angle_sensitivity, n_g},
+              std::tuple{c.link_weight, &log.link_angle, &response_.deflection, &response_.deflection_sensitivity,
+                         1.0}}) {
+          if (weight == 0.0) continue;
+          base += n;
+          for (std::size_t k = 0; k < n; ++k) {
+            residuals[base + k] = weight * (scale * (*model)[k] - (*measured)[k]);
+            if (jacobian == nullptr) continue;
+            double* row = jacobian + (base + k) * p;
+            for (std::size_t j = 0; j < q; ++j) row[j] = weight * scale * (*sensitivity)[k * q + j];
+            for (std::size_t m = q; m < p; ++m) row[m] = 0.0;
+          }
         }
       }
     } catch (const IdentificationError& e) {
@@ -83,7 +135,7 @@ class StepResiduals final : public ResidualModel {
     }
     for (int i = 0; i < rows_; ++i) {
       if (!std::isfinite(residuals[i])) {
-        last_failure_ = "the simulated link torque is not finite";
+        last_failure_ = "the simulated response is not finite";
         return false;
       }
     }
@@ -104,7 +156,28 @@ class StepResiduals final : public ResidualModel {
     return out;
   }
 
-  const std::vector<int>& first_rows() const { return first_row_; }
+  /// The fit's channels: per log tau_link, then q_motor and q_link where used.
+  std::vector<FitChannel> Channels() const {
+    std::vector<FitChannel> out;
+    for (std::size_t i = 0; i < logs_.size(); ++i) {
+      const StepChannels& c = channels_[i];
+      const int n = static_cast<int>(logs_[i].time.size());
+      int begin = c.first_row;
+      out.push_back({logs_[i].path + ":tau_link", begin, n, logs_[i].link_torque.data()});
+      if (c.motor_weight > 0.0) out.push_back({logs_[i].path + ":q_motor", begin += n, n, c.weighted_motor.data()});
+      if (c.link_weight > 0.0) out.push_back({logs_[i].path + ":q_link", begin += n, n, c.weighted_link.data()});
+    }
+    return out;
+  }
+  /// RMSE back in the angle channels' units.
+  void UnweightRmse(FitResult& fit) const {
+    std::size_t index = 0;
+    for (const auto& c : channels_) {
+      ++index;
+      if (c.motor_weight > 0.0) fit.channels[index++].rmse /= c.motor_weight;
+      if (c.link_weight > 0.0) fit.channels[index++].rmse /= c.link_weight;
+    }
+  }
 
  private:
   const std::vector<StepLog>& logs_;
@@ -113,7 +186,7 @@ class StepResiduals final : public ResidualModel {
   bool fit_offsets_;
   DriveTrainSimulator simulator_;
   DriveTrainResponse response_;
-  std::vector<int> first_row_;
+  std::vector<StepChannels> channels_;
   int rows_ = 0;
   std::string last_failure_;
 };
@@ -137,7 +210,7 @@ void CheckStepLog(const StepLog& log) {
 std::unique_ptr<ResidualModel> MakeStepResiduals(const std::vector<StepLog>& logs, const DriveTrainParameters& start,
                                                  DriveTrainModel model, std::vector<DriveTrainParameter> free,
                                                  bool fit_offsets) {
-  return std::make_unique<StepResiduals>(logs, start, model, std::move(free), fit_offsets);
+  return std::make_unique<StepResiduals>(logs, start, model, std::move(free), fit_offsets, false);
 }
 
 
@@ -182,17 +255,14 @@ StepFitOutput FitStepResponses(const std::vector<StepLog>& logs, const DriveTrai
     }
   }
 
-  StepResiduals residuals(logs, start, options.model, ode_parameters, fit_offsets);
-  std::vector<FitChannel> channels;
-  for (std::size_t i = 0; i < logs.size(); ++i) {
-    channels.push_back({logs[i].path + ":tau_link", residuals.first_rows()[i],
-                        static_cast<int>(logs[i].time.size()), logs[i].link_torque.data()});
-  }
+  StepResiduals residuals(logs, start, options.model, ode_parameters, fit_offsets, true);
+  const std::vector<FitChannel> channels = residuals.Channels();
   FitOptions fit_options = options.fit;
   if (!fit_options.advice) fit_options.advice = StepAdvice;
 
   StepFitOutput output;
   output.fit = FitLeastSquares(residuals, fit_parameters, channels, fit_options);
+  residuals.UnweightRmse(output.fit);
   std::vector<double> estimate;
   for (const auto& e : output.fit.estimates) estimate.push_back(e.value);
   output.params = start;

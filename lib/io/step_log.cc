@@ -8,7 +8,7 @@
 namespace driveid {
 
 const std::vector<std::string>& StepLogColumns() {
-  static const std::vector<std::string> columns = {"t", "tau_motor", "tau_link"};
+  static const std::vector<std::string> columns = {"t", "tau_motor", "tau_link", "?q_motor", "?q_link"};
   return columns;
 }
 
@@ -26,6 +26,8 @@ StepLog MakeStepLog(CsvLog csv) {
   log.time = std::move(csv.columns[0]);
   log.motor_torque = std::move(csv.columns[1]);
   log.link_torque = std::move(csv.columns[2]);
+  log.motor_angle = std::move(csv.columns[3]);
+  log.link_angle = std::move(csv.columns[4]);
   return log;
 }
 

@@ -1,4 +1,5 @@
-// Step logs (docs/formats.md): t, tau_motor, tau_link.
+// Step logs (docs/formats.md): t, tau_motor, tau_link; optional q_motor (motor
+// encoder) and q_link (gear output angle), which separate k_Tl and k_Tg.
 #pragma once
 
 #include <array>
@@ -19,6 +20,8 @@ struct StepLog {
   std::vector<double> time;          ///< t [s], strictly increasing
   std::vector<double> motor_torque;  ///< tau_motor [N m], held between samples
   std::vector<double> link_torque;   ///< tau_link [N m], strain gauge
+  std::vector<double> motor_angle;   ///< q_motor [rad], motor encoder = n_g phi (optional: empty)
+  std::vector<double> link_angle;    ///< q_link [rad], gear output (link root) angle = Delta (optional)
 };
 
 /// The logical columns of the log (an entry "a|b": a, or else b).

@@ -99,6 +99,33 @@ double CalcLinkTorqueParameterDerivative(const DriveTrainParameters& p, DriveTra
   return SeriesStiffnessDerivative(p, parameter) * x[kPhi];
 }
 
+double CalcDeflection(const DriveTrainParameters& p, DriveTrainModel model, const double* x) {
+  if (model == DriveTrainModel::kFull) return x[kDeflection];
+  return p.gearbox_stiffness / (p.link_stiffness + p.gearbox_stiffness) * x[kPhi];
+}
+
+void CalcDeflectionStateGradient(const DriveTrainParameters& p, DriveTrainModel model, double* gradient) {
+  if (model == DriveTrainModel::kFull) {
+    gradient[kPhi] = 0.0;
+    gradient[kOmega] = 0.0;
+    gradient[kDeflection] = 1.0;
+    gradient[kDeflectionRate] = 0.0;
+  } else {
+    gradient[kPhi] = p.gearbox_stiffness / (p.link_stiffness + p.gearbox_stiffness);
+    gradient[kOmega] = 0.0;
+  }
+}
+
+double CalcDeflectionParameterDerivative(const DriveTrainParameters& p, DriveTrainModel model, const double* x,
+                                         DriveTrainParameter parameter) {
+  if (model == DriveTrainModel::kFull) return 0.0;
+  // d/dk (k_Tg / (k_Tl + k_Tg)) phi.
+  const double sum = p.link_stiffness + p.gearbox_stiffness;
+  if (parameter == DriveTrainParameter::kLinkStiffness) return -p.gearbox_stiffness / (sum * sum) * x[kPhi];
+  if (parameter == DriveTrainParameter::kGearboxStiffness) return p.link_stiffness / (sum * sum) * x[kPhi];
+  return 0.0;
+}
+
 void CalcDriveTrainDerivatives(const DriveTrainParameters& p, DriveTrainModel model, double motor_torque,
                                int friction_mode, const double* x, double* dx) {
   const Lumped lumped = CalcLumped(p);

@@ -127,6 +127,14 @@ double CalcNetTorque(const DriveTrainParameters& params, DriveTrainModel model, 
 /// Link torque tau_link = k_Tl Delta (reduced: k_eq phi) [N m], eq. (15).
 double CalcLinkTorque(const DriveTrainParameters& params, DriveTrainModel model, const double* state);
 
+/// Link deflection Delta [rad], the gear output (link root) angle with the
+/// link's far end fixed: full model the state, reduced k_Tg phi / (k_Tl + k_Tg).
+double CalcDeflection(const DriveTrainParameters& params, DriveTrainModel model, const double* state);
+/// d(Delta)/d(state) (row) and d(Delta)/d(parameter) at fixed state.
+void CalcDeflectionStateGradient(const DriveTrainParameters& params, DriveTrainModel model, double* gradient);
+double CalcDeflectionParameterDerivative(const DriveTrainParameters& params, DriveTrainModel model,
+                                         const double* state, DriveTrainParameter parameter);
+
 /// d(tau_link)/d(state) (row) and d(tau_link)/d(parameter) at fixed state.
 void CalcLinkTorqueStateGradient(const DriveTrainParameters& params, DriveTrainModel model, double* gradient);
 double CalcLinkTorqueParameterDerivative(const DriveTrainParameters& params, DriveTrainModel model,

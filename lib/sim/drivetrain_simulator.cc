@@ -84,6 +84,10 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem {
     out->link_torque.assign(samples, 0.0);
     out->friction_mode.assign(samples, 0);
     out->link_torque_sensitivity.assign(with_sensitivities ? samples * p : 0, 0.0);
+    out->motor_angle.assign(samples, 0.0);
+    out->deflection.assign(samples, 0.0);
+    out->motor_angle_sensitivity.assign(with_sensitivities ? samples * p : 0, 0.0);
+    out->deflection_sensitivity.assign(with_sensitivities ? samples * p : 0, 0.0);
     out->switch_count = 0;
     if (samples == 0) return;
 
@@ -208,16 +212,25 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem {
 
   void Record(std::size_t k, bool with_sensitivities, DriveTrainResponse* out) const {
     out->link_torque[k] = CalcLinkTorque(params_, model_, x_.data());
+    out->motor_angle[k] = x_[DriveTrainState::kMotorAngle];
+    out->deflection[k] = CalcDeflection(params_, model_, x_.data());
     out->friction_mode[k] = mode_;
     if (!with_sensitivities) return;
-    double gradient[4];
+    double gradient[4], deflection_gradient[4];
     CalcLinkTorqueStateGradient(params_, model_, gradient);
+    CalcDeflectionStateGradient(params_, model_, deflection_gradient);
     const std::size_t p = parameters_.size();
     for (std::size_t j = 0; j < p; ++j) {
       const double* s = &s_[j * static_cast<std::size_t>(n_)];
       double value = CalcLinkTorqueParameterDerivative(params_, model_, x_.data(), parameters_[j]);
-      for (int i = 0; i < n_; ++i) value += gradient[i] * s[i];
+      double deflection = CalcDeflectionParameterDerivative(params_, model_, x_.data(), parameters_[j]);
+      for (int i = 0; i < n_; ++i) {
+        value += gradient[i] * s[i];
+        deflection += deflection_gradient[i] * s[i];
+      }
       out->link_torque_sensitivity[k * p + j] = value;
+      out->motor_angle_sensitivity[k * p + j] = s[DriveTrainState::kMotorAngle];
+      out->deflection_sensitivity[k * p + j] = deflection;
     }
   }
 

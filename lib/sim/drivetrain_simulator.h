@@ -35,6 +35,10 @@ struct DriveTrainResponse {
   std::vector<double> link_torque;              ///< tau_link(t_k) [N m]
   /// d tau_link(t_k) / d p_j, row-major (sample k, parameter j); empty without sensitivities.
   std::vector<double> link_torque_sensitivity;
+  std::vector<double> motor_angle;              ///< phi(t_k) [rad, gear output side]
+  std::vector<double> deflection;               ///< Delta(t_k) [rad], the link root angle
+  /// d phi(t_k) / d p_j and d Delta(t_k) / d p_j (as link_torque_sensitivity).
+  std::vector<double> motor_angle_sensitivity, deflection_sensitivity;
   std::vector<int> friction_mode;               ///< friction mode at t_k (-1, 0, +1)
   int switch_count = 0;                         ///< number of stick/slip switches
 };

@@ -4,6 +4,7 @@
 #include "fit/step_fit.h"
 
 #include <cmath>
+#include <random>
 
 #include <catch2/catch.hpp>
 
@@ -137,4 +138,68 @@ TEST_CASE("a tanh-smoothed friction model would not pass: sticking matters") {
   const auto log = reference::SimulateStep(truth, 1000.0, 1.0, 0.02, -0.8, 0.0, 0.0, 1);
   CHECK(log.tau_link[300] == log.tau_link.back());
   CHECK(std::abs(log.tau_link.back()) == Approx(59.2).margin(0.1));
+}
+
+namespace {
+// The reference log with a motor encoder (q_motor = n_g phi, 12 bits per
+// motor revolution) and a gear-output encoder (q_link = Delta, 20 bits),
+// each with white jitter of one quantum before quantising; either may be
+// left out.
+StepLog WithAngles(const reference::Log& log, bool motor, bool link, unsigned seed) {
+  StepLog out = ToStepLog(log, "angles.csv");
+  std::mt19937 random(seed);
+  std::normal_distribution<double> jitter(0.0, 1.0);
+  const double motor_quantum = 2 * M_PI / 4096, link_quantum = 2 * M_PI / (1 << 20);
+  for (std::size_t k = 0; k < log.t.size(); ++k) {
+    const double qm = log.q_motor[k] + motor_quantum * jitter(random), ql = log.q_link[k] + link_quantum * jitter(random);
+    if (motor) out.motor_angle.push_back(motor_quantum * std::round(qm / motor_quantum));
+    if (link) out.link_angle.push_back(link_quantum * std::round(ql / link_quantum));
+  }
+  return out;
+}
+}  // namespace
+
+TEST_CASE("k_Tl and k_Tg separately: strain gauge, motor encoder and link angle together identify both") {
+  reference::DriveTrain truth;
+  StepFitOptions options;
+  options.free = {"d_g", "Theta_motor", "tau_c", "k_Tl", "k_Tg"};
+  DriveTrainParameters start = BadStart();
+  start.link_stiffness *= 0.6;
+  start.gearbox_stiffness *= 1.5;
+  int covered = 0;
+  for (unsigned seed = 31; seed < 37; ++seed) {
+    INFO("seed " << seed);
+    const auto log = reference::SimulateStep(truth, 1000.0, 0.2, 0.02, -0.8, 0.1, 0.0, seed);
+    const auto out = FitStepResponses({WithAngles(log, true, true, seed)}, start, options);
+    covered += RequireRecovered(out.fit, "k_Tl", 15000.0, 0.02);
+    covered += RequireRecovered(out.fit, "k_Tg", 18375.0, 0.02);
+    covered += RequireRecovered(out.fit, "Theta_motor", kTrueMotorInertia, 0.03);
+    covered += RequireRecovered(out.fit, "d_g", kTrueViscous, 0.03);
+    REQUIRE(out.fit.channels.size() == 3);
+    CHECK(out.fit.channels[1].name == "angles.csv:q_motor");
+    CHECK(out.fit.channels[2].name == "angles.csv:q_link");
+    CHECK(out.fit.channels[2].rmse < 1e-5);  // in rad: the 20-bit encoder
+  }
+  CHECK(covered >= 20);  // of 24 intervals (P(fewer) < 1 % for a correct fit)
+}
+
+TEST_CASE("k_Tl and k_Tg: the motor encoder alone fixes only their series combination; refused by name") {
+  reference::DriveTrain truth;
+  const auto log = reference::SimulateStep(truth, 1000.0, 0.2, 0.02, -0.8, 0.1, 0.0, 32);
+  StepFitOptions options;
+  options.free = {"d_g", "Theta_motor", "tau_c", "k_Tl", "k_Tg"};
+  try {
+    FitStepResponses({WithAngles(log, true, false, 6)}, BadStart(), options);
+    FAIL("k_Tl and k_Tg fitted from the motor encoder");
+  } catch (const IdentificationError& e) {
+    const std::string message = e.what();
+    CHECK(message.find("k_Tl") != std::string::npos);
+    CHECK(message.find("k_Tg") != std::string::npos);
+    CHECK(message.find("q_link") != std::string::npos);
+  }
+  // ... but with k_Tl fixed it gives k_Tg and the inertia, not only ratios.
+  options.free = {"d_g", "Theta_motor", "tau_c", "k_Tg"};
+  const auto out = FitStepResponses({WithAngles(log, true, false, 6)}, BadStart(), options);
+  RequireRecovered(out.fit, "k_Tg", 18375.0, 0.03);
+  RequireRecovered(out.fit, "Theta_motor", kTrueMotorInertia, 0.03);
 }

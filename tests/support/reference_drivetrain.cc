@@ -72,6 +72,8 @@ Log SimulateStep(const DriveTrain& d, double rate, double duration, double step_
     log.tau_motor.push_back(u);
     if (sigma > 0) error = k == 0 ? noise(engine) : rho * error + std::sqrt(1.0 - rho * rho) * noise(engine);
     log.tau_link.push_back(link + offset + error);
+    log.q_motor.push_back(d.n_g * x[0]);
+    log.q_link.push_back(d.full ? x[2] : d.k_Tg / (d.k_Tl + d.k_Tg) * x[0]);
     plant.u = u;
     if (plant.mode == 0 || x[1] == 0.0) plant.Decide(x);
     const double h = 1.0 / rate / substeps;

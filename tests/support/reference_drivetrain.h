@@ -19,6 +19,8 @@ struct DriveTrain {
 
 struct Log {
   std::vector<double> t, tau_motor, tau_link;
+  std::vector<double> q_motor;  ///< motor encoder n_g phi [rad], noise-free
+  std::vector<double> q_link;   ///< gear output (link root) angle Delta [rad], noise-free
 };
 
 /// Step of `amplitude` N m at `step_time`, sampled at `rate` Hz for `duration` s,
