@@ -91,30 +91,22 @@ JointFitOutput FitJoint(const std::vector<JointLog>& logs, const JointSection& s
       max_l = std::max(max_l, std::abs(dl.rate[k]));
     }
     const double floor_m = options.min_rate_fraction * max_m, floor_l = options.min_rate_fraction * max_l;
-    regression.BeginChannel(log.path + ":motor");
-    for (std::size_t k = 0; k < log.time.size(); ++k) {
-      if (!valid[k] || std::abs(dm.rate[k]) < floor_m || max_m == 0.0) continue;
-      const JointRegressors r = CalcJointRegressors(theta_m[k], dm.rate[k], dm.acceleration[k], theta_l[k], dl.rate[k],
-                                                    dl.acceleration[k]);
-      regression.AddRow({r.motor.begin(), r.motor.end()}, n * tau[k]);
-      out.time.push_back(log.time[k]);
-      out.measured.push_back(n * tau[k]);
-      out.equation.push_back(0);
-      out.log_index.push_back(static_cast<int>(i));
-    }
-    regression.BeginChannel(log.path + ":total");
-    for (std::size_t k = 0; k < log.time.size(); ++k) {
-      if (!valid[k] || std::abs(dm.rate[k]) < floor_m || std::abs(dl.rate[k]) < floor_l ||
-          max_l == 0.0) {
-        continue;
+    // Equation 0 (motor) needs the motor moving, 1 (total) both.
+    for (int equation : {0, 1}) {
+      regression.BeginChannel(log.path + (equation == 0 ? ":motor" : ":total"));
+      for (std::size_t k = 0; k < log.time.size(); ++k) {
+        const bool motor_moves = max_m > 0.0 && std::abs(dm.rate[k]) >= floor_m;
+        const bool link_moves = max_l > 0.0 && std::abs(dl.rate[k]) >= floor_l;
+        if (!valid[k] || !motor_moves || (equation == 1 && !link_moves)) continue;
+        const JointRegressors r = CalcJointRegressors(theta_m[k], dm.rate[k], dm.acceleration[k], theta_l[k],
+                                                      dl.rate[k], dl.acceleration[k]);
+        const auto& row = equation == 0 ? r.motor : r.total;
+        regression.AddRow({row.begin(), row.end()}, n * tau[k]);
+        out.time.push_back(log.time[k]);
+        out.measured.push_back(n * tau[k]);
+        out.equation.push_back(equation);
+        out.log_index.push_back(static_cast<int>(i));
       }
-      const JointRegressors r = CalcJointRegressors(theta_m[k], dm.rate[k], dm.acceleration[k], theta_l[k], dl.rate[k],
-                                                    dl.acceleration[k]);
-      regression.AddRow({r.total.begin(), r.total.end()}, n * tau[k]);
-      out.time.push_back(log.time[k]);
-      out.measured.push_back(n * tau[k]);
-      out.equation.push_back(1);
-      out.log_index.push_back(static_cast<int>(i));
     }
   }
   if (regression.rows() <= parameters.size()) {

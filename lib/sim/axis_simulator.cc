@@ -7,20 +7,16 @@
 
 #include "core/errors.h"
 #include "sim/cvodes_integrator.h"
+#include "sim/held_input_driver.h"
 
 namespace driveid {
 namespace {
-// Work budgets per simulation (as for the drive train): a pathological trial
-// point fails fast instead of grinding.
-constexpr long kSwitchesPerSample = 4;
-constexpr long kStepsPerSample = 200;
-constexpr long kBudgetConstant = 2000;
 constexpr int kQ = 0, kV = 1;
 
 int Sign(double value) { return (value > 0.0) - (value < 0.0); }
 }  // namespace
 
-class AxisSimulator::System final : public SensitivityOdeSystem {
+class AxisSimulator::System final : public SensitivityOdeSystem, public HeldInputSystem {
  public:
   System(std::vector<int> terms, double position_tolerance, double rate_tolerance) : terms_(std::move(terms)) {
     for (int j : terms_) {
@@ -89,53 +85,22 @@ class AxisSimulator::System final : public SensitivityOdeSystem {
     u_ = torque[0];
     mode_ = Sign(v0);
     if (mode_ == 0) DecideModeAtRest();
-    Record(0, with_sensitivities, out);
-    const long switch_budget = kBudgetConstant + kSwitchesPerSample * static_cast<long>(samples);
-    const long step_budget = kBudgetConstant + kStepsPerSample * static_cast<long>(samples);
-    long steps = 0, last_count = integrator_->step_count();
-    std::size_t k = 0;
-    while (k + 1 < samples) {
-      std::size_t end = k + 1;
-      while (end + 1 < samples && torque[end] == torque[k]) ++end;
-      u_ = torque[k];
-      if (x_[kV] == 0.0) DecideModeAtRest();
-      bool integrating = mode_ != 0;
-      if (integrating) Restart(time[k], with_sensitivities);
-      for (std::size_t m = k + 1; m <= end; ++m) {
-        if (integrating) {
-          bool stuck = false;
-          while (integrator_->Advance(time[m], time[end])) {
-            HandleSwitch(with_sensitivities);
-            if (++out->switch_count > switch_budget) {
-              throw IdentificationError(fmt::format(
-                  "simulation: more than {} stick/slip switches before t = {} s (chattering)", switch_budget,
-                  integrator_->time()));
-            }
-            if (mode_ == 0) {
-              stuck = true;
-              break;
-            }
-            Restart(integrator_->time(), with_sensitivities);
-          }
-          const long total = integrator_->step_count();
-          steps += total - last_count;
-          last_count = total;
-          if (steps > step_budget) {
-            throw IdentificationError(fmt::format(
-                "simulation: more than {} integrator steps before t = {} s (the parameters make the axis too stiff)",
-                step_budget, integrator_->time()));
-          }
-          if (stuck) {
-            integrating = false;
-          } else {
-            CopyFromIntegrator(with_sensitivities);
-          }
-        }
-        Record(m, with_sensitivities, out);
-      }
-      k = end;
-    }
+    with_sensitivities_ = with_sensitivities;
+    out_ = out;
+    Record(0);
+    out->switch_count = RunHeldInput(*integrator_, time, torque, *this, "axis");
   }
+
+  // HeldInputSystem (sim/held_input_driver.h): stuck, the axis has no dynamics.
+  void SetInput(double input) override {
+    u_ = input;
+    if (x_[kV] == 0.0) DecideModeAtRest();
+  }
+  bool Frozen() const override { return mode_ == 0; }
+  void Restart(double t) override { Restart(t, with_sensitivities_); }
+  void HandleSwitch() override { HandleSwitch(with_sensitivities_); }
+  void CopyFromIntegrator() override { CopyFromIntegrator(with_sensitivities_); }
+  void Record(std::size_t k) override { Record(k, with_sensitivities_, out_); }
 
  private:
   std::array<double, kAxisTerms> Regressors(const double* x) const {
@@ -220,6 +185,8 @@ class AxisSimulator::System final : public SensitivityOdeSystem {
   std::vector<const double*> pointers_;
   double u_ = 0.0;
   int mode_ = 0;
+  bool with_sensitivities_ = false;
+  AxisResponse* out_ = nullptr;
 };
 
 AxisSimulator::AxisSimulator(std::vector<int> terms, double position_tolerance, double rate_tolerance)

@@ -7,21 +7,16 @@
 
 #include "core/errors.h"
 #include "sim/cvodes_integrator.h"
+#include "sim/held_input_driver.h"
 
 namespace driveid {
 namespace {
-// Work budgets per simulation, so that a pathological trial point of the
-// solver (near-zero inertia, chattering) fails fast instead of grinding:
-// switches and integrator steps, per sample plus a constant.
-constexpr long kSwitchesPerSample = 4;
-constexpr long kStepsPerSample = 200;
-constexpr long kBudgetConstant = 2000;
 constexpr int kOmega = DriveTrainState::kMotorRate;
 
 int Sign(double value) { return (value > 0.0) - (value < 0.0); }
 }  // namespace
 
-class DriveTrainSimulator::System final : public SensitivityOdeSystem {
+class DriveTrainSimulator::System final : public SensitivityOdeSystem, public HeldInputSystem {
  public:
   System(DriveTrainModel model, const DriveTrainParameters& nominal, std::vector<DriveTrainParameter> parameters,
          const SimulationTolerances& tolerances)
@@ -91,72 +86,36 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem {
     out->switch_count = 0;
     if (samples == 0) return;
 
-    last_step_count_ = integrator_->step_count();
     x_.assign(static_cast<std::size_t>(n_), 0.0);
     s_.assign(p * static_cast<std::size_t>(n_), 0.0);
     mode_ = 0;
     motor_torque_ = motor_torque[0];
     DecideModeAtRest();
-    Record(0, with_sensitivities, out);
-
-    const long switch_budget = kBudgetConstant + kSwitchesPerSample * static_cast<long>(samples);
-    const long step_budget = kBudgetConstant + kStepsPerSample * static_cast<long>(samples);
-    long steps = 0;
-    std::size_t k = 0;
-    while (k + 1 < samples) {
-      std::size_t end = k + 1;
-      while (end + 1 < samples && motor_torque[end] == motor_torque[k]) ++end;
-      motor_torque_ = motor_torque[k];
-      if (x_[kOmega] == 0.0) DecideModeAtRest();
-      RefreshJacobian();
-      // A stuck reduced drive has no dynamics: state, sensitivities and the
-      // net torque stay constant until the command changes, so stuck samples
-      // are recorded without integrating.
-      bool integrating = !StuckWithoutDynamics();
-      if (integrating) RestartIntegrator(time[k], with_sensitivities);
-      for (std::size_t m = k + 1; m <= end; ++m) {
-        if (integrating) {
-          bool stuck = false;
-          while (integrator_->Advance(time[m], time[end])) {
-            HandleSwitch(with_sensitivities);
-            if (++out->switch_count > switch_budget) {
-              throw IdentificationError(fmt::format(
-                  "simulation: more than {} stick/slip switches before t = {} s (chattering)", switch_budget,
-                  integrator_->time()));
-            }
-            if (StuckWithoutDynamics()) {
-              stuck = true;
-              break;
-            }
-            RestartIntegrator(integrator_->time(), with_sensitivities);
-          }
-          const long total = integrator_->step_count();
-          steps += total - last_step_count_;
-          last_step_count_ = total;
-          if (steps > step_budget) {
-            throw IdentificationError(fmt::format(
-                "simulation: more than {} integrator steps before t = {} s (the parameters make the model too stiff)",
-                step_budget, integrator_->time()));
-          }
-          if (stuck) {
-            integrating = false;  // x_ and s_ hold the stuck state
-          } else {
-            CopyFromIntegrator(with_sensitivities);
-          }
-        }
-        Record(m, with_sensitivities, out);
-      }
-      k = end;
-    }
+    with_sensitivities_ = with_sensitivities;
+    out_ = out;
+    Record(0);
+    out->switch_count = RunHeldInput(*integrator_, time, motor_torque, *this, "model");
   }
+
+  // HeldInputSystem (sim/held_input_driver.h).
+  void SetInput(double input) override {
+    motor_torque_ = input;
+    if (x_[kOmega] == 0.0) DecideModeAtRest();
+    RefreshJacobian();
+  }
+  // A stuck reduced drive has no dynamics: state, sensitivities and the net
+  // torque stay constant until the command changes.
+  bool Frozen() const override { return model_ == DriveTrainModel::kReduced && mode_ == 0; }
+  void Restart(double t) override { RestartIntegrator(t, with_sensitivities_); }
+  void HandleSwitch() override { HandleSwitch(with_sensitivities_); }
+  void CopyFromIntegrator() override { CopyFromIntegrator(with_sensitivities_); }
+  void Record(std::size_t k) override { Record(k, with_sensitivities_, out_); }
 
   DriveTrainModel model() const { return model_; }
   const std::vector<DriveTrainParameter>& parameters() const { return parameters_; }
 
  private:
   double jacobian_cache(int col, int row) const { return jacobian_[static_cast<std::size_t>(col * n_ + row)]; }
-
-  bool StuckWithoutDynamics() const { return model_ == DriveTrainModel::kReduced && mode_ == 0; }
 
   void RefreshJacobian() { CalcDriveTrainStateJacobian(params_, model_, mode_, jacobian_.data()); }
 
@@ -245,7 +204,8 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem {
   std::vector<const double*> pointers_;
   double motor_torque_ = 0.0;
   int mode_ = 0;
-  long last_step_count_ = 0;
+  bool with_sensitivities_ = false;
+  DriveTrainResponse* out_ = nullptr;
 };
 
 DriveTrainSimulator::DriveTrainSimulator(DriveTrainModel model, const DriveTrainParameters& nominal,

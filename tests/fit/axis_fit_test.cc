@@ -3,6 +3,7 @@
 #include "fit/axis_fit.h"
 
 #include <cmath>
+#include <functional>
 #include <map>
 #include <random>
 #include <string>
@@ -100,11 +101,10 @@ TEST_CASE("axis: constant-rate logs identify friction only, a free inertia is re
 
 namespace {
 
-// Adequacy tests' own generator (not lib/sim): a joint swinging about the
+// The tests' own generator (not lib/sim): a joint swinging about the
 // horizontal, q = 0.6 sin(2 pi 0.5 t) + 0.2 sin(2 pi 1.7 t), 1 kHz for 20 s,
-// tau = J q'' + b q' + tau_c sgn q' + tau_0 + g_c cos q + g_s sin q
-// + (drift_rate t) + white noise 0.02.
-AxisLog SwingLog(double viscous, double gravity_cos, double gravity_sin, double drift_rate, unsigned seed) {
+// tau = torque(t, q, q', q'') + white noise 0.02.
+AxisLog SwingWith(const std::function<double(double, double, double, double)>& torque, unsigned seed) {
   std::mt19937 random(seed);
   std::normal_distribution<double> noise(0.0, 0.02);
   AxisLog log;
@@ -116,10 +116,20 @@ AxisLog SwingLog(double viscous, double gravity_cos, double gravity_sin, double 
     const double qdd = -0.6 * w1 * w1 * std::sin(w1 * t) - 0.2 * w2 * w2 * std::sin(w2 * t);
     log.time.push_back(t);
     log.position.push_back(q);
-    log.force.push_back(0.05 * qdd + viscous * qd + 0.3 * ((qd > 0) - (qd < 0)) + 0.1 + gravity_cos * std::cos(q) +
-                        gravity_sin * std::sin(q) + drift_rate * t + noise(random));
+    log.force.push_back(torque(t, q, qd, qdd) + noise(random));
   }
   return log;
+}
+
+// The adequacy checks' swing: J 0.05, b, tau_c 0.3, tau_0 0.1, gravity
+// g_c cos q + g_s sin q and a drift of drift_rate t.
+AxisLog SwingLog(double viscous, double gravity_cos, double gravity_sin, double drift_rate, unsigned seed) {
+  return SwingWith(
+      [&](double t, double q, double qd, double qdd) {
+        return 0.05 * qdd + viscous * qd + 0.3 * ((qd > 0) - (qd < 0)) + 0.1 + gravity_cos * std::cos(q) +
+               gravity_sin * std::sin(q) + drift_rate * t;
+      },
+      seed);
 }
 
 bool HasWarning(const FitResult& fit, const std::string& start) {
@@ -171,24 +181,14 @@ TEST_CASE("axis adequacy: drift within a log and logs that disagree draw warning
 
 namespace {
 
-// Direction-dependent friction from its own generator: the two-sine swing
-// of SwingLog with tau_c+ 0.4 / tau_c- 0.2 and b+ 0.25 / b- 0.15.
+// Direction-dependent friction on the same swing: tau_c+ 0.4 / tau_c- 0.2
+// and b+ 0.25 / b- 0.15, J 0.05.
 AxisLog AsymmetricLog(unsigned seed) {
-  std::mt19937 random(seed);
-  std::normal_distribution<double> noise(0.0, 0.02);
-  AxisLog log;
-  log.path = "asymmetric.csv";
-  for (int k = 0; k <= 20000; ++k) {
-    const double t = k / 1000.0, w1 = 2 * M_PI * 0.5, w2 = 2 * M_PI * 1.7;
-    const double q = 0.6 * std::sin(w1 * t) + 0.2 * std::sin(w2 * t);
-    const double qd = 0.6 * w1 * std::cos(w1 * t) + 0.2 * w2 * std::cos(w2 * t);
-    const double qdd = -0.6 * w1 * w1 * std::sin(w1 * t) - 0.2 * w2 * w2 * std::sin(w2 * t);
-    const double friction = qd > 0 ? 0.4 + 0.25 * qd : (qd < 0 ? -0.2 + 0.15 * qd : 0.0);
-    log.time.push_back(t);
-    log.position.push_back(q);
-    log.force.push_back(0.05 * qdd + friction + noise(random));
-  }
-  return log;
+  return SwingWith(
+      [](double, double, double qd, double qdd) {
+        return 0.05 * qdd + (qd > 0 ? 0.4 + 0.25 * qd : (qd < 0 ? -0.2 + 0.15 * qd : 0.0));
+      },
+      seed);
 }
 
 }  // namespace
