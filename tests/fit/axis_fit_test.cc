@@ -46,7 +46,7 @@ TEST_CASE("axis: multisine logs recover the truth within 1 % with the defaults")
     e.noise = 0.05;
     e.duration = 25.0;
     e.seed = seed;
-    const AxisFitOutput out = FitAxis({SimulateAxisExperiment(kTruth, e)}, AxisSection{0.1, 0.5, 2.0, 0.0, {}, {}, {}, {}, {}, {}, {}, {}}, {});
+    const AxisFitOutput out = FitAxis({SimulateAxisExperiment(kTruth, e)}, AxisSection{0.1, 0.5, 2.0, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}}, {});
     CHECK(out.params.inertia == Approx(kTruth.inertia).epsilon(0.01));
     CHECK(out.params.viscous == Approx(kTruth.viscous).epsilon(0.01));
     CHECK(out.params.coulomb == Approx(kTruth.coulomb).epsilon(0.01));
@@ -68,7 +68,7 @@ TEST_CASE("axis: irregular sampling is detected and handled without assuming a r
     irregular.position.push_back(log.position[k]);
     irregular.force.push_back(log.force[k]);
   }
-  const AxisFitOutput out = FitAxis({irregular}, AxisSection{0.1, 0.5, 2.0, 0.0, {}, {}, {}, {}, {}, {}, {}, {}}, {});
+  const AxisFitOutput out = FitAxis({irregular}, AxisSection{0.1, 0.5, 2.0, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}}, {});
   CHECK(out.method.find("irregular") != std::string::npos);
   CHECK(out.params.inertia == Approx(kTruth.inertia).epsilon(0.02));
   CHECK(out.params.coulomb == Approx(kTruth.coulomb).epsilon(0.02));
@@ -84,7 +84,7 @@ TEST_CASE("axis: constant-rate logs identify friction only, a free inertia is re
     e.duration = 5.0;
     logs.push_back(SimulateAxisExperiment(kTruth, e));
   }
-  AxisSection start{std::nullopt, 0.5, 2.0, 0.0, {}, {}, {}, {}, {}, {}, {}, {}};  // inertia not given
+  AxisSection start{std::nullopt, 0.5, 2.0, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};  // inertia not given
   try {
     FitAxis(logs, start, {});
     FAIL("fitted an inertia from constant-rate logs");
@@ -218,7 +218,7 @@ TEST_CASE("axis: an offset with both Coulomb directions, or coulomb with its rep
   AxisFitOptions both;
   both.free = {"inertia", "offset", "coulomb_pos", "coulomb_neg"};
   try {
-    FitAxis({log}, AxisSection{{}, 0.2, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}}, both);
+    FitAxis({log}, AxisSection{{}, 0.2, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}}, both);
     FAIL("no refusal");
   } catch (const IdentificationError& e) {
     const std::string message = e.what();

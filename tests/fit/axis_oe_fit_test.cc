@@ -102,7 +102,7 @@ TEST_CASE("axis simulator: sensitivities match central differences through stick
 TEST_CASE("axis OE: torque steps from an independent generator recover J, b, tau_c, tau_0 with covering intervals") {
   AxisOeOptions options;
   options.free = {"inertia", "viscous", "coulomb", "offset"};
-  AxisSection start{0.08, 0.1, 0.5, 0.0, {}, {}, {}, {}, {}, {}, {}, {}};
+  AxisSection start{0.08, 0.1, 0.5, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
   int covered = 0, total = 0;
   for (unsigned seed : {1u, 2u, 3u}) {
     const AxisLog log = StepLog({}, 2 * M_PI / 4096, 0.05, seed, true);
@@ -132,7 +132,7 @@ TEST_CASE("axis OE: per-direction Coulomb from position alone") {
   const AxisLog log = StepLog(truth, 2 * M_PI / 4096, 0.0, 4, false);
   AxisOeOptions options;
   options.free = {"inertia", "viscous", "coulomb_pos", "coulomb_neg"};
-  AxisSection start{0.08, 0.1, {}, {}, {}, {}, 0.5, 0.5, {}, {}, {}, {}};
+  AxisSection start{0.08, 0.1, {}, {}, {}, {}, 0.5, 0.5, {}, {}, {}, {}, {}, {}};
   const AxisOeOutput out = FitAxisOutputError({log}, start, nullptr, options);
   CHECK(out.params.coulomb_pos == Approx(1.1).epsilon(0.02));
   CHECK(out.params.coulomb_neg == Approx(0.7).epsilon(0.02));
@@ -148,7 +148,7 @@ TEST_CASE("axis OE: one direction of motion cannot separate offset and Coulomb: 
   log.force.resize(1200);
   AxisOeOptions options;
   options.free = {"inertia", "viscous", "coulomb", "offset"};
-  AxisSection start{0.08, 0.1, 0.5, 0.0, {}, {}, {}, {}, {}, {}, {}, {}};
+  AxisSection start{0.08, 0.1, 0.5, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
   try {
     FitAxisOutputError({log}, start, nullptr, options);
     FAIL("no refusal");

@@ -81,7 +81,7 @@ StepSamples FitStepSeeds(unsigned first, unsigned count, double rho) {
   StepSamples out;
   for (unsigned seed = first; seed < first + count; ++seed) {
     const auto log = reference::SimulateStep(truth, 1000.0, 0.2, 0.02, -0.8, 0.1, 0.0, seed, rho);
-    const auto fit = FitStepResponses({{"mc.csv", log.t, log.tau_motor, log.tau_link}}, start, {});
+    const auto fit = FitStepResponses({{"mc.csv", log.t, log.tau_motor, log.tau_link, {}, {}}}, start, {});
     out.viscous.Add(Find(fit.fit, "d_g"), truth.d_g);
     out.inertia.Add(Find(fit.fit, "Theta_motor"), true_inertia);
     out.coulomb.Add(Find(fit.fit, "tau_c"), truth.tau_c);

@@ -24,7 +24,7 @@ StepLog Log(bool full) {
   reference::DriveTrain truth;
   truth.full = full;
   const auto log = reference::SimulateStep(truth, full ? 5000.0 : 1000.0, 0.2, 0.02, -0.8, 0.1, 0.0, 3);
-  return {"ref.csv", log.t, log.tau_motor, log.tau_link};
+  return {"ref.csv", log.t, log.tau_motor, log.tau_link, {}, {}};
 }
 
 void CheckGradient(DriveTrainModel model, const std::vector<DriveTrainParameter>& free, bool offsets, double step, double tolerance) {

@@ -20,7 +20,7 @@ constexpr double kTrueMotorInertia = 0.413 / 6400.0;
 constexpr double kTrueCoulomb = 5.0;
 
 StepLog ToStepLog(const reference::Log& log, const std::string& name) {
-  return {name, log.t, log.tau_motor, log.tau_link};
+  return {name, log.t, log.tau_motor, log.tau_link, {}, {}};
 }
 
 DriveTrainParameters BadStart() {
@@ -126,7 +126,7 @@ TEST_CASE("both stiffnesses free with the inertia: refused, naming the stiffness
 }
 
 TEST_CASE("a log without a step cannot identify anything") {
-  StepLog flat{"flat.csv", {0, 0.001, 0.002, 0.003}, {0, 0, 0, 0}, {0.1, -0.1, 0.05, 0.0}};
+  StepLog flat{"flat.csv", {0, 0.001, 0.002, 0.003}, {0, 0, 0, 0}, {0.1, -0.1, 0.05, 0.0}, {}, {}};
   CHECK_THROWS_AS(FitStepResponses({flat}, BadStart(), {}), IdentificationError);
 }
 

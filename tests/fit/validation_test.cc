@@ -68,12 +68,12 @@ TEST_CASE("validate step: the reference drive train's log is simulated from its 
   params.motor_inertia = truth.J / (truth.n_g * truth.n_g);
   params.viscous_friction = truth.d_g;
   params.coulomb_friction = truth.tau_c;
-  const auto v = ValidateSteps({{"ref.csv", ref.t, ref.tau_motor, ref.tau_link}}, params, DriveTrainModel::kReduced);
+  const auto v = ValidateSteps({{"ref.csv", ref.t, ref.tau_motor, ref.tau_link, {}, {}}}, params, DriveTrainModel::kReduced);
   REQUIRE(v.size() == 1);
   CHECK(v[0].stats.rmse == Approx(0.1).epsilon(0.15));
   CHECK(v[0].stats.name == "ref.csv:tau_link");
   DriveTrainParameters wrong = params;
   wrong.coulomb_friction = 2.0 * truth.tau_c;
-  CHECK(ValidateSteps({{"ref.csv", ref.t, ref.tau_motor, ref.tau_link}}, wrong, DriveTrainModel::kReduced)[0]
+  CHECK(ValidateSteps({{"ref.csv", ref.t, ref.tau_motor, ref.tau_link, {}, {}}}, wrong, DriveTrainModel::kReduced)[0]
             .stats.rmse > 0.3);
 }
