@@ -20,7 +20,7 @@ AxisLog ParseAxisLog(const std::string& path, const std::string& text,
 }
 
 AxisLog MakeAxisLog(CsvLog csv, double torque_constant) {
-  const std::string path = csv.segment.empty() ? csv.path : csv.path + " [" + csv.segment + "]";
+  const std::string path = csv.label();
   AxisLog log{path, std::move(csv.columns[0]), std::move(csv.columns[1]), std::move(csv.columns[2]),
               std::move(csv.columns[3])};
   if (csv.names[2] == "i") {

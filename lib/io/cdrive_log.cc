@@ -20,7 +20,7 @@ CDriveLog ParseCDriveLog(const std::string& path, const std::string& text,
 }
 
 CDriveLog MakeCDriveLog(CsvLog csv, double torque_constant) {
-  const std::string path = csv.segment.empty() ? csv.path : csv.path + " [" + csv.segment + "]";
+  const std::string path = csv.label();
   CDriveLog log;
   log.path = path;
   log.time = std::move(csv.columns[0]);

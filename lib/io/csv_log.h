@@ -24,6 +24,8 @@ struct CsvLog {
   std::vector<std::string> notes;          ///< expressions, --rate, crops applied (for the provenance)
 
   std::size_t rows() const { return columns.empty() ? 0 : columns.front().size(); }
+  /// The log's name in messages and fits: the path, with " [segment]" for part of a file.
+  std::string label() const { return segment.empty() ? path : path + " [" + segment + "]"; }
   /// Column by logical name; throws std::out_of_range for a name not requested.
   const std::vector<double>& column(const std::string& name) const;
 };

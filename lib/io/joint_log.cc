@@ -13,7 +13,7 @@ const std::vector<std::string>& JointLogColumns() {
 }
 
 JointLog MakeJointLog(CsvLog csv, double torque_constant) {
-  const std::string path = csv.segment.empty() ? csv.path : csv.path + " [" + csv.segment + "]";
+  const std::string path = csv.label();
   JointLog log{path, std::move(csv.columns[0]), std::move(csv.columns[1]), std::move(csv.columns[2]),
                std::move(csv.columns[3])};
   if (csv.names[3] == "i") {

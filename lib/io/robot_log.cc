@@ -20,7 +20,7 @@ RobotLog ParseRobotLog(const std::string& path, const std::string& text,
 }
 
 RobotLog MakeRobotLog(CsvLog csv) {
-  const std::string path = csv.segment.empty() ? csv.path : csv.path + " [" + csv.segment + "]";
+  const std::string path = csv.label();
   RobotLog log;
   log.path = path;
   log.time = std::move(csv.columns[0]);

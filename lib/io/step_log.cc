@@ -20,7 +20,7 @@ StepLog ParseStepLog(const std::string& path, const std::string& text,
 }
 
 StepLog MakeStepLog(CsvLog csv) {
-  const std::string path = csv.segment.empty() ? csv.path : csv.path + " [" + csv.segment + "]";
+  const std::string path = csv.label();
   StepLog log;
   log.path = path;
   log.time = std::move(csv.columns[0]);
