@@ -17,15 +17,6 @@ namespace {
 // Samples over which the start rate is taken when qd is not logged.
 constexpr std::size_t kStartRateSamples = 10;
 
-double RmsDeviation(const std::vector<double>& x) {
-  double mean = 0.0;
-  for (double v : x) mean += v;
-  mean /= static_cast<double>(x.size());
-  double sum = 0.0;
-  for (double v : x) sum += (v - mean) * (v - mean);
-  return std::sqrt(sum / static_cast<double>(x.size()));
-}
-
 // One log's channels: position, and rate if logged; weights 1 / RMS deviation.
 struct OeLog {
   const AxisLog* log = nullptr;
@@ -187,7 +178,7 @@ AxisOeOutput FitAxisOutputError(const std::vector<AxisLog>& logs, const AxisSect
       const std::size_t m = std::min(kStartRateSamples, log.time.size() - 1);
       l.v0 = (log.position[m] - log.position[0]) / (log.time[m] - log.time[0]);
     }
-    const double q_scale = RmsDeviation(log.position);
+    const double q_scale = CalcRmsDeviation(log.position);
     if (!(q_scale > 0.0)) {
       throw IdentificationError(fmt::format("{}: the position never changes: output error has nothing to fit",
                                             log.path));
@@ -195,7 +186,7 @@ AxisOeOutput FitAxisOutputError(const std::vector<AxisLog>& logs, const AxisSect
     l.position_weight = 1.0 / q_scale;
     position_range = std::max(position_range, q_scale);
     if (!log.rate.empty()) {
-      const double v_scale = RmsDeviation(log.rate);
+      const double v_scale = CalcRmsDeviation(log.rate);
       if (v_scale > 0.0) l.rate_weight = 1.0 / v_scale;
       rate_range = std::max(rate_range, v_scale);
     }

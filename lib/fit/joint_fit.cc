@@ -60,8 +60,6 @@ JointFitOutput FitJoint(const std::vector<JointLog>& logs, const JointSection& s
 
   JointFitOutput out;
   LinearRegression regression(columns);
-  std::vector<double> total_time, total_measured;
-  std::vector<int> total_log;
   for (std::size_t i = 0; i < logs.size(); ++i) {
     const JointLog& log = logs[i];
     if (log.time.size() < kMinAxisLogSamples) {

@@ -156,6 +156,17 @@ LongRunCovariance CalcLongRunCovariance(const Eigen::Ref<const RowMatrix>& jacob
   return out;
 }
 
+double CalcRmsDeviation(const std::vector<double>& values) {
+  if (values.empty()) return 0.0;
+  const double n = static_cast<double>(values.size());
+  double mean = 0.0;
+  for (double v : values) mean += v;
+  mean /= n;
+  double sum = 0.0;
+  for (double v : values) sum += (v - mean) * (v - mean);
+  return std::sqrt(sum / n);
+}
+
 double StudentT975(int dof) {
   if (dof < 1) return std::numeric_limits<double>::infinity();
   const boost::math::students_t distribution(static_cast<double>(dof));

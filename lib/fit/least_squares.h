@@ -85,6 +85,10 @@ struct LongRunCovariance {
 LongRunCovariance CalcLongRunCovariance(const Eigen::Ref<const RowMatrix>& jacobian,
                                         const Eigen::Ref<const Eigen::VectorXd>& residuals);
 
+/// Root mean square deviation of `values` from their mean (0 for none): the
+/// scale by which fits weight a channel against another of other units.
+double CalcRmsDeviation(const std::vector<double>& values);
+
 /// Two-sided 97.5 % quantile of Student's t with `dof` degrees of freedom.
 double StudentT975(int dof);
 

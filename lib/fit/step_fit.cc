@@ -44,13 +44,6 @@ std::string StepAdvice(const std::vector<std::string>& involved) {
   return fmt::format("{}", fmt::join(advice, "; "));
 }
 
-double RmsDeviation(const std::vector<double>& x) {
-  double mean = 0.0, sum = 0.0;
-  for (double v : x) mean += v / static_cast<double>(x.size());
-  for (double v : x) sum += (v - mean) * (v - mean);
-  return std::sqrt(sum / static_cast<double>(x.size()));
-}
-
 // The residual channels of one log: the strain gauge, then (when logged and
 // used) the motor encoder q_motor = n_g phi and the link angle q_link = Delta,
 // each angle weighted by RMS(tau_link) / RMS(angle) so that all count alike
@@ -72,17 +65,17 @@ class StepResiduals final : public ResidualModel {
       c.first_row = rows_;
       const int n = static_cast<int>(log.time.size());
       rows_ += n;
-      const double torque_scale = RmsDeviation(log.link_torque);
-      if (use_angles && !log.motor_angle.empty() && RmsDeviation(log.motor_angle) > 0.0 && torque_scale > 0.0) {
-        c.motor_weight = torque_scale / RmsDeviation(log.motor_angle);
-        for (double q : log.motor_angle) c.weighted_motor.push_back(q * c.motor_weight);
+      const double torque_scale = CalcRmsDeviation(log.link_torque);
+      // An angle channel is used when asked for, logged and moving.
+      const auto weigh = [&](const std::vector<double>& angle, double* weight, std::vector<double>* weighted) {
+        const double angle_scale = use_angles ? CalcRmsDeviation(angle) : 0.0;
+        if (!(angle_scale > 0.0 && torque_scale > 0.0)) return;
+        *weight = torque_scale / angle_scale;
+        for (double q : angle) weighted->push_back(q * *weight);
         rows_ += n;
-      }
-      if (use_angles && !log.link_angle.empty() && RmsDeviation(log.link_angle) > 0.0 && torque_scale > 0.0) {
-        c.link_weight = torque_scale / RmsDeviation(log.link_angle);
-        for (double q : log.link_angle) c.weighted_link.push_back(q * c.link_weight);
-        rows_ += n;
-      }
+      };
+      weigh(log.motor_angle, &c.motor_weight, &c.weighted_motor);
+      weigh(log.link_angle, &c.link_weight, &c.weighted_link);
       channels_.push_back(std::move(c));
     }
   }

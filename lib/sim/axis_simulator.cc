@@ -56,7 +56,7 @@ class AxisSimulator::System final : public SensitivityOdeSystem, public HeldInpu
       forcing = -Regressors(x)[static_cast<std::size_t>(term)] / theta_[kAxisInertia];
     } else if (StribeckActive()) {
       // d/d tau_s and d/d v_s of tau_s m exp(-(v/v_s)^2).
-      const double vs = theta_[kAxisStribeckVelocity], e = std::exp(-(x[kV] / vs) * (x[kV] / vs));
+      const double vs = theta_[kAxisStribeckVelocity], e = StribeckFactor(x[kV]);
       forcing = term == kAxisStribeck ? -mode_ * e / theta_[kAxisInertia]
                                       : -theta_[kAxisStribeck] * mode_ * e * 2.0 * x[kV] * x[kV] / (vs * vs * vs) /
                                             theta_[kAxisInertia];
