@@ -5,8 +5,10 @@
 // 0.85-1.15) and the 95 % intervals must cover the truth about 95 % of the
 // time. With 400 seeds the ratio itself scatters by about 3.5 % (1 / sqrt(2 N)),
 // so the band is over four of its standard deviations wide on each side.
+#include <array>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 #include <random>
 #include <string>
 #include <vector>
@@ -137,22 +139,32 @@ AxisLog MakeAxisLog(double rho, double sigma, double quantum, unsigned seed) {
   return log;
 }
 
-void AxisCoverage(double rho, double quantum, int seeds, double low, double high) {
+// Coverage of the four axis terms over `seeds` fits (`fit(seed)`), each
+// within [low, high]; `label` names the case in messages.
+void CheckAxisCoverage(const std::string& label, int seeds, const std::function<FitResult(unsigned)>& fit,
+                       const std::array<double, 4>& truth, double low, double high) {
   Sample inertia, viscous, coulomb, offset;
   for (int seed = 0; seed < seeds; ++seed) {
-    const auto out = FitAxis({MakeAxisLog(rho, 0.05, quantum, 7000u + static_cast<unsigned>(seed))}, AxisSection{}, {});
-    inertia.Add(Find(out.fit, "inertia"), 0.05);
-    viscous.Add(Find(out.fit, "viscous"), 0.2);
-    coulomb.Add(Find(out.fit, "coulomb"), 0.3);
-    offset.Add(Find(out.fit, "offset"), 0.1);
+    const FitResult result = fit(static_cast<unsigned>(seed));
+    inertia.Add(Find(result, "inertia"), truth[0]);
+    viscous.Add(Find(result, "viscous"), truth[1]);
+    coulomb.Add(Find(result, "coulomb"), truth[2]);
+    offset.Add(Find(result, "offset"), truth[3]);
   }
   for (const auto& [name, s] : {std::pair<const char*, const Sample*>{"inertia", &inertia}, {"viscous", &viscous},
                                 {"coulomb", &coulomb}, {"offset", &offset}}) {
-    INFO("rho " << rho << ", " << name << ": empirical / reported std = " << s->Ratio() << ", 95 % coverage "
-                << s->Coverage());
+    INFO(label << ", " << name << ": empirical / reported std = " << s->Ratio() << ", 95 % coverage "
+               << s->Coverage());
     CHECK(s->Coverage() >= low);
     CHECK(s->Coverage() <= high);
   }
+}
+
+void AxisCoverage(double rho, double quantum, int seeds, double low, double high) {
+  CheckAxisCoverage(
+      "rho " + std::to_string(rho), seeds,
+      [&](unsigned seed) { return FitAxis({MakeAxisLog(rho, 0.05, quantum, 7000u + seed)}, AxisSection{}, {}).fit; },
+      {0.05, 0.2, 0.3, 0.1}, low, high);
 }
 
 }  // namespace
@@ -208,7 +220,6 @@ AxisLog MakeStepAxisLog(double rho, unsigned seed) {
 }
 
 void OutputErrorCoverage(double rho, int seeds, double low, double high) {
-  Sample inertia, viscous, coulomb, offset;
   AxisOeOptions options;
   options.free = {"inertia", "viscous", "coulomb", "offset"};
   AxisSection start;
@@ -216,21 +227,10 @@ void OutputErrorCoverage(double rho, int seeds, double low, double high) {
   start.viscous = 0.1;
   start.coulomb = 0.5;
   start.offset = 0.0;
-  for (int seed = 0; seed < seeds; ++seed) {
-    const auto out = FitAxisOutputError({MakeStepAxisLog(rho, 9000u + static_cast<unsigned>(seed))}, start, nullptr,
-                                        options);
-    inertia.Add(Find(out.fit, "inertia"), 0.05);
-    viscous.Add(Find(out.fit, "viscous"), 0.2);
-    coulomb.Add(Find(out.fit, "coulomb"), 1.0);
-    offset.Add(Find(out.fit, "offset"), 0.3);
-  }
-  for (const auto& [name, s] : {std::pair<const char*, const Sample*>{"inertia", &inertia}, {"viscous", &viscous},
-                                {"coulomb", &coulomb}, {"offset", &offset}}) {
-    INFO("OE rho " << rho << ", " << name << ": empirical / reported std = " << s->Ratio() << ", 95 % coverage "
-                << s->Coverage());
-    CHECK(s->Coverage() >= low);
-    CHECK(s->Coverage() <= high);
-  }
+  CheckAxisCoverage(
+      "OE rho " + std::to_string(rho), seeds,
+      [&](unsigned seed) { return FitAxisOutputError({MakeStepAxisLog(rho, 9000u + seed)}, start, nullptr, options).fit; },
+      {0.05, 0.2, 1.0, 0.3}, low, high);
 }
 
 }  // namespace
