@@ -7,6 +7,8 @@
 // the integrator's tolerance (1e-7 relative), as in drivetrain_simulator_test.
 #include "fit/scaled_cost.h"
 
+#include <cmath>
+
 #include <ceres/gradient_checker.h>
 #include <ceres/numeric_diff_options.h>
 
@@ -79,4 +81,59 @@ TEST_CASE("step fit, full model: analytic Jacobian of the scaled cost matches ce
                  DriveTrainParameter::kGearboxInertia, DriveTrainParameter::kLinkStiffness,
                  DriveTrainParameter::kCoulombFriction},
                 false, 1e-3, 2e-3);
+}
+
+namespace {
+
+// r_i = p0 + p1 t_i - y_i, counting its evaluations.
+class CountingLine final : public ResidualModel {
+ public:
+  int residual_count() const override { return 3; }
+  bool Evaluate(const double* p, double* r, double* jacobian) override {
+    ++calls;
+    if (jacobian != nullptr) ++jacobian_calls;
+    for (int i = 0; i < 3; ++i) {
+      r[i] = p[0] + p[1] * i - 2.0 * i;
+      if (jacobian != nullptr) {
+        jacobian[2 * i] = 1.0;
+        jacobian[2 * i + 1] = i;
+      }
+    }
+    return true;
+  }
+  int calls = 0, jacobian_calls = 0;
+};
+
+}  // namespace
+
+TEST_CASE("scaled cost: one model evaluation per point, whatever Ceres asks of it again") {
+  CountingLine line;
+  ScaledCost cost(line, {2.0, 4.0});
+  double z[] = {0.5, 0.25};
+  const double* parameters[] = {z};
+  double r1[3], r2[3], j1[6], j2[6];
+  double* jacobians1[] = {j1};
+  double* jacobians2[] = {j2};
+  REQUIRE(cost.Evaluate(parameters, r1, jacobians1));
+  REQUIRE(cost.Evaluate(parameters, r2, nullptr));     // its cost again
+  REQUIRE(cost.Evaluate(parameters, r2, jacobians2));  // its Jacobian again
+  CHECK(line.calls == 1);
+  CHECK(cost.model_evaluations() == 1);
+  for (int i = 0; i < 3; ++i) CHECK(r2[i] == r1[i]);
+  for (int i = 0; i < 6; ++i) CHECK(j2[i] == j1[i]);
+  CHECK(j1[1] == 0.0);
+  CHECK(j1[3] == 4.0);  // dr/dz = dr/dp * scale
+
+  // Residuals first, then the Jacobian at that point: the model must be
+  // evaluated again (the memo held no Jacobian).
+  z[0] = 0.75;
+  REQUIRE(cost.Evaluate(parameters, r1, nullptr));
+  REQUIRE(cost.Evaluate(parameters, r2, jacobians2));
+  CHECK(line.calls == 3);
+  CHECK(line.jacobian_calls == 2);
+  CHECK(r1[0] == 1.5);
+  // A point differing in the last bit is another point.
+  z[0] = std::nextafter(0.75, 1.0);
+  REQUIRE(cost.Evaluate(parameters, r1, nullptr));
+  CHECK(line.calls == 4);
 }
