@@ -16,6 +16,7 @@ struct StepOptions {
   std::vector<std::string> logs;
   std::string params;
   std::string model = "reduced";
+  std::string starts = "staged";
   std::vector<std::string> free = FitParameterKeys(DriveTrainParameterTable(), "step", true);
   LogInputCli input;
   std::vector<std::string> validate;  ///< held-out logs predicted by the fit

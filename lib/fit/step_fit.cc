@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
 
@@ -208,24 +209,61 @@ std::unique_ptr<ResidualModel> MakeStepResiduals(const std::vector<StepLog>& log
 
 
 
-StepFitOutput FitStepResponses(const std::vector<StepLog>& logs, const DriveTrainParameters& start,
-                               const StepFitOptions& options) {
-  if (logs.empty()) throw OptionError("no step logs given");
-  CheckFreeNames(DriveTrainParameterTable(), "step", options.free, {"offset"});
-  for (const auto& log : logs) CheckStepLog(log);
-  if (options.model == DriveTrainModel::kFull && !(start.gearbox_inertia > 0.0)) {
-    throw InputError("the full model needs drivetrain.Theta_g > 0 in --params");
-  }
-  if (options.model == DriveTrainModel::kReduced &&
-      Contains(options.free, DriveTrainParameterKey(DriveTrainParameter::kGearboxInertia))) {
-    throw IdentificationError("Theta_g has no effect in the reduced model (it sets Theta_g = 0): use --model full");
-  }
+namespace {
 
+// Start of a log's offset from the data: the mean link torque over the
+// samples before the motor torque first changes from 0, where the model
+// rests at its zero state and predicts exactly 0 (0 without such samples).
+// A long log's steady state fixes only offset + tau_c-side terms together;
+// started at 0, a fit can settle on another branch (overshoot, then stick
+// on the far side) that the short pre-step segment penalises too little.
+double PreStepMean(const StepLog& log) {
+  double sum = 0.0;
+  std::size_t count = 0;
+  while (count < log.time.size() && log.motor_torque[count] == 0.0) sum += log.link_torque[count++];
+  return count == 0 || count == log.time.size() ? 0.0 : sum / static_cast<double>(count);
+}
+
+// The first transient of a log: up to the second change of the motor
+// torque or ten 90 % rise times of the link torque after the first change
+// (at least 10 samples), whichever comes first. Its length follows the
+// drive's own time scale, read from the data, not the log's length.
+StepLog FirstTransient(const StepLog& log) {
+  const std::size_t n = log.time.size();
+  std::size_t first = 0;
+  while (first < n && log.motor_torque[first] == log.motor_torque.front()) ++first;
+  if (first == n) first = 0;  // torque held from the start: its transient begins at once
+  std::size_t end = first + 1;
+  while (end < n && log.motor_torque[end] == log.motor_torque[first]) ++end;
+  StepLog out = log;
+  if (end - first < 20) return out;
+  const double before = PreStepMean(log);
+  double after = 0.0;
+  const std::size_t tail = std::max<std::size_t>(1, (end - first) / 5);
+  for (std::size_t k = end - tail; k < end; ++k) after += log.link_torque[k];
+  after /= static_cast<double>(tail);
+  std::size_t rise = first;
+  while (rise < end && std::abs(log.link_torque[rise] - before) < 0.9 * std::abs(after - before)) ++rise;
+  const double rise_time = std::max(log.time[rise < end ? rise : end - 1] - log.time[first],
+                                    10.0 * (log.time[first + 1] - log.time[first]));
+  std::size_t stop = first;
+  while (stop < end && log.time[stop] - log.time[first] <= 10.0 * rise_time) ++stop;
+  const auto cut = [stop](std::vector<double>& v) {
+    if (v.size() > stop) v.resize(stop);
+  };
+  for (auto* v : {&out.time, &out.motor_torque, &out.link_torque, &out.motor_angle, &out.link_angle}) cut(*v);
+  return out;
+}
+
+// One solve from `start` (offsets from `start_offsets`, 0 when empty).
+StepFitOutput FitFrom(const std::vector<StepLog>& logs, const DriveTrainParameters& start,
+                      const std::vector<double>& start_offsets, DriveTrainModel model,
+                      const std::vector<std::string>& free, const FitOptions& options) {
   std::vector<DriveTrainParameter> ode_parameters;
   std::vector<FitParameter> fit_parameters;
   for (auto parameter : kAllParameters) {
     const std::string key = DriveTrainParameterKey(parameter);
-    if (!Contains(options.free, key)) continue;
+    if (!Contains(free, key)) continue;
     const double value = GetDriveTrainParameter(start, parameter);
     if (!(value > 0.0)) {
       throw InputError(fmt::format("--free {}: the starting value in --params must be > 0, got {}", key, value));
@@ -236,21 +274,22 @@ StepFitOutput FitStepResponses(const std::vector<StepLog>& logs, const DriveTrai
                             parameter == DriveTrainParameter::kCoulombFriction;
     fit_parameters.push_back({key, value, may_vanish ? 0.0 : 1e-6 * value, 0.0});
   }
-  const bool fit_offsets = Contains(options.free, "offset");
+  const bool fit_offsets = Contains(free, "offset");
   if (fit_offsets) {
     double scale = 0.0;
     for (const auto& log : logs) {
       for (double y : log.link_torque) scale = std::max(scale, std::abs(y));
     }
     for (std::size_t i = 0; i < logs.size(); ++i) {
-      fit_parameters.push_back({fmt::format("offset_{}", i + 1), 0.0, -std::numeric_limits<double>::infinity(),
+      const double initial = i < start_offsets.size() ? start_offsets[i] : PreStepMean(logs[i]);
+      fit_parameters.push_back({fmt::format("offset_{}", i + 1), initial, -std::numeric_limits<double>::infinity(),
                                 std::max(1e-3 * scale, 1e-9)});
     }
   }
 
-  StepResiduals residuals(logs, start, options.model, ode_parameters, fit_offsets, true);
+  StepResiduals residuals(logs, start, model, ode_parameters, fit_offsets, true);
   const std::vector<FitChannel> channels = residuals.Channels();
-  FitOptions fit_options = options.fit;
+  FitOptions fit_options = options;
   if (!fit_options.advice) fit_options.advice = StepAdvice;
 
   StepFitOutput output;
@@ -266,6 +305,120 @@ StepFitOutput FitStepResponses(const std::vector<StepLog>& logs, const DriveTrai
     output.simulated.push_back(residuals.Simulate(i, estimate.data()));
   }
   return output;
+}
+
+// The parameters of the full model's fit that the reduced model determines
+// as well (it has no Theta_g, and k_Tl, k_Tg enter it only as k_eq).
+std::vector<std::string> ReducedStageFree(const std::vector<std::string>& free) {
+  std::vector<std::string> out;
+  for (const auto& key : free) {
+    if (key == DriveTrainParameterKey(DriveTrainParameter::kGearboxInertia) ||
+        key == DriveTrainParameterKey(DriveTrainParameter::kLinkStiffness) ||
+        key == DriveTrainParameterKey(DriveTrainParameter::kGearboxStiffness)) {
+      continue;
+    }
+    out.push_back(key);
+  }
+  return out;
+}
+
+std::string DescribeOptimum(const StepFitOutput& o) {
+  std::vector<std::string> parts;
+  for (const auto& e : o.fit.estimates) {
+    if (parts.size() == 4) {
+      parts.push_back("...");
+      break;
+    }
+    parts.push_back(fmt::format("{} {:.4g}", e.name, e.value));
+  }
+  return fmt::format("cost {:.6g}: {}", o.fit.cost, fmt::join(parts, ", "));
+}
+
+// Do two optima differ by more than their statistics allow (any estimate
+// further apart than 3 of the kept fit's standard errors, or the cost by
+// more than 0.1 %)?
+bool Disagree(const StepFitOutput& kept, const StepFitOutput& other) {
+  if (std::abs(other.fit.cost - kept.fit.cost) > 1e-3 * kept.fit.cost) return true;
+  for (std::size_t j = 0; j < kept.fit.estimates.size(); ++j) {
+    const auto& a = kept.fit.estimates[j];
+    const double difference = std::abs(a.value - other.fit.estimates[j].value);
+    if (difference > 3.0 * a.standard_error + 1e-9 * std::abs(a.value)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+StepFitOutput FitStepResponses(const std::vector<StepLog>& logs, const DriveTrainParameters& start,
+                               const StepFitOptions& options) {
+  if (logs.empty()) throw OptionError("no step logs given");
+  CheckFreeNames(DriveTrainParameterTable(), "step", options.free, {"offset"});
+  for (const auto& log : logs) CheckStepLog(log);
+  if (options.model == DriveTrainModel::kFull && !(start.gearbox_inertia > 0.0)) {
+    throw InputError("the full model needs drivetrain.Theta_g > 0 in --params");
+  }
+  if (options.model == DriveTrainModel::kReduced &&
+      Contains(options.free, DriveTrainParameterKey(DriveTrainParameter::kGearboxInertia))) {
+    throw IdentificationError("Theta_g has no effect in the reduced model (it sets Theta_g = 0): use --model full");
+  }
+  if (options.model == DriveTrainModel::kReduced || options.starts == StepStarts::kGiven) {
+    return FitFrom(logs, start, {}, options.model, options.free, options.fit);
+  }
+
+  // Full model (docs/models.md#drive-train, "Starting the full model"): its
+  // undamped link mode rings on after the drive sticks, which makes the cost
+  // multimodal on long logs; a start a few times off settled in a
+  // neighbouring optimum (tau_c near 1, offset near 5 for 5 and 1.3). The
+  // staged start: the reduced model (no ringing) fitted to each log's first
+  // transient, then the full model on the same transients, then on the whole
+  // logs. The full fit also runs from the given start; the lower cost wins
+  // and a disagreement is reported.
+  std::optional<StepFitOutput> staged;
+  std::string staged_failure;
+  const std::vector<std::string> reduced_free = ReducedStageFree(options.free);
+  if (!reduced_free.empty()) {
+    try {
+      FitOptions quiet = options.fit;
+      quiet.progress = nullptr;
+      std::vector<StepLog> transients;
+      for (const auto& log : logs) transients.push_back(FirstTransient(log));
+      const StepFitOutput reduced = FitFrom(transients, start, {}, DriveTrainModel::kReduced, reduced_free, quiet);
+      const StepFitOutput full = FitFrom(transients, reduced.params, reduced.offsets, options.model, options.free, quiet);
+      staged = FitFrom(logs, full.params, full.offsets, options.model, options.free, options.fit);
+      staged->fit.iterations += reduced.fit.iterations + full.fit.iterations;  // the whole path
+    } catch (const IdentificationError& e) {
+      staged_failure = e.what();
+    }
+  }
+  std::optional<StepFitOutput> given;
+  std::string given_failure;
+  try {
+    given = FitFrom(logs, start, {}, options.model, options.free, options.fit);
+  } catch (const IdentificationError& e) {
+    if (!staged) throw;
+    given_failure = e.what();
+  }
+  if (!staged) {
+    if (!staged_failure.empty()) {
+      given->fit.warnings.push_back("the staged start failed (" + staged_failure +
+                                    "); the fit ran from the given start only");
+    }
+    return std::move(*given);
+  }
+  if (!given) {
+    staged->fit.warnings.push_back("from the given start the fit failed (" + given_failure +
+                                   "); kept the fit from the staged start");
+    return std::move(*staged);
+  }
+  const bool staged_better = staged->fit.cost <= given->fit.cost;
+  StepFitOutput kept = staged_better ? std::move(*staged) : std::move(*given);
+  const StepFitOutput& other = staged_better ? *given : *staged;
+  if (Disagree(kept, other)) {
+    kept.fit.warnings.push_back(fmt::format(
+        "starts disagree: from {} {}; from {} {}; kept the lower cost", staged_better ? "the staged start" : "the given start",
+        DescribeOptimum(kept), staged_better ? "the given start" : "the staged start", DescribeOptimum(other)));
+  }
+  return kept;
 }
 
 }  // namespace driveid

@@ -18,8 +18,15 @@ namespace driveid {
 
 
 
+/// Where the full model's fit starts (docs/models.md#drive-train): from the
+/// given values and from a staged start (the reduced, then the full model
+/// fitted to each log's first transient), keeping the lower cost and
+/// reporting a disagreement (kStaged, default), or from the given values only.
+enum class StepStarts { kStaged, kGiven };
+
 struct StepFitOptions {
   DriveTrainModel model = DriveTrainModel::kReduced;
+  StepStarts starts = StepStarts::kStaged;
   std::vector<std::string> free = FitParameterKeys(DriveTrainParameterTable(), "step", true);  ///< may include "offset"
   FitOptions fit;
 };

@@ -56,6 +56,11 @@ struct Plant {
 
 Log SimulateStep(const DriveTrain& d, double rate, double duration, double step_time, double amplitude,
                  double sigma, double offset, unsigned seed, double rho) {
+  return SimulateSteps(d, rate, duration, {{step_time, amplitude}}, sigma, offset, seed, rho);
+}
+
+Log SimulateSteps(const DriveTrain& d, double rate, double duration, const std::vector<std::pair<double, double>>& levels,
+                  double sigma, double offset, unsigned seed, double rho) {
   std::mt19937 engine(seed);
   std::normal_distribution<double> noise(0.0, sigma);
   double error = 0.0;
@@ -67,7 +72,10 @@ Log SimulateStep(const DriveTrain& d, double rate, double duration, double step_
   for (int k = 0; k < samples; ++k) {
     const double t = k / rate;
     const double link = d.full ? d.k_Tl * x[2] : plant.Keq() * x[0];
-    const double u = t >= step_time - 1e-12 ? amplitude : 0.0;
+    double u = 0.0;
+    for (const auto& [from, level] : levels) {
+      if (t >= from - 1e-12) u = level;
+    }
     log.t.push_back(t);
     log.tau_motor.push_back(u);
     if (sigma > 0) error = k == 0 ? noise(engine) : rho * error + std::sqrt(1.0 - rho * rho) * noise(engine);

@@ -5,6 +5,7 @@
 // a mistake shared by the library's model and simulator cannot hide.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 namespace reference {
@@ -29,5 +30,10 @@ struct Log {
 /// rho 0: white, the same draws).
 Log SimulateStep(const DriveTrain& d, double rate, double duration, double step_time, double amplitude,
                  double sigma, double offset, unsigned seed, double rho = 0.0);
+
+/// A torque held in steps: `levels[i].second` N m from `levels[i].first` s
+/// on (times ascending; 0 N m before the first), otherwise as SimulateStep.
+Log SimulateSteps(const DriveTrain& d, double rate, double duration, const std::vector<std::pair<double, double>>& levels,
+                  double sigma, double offset, unsigned seed, double rho = 0.0);
 
 }  // namespace reference
