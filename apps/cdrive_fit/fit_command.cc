@@ -85,11 +85,12 @@ void RunCDriveFitCommand(const CDriveFitCommandOptions& options, const std::stri
   // residuals of the samples that entered the fit.
   PlotPanel residuals{"residual (measured - model) of the samples used in the fit", "residual torque [N m]", {}};
   for (std::size_t i = 0; i < logs.size(); ++i) {
+    if (options.output.trace.empty() && options.output.plot.empty()) break;  // nothing asked for
     const CDriveTrace& trace = result.traces[i];
     PlotLine used_left{logs[i].path + " tau_L", {}, {}, false, true};
     PlotLine used_right{logs[i].path + " tau_R", {}, {}, false, true};
     for (std::size_t k = 0; k < trace.time.size(); ++k) {
-      outputs.trace_csv += fmt::format("{},{},{},{:.7g},{},{:.7g},{}\n", i + 1, trace.time[k], trace.measured_left[k],
+      if (!options.output.trace.empty()) outputs.trace_csv += fmt::format("{},{},{},{:.7g},{},{:.7g},{}\n", i + 1, trace.time[k], trace.measured_left[k],
                                        trace.model_left[k], trace.measured_right[k], trace.model_right[k],
                                        trace.used[k] ? 1 : 0);
       if (!trace.used[k]) continue;

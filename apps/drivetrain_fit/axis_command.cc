@@ -76,8 +76,10 @@ AxisRun RunInverseDynamics(const std::vector<AxisLog>& logs, const AxisSection& 
   for (std::size_t i = 0; i < logs.size(); ++i) run.series[i].title = logs[i].path;
   for (std::size_t k = 0; k < result.time.size(); ++k) {
     const int i = result.log_index[k];
-    run.trace_csv += fmt::format("{},{},{:.7g},{:.7g},{:.7g}\n", i + 1, result.time[k], result.measured[k],
-                                 result.model[k], result.measured[k] - result.model[k]);
+    if (!options.output.trace.empty()) {
+      run.trace_csv += fmt::format("{},{},{:.7g},{:.7g},{:.7g}\n", i + 1, result.time[k], result.measured[k],
+                                   result.model[k], result.measured[k] - result.model[k]);
+    }
     auto& s = run.series[static_cast<std::size_t>(i)];
     s.time.push_back(result.time[k]);
     s.measured.push_back(result.measured[k]);
@@ -134,7 +136,7 @@ AxisRun RunOutputError(const std::vector<AxisLog>& logs, const AxisSection& sect
   for (std::size_t i = 0; i < logs.size(); ++i) {
     const AxisLog& log = logs[i];
     run.series[i] = {log.path, log.time, log.position, result.position[i]};
-    for (std::size_t k = 0; k < log.time.size(); ++k) {
+    for (std::size_t k = 0; k < log.time.size() && !options.output.trace.empty(); ++k) {
       run.trace_csv += fmt::format("{},{},{:.10g},{:.10g},{},{:.7g}\n", i + 1, log.time[k], log.position[k],
                                    result.position[i][k], log.rate.empty() ? "" : fmt::format("{:.7g}", log.rate[k]),
                                    result.rate[i][k]);
@@ -207,7 +209,7 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
                                            sysid ? sysid_units.front() : "rad", with_inertia);
   outputs.parameter_file = FormatParameterFile(fitted, &outputs.fit, &outputs.provenance, derived);
   outputs.trace_csv = run.trace_csv;
-  outputs.plot_panels = MakeFitPanels(run.series, run.labels);
+  if (!options.output.plot.empty()) outputs.plot_panels = MakeFitPanels(run.series, run.labels);
   EmitFitOutputs(options.output, outputs);
   if (!options.output.quiet && !options.output.json) {
     std::FILE* summary = options.output.output.empty() ? stderr : stdout;

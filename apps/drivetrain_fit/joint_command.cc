@@ -68,7 +68,8 @@ void RunJointCommand(const JointOptions& options, const std::string& command_lin
     series[2 * i + 1].title = logs[i].path + " total (motor + link)";
   }
   for (std::size_t k = 0; k < result.time.size(); ++k) {
-    outputs.trace_csv += fmt::format("{},{},{},{:.7g},{:.7g},{:.7g}\n", result.log_index[k] + 1, result.equation[k],
+    if (options.output.trace.empty() && options.output.plot.empty()) break;  // nothing asked for
+    if (!options.output.trace.empty()) outputs.trace_csv += fmt::format("{},{},{},{:.7g},{:.7g},{:.7g}\n", result.log_index[k] + 1, result.equation[k],
                                      result.time[k], result.measured[k], result.model[k],
                                      result.measured[k] - result.model[k]);
     auto& s = series[static_cast<std::size_t>(2 * result.log_index[k] + result.equation[k])];

@@ -52,7 +52,7 @@ void RunRobotCommand(const RobotOptions& options, const std::string& command_lin
   outputs.trace_csv = "# motor currents [A]: measured, its motion (minimum-norm) part, and the model split into "
                       "inertia, centrifugal/Coriolis and friction (seed 000 Fig. 7)\n";
   outputs.trace_csv += "log,t,motor,i_measured,i_motion,i_model,i_inertia,i_coriolis,i_friction\n";
-  for (std::size_t l = 0; l < result.predictions.size(); ++l) {
+  for (std::size_t l = 0; l < result.predictions.size() && !options.output.trace.empty(); ++l) {
     const auto& p = result.predictions[l];
     for (std::size_t k = 0; k < p.time.size(); ++k) {
       for (std::size_t i = 0; i < 3; ++i) {

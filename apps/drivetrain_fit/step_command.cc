@@ -80,14 +80,16 @@ void RunStepCommand(const StepOptions& options, const std::string& command_line)
   for (std::size_t i = 0; i < logs.size(); ++i) {
     const StepLog& log = logs[i];
     const auto& model = result.simulated[i];
-    for (std::size_t k = 0; k < log.time.size(); ++k) {
+    for (std::size_t k = 0; k < log.time.size() && !options.output.trace.empty(); ++k) {
       outputs.trace_csv += fmt::format("{},{},{},{},{:.9g},{:.9g}\n", i + 1, log.time[k], log.motor_torque[k],
                                        log.link_torque[k], model[k], log.link_torque[k] - model[k]);
     }
-    series.push_back({log.path, log.time, log.link_torque, model});
+    if (!options.output.plot.empty()) series.push_back({log.path, log.time, log.link_torque, model});
   }
-  outputs.plot_panels =
-      MakeFitPanels(series, {fmt::format("drive-train step fit ({} model)", options.model), "link torque [N m]"});
+  if (!options.output.plot.empty()) {
+    outputs.plot_panels =
+        MakeFitPanels(series, {fmt::format("drive-train step fit ({} model)", options.model), "link torque [N m]"});
+  }
   EmitFitOutputs(options.output, outputs);
 }
 

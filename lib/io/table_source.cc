@@ -166,16 +166,17 @@ class CsvSource : public TableSource {
         }
         const int s = slot[field];
         if (s >= 0) {
-          const std::string name = ColumnLabel(field);
-          if (fb == fe) throw InputError(fmt::format("{}:{}: column {}: empty cell", path_, line, name));
+          // The column's label is built only for a message (not per cell).
+          if (fb == fe) throw InputError(fmt::format("{}:{}: column {}: empty cell", path_, line, ColumnLabel(field)));
           double value = 0.0;
           bool out_of_range = false;
           if (!ParseNumber(fb, fe, value, out_of_range)) {
-            throw InputError(fmt::format("{}:{}: column {}: {}: {}", path_, line, name,
+            throw InputError(fmt::format("{}:{}: column {}: {}: {}", path_, line, ColumnLabel(field),
                                          out_of_range ? "number out of range" : "not a number", Quote(fb, fe)));
           }
           if (!std::isfinite(value)) {
-            throw InputError(fmt::format("{}:{}: column {}: not a finite number: {}", path_, line, name, Quote(fb, fe)));
+            throw InputError(fmt::format("{}:{}: column {}: not a finite number: {}", path_, line, ColumnLabel(field),
+                                         Quote(fb, fe)));
           }
           out.columns[static_cast<std::size_t>(s)].push_back(value);
         }
