@@ -1,5 +1,6 @@
 #include "fit/least_squares.h"
 
+#include "fit/fit_statistics.h"
 #include "fit/scaled_cost.h"
 
 #include <algorithm>
@@ -28,69 +29,63 @@ class ProgressCallback final : public ceres::IterationCallback {
   const std::function<void(const FitIteration&)>& progress_;
 };
 
-// Column-normalised Jacobian: each parameter's sensitivity scaled to unit
-// length, so that its singular values measure collinearity only.
-struct Collinearity {
-  Eigen::VectorXd singular_values;  // descending
-  Eigen::MatrixXd right_vectors;    // columns = parameter directions
-  std::vector<int> dead;            // parameters with no effect at all
-};
-
-Collinearity AnalyseCollinearity(const RowMatrix& jacobian) {
-  Collinearity result;
-  RowMatrix normalised = jacobian;
-  for (Eigen::Index j = 0; j < jacobian.cols(); ++j) {
-    const double norm = jacobian.col(j).norm();
-    if (!(norm > 0.0) || !std::isfinite(norm)) {
-      result.dead.push_back(static_cast<int>(j));
-      normalised.col(j).setZero();
-    } else {
-      normalised.col(j) /= norm;
-    }
+// Scales of the parameters: the given typical magnitude, else |start|
+// (else 1), so that the solver works on z = p / scale of order 1.
+std::vector<double> ParameterScales(const std::vector<FitParameter>& parameters) {
+  std::vector<double> scale;
+  for (const auto& fp : parameters) {
+    double s = fp.scale > 0.0 ? fp.scale : std::abs(fp.initial);
+    scale.push_back(s > 0.0 ? s : 1.0);
   }
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(normalised, Eigen::ComputeThinV);
-  result.singular_values = svd.singularValues();
-  result.right_vectors = svd.matrixV();
-  return result;
+  return scale;
 }
 
-// Throws IdentificationError if the Jacobian's columns are (nearly)
-// collinear; returns the analysis otherwise.
-Collinearity RequireIdentifiable(const RowMatrix& jacobian, const std::vector<FitParameter>& parameters,
-                                 const FitOptions& options, const char* where) {
-  Collinearity c = AnalyseCollinearity(jacobian);
-  std::vector<std::string> involved;
-  std::string detail;
-  if (!c.dead.empty()) {
-    for (int j : c.dead) involved.push_back(parameters[static_cast<std::size_t>(j)].name);
-    detail = "the data carry no information on them (zero sensitivity)";
-  } else {
-    const Eigen::Index p = c.singular_values.size();
-    std::vector<double> weight(static_cast<std::size_t>(p), 0.0);
-    int weak = 0;
-    for (Eigen::Index k = 0; k < p; ++k) {
-      if (c.singular_values(k) >= options.identifiability_threshold) continue;
-      ++weak;
-      for (Eigen::Index j = 0; j < p; ++j) {
-        weight[static_cast<std::size_t>(j)] = std::max(weight[static_cast<std::size_t>(j)], std::abs(c.right_vectors(j, k)));
-      }
-    }
-    if (weak == 0) return c;
-    for (Eigen::Index j = 0; j < p; ++j) {
-      if (weight[static_cast<std::size_t>(j)] > 0.2) involved.push_back(parameters[static_cast<std::size_t>(j)].name);
-    }
-    detail = fmt::format("{} near-null direction{} (smallest singular value {:.2g} of the normalised Jacobian, "
-                         "threshold {:.2g}): only combinations of them are determined",
-                         weak, weak > 1 ? "s" : "", c.singular_values(p - 1), options.identifiability_threshold);
+ceres::Solver::Options SolverOptions(const FitOptions& options, ProgressCallback& callback) {
+  ceres::Solver::Options solver_options;
+  solver_options.linear_solver_type = ceres::DENSE_QR;
+  solver_options.max_num_iterations = options.max_iterations;
+  // Parameters are scaled by their starting values: a first step may change
+  // them by about 100 %, not by orders of magnitude.
+  solver_options.initial_trust_region_radius = 1.0;
+  // Stopping rules: a relative cost change of 1e-7 is far below statistical
+  // significance (the cost itself scatters by sqrt(2/N)), and the simulated
+  // models are accurate to about 1e-7 relative, so tighter tolerances only
+  // chase integrator noise with rejected steps.
+  solver_options.function_tolerance = 1e-7;
+  solver_options.gradient_tolerance = 1e-10;
+  solver_options.parameter_tolerance = 1e-7;
+  solver_options.logging_type = ceres::SILENT;
+  solver_options.num_threads = 1;  // deterministic
+  if (options.progress) {
+    solver_options.callbacks.push_back(&callback);
+    solver_options.update_state_every_iteration = false;
   }
-  std::string names;
-  for (const auto& name : involved) names += (names.empty() ? "" : ", ") + name;
-  std::string message = fmt::format("not identifiable {}: {}: {}", where, names, detail);
-  if (options.advice) {
-    const std::string advice = options.advice(involved);
-    if (!advice.empty()) message += "; " + advice;
+  return solver_options;
+}
+
+// The solver's outcome into `result`; throws when it failed or stopped early.
+void TakeSummary(const ceres::Solver::Summary& summary, FitResult& result) {
+  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  result.termination = summary.message;
+  result.converged = summary.termination_type == ceres::CONVERGENCE;
+  if (summary.termination_type == ceres::FAILURE || summary.termination_type == ceres::USER_FAILURE) {
+    throw IdentificationError("solver failed: " + summary.message);
   }
-  throw IdentificationError(message);
+  if (!result.converged) {
+    throw IdentificationError(fmt::format("solver did not converge in {} iterations: {}", result.iterations,
+                                          summary.message));
+  }
+}
+
+// "the model cannot be evaluated at name = value, ...: reason".
+[[noreturn]] void ThrowEvaluationFailure(const std::vector<FitParameter>& parameters, const std::vector<double>& physical,
+                                         const std::string& reason) {
+  std::vector<std::string> values;
+  for (std::size_t j = 0; j < parameters.size(); ++j) {
+    values.push_back(fmt::format("{} = {:.6g}", parameters[j].name, physical[j]));
+  }
+  throw IdentificationError(fmt::format("the model cannot be evaluated at {}{}", fmt::join(values, ", "),
+                                        reason.empty() ? std::string(" (non-finite residuals)") : ": " + reason));
 }
 
 }  // namespace
@@ -180,35 +175,24 @@ FitResult FitLeastSquares(ResidualModel& model, const std::vector<FitParameter>&
   if (p == 0) throw IdentificationError("nothing to fit: no free parameters");
   if (n <= p) throw IdentificationError(fmt::format("{} samples cannot determine {} parameters", n, p));
 
-  std::vector<double> scale(static_cast<std::size_t>(p));
+  const std::vector<double> scale = ParameterScales(parameters);
   std::vector<double> z(static_cast<std::size_t>(p));
-  for (int j = 0; j < p; ++j) {
-    const auto& fp = parameters[static_cast<std::size_t>(j)];
-    double s = fp.scale > 0.0 ? fp.scale : std::abs(fp.initial);
-    if (!(s > 0.0)) s = 1.0;
-    scale[static_cast<std::size_t>(j)] = s;
-    z[static_cast<std::size_t>(j)] = fp.initial / s;
-  }
+  for (std::size_t j = 0; j < z.size(); ++j) z[j] = parameters[j].initial / scale[j];
 
-  RowMatrix jacobian(n, p);
+  std::vector<JacobianBlock> blocks(1);  // dense: one block, every column
+  for (int j = 0; j < p; ++j) blocks[0].columns.push_back(j);
+  blocks[0].values.resize(n, p);
   Eigen::VectorXd residuals(n);
   std::vector<double> physical(static_cast<std::size_t>(p));
   auto evaluate_at = [&](const std::vector<double>& zz) {
-    for (int j = 0; j < p; ++j) physical[static_cast<std::size_t>(j)] = zz[static_cast<std::size_t>(j)] * scale[static_cast<std::size_t>(j)];
-    if (!model.Evaluate(physical.data(), residuals.data(), jacobian.data())) {
-      std::vector<std::string> values;
-      for (int j = 0; j < p; ++j) {
-        values.push_back(fmt::format("{} = {:.6g}", parameters[static_cast<std::size_t>(j)].name,
-                                     physical[static_cast<std::size_t>(j)]));
-      }
-      const std::string reason = model.LastFailure();
-      throw IdentificationError(fmt::format("the model cannot be evaluated at {}{}", fmt::join(values, ", "),
-                                            reason.empty() ? std::string(" (non-finite residuals)") : ": " + reason));
+    for (std::size_t j = 0; j < physical.size(); ++j) physical[j] = zz[j] * scale[j];
+    if (!model.Evaluate(physical.data(), residuals.data(), blocks[0].values.data())) {
+      ThrowEvaluationFailure(parameters, physical, model.LastFailure());
     }
   };
   // Structural problems show at the start already: refuse before solving.
   evaluate_at(z);
-  RequireIdentifiable(jacobian, parameters, options, "from these logs");
+  RequireIdentifiable(blocks, parameters, options, "from these logs");
 
   ceres::Problem::Options problem_options;
   problem_options.cost_function_ownership = ceres::TAKE_OWNERSHIP;
@@ -218,121 +202,105 @@ FitResult FitLeastSquares(ResidualModel& model, const std::vector<FitParameter>&
     const double lower = parameters[static_cast<std::size_t>(j)].lower_bound;
     if (std::isfinite(lower)) problem.SetParameterLowerBound(z.data(), j, lower / scale[static_cast<std::size_t>(j)]);
   }
-  ceres::Solver::Options solver_options;
-  solver_options.linear_solver_type = ceres::DENSE_QR;
-  solver_options.max_num_iterations = options.max_iterations;
-  // Parameters are scaled by their starting values: a first step may change
-  // them by about 100 %, not by orders of magnitude.
-  solver_options.initial_trust_region_radius = 1.0;
-  // Stopping rules: a relative cost change of 1e-7 is far below statistical
-  // significance (the cost itself scatters by sqrt(2/N)), and the simulated
-  // models are accurate to about 1e-7 relative, so tighter tolerances only
-  // chase integrator noise with rejected steps.
-  solver_options.function_tolerance = 1e-7;
-  solver_options.gradient_tolerance = 1e-10;
-  solver_options.parameter_tolerance = 1e-7;
-  solver_options.logging_type = ceres::SILENT;
-  solver_options.num_threads = 1;  // deterministic
   ProgressCallback callback(options.progress);
-  if (options.progress) {
-    solver_options.callbacks.push_back(&callback);
-    solver_options.update_state_every_iteration = false;
+  ceres::Solver::Summary summary;
+  ceres::Solve(SolverOptions(options, callback), &problem, &summary);
+  FitResult result;
+  TakeSummary(summary, result);
+
+  evaluate_at(z);
+  result.singular_values = RequireIdentifiable(blocks, parameters, options, "at the optimum");
+  DescribeFit(blocks, residuals, parameters, physical, channels, result);
+  return result;
+}
+
+FitResult FitBlockLeastSquares(BlockResidualModel& model, const std::vector<FitParameter>& parameters,
+                               const std::vector<FitChannel>& channels, const FitOptions& options) {
+  const int q = model.shared_count();
+  const int block_count = model.block_count();
+  const int p = static_cast<int>(parameters.size());
+  std::vector<JacobianBlock> blocks(static_cast<std::size_t>(block_count));
+  std::vector<int> local_begin;  // first own parameter of each block
+  int n = 0, next = q;
+  for (int b = 0; b < block_count; ++b) {
+    JacobianBlock& block = blocks[static_cast<std::size_t>(b)];
+    const int l = model.local_count(b);
+    block.row_begin = n;
+    for (int j = 0; j < q; ++j) block.columns.push_back(j);
+    for (int j = 0; j < l; ++j) block.columns.push_back(next + j);
+    block.values.resize(model.block_rows(b), q + l);
+    local_begin.push_back(next);
+    n += model.block_rows(b);
+    next += l;
+  }
+  if (next != p) throw std::logic_error("FitBlockLeastSquares: parameters do not match the blocks");
+  if (p == 0) throw IdentificationError("nothing to fit: no free parameters");
+  if (n <= p) throw IdentificationError(fmt::format("{} samples cannot determine {} parameters", n, p));
+
+  const std::vector<double> scale = ParameterScales(parameters);
+  std::vector<double> z(static_cast<std::size_t>(p));
+  for (std::size_t j = 0; j < z.size(); ++j) z[j] = parameters[j].initial / scale[j];
+  Eigen::VectorXd residuals(n);
+  std::vector<double> physical(static_cast<std::size_t>(p));
+  auto evaluate_at = [&](const std::vector<double>& zz) {
+    for (std::size_t j = 0; j < physical.size(); ++j) physical[j] = zz[j] * scale[j];
+    for (int b = 0; b < block_count; ++b) {
+      JacobianBlock& block = blocks[static_cast<std::size_t>(b)];
+      if (!model.EvaluateBlock(b, physical.data(), physical.data() + local_begin[static_cast<std::size_t>(b)],
+                               residuals.data() + block.row_begin, block.values.data())) {
+        ThrowEvaluationFailure(parameters, physical, model.LastFailure());
+      }
+    }
+  };
+  evaluate_at(z);
+  RequireIdentifiable(blocks, parameters, options, "from these logs");
+
+  ceres::Problem::Options problem_options;
+  problem_options.cost_function_ownership = ceres::TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
+  const std::vector<double> shared_scale(scale.begin(), scale.begin() + q);
+  auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
+  for (int b = 0; b < block_count; ++b) {
+    const int l = model.local_count(b);
+    const auto first = static_cast<std::size_t>(local_begin[static_cast<std::size_t>(b)]);
+    std::vector<double*> blocks_of_cost;
+    if (q > 0) blocks_of_cost.push_back(z.data());
+    if (l > 0) {
+      blocks_of_cost.push_back(z.data() + first);
+      ordering->AddElementToGroup(z.data() + first, 0);  // eliminated first (Schur complement)
+    }
+    problem.AddResidualBlock(
+        new ScaledBlockCost(model, b, shared_scale, std::vector<double>(scale.begin() + static_cast<std::ptrdiff_t>(first),
+                                                                        scale.begin() + static_cast<std::ptrdiff_t>(first) + l)),
+        nullptr, blocks_of_cost);
+  }
+  if (q > 0) ordering->AddElementToGroup(z.data(), 1);
+  for (int b = 0; b < block_count; ++b) {
+    const int l = model.local_count(b);
+    const auto first = static_cast<std::size_t>(local_begin[static_cast<std::size_t>(b)]);
+    for (int j = 0; j < l; ++j) {
+      const double lower = parameters[first + static_cast<std::size_t>(j)].lower_bound;
+      if (std::isfinite(lower)) problem.SetParameterLowerBound(z.data() + first, j, lower / scale[first + static_cast<std::size_t>(j)]);
+    }
+  }
+  for (int j = 0; j < q; ++j) {
+    const double lower = parameters[static_cast<std::size_t>(j)].lower_bound;
+    if (std::isfinite(lower)) problem.SetParameterLowerBound(z.data(), j, lower / scale[static_cast<std::size_t>(j)]);
+  }
+  ProgressCallback callback(options.progress);
+  ceres::Solver::Options solver_options = SolverOptions(options, callback);
+  if (ordering->NumGroups() == 2) {
+    solver_options.linear_solver_type = ceres::DENSE_SCHUR;
+    solver_options.linear_solver_ordering = ordering;
   }
   ceres::Solver::Summary summary;
   ceres::Solve(solver_options, &problem, &summary);
-
   FitResult result;
-  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
-  result.termination = summary.message;
-  result.converged = summary.termination_type == ceres::CONVERGENCE;
-  if (summary.termination_type == ceres::FAILURE || summary.termination_type == ceres::USER_FAILURE) {
-    throw IdentificationError("solver failed: " + summary.message);
-  }
-  if (!result.converged) {
-    throw IdentificationError(fmt::format("solver did not converge in {} iterations: {}", result.iterations,
-                                          summary.message));
-  }
+  TakeSummary(summary, result);
 
   evaluate_at(z);
-  const Collinearity collinearity = RequireIdentifiable(jacobian, parameters, options, "at the optimum");
-  result.cost = 0.5 * residuals.squaredNorm();
-  result.singular_values.assign(collinearity.singular_values.data(),
-                                collinearity.singular_values.data() + collinearity.singular_values.size());
-
-  // Covariance of the (unweighted) least-squares estimate, robust to
-  // residuals correlated in time (docs/models.md#identification): sandwich
-  // A B A, A = (J'J)^-1, B = sum over channels of the long-run covariance
-  //   B_c = N/(N-P) sum_{|l|<=L} (1 - |l|/(L+1)) gamma_c(l) sum_t J_t' J_{t-l},
-  // gamma_c(l) the residuals' autocovariance (Bartlett weights; persistent
-  // residuals AR(1)-prewhitened first, see CalcLongRunCovariance),
-  // with Andrews' (1991) AR(1) plug-in bandwidth for the Bartlett kernel,
-  //   L = 1.1447 (alpha N_c)^(1/3),  alpha = 4 rho^2 / ((1 - rho)^2 (1 + rho)^2),
-  // rho the residuals' lag-1 autocorrelation. Uncorrelated residuals give
-  // L ~ 0: the per-channel s_c^2 J_c'J_c of white noise.
-  const Eigen::VectorXd column_scale = jacobian.colwise().norm().transpose();
-  const RowMatrix scaled = jacobian * column_scale.cwiseInverse().asDiagonal();
-  const Eigen::MatrixXd information = scaled.transpose() * scaled;
-  const Eigen::MatrixXd inverse = information.ldlt().solve(Eigen::MatrixXd::Identity(p, p));
-  Eigen::MatrixXd middle = Eigen::MatrixXd::Zero(p, p);
-  const double dof_fraction = static_cast<double>(n - p) / n;
-  std::vector<FitChannel> all = channels;
-  if (all.empty()) all.push_back({"residual", 0, n, nullptr});
-  for (const auto& channel : all) {
-    const auto rows = scaled.middleRows(channel.begin, channel.count);
-    const auto r = residuals.segment(channel.begin, channel.count);
-    const double ssr = r.squaredNorm();
-    const double variance = ssr / (channel.count * dof_fraction);
-    const Eigen::MatrixXd white = variance * rows.transpose() * rows;
-    const LongRunCovariance hac = CalcLongRunCovariance(rows, r);
-    const Eigen::MatrixXd robust = hac.covariance / dof_fraction;
-    middle += robust;
-
-    // Residuals here are model - measured; the statistics use measured - model.
-    const Eigen::VectorXd measured_minus_model = -r;
-    ChannelStatistics stats =
-        DescribeResiduals(channel.name, channel.measured, measured_minus_model.data(), channel.count);
-    stats.autocorrelation = hac.autocorrelation;
-    stats.bandwidth = hac.bandwidth;
-    stats.inflation = white.trace() > 0.0 ? std::sqrt(std::max(0.0, robust.trace() / white.trace())) : 1.0;
-    result.channels.push_back(stats);
-  }
-  Eigen::MatrixXd covariance = inverse * middle * inverse;
-  covariance = column_scale.cwiseInverse().asDiagonal() * covariance * column_scale.cwiseInverse().asDiagonal();
-
-  // The interval's quantile: Student's t with the effective number of
-  // samples, N_eff = sum_c N_c (1 - rho_c) / (1 + rho_c) for lag-1 rho_c > 0
-  // (an AR(1) channel carries that much independent information), less P.
-  // A long-run covariance from few effective samples is itself uncertain
-  // (step fit at lag-1 0.9, 200 samples: N_eff ~ 10, t 2.3 instead of 1.97).
-  double effective = 0.0;
-  for (const auto& c : result.channels) {
-    // With Kendall's small-sample correction, as for the prewhitening.
-    const double rho = std::clamp(c.autocorrelation + (1.0 + 3.0 * c.autocorrelation) / std::max(c.samples, 1), 0.0,
-                                  0.999);
-    effective += c.samples * (1.0 - rho) / (1.0 + rho);
-  }
-  const double t = StudentT975(std::max(1, static_cast<int>(std::floor(effective)) - p));
-  for (int j = 0; j < p; ++j) {
-    ParameterEstimate e;
-    e.name = parameters[static_cast<std::size_t>(j)].name;
-    e.value = z[static_cast<std::size_t>(j)] * scale[static_cast<std::size_t>(j)];
-    e.standard_error = std::sqrt(std::max(0.0, covariance(j, j)));
-    e.ci95_low = e.value - t * e.standard_error;
-    e.ci95_high = e.value + t * e.standard_error;
-    result.estimates.push_back(e);
-  }
-  result.covariance.resize(static_cast<std::size_t>(p * p));
-  for (int i = 0; i < p; ++i) {
-    for (int j = 0; j < p; ++j) result.covariance[static_cast<std::size_t>(i * p + j)] = covariance(i, j);
-  }
-  result.correlation.resize(static_cast<std::size_t>(p * p));
-  for (int i = 0; i < p; ++i) {
-    for (int j = 0; j < p; ++j) {
-      const double denominator = std::sqrt(covariance(i, i) * covariance(j, j));
-      result.correlation[static_cast<std::size_t>(i * p + j)] = denominator > 0.0 ? covariance(i, j) / denominator : 0.0;
-    }
-  }
-  result.warnings = CheckFitPercent(result);  // adequacy.h; fits add their own checks
+  result.singular_values = RequireIdentifiable(blocks, parameters, options, "at the optimum");
+  DescribeFit(blocks, residuals, parameters, physical, channels, result);
   return result;
 }
 

@@ -29,6 +29,25 @@ class ResidualModel {
   virtual std::string LastFailure() const { return {}; }
 };
 
+/// Residuals in blocks (e.g. one per log) whose rows depend on the shared
+/// parameters and on parameters of their own only (a log's offset). Fitted
+/// with a Schur-complement solver that eliminates the blocks' own
+/// parameters, so that time and memory grow linearly with the blocks.
+class BlockResidualModel {
+ public:
+  virtual ~BlockResidualModel() = default;
+  virtual int shared_count() const = 0;
+  virtual int block_count() const = 0;
+  virtual int block_rows(int block) const = 0;
+  virtual int local_count(int block) const = 0;
+  /// Fills the block's residuals (block_rows) and, if `jacobian` is
+  /// non-null, its row-major rows x (shared_count + local_count) Jacobian in
+  /// physical units. Returns false if the model cannot be evaluated there.
+  virtual bool EvaluateBlock(int block, const double* shared, const double* local, double* residuals,
+                             double* jacobian) = 0;
+  virtual std::string LastFailure() const { return {}; }
+};
+
 /// A free parameter: name (parameter-file key), start value and lower bound.
 struct FitParameter {
   std::string name;
@@ -68,6 +87,11 @@ struct FitOptions {
 /// them), when the solver fails or does not converge.
 FitResult FitLeastSquares(ResidualModel& model, const std::vector<FitParameter>& parameters,
                           const std::vector<FitChannel>& channels, const FitOptions& options);
+
+/// The same for a model in blocks: `parameters` lists the shared ones, then
+/// each block's own in block order; rows are the blocks' rows in order.
+FitResult FitBlockLeastSquares(BlockResidualModel& model, const std::vector<FitParameter>& parameters,
+                               const std::vector<FitChannel>& channels, const FitOptions& options);
 
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 

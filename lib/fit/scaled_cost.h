@@ -38,4 +38,24 @@ class ScaledCost final : public ceres::CostFunction {
   mutable int evaluations_ = 0;
 };
 
+/// One block of a BlockResidualModel on scaled parameters: parameter blocks
+/// (shared z, the block's own z), the latter omitted when it has none, with
+/// the same memo of the last point.
+class ScaledBlockCost final : public ceres::CostFunction {
+ public:
+  /// `model` must outlive the cost; scales of the shared and own parameters.
+  ScaledBlockCost(BlockResidualModel& model, int block, std::vector<double> shared_scale,
+                  std::vector<double> local_scale);
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
+
+ private:
+  BlockResidualModel& model_;
+  const int block_;
+  const std::vector<double> shared_scale_, local_scale_;
+  mutable std::vector<double> shared_, local_;
+  mutable std::vector<double> memo_point_, memo_residuals_, memo_jacobian_;
+  mutable bool memo_valid_ = false;
+  mutable bool memo_has_jacobian_ = false;
+};
+
 }  // namespace driveid

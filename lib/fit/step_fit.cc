@@ -55,7 +55,7 @@ struct StepChannels {
   std::vector<double> weighted_motor, weighted_link;
 };
 
-class StepResiduals final : public ResidualModel {
+class StepResiduals final : public ResidualModel, public BlockResidualModel {
  public:
   StepResiduals(const std::vector<StepLog>& logs, const DriveTrainParameters& start, DriveTrainModel model,
                 std::vector<DriveTrainParameter> ode_parameters, bool fit_offsets, bool use_angles)
@@ -88,50 +88,83 @@ class StepResiduals final : public ResidualModel {
 
   bool Evaluate(const double* parameters, double* residuals, double* jacobian) override {
     const std::size_t q = ode_parameters_.size();
-    const std::size_t p = static_cast<std::size_t>(parameter_count());
-    for (std::size_t j = 0; j < q; ++j) SetDriveTrainParameter(params_, ode_parameters_[j], parameters[j]);
+    const int p = parameter_count();
+    for (std::size_t i = 0; i < logs_.size(); ++i) {
+      const int base = channels_[i].first_row;
+      const int offset_column = fit_offsets_ ? static_cast<int>(q + i) : -1;
+      if (!EvaluateLog(i, parameters, fit_offsets_ ? parameters[q + i] : 0.0, residuals + base,
+                       jacobian != nullptr ? jacobian + static_cast<std::size_t>(base) * static_cast<std::size_t>(p) : nullptr,
+                       p, offset_column)) {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  // BlockResidualModel: a block per log, its offset its own parameter.
+  int shared_count() const override { return static_cast<int>(ode_parameters_.size()); }
+  int block_count() const override { return static_cast<int>(logs_.size()); }
+  int block_rows(int block) const override {
+    const std::size_t i = static_cast<std::size_t>(block);
+    const int next = i + 1 < channels_.size() ? channels_[i + 1].first_row : rows_;
+    return next - channels_[i].first_row;
+  }
+  int local_count(int) const override { return fit_offsets_ ? 1 : 0; }
+  bool EvaluateBlock(int block, const double* shared, const double* local, double* residuals,
+                     double* jacobian) override {
+    const int q = shared_count();
+    return EvaluateLog(static_cast<std::size_t>(block), shared, fit_offsets_ ? local[0] : 0.0, residuals, jacobian,
+                       q + local_count(block), fit_offsets_ ? q : -1);
+  }
+
+  // Log i's rows: residuals from its first row on, Jacobian rows of `stride`
+  // columns (the ODE parameters first, the offset at `offset_column` if >= 0,
+  // every other column 0).
+  bool EvaluateLog(std::size_t i, const double* ode_values, double offset, double* residuals, double* jacobian,
+                   int stride, int offset_column) {
+    const std::size_t q = ode_parameters_.size();
+    const std::size_t p = static_cast<std::size_t>(stride);
+    for (std::size_t j = 0; j < q; ++j) SetDriveTrainParameter(params_, ode_parameters_[j], ode_values[j]);
+    const StepLog& log = logs_[i];
+    const StepChannels& c = channels_[i];
+    const std::size_t n = log.time.size();
     try {
-      for (std::size_t i = 0; i < logs_.size(); ++i) {
-        const StepLog& log = logs_[i];
-        const StepChannels& c = channels_[i];
-        simulator_.Simulate(params_, log.time, log.motor_torque, jacobian != nullptr, &response_);
-        const double offset = fit_offsets_ ? parameters[q + i] : 0.0;
-        const std::size_t n = log.time.size();
-        std::size_t base = static_cast<std::size_t>(c.first_row);
+      simulator_.Simulate(params_, log.time, log.motor_torque, jacobian != nullptr, &response_);
+      for (std::size_t k = 0; k < n; ++k) {
+        residuals[k] = response_.link_torque[k] + offset - log.link_torque[k];
+        if (jacobian == nullptr) continue;
+        double* row = jacobian + k * p;
+        std::fill(row, row + p, 0.0);
+        for (std::size_t j = 0; j < q; ++j) row[j] = response_.link_torque_sensitivity[k * q + j];
+        if (offset_column >= 0) row[offset_column] = 1.0;
+      }
+      // Angle channels: q_motor = n_g phi, q_link = Delta (no strain-gauge offset).
+      const double n_g = params_.gear_ratio;
+      std::size_t base = 0;
+      for (const auto& [weight, measured, model, sensitivity, scale] :
+           {std::tuple{c.motor_weight, &log.motor_angle, &response_.motor_angle, &response_.motor_angle_sensitivity,
+                       n_g},
+            std::tuple{c.link_weight, &log.link_angle, &response_.deflection, &response_.deflection_sensitivity,
+                       1.0}}) {
+        if (weight == 0.0) continue;
+        base += n;
         for (std::size_t k = 0; k < n; ++k) {
-          residuals[base + k] = response_.link_torque[k] + offset - log.link_torque[k];
+          residuals[base + k] = weight * (scale * (*model)[k] - (*measured)[k]);
           if (jacobian == nullptr) continue;
           double* row = jacobian + (base + k) * p;
-          for (std::size_t j = 0; j < q; ++j) row[j] = response_.link_torque_sensitivity[k * q + j];
-          for (std::size_t m = q; m < p; ++m) row[m] = (fit_offsets_ && m - q == i) ? 1.0 : 0.0;
+          std::fill(row, row + p, 0.0);
+          for (std::size_t j = 0; j < q; ++j) row[j] = weight * scale * (*sensitivity)[k * q + j];
         }
-        // Angle channels: q_motor = n_g phi, q_link = Delta (no strain-gauge offset).
-        const double n_g = params_.gear_ratio;
-        for (const auto& [weight, measured, model, sensitivity, scale] :
-             {std::tuple{c.motor_weight, &log.motor_angle, &response_.motor_angle,
-                         &response_.motor_angle_sensitivity, n_g},
-              std::tuple{c.link_weight, &log.link_angle, &response_.deflection, &response_.deflection_sensitivity,
-                         1.0}}) {
-          if (weight == 0.0) continue;
-          base += n;
-          for (std::size_t k = 0; k < n; ++k) {
-            residuals[base + k] = weight * (scale * (*model)[k] - (*measured)[k]);
-            if (jacobian == nullptr) continue;
-            double* row = jacobian + (base + k) * p;
-            for (std::size_t j = 0; j < q; ++j) row[j] = weight * scale * (*sensitivity)[k * q + j];
-            for (std::size_t m = q; m < p; ++m) row[m] = 0.0;
-          }
+      }
+      for (std::size_t k = 0; k < base + n; ++k) {
+        if (!std::isfinite(residuals[k])) {
+          last_failure_ = "the simulated response is not finite";
+          return false;
         }
       }
     } catch (const IdentificationError& e) {
       last_failure_ = e.what();
       return false;  // integrator failure at these values: the solver backs off
-    }
-    for (int i = 0; i < rows_; ++i) {
-      if (!std::isfinite(residuals[i])) {
-        last_failure_ = "the simulated response is not finite";
-        return false;
-      }
     }
     last_failure_.clear();
     return true;
@@ -293,7 +326,11 @@ StepFitOutput FitFrom(const std::vector<StepLog>& logs, const DriveTrainParamete
   if (!fit_options.advice) fit_options.advice = StepAdvice;
 
   StepFitOutput output;
-  output.fit = FitLeastSquares(residuals, fit_parameters, channels, fit_options);
+  // Several logs with offsets: a block per log, the offsets eliminated by
+  // the Schur complement (time and memory linear in the number of logs).
+  output.fit = fit_offsets && logs.size() > 1
+                   ? FitBlockLeastSquares(residuals, fit_parameters, channels, fit_options)
+                   : FitLeastSquares(residuals, fit_parameters, channels, fit_options);
   residuals.UnweightRmse(output.fit);
   std::vector<double> estimate;
   for (const auto& e : output.fit.estimates) estimate.push_back(e.value);

@@ -4,6 +4,7 @@
 #include "fit/least_squares.h"
 
 #include <cmath>
+#include <random>
 #include <string>
 
 #include <catch2/catch.hpp>
@@ -45,4 +46,96 @@ TEST_CASE("Student t 97.5 % quantiles: exact values at small and large degrees o
   CHECK(StudentT975(100) == Approx(1.98397151852).epsilon(1e-9));
   CHECK(StudentT975(100000) == Approx(1.9599877).epsilon(1e-7));  // z + (z^3 + z) / (4 n)
   CHECK(std::isinf(StudentT975(0)));
+}
+
+namespace {
+
+// y_bt = a (1 - exp(-b t)) + c_b + e_bt over B blocks of N samples: a, b
+// shared, c_b each block's own; AR(1) errors (lag-1 0.8) so the robust
+// covariance's long-run terms matter. Implements both interfaces.
+class Saturation final : public ResidualModel, public BlockResidualModel {
+ public:
+  Saturation(int blocks, int samples) : blocks_(blocks), samples_(samples) {
+    std::mt19937 engine(7);
+    std::normal_distribution<double> noise(0.0, 0.05);
+    for (int b = 0; b < blocks; ++b) {
+      double e = 0.0;
+      for (int k = 0; k < samples; ++k) {
+        e = 0.8 * e + 0.6 * noise(engine);
+        const double t = 0.01 * k;
+        y_.push_back(2.0 * (1.0 - std::exp(-3.0 * t)) + 0.1 * b + e);
+      }
+    }
+  }
+  int residual_count() const override { return blocks_ * samples_; }
+  bool Evaluate(const double* p, double* r, double* jacobian) override {
+    const int width = 2 + blocks_;
+    for (int b = 0; b < blocks_; ++b) {
+      double* rows = jacobian ? jacobian + static_cast<std::ptrdiff_t>(b) * samples_ * width : nullptr;
+      Block(b, p, p[2 + b], r + b * samples_, rows, width, 2 + b);
+    }
+    return true;
+  }
+  int shared_count() const override { return 2; }
+  int block_count() const override { return blocks_; }
+  int block_rows(int) const override { return samples_; }
+  int local_count(int) const override { return 1; }
+  bool EvaluateBlock(int b, const double* shared, const double* local, double* r, double* jacobian) override {
+    Block(b, shared, local[0], r, jacobian, 3, 2);
+    return true;
+  }
+
+ private:
+  void Block(int b, const double* p, double c, double* r, double* jacobian, int width, int c_column) const {
+    for (int k = 0; k < samples_; ++k) {
+      const double t = 0.01 * k;
+      const double decay = std::exp(-p[1] * t);
+      r[k] = p[0] * (1.0 - decay) + c - y_[static_cast<std::size_t>(b * samples_ + k)];
+      if (jacobian == nullptr) continue;
+      double* row = jacobian + static_cast<std::ptrdiff_t>(k) * width;
+      std::fill(row, row + width, 0.0);
+      row[0] = 1.0 - decay;
+      row[1] = p[0] * t * decay;
+      row[c_column] = 1.0;
+    }
+  }
+  int blocks_, samples_;
+  std::vector<double> y_;
+};
+
+}  // namespace
+
+TEST_CASE("parameters of their own per block: the Schur-complement fit equals the dense fit") {
+  const int blocks = 6, samples = 150;
+  Saturation model(blocks, samples);
+  std::vector<FitParameter> parameters = {{"a", 1.0, 0.0, 0.0}, {"b", 1.5, 0.0, 0.0}};
+  std::vector<FitChannel> channels;
+  for (int b = 0; b < blocks; ++b) {
+    parameters.push_back({"c_" + std::to_string(b + 1), 0.0, -INFINITY, 1.0});
+    channels.push_back({"block " + std::to_string(b + 1), b * samples, samples, nullptr});
+  }
+  const FitResult dense = FitLeastSquares(model, parameters, channels, {});
+  const FitResult block = FitBlockLeastSquares(model, parameters, channels, {});
+  REQUIRE(dense.estimates.size() == block.estimates.size());
+  for (std::size_t j = 0; j < dense.estimates.size(); ++j) {
+    INFO(dense.estimates[j].name);
+    CHECK(block.estimates[j].value == Approx(dense.estimates[j].value).epsilon(1e-5).margin(1e-6));
+    CHECK(block.estimates[j].standard_error == Approx(dense.estimates[j].standard_error).epsilon(1e-4));
+    CHECK(block.estimates[j].ci95_high - block.estimates[j].ci95_low ==
+          Approx(dense.estimates[j].ci95_high - dense.estimates[j].ci95_low).epsilon(1e-4));
+  }
+  for (std::size_t i = 0; i < dense.correlation.size(); ++i) {
+    CHECK(block.correlation[i] == Approx(dense.correlation[i]).margin(1e-5));
+  }
+  REQUIRE(block.singular_values.size() == dense.singular_values.size());
+  for (std::size_t i = 0; i < dense.singular_values.size(); ++i) {
+    CHECK(block.singular_values[i] == Approx(dense.singular_values[i]).epsilon(1e-6));
+  }
+  for (std::size_t c = 0; c < dense.channels.size(); ++c) {
+    CHECK(block.channels[c].inflation == Approx(dense.channels[c].inflation).epsilon(1e-5));
+    CHECK(block.channels[c].bandwidth == dense.channels[c].bandwidth);
+  }
+  // The correlated errors widen the interval: the robust std is larger than white noise's.
+  CHECK(block.channels[0].inflation > 1.5);
+  CHECK(std::abs(block.estimates[0].value - 2.0) < 4 * block.estimates[0].standard_error);
 }

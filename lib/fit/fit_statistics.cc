@@ -1,0 +1,193 @@
+#include "fit/fit_statistics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "fit/adequacy.h"
+
+namespace driveid {
+namespace {
+
+std::size_t Index(Eigen::Index i) { return static_cast<std::size_t>(i); }
+
+// Euclidean norm of every parameter's column over all blocks.
+Eigen::VectorXd ColumnNorms(const std::vector<JacobianBlock>& blocks, int p) {
+  Eigen::VectorXd squared = Eigen::VectorXd::Zero(p);
+  for (const auto& b : blocks) {
+    const Eigen::VectorXd block = b.values.colwise().squaredNorm().transpose();
+    for (std::size_t k = 0; k < b.columns.size(); ++k) squared(b.columns[k]) += block(static_cast<Eigen::Index>(k));
+  }
+  return squared.cwiseSqrt();
+}
+
+// The block's columns divided by `norm` (1 where a column is dead).
+RowMatrix Normalised(const JacobianBlock& b, const Eigen::VectorXd& norm) {
+  RowMatrix out = b.values;
+  for (std::size_t k = 0; k < b.columns.size(); ++k) {
+    const double n = norm(b.columns[k]);
+    if (n > 0.0 && std::isfinite(n)) out.col(static_cast<Eigen::Index>(k)) /= n;
+    else out.col(static_cast<Eigen::Index>(k)).setZero();
+  }
+  return out;
+}
+
+// Adds m (over the block's columns) into the P x P `target`.
+void Scatter(const Eigen::MatrixXd& m, const std::vector<int>& columns, Eigen::MatrixXd& target) {
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    for (std::size_t j = 0; j < columns.size(); ++j) {
+      target(columns[i], columns[j]) += m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
+    }
+  }
+}
+
+// J'J of the column-normalised Jacobian, P x P.
+Eigen::MatrixXd NormalisedInformation(const std::vector<JacobianBlock>& blocks, const Eigen::VectorXd& norm, int p) {
+  Eigen::MatrixXd information = Eigen::MatrixXd::Zero(p, p);
+  for (const auto& b : blocks) {
+    const RowMatrix n = Normalised(b, norm);
+    Scatter(n.transpose() * n, b.columns, information);
+  }
+  return information;
+}
+
+// The block holding a channel's rows (a channel never spans blocks).
+const JacobianBlock& BlockOf(const std::vector<JacobianBlock>& blocks, const FitChannel& c) {
+  for (const auto& b : blocks) {
+    if (c.begin >= b.row_begin && c.begin + c.count <= b.row_begin + static_cast<int>(b.values.rows())) return b;
+  }
+  throw std::logic_error("fit channel '" + c.name + "' spans Jacobian blocks");
+}
+
+}  // namespace
+
+std::vector<double> RequireIdentifiable(const std::vector<JacobianBlock>& blocks,
+                                        const std::vector<FitParameter>& parameters, const FitOptions& options,
+                                        const char* where) {
+  const int p = static_cast<int>(parameters.size());
+  const Eigen::VectorXd norm = ColumnNorms(blocks, p);
+  std::vector<std::string> involved;
+  std::string detail;
+  // Singular values of the normalised Jacobian: square roots of the
+  // eigenvalues of its J'J (accurate far below the 1e-3 threshold).
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(NormalisedInformation(blocks, norm, p));
+  std::vector<double> singular(Index(p));
+  for (int k = 0; k < p; ++k) singular[Index(k)] = std::sqrt(std::max(0.0, eigen.eigenvalues()(p - 1 - k)));
+  for (int j = 0; j < p; ++j) {
+    if (!(norm(j) > 0.0) || !std::isfinite(norm(j))) involved.push_back(parameters[Index(j)].name);
+  }
+  if (!involved.empty()) {
+    detail = "the data carry no information on them (zero sensitivity)";
+  } else {
+    std::vector<double> weight(Index(p), 0.0);
+    int weak = 0;
+    for (int k = 0; k < p; ++k) {  // eigenvalues ascending: the weakest first
+      if (singular[Index(p - 1 - k)] >= options.identifiability_threshold) continue;
+      ++weak;
+      for (int j = 0; j < p; ++j) {
+        weight[Index(j)] = std::max(weight[Index(j)], std::abs(eigen.eigenvectors()(j, k)));
+      }
+    }
+    if (weak == 0) return singular;
+    for (int j = 0; j < p; ++j) {
+      if (weight[Index(j)] > 0.2) involved.push_back(parameters[Index(j)].name);
+    }
+    detail = fmt::format("{} near-null direction{} (smallest singular value {:.2g} of the normalised Jacobian, "
+                         "threshold {:.2g}): only combinations of them are determined",
+                         weak, weak > 1 ? "s" : "", singular.back(), options.identifiability_threshold);
+  }
+  std::string message = fmt::format("not identifiable {}: {}: {}", where, fmt::join(involved, ", "), detail);
+  if (options.advice) {
+    const std::string advice = options.advice(involved);
+    if (!advice.empty()) message += "; " + advice;
+  }
+  throw IdentificationError(message);
+}
+
+void DescribeFit(const std::vector<JacobianBlock>& blocks, const Eigen::VectorXd& residuals,
+                 const std::vector<FitParameter>& parameters, const std::vector<double>& values,
+                 const std::vector<FitChannel>& channels, FitResult& result) {
+  const int p = static_cast<int>(parameters.size());
+  const int n = static_cast<int>(residuals.size());
+  result.cost = 0.5 * residuals.squaredNorm();
+
+  // Covariance of the (unweighted) least-squares estimate, robust to
+  // residuals correlated in time (docs/models.md#identification): sandwich
+  // A B A, A = (J'J)^-1, B = sum over channels of the long-run covariance
+  //   B_c = N/(N-P) sum_{|l|<=L} (1 - |l|/(L+1)) gamma_c(l) sum_t J_t' J_{t-l},
+  // gamma_c(l) the residuals' autocovariance (Bartlett weights; persistent
+  // residuals AR(1)-prewhitened first, see CalcLongRunCovariance),
+  // with Andrews' (1991) AR(1) plug-in bandwidth for the Bartlett kernel,
+  //   L = 1.1447 (alpha N_c)^(1/3),  alpha = 4 rho^2 / ((1 - rho)^2 (1 + rho)^2),
+  // rho the residuals' lag-1 autocorrelation. Uncorrelated residuals give
+  // L ~ 0: the per-channel s_c^2 J_c'J_c of white noise. Each channel's rows
+  // lie in one block, so its terms involve only that block's columns.
+  const Eigen::VectorXd column_scale = ColumnNorms(blocks, p);
+  const Eigen::MatrixXd information = NormalisedInformation(blocks, column_scale, p);
+  const Eigen::MatrixXd inverse = information.ldlt().solve(Eigen::MatrixXd::Identity(p, p));
+  Eigen::MatrixXd middle = Eigen::MatrixXd::Zero(p, p);
+  const double dof_fraction = static_cast<double>(n - p) / n;
+  std::vector<FitChannel> all = channels;
+  if (all.empty()) all.push_back({"residual", 0, n, nullptr});
+  for (const auto& channel : all) {
+    const JacobianBlock& block = BlockOf(blocks, channel);
+    const RowMatrix rows = Normalised(block, column_scale).middleRows(channel.begin - block.row_begin, channel.count);
+    const auto r = residuals.segment(channel.begin, channel.count);
+    const double variance = r.squaredNorm() / (channel.count * dof_fraction);
+    const double white_trace = variance * rows.squaredNorm();
+    const LongRunCovariance hac = CalcLongRunCovariance(rows, r);
+    const Eigen::MatrixXd robust = hac.covariance / dof_fraction;
+    Scatter(robust, block.columns, middle);
+
+    // Residuals here are model - measured; the statistics use measured - model.
+    const Eigen::VectorXd measured_minus_model = -r;
+    ChannelStatistics stats =
+        DescribeResiduals(channel.name, channel.measured, measured_minus_model.data(), channel.count);
+    stats.autocorrelation = hac.autocorrelation;
+    stats.bandwidth = hac.bandwidth;
+    stats.inflation = white_trace > 0.0 ? std::sqrt(std::max(0.0, robust.trace() / white_trace)) : 1.0;
+    result.channels.push_back(stats);
+  }
+  Eigen::MatrixXd covariance = inverse * middle * inverse;
+  covariance = column_scale.cwiseInverse().asDiagonal() * covariance * column_scale.cwiseInverse().asDiagonal();
+
+  // The interval's quantile: Student's t with the effective number of
+  // samples, N_eff = sum_c N_c (1 - rho_c) / (1 + rho_c) for lag-1 rho_c > 0
+  // (an AR(1) channel carries that much independent information), less P.
+  // A long-run covariance from few effective samples is itself uncertain
+  // (step fit at lag-1 0.9, 200 samples: N_eff ~ 10, t 2.3 instead of 1.97).
+  double effective = 0.0;
+  for (const auto& c : result.channels) {
+    // With Kendall's small-sample correction, as for the prewhitening.
+    const double rho = std::clamp(c.autocorrelation + (1.0 + 3.0 * c.autocorrelation) / std::max(c.samples, 1), 0.0,
+                                  0.999);
+    effective += c.samples * (1.0 - rho) / (1.0 + rho);
+  }
+  const double t = StudentT975(std::max(1, static_cast<int>(std::floor(effective)) - p));
+  result.estimates.clear();
+  for (int j = 0; j < p; ++j) {
+    ParameterEstimate e;
+    e.name = parameters[Index(j)].name;
+    e.value = values[Index(j)];
+    e.standard_error = std::sqrt(std::max(0.0, covariance(j, j)));
+    e.ci95_low = e.value - t * e.standard_error;
+    e.ci95_high = e.value + t * e.standard_error;
+    result.estimates.push_back(e);
+  }
+  result.covariance.resize(Index(p) * Index(p));
+  result.correlation.resize(Index(p) * Index(p));
+  for (int i = 0; i < p; ++i) {
+    for (int j = 0; j < p; ++j) {
+      result.covariance[Index(i) * Index(p) + Index(j)] = covariance(i, j);
+      const double denominator = std::sqrt(covariance(i, i) * covariance(j, j));
+      result.correlation[Index(i) * Index(p) + Index(j)] = denominator > 0.0 ? covariance(i, j) / denominator : 0.0;
+    }
+  }
+  result.warnings = CheckFitPercent(result);  // adequacy.h; fits add their own checks
+}
+
+}  // namespace driveid
