@@ -50,8 +50,9 @@ int main(int argc, char** argv) {
   std::printf("| CSV parse | %zu rows, %.1f MB | %.1f ms | %.0f MB/s |\n", big_log.time.size(), megabytes, best * 1e3,
               megabytes / best);
 
-  std::printf("\n| samples | model | free | fit time (best of %d) | iterations | d_g error |\n", repetitions);
-  std::printf("|---:|---|---|---:|---:|---:|\n");
+  std::printf("\n| samples | model | free | fit time (best of %d) | per 1000 samples | iterations | d_g error |\n",
+              repetitions);
+  std::printf("|---:|---|---|---:|---:|---:|---:|\n");
   for (const char* model_name : {"reduced", "full"}) {
     const bool full = std::string(model_name) == "full";
     for (int samples : {200, 1000, 5000, 20000, 100000}) {
@@ -77,8 +78,8 @@ int main(int argc, char** argv) {
         out = FitStepResponses({log}, start, options);
         fastest = std::min(fastest, Seconds(std::chrono::steady_clock::now() - begin));
       }
-      std::printf("| %d | %s | 4 | %.2f ms | %d | %+.2f %% |\n", samples, model_name, fastest * 1e3, out.fit.iterations,
-                  100.0 * (out.params.viscous_friction / 0.016 - 1.0));
+      std::printf("| %d | %s | 4 | %.2f ms | %.3f ms | %d | %+.2f %% |\n", samples, model_name, fastest * 1e3,
+                  fastest * 1e6 / samples, out.fit.iterations, 100.0 * (out.params.viscous_friction / 0.016 - 1.0));
     }
   }
 

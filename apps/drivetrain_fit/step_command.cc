@@ -22,9 +22,10 @@ CLI::App* SetupStepCommand(CLI::App& app, StepOptions& options) {
   command->add_option("--model", options.model, "reduced (eq. 16, second order) or full (eqs. 13-14)")
       ->check(CLI::IsMember({"reduced", "full"}));
   command->add_option("--starts", options.starts,
-                      "full model: staged (also from the reduced model fitted to each log's first transient; the lower "
-                      "cost wins, disagreement reported) or given (the --params values only); docs/models.md#drive-train")
-      ->check(CLI::IsMember({"staged", "given"}));
+                      "staged (from the fit of each log's first transient, read from the data), both (also from the "
+                      "--params values; the lower cost wins, disagreement reported) or given (the --params values "
+                      "only); docs/models.md#drive-train")
+      ->check(CLI::IsMember({"staged", "both", "given"}));
   AddFreeOption(*command, options.free, FreeOptionHelp(DriveTrainParameterTable(), "step", ", offset (a bias per log)"));
   AddLogInputOptions(*command, options.input, "tau_link=strain_gauge");
   command->add_option("--validate", options.validate,
@@ -55,7 +56,9 @@ void RunStepCommand(const StepOptions& options, const std::string& command_line)
   StepFitOptions fit_options;
   fit_options.model = options.model == "full" ? DriveTrainModel::kFull : DriveTrainModel::kReduced;
   fit_options.free = options.free;
-  fit_options.starts = options.starts == "given" ? StepStarts::kGiven : StepStarts::kStaged;
+  fit_options.starts = options.starts == "given" ? StepStarts::kGiven
+                       : options.starts == "both" ? StepStarts::kBoth
+                                                  : StepStarts::kStaged;
   SetProgress(fit_options.fit, options.output.verbose);
   const StepFitOutput result =
       FitStepResponses(logs, MakeDriveTrainParameters(*start_file.Find<DriveTrainSection>()), fit_options);

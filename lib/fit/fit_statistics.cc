@@ -25,15 +25,13 @@ Eigen::VectorXd ColumnNorms(const std::vector<JacobianBlock>& blocks, int p) {
   return squared.cwiseSqrt();
 }
 
-// The block's columns divided by `norm` (1 where a column is dead).
-RowMatrix Normalised(const JacobianBlock& b, const Eigen::VectorXd& norm) {
-  RowMatrix out = b.values;
+// Divides the block's columns by `norm` in place (0 where a column is dead).
+void Normalise(JacobianBlock& b, const Eigen::VectorXd& norm) {
   for (std::size_t k = 0; k < b.columns.size(); ++k) {
     const double n = norm(b.columns[k]);
-    if (n > 0.0 && std::isfinite(n)) out.col(static_cast<Eigen::Index>(k)) /= n;
-    else out.col(static_cast<Eigen::Index>(k)).setZero();
+    if (n > 0.0 && std::isfinite(n)) b.values.col(static_cast<Eigen::Index>(k)) /= n;
+    else b.values.col(static_cast<Eigen::Index>(k)).setZero();
   }
-  return out;
 }
 
 // Adds m (over the block's columns) into the P x P `target`.
@@ -45,14 +43,14 @@ void Scatter(const Eigen::MatrixXd& m, const std::vector<int>& columns, Eigen::M
   }
 }
 
-// J'J of the column-normalised Jacobian, P x P.
+// J'J of the column-normalised Jacobian, P x P: D^-1 (J'J) D^-1 with D the
+// column norms (dead columns 0), without a normalised copy of J.
 Eigen::MatrixXd NormalisedInformation(const std::vector<JacobianBlock>& blocks, const Eigen::VectorXd& norm, int p) {
   Eigen::MatrixXd information = Eigen::MatrixXd::Zero(p, p);
-  for (const auto& b : blocks) {
-    const RowMatrix n = Normalised(b, norm);
-    Scatter(n.transpose() * n, b.columns, information);
-  }
-  return information;
+  for (const auto& b : blocks) Scatter(b.values.transpose() * b.values, b.columns, information);
+  Eigen::VectorXd inverse(p);
+  for (int j = 0; j < p; ++j) inverse(j) = norm(j) > 0.0 && std::isfinite(norm(j)) ? 1.0 / norm(j) : 0.0;
+  return inverse.asDiagonal() * information * inverse.asDiagonal();
 }
 
 // The block holding a channel's rows (a channel never spans blocks).
@@ -108,7 +106,7 @@ std::vector<double> RequireIdentifiable(const std::vector<JacobianBlock>& blocks
   throw IdentificationError(message);
 }
 
-void DescribeFit(const std::vector<JacobianBlock>& blocks, const Eigen::VectorXd& residuals,
+void DescribeFit(std::vector<JacobianBlock> blocks, const Eigen::VectorXd& residuals,
                  const std::vector<FitParameter>& parameters, const std::vector<double>& values,
                  const std::vector<FitChannel>& channels, FitResult& result) {
   const int p = static_cast<int>(parameters.size());
@@ -128,6 +126,7 @@ void DescribeFit(const std::vector<JacobianBlock>& blocks, const Eigen::VectorXd
   // lie in one block, so its terms involve only that block's columns.
   const Eigen::VectorXd column_scale = ColumnNorms(blocks, p);
   const Eigen::MatrixXd information = NormalisedInformation(blocks, column_scale, p);
+  for (auto& b : blocks) Normalise(b, column_scale);
   const Eigen::MatrixXd inverse = information.ldlt().solve(Eigen::MatrixXd::Identity(p, p));
   Eigen::MatrixXd middle = Eigen::MatrixXd::Zero(p, p);
   const double dof_fraction = static_cast<double>(n - p) / n;
@@ -135,7 +134,7 @@ void DescribeFit(const std::vector<JacobianBlock>& blocks, const Eigen::VectorXd
   if (all.empty()) all.push_back({"residual", 0, n, nullptr});
   for (const auto& channel : all) {
     const JacobianBlock& block = BlockOf(blocks, channel);
-    const RowMatrix rows = Normalised(block, column_scale).middleRows(channel.begin - block.row_begin, channel.count);
+    const auto rows = block.values.middleRows(channel.begin - block.row_begin, channel.count);
     const auto r = residuals.segment(channel.begin, channel.count);
     const double variance = r.squaredNorm() / (channel.count * dof_fraction);
     const double white_trace = variance * rows.squaredNorm();

@@ -33,7 +33,8 @@ std::vector<double> RequireIdentifiable(const std::vector<JacobianBlock>& blocks
 
 /// Fills estimates (from `values`), covariance, correlation, channel
 /// statistics, the cost and the adequacy warnings of `result`.
-void DescribeFit(const std::vector<JacobianBlock>& blocks, const Eigen::VectorXd& residuals,
+/// `blocks` are taken over (normalised in place).
+void DescribeFit(std::vector<JacobianBlock> blocks, const Eigen::VectorXd& residuals,
                  const std::vector<FitParameter>& parameters, const std::vector<double>& values,
                  const std::vector<FitChannel>& channels, FitResult& result);
 

@@ -194,23 +194,34 @@ FitResult FitLeastSquares(ResidualModel& model, const std::vector<FitParameter>&
   evaluate_at(z);
   RequireIdentifiable(blocks, parameters, options, "from these logs");
 
-  ceres::Problem::Options problem_options;
-  problem_options.cost_function_ownership = ceres::TAKE_OWNERSHIP;
-  ceres::Problem problem(problem_options);
-  problem.AddResidualBlock(new ScaledCost(model, scale), nullptr, z.data());
-  for (int j = 0; j < p; ++j) {
-    const double lower = parameters[static_cast<std::size_t>(j)].lower_bound;
-    if (std::isfinite(lower)) problem.SetParameterLowerBound(z.data(), j, lower / scale[static_cast<std::size_t>(j)]);
-  }
-  ProgressCallback callback(options.progress);
-  ceres::Solver::Summary summary;
-  ceres::Solve(SolverOptions(options, callback), &problem, &summary);
   FitResult result;
-  TakeSummary(summary, result);
-
+  {
+    // The Jacobian's storage is Ceres's during the solve.
+    blocks[0].values.resize(0, p);
+    ceres::Problem::Options problem_options;
+    problem_options.cost_function_ownership = ceres::TAKE_OWNERSHIP;
+    ceres::Problem problem(problem_options);
+    problem.AddResidualBlock(new ScaledCost(model, scale), nullptr, z.data());
+    for (int j = 0; j < p; ++j) {
+      const double lower = parameters[static_cast<std::size_t>(j)].lower_bound;
+      if (std::isfinite(lower)) problem.SetParameterLowerBound(z.data(), j, lower / scale[static_cast<std::size_t>(j)]);
+    }
+    ProgressCallback callback(options.progress);
+    ceres::Solver::Options solver_options = SolverOptions(options, callback);
+    // A large Jacobian: normal equations (P x P) instead of a QR on a copy of
+    // it (N x P); the parameters are scaled and identifiable (collinearity
+    // index < 1000), so squaring the condition number costs no accuracy
+    // that matters.
+    const std::size_t jacobian_bytes = static_cast<std::size_t>(n) * static_cast<std::size_t>(p) * sizeof(double);
+    if (jacobian_bytes > kMemoJacobianBytes) solver_options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver_options, &problem, &summary);
+    TakeSummary(summary, result);
+  }
+  blocks[0].values.resize(n, p);
   evaluate_at(z);
   result.singular_values = RequireIdentifiable(blocks, parameters, options, "at the optimum");
-  DescribeFit(blocks, residuals, parameters, physical, channels, result);
+  DescribeFit(std::move(blocks), residuals, parameters, physical, channels, result);
   return result;
 }
 
@@ -300,7 +311,7 @@ FitResult FitBlockLeastSquares(BlockResidualModel& model, const std::vector<FitP
 
   evaluate_at(z);
   result.singular_values = RequireIdentifiable(blocks, parameters, options, "at the optimum");
-  DescribeFit(blocks, residuals, parameters, physical, channels, result);
+  DescribeFit(std::move(blocks), residuals, parameters, physical, channels, result);
   return result;
 }
 

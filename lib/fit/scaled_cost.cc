@@ -33,7 +33,9 @@ bool ScaledCost::Evaluate(double const* const* parameters, double* residuals, do
   }
   memo_point_.assign(parameters[0], parameters[0] + p);
   memo_residuals_.assign(residuals, residuals + n);
-  memo_has_jacobian_ = jacobian != nullptr;
+  // A Jacobian above kMemoJacobianBytes is not copied (memory before time:
+  // models of such logs remember their last simulation themselves).
+  memo_has_jacobian_ = jacobian != nullptr && n * p * sizeof(double) <= kMemoJacobianBytes;
   if (memo_has_jacobian_) memo_jacobian_.assign(jacobian, jacobian + n * p);
   memo_valid_ = true;
   return true;

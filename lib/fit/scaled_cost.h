@@ -16,6 +16,9 @@
 
 namespace driveid {
 
+/// Largest Jacobian the memo copies [bytes].
+inline constexpr std::size_t kMemoJacobianBytes = std::size_t{16} << 20;
+
 class ScaledCost final : public ceres::CostFunction {
  public:
   /// `model` must outlive the cost; `scale` has one entry per parameter.

@@ -79,6 +79,9 @@ class StepResiduals final : public ResidualModel, public BlockResidualModel {
       weigh(log.link_angle, &c.link_weight, &c.weighted_link);
       channels_.push_back(std::move(c));
     }
+    const bool angles = std::any_of(channels_.begin(), channels_.end(),
+                                    [](const StepChannels& c) { return c.motor_weight > 0.0 || c.link_weight > 0.0; });
+    simulator_.set_record_angles(angles);
   }
 
   int residual_count() const override { return rows_; }
@@ -129,7 +132,17 @@ class StepResiduals final : public ResidualModel, public BlockResidualModel {
     const StepChannels& c = channels_[i];
     const std::size_t n = log.time.size();
     try {
-      simulator_.Simulate(params_, log.time, log.motor_torque, jacobian != nullptr, &response_);
+      // One log: the last simulation is the memo of the last point (no copy
+      // of a large Jacobian elsewhere).
+      const std::vector<double> point(ode_values, ode_values + q);
+      if (!(logs_.size() == 1 && simulated_valid_ && simulated_ == point &&
+            (jacobian == nullptr || simulated_with_jacobian_))) {
+        simulated_valid_ = false;
+        simulator_.Simulate(params_, log.time, log.motor_torque, jacobian != nullptr, &response_);
+        simulated_ = point;
+        simulated_with_jacobian_ = jacobian != nullptr;
+        simulated_valid_ = true;
+      }
       for (std::size_t k = 0; k < n; ++k) {
         residuals[k] = response_.link_torque[k] + offset - log.link_torque[k];
         if (jacobian == nullptr) continue;
@@ -173,6 +186,7 @@ class StepResiduals final : public ResidualModel, public BlockResidualModel {
   std::string LastFailure() const override { return last_failure_; }
 
   std::vector<double> Simulate(std::size_t i, const double* parameters) {
+    simulated_valid_ = false;
     const std::size_t q = ode_parameters_.size();
     for (std::size_t j = 0; j < q; ++j) SetDriveTrainParameter(params_, ode_parameters_[j], parameters[j]);
     simulator_.Simulate(params_, logs_[i].time, logs_[i].motor_torque, false, &response_);
@@ -216,6 +230,9 @@ class StepResiduals final : public ResidualModel, public BlockResidualModel {
   std::vector<StepChannels> channels_;
   int rows_ = 0;
   std::string last_failure_;
+  std::vector<double> simulated_;  // ODE parameter values of response_ (one log) if simulated_valid_
+  bool simulated_valid_ = false;
+  bool simulated_with_jacobian_ = false;
 };
 
 void CheckStepLog(const StepLog& log) {
@@ -398,34 +415,68 @@ StepFitOutput FitStepResponses(const std::vector<StepLog>& logs, const DriveTrai
       Contains(options.free, DriveTrainParameterKey(DriveTrainParameter::kGearboxInertia))) {
     throw IdentificationError("Theta_g has no effect in the reduced model (it sets Theta_g = 0): use --model full");
   }
-  if (options.model == DriveTrainModel::kReduced || options.starts == StepStarts::kGiven) {
-    return FitFrom(logs, start, {}, options.model, options.free, options.fit);
-  }
+  if (options.starts == StepStarts::kGiven) return FitFrom(logs, start, {}, options.model, options.free, options.fit);
 
-  // Full model (docs/models.md#drive-train, "Starting the full model"): its
-  // undamped link mode rings on after the drive sticks, which makes the cost
-  // multimodal on long logs; a start a few times off settled in a
-  // neighbouring optimum (tau_c near 1, offset near 5 for 5 and 1.3). The
-  // staged start: the reduced model (no ringing) fitted to each log's first
-  // transient, then the full model on the same transients, then on the whole
-  // logs. The full fit also runs from the given start; the lower cost wins
-  // and a disagreement is reported.
+  // Long logs (docs/models.md#drive-train, "Starting on long logs"): once
+  // the drive sticks, the rest of the log weighs the stuck level, which
+  // moves in jumps with tau_c and the dynamics (another reversal before
+  // sticking), and the full model's undamped link mode rings on with a phase
+  // set by the sticking instant; the cost then has neighbouring optima a few
+  // times off the truth (reduced, 2 s at 100 kHz: d_g 0.007 for 0.016; full,
+  // 2 s at 5 kHz: tau_c near 1, offset near 5 for 5 and 1.3). The staged
+  // start: the reduced model (no ringing) fitted to each log's first
+  // transient, then (full model) the full model on the same transients,
+  // then the model on the whole logs. The fit also runs from the given
+  // start; the lower cost wins and a disagreement is reported.
+  std::vector<StepLog> transients;
+  bool shorter = false;
+  for (const auto& log : logs) {
+    transients.push_back(FirstTransient(log));
+    shorter = shorter || transients.back().time.size() < log.time.size();
+  }
+  const bool full = options.model == DriveTrainModel::kFull;
+  if (!full && !shorter) return FitFrom(logs, start, {}, options.model, options.free, options.fit);
   std::optional<StepFitOutput> staged;
+  std::optional<StepFitOutput> transient_fit;  // the last stage on the transients
   std::string staged_failure;
-  const std::vector<std::string> reduced_free = ReducedStageFree(options.free);
+  const std::vector<std::string> reduced_free = full ? ReducedStageFree(options.free) : options.free;
   if (!reduced_free.empty()) {
     try {
       FitOptions quiet = options.fit;
       quiet.progress = nullptr;
-      std::vector<StepLog> transients;
-      for (const auto& log : logs) transients.push_back(FirstTransient(log));
-      const StepFitOutput reduced = FitFrom(transients, start, {}, DriveTrainModel::kReduced, reduced_free, quiet);
-      const StepFitOutput full = FitFrom(transients, reduced.params, reduced.offsets, options.model, options.free, quiet);
-      staged = FitFrom(logs, full.params, full.offsets, options.model, options.free, options.fit);
-      staged->fit.iterations += reduced.fit.iterations + full.fit.iterations;  // the whole path
+      StepFitOutput stage = FitFrom(transients, start, {}, DriveTrainModel::kReduced, reduced_free, quiet);
+      int iterations = stage.fit.iterations;
+      if (full) {
+        stage = FitFrom(transients, stage.params, stage.offsets, options.model, options.free, quiet);
+        iterations += stage.fit.iterations;
+      }
+      staged = FitFrom(logs, stage.params, stage.offsets, options.model, options.free, options.fit);
+      staged->fit.iterations += iterations;  // the whole path
+      if (reduced_free.size() == options.free.size() || full) transient_fit = std::move(stage);
     } catch (const IdentificationError& e) {
       staged_failure = e.what();
     }
+  }
+  if (staged && options.starts == StepStarts::kStaged) {
+    // Does the rest of the log pull the estimates away from what the first
+    // transients alone say (by more than 3 of their standard errors)?
+    if (transient_fit) {
+      std::vector<std::string> moved;
+      for (std::size_t j = 0; j < staged->fit.estimates.size() && j < transient_fit->fit.estimates.size(); ++j) {
+        const auto& a = transient_fit->fit.estimates[j];
+        const auto& b = staged->fit.estimates[j];
+        if (a.name == b.name && std::abs(b.value - a.value) > 3.0 * a.standard_error) {
+          moved.push_back(fmt::format("{} {:.4g} +- {:.2g} -> {:.4g}", a.name, a.value, a.standard_error, b.value));
+        }
+      }
+      if (!moved.empty()) {
+        staged->fit.warnings.push_back(fmt::format(
+            "the whole logs pull the estimates away from the first transients' ({}): the model may miss something "
+            "over the long run, or the cost has several optima (check with --starts both; docs/models.md#drive-train)",
+            fmt::join(moved, ", ")));
+      }
+    }
+    return std::move(*staged);
   }
   std::optional<StepFitOutput> given;
   std::string given_failure;

@@ -18,11 +18,14 @@ namespace driveid {
 
 
 
-/// Where the full model's fit starts (docs/models.md#drive-train): from the
-/// given values and from a staged start (the reduced, then the full model
-/// fitted to each log's first transient), keeping the lower cost and
-/// reporting a disagreement (kStaged, default), or from the given values only.
-enum class StepStarts { kStaged, kGiven };
+/// Where the fit starts (docs/models.md#drive-train, "Starting on long
+/// logs"): kStaged (default) fits the reduced model, then (full model) the
+/// full model, to each log's first transient and starts the fit of the whole
+/// logs there (on short logs, whose first transient is the whole log, the
+/// reduced model starts from the given values directly); kBoth also fits
+/// from the given values and keeps the lower cost, reporting a disagreement;
+/// kGiven starts from the given values only.
+enum class StepStarts { kStaged, kBoth, kGiven };
 
 struct StepFitOptions {
   DriveTrainModel model = DriveTrainModel::kReduced;

@@ -70,6 +70,8 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem, public He
     }
   }
 
+  void set_record_angles(bool record) { record_angles_ = record; }
+
   void Simulate(const DriveTrainParameters& params, const std::vector<double>& time,
                 const std::vector<double>& motor_torque, bool with_sensitivities, DriveTrainResponse* out) {
     params_ = params;
@@ -79,10 +81,11 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem, public He
     out->link_torque.assign(samples, 0.0);
     out->friction_mode.assign(samples, 0);
     out->link_torque_sensitivity.assign(with_sensitivities ? samples * p : 0, 0.0);
-    out->motor_angle.assign(samples, 0.0);
-    out->deflection.assign(samples, 0.0);
-    out->motor_angle_sensitivity.assign(with_sensitivities ? samples * p : 0, 0.0);
-    out->deflection_sensitivity.assign(with_sensitivities ? samples * p : 0, 0.0);
+    const std::size_t angle_samples = record_angles_ ? samples : 0;
+    out->motor_angle.assign(angle_samples, 0.0);
+    out->deflection.assign(angle_samples, 0.0);
+    out->motor_angle_sensitivity.assign(with_sensitivities ? angle_samples * p : 0, 0.0);
+    out->deflection_sensitivity.assign(with_sensitivities ? angle_samples * p : 0, 0.0);
     out->switch_count = 0;
     if (samples == 0) return;
 
@@ -171,9 +174,11 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem, public He
 
   void Record(std::size_t k, bool with_sensitivities, DriveTrainResponse* out) const {
     out->link_torque[k] = CalcLinkTorque(params_, model_, x_.data());
-    out->motor_angle[k] = x_[DriveTrainState::kMotorAngle];
-    out->deflection[k] = CalcDeflection(params_, model_, x_.data());
     out->friction_mode[k] = mode_;
+    if (record_angles_) {
+      out->motor_angle[k] = x_[DriveTrainState::kMotorAngle];
+      out->deflection[k] = CalcDeflection(params_, model_, x_.data());
+    }
     if (!with_sensitivities) return;
     double gradient[4], deflection_gradient[4];
     CalcLinkTorqueStateGradient(params_, model_, gradient);
@@ -188,11 +193,13 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem, public He
         deflection += deflection_gradient[i] * s[i];
       }
       out->link_torque_sensitivity[k * p + j] = value;
+      if (!record_angles_) continue;
       out->motor_angle_sensitivity[k * p + j] = s[DriveTrainState::kMotorAngle];
       out->deflection_sensitivity[k * p + j] = deflection;
     }
   }
 
+  bool record_angles_ = true;
   DriveTrainModel model_;
   DriveTrainParameters params_;
   std::vector<DriveTrainParameter> parameters_;
@@ -220,6 +227,8 @@ void DriveTrainSimulator::Simulate(const DriveTrainParameters& params, const std
                                    DriveTrainResponse* response) {
   system_->Simulate(params, time, motor_torque, with_sensitivities, response);
 }
+
+void DriveTrainSimulator::set_record_angles(bool record) { system_->set_record_angles(record); }
 
 DriveTrainModel DriveTrainSimulator::model() const { return system_->model(); }
 

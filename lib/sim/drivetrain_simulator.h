@@ -67,6 +67,11 @@ class DriveTrainSimulator {
   void Simulate(const DriveTrainParameters& params, const std::vector<double>& time,
                 const std::vector<double>& motor_torque, bool with_sensitivities, DriveTrainResponse* response);
 
+  /// Whether responses hold the angles phi, Delta and their sensitivities
+  /// (default); without, they stay empty (a fit of tau_link alone saves
+  /// four of the response's six arrays).
+  void set_record_angles(bool record);
+
   DriveTrainModel model() const;
   const std::vector<DriveTrainParameter>& sensitivity_parameters() const;
 

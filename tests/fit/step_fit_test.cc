@@ -123,6 +123,24 @@ TEST_CASE("(c) full truth, 2 s at 5 kHz: the fit reaches the true optimum from s
   }
 }
 
+TEST_CASE("(c) --starts both: the fit from the given start alone settles elsewhere, and that is reported") {
+  reference::DriveTrain truth;
+  truth.full = true;
+  const auto log = reference::SimulateStep(truth, 5000.0, 2.0, 0.02, -0.8, 0.1, 1.3, 31);
+  StepFitOptions options;
+  options.model = DriveTrainModel::kFull;
+  options.free = {"d_g", "Theta_motor", "tau_c", "offset"};
+  options.starts = StepStarts::kBoth;
+  const auto both = FitStepResponses({ToStepLog(log, "c.csv")}, BadStart(), options);
+  RequireRecovered(both.fit, "tau_c", kTrueCoulomb, 0.08);
+  bool reported = false;
+  for (const auto& w : both.fit.warnings) reported = reported || w.find("starts disagree") != std::string::npos;
+  CHECK(reported);
+  options.starts = StepStarts::kGiven;
+  const auto given = FitStepResponses({ToStepLog(log, "c.csv")}, BadStart(), options);
+  CHECK(std::abs(Find(given.fit, "tau_c").value - kTrueCoulomb) > 0.5);  // the neighbouring optimum
+}
+
 TEST_CASE("several logs fit jointly with their own offsets") {
   reference::DriveTrain truth;
   const auto down = reference::SimulateStep(truth, 1000.0, 0.2, 0.02, -0.8, 0.1, 0.4, 21);
