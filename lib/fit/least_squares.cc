@@ -12,7 +12,6 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
-#include "fit/adequacy.h"
 
 namespace driveid {
 namespace {
