@@ -274,19 +274,18 @@ double PreStepMean(const StepLog& log) {
   return count == 0 || count == log.time.size() ? 0.0 : sum / static_cast<double>(count);
 }
 
-// The first transient of a log: up to the second change of the motor
-// torque or ten 90 % rise times of the link torque after the first change
-// (at least 10 samples), whichever comes first. Its length follows the
-// drive's own time scale, read from the data, not the log's length.
-StepLog FirstTransient(const StepLog& log) {
+// Samples in the first transient of a log: up to the second change of the
+// motor torque or ten 90 % rise times of the link torque after the first
+// change (at least 10 samples), whichever comes first. Its length follows
+// the drive's own time scale, read from the data, not the log's length.
+std::size_t FirstTransientLength(const StepLog& log) {
   const std::size_t n = log.time.size();
   std::size_t first = 0;
   while (first < n && log.motor_torque[first] == log.motor_torque.front()) ++first;
   if (first == n) first = 0;  // torque held from the start: its transient begins at once
   std::size_t end = first + 1;
   while (end < n && log.motor_torque[end] == log.motor_torque[first]) ++end;
-  StepLog out = log;
-  if (end - first < 20) return out;
+  if (end - first < 20) return n;
   const double before = PreStepMean(log);
   double after = 0.0;
   const std::size_t tail = std::max<std::size_t>(1, (end - first) / 5);
@@ -298,11 +297,16 @@ StepLog FirstTransient(const StepLog& log) {
                                     10.0 * (log.time[first + 1] - log.time[first]));
   std::size_t stop = first;
   while (stop < end && log.time[stop] - log.time[first] <= 10.0 * rise_time) ++stop;
-  const auto cut = [stop](std::vector<double>& v) {
-    if (v.size() > stop) v.resize(stop);
+  return stop;
+}
+
+// The first `length` samples of a log (copied, nothing more).
+StepLog Prefix(const StepLog& log, std::size_t length) {
+  const auto head = [length](const std::vector<double>& v) {
+    return std::vector<double>(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(std::min(length, v.size())));
   };
-  for (auto* v : {&out.time, &out.motor_torque, &out.link_torque, &out.motor_angle, &out.link_angle}) cut(*v);
-  return out;
+  return {log.path, head(log.time), head(log.motor_torque), head(log.link_torque), head(log.motor_angle),
+          head(log.link_angle)};
 }
 
 // One solve from `start` (offsets from `start_offsets`, 0 when empty).
@@ -428,11 +432,11 @@ StepFitOutput FitStepResponses(const std::vector<StepLog>& logs, const DriveTrai
   // transient, then (full model) the full model on the same transients,
   // then the model on the whole logs. The fit also runs from the given
   // start; the lower cost wins and a disagreement is reported.
-  std::vector<StepLog> transients;
+  std::vector<std::size_t> transient_lengths;
   bool shorter = false;
   for (const auto& log : logs) {
-    transients.push_back(FirstTransient(log));
-    shorter = shorter || transients.back().time.size() < log.time.size();
+    transient_lengths.push_back(FirstTransientLength(log));
+    shorter = shorter || transient_lengths.back() < log.time.size();
   }
   const bool full = options.model == DriveTrainModel::kFull;
   if (!full && !shorter) return FitFrom(logs, start, {}, options.model, options.free, options.fit);
@@ -444,15 +448,21 @@ StepFitOutput FitStepResponses(const std::vector<StepLog>& logs, const DriveTrai
     try {
       FitOptions quiet = options.fit;
       quiet.progress = nullptr;
-      StepFitOutput stage = FitFrom(transients, start, {}, DriveTrainModel::kReduced, reduced_free, quiet);
-      int iterations = stage.fit.iterations;
-      if (full) {
-        stage = FitFrom(transients, stage.params, stage.offsets, options.model, options.free, quiet);
-        iterations += stage.fit.iterations;
+      StepFitOutput stage;
+      {
+        // The transients live only as long as their fits.
+        std::vector<StepLog> transients;
+        for (std::size_t i = 0; i < logs.size(); ++i) transients.push_back(Prefix(logs[i], transient_lengths[i]));
+        stage = FitFrom(transients, start, {}, DriveTrainModel::kReduced, reduced_free, quiet);
+        if (full) {
+          const int reduced_iterations = stage.fit.iterations;
+          stage = FitFrom(transients, stage.params, stage.offsets, options.model, options.free, quiet);
+          stage.fit.iterations += reduced_iterations;
+        }
       }
       staged = FitFrom(logs, stage.params, stage.offsets, options.model, options.free, options.fit);
-      staged->fit.iterations += iterations;  // the whole path
-      if (reduced_free.size() == options.free.size() || full) transient_fit = std::move(stage);
+      staged->fit.iterations += stage.fit.iterations;  // the whole path
+      transient_fit = std::move(stage);
     } catch (const IdentificationError& e) {
       staged_failure = e.what();
     }
