@@ -62,6 +62,16 @@ ceres::Solver::Options SolverOptions(const FitOptions& options, ProgressCallback
   return solver_options;
 }
 
+// Lower bounds of parameters [first, first + count) on the parameter block
+// that holds their scaled values.
+void SetLowerBounds(ceres::Problem& problem, double* block, std::size_t first, int count,
+                    const std::vector<FitParameter>& parameters, const std::vector<double>& scale) {
+  for (int j = 0; j < count; ++j) {
+    const std::size_t k = first + static_cast<std::size_t>(j);
+    if (std::isfinite(parameters[k].lower_bound)) problem.SetParameterLowerBound(block, j, parameters[k].lower_bound / scale[k]);
+  }
+}
+
 // The solver's outcome into `result`; throws when it failed or stopped early.
 void TakeSummary(const ceres::Solver::Summary& summary, FitResult& result) {
   result.iterations = static_cast<int>(summary.iterations.size()) - 1;
@@ -201,10 +211,7 @@ FitResult FitLeastSquares(ResidualModel& model, const std::vector<FitParameter>&
     problem_options.cost_function_ownership = ceres::TAKE_OWNERSHIP;
     ceres::Problem problem(problem_options);
     problem.AddResidualBlock(new ScaledCost(model, scale), nullptr, z.data());
-    for (int j = 0; j < p; ++j) {
-      const double lower = parameters[static_cast<std::size_t>(j)].lower_bound;
-      if (std::isfinite(lower)) problem.SetParameterLowerBound(z.data(), j, lower / scale[static_cast<std::size_t>(j)]);
-    }
+    SetLowerBounds(problem, z.data(), 0, p, parameters, scale);
     ProgressCallback callback(options.progress);
     ceres::Solver::Options solver_options = SolverOptions(options, callback);
     // A large Jacobian: normal equations (P x P) instead of a QR on a copy of
@@ -286,17 +293,10 @@ FitResult FitBlockLeastSquares(BlockResidualModel& model, const std::vector<FitP
   }
   if (q > 0) ordering->AddElementToGroup(z.data(), 1);
   for (int b = 0; b < block_count; ++b) {
-    const int l = model.local_count(b);
     const auto first = static_cast<std::size_t>(local_begin[static_cast<std::size_t>(b)]);
-    for (int j = 0; j < l; ++j) {
-      const double lower = parameters[first + static_cast<std::size_t>(j)].lower_bound;
-      if (std::isfinite(lower)) problem.SetParameterLowerBound(z.data() + first, j, lower / scale[first + static_cast<std::size_t>(j)]);
-    }
+    SetLowerBounds(problem, z.data() + first, first, model.local_count(b), parameters, scale);
   }
-  for (int j = 0; j < q; ++j) {
-    const double lower = parameters[static_cast<std::size_t>(j)].lower_bound;
-    if (std::isfinite(lower)) problem.SetParameterLowerBound(z.data(), j, lower / scale[static_cast<std::size_t>(j)]);
-  }
+  SetLowerBounds(problem, z.data(), 0, q, parameters, scale);
   ProgressCallback callback(options.progress);
   ceres::Solver::Options solver_options = SolverOptions(options, callback);
   if (ordering->NumGroups() == 2) {

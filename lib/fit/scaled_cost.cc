@@ -5,42 +5,6 @@
 
 namespace driveid {
 
-ScaledCost::ScaledCost(ResidualModel& model, std::vector<double> scale)
-    : model_(model), scale_(std::move(scale)), physical_(scale_.size()) {
-  set_num_residuals(model.residual_count());
-  mutable_parameter_block_sizes()->push_back(static_cast<int>(scale_.size()));
-}
-
-bool ScaledCost::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
-  const std::size_t p = scale_.size();
-  const std::size_t n = static_cast<std::size_t>(num_residuals());
-  double* jacobian = (jacobians != nullptr) ? jacobians[0] : nullptr;
-  // Bitwise comparison: a point that differs in the last bit is another point.
-  const bool same_point = memo_valid_ && std::memcmp(memo_point_.data(), parameters[0], p * sizeof(double)) == 0;
-  if (same_point && (jacobian == nullptr || memo_has_jacobian_)) {
-    std::copy(memo_residuals_.begin(), memo_residuals_.end(), residuals);
-    if (jacobian != nullptr) std::copy(memo_jacobian_.begin(), memo_jacobian_.end(), jacobian);
-    return true;
-  }
-  memo_valid_ = false;
-  for (std::size_t j = 0; j < p; ++j) physical_[j] = parameters[0][j] * scale_[j];
-  ++evaluations_;
-  if (!model_.Evaluate(physical_.data(), residuals, jacobian)) return false;
-  if (jacobian != nullptr) {
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t j = 0; j < p; ++j) jacobian[i * p + j] *= scale_[j];
-    }
-  }
-  memo_point_.assign(parameters[0], parameters[0] + p);
-  memo_residuals_.assign(residuals, residuals + n);
-  // A Jacobian above kMemoJacobianBytes is not copied (memory before time:
-  // models of such logs remember their last simulation themselves).
-  memo_has_jacobian_ = jacobian != nullptr && n * p * sizeof(double) <= kMemoJacobianBytes;
-  if (memo_has_jacobian_) memo_jacobian_.assign(jacobian, jacobian + n * p);
-  memo_valid_ = true;
-  return true;
-}
-
 ScaledBlockCost::ScaledBlockCost(BlockResidualModel& model, int block, std::vector<double> shared_scale,
                                  std::vector<double> local_scale)
     : model_(model), block_(block), shared_scale_(std::move(shared_scale)), local_scale_(std::move(local_scale)),
@@ -58,36 +22,49 @@ bool ScaledBlockCost::Evaluate(double const* const* parameters, double* residual
   double* shared_jacobian = (jacobians != nullptr && q > 0) ? jacobians[0] : nullptr;
   double* local_jacobian = (jacobians != nullptr && l > 0) ? jacobians[q > 0 ? 1 : 0] : nullptr;
   const bool want_jacobian = shared_jacobian != nullptr || local_jacobian != nullptr;
-  std::vector<double> point(shared, shared + q);
-  point.insert(point.end(), local, local + l);
-  if (!(memo_valid_ && memo_point_ == point && (!want_jacobian || memo_has_jacobian_))) {
-    memo_valid_ = false;
-    for (std::size_t j = 0; j < q; ++j) shared_[j] = shared[j] * shared_scale_[j];
-    for (std::size_t j = 0; j < l; ++j) local_[j] = local[j] * local_scale_[j];
-    memo_residuals_.resize(n);
-    memo_jacobian_.resize(want_jacobian ? n * p : 0);
-    if (!model_.EvaluateBlock(block_, shared_.data(), local_.data(), memo_residuals_.data(),
-                              want_jacobian ? memo_jacobian_.data() : nullptr)) {
-      return false;
+  // Bitwise comparison: a point that differs in the last bit is another point.
+  const bool same_point = memo_valid_ && (q == 0 || std::memcmp(memo_point_.data(), shared, q * sizeof(double)) == 0) &&
+                          (l == 0 || std::memcmp(memo_point_.data() + q, local, l * sizeof(double)) == 0);
+  if (same_point && (!want_jacobian || memo_has_jacobian_)) {
+    std::copy(memo_residuals_.begin(), memo_residuals_.end(), residuals);
+    for (std::size_t i = 0; i < n && want_jacobian; ++i) {
+      if (shared_jacobian != nullptr) std::copy_n(memo_jacobian_.data() + i * p, q, shared_jacobian + i * q);
+      if (local_jacobian != nullptr) std::copy_n(memo_jacobian_.data() + i * p + q, l, local_jacobian + i * l);
     }
-    for (std::size_t i = 0; i < memo_jacobian_.size(); ++i) {
-      const std::size_t j = i % p;
-      memo_jacobian_[i] *= j < q ? shared_scale_[j] : local_scale_[j - q];
-    }
-    memo_point_ = std::move(point);
-    memo_has_jacobian_ = want_jacobian;
-    memo_valid_ = true;
+    return true;
   }
-  std::copy(memo_residuals_.begin(), memo_residuals_.end(), residuals);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (shared_jacobian != nullptr) {
-      std::copy_n(memo_jacobian_.data() + i * p, q, shared_jacobian + i * q);
-    }
-    if (local_jacobian != nullptr) {
-      std::copy_n(memo_jacobian_.data() + i * p + q, l, local_jacobian + i * l);
-    }
+  // A Jacobian of shared parameters only above kMemoJacobianBytes goes
+  // straight into Ceres's buffer and is not kept (memory before time: the
+  // models of such logs remember their last simulation themselves).
+  const bool direct = want_jacobian && l == 0 && n * p * sizeof(double) > kMemoJacobianBytes;
+  memo_valid_ = false;
+  for (std::size_t j = 0; j < q; ++j) shared_[j] = shared[j] * shared_scale_[j];
+  for (std::size_t j = 0; j < l; ++j) local_[j] = local[j] * local_scale_[j];
+  memo_jacobian_.resize(want_jacobian && !direct ? n * p : 0);
+  memo_jacobian_.shrink_to_fit();
+  double* jacobian = !want_jacobian ? nullptr : direct ? shared_jacobian : memo_jacobian_.data();
+  ++evaluations_;
+  if (!model_.EvaluateBlock(block_, shared_.data(), local_.data(), residuals, jacobian)) return false;
+  for (std::size_t i = 0; jacobian != nullptr && i < n * p; ++i) {
+    const std::size_t j = i % p;
+    jacobian[i] *= j < q ? shared_scale_[j] : local_scale_[j - q];
   }
+  for (std::size_t i = 0; i < n && want_jacobian && !direct; ++i) {
+    if (shared_jacobian != nullptr) std::copy_n(memo_jacobian_.data() + i * p, q, shared_jacobian + i * q);
+    if (local_jacobian != nullptr) std::copy_n(memo_jacobian_.data() + i * p + q, l, local_jacobian + i * l);
+  }
+  memo_residuals_.assign(residuals, residuals + n);
+  memo_point_.assign(shared, shared + q);
+  memo_point_.insert(memo_point_.end(), local, local + l);
+  memo_has_jacobian_ = want_jacobian && !direct;
+  memo_valid_ = true;
   return true;
+}
+
+ScaledCost::ScaledCost(ResidualModel& model, std::vector<double> scale)
+    : whole_(model, static_cast<int>(scale.size())), cost_(whole_, 0, std::move(scale), {}) {
+  set_num_residuals(model.residual_count());
+  mutable_parameter_block_sizes()->push_back(static_cast<int>(cost_.parameter_block_sizes().front()));
 }
 
 }  // namespace driveid

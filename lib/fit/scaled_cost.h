@@ -1,7 +1,7 @@
-// The cost Ceres minimises: a ResidualModel on scaled parameters
-// z = p / scale, one parameter block, with the Jacobian dr/dz = dr/dp scale.
-// Scaling by typical magnitudes makes the trust region and the tolerances
-// mean the same for an inertia of 1e-5 and a friction of 5.
+// The cost Ceres minimises: a model on scaled parameters z = p / scale,
+// with the Jacobian dr/dz = dr/dp scale. Scaling by typical magnitudes makes
+// the trust region and the tolerances mean the same for an inertia of 1e-5
+// and a friction of 5.
 //
 // The last evaluation is remembered: Ceres's bounded Levenberg-Marquardt
 // asks for each new point three times (candidate with Jacobian, its cost,
@@ -19,46 +19,63 @@ namespace driveid {
 /// Largest Jacobian the memo copies [bytes].
 inline constexpr std::size_t kMemoJacobianBytes = std::size_t{16} << 20;
 
-class ScaledCost final : public ceres::CostFunction {
- public:
-  /// `model` must outlive the cost; `scale` has one entry per parameter.
-  ScaledCost(ResidualModel& model, std::vector<double> scale);
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
-  /// Evaluations of the model so far (memoised repeats not counted).
-  int model_evaluations() const { return evaluations_; }
-
- private:
-  ResidualModel& model_;
-  const std::vector<double> scale_;
-  mutable std::vector<double> physical_;
-  // Memo of the last successful evaluation: the scaled point (compared bit
-  // for bit), its residuals and, if computed, its scaled Jacobian.
-  mutable std::vector<double> memo_point_;
-  mutable std::vector<double> memo_residuals_;
-  mutable std::vector<double> memo_jacobian_;
-  mutable bool memo_valid_ = false;
-  mutable bool memo_has_jacobian_ = false;
-  mutable int evaluations_ = 0;
-};
-
-/// One block of a BlockResidualModel on scaled parameters: parameter blocks
-/// (shared z, the block's own z), the latter omitted when it has none, with
-/// the same memo of the last point.
+/// One block of a BlockResidualModel: parameter blocks (shared z, the
+/// block's own z), either omitted when empty.
 class ScaledBlockCost final : public ceres::CostFunction {
  public:
   /// `model` must outlive the cost; scales of the shared and own parameters.
   ScaledBlockCost(BlockResidualModel& model, int block, std::vector<double> shared_scale,
                   std::vector<double> local_scale);
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
+  /// Evaluations of the model so far (memoised repeats not counted).
+  int model_evaluations() const { return evaluations_; }
 
  private:
   BlockResidualModel& model_;
   const int block_;
   const std::vector<double> shared_scale_, local_scale_;
   mutable std::vector<double> shared_, local_;
+  // Memo of the last successful evaluation: the scaled point (shared, then
+  // own; compared bit for bit), its residuals and, if computed and not above
+  // kMemoJacobianBytes, its scaled Jacobian (rows x (shared + own)).
   mutable std::vector<double> memo_point_, memo_residuals_, memo_jacobian_;
   mutable bool memo_valid_ = false;
   mutable bool memo_has_jacobian_ = false;
+  mutable int evaluations_ = 0;
+};
+
+/// A ResidualModel seen as one block whose parameters are all shared.
+class WholeModelBlock final : public BlockResidualModel {
+ public:
+  WholeModelBlock(ResidualModel& model, int parameter_count) : model_(model), parameters_(parameter_count) {}
+  int shared_count() const override { return parameters_; }
+  int block_count() const override { return 1; }
+  int block_rows(int) const override { return model_.residual_count(); }
+  int local_count(int) const override { return 0; }
+  bool EvaluateBlock(int, const double* shared, const double*, double* residuals, double* jacobian) override {
+    return model_.Evaluate(shared, residuals, jacobian);
+  }
+  std::string LastFailure() const override { return model_.LastFailure(); }
+
+ private:
+  ResidualModel& model_;
+  const int parameters_;
+};
+
+/// A ResidualModel's cost: one parameter block (ScaledBlockCost of the model
+/// as one block).
+class ScaledCost final : public ceres::CostFunction {
+ public:
+  /// `model` must outlive the cost; `scale` has one entry per parameter.
+  ScaledCost(ResidualModel& model, std::vector<double> scale);
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    return cost_.Evaluate(parameters, residuals, jacobians);
+  }
+  int model_evaluations() const { return cost_.model_evaluations(); }
+
+ private:
+  WholeModelBlock whole_;
+  ScaledBlockCost cost_;
 };
 
 }  // namespace driveid
