@@ -148,25 +148,8 @@ AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int deci
       if (d.valid[k]) max_rate = std::max(max_rate, std::abs(d.rate[k]));
     }
     const double min_rate = min_rate_fraction * max_rate;
-    // Full-rate columns: the model's regressors (CalcAxisRegressors), then
-    // |q'| and t - t_mid; invalid ends hold their neighbours.
-    std::vector<std::vector<double>> columns(kAxisTerms + 2, std::vector<double>(n, 0.0));
     std::vector<char> slow(n, 0);
-    const double middle_time = 0.5 * (log.time.front() + log.time.back());
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::size_t m = d.valid[k] ? k : (k == 0 ? 1 : n - 2);
-      const auto phi = CalcAxisRegressors(log.position[k], d.rate[m], d.acceleration[m]);
-      for (std::size_t j = 0; j < kAxisTerms; ++j) columns[j][k] = phi[j];
-      columns[kAxisTerms][k] = std::abs(d.rate[m]);
-      columns[kAxisTerms + 1][k] = log.time[k] - middle_time;
-      slow[k] = std::abs(d.rate[m]) < min_rate;
-    }
-    std::vector<double> force = log.force;
-    if (d.rate_hz > 0.0 && decimation > 1) {
-      const double band = 0.8 * d.rate_hz / (2.0 * decimation);
-      for (auto& c : columns) c = ZeroPhaseLowPass(c, band, d.rate_hz);
-      force = ZeroPhaseLowPass(force, band, d.rate_hz);
-    }
+    for (std::size_t k = 0; k < n; ++k) slow[k] = std::abs(d.rate[d.valid[k] ? k : (k == 0 ? 1 : n - 2)]) < min_rate;
     // A kept sample must be clear of slow samples by the filter's reach.
     const std::size_t reach = static_cast<std::size_t>(std::max(1, 2 * decimation));
     std::vector<char> clear(n, 1);
@@ -187,15 +170,41 @@ AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int deci
       }
       if (seen && last_slow - k <= reach) clear[k] = 0;
     }
-    regression.BeginChannel(log.path + ":tau");
     const std::size_t margin = reach + 2;  // filter start-up at the ends
+    std::vector<std::size_t> kept;
     for (std::size_t k = margin; k + margin < n; k += static_cast<std::size_t>(decimation)) {
-      if (!clear[k]) continue;
-      std::vector<double> row(columns.size());
-      for (std::size_t c = 0; c < columns.size(); ++c) row[c] = columns[c][k];
-      regression.AddRow(row, force[k]);
-      out.time.push_back(log.time[k]);
-      out.measured.push_back(force[k]);
+      if (clear[k]) kept.push_back(k);
+    }
+    // Full-rate columns, one at a time (memory: one column besides the log):
+    // the model's regressors (CalcAxisRegressors), then |q'| and t - t_mid;
+    // invalid ends hold their neighbours. Low-passed before decimation.
+    const bool filtered = d.rate_hz > 0.0 && decimation > 1;
+    const double band = 0.8 * d.rate_hz / (2.0 * decimation);
+    const std::size_t width = kAxisTerms + 2;
+    std::vector<double> rows(kept.size() * width), column(n);
+    const double middle_time = 0.5 * (log.time.front() + log.time.back());
+    for (std::size_t c = 0; c < width; ++c) {
+      // Only the gravity terms depend on q (the trigonometry is most of the time).
+      const bool trigonometric = c == kAxisGravityCos || c == kAxisGravitySin;
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t m = d.valid[k] ? k : (k == 0 ? 1 : n - 2);
+        const double position = trigonometric ? log.position[k] : 0.0;
+        column[k] = c < kAxisTerms   ? CalcAxisRegressors(position, d.rate[m], d.acceleration[m])[c]
+                    : c == kAxisTerms ? std::abs(d.rate[m])
+                                      : log.time[k] - middle_time;
+      }
+      if (filtered) ZeroPhaseLowPassInPlace(column, band, d.rate_hz);
+      for (std::size_t r = 0; r < kept.size(); ++r) rows[r * width + c] = column[kept[r]];
+    }
+    column = log.force;
+    if (filtered) ZeroPhaseLowPassInPlace(column, band, d.rate_hz);
+    regression.BeginChannel(log.path + ":tau");
+    std::vector<double> row(width);
+    for (std::size_t r = 0; r < kept.size(); ++r) {
+      std::copy_n(rows.begin() + static_cast<std::ptrdiff_t>(r * width), width, row.begin());
+      regression.AddRow(row, column[kept[r]]);
+      out.time.push_back(log.time[kept[r]]);
+      out.measured.push_back(column[kept[r]]);
       out.log_index.push_back(static_cast<int>(i));
     }
   }

@@ -19,37 +19,55 @@ Biquad Design(double cutoff, double rate) {
   return {b0, 2.0 * b0, b0, 2.0 * (k * k - 1.0) * norm, (1.0 - k / q + k * k) * norm};
 }
 
-void Run(const Biquad& f, std::vector<double>& x) {
-  // Direct form II transposed, started at the steady state of x[0].
-  const double gain_state = x.front();
-  double z1 = gain_state * (1.0 - f.b0), z2 = gain_state * (f.b2 - f.a2);
-  for (double& value : x) {
-    const double in = value;
+// Direct form II transposed over `count` values from `values` on (step
+// `stride`), in place, from state (z1, z2).
+void Run(const Biquad& f, double* values, std::size_t count, std::ptrdiff_t stride, double& z1, double& z2) {
+  for (std::size_t i = 0; i < count; ++i, values += stride) {
+    const double in = *values;
     const double out = f.b0 * in + z1;
     z1 = f.b1 * in - f.a1 * out + z2;
     z2 = f.b2 * in - f.a2 * out;
-    value = out;
+    *values = out;
   }
+}
+
+// The state in which the input `level`, held, gives the output `level`.
+void SteadyState(const Biquad& f, double level, double& z1, double& z2) {
+  z1 = level * (1.0 - f.b0);
+  z2 = level * (f.b2 - f.a2);
 }
 
 }  // namespace
 
-std::vector<double> ZeroPhaseLowPass(const std::vector<double>& signal, double cutoff, double rate) {
-  const std::size_t n = signal.size();
-  if (n < 2) return signal;
+void ZeroPhaseLowPassInPlace(std::vector<double>& x, double cutoff, double rate) {
+  const std::size_t n = x.size();
+  if (n < 2) return;
   const Biquad f = Design(cutoff, rate);
-  // Odd reflection of about three time constants at each end.
+  // The padded sequence is head, x, tail with odd reflections of about three
+  // time constants: head[i] = 2 x_0 - x_(pad-i), tail[i] = 2 x_(n-1) - x_(n-2-i).
+  // Only the ends are held apart: the forward pass needs head for its state
+  // only, the backward pass starts at the end of the filtered tail, and its
+  // outputs over head are not part of the result.
   const std::size_t pad = std::min<std::size_t>(n - 1, static_cast<std::size_t>(std::ceil(3.0 * rate / cutoff)) + 1);
-  std::vector<double> x;
-  x.reserve(n + 2 * pad);
-  for (std::size_t i = pad; i >= 1; --i) x.push_back(2.0 * signal.front() - signal[i]);
-  x.insert(x.end(), signal.begin(), signal.end());
-  for (std::size_t i = 1; i <= pad; ++i) x.push_back(2.0 * signal.back() - signal[n - 1 - i]);
-  Run(f, x);
-  std::reverse(x.begin(), x.end());
-  Run(f, x);
-  std::reverse(x.begin(), x.end());
-  return std::vector<double>(x.begin() + static_cast<std::ptrdiff_t>(pad), x.begin() + static_cast<std::ptrdiff_t>(pad + n));
+  std::vector<double> head(pad), tail(pad);
+  for (std::size_t i = 0; i < pad; ++i) {
+    head[i] = 2.0 * x.front() - x[pad - i];
+    tail[i] = 2.0 * x.back() - x[n - 2 - i];
+  }
+  double z1 = 0.0, z2 = 0.0;
+  SteadyState(f, head.front(), z1, z2);
+  Run(f, head.data(), pad, 1, z1, z2);
+  Run(f, x.data(), n, 1, z1, z2);
+  Run(f, tail.data(), pad, 1, z1, z2);
+  SteadyState(f, tail.back(), z1, z2);
+  Run(f, tail.data() + pad - 1, pad, -1, z1, z2);
+  Run(f, x.data() + n - 1, n, -1, z1, z2);
+}
+
+std::vector<double> ZeroPhaseLowPass(const std::vector<double>& signal, double cutoff, double rate) {
+  std::vector<double> x = signal;
+  ZeroPhaseLowPassInPlace(x, cutoff, rate);
+  return x;
 }
 
 double ConstantRate(const std::vector<double>& time, double tolerance) {

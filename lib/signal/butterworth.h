@@ -12,6 +12,9 @@ namespace driveid {
 /// Filters `signal` sampled at `rate` Hz with cutoff `cutoff` Hz (0 < cutoff
 /// < rate/2). Returns a vector of the same length.
 std::vector<double> ZeroPhaseLowPass(const std::vector<double>& signal, double cutoff, double rate);
+/// The same in place: besides `x`, only the padding (about 3 rate / cutoff
+/// samples at each end) is held.
+void ZeroPhaseLowPassInPlace(std::vector<double>& x, double cutoff, double rate);
 
 /// Checks that `time` has a constant step within `tolerance` (relative);
 /// returns the mean rate [Hz], or 0 if the sampling is irregular.
