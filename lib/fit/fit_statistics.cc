@@ -54,8 +54,8 @@ Eigen::MatrixXd NormalisedInformation(const std::vector<JacobianBlock>& blocks, 
 }
 
 // The block holding a channel's rows (a channel never spans blocks).
-const JacobianBlock& BlockOf(const std::vector<JacobianBlock>& blocks, const FitChannel& c) {
-  for (const auto& b : blocks) {
+JacobianBlock& BlockOf(std::vector<JacobianBlock>& blocks, const FitChannel& c) {
+  for (auto& b : blocks) {
     if (c.begin >= b.row_begin && c.begin + c.count <= b.row_begin + static_cast<int>(b.values.rows())) return b;
   }
   throw std::logic_error("fit channel '" + c.name + "' spans Jacobian blocks");
@@ -133,12 +133,13 @@ void DescribeFit(std::vector<JacobianBlock> blocks, const Eigen::VectorXd& resid
   std::vector<FitChannel> all = channels;
   if (all.empty()) all.push_back({"residual", 0, n, nullptr});
   for (const auto& channel : all) {
-    const JacobianBlock& block = BlockOf(blocks, channel);
-    const auto rows = block.values.middleRows(channel.begin - block.row_begin, channel.count);
+    JacobianBlock& block = BlockOf(blocks, channel);
+    auto rows = block.values.middleRows(channel.begin - block.row_begin, channel.count);
     const auto r = residuals.segment(channel.begin, channel.count);
     const double variance = r.squaredNorm() / (channel.count * dof_fraction);
     const double white_trace = variance * rows.squaredNorm();
-    const LongRunCovariance hac = CalcLongRunCovariance(rows, r);
+    // The channel's rows are not needed after this: prewhitened in place.
+    const LongRunCovariance hac = CalcLongRunCovarianceInPlace(rows, r);
     const Eigen::MatrixXd robust = hac.covariance / dof_fraction;
     Scatter(robust, block.columns, middle);
 

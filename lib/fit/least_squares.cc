@@ -16,6 +16,9 @@
 namespace driveid {
 namespace {
 
+// Rows per residual block when a large problem goes to Ceres in chunks.
+constexpr int kChunkRows = 8192;
+
 class ProgressCallback final : public ceres::IterationCallback {
  public:
   explicit ProgressCallback(const std::function<void(const FitIteration&)>& progress) : progress_(progress) {}
@@ -103,7 +106,8 @@ namespace {
 
 // sum_{|l|<=L} w_l gamma_u(l) sum_t G_t' G_{t-l} with Bartlett weights and
 // Andrews' AR(1) plug-in bandwidth for lag-1 autocorrelation `lag1`.
-Eigen::MatrixXd BartlettCovariance(const RowMatrix& g, const Eigen::VectorXd& u, double lag1, int& bandwidth_out) {
+Eigen::MatrixXd BartlettCovariance(const Eigen::Ref<const RowMatrix>& g, const Eigen::VectorXd& u, double lag1,
+                                   int& bandwidth_out) {
   const Eigen::Index n = u.size();
   const double r0 = u.squaredNorm();
   Eigen::MatrixXd covariance = (r0 / static_cast<double>(n)) * (g.transpose() * g);
@@ -127,9 +131,15 @@ Eigen::MatrixXd BartlettCovariance(const RowMatrix& g, const Eigen::VectorXd& u,
 
 LongRunCovariance CalcLongRunCovariance(const Eigen::Ref<const RowMatrix>& jacobian,
                                         const Eigen::Ref<const Eigen::VectorXd>& residuals) {
+  RowMatrix g = jacobian;
+  return CalcLongRunCovarianceInPlace(g, residuals);
+}
+
+LongRunCovariance CalcLongRunCovarianceInPlace(Eigen::Ref<RowMatrix> g,
+                                               const Eigen::Ref<const Eigen::VectorXd>& residuals) {
   LongRunCovariance out;
   const Eigen::Index n = residuals.size();
-  const Eigen::Index p = jacobian.cols();
+  const Eigen::Index p = g.cols();
   out.covariance = Eigen::MatrixXd::Zero(p, p);
   if (n == 0) return out;
   const double r0 = residuals.squaredNorm();
@@ -151,7 +161,6 @@ LongRunCovariance CalcLongRunCovariance(const Eigen::Ref<const RowMatrix>& jacob
   const double rho = weight * std::clamp(corrected, -0.99, 0.99);
   Eigen::VectorXd u = residuals;
   for (Eigen::Index t = n - 1; t >= 1; --t) u(t) = residuals(t) - rho * residuals(t - 1);
-  RowMatrix g = jacobian;
   for (Eigen::Index t = n - 2; t >= 0; --t) g.row(t) += rho * g.row(t + 1);
   // The window is the one the residuals themselves call for: prewhitened u
   // keeps the rest of their correlation (often negative lags after the
@@ -205,12 +214,24 @@ FitResult FitLeastSquares(ResidualModel& model, const std::vector<FitParameter>&
 
   FitResult result;
   {
-    // The Jacobian's storage is Ceres's during the solve.
+    // The Jacobian's and residuals' storage is Ceres's during the solve.
     blocks[0].values.resize(0, p);
+    residuals.resize(0);
     ceres::Problem::Options problem_options;
     problem_options.cost_function_ownership = ceres::TAKE_OWNERSHIP;
     ceres::Problem problem(problem_options);
-    problem.AddResidualBlock(new ScaledCost(model, scale), nullptr, z.data());
+    const std::size_t jacobian_bytes = static_cast<std::size_t>(n) * static_cast<std::size_t>(p) * sizeof(double);
+    if (jacobian_bytes > kMemoJacobianBytes && model.evaluates_rows()) {
+      // A large problem in chunks of rows: Ceres then holds no scratch
+      // Jacobian of all rows besides its own, and the model's memo of its
+      // last point answers every chunk from one simulation.
+      for (int begin = 0; begin < n; begin += kChunkRows) {
+        problem.AddResidualBlock(new ScaledRowsCost(model, begin, std::min(n, begin + kChunkRows), scale), nullptr,
+                                 z.data());
+      }
+    } else {
+      problem.AddResidualBlock(new ScaledCost(model, scale), nullptr, z.data());
+    }
     SetLowerBounds(problem, z.data(), 0, p, parameters, scale);
     ProgressCallback callback(options.progress);
     ceres::Solver::Options solver_options = SolverOptions(options, callback);
@@ -218,14 +239,15 @@ FitResult FitLeastSquares(ResidualModel& model, const std::vector<FitParameter>&
     // it (N x P); the parameters are scaled and identifiable (collinearity
     // index < 1000), so squaring the condition number costs no accuracy
     // that matters.
-    const std::size_t jacobian_bytes = static_cast<std::size_t>(n) * static_cast<std::size_t>(p) * sizeof(double);
     if (jacobian_bytes > kMemoJacobianBytes) solver_options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
     ceres::Solver::Summary summary;
     ceres::Solve(solver_options, &problem, &summary);
     TakeSummary(summary, result);
   }
   blocks[0].values.resize(n, p);
+  residuals.resize(n);
   evaluate_at(z);
+  model.Release();
   result.singular_values = RequireIdentifiable(blocks, parameters, options, "at the optimum");
   DescribeFit(std::move(blocks), residuals, parameters, physical, channels, result);
   return result;

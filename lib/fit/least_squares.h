@@ -27,6 +27,19 @@ class ResidualModel {
   virtual bool Evaluate(const double* parameters, double* residuals, double* jacobian) = 0;
   /// Why the last Evaluate returned false (e.g. the integrator's reason), or "".
   virtual std::string LastFailure() const { return {}; }
+  /// Whether EvaluateRows is available: models that remember their last
+  /// point (a simulation) answer row ranges without evaluating again, so a
+  /// large problem goes to the solver in chunks of rows (no scratch Jacobian
+  /// of all rows besides the solver's own).
+  virtual bool evaluates_rows() const { return false; }
+  /// Rows [begin, end) only: `residuals` and the Jacobian's rows start at row
+  /// `begin`. Only called if evaluates_rows().
+  virtual bool EvaluateRows(const double* /*parameters*/, int /*begin*/, int /*end*/, double* /*residuals*/,
+                            double* /*jacobian*/) {
+    return false;
+  }
+  /// Frees what the model holds between evaluations (called when the fit is done).
+  virtual void Release() {}
 };
 
 /// Residuals in blocks (e.g. one per log) whose rows depend on the shared
@@ -108,6 +121,9 @@ struct LongRunCovariance {
 };
 LongRunCovariance CalcLongRunCovariance(const Eigen::Ref<const RowMatrix>& jacobian,
                                         const Eigen::Ref<const Eigen::VectorXd>& residuals);
+/// The same, overwriting `jacobian` with G (no copy of it).
+LongRunCovariance CalcLongRunCovarianceInPlace(Eigen::Ref<RowMatrix> jacobian,
+                                               const Eigen::Ref<const Eigen::VectorXd>& residuals);
 
 /// Root mean square deviation of `values` from their mean (0 for none): the
 /// scale by which fits weight a channel against another of other units.

@@ -61,6 +61,22 @@ bool ScaledBlockCost::Evaluate(double const* const* parameters, double* residual
   return true;
 }
 
+ScaledRowsCost::ScaledRowsCost(ResidualModel& model, int begin, int end, std::vector<double> scale)
+    : model_(model), begin_(begin), end_(end), scale_(std::move(scale)), physical_(scale_.size()) {
+  set_num_residuals(end - begin);
+  mutable_parameter_block_sizes()->push_back(static_cast<int>(scale_.size()));
+}
+
+bool ScaledRowsCost::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
+  const std::size_t p = scale_.size();
+  for (std::size_t j = 0; j < p; ++j) physical_[j] = parameters[0][j] * scale_[j];
+  double* jacobian = jacobians != nullptr ? jacobians[0] : nullptr;
+  if (!model_.EvaluateRows(physical_.data(), begin_, end_, residuals, jacobian)) return false;
+  const std::size_t values = static_cast<std::size_t>(end_ - begin_) * p;
+  for (std::size_t i = 0; jacobian != nullptr && i < values; ++i) jacobian[i] *= scale_[i % p];
+  return true;
+}
+
 ScaledCost::ScaledCost(ResidualModel& model, std::vector<double> scale)
     : whole_(model, static_cast<int>(scale.size())), cost_(whole_, 0, std::move(scale), {}) {
   set_num_residuals(model.residual_count());

@@ -62,6 +62,22 @@ class WholeModelBlock final : public BlockResidualModel {
   const int parameters_;
 };
 
+/// Rows [begin, end) of a ResidualModel that evaluates row ranges
+/// (ResidualModel::evaluates_rows; the model remembers its last point), on
+/// one parameter block of scaled parameters.
+class ScaledRowsCost final : public ceres::CostFunction {
+ public:
+  /// `model` must outlive the cost; `scale` has one entry per parameter.
+  ScaledRowsCost(ResidualModel& model, int begin, int end, std::vector<double> scale);
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
+
+ private:
+  ResidualModel& model_;
+  const int begin_, end_;
+  const std::vector<double> scale_;
+  mutable std::vector<double> physical_;
+};
+
 /// A ResidualModel's cost: one parameter block (ScaledBlockCost of the model
 /// as one block).
 class ScaledCost final : public ceres::CostFunction {

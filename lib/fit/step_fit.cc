@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "fit/scaled_cost.h"
 #include "io/csv_log.h"
 #include "sim/drivetrain_simulator.h"
 
@@ -55,6 +56,9 @@ struct StepChannels {
   std::vector<double> weighted_motor, weighted_link;
 };
 
+// Samples simulated per piece when a log is simulated in pieces.
+constexpr int kStreamRows = 8192;
+
 class StepResiduals final : public ResidualModel, public BlockResidualModel {
  public:
   StepResiduals(const std::vector<StepLog>& logs, const DriveTrainParameters& start, DriveTrainModel model,
@@ -82,6 +86,13 @@ class StepResiduals final : public ResidualModel, public BlockResidualModel {
     const bool angles = std::any_of(channels_.begin(), channels_.end(),
                                     [](const StepChannels& c) { return c.motor_weight > 0.0 || c.link_weight > 0.0; });
     simulator_.set_record_angles(angles);
+    // A single tau_link log whose Jacobian is large is simulated in pieces
+    // as the solver asks for its rows in order, so that the sensitivities
+    // are held once (in the solver's Jacobian), not twice; only the
+    // simulated torque of the last point is remembered.
+    streaming_ = logs_.size() == 1 && !angles &&
+                 static_cast<std::size_t>(rows_) * static_cast<std::size_t>(parameter_count()) * sizeof(double) >
+                     kMemoJacobianBytes;
   }
 
   int residual_count() const override { return rows_; }
@@ -92,6 +103,17 @@ class StepResiduals final : public ResidualModel, public BlockResidualModel {
   bool Evaluate(const double* parameters, double* residuals, double* jacobian) override {
     const std::size_t q = ode_parameters_.size();
     const int p = parameter_count();
+    if (streaming_) {
+      for (int begin = 0; begin < rows_; begin += kStreamRows) {
+        const int end = std::min(rows_, begin + kStreamRows);
+        if (!EvaluateRows(parameters, begin, end, residuals + begin,
+                          jacobian != nullptr ? jacobian + static_cast<std::size_t>(begin) * static_cast<std::size_t>(p)
+                                              : nullptr)) {
+          return false;
+        }
+      }
+      return true;
+    }
     for (std::size_t i = 0; i < logs_.size(); ++i) {
       const int base = channels_[i].first_row;
       const int offset_column = fit_offsets_ ? static_cast<int>(q + i) : -1;
@@ -125,61 +147,140 @@ class StepResiduals final : public ResidualModel, public BlockResidualModel {
   // every other column 0).
   bool EvaluateLog(std::size_t i, const double* ode_values, double offset, double* residuals, double* jacobian,
                    int stride, int offset_column) {
+    if (!Simulated(i, ode_values, jacobian != nullptr)) return false;
+    const std::size_t n = logs_[i].time.size();
+    const std::size_t channels = 1 + (channels_[i].motor_weight > 0.0) + (channels_[i].link_weight > 0.0);
+    return FillRows(i, offset, 0, channels * n, residuals, jacobian, static_cast<std::size_t>(stride), offset_column,
+                    response_, 0);
+  }
+
+  // Row ranges of a single log (the model remembers its last simulation, so
+  // Ceres can be given the rows in chunks without a simulation per chunk).
+  bool evaluates_rows() const override { return logs_.size() == 1; }
+  bool EvaluateRows(const double* parameters, int begin, int end, double* residuals, double* jacobian) override {
     const std::size_t q = ode_parameters_.size();
-    const std::size_t p = static_cast<std::size_t>(stride);
+    const double offset = fit_offsets_ ? parameters[q] : 0.0;
+    const std::size_t p = static_cast<std::size_t>(parameter_count());
+    const int offset_column = fit_offsets_ ? static_cast<int>(q) : -1;
+    const auto first = static_cast<std::size_t>(begin), last = static_cast<std::size_t>(end);
+    if (!streaming_) {
+      if (!Simulated(0, parameters, jacobian != nullptr)) return false;
+      return FillRows(0, offset, first, last, residuals, jacobian, p, offset_column, response_, 0);
+    }
+    if (!(simulated_valid_ && std::equal(simulated_.begin(), simulated_.end(), parameters, parameters + q))) {
+      simulated_valid_ = true;  // simulated_ is the point of the stream and of memo_ from now on
+      simulated_.assign(parameters, parameters + q);
+      simulated_ok_ = true;
+      memo_rows_ = 0;
+      streaming_now_ = false;
+    }
+    if (!simulated_ok_) return false;
+    if (jacobian == nullptr && last <= memo_rows_) {
+      return FillRows(0, offset, first, last, residuals, nullptr, p, offset_column, memo_, 0);
+    }
+    const bool sensitivities = jacobian != nullptr;
+    try {
+      if (!(streaming_now_ && simulator_.next_sample() == first && (stream_sensitivities_ || !sensitivities))) {
+        for (std::size_t j = 0; j < q; ++j) SetDriveTrainParameter(params_, ode_parameters_[j], parameters[j]);
+        streaming_now_ = false;
+        simulator_.Start(params_, logs_[0].time, logs_[0].motor_torque, sensitivities);
+        streaming_now_ = true;
+        stream_sensitivities_ = sensitivities;
+      }
+      while (simulator_.next_sample() < first) {  // rows asked out of order: simulate up to them
+        Remember(simulator_.next_sample(), std::min(first, simulator_.next_sample() + kStreamRows));
+      }
+      Remember(first, last);
+    } catch (const IdentificationError& e) {
+      last_failure_ = e.what();  // integrator failure at these values: the solver backs off
+      simulated_ok_ = false;
+      streaming_now_ = false;
+      return false;
+    }
+    return FillRows(0, offset, first, last, residuals, jacobian, p, offset_column, response_, first);
+  }
+  void Release() override {
+    simulated_valid_ = false;
+    streaming_now_ = false;
+    response_ = DriveTrainResponse{};
+    memo_ = DriveTrainResponse{};
+    memo_rows_ = 0;
+  }
+
+  // Streaming: simulates samples [first, last) into response_ and keeps
+  // their torque in memo_ (contiguous from sample 0 on).
+  void Remember(std::size_t first, std::size_t last) {
+    simulator_.Advance(last - 1, &response_);
+    if (first > memo_rows_) return;
+    memo_.link_torque.resize(static_cast<std::size_t>(rows_));
+    std::copy(response_.link_torque.begin(), response_.link_torque.end(),
+              memo_.link_torque.begin() + static_cast<std::ptrdiff_t>(first));
+    memo_rows_ = std::max(memo_rows_, last);
+  }
+
+  // Simulates log i at the ODE parameter values unless it is the single log's
+  // last simulation (with sensitivities if `sensitivities`); false (with
+  // last_failure_) if the integrator fails there, remembered as well.
+  bool Simulated(std::size_t i, const double* ode_values, bool sensitivities) {
+    const std::size_t q = ode_parameters_.size();
+    const bool same = logs_.size() == 1 && simulated_valid_ &&
+                      std::equal(simulated_.begin(), simulated_.end(), ode_values, ode_values + q);
+    if (same && !simulated_ok_) return false;
+    if (same && (!sensitivities || simulated_with_jacobian_)) return true;
     for (std::size_t j = 0; j < q; ++j) SetDriveTrainParameter(params_, ode_parameters_[j], ode_values[j]);
+    simulated_valid_ = false;
+    simulated_.assign(ode_values, ode_values + q);
+    simulated_with_jacobian_ = sensitivities;
+    simulated_ok_ = false;
+    try {
+      simulator_.Simulate(params_, logs_[i].time, logs_[i].motor_torque, sensitivities, &response_);
+      simulated_ok_ = true;
+      last_failure_.clear();
+    } catch (const IdentificationError& e) {
+      last_failure_ = e.what();  // integrator failure at these values: the solver backs off
+    }
+    simulated_valid_ = true;
+    return simulated_ok_;
+  }
+
+  // Rows [begin, end) of log i from the last simulation: residuals[0] is row
+  // `begin`. Rows are tau_link at every sample, then q_motor = n_g phi and
+  // q_link = Delta where used (weighted; no strain-gauge offset there).
+  bool FillRows(std::size_t i, double offset, std::size_t begin, std::size_t end, double* residuals,
+                double* jacobian, std::size_t p, int offset_column, const DriveTrainResponse& response,
+                std::size_t response_first) {
+    const std::size_t q = ode_parameters_.size();
     const StepLog& log = logs_[i];
     const StepChannels& c = channels_[i];
     const std::size_t n = log.time.size();
-    try {
-      // One log: the last simulation is the memo of the last point (no copy
-      // of a large Jacobian elsewhere).
-      const std::vector<double> point(ode_values, ode_values + q);
-      if (!(logs_.size() == 1 && simulated_valid_ && simulated_ == point &&
-            (jacobian == nullptr || simulated_with_jacobian_))) {
-        simulated_valid_ = false;
-        simulator_.Simulate(params_, log.time, log.motor_torque, jacobian != nullptr, &response_);
-        simulated_ = point;
-        simulated_with_jacobian_ = jacobian != nullptr;
-        simulated_valid_ = true;
-      }
-      for (std::size_t k = 0; k < n; ++k) {
-        residuals[k] = response_.link_torque[k] + offset - log.link_torque[k];
-        if (jacobian == nullptr) continue;
-        double* row = jacobian + k * p;
-        std::fill(row, row + p, 0.0);
-        for (std::size_t j = 0; j < q; ++j) row[j] = response_.link_torque_sensitivity[k * q + j];
-        if (offset_column >= 0) row[offset_column] = 1.0;
-      }
-      // Angle channels: q_motor = n_g phi, q_link = Delta (no strain-gauge offset).
-      const double n_g = params_.gear_ratio;
-      std::size_t base = 0;
-      for (const auto& [weight, measured, model, sensitivity, scale] :
-           {std::tuple{c.motor_weight, &log.motor_angle, &response_.motor_angle, &response_.motor_angle_sensitivity,
-                       n_g},
-            std::tuple{c.link_weight, &log.link_angle, &response_.deflection, &response_.deflection_sensitivity,
-                       1.0}}) {
-        if (weight == 0.0) continue;
-        base += n;
-        for (std::size_t k = 0; k < n; ++k) {
-          residuals[base + k] = weight * (scale * (*model)[k] - (*measured)[k]);
-          if (jacobian == nullptr) continue;
-          double* row = jacobian + (base + k) * p;
-          std::fill(row, row + p, 0.0);
-          for (std::size_t j = 0; j < q; ++j) row[j] = weight * scale * (*sensitivity)[k * q + j];
-        }
-      }
-      for (std::size_t k = 0; k < base + n; ++k) {
-        if (!std::isfinite(residuals[k])) {
+    const double n_g = params_.gear_ratio;
+    struct Channel {
+      double weight, scale, offset;
+      const std::vector<double>*measured, *model, *sensitivity;
+    };
+    const Channel channels[] = {
+        {1.0, 1.0, offset, &log.link_torque, &response.link_torque, &response.link_torque_sensitivity},
+        {c.motor_weight, n_g, 0.0, &log.motor_angle, &response.motor_angle, &response.motor_angle_sensitivity},
+        {c.link_weight, 1.0, 0.0, &log.link_angle, &response.deflection, &response.deflection_sensitivity}};
+    std::size_t first = 0;  // first row of the channel
+    for (const Channel& ch : channels) {
+      if (ch.weight == 0.0) continue;
+      for (std::size_t row = std::max(begin, first); row < std::min(end, first + n); ++row) {
+        const std::size_t k = row - first, at = k - response_first;  // sample; its index in `response`
+        const double r = ch.weight * (ch.scale * (*ch.model)[at] + ch.offset - (*ch.measured)[k]);
+        if (!std::isfinite(r)) {
           last_failure_ = "the simulated response is not finite";
           return false;
         }
+        residuals[row - begin] = r;
+        if (jacobian == nullptr) continue;
+        double* out = jacobian + (row - begin) * p;
+        std::fill(out, out + p, 0.0);
+        for (std::size_t j = 0; j < q; ++j) out[j] = ch.weight * ch.scale * (*ch.sensitivity)[at * q + j];
+        if (offset_column >= 0 && &ch == &channels[0]) out[offset_column] = 1.0;  // d r / d offset, tau_link only
       }
-    } catch (const IdentificationError& e) {
-      last_failure_ = e.what();
-      return false;  // integrator failure at these values: the solver backs off
+      first += n;
     }
-    last_failure_.clear();
     return true;
   }
 
@@ -231,8 +332,15 @@ class StepResiduals final : public ResidualModel, public BlockResidualModel {
   int rows_ = 0;
   std::string last_failure_;
   std::vector<double> simulated_;  // ODE parameter values of response_ (one log) if simulated_valid_
-  bool simulated_valid_ = false;
+  bool simulated_valid_ = false;  // simulated_ holds the values last simulated (one log)
   bool simulated_with_jacobian_ = false;
+  bool simulated_ok_ = false;  // whether that simulation succeeded
+  // Streaming (see the constructor): the simulation under way is at
+  // simulated_ (with sensitivities if stream_sensitivities_); memo_ holds
+  // its torque for samples [0, memo_rows_).
+  bool streaming_ = false, streaming_now_ = false, stream_sensitivities_ = false;
+  DriveTrainResponse memo_;
+  std::size_t memo_rows_ = 0;
 };
 
 void CheckStepLog(const StepLog& log) {

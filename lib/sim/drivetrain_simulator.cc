@@ -72,33 +72,45 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem, public He
 
   void set_record_angles(bool record) { record_angles_ = record; }
 
-  void Simulate(const DriveTrainParameters& params, const std::vector<double>& time,
-                const std::vector<double>& motor_torque, bool with_sensitivities, DriveTrainResponse* out) {
+  void Start(const DriveTrainParameters& params, const std::vector<double>& time,
+             const std::vector<double>& motor_torque, bool with_sensitivities) {
     params_ = params;
-    const std::size_t samples = time.size();
-    const std::size_t p = parameters_.size();
-    with_sensitivities = with_sensitivities && p > 0;
-    out->link_torque.assign(samples, 0.0);
-    out->friction_mode.assign(samples, 0);
-    out->link_torque_sensitivity.assign(with_sensitivities ? samples * p : 0, 0.0);
-    const std::size_t angle_samples = record_angles_ ? samples : 0;
-    out->motor_angle.assign(angle_samples, 0.0);
-    out->deflection.assign(angle_samples, 0.0);
-    out->motor_angle_sensitivity.assign(with_sensitivities ? angle_samples * p : 0, 0.0);
-    out->deflection_sensitivity.assign(with_sensitivities ? angle_samples * p : 0, 0.0);
-    out->switch_count = 0;
-    if (samples == 0) return;
-
+    with_sensitivities_ = with_sensitivities && !parameters_.empty();
+    run_.reset();
+    samples_ = time.size();
+    next_ = 0;
+    if (samples_ == 0) return;
     x_.assign(static_cast<std::size_t>(n_), 0.0);
-    s_.assign(p * static_cast<std::size_t>(n_), 0.0);
+    s_.assign(parameters_.size() * static_cast<std::size_t>(n_), 0.0);
     mode_ = 0;
     motor_torque_ = motor_torque[0];
     DecideModeAtRest();
-    with_sensitivities_ = with_sensitivities;
-    out_ = out;
-    Record(0);
-    out->switch_count = RunHeldInput(*integrator_, time, motor_torque, *this, "model");
+    run_ = std::make_unique<HeldInputRun>(*integrator_, time, motor_torque, *this, "model");
   }
+
+  void Advance(std::size_t last, DriveTrainResponse* out) {
+    last = std::min(last, samples_ == 0 ? 0 : samples_ - 1);
+    const std::size_t count = samples_ == 0 || last < next_ ? 0 : last - next_ + 1;
+    const std::size_t p = with_sensitivities_ ? parameters_.size() : 0;
+    const std::size_t angle_samples = record_angles_ ? count : 0;
+    out->link_torque.assign(count, 0.0);
+    out->friction_mode.assign(angle_samples, 0);
+    out->link_torque_sensitivity.assign(count * p, 0.0);
+    out->motor_angle.assign(angle_samples, 0.0);
+    out->deflection.assign(angle_samples, 0.0);
+    out->motor_angle_sensitivity.assign(angle_samples * p, 0.0);
+    out->deflection_sensitivity.assign(angle_samples * p, 0.0);
+    out->switch_count = run_ ? run_->switches() : 0;
+    if (count == 0) return;
+    out_ = out;
+    window_first_ = next_;
+    if (next_ == 0) Record(0);
+    run_->RunTo(last);
+    next_ = last + 1;
+    out->switch_count = run_->switches();
+  }
+
+  std::size_t next_sample() const { return next_; }
 
   // HeldInputSystem (sim/held_input_driver.h).
   void SetInput(double input) override {
@@ -112,7 +124,7 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem, public He
   void Restart(double t) override { RestartIntegrator(t, with_sensitivities_); }
   void HandleSwitch() override { HandleSwitch(with_sensitivities_); }
   void CopyFromIntegrator() override { CopyFromIntegrator(with_sensitivities_); }
-  void Record(std::size_t k) override { Record(k, with_sensitivities_, out_); }
+  void Record(std::size_t k) override { Record(k - window_first_, with_sensitivities_, out_); }
 
   DriveTrainModel model() const { return model_; }
   const std::vector<DriveTrainParameter>& parameters() const { return parameters_; }
@@ -174,8 +186,8 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem, public He
 
   void Record(std::size_t k, bool with_sensitivities, DriveTrainResponse* out) const {
     out->link_torque[k] = CalcLinkTorque(params_, model_, x_.data());
-    out->friction_mode[k] = mode_;
     if (record_angles_) {
+      out->friction_mode[k] = mode_;
       out->motor_angle[k] = x_[DriveTrainState::kMotorAngle];
       out->deflection[k] = CalcDeflection(params_, model_, x_.data());
     }
@@ -213,6 +225,9 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem, public He
   int mode_ = 0;
   bool with_sensitivities_ = false;
   DriveTrainResponse* out_ = nullptr;
+  std::unique_ptr<HeldInputRun> run_;  // the simulation under way (Start, Advance)
+  std::size_t samples_ = 0, next_ = 0;  // the log's samples; the next one to record
+  std::size_t window_first_ = 0;        // the sample at index 0 of out_
 };
 
 DriveTrainSimulator::DriveTrainSimulator(DriveTrainModel model, const DriveTrainParameters& nominal,
@@ -225,8 +240,18 @@ DriveTrainSimulator::~DriveTrainSimulator() = default;
 void DriveTrainSimulator::Simulate(const DriveTrainParameters& params, const std::vector<double>& time,
                                    const std::vector<double>& motor_torque, bool with_sensitivities,
                                    DriveTrainResponse* response) {
-  system_->Simulate(params, time, motor_torque, with_sensitivities, response);
+  system_->Start(params, time, motor_torque, with_sensitivities);
+  system_->Advance(time.empty() ? 0 : time.size() - 1, response);
 }
+
+void DriveTrainSimulator::Start(const DriveTrainParameters& params, const std::vector<double>& time,
+                                const std::vector<double>& motor_torque, bool with_sensitivities) {
+  system_->Start(params, time, motor_torque, with_sensitivities);
+}
+
+void DriveTrainSimulator::Advance(std::size_t last, DriveTrainResponse* response) { system_->Advance(last, response); }
+
+std::size_t DriveTrainSimulator::next_sample() const { return system_->next_sample(); }
 
 void DriveTrainSimulator::set_record_angles(bool record) { system_->set_record_angles(record); }
 

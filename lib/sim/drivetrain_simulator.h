@@ -67,9 +67,21 @@ class DriveTrainSimulator {
   void Simulate(const DriveTrainParameters& params, const std::vector<double>& time,
                 const std::vector<double>& motor_torque, bool with_sensitivities, DriveTrainResponse* response);
 
-  /// Whether responses hold the angles phi, Delta and their sensitivities
-  /// (default); without, they stay empty (a fit of tau_link alone saves
-  /// four of the response's six arrays).
+  /// The same in pieces, for logs whose whole response would not fit in
+  /// memory beside the solver's Jacobian: Start sets up the simulation
+  /// (`time` and `motor_torque` must stay alive and unchanged while it runs),
+  /// each Advance simulates the samples from next_sample() up to `last` and
+  /// leaves only those in `response` (its index 0 is sample next_sample()
+  /// before the call). Advance throws IdentificationError if the integrator
+  /// fails; the simulation must then be started again.
+  void Start(const DriveTrainParameters& params, const std::vector<double>& time,
+             const std::vector<double>& motor_torque, bool with_sensitivities);
+  void Advance(std::size_t last, DriveTrainResponse* response);
+  std::size_t next_sample() const;
+
+  /// Whether responses hold the angles phi, Delta, their sensitivities and
+  /// the friction mode (default); without, they stay empty (a fit of
+  /// tau_link alone saves five of the response's seven arrays).
   void set_record_angles(bool record);
 
   DriveTrainModel model() const;

@@ -36,9 +36,35 @@ class HeldInputSystem {
   virtual void Record(std::size_t k) = 0;
 };
 
-/// Runs samples 1 .. N-1 (sample 0 is the caller's: initial state, input,
-/// Record(0)). `what` names the model in messages ("drive train", "axis").
-/// Returns the number of mode switches.
+/// The loop over samples 1 .. N-1 (sample 0 is the caller's: initial state,
+/// input, Record(0)), resumable: RunTo records samples up to a given one and
+/// the next call goes on from there (a long log simulated in pieces).
+/// `time` and `input` must outlive it; `what` names the model in messages
+/// ("drive train", "axis").
+class HeldInputRun {
+ public:
+  HeldInputRun(CvodesIntegrator& integrator, const std::vector<double>& time, const std::vector<double>& input,
+               HeldInputSystem& system, const char* what);
+  /// Records the samples up to `last` (at most N-1) not recorded yet.
+  void RunTo(std::size_t last);
+  /// The next sample RunTo records.
+  std::size_t next() const { return next_; }
+  /// Mode switches so far.
+  int switches() const { return switches_; }
+
+ private:
+  CvodesIntegrator& integrator_;
+  const std::vector<double>& time_;
+  const std::vector<double>& input_;
+  HeldInputSystem& system_;
+  const char* what_;
+  long switch_budget_, step_budget_, steps_ = 0, last_count_ = 0;
+  int switches_ = 0;
+  std::size_t next_ = 1, end_ = 0;  // next sample; last sample of the current run of equal inputs
+  bool in_run_ = false, integrating_ = false;
+};
+
+/// Runs samples 1 .. N-1 at once; returns the number of mode switches.
 int RunHeldInput(CvodesIntegrator& integrator, const std::vector<double>& time, const std::vector<double>& input,
                  HeldInputSystem& system, const char* what);
 

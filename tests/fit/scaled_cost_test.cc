@@ -8,6 +8,7 @@
 #include "fit/scaled_cost.h"
 
 #include <cmath>
+#include <random>
 
 #include <ceres/gradient_checker.h>
 #include <ceres/numeric_diff_options.h>
@@ -15,6 +16,7 @@
 #include <catch2/catch.hpp>
 
 #include "fit/step_fit.h"
+#include "sim/drivetrain_simulator.h"
 #include "support/paper000.h"
 #include "support/reference_drivetrain.h"
 
@@ -136,4 +138,56 @@ TEST_CASE("scaled cost: one model evaluation per point, whatever Ceres asks of i
   z[0] = std::nextafter(0.75, 1.0);
   REQUIRE(cost.Evaluate(parameters, r1, nullptr));
   CHECK(line.calls == 4);
+}
+
+TEST_CASE("a long single log is simulated in pieces: any rows, any order, equal to one whole simulation") {
+  // 600 000 samples x (3 + offset) columns: a Jacobian above kMemoJacobianBytes.
+  const std::size_t n = 600000;
+  static_assert(600000 * 4 * sizeof(double) > kMemoJacobianBytes);
+  StepLog log{"long.csv", {}, {}, {}, {}, {}};
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 0.1);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double t = static_cast<double>(k) * 1e-6;
+    log.time.push_back(t);
+    log.motor_torque.push_back(t < 0.01 ? 0.0 : (t < 0.3 ? -0.8 : 0.4));
+    log.link_torque.push_back(noise(rng));
+  }
+  const std::vector<StepLog> logs = {log};
+  const DriveTrainParameters params = testing_support::PaperDriveTrain();
+  const std::vector<DriveTrainParameter> free{DriveTrainParameter::kViscousFriction, DriveTrainParameter::kMotorInertia,
+                                              DriveTrainParameter::kCoulombFriction};
+  const double offset = 0.7;
+  const std::vector<double> point{params.viscous_friction, params.motor_inertia, params.coulomb_friction, offset};
+  // Expected: one whole simulation.
+  DriveTrainSimulator simulator(DriveTrainModel::kReduced, params, free);
+  DriveTrainResponse whole;
+  simulator.Simulate(params, log.time, log.motor_torque, true, &whole);
+  REQUIRE(whole.switch_count >= 2);
+  auto model = MakeStepResiduals(logs, params, DriveTrainModel::kReduced, free, true);
+  REQUIRE(model->evaluates_rows());
+  const auto check = [&](int begin, int end, bool with_jacobian) {
+    std::vector<double> r(static_cast<std::size_t>(end - begin)), j(with_jacobian ? r.size() * 4 : 0);
+    REQUIRE(model->EvaluateRows(point.data(), begin, end, r.data(), with_jacobian ? j.data() : nullptr));
+    int wrong = 0;
+    for (int row = begin; row < end; ++row) {
+      const std::size_t k = static_cast<std::size_t>(row), i = static_cast<std::size_t>(row - begin);
+      wrong += r[i] != whole.link_torque[k] + offset - log.link_torque[k];
+      for (std::size_t c = 0; with_jacobian && c < 4; ++c) {
+        wrong += j[i * 4 + c] != (c < 3 ? whole.link_torque_sensitivity[k * 3 + c] : 1.0);
+      }
+    }
+    INFO("rows " << begin << " .. " << end << (with_jacobian ? " with" : " without") << " Jacobian");
+    CHECK(wrong == 0);
+  };
+  check(0, 8192, true);            // a sweep begins
+  check(8192, 20000, true);        // goes on
+  check(450000, 450100, true);     // rows ahead: simulated up to them
+  check(100, 200, true);           // rows behind: simulated again
+  check(0, 600000, false);         // residuals of a whole sweep
+  check(300000, 300500, false);    // residuals remembered
+  std::vector<double> r(n), j(n * 4);
+  REQUIRE(model->Evaluate(point.data(), r.data(), j.data()));  // the whole model, in pieces
+  CHECK(r[599999] == whole.link_torque[599999] + offset - log.link_torque[599999]);
+  CHECK(j[599999 * 4 + 2] == whole.link_torque_sensitivity[599999 * 3 + 2]);
 }

@@ -126,3 +126,37 @@ TEST_CASE("sensitivities match central differences of whole simulations") {
     }
   }
 }
+
+TEST_CASE("simulated in pieces (Start, Advance) = simulated at once, bit for bit, across steps and switches") {
+  const auto params = PaperDriveTrain();
+  // Torque steps up and back down: sliding, sticking and breaking away again.
+  StepLog log = MakeStep(2000.0, 0.3, 0.01, -0.8);
+  for (std::size_t k = 0; k < log.time.size(); ++k) {
+    if (log.time[k] >= 0.15) log.torque[k] = 0.3;
+  }
+  const std::vector<DriveTrainParameter> free{DriveTrainParameter::kViscousFriction,
+                                              DriveTrainParameter::kCoulombFriction};
+  for (auto model : {DriveTrainModel::kReduced, DriveTrainModel::kFull}) {
+    DriveTrainSimulator whole(model, params, free), pieces(model, params, free);
+    DriveTrainResponse all, part;
+    whole.Simulate(params, log.time, log.torque, true, &all);
+    REQUIRE(all.switch_count >= 2);
+    pieces.Start(params, log.time, log.torque, true);
+    std::vector<double> torque, sensitivity, angle;
+    const std::size_t end = log.time.size() - 1;
+    for (std::size_t last : {std::size_t{0}, std::size_t{1}, std::size_t{37}, std::size_t{300}, std::size_t{301}, end}) {
+      CHECK(pieces.next_sample() == torque.size());
+      pieces.Advance(last, &part);
+      CHECK(part.link_torque.size() == last + 1 - torque.size());
+      torque.insert(torque.end(), part.link_torque.begin(), part.link_torque.end());
+      sensitivity.insert(sensitivity.end(), part.link_torque_sensitivity.begin(), part.link_torque_sensitivity.end());
+      angle.insert(angle.end(), part.motor_angle.begin(), part.motor_angle.end());
+    }
+    CHECK(part.switch_count == all.switch_count);
+    CHECK(torque == all.link_torque);
+    CHECK(sensitivity == all.link_torque_sensitivity);
+    CHECK(angle == all.motor_angle);
+    pieces.Advance(end, &part);  // nothing left
+    CHECK(part.link_torque.empty());
+  }
+}
