@@ -64,6 +64,7 @@ void RunCDriveFitCommand(const CDriveFitCommandOptions& options, const std::stri
   fit_options.half_window = options.window > 0.0 ? options.window : (friction ? 0.01 : 0.005);
   fit_options.min_rate = options.min_rate;
   fit_options.settle = options.settle;  // < 0: the fit's default
+  fit_options.traces = !options.output.trace.empty() || !options.output.plot.empty();
   SetProgress(fit_options.fit, options.output.verbose);
   const CDriveFitOutput result = friction ? FitCDriveFriction(logs, *start.Find<CDriveSection>(), fit_options)
                                           : FitCDriveInertia(logs, *start.Find<CDriveSection>(), fit_options);

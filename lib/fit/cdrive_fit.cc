@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 #include <Eigen/Dense>
@@ -204,7 +205,8 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
 
   // Rows: per log the sum rows, then the difference rows.
   Derivatives design;
-  LinearRegression regression(columns);
+  std::vector<UsableMask> usable;
+  std::size_t row_count = 0;
   for (const auto& log : logs) {
     if (log.time.size() < kMinCDriveLogSamples) {
       throw InputError(fmt::format("{}: {} samples: too few to differentiate", log.path, log.time.size()));
@@ -227,23 +229,38 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
         design.right.back().valid[k] = design.right.back().valid[k] && wide_right.valid[k];
       }
     }
+    design.left.back().value = {};  // the smoothed angles are not used
+    design.right.back().value = {};
     const auto& left = design.left.back();
     const auto& right = design.right.back();
-    const auto usable = UsableSamples(log.time, left, right, options.min_rate, options.half_window, settle);
-    for (int part = 0; part < 2; ++part) {
-      regression.BeginChannel(log.path + (part == 0 ? ":tau_L+tau_R" : ":tau_L-tau_R"));
-      for (std::size_t k = 0; k < log.time.size(); ++k) {
-        if (!left.valid[k] || !right.valid[k]) continue;
-        if (part == 0) ++design.rows_possible;
-        if (!(part == 0 ? usable.sum[k] : usable.difference[k])) continue;
-        const SampleRows sample =
-            CalcSampleRows(start.lead, left.rate[k], right.rate[k], left.acceleration[k], right.acceleration[k]);
-        regression.AddRow(part == 0 ? sample.sum : sample.difference,
-                          part == 0 ? log.torque_left[k] + log.torque_right[k] : log.torque_left[k] - log.torque_right[k]);
-      }
+    usable.push_back(UsableSamples(log.time, left, right, options.min_rate, options.half_window, settle));
+    for (std::size_t k = 0; k < log.time.size(); ++k) {
+      if (!left.valid[k] || !right.valid[k]) continue;
+      ++design.rows_possible;
+      row_count += static_cast<std::size_t>(usable.back().sum[k]) + static_cast<std::size_t>(usable.back().difference[k]);
     }
   }
-  const int n = static_cast<int>(regression.rows());
+  std::optional<LinearRegression> regression(std::in_place, columns);
+  regression->Reserve(row_count);  // the design is the largest thing held: no regrowth
+  for (std::size_t i = 0; i < logs.size(); ++i) {
+    const auto& log = logs[i];
+    const auto& left = design.left[i];
+    const auto& right = design.right[i];
+    for (int part = 0; part < 2; ++part) {
+      regression->BeginChannel(log.path + (part == 0 ? ":tau_L+tau_R" : ":tau_L-tau_R"));
+      for (std::size_t k = 0; k < log.time.size(); ++k) {
+        if (!left.valid[k] || !right.valid[k]) continue;
+        if (!(part == 0 ? usable[i].sum[k] : usable[i].difference[k])) continue;
+        const SampleRows sample =
+            CalcSampleRows(start.lead, left.rate[k], right.rate[k], left.acceleration[k], right.acceleration[k]);
+        regression->AddRow(part == 0 ? sample.sum : sample.difference,
+                           part == 0 ? log.torque_left[k] + log.torque_right[k] : log.torque_left[k] - log.torque_right[k]);
+      }
+    }
+    usable[i].difference = {};
+    if (!options.traces) design.left[i] = design.right[i] = {};  // only the traces use them further
+  }
+  const int n = static_cast<int>(regression->rows());
   if (n == 0) {
     throw IdentificationError(fmt::format(
         "no usable samples: every sample has a motor rate below --min-rate {} rad/s (or the logs are shorter than the "
@@ -254,7 +271,8 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
   FitOptions fit_options = options.fit;
   if (!fit_options.advice) fit_options.advice = friction ? FrictionAdvice : InertiaAdvice;
   CDriveFitOutput out;
-  out.fit = regression.Fit(parameters, fixed, fit_options);
+  out.fit = regression->Fit(parameters, fixed, fit_options);
+  regression.reset();  // before the traces
   // fit% is of the measured sum/difference, not of the part left after the known terms.
   CDriveParameters fitted = start;
   out.section = start_section;
@@ -296,12 +314,11 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
     out.derived.push_back({"b", CalcInertiaOffDiagonal(fitted), propagate(gradient_b), "kg m^2, M off-diagonal"});
   }
 
+  if (!options.traces) return out;
   CDriveParameters fixed_with_fit = fitted;  // for the trace when M was a nuisance
   fixed_with_fit.hub_inertia = fixed_with_fit.collar_inertia = fixed_with_fit.collar_mass = 0.0;
   for (std::size_t i = 0; i < logs.size(); ++i) {
     const auto& log = logs[i];
-    const auto usable = UsableSamples(log.time, design.left[i], design.right[i], options.min_rate, options.half_window,
-                                      settle);
     CDriveTrace trace;
     for (std::size_t k = 0; k < log.time.size(); ++k) {
       if (!design.left[i].valid[k] || !design.right[i].valid[k]) continue;
@@ -318,7 +335,7 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
       trace.measured_right.push_back(log.torque_right[k]);
       trace.model_left.push_back(model[0]);
       trace.model_right.push_back(model[1]);
-      trace.used.push_back(usable.sum[k]);
+      trace.used.push_back(usable[i].sum[k]);
     }
     out.traces.push_back(std::move(trace));
   }

@@ -38,6 +38,9 @@ struct CDriveFitOptions {
   /// controller transients after reversals) [s]; < 0 = 0.1 s for the friction
   /// fit (slow programs), 0 for the inertia fit (fast programs reverse often).
   double settle = -1.0;
+  /// Whether the output holds the per-log traces (measured and model
+  /// torques at every sample: memory of the order of the logs).
+  bool traces = true;
   FitOptions fit;
 };
 
@@ -54,7 +57,7 @@ struct CDriveFitOutput {
   CDriveSection section;                   ///< start values with the estimates put in
   FitResult fit;
   std::vector<DerivedQuantity> derived;    ///< a and b of eq. (17) for the inertia fit
-  std::vector<CDriveTrace> traces;
+  std::vector<CDriveTrace> traces;       ///< empty unless CDriveFitOptions::traces
   int rows_used = 0;
   int rows_possible = 0;
 };

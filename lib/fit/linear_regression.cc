@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 #include <fmt/format.h>
 
 #include "fit/linear_residuals.h"
@@ -18,6 +18,12 @@ std::size_t LinearRegression::column(const std::string& name) const {
   throw std::logic_error(fmt::format("LinearRegression: no column '{}'", name));
 }
 
+void LinearRegression::Reserve(std::size_t rows) {
+  regressor_.reserve(rows * columns_.size());
+  measured_.reserve(rows);
+  known_.reserve(rows);
+}
+
 void LinearRegression::BeginChannel(const std::string& name) { channels_.push_back({name, rows()}); }
 
 void LinearRegression::AddRow(const std::vector<double>& regressor, double measured, double known) {
@@ -31,7 +37,7 @@ void LinearRegression::AddRow(const std::vector<double>& regressor, double measu
 
 FitResult LinearRegression::Fit(const std::vector<FitParameter>& free, const std::map<std::string, double>& fixed,
                                  const FitOptions& options) const {
-  const std::size_t n = rows(), p = free.size(), m = columns_.size();
+  const std::size_t n = rows(), m = columns_.size();
   std::vector<std::size_t> free_index;
   for (const auto& parameter : free) free_index.push_back(column(parameter.name));
   std::vector<std::pair<std::size_t, double>> fixed_terms;
@@ -43,13 +49,11 @@ FitResult LinearRegression::Fit(const std::vector<FitParameter>& free, const std
     if (value == fixed.end()) throw std::logic_error(fmt::format("LinearRegression::Fit: no value for '{}'", columns_[j]));
     if (value->second != 0.0) fixed_terms.emplace_back(j, value->second);
   }
-  RowMatrix x(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(p));
   Eigen::VectorXd y(static_cast<Eigen::Index>(n));
   for (std::size_t r = 0; r < n; ++r) {
     double known = known_[r];
     for (const auto& [j, value] : fixed_terms) known += value * at(r, j);
     y(static_cast<Eigen::Index>(r)) = measured_[r] - known;
-    for (std::size_t c = 0; c < p; ++c) x(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = at(r, free_index[c]);
   }
   std::vector<FitChannel> channels;
   for (std::size_t c = 0; c < channels_.size(); ++c) {
@@ -58,7 +62,7 @@ FitResult LinearRegression::Fit(const std::vector<FitParameter>& free, const std
     channels.push_back({channels_[c].name, static_cast<int>(channels_[c].begin), static_cast<int>(end - channels_[c].begin),
                         measured_.data() + channels_[c].begin});
   }
-  LinearResiduals residuals(std::move(x), std::move(y));
+  LinearResiduals residuals(regressor_.data(), m, std::move(free_index), std::move(y));
   return FitLeastSquares(residuals, free, channels, options);
 }
 

@@ -24,6 +24,9 @@ class LinearRegression {
   /// Index of a column; throws std::logic_error for an unknown name.
   std::size_t column(const std::string& name) const;
 
+  /// Room for `rows` rows in all (a builder that knows its count avoids
+  /// regrowing the design, which briefly holds it twice).
+  void Reserve(std::size_t rows);
   /// Starts a measured channel: the rows added next belong to it.
   void BeginChannel(const std::string& name);
   /// Appends a row: `regressor` has one value per column; `measured` is the

@@ -67,6 +67,23 @@ TEST_CASE("friction: Table I recovered within 3 % from slow programs") {
   }
 }
 
+TEST_CASE("friction: traces only when asked; the fit is the same without them") {
+  const auto logs = Programs(4.0, 2, 4);
+  CDriveFitOptions without;
+  without.traces = false;
+  const auto with_traces = FitCDriveFriction(logs, Given(Start()), {});
+  const auto no_traces = FitCDriveFriction(logs, Given(Start()), without);
+  REQUIRE(with_traces.traces.size() == logs.size());
+  CHECK(with_traces.traces[0].time.size() > 0.9 * logs[0].time.size());
+  CHECK(no_traces.traces.empty());
+  REQUIRE(no_traces.fit.estimates.size() == with_traces.fit.estimates.size());
+  for (std::size_t j = 0; j < no_traces.fit.estimates.size(); ++j) {
+    CHECK(no_traces.fit.estimates[j].value == with_traces.fit.estimates[j].value);
+    CHECK(no_traces.fit.estimates[j].standard_error == with_traces.fit.estimates[j].standard_error);
+  }
+  CHECK(no_traces.rows_used == with_traces.rows_used);
+}
+
 TEST_CASE("friction: rotation alone is refused naming gamma and eta") {
   try {
     FitCDriveFriction(Programs(4.0, 2, 3, true), Given(Start()), {});
