@@ -103,6 +103,7 @@ class CDrivePlant::System final : public SensitivityOdeSystem {
     int events = 0;
     while (integrator_->Advance(to, to)) {
       CopyState();
+      ZeroFiredContactRates();
       if (++events > 1000) {
         throw IdentificationError(fmt::format("cdrive simulation: more than 1000 stick/slip switches in one period at "
                                               "t = {} s (chattering)", integrator_->time()));
@@ -217,6 +218,30 @@ class CDrivePlant::System final : public SensitivityOdeSystem {
     } else if (mode_[2] == 0) {
       const double mean = 0.5 * (state_.rate[0] + state_.rate[1]);
       state_.rate = {mean, mean};
+    }
+  }
+
+  // The contacts whose velocity root fired are at rest: the root finder
+  // places the crossing to about 100 ulp of t, so late in a long run (t of
+  // several 100 s) the velocity left there exceeds kZeroRate and, taken as
+  // sliding, flips the contact's direction at every event (chattering).
+  // Two fired contacts leave both motors at rest (any two of the three
+  // directions span the plane); one is projected out of the rates.
+  void ZeroFiredContactRates() {
+    const auto& fired = integrator_->root_directions();
+    int count = 0, which = -1;
+    for (int i = 0; i < kContacts; ++i) {
+      if (fired[static_cast<std::size_t>(i)] != 0) {
+        ++count;
+        which = i;
+      }
+    }
+    if (count >= 2) {
+      state_.rate = {0.0, 0.0};
+    } else if (count == 1) {
+      const double* d = kDirection[which];
+      const double along = Dot(d, state_.rate) / (d[0] * d[0] + d[1] * d[1]);
+      state_.rate = {state_.rate[0] - along * d[0], state_.rate[1] - along * d[1]};
     }
   }
 

@@ -67,6 +67,24 @@ TEST_CASE("plant: torques inside the friction cone move nothing; just outside th
   CHECK(plant.stuck()[2]);
 }
 
+TEST_CASE("plant: coming to rest late in a long run (t ~ 500 s), a translation sticks instead of chattering") {
+  // The root finder places the stop to ~100 ulp of t; at t = 524 s the rate
+  // left there was above the zero threshold and the contacts flipped
+  // direction at every event (found simulating 80 translation cycles); here
+  // t = 1e6 s made it happen every time.
+  for (double start : {0.0, 524.0, 1e5, 1e6}) {
+    CDrivePlant plant(TableOneCDrive());
+    plant.Reset({{0.0, 0.0}, {0.05, -0.05}});
+    const Vector2 torque{-0.116, 0.116};  // decelerates; inside delta + eta, so it holds
+    for (int k = 0; k < 200; ++k) REQUIRE_NOTHROW(plant.Advance(start + k * 1e-3, start + (k + 1) * 1e-3, torque));
+    INFO("start " << start << " s");
+    CHECK(plant.state().rate[0] == 0.0);
+    CHECK(plant.state().rate[1] == 0.0);
+    CHECK(plant.stuck() == std::array<bool, 3>{true, true, true});
+    CHECK(plant.switch_count() < 10);
+  }
+}
+
 TEST_CASE("eq. (31): viscous and Coulomb terms, dead zone and rate limit") {
   const auto p = TableOneCDrive();
   FrictionCompensator compensator(p, 0.5, 50.0, 0.001);
