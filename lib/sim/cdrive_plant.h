@@ -11,8 +11,10 @@
 // f with |f_i| <= limit_i balances tau (f_collar in
 // [tau_L - delta, tau_L + delta] n [-tau_R - delta, -tau_R + delta] n [-eta, eta]).
 // CVODES integrates the smooth field of the current mode; roots end it:
-// a sliding contact's velocity crossing zero, or a stuck contact's force
-// reaching its limit. The next mode is the most-stuck candidate that is
+// a sliding contact's velocity crossing zero (that contact is then at rest:
+// its velocity is projected out, since the root's placement to ~100 ulp of t
+// leaves more than the zero threshold late in long runs), or a stuck
+// contact's force reaching its limit. The next mode is the most-stuck candidate that is
 // consistent (forces within limits, sliding directions agreeing with the
 // accelerations), found by enumeration. The torque is held over each call.
 #pragma once
