@@ -240,8 +240,21 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
       row_count += static_cast<std::size_t>(usable.back().sum[k]) + static_cast<std::size_t>(usable.back().difference[k]);
     }
   }
-  std::optional<LinearRegression> regression(std::in_place, columns);
+  // The design holds the fitted columns only, in the parameters' order; the
+  // fixed columns' part of each row is its known part.
+  std::vector<std::string> fit_columns;
+  std::vector<std::size_t> take;
+  for (const auto& parameter : parameters) {
+    fit_columns.push_back(parameter.name);
+    take.push_back(static_cast<std::size_t>(std::find(columns.begin(), columns.end(), parameter.name) - columns.begin()));
+  }
+  std::vector<std::pair<std::size_t, double>> fixed_terms;
+  for (std::size_t j = 0; j < columns.size(); ++j) {
+    if (!Contains(fit_columns, columns[j]) && fixed.at(columns[j]) != 0.0) fixed_terms.emplace_back(j, fixed.at(columns[j]));
+  }
+  std::optional<LinearRegression> regression(std::in_place, fit_columns);
   regression->Reserve(row_count);  // the design is the largest thing held: no regrowth
+  std::vector<double> row(take.size());
   for (std::size_t i = 0; i < logs.size(); ++i) {
     const auto& log = logs[i];
     const auto& left = design.left[i];
@@ -253,8 +266,12 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
         if (!(part == 0 ? usable[i].sum[k] : usable[i].difference[k])) continue;
         const SampleRows sample =
             CalcSampleRows(start.lead, left.rate[k], right.rate[k], left.acceleration[k], right.acceleration[k]);
-        regression->AddRow(part == 0 ? sample.sum : sample.difference,
-                           part == 0 ? log.torque_left[k] + log.torque_right[k] : log.torque_left[k] - log.torque_right[k]);
+        const std::vector<double>& all = part == 0 ? sample.sum : sample.difference;
+        for (std::size_t c = 0; c < take.size(); ++c) row[c] = all[take[c]];
+        double known = 0.0;
+        for (const auto& [j, value] : fixed_terms) known += value * all[j];
+        regression->AddRow(row, part == 0 ? log.torque_left[k] + log.torque_right[k] : log.torque_left[k] - log.torque_right[k],
+                           known);
       }
     }
     usable[i].difference = {};
@@ -271,7 +288,7 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
   FitOptions fit_options = options.fit;
   if (!fit_options.advice) fit_options.advice = friction ? FrictionAdvice : InertiaAdvice;
   CDriveFitOutput out;
-  out.fit = regression->Fit(parameters, fixed, fit_options);
+  out.fit = regression->FitAndRelease(parameters, {}, fit_options);
   regression.reset();  // before the traces
   // fit% is of the measured sum/difference, not of the part left after the known terms.
   CDriveParameters fitted = start;

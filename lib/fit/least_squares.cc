@@ -253,6 +253,108 @@ FitResult FitLeastSquares(ResidualModel& model, const std::vector<FitParameter>&
   return result;
 }
 
+namespace {
+
+// min 1/2 z'Az - b'z subject to z_j >= lower_j (A positive definite, P x P):
+// the unconstrained minimum over the free set with the bound ones held at
+// their bounds; the most violated bound joins the set, and a bound whose
+// gradient pulls inward leaves it. Returns the number of solves.
+int SolveBoundedQuadratic(const Eigen::MatrixXd& a, const Eigen::VectorXd& b, const Eigen::VectorXd& lower,
+                          Eigen::VectorXd& z) {
+  const Eigen::Index p = b.size();
+  std::vector<bool> bound(static_cast<std::size_t>(p), false);
+  z = Eigen::VectorXd::Zero(p);
+  for (int solve = 1; solve <= 4 * static_cast<int>(p) + 4; ++solve) {
+    std::vector<Eigen::Index> open;
+    for (Eigen::Index j = 0; j < p; ++j) {
+      if (bound[static_cast<std::size_t>(j)]) z(j) = lower(j);
+      else open.push_back(j);
+    }
+    const auto k = static_cast<Eigen::Index>(open.size());
+    Eigen::MatrixXd a_open(k, k);
+    Eigen::VectorXd b_open(k);
+    for (Eigen::Index i = 0; i < k; ++i) {
+      b_open(i) = b(open[static_cast<std::size_t>(i)]);
+      for (Eigen::Index j = 0; j < p; ++j) {
+        if (bound[static_cast<std::size_t>(j)]) b_open(i) -= a(open[static_cast<std::size_t>(i)], j) * z(j);
+      }
+      for (Eigen::Index j = 0; j < k; ++j) a_open(i, j) = a(open[static_cast<std::size_t>(i)], open[static_cast<std::size_t>(j)]);
+    }
+    const Eigen::VectorXd z_open = a_open.ldlt().solve(b_open);
+    for (Eigen::Index i = 0; i < k; ++i) z(open[static_cast<std::size_t>(i)]) = z_open(i);
+    Eigen::Index worst = -1;
+    double violation = 0.0;
+    for (Eigen::Index j : open) {
+      if (lower(j) - z(j) > violation) {
+        violation = lower(j) - z(j);
+        worst = j;
+      }
+    }
+    if (worst >= 0) {
+      bound[static_cast<std::size_t>(worst)] = true;
+      continue;
+    }
+    const Eigen::VectorXd gradient = a * z - b;
+    Eigen::Index release = -1;
+    double pull = 0.0;
+    for (Eigen::Index j = 0; j < p; ++j) {
+      const double tolerance = 1e-12 * (std::abs(b(j)) + a(j, j) * std::abs(z(j)) + 1e-300);
+      if (bound[static_cast<std::size_t>(j)] && gradient(j) < -tolerance && gradient(j) < pull) {
+        pull = gradient(j);
+        release = j;
+      }
+    }
+    if (release < 0) return solve;
+    bound[static_cast<std::size_t>(release)] = false;
+  }
+  throw IdentificationError("linear least squares: the set of parameters at their bounds did not settle");
+}
+
+}  // namespace
+
+FitResult FitLinearLeastSquares(JacobianBlock design, const Eigen::VectorXd& y,
+                                const std::vector<FitParameter>& parameters, const std::vector<FitChannel>& channels,
+                                const FitOptions& options) {
+  const auto n = static_cast<int>(y.size());
+  const int p = static_cast<int>(parameters.size());
+  if (p == 0) throw IdentificationError("nothing to fit: no free parameters");
+  if (n <= p) throw IdentificationError(fmt::format("{} samples cannot determine {} parameters", n, p));
+  if (design.values.rows() != n || design.values.cols() != p) {
+    throw std::logic_error("FitLinearLeastSquares: the design does not match the parameters or y");
+  }
+  std::vector<JacobianBlock> blocks;
+  blocks.push_back(std::move(design));
+  RequireIdentifiable(blocks, parameters, options, "from these logs");
+  // Normal equations of the column-normalised design (identifiable, so
+  // every column is alive and the collinearity index is below 1000).
+  const RowMatrix& x = blocks[0].values;
+  const Eigen::MatrixXd information = x.transpose() * x;
+  const Eigen::VectorXd scale = information.diagonal().cwiseSqrt();
+  const Eigen::VectorXd inverse = scale.cwiseInverse();
+  const Eigen::MatrixXd a = inverse.asDiagonal() * information * inverse.asDiagonal();
+  const Eigen::VectorXd b = inverse.asDiagonal() * (x.transpose() * y);
+  Eigen::VectorXd lower(p);
+  for (int j = 0; j < p; ++j) lower(j) = parameters[static_cast<std::size_t>(j)].lower_bound * scale(j);
+  Eigen::VectorXd z;
+  FitResult result;
+  result.iterations = SolveBoundedQuadratic(a, b, lower, z);
+  result.converged = true;
+  const Eigen::VectorXd estimate = inverse.asDiagonal() * z;
+  int at_bound = 0;
+  std::vector<double> values(static_cast<std::size_t>(p));
+  for (int j = 0; j < p; ++j) {
+    values[static_cast<std::size_t>(j)] = estimate(j);
+    at_bound += estimate(j) == parameters[static_cast<std::size_t>(j)].lower_bound;
+  }
+  result.termination = fmt::format("exact linear least squares on the normal equations ({} at a bound)", at_bound);
+  Eigen::VectorXd residuals = x * estimate;
+  residuals -= y;
+  if (!residuals.allFinite()) ThrowEvaluationFailure(parameters, values, "");
+  result.singular_values = RequireIdentifiable(blocks, parameters, options, "at the optimum");
+  DescribeFit(std::move(blocks), residuals, parameters, values, channels, result);
+  return result;
+}
+
 FitResult FitBlockLeastSquares(BlockResidualModel& model, const std::vector<FitParameter>& parameters,
                                const std::vector<FitChannel>& channels, const FitOptions& options) {
   const int q = model.shared_count();

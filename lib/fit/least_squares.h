@@ -108,6 +108,18 @@ FitResult FitBlockLeastSquares(BlockResidualModel& model, const std::vector<FitP
 
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
+struct JacobianBlock;  // fit/fit_statistics.h
+
+/// A linear model r = X p - y (X: `design`, one block with every column)
+/// solved exactly: the normal equations on column-normalised X with an
+/// active set for the lower bounds, no solver iterations and no copy of X,
+/// which becomes the statistics' Jacobian. For designs too large to hold
+/// twice (LinearRegression::FitAndRelease); same statistics and refusals as
+/// FitLeastSquares.
+FitResult FitLinearLeastSquares(JacobianBlock design, const Eigen::VectorXd& y,
+                                const std::vector<FitParameter>& parameters, const std::vector<FitChannel>& channels,
+                                const FitOptions& options);
+
 /// Long-run covariance of the scores J_t' r_t of one channel (rows in time
 /// order) for stationary errors, AR(1)-prewhitened: with rho the residuals'
 /// lag-1 autocorrelation, u_t = r_t - rho r_{t-1} and G_s = sum_{t>=s}

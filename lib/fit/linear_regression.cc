@@ -1,11 +1,14 @@
 #include "fit/linear_regression.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include <Eigen/Core>
 #include <fmt/format.h>
 
+#include "fit/fit_statistics.h"
 #include "fit/linear_residuals.h"
+#include "fit/scaled_cost.h"
 
 namespace driveid {
 
@@ -19,7 +22,9 @@ std::size_t LinearRegression::column(const std::string& name) const {
 }
 
 void LinearRegression::Reserve(std::size_t rows) {
-  regressor_.reserve(rows * columns_.size());
+  if (static_cast<Eigen::Index>(rows) > design_.rows()) {
+    design_.conservativeResize(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(columns_.size()));
+  }
   measured_.reserve(rows);
   known_.reserve(rows);
 }
@@ -30,16 +35,22 @@ void LinearRegression::AddRow(const std::vector<double>& regressor, double measu
   if (regressor.size() != columns_.size() || channels_.empty()) {
     throw std::logic_error("LinearRegression::AddRow: row size differs from the columns, or no channel begun");
   }
-  regressor_.insert(regressor_.end(), regressor.begin(), regressor.end());
+  const auto row = static_cast<Eigen::Index>(rows());
+  if (row == design_.rows()) Reserve(std::max<std::size_t>(64, 2 * rows()));
+  for (std::size_t j = 0; j < regressor.size(); ++j) design_(row, static_cast<Eigen::Index>(j)) = regressor[j];
   measured_.push_back(measured);
   known_.push_back(known);
 }
 
-FitResult LinearRegression::Fit(const std::vector<FitParameter>& free, const std::map<std::string, double>& fixed,
-                                 const FitOptions& options) const {
+std::vector<std::size_t> LinearRegression::FreeIndex(const std::vector<FitParameter>& free) const {
+  std::vector<std::size_t> index;
+  for (const auto& parameter : free) index.push_back(column(parameter.name));
+  return index;
+}
+
+Eigen::VectorXd LinearRegression::Target(const std::vector<std::size_t>& free_index,
+                                         const std::map<std::string, double>& fixed) const {
   const std::size_t n = rows(), m = columns_.size();
-  std::vector<std::size_t> free_index;
-  for (const auto& parameter : free) free_index.push_back(column(parameter.name));
   std::vector<std::pair<std::size_t, double>> fixed_terms;
   for (std::size_t j = 0; j < m; ++j) {
     bool is_free = false;
@@ -55,15 +66,57 @@ FitResult LinearRegression::Fit(const std::vector<FitParameter>& free, const std
     for (const auto& [j, value] : fixed_terms) known += value * at(r, j);
     y(static_cast<Eigen::Index>(r)) = measured_[r] - known;
   }
+  return y;
+}
+
+std::vector<FitChannel> LinearRegression::FitChannels() const {
   std::vector<FitChannel> channels;
   for (std::size_t c = 0; c < channels_.size(); ++c) {
-    const std::size_t end = c + 1 < channels_.size() ? channels_[c + 1].begin : n;
+    const std::size_t end = c + 1 < channels_.size() ? channels_[c + 1].begin : rows();
     if (end == channels_[c].begin) continue;
     channels.push_back({channels_[c].name, static_cast<int>(channels_[c].begin), static_cast<int>(end - channels_[c].begin),
                         measured_.data() + channels_[c].begin});
   }
-  LinearResiduals residuals(regressor_.data(), m, std::move(free_index), std::move(y));
-  return FitLeastSquares(residuals, free, channels, options);
+  return channels;
+}
+
+FitResult LinearRegression::Fit(const std::vector<FitParameter>& free, const std::map<std::string, double>& fixed,
+                                 const FitOptions& options) const {
+  std::vector<std::size_t> free_index = FreeIndex(free);
+  Eigen::VectorXd y = Target(free_index, fixed);
+  LinearResiduals residuals(design_.data(), columns_.size(), std::move(free_index), std::move(y));
+  return FitLeastSquares(residuals, free, FitChannels(), options);
+}
+
+FitResult LinearRegression::FitAndRelease(const std::vector<FitParameter>& free,
+                                          const std::map<std::string, double>& fixed, const FitOptions& options) {
+  const std::size_t n = rows(), p = free.size();
+  if (n * p * sizeof(double) <= kMemoJacobianBytes) {
+    FitResult result = Fit(free, fixed, options);
+    *this = LinearRegression(columns_);
+    return result;
+  }
+  const std::vector<std::size_t> free_index = FreeIndex(free);
+  const Eigen::VectorXd y = Target(free_index, fixed);
+  JacobianBlock block;
+  bool in_order = p == columns_.size();
+  for (std::size_t c = 0; c < p && in_order; ++c) in_order = free_index[c] == c;
+  if (in_order) {
+    design_.conservativeResize(static_cast<Eigen::Index>(n), design_.cols());  // no copy when reserved exactly
+    block.values = std::move(design_);
+  } else {
+    block.values.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(p));
+    for (std::size_t r = 0; r < n; ++r) {
+      for (std::size_t c = 0; c < p; ++c) block.values(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = at(r, free_index[c]);
+    }
+  }
+  design_ = RowMatrix();
+  known_ = {};
+  for (std::size_t j = 0; j < p; ++j) block.columns.push_back(static_cast<int>(j));
+  // The channels point into measured_, which stays until the statistics are done.
+  FitResult result = FitLinearLeastSquares(std::move(block), y, free, FitChannels(), options);
+  *this = LinearRegression(columns_);
+  return result;
 }
 
 std::vector<double> LinearRegression::Predict(const std::map<std::string, double>& values) const {

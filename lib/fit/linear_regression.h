@@ -34,7 +34,9 @@ class LinearRegression {
   void AddRow(const std::vector<double>& regressor, double measured, double known = 0.0);
 
   std::size_t rows() const { return measured_.size(); }
-  double at(std::size_t row, std::size_t column) const { return regressor_[row * columns_.size() + column]; }
+  double at(std::size_t row, std::size_t column) const {
+    return design_(static_cast<Eigen::Index>(row), static_cast<Eigen::Index>(column));
+  }
   double measured(std::size_t row) const { return measured_[row]; }
   /// First row of each channel, in order (channels without rows included).
   std::vector<std::size_t> channel_begins() const {
@@ -48,6 +50,13 @@ class LinearRegression {
   FitResult Fit(const std::vector<FitParameter>& free, const std::map<std::string, double>& fixed,
                 const FitOptions& options) const;
 
+  /// The same, for a fit whose design is not needed afterwards: a large one
+  /// (Jacobian above kMemoJacobianBytes) is solved exactly on the normal
+  /// equations (FitLinearLeastSquares) with the design itself as the
+  /// Jacobian when every column is free, in order; the rows are gone after.
+  FitResult FitAndRelease(const std::vector<FitParameter>& free, const std::map<std::string, double>& fixed,
+                          const FitOptions& options);
+
   /// The model at each row for column values `values` (all columns), known part included.
   std::vector<double> Predict(const std::map<std::string, double>& values) const;
 
@@ -57,7 +66,12 @@ class LinearRegression {
     std::size_t begin = 0;
   };
   std::vector<std::string> columns_;
-  std::vector<double> regressor_;  ///< row-major, rows() x columns()
+  // The first rows() rows hold the regressors (more are room to grow).
+  RowMatrix design_;
+  // y = measured - known - fixed columns, and the channels for the fit core.
+  Eigen::VectorXd Target(const std::vector<std::size_t>& free_index, const std::map<std::string, double>& fixed) const;
+  std::vector<FitChannel> FitChannels() const;
+  std::vector<std::size_t> FreeIndex(const std::vector<FitParameter>& free) const;
   std::vector<double> measured_;
   std::vector<double> known_;
   std::vector<Channel> channels_;

@@ -7,9 +7,11 @@
 #include <random>
 #include <string>
 
+#include <Eigen/Dense>
 #include <catch2/catch.hpp>
 
 #include "core/errors.h"
+#include "fit/fit_statistics.h"
 
 using namespace driveid;
 
@@ -138,4 +140,103 @@ TEST_CASE("parameters of their own per block: the Schur-complement fit equals th
   // The correlated errors widen the interval: the robust std is larger than white noise's.
   CHECK(block.channels[0].inflation > 1.5);
   CHECK(std::abs(block.estimates[0].value - 2.0) < 4 * block.estimates[0].standard_error);
+}
+
+namespace {
+// y = X p + AR(1) noise, X with correlated columns (an offset among them).
+struct LinearProblem {
+  RowMatrix x;
+  Eigen::VectorXd y;
+};
+LinearProblem MakeLinearProblem(int n, const Eigen::Vector3d& truth, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  LinearProblem problem{RowMatrix(n, 3), Eigen::VectorXd(n)};
+  double noise = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const double t = 0.01 * k;
+    problem.x.row(k) << std::sin(t), std::sin(t) + 0.3 * std::cos(3.0 * t), 1.0;
+    noise = 0.8 * noise + 0.05 * normal(rng);
+    problem.y(k) = problem.x.row(k).dot(truth) + noise;
+  }
+  return problem;
+}
+
+class LinearModel final : public ResidualModel {
+ public:
+  explicit LinearModel(const LinearProblem& problem) : problem_(problem) {}
+  int residual_count() const override { return static_cast<int>(problem_.y.size()); }
+  bool Evaluate(const double* parameters, double* residuals, double* jacobian) override {
+    const Eigen::Map<const Eigen::Vector3d> p(parameters);
+    Eigen::Map<Eigen::VectorXd>(residuals, problem_.y.size()) = problem_.x * p - problem_.y;
+    if (jacobian != nullptr) Eigen::Map<RowMatrix>(jacobian, problem_.x.rows(), 3) = problem_.x;
+    return true;
+  }
+
+ private:
+  const LinearProblem& problem_;
+};
+}  // namespace
+
+TEST_CASE("exact linear least squares: the QR solution, the bounded optimum, the iterative fit's statistics") {
+  const int n = 2000;
+  const std::vector<FitChannel> channels = {{"y", 0, n, nullptr}};
+  SECTION("no bound active: Householder QR's solution, and the same standard errors as the iterative fit") {
+    const LinearProblem problem = MakeLinearProblem(n, {2.0, 0.5, -0.3}, 3);
+    const std::vector<FitParameter> parameters = {{"a", 1.0, 0.0, 0.0}, {"b", 1.0, 0.0, 0.0}, {"c", 0.1, -HUGE_VAL, 0.0}};
+    JacobianBlock design;
+    design.columns = {0, 1, 2};
+    design.values = problem.x;
+    const FitResult exact = FitLinearLeastSquares(std::move(design), problem.y, parameters, channels, {});
+    const Eigen::Vector3d qr = problem.x.householderQr().solve(problem.y);
+    LinearModel model(problem);
+    const FitResult iterative = FitLeastSquares(model, parameters, channels, {});
+    for (int j = 0; j < 3; ++j) {
+      INFO("parameter " << j);
+      CHECK(exact.estimates[static_cast<std::size_t>(j)].value == Approx(qr(j)).epsilon(1e-10));
+      CHECK(iterative.estimates[static_cast<std::size_t>(j)].value ==
+            Approx(qr(j)).margin(0.01 * exact.estimates[static_cast<std::size_t>(j)].standard_error));
+      CHECK(exact.estimates[static_cast<std::size_t>(j)].standard_error ==
+            Approx(iterative.estimates[static_cast<std::size_t>(j)].standard_error).epsilon(1e-4));
+    }
+    CHECK(exact.cost <= iterative.cost * (1.0 + 1e-12));
+    CHECK(exact.channels.size() == 1);
+  }
+  SECTION("a bound active: the best of every choice of bound parameters that keeps the others feasible") {
+    const LinearProblem problem = MakeLinearProblem(n, {2.0, -0.4, 0.3}, 4);  // b < 0 against its bound 0
+    const std::vector<FitParameter> parameters = {{"a", 1.0, 0.0, 0.0}, {"b", 1.0, 0.0, 0.0}, {"c", 0.1, 0.0, 0.0}};
+    JacobianBlock design;
+    design.columns = {0, 1, 2};
+    design.values = problem.x;
+    const FitResult exact = FitLinearLeastSquares(std::move(design), problem.y, parameters, channels, {});
+    // Brute force: every subset held at 0, the rest by QR, feasible ones compared by cost.
+    double best_cost = HUGE_VAL;
+    Eigen::Vector3d best = Eigen::Vector3d::Zero();
+    for (int mask = 0; mask < 8; ++mask) {
+      std::vector<int> open;
+      for (int j = 0; j < 3; ++j) {
+        if (!(mask & (1 << j))) open.push_back(j);
+      }
+      Eigen::Vector3d p = Eigen::Vector3d::Zero();
+      if (!open.empty()) {
+        RowMatrix sub(n, static_cast<Eigen::Index>(open.size()));
+        for (std::size_t c = 0; c < open.size(); ++c) sub.col(static_cast<Eigen::Index>(c)) = problem.x.col(open[c]);
+        const Eigen::VectorXd q = sub.householderQr().solve(problem.y);
+        for (std::size_t c = 0; c < open.size(); ++c) p(open[c]) = q(static_cast<Eigen::Index>(c));
+      }
+      if ((p.array() < 0.0).any()) continue;
+      const double cost = 0.5 * (problem.x * p - problem.y).squaredNorm();
+      if (cost < best_cost) {
+        best_cost = cost;
+        best = p;
+      }
+    }
+    REQUIRE(best(1) == 0.0);
+    for (int j = 0; j < 3; ++j) {
+      INFO("parameter " << j);
+      CHECK(exact.estimates[static_cast<std::size_t>(j)].value == Approx(best(j)).epsilon(1e-9).margin(1e-12));
+    }
+    CHECK(exact.estimates[1].value == 0.0);
+    CHECK(exact.termination.find("1 at a bound") != std::string::npos);
+  }
 }
