@@ -2,6 +2,8 @@
 // command reports (docs/models.md#identification) and writes into the parameter file.
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -64,6 +66,37 @@ struct FitResult {
   std::vector<HeterogeneityTest> heterogeneity;  ///< per parameter, over per_log
   std::vector<ChannelStatistics> validation;     ///< held-out logs (--validate) predicted by the fit
 };
+
+/// Above this many parameters (e.g. a fit of many logs with an offset
+/// each) reports show the strongest correlations instead of the matrix,
+/// and the text summary condenses its per-channel lines.
+inline constexpr std::size_t kFullCorrelationParameters = 40;
+inline constexpr std::size_t kListedChannels = 20;
+
+/// A pair of estimates and their correlation.
+struct CorrelationPair {
+  std::size_t first = 0, second = 0;  ///< indices into FitResult::estimates, first > second
+  double correlation = 0.0;
+};
+
+/// The `count` pairs of largest |correlation| (ties: the earlier pair),
+/// strongest first.
+inline std::vector<CorrelationPair> StrongestCorrelations(const FitResult& fit, std::size_t count) {
+  const std::size_t p = fit.estimates.size();
+  std::vector<CorrelationPair> pairs;
+  for (std::size_t i = 0; i < p; ++i) {
+    for (std::size_t j = 0; j < i; ++j) pairs.push_back({i, j, fit.correlation[i * p + j]});
+  }
+  const auto stronger = [](const CorrelationPair& a, const CorrelationPair& b) {
+    const double x = a.correlation < 0 ? -a.correlation : a.correlation;
+    const double y = b.correlation < 0 ? -b.correlation : b.correlation;
+    return x > y || (x == y && (a.first < b.first || (a.first == b.first && a.second < b.second)));
+  };
+  const std::size_t kept = count < pairs.size() ? count : pairs.size();
+  std::partial_sort(pairs.begin(), pairs.begin() + static_cast<std::ptrdiff_t>(kept), pairs.end(), stronger);
+  pairs.resize(kept);
+  return pairs;
+}
 
 /// A quantity derived from the estimates (e.g. the C-drive's a and b), with
 /// its standard error propagated through the covariance.

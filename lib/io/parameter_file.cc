@@ -517,11 +517,22 @@ std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit,
       }
     }
     const std::size_t p = fit->estimates.size();
-    out += "  correlation:\n";
-    for (std::size_t i = 0; i < p; ++i) {
-      out += fmt::format("    {}: [", fit->estimates[i].name);
-      for (std::size_t j = 0; j < p; ++j) out += fmt::format("{}{:.4f}", j ? ", " : "", fit->correlation[i * p + j]);
-      out += "]\n";
+    if (p <= kFullCorrelationParameters) {
+      out += "  correlation:\n";
+      for (std::size_t i = 0; i < p; ++i) {
+        out += fmt::format("    {}: [", fit->estimates[i].name);
+        for (std::size_t j = 0; j < p; ++j) out += fmt::format("{}{:.4f}", j ? ", " : "", fit->correlation[i * p + j]);
+        out += "]\n";
+      }
+    } else {
+      // The matrix grows with the square of the parameters (a fit of 1000
+      // logs with offsets: 8 MB): the strongest pairs (the matrix: --json).
+      out += fmt::format("  correlation:  # {} parameters: the {} strongest pairs (docs/formats.md)\n", p,
+                         kFullCorrelationParameters);
+      for (const auto& pair : StrongestCorrelations(*fit, kFullCorrelationParameters)) {
+        out += fmt::format("    - [{}, {}, {:.4f}]\n", fit->estimates[pair.first].name, fit->estimates[pair.second].name,
+                           pair.correlation);
+      }
     }
     out += "  rmse:\n";
     for (const auto& c : fit->channels) out += fmt::format("    {}: {}\n", Quoted(c.name), Short(c.rmse));

@@ -1,10 +1,50 @@
 #include "report/fit_summary.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
 
 namespace driveid {
+
+namespace {
+
+// A line per channel; beyond kListedChannels the ranges over all channels
+// and the channels of the lowest fit and the most correlated residuals.
+std::string FormatChannelLines(const std::vector<ChannelStatistics>& channels) {
+  const auto line = [](const ChannelStatistics& c) {
+    return fmt::format("{}: {} samples, rmse {:.4g}, fit {:.2f} %, residual lag-1 autocorrelation {:.3f}, std x {:.2f} "
+                       "for it ({} lags)\n",
+                       c.name, c.samples, c.rmse, c.fit_percent, c.autocorrelation, c.inflation, c.bandwidth);
+  };
+  std::string out;
+  if (channels.size() <= kListedChannels) {
+    for (const auto& c : channels) out += line(c);
+    return out;
+  }
+  const auto range = [&](double ChannelStatistics::*member) {
+    const auto [low, high] = std::minmax_element(channels.begin(), channels.end(),
+                                                 [&](const auto& a, const auto& b) { return a.*member < b.*member; });
+    return std::pair{(*low).*member, (*high).*member};
+  };
+  const auto [fit_low, fit_high] = range(&ChannelStatistics::fit_percent);
+  const auto [rmse_low, rmse_high] = range(&ChannelStatistics::rmse);
+  const auto [lag_low, lag_high] = range(&ChannelStatistics::autocorrelation);
+  const auto [inflation_low, inflation_high] = range(&ChannelStatistics::inflation);
+  out += fmt::format("{} channels (each in the parameter file and --json): fit {:.2f} to {:.2f} %, rmse {:.4g} to "
+                     "{:.4g}, residual lag-1 {:.3f} to {:.3f}, std x {:.2f} to {:.2f}\n",
+                     channels.size(), fit_low, fit_high, rmse_low, rmse_high, lag_low, lag_high, inflation_low,
+                     inflation_high);
+  const auto worst_fit = std::min_element(channels.begin(), channels.end(),
+                                          [](const auto& a, const auto& b) { return a.fit_percent < b.fit_percent; });
+  const auto most_correlated = std::max_element(
+      channels.begin(), channels.end(), [](const auto& a, const auto& b) { return a.autocorrelation < b.autocorrelation; });
+  out += "  lowest fit: " + line(*worst_fit);
+  out += "  most correlated residuals: " + line(*most_correlated);
+  return out;
+}
+
+}  // namespace
 
 std::string FormatFitTable(const FitResult& fit, const FitProvenance& provenance) {
   std::string out;
@@ -17,13 +57,15 @@ std::string FormatFitTable(const FitResult& fit, const FitProvenance& provenance
                        relative, e.ci95_low, e.ci95_high);
   }
   out += "\n";
-  for (const auto& c : fit.channels) {
-    out += fmt::format("{}: {} samples, rmse {:.4g}, fit {:.2f} %, residual lag-1 autocorrelation {:.3f}, std x {:.2f} "
-                       "for it ({} lags)\n",
-                       c.name, c.samples, c.rmse, c.fit_percent, c.autocorrelation, c.inflation, c.bandwidth);
-  }
+  out += FormatChannelLines(fit.channels);
   const std::size_t p = fit.estimates.size();
-  if (p > 1) {
+  if (p > kFullCorrelationParameters) {
+    out += fmt::format("correlation: {} parameters, the 10 strongest pairs (all: --json):\n", p);
+    for (const auto& pair : StrongestCorrelations(fit, 10)) {
+      out += fmt::format("  {:<14} {:<14} {:>7.3f}\n", fit.estimates[pair.first].name, fit.estimates[pair.second].name,
+                         pair.correlation);
+    }
+  } else if (p > 1) {
     out += "correlation:\n";
     for (std::size_t i = 0; i < p; ++i) {
       out += fmt::format("  {:<14}", fit.estimates[i].name);
@@ -31,8 +73,15 @@ std::string FormatFitTable(const FitResult& fit, const FitProvenance& provenance
       out += "\n";
     }
   }
-  out += fmt::format("identifiability: singular values of the normalised Jacobian [{:.3g}]\n",
-                     fmt::join(fit.singular_values, ", "));
+  const std::vector<double>& singular = fit.singular_values;
+  if (singular.size() > 12) {
+    out += fmt::format("identifiability: singular values of the normalised Jacobian [{:.3g}, ..., {:.3g}] ({} of them)\n",
+                       fmt::join(singular.begin(), singular.begin() + 6, ", "),
+                       fmt::join(singular.end() - 6, singular.end(), ", "), singular.size());
+  } else {
+    out += fmt::format("identifiability: singular values of the normalised Jacobian [{:.3g}]\n",
+                       fmt::join(singular, ", "));
+  }
   out += fmt::format("solver: {} after {} iterations ({}); model {}\n", fit.converged ? "converged" : "NOT converged",
                      fit.iterations, fit.termination, provenance.model.empty() ? "-" : provenance.model);
   out += FormatPerLogTable(fit);

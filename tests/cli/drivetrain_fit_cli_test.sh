@@ -316,6 +316,21 @@ head -2 robot_trace.csv | tail -1 | grep -q "^log,t,motor,i_measured,i_motion,i_
   && ok || fail "robot trace header"
 "$bin" report robot.yaml | grep -q "M = Theta G G' + m_c 1" && ok || fail "robot report lacks M"
 
+# Many logs with an offset each (45 parameters): the summary condenses its
+# channels and correlations, and the parameter file (strongest pairs only)
+# reads back.
+for seed in $(seq 42); do
+  "$bin" simulate step --params paper.yaml --noise 0.1 --offset "0.$((seed % 10))" --seed "$seed" --duration 0.2 \
+    -o "many_$seed.csv" 2> /dev/null || fail "simulate many_$seed"
+done
+"$bin" step many_*.csv --params start.yaml --free d_g,Theta_motor,tau_c,offset -o many.yaml > many.txt 2>&1 \
+  && ok || fail "42 logs with offsets: $(tail -3 many.txt)"
+grep -q "^42 channels (each in the parameter file and --json): fit " many.txt && ok || fail "channels not condensed"
+grep -q "^correlation: 45 parameters, the 10 strongest pairs" many.txt && ok || fail "correlation not condensed"
+[ "$(grep -c "tau_link: .* samples" many.txt)" = 2 ] && ok || fail "expected two listed channels (lowest fit, most correlated)"
+grep -q "^  correlation:  # 45 parameters: the 40 strongest pairs" many.yaml && ok || fail "yaml correlation"
+"$bin" report many.yaml > /dev/null && ok || fail "the many-log parameter file does not read back"
+
 # Golden: report of the paper's values.
 "$bin" report paper.yaml > report.txt && diff -u "$src/tests/cli/golden/report_paper000.txt" report.txt > report.diff \
   && ok || fail "report differs from golden: $(head -c 600 report.diff)"

@@ -1,5 +1,7 @@
 #include "io/parameter_file.h"
 
+#include <string>
+
 #include <catch2/catch.hpp>
 
 #include "core/errors.h"
@@ -52,6 +54,39 @@ TEST_CASE("formatted files read back unchanged, with a fit section too") {
   CHECK(again.Find<DriveTrainSection>()->link_stiffness == file.Find<DriveTrainSection>()->link_stiffness);
   CHECK(again.had_fit_section);
   CHECK(FormatParameterFile(again) == FormatParameterFile(file));
+}
+
+TEST_CASE("a fit of many parameters writes its strongest correlations, and the file reads back") {
+  // 1003 parameters (1000 logs with an offset each): the matrix alone was 8 MB,
+  // beyond what a parameter file may be (1 MiB).
+  const std::size_t p = 1003;
+  FitResult fit;
+  for (std::size_t i = 0; i < p; ++i) fit.estimates.push_back({"e" + std::to_string(i), 1.0, 0.1, 0.8, 1.2});
+  fit.correlation.assign(p * p, 0.0);
+  for (std::size_t i = 0; i < p; ++i) {
+    for (std::size_t j = 0; j < p; ++j) fit.correlation[i * p + j] = i == j ? 1.0 : 0.001 * static_cast<double>((i + j) % 7);
+  }
+  fit.correlation[700 * p + 2] = fit.correlation[2 * p + 700] = -0.9;  // the strongest
+  fit.correlation[5 * p + 1] = fit.correlation[1 * p + 5] = 0.5;        // the second
+  fit.singular_values.assign(p, 1.0);
+  fit.converged = true;
+  FitProvenance provenance{"drivetrain-fit step ...", "0.1.0", "reduced", {}};
+  const auto file = ParseParameterFile("p.yaml", kValid);
+  const std::string text = FormatParameterFile(file, &fit, &provenance);
+  CHECK(text.size() < 300000);
+  CHECK(text.find("  correlation:  # 1003 parameters: the 40 strongest pairs") != std::string::npos);
+  const auto first = text.find("    - [e700, e2, -0.9000]"), second = text.find("    - [e5, e1, 0.5000]");
+  CHECK(first != std::string::npos);
+  CHECK(second != std::string::npos);
+  CHECK(first < second);
+  const auto strongest = StrongestCorrelations(fit, 2);
+  REQUIRE(strongest.size() == 2);
+  CHECK(strongest[0].first == 700);
+  CHECK(strongest[0].second == 2);
+  CHECK(strongest[1].correlation == 0.5);
+  const auto again = ParseParameterFile("q.yaml", text);
+  CHECK(again.had_fit_section);
+  CHECK(again.fit_estimates.size() == p);
 }
 
 TEST_CASE("bad parameter files name file, line, column and key") {
