@@ -148,8 +148,10 @@ AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int deci
       if (d.valid[k]) max_rate = std::max(max_rate, std::abs(d.rate[k]));
     }
     const double min_rate = min_rate_fraction * max_rate;
+    // The sample whose derivatives stand for k: invalid ends hold their neighbours.
+    const auto derived = [&](std::size_t k) { return d.valid[k] ? k : (k == 0 ? 1 : n - 2); };
     std::vector<char> slow(n, 0);
-    for (std::size_t k = 0; k < n; ++k) slow[k] = std::abs(d.rate[d.valid[k] ? k : (k == 0 ? 1 : n - 2)]) < min_rate;
+    for (std::size_t k = 0; k < n; ++k) slow[k] = std::abs(d.rate[derived(k)]) < min_rate;
     // A kept sample must be clear of slow samples by the filter's reach.
     const std::size_t reach = static_cast<std::size_t>(std::max(1, 2 * decimation));
     std::vector<char> clear(n, 1);
@@ -176,8 +178,8 @@ AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int deci
       if (clear[k]) kept.push_back(k);
     }
     // Full-rate columns, one at a time (memory: one column besides the log):
-    // the model's regressors (CalcAxisRegressors), then |q'| and t - t_mid;
-    // invalid ends hold their neighbours. Low-passed before decimation.
+    // the model's regressors (CalcAxisRegressors), then |q'| and t - t_mid.
+    // Low-passed before decimation.
     const bool filtered = d.rate_hz > 0.0 && decimation > 1;
     const double band = 0.8 * d.rate_hz / (2.0 * decimation);
     const std::size_t width = kAxisTerms + 2;
@@ -187,7 +189,7 @@ AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int deci
       // Only the gravity terms depend on q (the trigonometry is most of the time).
       const bool trigonometric = c == kAxisGravityCos || c == kAxisGravitySin;
       for (std::size_t k = 0; k < n; ++k) {
-        const std::size_t m = d.valid[k] ? k : (k == 0 ? 1 : n - 2);
+        const std::size_t m = derived(k);
         const double position = trigonometric ? log.position[k] : 0.0;
         column[k] = c < kAxisTerms   ? CalcAxisRegressors(position, d.rate[m], d.acceleration[m])[c]
                     : c == kAxisTerms ? std::abs(d.rate[m])

@@ -75,6 +75,12 @@ void SetLowerBounds(ceres::Problem& problem, double* block, std::size_t first, i
   }
 }
 
+// Refuses a problem without free parameters or with no more rows than them.
+void RequireEnoughSamples(int n, int p) {
+  if (p == 0) throw IdentificationError("nothing to fit: no free parameters");
+  if (n <= p) throw IdentificationError(fmt::format("{} samples cannot determine {} parameters", n, p));
+}
+
 // The solver's outcome into `result`; throws when it failed or stopped early.
 void TakeSummary(const ceres::Solver::Summary& summary, FitResult& result) {
   result.iterations = static_cast<int>(summary.iterations.size()) - 1;
@@ -190,8 +196,7 @@ FitResult FitLeastSquares(ResidualModel& model, const std::vector<FitParameter>&
                           const std::vector<FitChannel>& channels, const FitOptions& options) {
   const int n = model.residual_count();
   const int p = static_cast<int>(parameters.size());
-  if (p == 0) throw IdentificationError("nothing to fit: no free parameters");
-  if (n <= p) throw IdentificationError(fmt::format("{} samples cannot determine {} parameters", n, p));
+  RequireEnoughSamples(n, p);
 
   const std::vector<double> scale = ParameterScales(parameters);
   std::vector<double> z(static_cast<std::size_t>(p));
@@ -317,14 +322,16 @@ FitResult FitLinearLeastSquares(JacobianBlock design, const Eigen::VectorXd& y,
                                 const FitOptions& options) {
   const auto n = static_cast<int>(y.size());
   const int p = static_cast<int>(parameters.size());
-  if (p == 0) throw IdentificationError("nothing to fit: no free parameters");
-  if (n <= p) throw IdentificationError(fmt::format("{} samples cannot determine {} parameters", n, p));
+  RequireEnoughSamples(n, p);
   if (design.values.rows() != n || design.values.cols() != p) {
     throw std::logic_error("FitLinearLeastSquares: the design does not match the parameters or y");
   }
   std::vector<JacobianBlock> blocks;
   blocks.push_back(std::move(design));
-  RequireIdentifiable(blocks, parameters, options, "from these logs");
+  FitResult result;
+  // A linear model's Jacobian is the design everywhere: one analysis serves
+  // before the solve and at the optimum.
+  result.singular_values = RequireIdentifiable(blocks, parameters, options, "from these logs");
   // Normal equations of the column-normalised design (identifiable, so
   // every column is alive and the collinearity index is below 1000).
   const RowMatrix& x = blocks[0].values;
@@ -336,7 +343,6 @@ FitResult FitLinearLeastSquares(JacobianBlock design, const Eigen::VectorXd& y,
   Eigen::VectorXd lower(p);
   for (int j = 0; j < p; ++j) lower(j) = parameters[static_cast<std::size_t>(j)].lower_bound * scale(j);
   Eigen::VectorXd z;
-  FitResult result;
   result.iterations = SolveBoundedQuadratic(a, b, lower, z);
   result.converged = true;
   const Eigen::VectorXd estimate = inverse.asDiagonal() * z;
@@ -350,7 +356,6 @@ FitResult FitLinearLeastSquares(JacobianBlock design, const Eigen::VectorXd& y,
   Eigen::VectorXd residuals = x * estimate;
   residuals -= y;
   if (!residuals.allFinite()) ThrowEvaluationFailure(parameters, values, "");
-  result.singular_values = RequireIdentifiable(blocks, parameters, options, "at the optimum");
   DescribeFit(std::move(blocks), residuals, parameters, values, channels, result);
   return result;
 }
@@ -375,8 +380,7 @@ FitResult FitBlockLeastSquares(BlockResidualModel& model, const std::vector<FitP
     next += l;
   }
   if (next != p) throw std::logic_error("FitBlockLeastSquares: parameters do not match the blocks");
-  if (p == 0) throw IdentificationError("nothing to fit: no free parameters");
-  if (n <= p) throw IdentificationError(fmt::format("{} samples cannot determine {} parameters", n, p));
+  RequireEnoughSamples(n, p);
 
   const std::vector<double> scale = ParameterScales(parameters);
   std::vector<double> z(static_cast<std::size_t>(p));

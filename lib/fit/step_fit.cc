@@ -167,7 +167,7 @@ class StepResiduals final : public ResidualModel, public BlockResidualModel {
       if (!Simulated(0, parameters, jacobian != nullptr)) return false;
       return FillRows(0, offset, first, last, residuals, jacobian, p, offset_column, response_, 0);
     }
-    if (!(simulated_valid_ && std::equal(simulated_.begin(), simulated_.end(), parameters, parameters + q))) {
+    if (!SimulatedAt(parameters)) {
       simulated_valid_ = true;  // simulated_ is the point of the stream and of memo_ from now on
       simulated_.assign(parameters, parameters + q);
       simulated_ok_ = true;
@@ -218,13 +218,17 @@ class StepResiduals final : public ResidualModel, public BlockResidualModel {
     memo_rows_ = std::max(memo_rows_, last);
   }
 
+  // Whether simulated_ holds these ODE parameter values.
+  bool SimulatedAt(const double* ode_values) const {
+    return simulated_valid_ && std::equal(simulated_.begin(), simulated_.end(), ode_values);
+  }
+
   // Simulates log i at the ODE parameter values unless it is the single log's
   // last simulation (with sensitivities if `sensitivities`); false (with
   // last_failure_) if the integrator fails there, remembered as well.
   bool Simulated(std::size_t i, const double* ode_values, bool sensitivities) {
     const std::size_t q = ode_parameters_.size();
-    const bool same = logs_.size() == 1 && simulated_valid_ &&
-                      std::equal(simulated_.begin(), simulated_.end(), ode_values, ode_values + q);
+    const bool same = logs_.size() == 1 && SimulatedAt(ode_values);
     if (same && !simulated_ok_) return false;
     if (same && (!sensitivities || simulated_with_jacobian_)) return true;
     for (std::size_t j = 0; j < q; ++j) SetDriveTrainParameter(params_, ode_parameters_[j], ode_values[j]);

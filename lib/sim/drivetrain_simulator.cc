@@ -194,7 +194,7 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem, public He
     if (!with_sensitivities) return;
     double gradient[4], deflection_gradient[4];
     CalcLinkTorqueStateGradient(params_, model_, gradient);
-    CalcDeflectionStateGradient(params_, model_, deflection_gradient);
+    if (record_angles_) CalcDeflectionStateGradient(params_, model_, deflection_gradient);
     const std::size_t p = parameters_.size();
     for (std::size_t j = 0; j < p; ++j) {
       const double* s = &s_[j * static_cast<std::size_t>(n_)];
