@@ -34,8 +34,9 @@ bool ScaledBlockCost::Evaluate(double const* const* parameters, double* residual
     return true;
   }
   // A Jacobian of shared parameters only above kMemoJacobianBytes goes
-  // straight into Ceres's buffer and is not kept (memory before time: the
-  // models of such logs remember their last simulation themselves).
+  // straight into Ceres's buffer and is not kept (memory before time: a
+  // repeated point is evaluated again unless the model remembers it, as the
+  // single-log step model does).
   const bool direct = want_jacobian && l == 0 && n * p * sizeof(double) > kMemoJacobianBytes;
   memo_valid_ = false;
   for (std::size_t j = 0; j < q; ++j) shared_[j] = shared[j] * shared_scale_[j];
