@@ -309,7 +309,7 @@ void EmitFitOutputs(const FitOutputOptions& options, const FitOutputs& outputs) 
   }
   // All or nothing: render the plot, then write every file together.
   std::vector<std::pair<std::string, std::string>> files;
-  if (!options.plot.empty()) files.emplace_back(options.plot, RenderPanels(options.plot, outputs.plot_panels, "time [s]"));
+  if (!options.plot.empty()) files.emplace_back(options.plot, RenderPanels(options.plot, outputs.plot_panels, outputs.plot_x_label, outputs.plot_log_x));
   if (!options.trace.empty()) files.emplace_back(options.trace, outputs.trace_csv);
   if (!options.output.empty()) files.emplace_back(options.output, outputs.parameter_file);
   WriteFilesAtomically(files);

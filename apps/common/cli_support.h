@@ -67,7 +67,9 @@ void CheckFitOutputs(const FitOutputOptions& options, std::vector<std::string> i
 struct FitOutputs {
   std::string parameter_file;       ///< YAML text
   std::string trace_csv;            ///< CSV text
-  std::vector<PlotPanel> plot_panels;  ///< stacked panels sharing the time axis
+  std::vector<PlotPanel> plot_panels;  ///< stacked panels sharing the x axis
+  std::string plot_x_label = "time [s]";
+  bool plot_log_x = false;
   FitResult fit;
   FitProvenance provenance;
 };

@@ -262,6 +262,34 @@ std::string FormatControl(const CDriveSection&, const ParameterFile& file) {
   return out + FormatSection(*control, CDriveControlParameterTable(), "    ");
 }
 
+void ParseFrequencyResponseKey(const std::string& path, const std::string& key, const YAML::Node& value,
+                               FrequencyResponseSection& section, ParameterFile&) {
+  if (key == "band_hz") {
+    if (!value.IsSequence() || value.size() != 2) {
+      throw InputError(fmt::format("{}: frf.band_hz: expected [low, high] in Hz", Where(path, value)));
+    }
+    const double low = ParseNumber(path, "frf.band_hz", value[0]), high = ParseNumber(path, "frf.band_hz", value[1]);
+    if (!(low >= 0.0) || !(high >= low)) {
+      throw InputError(fmt::format("{}: frf.band_hz: expected 0 <= low <= high, got [{}, {}]", Where(path, value), low,
+                                   high));
+    }
+    section.band_hz = std::array<double, 2>{low, high};
+  } else if (!value.IsNull()) {  // method
+    if (!value.IsScalar()) throw InputError(fmt::format("{}: frf.method: expected text", Where(path, value)));
+    section.method = value.Scalar();
+  }
+}
+
+std::string FormatFrequencyResponseKeys(const FrequencyResponseSection& section, const ParameterFile&) {
+  std::string out;
+  if (section.band_hz) {
+    out += fmt::format("{:<28} # {}\n", fmt::format("  band_hz: [{}, {}]", (*section.band_hz)[0], (*section.band_hz)[1]),
+                       "coherent band used [Hz]");
+  }
+  if (section.method) out += fmt::format("  method: {}\n", Quoted(*section.method));
+  return out;
+}
+
 // The registered model sections, in the order they are written: one line per model.
 const std::vector<SectionHandler>& Sections() {
   static const std::vector<SectionHandler> sections = {
@@ -272,6 +300,8 @@ const std::vector<SectionHandler>& Sections() {
       MakeSection(CDriveParameterTable, "seed 001; docs/models.md#c-drive", {"control"}, ParseControlKey,
                   FormatControl),
       MakeSection(JointParameterTable, "docs/models.md#elastic-joint: two masses, link side"),
+      MakeSection(FrequencyResponseTable, "docs/models.md#frequency-response: measured by drivetrain-fit frf",
+                  {"band_hz", "method"}, ParseFrequencyResponseKey, FormatFrequencyResponseKeys),
   };
   return sections;
 }

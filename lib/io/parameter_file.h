@@ -20,6 +20,7 @@
 #include "models/cdrive.h"
 #include "models/drivetrain.h"
 #include "models/feedforward.h"
+#include "models/frequency_response.h"
 #include "models/joint.h"
 #include "models/planar_robot.h"
 

@@ -16,6 +16,7 @@
 
 #include <array>
 #include <cmath>
+#include <complex>
 #include <optional>
 
 #include "models/parameter_table.h"
@@ -97,5 +98,77 @@ inline JointRegressors CalcJointRegressors(double motor_angle, double motor_rate
           {motor_acceleration, link_acceleration, 0.0, 0.0, motor_rate, sgn(motor_rate), link_rate, sgn(link_rate), 1.0,
            std::cos(link_angle), std::sin(link_angle)}};
 }
+
+/// Which derivative of an angle a frequency response has as its output.
+enum class ResponseQuantity { kPosition = 0, kRate = 1, kAcceleration = 2 };
+
+/// Frequency response of the joint from the logged motor torque tau (= tau_m / n)
+/// at s = j omega [rad/s], in log units (q_motor = n theta_m, q_link = theta_l),
+/// gravity left out (linear about rest). With A_m = J_m s^2 + (b_m + d) s + k,
+/// A_l = J_l s^2 + (b_l + d) s + k, K = d s + k and Delta = A_m A_l - K^2:
+///   q_motor / tau = n^2 A_l / Delta,   q_link / tau = n K / Delta,
+/// times s (rate) or s^2 (acceleration). Coulomb friction and the offset do
+/// not enter (a describing function would make the response depend on the
+/// amplitude). Undamped, the motor response has its anti-resonance at
+/// sqrt(k / J_l) and both share the resonance sqrt(k (1/J_m + 1/J_l)).
+struct JointResponse {
+  std::complex<double> motor, link;
+  /// d ln(response) / d parameter for the dynamic terms, in the order
+  /// motor_inertia, link_inertia, stiffness, damping, motor_viscous, link_viscous.
+  std::array<std::complex<double>, 6> motor_log_gradient, link_log_gradient;
+};
+inline JointResponse CalcJointResponse(const JointParameters& p, double gear_ratio, double omega,
+                                       ResponseQuantity quantity) {
+  using C = std::complex<double>;
+  const C s(0.0, omega);
+  const C spring = p.damping * s + p.stiffness;
+  const C a_m = p.motor_inertia * s * s + p.motor_viscous * s + spring;
+  const C a_l = p.link_inertia * s * s + p.link_viscous * s + spring;
+  const C delta = a_m * a_l - spring * spring;
+  const C derivative = std::pow(s, static_cast<int>(quantity));
+  JointResponse out;
+  out.motor = gear_ratio * gear_ratio * a_l / delta * derivative;
+  out.link = gear_ratio * spring / delta * derivative;
+  // Partials of (A_m, A_l, K) per parameter.
+  const std::array<std::array<C, 3>, 6> partials = {{{s * s, 0.0, 0.0},
+                                                     {0.0, s * s, 0.0},
+                                                     {1.0, 1.0, 1.0},
+                                                     {s, s, s},
+                                                     {s, 0.0, 0.0},
+                                                     {0.0, s, 0.0}}};
+  for (std::size_t i = 0; i < partials.size(); ++i) {
+    const auto& [da_m, da_l, dk] = partials[i];
+    const C d_delta = da_m * a_l + a_m * da_l - 2.0 * spring * dk;
+    out.motor_log_gradient[i] = da_l / a_l - d_delta / delta;
+    out.link_log_gradient[i] = dk / spring - d_delta / delta;
+  }
+  return out;
+}
+
+/// The same response as a sampled system sees it: the torque held between
+/// samples at `rate` [Hz] (zero-order hold) and the output sampled, exactly:
+/// with x = (theta_m, theta_m', theta_l, theta_l') and x' = A x + B tau,
+/// [Phi Gamma; 0 1] = exp([A B; 0 0] T) and H(z) = C (z I - Phi)^-1 Gamma + D
+/// at z = exp(j omega T), for omega below the Nyquist frequency; the hold's
+/// delay and aliasing are part of it. Gradients are not filled.
+class SampledJointResponse {
+ public:
+  SampledJointResponse(const JointParameters& p, double gear_ratio, double rate);
+  std::complex<double> Motor(double omega, ResponseQuantity quantity) const;
+  std::complex<double> Link(double omega, ResponseQuantity quantity) const;
+
+ private:
+  std::complex<double> Evaluate(double omega, const std::array<double, 4>& c, double d) const;
+  std::array<std::array<double, 4>, 4> a_{}, phi_{};
+  std::array<double, 4> b_{}, gamma_{};
+  double gear_ratio_, period_;
+};
+
+/// Undamped resonance sqrt(k (1/J_m + 1/J_l)) and motor-side anti-resonance
+/// sqrt(k / J_l) [rad/s].
+inline double JointResonance(const JointParameters& p) {
+  return std::sqrt(p.stiffness * (1.0 / p.motor_inertia + 1.0 / p.link_inertia));
+}
+inline double JointAntiresonance(const JointParameters& p) { return std::sqrt(p.stiffness / p.link_inertia); }
 
 }  // namespace driveid

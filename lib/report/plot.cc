@@ -60,7 +60,8 @@ bool IsSupportedPlotPath(const std::string& path) {
   return EndsWith(lower, ".png") || EndsWith(lower, ".svg");
 }
 
-std::string RenderPanels(const std::string& path, const std::vector<PlotPanel>& panels, const std::string& x_label) {
+std::string RenderPanels(const std::string& path, const std::vector<PlotPanel>& panels, const std::string& x_label,
+                         bool log_x) {
   const bool svg = EndsWith(Lower(path), ".svg");
   // gnuplot's files live in the temporary directory, not beside the output.
   const std::string base = (std::filesystem::temp_directory_path() / "driveid-plot").string();
@@ -86,6 +87,7 @@ std::string RenderPanels(const std::string& path, const std::vector<PlotPanel>& 
   }
   script += fmt::format("set multiplot layout {},1\nset grid\nset key outside below horizontal\n", panels.size());
   script += "set lmargin 12\nset rmargin 4\n";
+  if (log_x) script += "set logscale x\n";
   block = 0;
   for (std::size_t p = 0; p < panels.size(); ++p) {
     const auto& panel = panels[p];

@@ -38,9 +38,10 @@ struct PlotPanel {
 
 /// Renders stacked panels as the image `path` will hold (PNG or SVG by its
 /// extension) and returns its bytes (the caller writes them with the other
-/// outputs); the last panel gets the x label. Throws OutputError if gnuplot
-/// is missing or fails.
-std::string RenderPanels(const std::string& path, const std::vector<PlotPanel>& panels, const std::string& x_label);
+/// outputs); the last panel gets the x label, `log_x` a logarithmic x axis
+/// (a Bode plot). Throws OutputError if gnuplot is missing or fails.
+std::string RenderPanels(const std::string& path, const std::vector<PlotPanel>& panels, const std::string& x_label,
+                         bool log_x = false);
 
 /// True for a path ending in .png or .svg (case-insensitive).
 bool IsSupportedPlotPath(const std::string& path);

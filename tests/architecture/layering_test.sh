@@ -12,7 +12,7 @@ declare -A allowed=(
   [io]="core models control io"
   [sim]="core models control io sim"
   [fit]="core models signal io sim fit"
-  [report]="core models control io report"
+  [report]="core models control io signal sim fit report"
 )
 bad=0
 checked=0

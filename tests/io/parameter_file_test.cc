@@ -107,7 +107,7 @@ TEST_CASE("bad parameter files name file, line, column and key") {
   CHECK_THAT(ErrorOf("drivetrain: [1, 2\n"), Catch::Contains("invalid YAML"));
   CHECK(ErrorOf("") == "p.yaml: empty parameter file");
   CHECK(ErrorOf("drivetrian:\n  n_g: 80\n") ==
-        "p.yaml:1:1: drivetrian: unknown section (known: drivetrain, planar_robot, axis, cdrive, joint, feedforward, fit)");
+        "p.yaml:1:1: drivetrian: unknown section (known: drivetrain, planar_robot, axis, cdrive, joint, frf, feedforward, fit)");
   CHECK(ErrorOf("drivetrain:\n  n_g: 80\n  n_g: 81\n") == "p.yaml:3:3: drivetrain.n_g: key appears twice");
   CHECK(ErrorOf("- 1\n- 2\n") == "p.yaml:1:1: parameter file: expected a mapping of keys");
   CHECK_THAT(ErrorOf(std::string(kValid) + "  tau_c2: [1]\n"), Catch::Contains("unknown key"));
@@ -164,7 +164,7 @@ TEST_CASE("fuzzer regression: a file with only a fit section has no model to use
   // Found by tests/fuzz/parameter_file_fuzzer: accepted, but formatted to a
   // comment-only file that reads back as empty.
   CHECK(ErrorOf("fit:\n  command: \"x\"\n  converged: true\n") ==
-        "p.yaml: no model section (drivetrain, planar_robot, axis, cdrive, joint)");
+        "p.yaml: no model section (drivetrain, planar_robot, axis, cdrive, joint, frf)");
 }
 
 TEST_CASE("fuzzer regression: an axis section with every value empty reads back after formatting") {
@@ -216,4 +216,27 @@ TEST_CASE("the feed-forward section reads back unchanged; bad keys are named wit
         "p.yaml:4:8: feedforward.law: \"pid\": expected axis or cdrive");
   CHECK(ErrorOf("axis:\n  inertia: 1\nfeedforward:\n  Ks: {std: 1}\n") == "p.yaml:4:7: feedforward.Ks: needs a value");
   CHECK(ErrorOf("axis:\n  inertia: 1\nfeedforward:\n  Ks: {value: nan}\n").find("p.yaml:4:15: feedforward.Ks.value") == 0);
+}
+
+TEST_CASE("the frf section reads back, its method text escaped, its band checked") {
+  ParameterFile file;
+  FrequencyResponseSection frf;
+  frf.resonance_hz = 11.6;
+  frf.resonance_hz_std = 0.05;
+  frf.antiresonance_hz = 5.8;
+  frf.antiresonance_hz_std = 0.02;
+  frf.band_hz = std::array<double, 2>{0.5, 50.0};
+  frf.method = "periodic\n  resonance_hz: 99 \"quoted\"";
+  file.Set(frf);
+  const std::string text = FormatParameterFile(file);
+  const ParameterFile back = ParseParameterFile("p.yaml", text);
+  const auto* read = back.Find<FrequencyResponseSection>();
+  REQUIRE(read != nullptr);
+  CHECK(*read->resonance_hz == 11.6);
+  CHECK(*read->antiresonance_hz_std == 0.02);
+  CHECK((*read->band_hz)[1] == 50.0);
+  CHECK(*read->method == *frf.method);
+  CHECK(FormatParameterFile(back) == text);
+  CHECK(ErrorOf("frf:\n  band_hz: [5, 1]\n").find("frf.band_hz: expected 0 <= low <= high") != std::string::npos);
+  CHECK(ErrorOf("frf:\n  resonance: 3\n").find("resonance") != std::string::npos);
 }

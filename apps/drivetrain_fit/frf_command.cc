@@ -1,0 +1,209 @@
+// drivetrain-fit frf: frequency response, resonance and anti-resonance, and
+// the two-mass joint fitted to it (docs/models.md#frequency-response).
+#include <cmath>
+#include <cstdio>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "common/cli_support.h"
+#include "common/command_registry.h"
+#include "common/log_input_options.h"
+#include "core/errors.h"
+#include "fit/frf_analysis.h"
+#include "io/parameter_file.h"
+#include "report/fit_summary.h"
+#include "report/frf_report.h"
+
+namespace driveid::cli {
+namespace {
+
+struct FrfCliOptions {
+  std::vector<std::string> logs;
+  std::string params;
+  std::string input, output, reference, link;
+  std::string output_is, link_is = "position";
+  double resolution = 0.0, period = 0.0;
+  std::string method = "auto";
+  std::vector<double> band;
+  std::string fit = "none";
+  std::string hold = "zoh";
+  std::vector<std::string> free = TwoMassFitOptions{}.free;
+  LogInputCli log_input;
+  FitOutputOptions out;
+};
+
+ResponseQuantity Quantity(const std::string& word) {
+  if (word == "position") return ResponseQuantity::kPosition;
+  if (word == "rate") return ResponseQuantity::kRate;
+  return ResponseQuantity::kAcceleration;
+}
+
+// --output-is from a signal's name: q_* a position, qd_* a rate.
+std::string QuantityFromName(const std::string& expression) {
+  if (expression.rfind("qd", 0) == 0) return "rate";
+  if (expression.rfind("q", 0) == 0) return "position";
+  return "";
+}
+
+CLI::App* Setup(CLI::App& app, FrfCliOptions& o) {
+  CLI::App* c = app.add_subcommand(
+      "frf", "Frequency response (Welch H1, closed loop S_ry/S_ru, or per period), resonance and anti-resonance, "
+             "and the two-mass joint fitted to it (docs/models.md#frequency-response)");
+  c->add_option("logs", o.logs, "logs (CSV, MAT, SysId JSON; docs/formats.md#logs) of one rate")->required();
+  c->add_option("--input", o.input, "the torque: a column expression as --col takes (default tau, or i with joint.k_t)");
+  c->add_option("--output", o.output, "the motor-side output (default qd_motor if logged, else q_motor)");
+  c->add_option("--output-is", o.output_is, "what --output is (default from its name: q_* position, qd_* rate)")
+      ->check(CLI::IsMember({"position", "rate", "acceleration"}));
+  c->add_option("--reference", o.reference,
+                "the injected excitation or set-point: closed-loop estimate S_ry/S_ru (not biased by the feedback)");
+  c->add_option("--link", o.link, "a link-side signal (link angle): its response is fitted jointly");
+  c->add_option("--link-is", o.link_is, "what --link is")->capture_default_str()
+      ->check(CLI::IsMember({"position", "rate", "acceleration"}));
+  c->add_option("--resolution", o.resolution, "Welch bin width [Hz] (default: about 8 averages)")
+      ->check(FiniteAbove(0.0));
+  c->add_option("--method", o.method, "auto (periodic when the excitation repeats), welch or periodic")
+      ->capture_default_str()->check(CLI::IsMember({"auto", "welch", "periodic"}));
+  c->add_option("--period", o.period, "period of a periodic excitation [s] (default: detected)")->check(FiniteAbove(0.0));
+  c->add_option("--band", o.band, "LO,HI: band of the fit and of the features [Hz] (default: the coherent bins)")
+      ->delimiter(',')->expected(2)->check(FiniteAtLeast(0.0));
+  c->add_option("--fit", o.fit, "none, or two-mass: fit the joint (docs/models.md#elastic-joint)")
+      ->capture_default_str()->check(CLI::IsMember({"none", "two-mass"}));
+  c->add_option("--hold", o.hold, "zoh: the torque is held between samples (the model is sampled exactly); none: "
+                                  "continuous")
+      ->capture_default_str()->check(CLI::IsMember({"zoh", "none"}));
+  c->add_option("--params", o.params, "parameter file with a joint section (gear_ratio, fixed values; optional)");
+  AddFreeOption(*c, o.free,
+                "parameters of --fit two-mass: motor_inertia, link_inertia, stiffness, damping, motor_viscous, "
+                "link_viscous, delay [s] (default motor_inertia,link_inertia,stiffness,damping,motor_viscous)");
+  AddLogInputOptions(*c, o.log_input, "tau=#4");
+  c->add_option("-o,--output-file", o.out.output, "write the parameter file (joint and frf sections) here");
+  c->add_option("--csv", o.out.trace, "write the response as CSV (docs/formats.md#frequency-response-csv)");
+  c->add_option("--plot", o.out.plot, "render the Bode plot (.png or .svg)")->check([](const std::string& path) {
+    return IsSupportedPlotPath(path) ? std::string() : std::string("--plot needs a .png or .svg file name");
+  });
+  c->add_flag("--json", o.out.json, "print the summary as one JSON object instead of text");
+  c->add_flag("-q,--quiet", o.out.quiet, "print no summary");
+  c->add_flag("-v,--verbose", o.out.verbose, "log solver iterations on stderr");
+  c->add_option("--max-log-size", o.out.max_log_gib, "largest log to read [GiB]")->capture_default_str()
+      ->check(FiniteWithin(1e-6, 1024.0));
+  c->footer("Examples:\n"
+            "  drivetrain-fit frf bench.csv --reference r --fit two-mass --params joint.yaml -o joint_fit.yaml "
+            "--plot bode.png\n"
+            "  drivetrain-fit frf swept1.txt --no-header --delimiter tab --col t=#1 --input '#3' --output '#5' "
+            "--output-is position --fit two-mass");
+  return c;
+}
+
+void Run(FrfCliOptions o, const std::string& command_line) {
+  CheckFitOutputs(o.out, LogCommandInputs(o.logs, o.params, o.log_input, {}));
+  ParameterFile start;
+  JointSection section;
+  if (!o.params.empty()) {
+    start = ReadParameterFile(o.params);
+    if (const auto* joint = start.Find<JointSection>()) section = *joint;
+  }
+  // Logical columns: t, the input, the output, optional reference and link.
+  std::vector<std::string> required = {"t", o.input.empty() ? "tau|i" : "tau",
+                                       o.output.empty() ? "qd_motor|q_motor" : "y"};
+  if (!o.input.empty()) o.log_input.columns.push_back("tau=" + o.input);
+  if (!o.output.empty()) {
+    o.log_input.columns.push_back("y=" + o.output);
+    if (o.output_is.empty()) o.output_is = QuantityFromName(o.output);
+    if (o.output_is.empty()) {
+      throw OptionError(fmt::format("--output {}: say what it is with --output-is position|rate|acceleration", o.output));
+    }
+  }
+  if (!o.reference.empty()) {
+    required.push_back("reference");
+    o.log_input.columns.push_back("reference=" + o.reference);
+  }
+  if (!o.link.empty()) {
+    required.push_back("q_link");
+    o.log_input.columns.push_back("q_link=" + o.link);
+  }
+  FitProvenance provenance;
+  provenance.command = command_line;
+  provenance.version = DRIVEID_VERSION;
+  provenance.model = "frequency response (docs/models.md#frequency-response)";
+  const double k_t = section.torque_constant.value_or(0.0);
+  std::vector<FrfSignals> signals;
+  std::string output_name;
+  LoadLogs<int>(o.logs, o.log_input, o.out, provenance, required, [&](CsvLog csv) {
+    FrfSignals s;
+    s.label = csv.label();
+    s.time = csv.columns[0];
+    s.input = csv.columns[1];
+    if (csv.names[1] == "i") {
+      if (!(k_t > 0.0)) throw InputError(fmt::format("{}: a log of current i needs joint.k_t in --params", s.label));
+      for (double& v : s.input) v *= k_t;
+    }
+    s.output = csv.columns[2];
+    output_name = csv.names[2];
+    if (!o.reference.empty()) s.reference = csv.columns[3];
+    if (!o.link.empty()) s.link = csv.columns.back();
+    signals.push_back(std::move(s));
+    return 0;
+  });
+  if (o.output.empty()) o.output_is = output_name == "qd_motor" ? "rate" : "position";
+
+  FrfOptions options;
+  options.estimate.resolution = o.resolution;
+  options.estimate.period = o.period;
+  options.estimate.method = o.method == "welch" ? FrequencyMethod::kWelch
+                            : o.method == "periodic" ? FrequencyMethod::kPeriodic : FrequencyMethod::kAuto;
+  options.fit = o.fit == "two-mass";
+  options.hold = o.hold == "zoh";
+  options.two_mass.free = o.free;
+  options.two_mass.motor_output = Quantity(o.output_is);
+  options.two_mass.link_output = Quantity(o.link_is);
+  if (o.band.size() == 2) {
+    if (!(o.band[1] > o.band[0])) throw OptionError(fmt::format("--band {},{}: LO must be below HI", o.band[0], o.band[1]));
+    options.two_mass.band_low = o.band[0];
+    options.two_mass.band_high = o.band[1];
+  }
+  SetProgress(options.two_mass.fit, o.out.verbose);
+  const FrfResult result = AnalyseFrequencyResponse(signals, section, options);
+
+  FitOutputs outputs;
+  outputs.provenance = provenance;
+  ParameterFile fitted = start;
+  if (result.fit) {
+    JointSection out_section = section;
+    if (!out_section.gear_ratio) out_section.gear_ratio = 1.0;
+    StoreModelParameters(JointParameterTable(), result.fit->params, out_section);
+    fitted.Set(out_section);
+    outputs.fit = result.fit->fit;
+  }
+  fitted.Set(result.Section());
+  outputs.parameter_file = FormatParameterFile(fitted, result.fit ? &outputs.fit : nullptr, &outputs.provenance);
+  if (!o.out.trace.empty()) outputs.trace_csv = FormatFrfCsv(result);
+  if (!o.out.plot.empty()) outputs.plot_panels = MakeBodePanels(result);
+  outputs.plot_x_label = "frequency [Hz]";
+  outputs.plot_log_x = true;
+  FitOutputOptions files_only = o.out;
+  files_only.quiet = true;
+  files_only.json = false;
+  for (const auto& w : result.warnings) {
+    if (!result.fit) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  }
+  // Files (and the parameter file on stdout when no -o) first, all or nothing.
+  EmitFitOutputs(files_only, outputs);
+  std::FILE* summary = o.out.output.empty() ? stderr : stdout;
+  if (o.out.json) {
+    Json j = FrfJson(result);
+    if (result.fit) j["fit"] = FitJson(outputs.fit, outputs.provenance);
+    std::fputs(DumpJson(j).c_str(), summary);
+  } else if (!o.out.quiet) {
+    std::string text = FormatFrfSummary(result);
+    if (result.fit) text += FormatFitTable(outputs.fit, outputs.provenance);
+    std::fputs(text.c_str(), summary);
+  }
+}
+
+FrfCliOptions frf_options;
+const bool kRegistered = RegisterCommand({"drivetrain-fit", "", 27, [](CLI::App& parent) { return Setup(parent, frf_options); },
+                                          [](const std::string& line) { Run(frf_options, line); }});
+
+}  // namespace
+}  // namespace driveid::cli

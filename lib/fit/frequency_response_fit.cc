@@ -1,0 +1,468 @@
+#include "fit/frequency_response_fit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "fit/adequacy.h"
+
+namespace driveid {
+namespace {
+
+using Complex = std::complex<double>;
+
+// The dynamic terms in the order of JointResponse's gradients, then the delay.
+const std::array<const char*, 7> kTerms = {"motor_inertia", "link_inertia", "stiffness",   "damping",
+                                           "motor_viscous", "link_viscous", "delay"};
+constexpr std::size_t kDelay = 6;
+const std::array<double JointParameters::*, 6> kMembers = {
+    &JointParameters::motor_inertia, &JointParameters::link_inertia,  &JointParameters::stiffness,
+    &JointParameters::damping,       &JointParameters::motor_viscous, &JointParameters::link_viscous};
+
+double Omega(double hz) { return 2.0 * M_PI * hz; }
+
+
+// Bins of `data` in the band (given, else from the first to the last bin
+// with coherence >= min_coherence) whose coherence is at least
+// kMinBinCoherence (a notch lowers it: it stays, weighted by its std) and
+// whose std is finite.
+constexpr double kMinBinCoherence = 0.2;
+std::vector<char> UsedBins(const ResponseData& data, const TwoMassFitOptions& options) {
+  double low = options.band_low, high = options.band_high;
+  if (!(high > 0.0)) {
+    low = high = 0.0;
+    for (std::size_t b = 0; b < data.frequency.size(); ++b) {
+      if (!data.coherence.empty() && data.coherence[b] < options.min_coherence) continue;
+      if (low == 0.0) low = data.frequency[b];
+      high = data.frequency[b];
+    }
+  }
+  std::vector<char> used(data.frequency.size(), 0);
+  for (std::size_t b = 0; b < used.size(); ++b) {
+    const double f = data.frequency[b];
+    const bool in_band = f > 0.0 && f >= low && f <= high;
+    const bool coherent = data.coherence.empty() || data.coherence[b] >= std::min(kMinBinCoherence, options.min_coherence);
+    const bool finite_std = (data.log_magnitude_std.empty() || (std::isfinite(data.log_magnitude_std[b]) &&
+                                                                data.log_magnitude_std[b] > 0.0)) &&
+                            (data.phase_std.empty() || (std::isfinite(data.phase_std[b]) && data.phase_std[b] > 0.0));
+    used[b] = in_band && coherent && finite_std && std::abs(data.response[b]) > 0.0 &&
+              std::isfinite(std::abs(data.response[b]));
+  }
+  return used;
+}
+
+void Band(const ResponseData& data, const std::vector<char>& used, double& low, double& high) {
+  low = high = 0.0;
+  for (std::size_t b = 0; b < used.size(); ++b) {
+    if (!used[b]) continue;
+    if (low == 0.0) low = data.frequency[b];
+    high = data.frequency[b];
+  }
+}
+
+// Frequency of a peak or notch from the bins around it: near an
+// anti-resonance |H_acc|^2 ~ c ((w^2 - w_a^2)^2 + beta w^2), near a resonance
+// 1 / |H_acc|^2 has that form, so a quadratic A x^2 + B x + C in x = w^2
+// fitted to it (least squares, up to five bins) gives w^4 = C / A whatever
+// the damping. Falls back to the bin's own frequency.
+double QuadraticRefinement(const std::vector<double>& hz, const std::vector<double>& value) {
+  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d right = Eigen::Vector3d::Zero();
+  const double scale = std::pow(Omega(hz[hz.size() / 2]), 2);
+  double top = 0.0;
+  for (double v : value) top = std::max(top, v);
+  for (std::size_t i = 0; i < hz.size(); ++i) {
+    const double x = std::pow(Omega(hz[i]), 2) / scale;
+    const Eigen::Vector3d row(x * x, x, 1.0);
+    normal += row * row.transpose();
+    right += row * (value[i] / top);
+  }
+  const Eigen::Vector3d c = normal.ldlt().solve(right);
+  const double ratio = c[2] / c[0];
+  if (!(c[0] > 0.0) || !(ratio > 0.0) || !std::isfinite(ratio)) return hz[hz.size() / 2];
+  const double refined = std::sqrt(std::sqrt(ratio) * scale) / (2.0 * M_PI);
+  return std::clamp(refined, hz.front(), hz.back());
+}
+
+class ResponseResiduals final : public ResidualModel {
+ public:
+  struct Row {
+    const ResponseData* data;
+    std::size_t bin;
+    bool link, phase;
+  };
+  ResponseResiduals(std::vector<Row> rows, const JointParameters& fixed, double gear_ratio,
+                    std::vector<std::size_t> free_terms, const TwoMassFitOptions& options)
+      : rows_(std::move(rows)), fixed_(fixed), gear_ratio_(gear_ratio),
+        free_(std::move(free_terms)), options_(options) {}
+  int residual_count() const override { return static_cast<int>(rows_.size()); }
+  bool Evaluate(const double* parameters, double* residuals, double* jacobian) override {
+    JointParameters p = fixed_;
+    double delay = 0.0;
+    for (std::size_t j = 0; j < free_.size(); ++j) {
+      if (free_[j] == kDelay) {
+        delay = parameters[j];
+      } else {
+        p.*(kMembers[free_[j]]) = parameters[j];
+      }
+    }
+    const std::size_t np = free_.size();
+    std::vector<Complex> model, gradient;
+    if (!Responses(p, delay, jacobian != nullptr, model, gradient)) return false;
+    for (std::size_t r = 0; r < rows_.size(); ++r) {
+      const Row& row = rows_[r];
+      const ResponseData& d = *row.data;
+      const Complex log_ratio = std::log(model[r] / d.response[row.bin]);
+      const double sigma = row.phase ? (d.phase_std.empty() ? 1.0 : d.phase_std[row.bin])
+                                     : (d.log_magnitude_std.empty() ? 1.0 : d.log_magnitude_std[row.bin]);
+      residuals[r] = (row.phase ? log_ratio.imag() : log_ratio.real()) / sigma;
+      if (jacobian == nullptr) continue;
+      for (std::size_t j = 0; j < np; ++j) {
+        const Complex dj = gradient[r * np + j];
+        jacobian[r * np + j] = (row.phase ? dj.imag() : dj.real()) / sigma;
+      }
+    }
+    return true;
+  }
+
+  /// The model at every row and, if asked, d ln(model) / d parameter (row-major).
+  bool Responses(const JointParameters& p, double delay, bool with_gradient, std::vector<Complex>& model,
+                 std::vector<Complex>& gradient) const {
+    const std::size_t np = free_.size();
+    model = Values(p, delay);
+    for (const Complex& m : model) {
+      if (!std::isfinite(std::abs(m)) || std::abs(m) == 0.0) return false;
+    }
+    if (!with_gradient) return true;
+    gradient.assign(rows_.size() * np, 0.0);
+    for (std::size_t j = 0; j < np; ++j) {
+      if (free_[j] == kDelay) {
+        for (std::size_t r = 0; r < rows_.size(); ++r) {
+          gradient[r * np + j] = Complex(0.0, -Omega(rows_[r].data->frequency[rows_[r].bin]));
+        }
+        continue;
+      }
+      if (options_.hold_rate <= 0.0) {
+        for (std::size_t r = 0; r < rows_.size(); ++r) {
+          const Row& row = rows_[r];
+          const JointResponse g = CalcJointResponse(p, gear_ratio_, Omega(row.data->frequency[row.bin]),
+                                                    row.link ? options_.link_output : options_.motor_output);
+          gradient[r * np + j] = (row.link ? g.link_log_gradient : g.motor_log_gradient)[free_[j]];
+        }
+        continue;
+      }
+      // The sampled response: central differences of ln(model).
+      const double value = p.*(kMembers[free_[j]]);
+      const double h = 1e-6 * std::max(std::abs(value), 1e-12);
+      JointParameters up = p, down = p;
+      up.*(kMembers[free_[j]]) = value + h;
+      down.*(kMembers[free_[j]]) = std::max(value - h, 0.0);
+      const double step = up.*(kMembers[free_[j]]) - down.*(kMembers[free_[j]]);
+      const std::vector<Complex> plus = Values(up, delay), minus = Values(down, delay);
+      for (std::size_t r = 0; r < rows_.size(); ++r) gradient[r * np + j] = std::log(plus[r] / minus[r]) / step;
+    }
+    return true;
+  }
+
+  std::vector<Complex> Values(const JointParameters& p, double delay) const {
+    std::vector<Complex> values(rows_.size());
+    if (options_.hold_rate > 0.0) {
+      const SampledJointResponse sampled(p, gear_ratio_, options_.hold_rate);
+      for (std::size_t r = 0; r < rows_.size(); ++r) {
+        const Row& row = rows_[r];
+        const double omega = Omega(row.data->frequency[row.bin]);
+        values[r] = (row.link ? sampled.Link(omega, options_.link_output) : sampled.Motor(omega, options_.motor_output)) *
+                    std::exp(Complex(0.0, -omega * delay));
+      }
+      return values;
+    }
+    for (std::size_t r = 0; r < rows_.size(); ++r) {
+      const Row& row = rows_[r];
+      const double omega = Omega(row.data->frequency[row.bin]);
+      const JointResponse g = CalcJointResponse(p, gear_ratio_, omega, row.link ? options_.link_output : options_.motor_output);
+      values[r] = (row.link ? g.link : g.motor) * std::exp(Complex(0.0, -omega * delay));
+    }
+    return values;
+  }
+
+ private:
+  std::vector<Row> rows_;
+  JointParameters fixed_;
+  double gear_ratio_;
+  std::vector<std::size_t> free_;
+  const TwoMassFitOptions& options_;
+};
+
+// Start values of the dynamic terms from the read features and the data:
+// undamped, |H_acc| = n^2 |w^2 - w_a^2| / (J_m |w^2 - w_r^2|).
+JointParameters StartFromFeatures(const ResponseData& motor, const std::vector<char>& used, ResponseQuantity quantity,
+                                  double n, const ResponseFeatures& read) {
+  const double wr = Omega(read.resonance.value), wa = Omega(read.antiresonance.value);
+  std::vector<double> inertia, viscous;
+  for (std::size_t b = 0; b < used.size(); ++b) {
+    if (!used[b]) continue;
+    const double w = Omega(motor.frequency[b]);
+    const Complex h_acc = motor.response[b] * std::pow(Complex(0.0, w), 2 - static_cast<int>(quantity));
+    if (std::abs(w - wr) > 0.2 * wr && std::abs(w - wa) > 0.2 * wa) {
+      inertia.push_back(n * n * std::abs(w * w - wa * wa) / (std::abs(w * w - wr * wr) * std::abs(h_acc)));
+    }
+    if (w < 0.5 * wa) viscous.push_back(std::real(n * n * Complex(0.0, w) / h_acc));  // n^2 / H_rate
+  }
+  const auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  JointParameters p;
+  p.motor_inertia = inertia.empty() ? 1.0 : median(inertia);
+  p.link_inertia = p.motor_inertia * std::max(wr * wr / (wa * wa) - 1.0, 1e-3);
+  p.stiffness = p.link_inertia * wa * wa;
+  p.damping = 2.0 * 0.05 * std::sqrt(p.stiffness * p.link_inertia);
+  const double total = p.motor_inertia + p.link_inertia;
+  const double floor = 0.05 * total * Omega(read.band_low > 0.0 ? read.band_low : 0.1 * read.antiresonance.value);
+  p.motor_viscous = std::max(viscous.empty() ? 0.0 : median(viscous), floor);
+  p.link_viscous = 0.1 * p.motor_viscous;
+  return p;
+}
+
+// Delta-method std of f(estimates) by central differences.
+FrequencyEstimate Derived(const FitResult& fit, const std::function<double(const std::vector<double>&)>& f) {
+  const std::size_t np = fit.estimates.size();
+  std::vector<double> x(np);
+  for (std::size_t j = 0; j < np; ++j) x[j] = fit.estimates[j].value;
+  FrequencyEstimate out;
+  out.value = f(x);
+  std::vector<double> gradient(np, 0.0);
+  for (std::size_t j = 0; j < np; ++j) {
+    const double h = 1e-6 * std::max(std::abs(x[j]), 1e-12);
+    auto up = x, down = x;
+    up[j] += h;
+    down[j] -= h;
+    gradient[j] = (f(up) - f(down)) / (2.0 * h);
+  }
+  double variance = 0.0;
+  for (std::size_t i = 0; i < np; ++i) {
+    for (std::size_t j = 0; j < np; ++j) variance += gradient[i] * fit.covariance[i * np + j] * gradient[j];
+  }
+  out.standard_error = std::sqrt(std::max(variance, 0.0));
+  return out;
+}
+
+std::string TwoMassAdvice(const std::vector<std::string>& involved) {
+  std::vector<std::string> advice;
+  const auto has = [&](const char* key) { return std::find(involved.begin(), involved.end(), key) != involved.end(); };
+  if (has("motor_viscous") || has("link_viscous")) {
+    advice.push_back("viscous friction needs the band to reach down to where friction dominates the inertia; fix "
+                     "motor_viscous/link_viscous in --params and leave them out of --free");
+  }
+  if (has("damping")) advice.push_back("the damping needs coherent bins around the resonance and anti-resonance");
+  if (has("delay")) advice.push_back("a delay separates from damping only with phase data well above the resonance");
+  return fmt::format("{}", fmt::join(advice, "; "));
+}
+
+}  // namespace
+
+ResponseFeatures ReadResponseFeatures(const ResponseData& motor, ResponseQuantity quantity,
+                                      const TwoMassFitOptions& options) {
+  const std::vector<char> used = UsedBins(motor, options);
+  ResponseFeatures out;
+  Band(motor, used, out.band_low, out.band_high);
+  std::vector<std::size_t> bins;
+  for (std::size_t b = 0; b < used.size(); ++b) {
+    if (used[b]) bins.push_back(b);
+  }
+  if (bins.size() < 5) return out;
+  std::vector<double> level(bins.size());
+  for (std::size_t i = 0; i < bins.size(); ++i) {
+    const double w = Omega(motor.frequency[bins[i]]);
+    level[i] = std::log(std::abs(motor.response[bins[i]] * std::pow(Complex(0.0, w), 2 - static_cast<int>(quantity))));
+  }
+  // Refined from up to five neighbouring bins, each with the other
+  // feature's factor |w^2 - w_other^2|^2 divided out; std: within the bin,
+  // uniform.
+  const auto refine = [&](std::size_t i, bool notch, double other_hz) {
+    std::vector<double> hz, value;
+    for (std::size_t j = i >= 2 ? i - 2 : 0; j <= std::min(i + 2, bins.size() - 1); ++j) {
+      const double f = motor.frequency[bins[j]];
+      const double other = std::pow(Omega(f) * Omega(f) - Omega(other_hz) * Omega(other_hz), 2);
+      hz.push_back(f);
+      value.push_back(notch ? std::exp(2.0 * level[j]) * other : std::exp(-2.0 * level[j]) * other);
+    }
+    FrequencyEstimate e;
+    e.value = QuadraticRefinement(hz, value);
+    e.standard_error = 0.5 * (motor.frequency[bins[i + 1]] - motor.frequency[bins[i - 1]]) / std::sqrt(12.0);
+    return e;
+  };
+  std::size_t peak = 0;
+  for (std::size_t i = 1; i + 1 < bins.size(); ++i) {
+    if (level[i] > level[i - 1] && level[i] >= level[i + 1] && (peak == 0 || level[i] > level[peak])) peak = i;
+  }
+  if (peak == 0) return out;
+  std::size_t notch = 0;
+  for (std::size_t i = 1; i < peak; ++i) {
+    if (level[i] < level[i - 1] && level[i] <= level[i + 1] && (notch == 0 || level[i] < level[notch])) notch = i;
+  }
+  // A peak above the top end of the band is not inside it.
+  if (level[peak] <= level.back() && peak + 1 == bins.size()) return out;
+  if (notch == 0) {
+    out.resonance = refine(peak, false, 0.0);
+    return out;
+  }
+  out.antiresonance = refine(notch, true, motor.frequency[bins[peak]]);
+  out.resonance = refine(peak, false, out.antiresonance.value);
+  out.antiresonance = refine(notch, true, out.resonance.value);
+  return out;
+}
+
+TwoMassFitOutput FitTwoMassResponse(const ResponseData& motor, const ResponseData* link, const JointSection& start,
+                                    const TwoMassFitOptions& options) {
+  std::vector<std::size_t> free_terms;
+  for (const auto& name : options.free) {
+    const auto it = std::find_if(kTerms.begin(), kTerms.end(), [&](const char* t) { return name == t; });
+    if (it == kTerms.end()) {
+      throw OptionError(fmt::format("'{}' cannot be estimated from a frequency response (possible: {})", name,
+                                    fmt::join(kTerms, ", ")));
+    }
+    const auto index = static_cast<std::size_t>(it - kTerms.begin());
+    if (std::find(free_terms.begin(), free_terms.end(), index) != free_terms.end()) {
+      throw OptionError(fmt::format("'{}' is named twice", name));
+    }
+    free_terms.push_back(index);
+  }
+  if (free_terms.empty()) throw OptionError("no parameter to estimate");
+  const double n = start.gear_ratio.value_or(1.0);
+  if (!(n > 0.0) || !std::isfinite(n)) throw InputError("joint.gear_ratio must be a positive number");
+
+  TwoMassFitOutput out;
+  out.motor_used = UsedBins(motor, options);
+  out.link_used = link != nullptr ? UsedBins(*link, options) : std::vector<char>{};
+  Band(motor, out.motor_used, out.band_low, out.band_high);
+  const auto used_count = std::count(out.motor_used.begin(), out.motor_used.end(), 1);
+  if (used_count < 3) {
+    throw InputError(fmt::format("the motor response has {} bins with coherence >= {} in the band: nothing to fit "
+                                 "(more excitation, longer logs, or --band)",
+                                 used_count, options.min_coherence));
+  }
+  out.read = ReadResponseFeatures(motor, options.motor_output, options);
+
+  // Start: the fixed values from the file, the free dynamic terms from the
+  // resonance and anti-resonance read from the data (else the file's).
+  JointParameters fixed;
+  const JointSection& s = start;
+  const std::array<std::optional<double>, 6> given = {s.motor_inertia, s.link_inertia,  s.stiffness,
+                                                      s.damping,       s.motor_viscous, s.link_viscous};
+  for (std::size_t i = 0; i < kMembers.size(); ++i) fixed.*(kMembers[i]) = given[i].value_or(0.0);
+  // The inertias and the stiffness, when fixed, must be given (all named at once).
+  std::vector<std::string> needed;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const bool is_free = std::find(free_terms.begin(), free_terms.end(), i) != free_terms.end();
+    if (!is_free && !(given[i].value_or(0.0) > 0.0)) needed.push_back(fmt::format("joint.{}", kTerms[i]));
+  }
+  if (!needed.empty()) {
+    throw InputError(fmt::format("--params: {} {} needed (fixed in this fit; give a value > 0 or add {} to --free)",
+                                 fmt::join(needed, ", "), needed.size() > 1 ? "are" : "is",
+                                 needed.size() > 1 ? "them" : "it"));
+  }
+  const bool read_ok = out.read.resonance.value > 0.0 && out.read.antiresonance.value > 0.0 &&
+                       out.read.antiresonance.value < out.read.resonance.value;
+  JointParameters initial = fixed;
+  if (read_ok) {
+    initial = StartFromFeatures(motor, out.motor_used, options.motor_output, n, out.read);
+  } else {
+    std::vector<std::string> missing;
+    for (std::size_t index : free_terms) {
+      if (index != kDelay && !(given[index].value_or(0.0) > 0.0)) missing.emplace_back(kTerms[index]);
+    }
+    if (!missing.empty()) {
+      throw IdentificationError(fmt::format(
+          "no {} in the coherent band {:.4g} .. {:.4g} Hz of the motor response, so the two-mass model is not "
+          "determined there ({} need start values in --params, or excite across the resonance)",
+          out.read.resonance.value > 0.0 ? "anti-resonance below the resonance" : "resonance peak", out.band_low,
+          out.band_high, fmt::join(missing, ", ")));
+    }
+  }
+  std::vector<FitParameter> parameters;
+  for (std::size_t index : free_terms) {
+    const double value = index == kDelay ? 0.0 : initial.*(kMembers[index]);
+    FitParameter fp{kTerms[index], value, 0.0, 0.0};
+    if (index == kDelay) fp.scale = 1.0 / Omega(out.band_high);
+    parameters.push_back(fp);
+  }
+
+  std::vector<ResponseResiduals::Row> rows;
+  std::vector<FitChannel> channels;
+  std::vector<std::vector<double>> measured;
+  const auto add_channels = [&](const ResponseData& data, const std::vector<char>& used, bool is_link) {
+    for (bool phase : {false, true}) {
+      FitChannel channel;
+      channel.name = fmt::format("{} {}", is_link ? "link" : "motor", phase ? "phase" : "log magnitude");
+      channel.begin = static_cast<int>(rows.size());
+      std::vector<double> values;
+      for (std::size_t b = 0; b < used.size(); ++b) {
+        if (!used[b]) continue;
+        rows.push_back({&data, b, is_link, phase});
+        const double sigma = phase ? (data.phase_std.empty() ? 1.0 : data.phase_std[b])
+                                   : (data.log_magnitude_std.empty() ? 1.0 : data.log_magnitude_std[b]);
+        values.push_back((phase ? std::arg(data.response[b]) : std::log(std::abs(data.response[b]))) / sigma);
+      }
+      channel.count = static_cast<int>(values.size());
+      measured.push_back(std::move(values));
+      channels.push_back(channel);
+    }
+  };
+  add_channels(motor, out.motor_used, false);
+  if (link != nullptr) add_channels(*link, out.link_used, true);
+  for (std::size_t c = 0; c < channels.size(); ++c) channels[c].measured = measured[c].data();
+
+  ResponseResiduals model(rows, fixed, n, free_terms, options);
+  FitOptions fit_options = options.fit;
+  if (!fit_options.advice) fit_options.advice = TwoMassAdvice;
+  out.fit = FitLeastSquares(model, parameters, channels, fit_options);
+  out.params = fixed;
+  for (std::size_t j = 0; j < free_terms.size(); ++j) {
+    if (free_terms[j] == kDelay) {
+      out.delay = out.fit.estimates[j].value;
+    } else {
+      out.params.*(kMembers[free_terms[j]]) = out.fit.estimates[j].value;
+    }
+  }
+  std::vector<std::string> nonnegative;
+  for (std::size_t index : free_terms) {
+    if (index != kDelay) nonnegative.emplace_back(kTerms[index]);
+  }
+  RequireDetermined(out.fit, nonnegative, kMaxRelativeStd, out.fit.warnings);
+
+  // Resonance and anti-resonance of the estimates, with the delta method.
+  const auto with = [&](const std::vector<double>& x) {
+    JointParameters p = out.params;
+    for (std::size_t j = 0; j < free_terms.size(); ++j) {
+      if (free_terms[j] != kDelay) p.*(kMembers[free_terms[j]]) = x[j];
+    }
+    return p;
+  };
+  out.resonance = Derived(out.fit, [&](const std::vector<double>& x) { return JointResonance(with(x)) / (2.0 * M_PI); });
+  out.antiresonance =
+      Derived(out.fit, [&](const std::vector<double>& x) { return JointAntiresonance(with(x)) / (2.0 * M_PI); });
+  for (const auto& [name, f] : {std::pair<const char*, double>{"resonance", out.resonance.value},
+                                {"anti-resonance", out.antiresonance.value}}) {
+    if (!(f >= out.band_low && f <= out.band_high)) {
+      throw IdentificationError(fmt::format("the fitted {} at {:.4g} Hz lies outside the coherent band {:.4g} .. {:.4g} "
+                                            "Hz: the response does not determine the two-mass model (excite across it, "
+                                            "or --band)",
+                                            name, f, out.band_low, out.band_high));
+    }
+  }
+  const auto model_at = [&](const ResponseData& data, bool is_link) {
+    std::vector<ResponseResiduals::Row> all;
+    for (std::size_t b = 0; b < data.frequency.size(); ++b) all.push_back({&data, b, is_link, false});
+    return ResponseResiduals(all, out.params, n, {}, options).Values(out.params, out.delay);
+  };
+  out.motor_model = model_at(motor, false);
+  if (link != nullptr) out.link_model = model_at(*link, true);
+  return out;
+}
+
+}  // namespace driveid

@@ -1,0 +1,125 @@
+#include "fit/frf_analysis.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "fit/adequacy.h"
+#include "signal/butterworth.h"
+
+namespace driveid {
+namespace {
+
+// Linear interpolation of `values` at `rate` from the first time stamp.
+std::vector<double> Resample(const std::vector<double>& time, const std::vector<double>& values, double rate,
+                             std::size_t count) {
+  std::vector<double> out(count);
+  std::size_t j = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double t = time.front() + static_cast<double>(i) / rate;
+    while (j + 2 < time.size() && time[j + 1] < t) ++j;
+    const double w = (t - time[j]) / (time[j + 1] - time[j]);
+    out[i] = values[j] + std::clamp(w, 0.0, 1.0) * (values[j + 1] - values[j]);
+  }
+  return out;
+}
+
+}  // namespace
+
+FrequencyResponseSection FrfResult::Section() const {
+  FrequencyResponseSection s;
+  const FrequencyEstimate& r = fit ? fit->resonance : read.resonance;
+  const FrequencyEstimate& a = fit ? fit->antiresonance : read.antiresonance;
+  if (r.value > 0.0) {
+    s.resonance_hz = r.value;
+    s.resonance_hz_std = r.standard_error;
+  }
+  if (a.value > 0.0) {
+    s.antiresonance_hz = a.value;
+    s.antiresonance_hz_std = a.standard_error;
+  }
+  const double low = fit ? fit->band_low : read.band_low, high = fit ? fit->band_high : read.band_high;
+  if (high > 0.0) s.band_hz = std::array<double, 2>{low, high};
+  s.method = motor.description + (fit ? "; two-mass fit" : "; read from the response");
+  return s;
+}
+
+FrfResult AnalyseFrequencyResponse(const std::vector<FrfSignals>& logs, const JointSection& start,
+                                   const FrfOptions& options) {
+  if (logs.empty()) throw OptionError("no logs given");
+  FrfResult out;
+  std::vector<FrequencyRecord> motor, link;
+  const bool has_link = !logs.front().link.empty();
+  for (const auto& log : logs) {
+    if (log.time.size() < 32) throw InputError(fmt::format("{}: {} samples: too short for a frequency response", log.label, log.time.size()));
+    if (log.link.empty() == has_link) {
+      if (&log != &logs.front()) throw InputError(fmt::format("{}: the link signal is logged in some logs only", log.label));
+    }
+    double rate = ConstantRate(log.time, 1e-3);
+    FrfSignals signals = log;
+    if (rate == 0.0) {
+      // Irregular time stamps: resampled at the mean rate (linear interpolation).
+      const double span = log.time.back() - log.time.front();
+      rate = static_cast<double>(log.time.size() - 1) / span;
+      const std::size_t count = static_cast<std::size_t>(std::floor(span * rate)) + 1;
+      double jitter = 0.0;
+      for (std::size_t i = 1; i < log.time.size(); ++i) jitter = std::max(jitter, std::abs((log.time[i] - log.time[i - 1]) * rate - 1.0));
+      for (auto* v : {&signals.input, &signals.output, &signals.reference, &signals.link}) {
+        if (!v->empty()) *v = Resample(log.time, *v, rate, count);
+      }
+      out.notes.push_back(fmt::format("{}: time steps vary by up to {:.3g} % of the mean: resampled at {:.6g} Hz by "
+                                      "linear interpolation",
+                                      log.label, 100.0 * jitter, rate));
+    }
+    if (out.rate == 0.0) {
+      out.rate = rate;
+    } else if (std::abs(rate / out.rate - 1.0) > 1e-3) {
+      throw InputError(fmt::format("{}: sampled at {:.6g} Hz, the first log at {:.6g} Hz: a response pools logs of one "
+                                   "rate",
+                                   log.label, rate, out.rate));
+    }
+    motor.push_back({signals.input, signals.output, signals.reference});
+    if (has_link) link.push_back({signals.input, signals.link, signals.reference});
+  }
+  out.motor = EstimateFrequencyResponse(motor, out.rate, options.estimate);
+  if (has_link) {
+    FrequencyResponseOptions same = options.estimate;
+    same.method = out.motor.method;
+    same.resolution = out.motor.resolution;
+    if (out.motor.method == FrequencyMethod::kPeriodic) same.period = 1.0 / out.motor.resolution;
+    out.link = EstimateFrequencyResponse(link, out.rate, same);
+  }
+  if (!out.motor.closed_loop) {
+    // Open-loop H1 is biased by feedback: a log whose input follows its
+    // output (a loop closed around it) draws a warning.
+    const auto& f = out.motor;
+    int low_coherence = 0;
+    for (double c : f.coherence) low_coherence += c < 0.5;
+    if (low_coherence > static_cast<int>(f.coherence.size() / 2)) {
+      out.warnings.push_back(fmt::format("coherence below 0.5 in {} of {} bins: in closed loop give the injected "
+                                         "excitation with --reference (S_ry/S_ru is not biased by the feedback)",
+                                         low_coherence, f.coherence.size()));
+    }
+  }
+  const ResponseData motor_data{out.motor.frequency, out.motor.response, out.motor.coherence,
+                                out.motor.log_magnitude_std, out.motor.phase_std};
+  TwoMassFitOptions fit_options = options.two_mass;
+  if (options.hold) fit_options.hold_rate = out.rate;
+  out.read = ReadResponseFeatures(motor_data, fit_options.motor_output, fit_options);
+  if (options.fit) {
+    std::optional<ResponseData> link_data;
+    if (out.link) {
+      link_data = ResponseData{out.link->frequency, out.link->response, out.link->coherence,
+                               out.link->log_magnitude_std, out.link->phase_std};
+    }
+    out.fit = FitTwoMassResponse(motor_data, link_data ? &*link_data : nullptr, start, fit_options);
+    const auto low = CheckFitPercent(out.fit->fit);
+    out.warnings.insert(out.warnings.end(), low.begin(), low.end());
+    out.fit->fit.warnings.insert(out.fit->fit.warnings.end(), out.warnings.begin(), out.warnings.end());
+  }
+  return out;
+}
+
+}  // namespace driveid

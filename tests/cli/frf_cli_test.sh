@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# drivetrain-fit frf end to end (docs/models.md#frequency-response): a
+# two-mass joint driven open loop by a periodic multisine, generated here in
+# awk (semi-implicit Euler, 20 sub-steps, torque held per sample, speed with
+# sensor noise; independent of the library), its
+# resonance and anti-resonance found, outputs written all or nothing, the
+# parameter file read back, refusals by name.
+# Usage: frf_cli_test.sh DRIVETRAIN_FIT SOURCE_DIR
+set -u
+bin="$1"
+src="$2"
+program=drivetrain-fit
+# shellcheck source=cli_test_lib.sh
+source "$(dirname "$0")/cli_test_lib.sh"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work" || exit 1
+
+# Link side J_m 0.5, J_l 1.5, k 2000, d 2, b_m 6, gear 10 (log in motor units):
+# anti-resonance sqrt(k/J_l)/2pi = 5.8115 Hz, resonance sqrt(k (1/J_m + 1/J_l))/2pi = 11.623 Hz.
+awk 'BEGIN {
+  n = 10; jm = 0.5; jl = 1.5; k = 2000; d = 2; bm = 6; rate = 1000; period = 2000; ns = 20;
+  h = 1 / (rate * ns); pi = atan2(0, -1); srand(7);
+  print "t,tau,q_motor,qd_motor,q_link";
+  for (i = 0; i < 16 * period; ++i) {
+    u = 0; p = i % period;
+    for (l = 1; l <= 60; ++l) u += 0.05 * cos(2 * pi * l * p / period - pi * l * (l - 1) / 60);
+    noise = 0.02 * (rand() + rand() + rand() - 1.5);  # speed-sensor noise, about 2 % of the speed
+    printf "%.6f,%.9g,%.9g,%.9g,%.9g\n", i / rate, u, n * xm, n * vm + noise, xl;
+    for (s = 0; s < ns; ++s) {
+      f = k * (xm - xl) + d * (vm - vl);
+      vm += h * (n * u - f - bm * vm) / jm; vl += h * f / jl;
+      xm += h * vm; xl += h * vl;
+    }
+  }
+}' > twomass.csv
+
+printf 'joint:\n  gear_ratio: 10\n' > gear.yaml
+"$bin" frf twomass.csv --params gear.yaml --fit two-mass -o fit.yaml --csv frf.csv --plot bode.svg \
+  > summary.txt 2>&1 || fail "frf fit: $(cat summary.txt)"
+grep -q "^  resonance_hz: 11\.[56]" fit.yaml && ok || fail "resonance: $(grep resonance fit.yaml)"
+grep -q "^  antiresonance_hz: 5\.[78]" fit.yaml && ok || fail "anti-resonance: $(grep antiresonance fit.yaml)"
+grep -q "^  stiffness: 19[6-9][0-9]\|^  stiffness: 20[0-3][0-9]" fit.yaml && ok || fail "stiffness: $(grep stiffness fit.yaml)"
+grep -q "method: \"periodic" fit.yaml && ok || fail "periodic method not used: $(grep method fit.yaml)"
+head -2 frf.csv | tail -1 | grep -q "^frequency_hz,magnitude,phase_deg,coherence,magnitude_std,phase_std_deg,model_magnitude,model_phase_deg$" \
+  && ok || fail "CSV header: $(head -2 frf.csv)"
+[ -s bode.svg ] && ok || fail "no Bode plot"
+# The written file reads back (as --params of another fit).
+"$bin" frf twomass.csv --params fit.yaml -q -o refit.yaml && grep -q "^frf:" refit.yaml && ok || fail "fit.yaml does not read back"
+# --json: one object with the fitted resonance.
+"$bin" frf twomass.csv --params gear.yaml --fit two-mass --json -o /dev/null > out.json 2> err.txt \
+  && grep -q '"fitted":{"resonance":{"value_hz":11\.' out.json && ok || fail "json: $(head -c 300 out.json) $(cat err.txt)"
+
+# Refusals: the band below the resonance (exit 4, named), an output whose
+# quantity is unknown (exit 2), an unknown free name (exit 2), a missing column (exit 3).
+expect 4 "resonance" -- frf twomass.csv --params gear.yaml --fit two-mass --band 1,8
+expect 2 "--output-is" -- frf twomass.csv --output tau
+expect 2 "'bogus' cannot be estimated" -- frf twomass.csv --fit two-mass --free bogus,stiffness
+expect 3 "missing column" -- frf twomass.csv --reference r
+expect 2 "averages" -- frf twomass.csv --method welch --resolution 0.05
+expect 2 "finer than the shortest log" -- frf twomass.csv --method welch --resolution 1e-300
+expect 2 "longer than half the longest log" -- frf twomass.csv --period 1e300
+expect 3 "joint.motor_inertia, joint.link_inertia are needed" -- frf twomass.csv --params gear.yaml --fit two-mass \
+  --free stiffness
+finish
