@@ -1,5 +1,6 @@
 #include "drivetrain_fit/joint_command.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -19,11 +20,13 @@ CLI::App* SetupJointCommand(CLI::App& app, JointOptions& options) {
                "(docs/models.md#elastic-joint)");
   command->add_option("logs", options.logs,
                       "joint logs (CSV, MAT, SysId JSON; docs/formats.md#logs) with t, q_motor, q_link and tau (or i "
-                      "with joint.k_t)")
+                      "with joint.k_t) or tau_link (a shaft-torque sensor) or both")
       ->required();
   command->add_option("--params", options.params, "parameter file with a joint section (gear_ratio; start and fixed values)")
       ->required();
-  AddFreeOption(*command, options.free, FreeOptionHelp(JointParameterTable(), "joint"));
+  AddFreeOption(*command, options.free,
+                FreeOptionHelp(JointParameterTable(), "joint") +
+                    "; with tau_link also link_torque_offset, with tau_link only stiffness,damping,link_torque_offset");
   AddLogInputOptions(*command, options.input, "q_motor=#2, q_link=#3, tau=#4");
   command->add_option("--cutoff", options.cutoff, "angle low-pass cutoff [Hz] (default: rate / 40)")
       ->check(FiniteAbove(0.0));
@@ -59,25 +62,29 @@ void RunJointCommand(const JointOptions& options, const std::string& command_lin
   fitted.Set(out_section);
   outputs.fit = result.fit;
   outputs.parameter_file = FormatParameterFile(fitted, &outputs.fit, &outputs.provenance);
-  outputs.trace_csv = fmt::format("# drivetrain-fit joint trace: samples used (cutoff {} Hz); equation 0 motor, 1 total\n",
+  outputs.trace_csv = fmt::format("# drivetrain-fit joint trace: samples used (cutoff {} Hz); equation 0 motor, 1 total, "
+                                  "2 shaft torque\n",
                                   result.cutoff);
   outputs.trace_csv += "log,equation,t,tau_measured,tau_model,residual\n";
-  std::vector<PlotSeries> series(2 * logs.size());
+  std::vector<PlotSeries> series(3 * logs.size());
   for (std::size_t i = 0; i < logs.size(); ++i) {
-    series[2 * i].title = logs[i].path + " motor equation";
-    series[2 * i + 1].title = logs[i].path + " total (motor + link)";
+    series[3 * i].title = logs[i].path + " motor equation";
+    series[3 * i + 1].title = logs[i].path + " total (motor + link)";
+    series[3 * i + 2].title = logs[i].path + " shaft torque tau_link";
   }
   for (std::size_t k = 0; k < result.time.size(); ++k) {
     if (options.output.trace.empty() && options.output.plot.empty()) break;  // nothing asked for
     if (!options.output.trace.empty()) outputs.trace_csv += fmt::format("{},{},{},{:.7g},{:.7g},{:.7g}\n", result.log_index[k] + 1, result.equation[k],
                                      result.time[k], result.measured[k], result.model[k],
                                      result.measured[k] - result.model[k]);
-    auto& s = series[static_cast<std::size_t>(2 * result.log_index[k] + result.equation[k])];
+    auto& s = series[static_cast<std::size_t>(3 * result.log_index[k] + result.equation[k])];
     s.time.push_back(result.time[k]);
     s.measured.push_back(result.measured[k]);
     s.model.push_back(result.model[k]);
   }
-  outputs.plot_panels = MakeFitPanels(series, {"elastic joint fit (link side)", "n tau [N m]"});
+  series.erase(std::remove_if(series.begin(), series.end(), [](const PlotSeries& s) { return s.time.empty(); }),
+               series.end());
+  outputs.plot_panels = MakeFitPanels(series, {"elastic joint fit (link side)", "n tau, tau_link [N m]"});
   EmitFitOutputs(options.output, outputs);
   if (!options.output.quiet && !options.output.json) {
     std::FILE* summary = options.output.output.empty() ? stderr : stdout;

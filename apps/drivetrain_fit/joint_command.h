@@ -15,7 +15,7 @@ namespace driveid::cli {
 struct JointOptions {
   std::vector<std::string> logs;
   std::string params;
-  std::vector<std::string> free = FitParameterKeys(JointParameterTable(), "joint", true);
+  std::vector<std::string> free;  ///< empty: the default for the logs (JointDefaultFree)
   LogInputCli input;
   double cutoff = 0.0;
   FitOutputOptions output;

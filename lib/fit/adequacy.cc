@@ -117,4 +117,26 @@ std::vector<std::string> HeterogeneityWarnings(const std::vector<HeterogeneityTe
   return warnings;
 }
 
+std::vector<std::string> ProcessingWarnings(const FitResult& fit, double cutoff, const std::string& advice) {
+  std::vector<std::string> warnings;
+  for (const auto& e : fit.estimates) {
+    std::vector<std::string> moves;
+    double largest = 0.0;
+    for (const auto& other : fit.sensitivity) {
+      for (const auto& o : other.estimates) {
+        if (o.name != e.name) continue;
+        largest = std::max(largest, std::abs(o.value - e.value));
+        moves.push_back(fmt::format("{:.4g} at the {}", o.value, other.label));
+      }
+    }
+    if (e.standard_error > 0.0 && largest > 2.0 * e.standard_error && largest > 0.05 * std::abs(e.value)) {
+      warnings.push_back(fmt::format(
+          "processing: {} = {:.4g} +- {:.2g} at the cutoff {:.3g} Hz moves to {} (more than 2 std): the estimate "
+          "depends on the differentiation filter by more than 5 %; its std does not include that ({})",
+          e.name, e.value, e.standard_error, cutoff, fmt::join(moves, ", "), advice));
+    }
+  }
+  return warnings;
+}
+
 }  // namespace driveid

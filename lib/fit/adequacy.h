@@ -42,6 +42,12 @@ std::vector<std::string> CheckFitPercent(const FitResult& fit);
 /// Tests each parameter of `logs` (where at least two logs estimated it).
 std::vector<HeterogeneityTest> TestHeterogeneity(const std::vector<EstimateSet>& logs);
 
+/// Warnings for estimates that the same fit with other processing
+/// (`fit.sensitivity`, e.g. half and twice the filter cutoff) moves by more
+/// than 2 of their std and more than 5 %; `cutoff` [Hz] the fit's own,
+/// `advice` what to try.
+std::vector<std::string> ProcessingWarnings(const FitResult& fit, double cutoff, const std::string& advice);
+
 /// A warning for each test with p below 0.001.
 std::vector<std::string> HeterogeneityWarnings(const std::vector<HeterogeneityTest>& tests);
 

@@ -154,23 +154,8 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
   }
   // Warn where the processing moves an estimate by more than 2 of its std
   // and by more than 5 % (clean logs move by a fraction of a percent).
-  for (const auto& e : out.fit.estimates) {
-    std::vector<std::string> moves;
-    double largest = 0.0;
-    for (const auto& other : out.fit.sensitivity) {
-      for (const auto& o : other.estimates) {
-        if (o.name != e.name) continue;
-        largest = std::max(largest, std::abs(o.value - e.value));
-        moves.push_back(fmt::format("{:.4g} at the {}", o.value, other.label));
-      }
-    }
-    if (e.standard_error > 0.0 && largest > 2.0 * e.standard_error && largest > 0.05 * std::abs(e.value)) {
-      out.fit.warnings.push_back(fmt::format(
-          "processing: {} = {:.4g} +- {:.2g} at the cutoff {:.3g} Hz moves to {} (more than 2 std): the estimate "
-          "depends on the differentiation filter by more than 5 %; its std does not include that (try a measured rate qd, or check "
-          "the cutoff with --cutoff)",
-          e.name, e.value, e.standard_error, out.cutoff, fmt::join(moves, ", ")));
-    }
+  for (auto& w : ProcessingWarnings(out.fit, out.cutoff, "try a measured rate qd, or check the cutoff with --cutoff")) {
+    out.fit.warnings.push_back(std::move(w));
   }
   return out;
 }

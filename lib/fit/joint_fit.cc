@@ -36,28 +36,73 @@ std::string JointAdvice(const std::vector<std::string>& involved) {
 
 }  // namespace
 
-JointFitOutput FitJoint(const std::vector<JointLog>& logs, const JointSection& start, const JointFitOptions& options) {
+std::vector<std::string> JointDefaultFree(const std::vector<JointLog>& logs) {
+  bool torque = false, link_torque = false;
+  for (const auto& log : logs) {
+    torque = torque || !log.torque.empty();
+    link_torque = link_torque || !log.link_torque.empty();
+  }
+  const std::string offset = KeyOf(JointParameterTable(), &JointParameters::link_torque_offset);
+  if (!torque) {
+    return {KeyOf(JointParameterTable(), &JointParameters::stiffness),
+            KeyOf(JointParameterTable(), &JointParameters::damping), offset};
+  }
+  auto free = FitParameterKeys(JointParameterTable(), "joint", true);
+  if (link_torque) free.push_back(offset);
+  return free;
+}
+
+JointFitOutput FitJoint(const std::vector<JointLog>& logs, const JointSection& start, const JointFitOptions& given) {
   if (logs.empty()) throw OptionError("no logs given");
+  JointFitOptions options = given;
+  if (options.free.empty()) options.free = JointDefaultFree(logs);
   CheckFreeNames(JointParameterTable(), "joint", options.free);
   if (!start.gear_ratio || !(*start.gear_ratio > 0.0)) {
     throw InputError("--params: joint.gear_ratio is needed (q_motor = n theta_m; n = 1 for a direct drive)");
   }
   const double n = *start.gear_ratio;
-  const std::vector<std::string> columns = JointColumnNames();
+  std::vector<std::string> columns = JointColumnNames();
+  bool has_torque = false;
+  for (const auto& log : logs) has_torque = has_torque || !log.torque.empty();
   std::vector<FitParameter> parameters;
   std::map<std::string, double> fixed;
+  std::vector<std::string> needed;
   for (const auto& row : JointParameterTable()) {
     if (row.in_model == nullptr) continue;
     const std::optional<double> value = start.*(row.in_section);
     const bool is_free = std::find(options.free.begin(), options.free.end(), row.spec.key) != options.free.end();
     if (is_free) {
       parameters.push_back({row.spec.key, std::max(row.spec.lower_bound, value.value_or(0.0)), row.spec.lower_bound, 0.0});
-    } else if (!value && row.spec.default_free) {
-      throw InputError(fmt::format("--params: joint.{} is needed (fixed in this fit)", row.spec.key));
+    } else if (!value && row.spec.default_free && has_torque) {
+      needed.push_back(fmt::format("joint.{}", row.spec.key));
     }
     fixed[row.spec.key] = value.value_or(0.0);
   }
+  if (!needed.empty()) {
+    throw InputError(fmt::format("--params: {} {} needed (fixed in this fit); add to the joint section, e.g. '{}: 0'",
+                                 fmt::join(needed, ", "), needed.size() > 1 ? "are" : "is",
+                                 needed.front().substr(6)));
+  }
 
+  // Several logs with a shaft torque: its offset (sensor bias + k x the
+  // initial twist of integrated angles) is each log's own,
+  // link_torque_offset_1 .. _L (the section keeps log 1's).
+  const std::string offset_key = KeyOf(JointParameterTable(), &JointParameters::link_torque_offset);
+  const auto offset_column = static_cast<std::size_t>(
+      std::find(columns.begin(), columns.end(), offset_key) - columns.begin());
+  const auto free_offset = std::find_if(parameters.begin(), parameters.end(),
+                                        [&](const FitParameter& fp) { return fp.name == offset_key; });
+  const bool per_log_offset = logs.size() > 1 && free_offset != parameters.end();
+  if (per_log_offset) {
+    const FitParameter base = *free_offset;
+    parameters.erase(free_offset);
+    for (std::size_t i = 0; i < logs.size(); ++i) {
+      FitParameter own = base;
+      own.name = fmt::format("{}_{}", offset_key, i + 1);
+      parameters.push_back(own);
+      columns.push_back(own.name);
+    }
+  }
   JointFitOutput out;
   LinearRegression regression(columns);
   for (std::size_t i = 0; i < logs.size(); ++i) {
@@ -70,13 +115,30 @@ JointFitOutput FitJoint(const std::vector<JointLog>& logs, const JointSection& s
     for (double& q : motor.position) q /= n;
     const AxisDerivatives dm = DifferentiateAxisLog(motor, options.cutoff);
     const AxisDerivatives dl = DifferentiateAxisLog(link, options.cutoff);
+    if (dm.rate_hz == 0.0) {
+      // Irregular time stamps: the zero-phase filter needs a constant rate (never a silent 0 Hz cutoff).
+      double shortest = INFINITY, longest = 0.0;
+      for (std::size_t k = 1; k < log.time.size(); ++k) {
+        shortest = std::min(shortest, log.time[k] - log.time[k - 1]);
+        longest = std::max(longest, log.time[k] - log.time[k - 1]);
+      }
+      throw InputError(fmt::format("{}: time steps from {:.6g} to {:.6g} s (jitter {:.3g} % of the mean): the joint fit "
+                                   "filters at a constant rate; resample the log, or give --rate HZ when the stamps "
+                                   "themselves are the noise",
+                                   log.path, shortest, longest,
+                                   100.0 * (longest - shortest) /
+                                       ((log.time.back() - log.time.front()) / static_cast<double>(log.time.size() - 1))));
+    }
+    out.rate = dm.rate_hz;
     // The same zero-phase filter on the angles and the torque as on the rates.
-    std::vector<double> theta_m = motor.position, theta_l = link.position, tau = log.torque;
+    std::vector<double> theta_m = motor.position, theta_l = link.position, tau = log.torque,
+                        tau_link = log.link_torque;
     out.cutoff = dm.rate_hz > 0.0 ? (options.cutoff > 0.0 ? options.cutoff : dm.rate_hz / 40.0) : 0.0;
     if (dm.rate_hz > 0.0) {
       theta_m = ZeroPhaseLowPass(theta_m, out.cutoff, dm.rate_hz);
       theta_l = ZeroPhaseLowPass(theta_l, out.cutoff, dm.rate_hz);
-      tau = ZeroPhaseLowPass(tau, out.cutoff, dm.rate_hz);
+      if (!tau.empty()) tau = ZeroPhaseLowPass(tau, out.cutoff, dm.rate_hz);
+      if (!tau_link.empty()) tau_link = ZeroPhaseLowPass(tau_link, out.cutoff, dm.rate_hz);
     }
     // The zero-phase filter's start-up at both ends: two cutoff periods left out.
     const std::size_t edge = dm.rate_hz > 0.0 ? static_cast<std::size_t>(std::ceil(2.0 * dm.rate_hz / out.cutoff)) : 0;
@@ -89,19 +151,26 @@ JointFitOutput FitJoint(const std::vector<JointLog>& logs, const JointSection& s
       max_l = std::max(max_l, std::abs(dl.rate[k]));
     }
     const double floor_m = options.min_rate_fraction * max_m, floor_l = options.min_rate_fraction * max_l;
-    // Equation 0 (motor) needs the motor moving, 1 (total) both.
-    for (int equation : {0, 1}) {
-      regression.BeginChannel(log.path + (equation == 0 ? ":motor" : ":total"));
+    // Equation 0 (motor) needs the motor moving, 1 (total) both (each with
+    // the motor torque); 2 (shaft torque) has no friction term and takes
+    // every valid sample.
+    for (int equation : {0, 1, 2}) {
+      if ((equation < 2 && tau.empty()) || (equation == 2 && tau_link.empty())) continue;
+      regression.BeginChannel(log.path + (equation == 0 ? ":motor" : equation == 1 ? ":total" : ":shaft torque"));
       for (std::size_t k = 0; k < log.time.size(); ++k) {
         const bool motor_moves = max_m > 0.0 && std::abs(dm.rate[k]) >= floor_m;
         const bool link_moves = max_l > 0.0 && std::abs(dl.rate[k]) >= floor_l;
-        if (!valid[k] || !motor_moves || (equation == 1 && !link_moves)) continue;
+        if (!valid[k] || (equation < 2 && !motor_moves) || (equation == 1 && !link_moves)) continue;
         const JointRegressors r = CalcJointRegressors(theta_m[k], dm.rate[k], dm.acceleration[k], theta_l[k],
                                                       dl.rate[k], dl.acceleration[k]);
-        const auto& row = equation == 0 ? r.motor : r.total;
-        regression.AddRow({row.begin(), row.end()}, n * tau[k]);
+        const auto& row = equation == 0 ? r.motor : equation == 1 ? r.total : r.link;
+        const double target = equation == 2 ? tau_link[k] : n * tau[k];
+        std::vector<double> regressor(row.begin(), row.end());
+        regressor.resize(columns.size(), 0.0);
+        if (per_log_offset) std::swap(regressor[offset_column], regressor[kJointTerms + i]);
+        regression.AddRow(regressor, target);
         out.time.push_back(log.time[k]);
-        out.measured.push_back(n * tau[k]);
+        out.measured.push_back(target);
         out.equation.push_back(equation);
         out.log_index.push_back(static_cast<int>(i));
       }
@@ -116,6 +185,7 @@ JointFitOutput FitJoint(const std::vector<JointLog>& logs, const JointSection& s
   out.fit = regression.Fit(parameters, fixed, fit_options);
   std::map<std::string, double> values = fixed;
   for (const auto& e : out.fit.estimates) values[e.name] = e.value;
+  if (per_log_offset) values[offset_key] = values[offset_key + "_1"];
   out.params = JointParameters{};
   for (const auto& row : JointParameterTable()) {
     if (row.in_model != nullptr) out.params.*(row.in_model) = values[row.spec.key];
@@ -123,6 +193,58 @@ JointFitOutput FitJoint(const std::vector<JointLog>& logs, const JointSection& s
   std::vector<std::string> nonnegative;
   for (const auto& row : JointParameterTable()) {
     if (row.in_model != nullptr && row.spec.lower_bound == 0.0) nonnegative.emplace_back(row.spec.key);
+  }
+  // Several logs: each alone too, and whether they agree (docs/models.md#adequacy).
+  if (options.per_log && logs.size() > 1) {
+    JointFitOptions alone = options;
+    alone.per_log = false;
+    for (const auto& log : logs) {
+      EstimateSet estimates{log.path, {}, ""};
+      try {
+        estimates.estimates = FitJoint({log}, start, alone).fit.estimates;
+        // Each log's own offset is not a shared parameter to compare.
+        if (per_log_offset) {
+          auto& e = estimates.estimates;
+          e.erase(std::remove_if(e.begin(), e.end(), [&](const ParameterEstimate& x) { return x.name == offset_key; }),
+                  e.end());
+        }
+      } catch (const std::exception& e) {
+        estimates.failure = e.what();
+      }
+      out.fit.per_log.push_back(std::move(estimates));
+    }
+    out.fit.heterogeneity = TestHeterogeneity(out.fit.per_log);
+    for (auto& w : HeterogeneityWarnings(out.fit.heterogeneity)) out.fit.warnings.push_back(std::move(w));
+  }
+  // The same fit at half and twice the cutoff; a resonance near the cutoff.
+  if (options.sensitivity) {
+    for (const double factor : {0.5, 2.0}) {
+      JointFitOptions other = options;
+      other.cutoff = factor * out.cutoff;
+      other.per_log = other.sensitivity = false;
+      if (!(other.cutoff < 0.4 * out.rate)) continue;
+      EstimateSet entry{fmt::format("cutoff {:.3g} Hz", other.cutoff), {}, ""};
+      try {
+        entry.estimates = FitJoint(logs, start, other).fit.estimates;
+      } catch (const std::exception& e) {
+        entry.failure = e.what();
+      }
+      out.fit.sensitivity.push_back(std::move(entry));
+    }
+    for (auto& w : ProcessingWarnings(out.fit, out.cutoff, "check the cutoff with --cutoff: the resonance must lie "
+                                                           "well below it")) {
+      out.fit.warnings.push_back(std::move(w));
+    }
+  }
+  const JointParameters& p = out.params;
+  if (p.motor_inertia > 0.0 && p.link_inertia > 0.0 && p.stiffness > 0.0) {
+    const double resonance = JointResonance(p) / (2.0 * M_PI);
+    if (out.cutoff < 2.0 * resonance) {
+      out.fit.warnings.push_back(fmt::format("the angle cutoff {:.4g} Hz is within a factor 2 of the fitted resonance "
+                                             "{:.4g} Hz: the zero-phase filter biases the damping and stiffness there; "
+                                             "raise --cutoff, or measure the frequency response (drivetrain-fit frf)",
+                                             out.cutoff, resonance));
+    }
   }
   RequireDetermined(out.fit, nonnegative, kMaxRelativeStd, out.fit.warnings);
   out.model = regression.Predict(values);

@@ -22,17 +22,27 @@
 namespace driveid {
 
 struct JointFitOptions {
-  std::vector<std::string> free = FitParameterKeys(JointParameterTable(), "joint", true);
+  /// Empty: the default for the logs (JointDefaultFree).
+  std::vector<std::string> free;
   double cutoff = 0.0;              ///< [Hz]; 0 = rate / 40
   double min_rate_fraction = 0.01;
+  bool per_log = true;  ///< several logs: each fitted alone too, and tested for agreement
+  bool sensitivity = true;  ///< the same fit at half and twice the cutoff (adequacy.h ProcessingWarnings)
   FitOptions fit;
 };
+
+/// The default free set: the table's (inertias, spring, friction, offset)
+/// when a log has the motor torque, plus link_torque_offset when one has
+/// tau_link; with tau_link only: stiffness, damping, link_torque_offset.
+std::vector<std::string> JointDefaultFree(const std::vector<JointLog>& logs);
 
 struct JointFitOutput {
   JointParameters params;
   FitResult fit;
   double cutoff = 0.0;
-  /// Used samples: time, measured n tau, model, channel (0 motor, 1 total) and log.
+  double rate = 0.0;  ///< [Hz], the logs' sampling rate
+  /// Used samples: time, measured target (n tau or tau_link), model, channel
+  /// (0 motor, 1 total, 2 shaft torque) and log.
   std::vector<double> time, measured, model;
   std::vector<int> equation, log_index;
 };

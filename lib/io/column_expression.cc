@@ -34,9 +34,39 @@ ColumnExpression ParseColumnExpression(const std::string& option, const std::str
                                        const std::function<std::optional<double>(const std::string&)>& scalar) {
   ColumnExpression out;
   out.text = text;
-  const std::string whole = Trimmed(text);
+  std::string whole = Trimmed(text);
   if (whole.empty()) throw OptionError(fmt::format("{}: empty expression", option));
-  if (is_column(whole)) {
+  // Derived-signal functions around the whole expression (unless a column
+  // is named so), outermost first in the text.
+  for (bool unwrapped = true; unwrapped && !is_column(whole);) {
+    unwrapped = false;
+    for (const char* name : {"integral", "derivative", "detrend"}) {
+      const std::string head = std::string(name) + "(";
+      if (whole.rfind(head, 0) != 0 || whole.back() != ')') continue;
+      // The opening parenthesis must close at the very end.
+      int depth = 0;
+      std::size_t close = std::string::npos;
+      for (std::size_t i = head.size() - 1; i < whole.size(); ++i) {
+        if (whole[i] == '(') ++depth;
+        if (whole[i] == ')' && --depth == 0) {
+          close = i;
+          break;
+        }
+      }
+      if (close != whole.size() - 1) continue;
+      out.operations.insert(out.operations.begin(), name);
+      whole = Trimmed(whole.substr(head.size(), whole.size() - head.size() - 1));
+      if (whole.empty()) throw OptionError(fmt::format("{}: {}() of nothing", option, name));
+      if (out.operations.size() > 8) throw OptionError(fmt::format("{}: more than 8 nested functions", option));
+      unwrapped = true;
+      break;
+    }
+  }
+  if (!out.operations.empty() && is_column(whole)) {
+    out.reference = whole;
+    return out;
+  }
+  if (out.operations.empty() && is_column(whole)) {
     out.reference = whole;
     return out;
   }
@@ -95,6 +125,35 @@ ColumnExpression ParseColumnExpression(const std::string& option, const std::str
     throw OptionError(fmt::format("{}: the factor is {} (not a finite non-zero number)", option, out.factor));
   }
   return out;
+}
+
+void ApplyColumnOperation(const std::string& operation, const std::vector<double>& time, std::vector<double>& values) {
+  const std::size_t n = values.size();
+  if (n == 0) return;
+  if (operation == "integral") {
+    double sum = 0.0, previous = values[0];
+    values[0] = 0.0;
+    for (std::size_t i = 1; i < n; ++i) {
+      const double current = values[i];
+      sum += 0.5 * (current + previous) * (time[i] - time[i - 1]);
+      previous = current;
+      values[i] = sum;
+    }
+  } else if (operation == "derivative") {
+    if (n < 2) {
+      values[0] = 0.0;
+      return;
+    }
+    std::vector<double> out(n);
+    out[0] = (values[1] - values[0]) / (time[1] - time[0]);
+    out[n - 1] = (values[n - 1] - values[n - 2]) / (time[n - 1] - time[n - 2]);
+    for (std::size_t i = 1; i + 1 < n; ++i) out[i] = (values[i + 1] - values[i - 1]) / (time[i + 1] - time[i - 1]);
+    values = std::move(out);
+  } else if (operation == "detrend") {
+    double mean = 0.0;
+    for (double v : values) mean += v / static_cast<double>(n);
+    for (double& v : values) v -= mean;
+  }
 }
 
 }  // namespace driveid

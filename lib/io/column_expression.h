@@ -3,7 +3,11 @@
 // `pi/180*pos_deg`, `pos/32`, `gtau*vir` (gtau a scalar of the MAT file).
 // A factor is a number, `pi`, a scalar of the source, or the one column
 // reference: a header name, a 1-based position `#k`, or a MAT variable path
-// (`rec.pos(1,:)`). The column may not be a divisor.
+// (`rec.pos(1,:)`). The column may not be a divisor. The whole may be
+// wrapped in derived-signal functions (applied innermost first, over the
+// log's time base, after crops): `integral(EXPR)` (cumulative trapezoid, 0
+// at the first sample), `derivative(EXPR)` (central differences, one-sided
+// at the ends), `detrend(EXPR)` (mean removed), e.g. `integral(10*#2)`.
 #pragma once
 
 #include <functional>
@@ -17,7 +21,13 @@ struct ColumnExpression {
   std::string text;       ///< as given (recorded in the provenance)
   std::string reference;  ///< the source column
   double factor = 1.0;    ///< constant the column is multiplied by
+  /// Derived-signal functions, innermost first: "integral", "derivative", "detrend".
+  std::vector<std::string> operations;
 };
+
+/// Applies `operation` (one of ColumnExpression::operations) to `values`
+/// sampled at `time` (strictly increasing, same length).
+void ApplyColumnOperation(const std::string& operation, const std::vector<double>& time, std::vector<double>& values);
 
 /// Parses EXPR. `is_column(word)` tells whether a word names a column of
 /// the source (checked first, so that a header containing '*' or '/' can be

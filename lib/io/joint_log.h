@@ -1,5 +1,6 @@
 // Elastic-joint logs (docs/formats.md#logs): t, q_motor (motor shaft angle),
-// q_link (link angle) and tau (motor shaft torque), or i with joint.k_t.
+// q_link (link angle), and tau (motor shaft torque; or i with joint.k_t)
+// or tau_link (a torque sensor in the elastic element) or both.
 #pragma once
 
 #include <string>
@@ -14,7 +15,8 @@ struct JointLog {
   std::vector<double> time;            ///< [s]
   std::vector<double> motor_position;  ///< q_motor [rad], motor shaft
   std::vector<double> link_position;   ///< q_link [rad]
-  std::vector<double> torque;          ///< tau [N m], motor shaft (from i x k_t if given as current)
+  std::vector<double> torque;          ///< tau [N m], motor shaft (from i x k_t if given as current); empty: not logged
+  std::vector<double> link_torque;     ///< tau_link [N m], shaft torque; empty: not logged
 };
 
 /// The logical columns (an entry "a|b": a, or else b).

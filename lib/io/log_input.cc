@@ -22,7 +22,12 @@ std::vector<std::string> Alternatives(const std::string& entry) {
   return out;
 }
 
-bool IsPlainWord(const std::string& text) { return text.find_first_of("*/") == std::string::npos; }
+bool IsPlainWord(const std::string& text) {
+  for (const char* function : {"integral(", "derivative(", "detrend("}) {
+    if (text.rfind(function, 0) == 0) return false;
+  }
+  return text.find_first_of("*/") == std::string::npos;
+}
 
 // What the source offers, for messages: the first 12 column names.
 std::string Offered(const TableSource& source) {
@@ -126,23 +131,31 @@ CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>&
   // Two logical columns may not read one source column.
   for (std::size_t a = 0; a < required.size(); ++a) {
     for (std::size_t b = a + 1; b < required.size(); ++b) {
-      if (!generated_time[a] && !generated_time[b] && !absent[a] && !absent[b] && indices[a] == indices[b]) {
+      // One column read twice is allowed when derived signals make them differ
+      // (q_motor=integral(#2) with qd_motor=#2).
+      const bool derived = (!expressions[a].operations.empty() || !expressions[b].operations.empty()) &&
+                           expressions[a].operations != expressions[b].operations;
+      if (!generated_time[a] && !generated_time[b] && !absent[a] && !absent[b] && indices[a] == indices[b] && !derived) {
         throw OptionError(fmt::format("--col: '{}' and '{}' would both read column '{}' of {}", log.names[a],
                                       log.names[b], expressions[a].reference, where));
       }
     }
   }
-  std::vector<std::size_t> to_read;
+  // Each source column read once; `slot[k]` is logical column k's place in `data`.
+  std::vector<std::size_t> to_read, slot(required.size(), 0);
   for (std::size_t k = 0; k < required.size(); ++k) {
-    if (!generated_time[k] && !absent[k]) to_read.push_back(indices[k]);
+    if (generated_time[k] || absent[k]) continue;
+    const auto found = std::find(to_read.begin(), to_read.end(), indices[k]);
+    slot[k] = static_cast<std::size_t>(found - to_read.begin());
+    if (found == to_read.end()) to_read.push_back(indices[k]);
   }
   TableData data = source.Read(to_read);
   std::size_t rows = 0;
   bool first = true;
   std::string first_name;
-  for (std::size_t k = 0, r = 0; k < required.size(); ++k) {
+  for (std::size_t k = 0; k < required.size(); ++k) {
     if (generated_time[k] || absent[k]) continue;
-    const std::size_t n = data.columns[r++].size();
+    const std::size_t n = data.columns[slot[k]].size();
     if (first) {
       rows = n;
       first_name = expressions[k].reference;
@@ -158,7 +171,11 @@ CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>&
     rows = lengths.empty() ? 0 : lengths.front();
   }
   log.columns.resize(required.size());
-  for (std::size_t k = 0, r = 0; k < required.size(); ++k) {
+  std::vector<int> uses(to_read.size(), 0);
+  for (std::size_t k = 0; k < required.size(); ++k) {
+    if (!generated_time[k] && !absent[k]) ++uses[slot[k]];
+  }
+  for (std::size_t k = 0; k < required.size(); ++k) {
     if (absent[k]) continue;  // left empty
     if (generated_time[k]) {
       log.columns[k].resize(rows);
@@ -166,7 +183,12 @@ CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>&
       log.notes.push_back(fmt::format("{}: samples at {} Hz from 0 s (--rate)", log.names[k], options.rate));
       continue;
     }
-    log.columns[k] = std::move(data.columns[r++]);
+    // The last user of a source column takes it; earlier ones copy.
+    if (--uses[slot[k]] == 0) {
+      log.columns[k] = std::move(data.columns[slot[k]]);
+    } else {
+      log.columns[k] = data.columns[slot[k]];
+    }
     const ColumnExpression& e = expressions[k];
     if (e.factor != 1.0) {
       for (double& v : log.columns[k]) v *= e.factor;
@@ -215,6 +237,20 @@ CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>&
       }
       log.notes.push_back(fmt::format("cropped to {} .. {} s (--from/--to): samples {} .. {} of {}",
                                       log.columns[k].front(), log.columns[k].back(), begin + 1, end, rows));
+    }
+    // Derived signals (integral, derivative, detrend) over the cropped time base.
+    for (std::size_t j = 0; j < required.size(); ++j) {
+      if (absent[j] || generated_time[j] || expressions[j].operations.empty()) continue;
+      if (j == k) throw OptionError(fmt::format("--col {}={}: the time base cannot be derived", log.names[j], expressions[j].text));
+      for (const auto& operation : expressions[j].operations) {
+        ApplyColumnOperation(operation, log.columns[k], log.columns[j]);
+      }
+      for (double v : log.columns[j]) {
+        if (!std::isfinite(v)) {
+          throw InputError(fmt::format("{}: --col {}={}: the derived signal overflows", where, log.names[j],
+                                       expressions[j].text));
+        }
+      }
     }
     break;
   }

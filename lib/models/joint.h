@@ -11,7 +11,11 @@
 //   motor: tau_m = J_m theta_m'' + k D + d D' + b_m theta_m' + c_m sgn theta_m' + tau_0
 //   total: tau_m = J_m theta_m'' + J_l theta_l'' + b_m theta_m' + c_m sgn theta_m'
 //                  + b_l theta_l' + c_l sgn theta_l' + tau_0 + g_c cos theta_l + g_s sin theta_l
-// with D = theta_m - theta_l. Both are linear in the parameters.
+// with D = theta_m - theta_l. Both are linear in the parameters. A torque
+// sensor in the elastic element (strain gauges, a bench's transducer) adds
+//   link:  tau_link = k D + d D' + tau_l0
+// with tau_l0 the sensor's bias plus the unknown initial twist of angles
+// integrated from speeds (k times it).
 #pragma once
 
 #include <array>
@@ -35,12 +39,13 @@ struct JointParameters {
   double offset = 0.0;         ///< tau_0 [N m], on the motor side
   double gravity_cos = 0.0;    ///< g_c [N m]
   double gravity_sin = 0.0;    ///< g_s [N m]
+  double link_torque_offset = 0.0;  ///< tau_l0 [N m], of the shaft-torque channel
 };
 
 struct JointSection {
   static constexpr const char* kSectionName = "joint";
   std::optional<double> motor_inertia, link_inertia, stiffness, damping, motor_viscous, motor_coulomb, link_viscous,
-      link_coulomb, offset, gravity_cos, gravity_sin;
+      link_coulomb, offset, gravity_cos, gravity_sin, link_torque_offset;
   std::optional<double> gear_ratio;       ///< n [-], q_motor = n theta_m (required)
   std::optional<double> torque_constant;  ///< k_t [N m/A] for logs of current i
 };
@@ -73,6 +78,10 @@ inline const ParameterTable<JointSection, JointParameters>& JointParameterTable(
       {{"gravity_sin", "g_s", "N m", "gravity torque amplitude of sin q_link", kUnbounded, false, false, "joint",
         false, 0.0},
        &S::gravity_sin, &P::gravity_sin},
+      {{"link_torque_offset", "tau_l0", "N m",
+        "offset of a logged shaft torque tau_link (sensor bias + k x initial twist)", kUnbounded, false, false, "joint",
+        false, 0.0},
+       &S::link_torque_offset, &P::link_torque_offset},
       {{"gear_ratio", "n", "-", "gear ratio, q_motor = n theta_m", 0.0, true, true, "", false, 0.0},
        &S::gear_ratio, nullptr},
       {{"k_t", "k_t", "N m/A", "torque constant for logs of current", 0.0, true, false, "", false, 0.0},
@@ -81,22 +90,25 @@ inline const ParameterTable<JointSection, JointParameters>& JointParameterTable(
   return table;
 }
 
-constexpr std::size_t kJointTerms = 11;
+constexpr std::size_t kJointTerms = 12;
 
-/// Regressor rows of the motor and the total equation at one sample (table
-/// order; link-side angles and rates):
-/// motor = [theta_m'', 0, D, D', theta_m', sgn theta_m', 0, 0, 1, 0, 0],
-/// total = [theta_m'', theta_l'', 0, 0, theta_m', sgn theta_m', theta_l', sgn theta_l', 1, cos, sin].
+/// Regressor rows of the motor, the total and the shaft-torque equation at
+/// one sample (table order; link-side angles and rates):
+/// motor = [theta_m'', 0, D, D', theta_m', sgn theta_m', 0, 0, 1, 0, 0, 0],
+/// total = [theta_m'', theta_l'', 0, 0, theta_m', sgn theta_m', theta_l', sgn theta_l', 1, cos, sin, 0],
+/// link  = [0, 0, D, D', 0, 0, 0, 0, 0, 0, 0, 1].
 struct JointRegressors {
-  std::array<double, kJointTerms> motor, total;
+  std::array<double, kJointTerms> motor, total, link;
 };
 inline JointRegressors CalcJointRegressors(double motor_angle, double motor_rate, double motor_acceleration,
                                            double link_angle, double link_rate, double link_acceleration) {
   const auto sgn = [](double x) { return static_cast<double>((x > 0.0) - (x < 0.0)); };
   const double deflection = motor_angle - link_angle, deflection_rate = motor_rate - link_rate;
-  return {{motor_acceleration, 0.0, deflection, deflection_rate, motor_rate, sgn(motor_rate), 0.0, 0.0, 1.0, 0.0, 0.0},
+  return {{motor_acceleration, 0.0, deflection, deflection_rate, motor_rate, sgn(motor_rate), 0.0, 0.0, 1.0, 0.0, 0.0,
+           0.0},
           {motor_acceleration, link_acceleration, 0.0, 0.0, motor_rate, sgn(motor_rate), link_rate, sgn(link_rate), 1.0,
-           std::cos(link_angle), std::sin(link_angle)}};
+           std::cos(link_angle), std::sin(link_angle), 0.0},
+          {0.0, 0.0, deflection, deflection_rate, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0}};
 }
 
 /// Which derivative of an angle a frequency response has as its output.

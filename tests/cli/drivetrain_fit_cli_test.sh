@@ -282,7 +282,7 @@ grep -q "^    d_g: {value: 3.1" axis_fit.yaml && ok || fail "axis fit lacks d_g 
   || fail "joint refit from its own output"
 printf 'joint:\n  motor_inertia: 0.02\n' > joint_nogear.yaml
 expect 3 "joint.gear_ratio: missing value" -- joint "$src/data/joint_example.csv" --params joint_nogear.yaml
-expect 3 "joint.link_inertia is needed \\(fixed in this fit\\)" -- joint "$src/data/joint_example.csv" \
+expect 3 "joint.link_inertia, joint.damping, joint.motor_viscous, joint.motor_coulomb, joint.link_viscous, joint.link_coulomb, joint.offset are needed \\(fixed in this fit\\)" -- joint "$src/data/joint_example.csv" \
   --params "$src/data/joint_start.yaml" --free motor_inertia,stiffness
 cut -d, -f1,2,4 "$src/data/joint_example.csv" > joint_nolink.csv
 expect 3 "joint_nolink.csv:[0-9]+: missing column 'q_link'" -- joint joint_nolink.csv --params "$src/data/joint_start.yaml"

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 #include <matio.h>
 
 #include "core/errors.h"
@@ -292,4 +293,42 @@ TEST_CASE("fuzzer regression: a MAT v7.3 file on which HDF5 spins is refused aft
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   CHECK(message == "spin.mat: the MAT reader took longer than 5 s (a corrupt file?)");
   CHECK(seconds < 7.0);
+}
+
+TEST_CASE("derived signals: integral, derivative and detrend of a column, over the (cropped) time base") {
+  // t irregular; speed w = 2 t, so integral = t^2 - t0^2 and derivative = 2.
+  std::string text = "t,w,tau\n";
+  const double times[] = {0.0, 0.1, 0.25, 0.3, 0.5, 0.8, 1.0};
+  for (double t : times) text += fmt::format("{},{},{}\n", t, 2.0 * t, 1.0 + t);
+  LogInputOptions options;
+  options.columns = {{"q", "integral(w)"}};
+  const CsvLog integral = ReadOne("d.csv", text, options);
+  for (std::size_t i = 0; i < 7; ++i) CHECK(std::abs(integral.columns[1][i] - times[i] * times[i]) < 1e-12);
+  options.columns = {{"q", "derivative(0.5*w)"}};
+  const CsvLog derivative = ReadOne("d.csv", text, options);
+  for (double v : derivative.columns[1]) CHECK(std::abs(v - 1.0) < 1e-12);
+  options.columns = {{"q", "detrend(w)"}, {"tau", "integral(detrend(w))"}};
+  const CsvLog both = ReadOne("d.csv", text, options);
+  double mean = 0.0;
+  for (double v : both.columns[1]) mean += v;
+  CHECK(std::abs(mean) < 1e-12);
+  CHECK(both.columns[2][0] == 0.0);
+  // Crops first: the integral is 0 at the first kept sample.
+  options.columns = {{"q", "integral(w)"}};
+  options.from = 0.25;
+  const CsvLog cropped = ReadOne("d.csv", text, options);
+  CHECK(cropped.columns[1][0] == 0.0);
+  CHECK(std::abs(cropped.columns[1].back() - (1.0 - 0.0625)) < 1e-12);
+  options.from.reset();
+  // The same source column twice: allowed when derived signals differ.
+  options.columns = {{"q", "integral(w)"}, {"tau", "w"}};
+  const CsvLog twice = ReadOne("d.csv", text, options);
+  CHECK(twice.columns[2][6] == 2.0);
+  CHECK(std::abs(twice.columns[1][6] - 1.0) < 1e-12);
+  options.columns = {{"q", "w"}, {"tau", "w"}};
+  CHECK(ErrorOf<OptionError>(text, options).find("would both read column 'w'") != std::string::npos);
+  options.columns = {{"q", "integral()"}};
+  CHECK(ErrorOf<OptionError>(text, options).find("integral() of nothing") != std::string::npos);
+  options.columns = {{"t", "integral(t)"}, {"q", "w"}};
+  CHECK(ErrorOf<OptionError>(text, options).find("the time base cannot be derived") != std::string::npos);
 }
