@@ -45,16 +45,18 @@ std::string JoinFor(const LogInputCli& options, std::size_t k, std::size_t count
 /// Reads each log once (at most --max-log-size bytes; joined files too),
 /// makes its logs with `make(CsvLog)` (a SysId file gives several) and
 /// records each one's provenance (file, SHA-256, samples, segment, notes).
-/// Refuses (exit 2) a file whose contents were given already.
+/// Refuses (exit 2) a file whose contents were given already. The column
+/// `time_column` must increase strictly (a frequency for a measured response).
 template <typename Log, typename Make>
 std::vector<Log> LoadLogs(const std::vector<std::string>& paths, const LogInputCli& input,
                           const FitOutputOptions& output, FitProvenance& provenance,
-                          const std::vector<std::string>& columns, Make make) {
+                          const std::vector<std::string>& columns, Make make, const std::string& time_column = "t") {
   ReadLimits limits;
   limits.lines_unless_structured = true;  // logs may be JSON or MAT
   limits.max_bytes = static_cast<std::size_t>(output.max_log_gib * 1073741824.0);
   limits.max_bytes_hint = fmt::format("a log may be at most {} GiB (raise with --max-log-size)", output.max_log_gib);
-  const LogInputOptions options = MakeLogInputOptions(input);
+  LogInputOptions options = MakeLogInputOptions(input);
+  options.time_column = time_column;
   std::vector<Log> logs;
   std::vector<std::pair<std::string, std::string>> seen;  // hash, file
   for (std::size_t i = 0; i < paths.size(); ++i) {

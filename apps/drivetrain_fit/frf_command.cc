@@ -29,6 +29,7 @@ struct FrfCliOptions {
   std::string fit = "none";
   std::string hold = "zoh";
   std::vector<std::string> free = TwoMassFitOptions{}.free;
+  std::string measured, frequency_unit = "hz", magnitude_unit = "abs", phase_unit = "deg";
   LogInputCli log_input;
   FitOutputOptions out;
 };
@@ -50,7 +51,16 @@ CLI::App* Setup(CLI::App& app, FrfCliOptions& o) {
   CLI::App* c = app.add_subcommand(
       "frf", "Frequency response (Welch H1, closed loop S_ry/S_ru, or per period), resonance and anti-resonance, "
              "and the two-mass joint fitted to it (docs/models.md#frequency-response)");
-  c->add_option("logs", o.logs, "logs (CSV, MAT, SysId JSON; docs/formats.md#logs) of one rate")->required();
+  c->add_option("logs", o.logs, "logs (CSV, MAT, SysId JSON; docs/formats.md#logs) of one rate");
+  c->add_option("--measured", o.measured,
+                "a frequency response measured elsewhere: columns frequency, magnitude, phase (optional coherence; "
+                "map others with --col), fitted instead of logs");
+  c->add_option("--frequency-unit", o.frequency_unit, "of --measured")->capture_default_str()
+      ->check(CLI::IsMember({"hz", "rad/s"}));
+  c->add_option("--magnitude-unit", o.magnitude_unit, "of --measured")->capture_default_str()
+      ->check(CLI::IsMember({"abs", "db"}));
+  c->add_option("--phase-unit", o.phase_unit, "of --measured")->capture_default_str()
+      ->check(CLI::IsMember({"deg", "rad"}));
   c->add_option("--input", o.input, "the torque: a column expression as --col takes (default tau, or i with joint.k_t)");
   c->add_option("--output", o.output, "the motor-side output (default qd_motor if logged, else q_motor)");
   c->add_option("--output-is", o.output_is, "what --output is (default from its name: q_* position, qd_* rate)")
@@ -91,18 +101,85 @@ CLI::App* Setup(CLI::App& app, FrfCliOptions& o) {
             "  drivetrain-fit frf bench.csv --reference r --fit two-mass --params joint.yaml -o joint_fit.yaml "
             "--plot bode.png\n"
             "  drivetrain-fit frf swept1.txt --no-header --delimiter tab --col t=#1 --input '#3' --output '#5' "
-            "--output-is position --fit two-mass");
+            "--output-is position --fit two-mass\n"
+            "  drivetrain-fit frf --measured bode.csv --magnitude-unit db --output-is rate --fit two-mass");
   return c;
 }
 
+FrfResult AnalyseLogs(FrfCliOptions& o, const JointSection& section, FrfOptions& options, FitProvenance& provenance);
+void Emit(const FrfCliOptions& o, const ParameterFile& start, const JointSection& section, const FrfResult& result,
+          const FitProvenance& provenance);
+
+// Reads --measured: frequency [Hz], magnitude (linear) and phase [rad].
+MeasuredResponse ReadMeasured(const FrfCliOptions& o, FitProvenance& provenance) {
+  MeasuredResponse m;
+  LoadLogs<int>(
+      {o.measured}, o.log_input, o.out, provenance, {"frequency", "magnitude", "phase", "?coherence"},
+      [&](CsvLog csv) {
+        if (!m.frequency.empty()) throw InputError(fmt::format("{}: --measured takes one response", o.measured));
+        m.frequency = csv.columns[0];
+        m.magnitude = csv.columns[1];
+        m.phase = csv.columns[2];
+        m.coherence = csv.columns[3];
+        return 0;
+      },
+      "frequency");
+  for (double& f : m.frequency) f /= o.frequency_unit == "rad/s" ? 2.0 * M_PI : 1.0;
+  if (o.magnitude_unit == "db") {
+    for (double& v : m.magnitude) v = std::pow(10.0, v / 20.0);
+  }
+  if (o.phase_unit == "deg") {
+    for (double& v : m.phase) v *= M_PI / 180.0;
+  }
+  return m;
+}
+
 void Run(FrfCliOptions o, const std::string& command_line) {
-  CheckFitOutputs(o.out, LogCommandInputs(o.logs, o.params, o.log_input, {}));
+  if (o.logs.empty() == o.measured.empty()) {
+    throw OptionError("frf: give logs, or --measured FILE (not both)");
+  }
+  CheckFitOutputs(o.out, LogCommandInputs(o.measured.empty() ? o.logs : std::vector<std::string>{o.measured},
+                                          o.params, o.log_input, {}));
   ParameterFile start;
   JointSection section;
   if (!o.params.empty()) {
     start = ReadParameterFile(o.params);
     if (const auto* joint = start.Find<JointSection>()) section = *joint;
   }
+  if (!o.measured.empty() && (!o.input.empty() || !o.reference.empty() || !o.link.empty())) {
+    throw OptionError("--measured: --input, --reference and --link are for logs");
+  }
+  FitProvenance provenance;
+  provenance.command = command_line;
+  provenance.version = DRIVEID_VERSION;
+  provenance.model = "frequency response (docs/models.md#frequency-response)";
+  FrfOptions options;
+  options.estimate.resolution = o.resolution;
+  options.estimate.period = o.period;
+  options.estimate.method = o.method == "welch" ? FrequencyMethod::kWelch
+                            : o.method == "periodic" ? FrequencyMethod::kPeriodic : FrequencyMethod::kAuto;
+  options.fit = o.fit == "two-mass";
+  options.hold = o.hold == "zoh";
+  options.two_mass.free = o.free;
+  options.two_mass.link_output = Quantity(o.link_is);
+  if (o.band.size() == 2) {
+    if (!(o.band[1] > o.band[0])) throw OptionError(fmt::format("--band {},{}: LO must be below HI", o.band[0], o.band[1]));
+    options.two_mass.band_low = o.band[0];
+    options.two_mass.band_high = o.band[1];
+  }
+  SetProgress(options.two_mass.fit, o.out.verbose);
+  FrfResult result;
+  if (!o.measured.empty()) {
+    if (o.output_is.empty()) throw OptionError("--measured: say what its output is with --output-is position|rate|acceleration");
+    options.two_mass.motor_output = Quantity(o.output_is);
+    result = AnalyseMeasuredResponse(ReadMeasured(o, provenance), section, options);
+  } else {
+    result = AnalyseLogs(o, section, options, provenance);
+  }
+  Emit(o, start, section, result, provenance);
+}
+
+FrfResult AnalyseLogs(FrfCliOptions& o, const JointSection& section, FrfOptions& options, FitProvenance& provenance) {
   // Logical columns: t, the input, the output, optional reference and link.
   std::vector<std::string> required = {"t", o.input.empty() ? "tau|i" : "tau",
                                        o.output.empty() ? "qd_motor|q_motor" : "y"};
@@ -122,10 +199,6 @@ void Run(FrfCliOptions o, const std::string& command_line) {
     required.push_back("q_link");
     o.log_input.columns.push_back("q_link=" + o.link);
   }
-  FitProvenance provenance;
-  provenance.command = command_line;
-  provenance.version = DRIVEID_VERSION;
-  provenance.model = "frequency response (docs/models.md#frequency-response)";
   const double k_t = section.torque_constant.value_or(0.0);
   std::vector<FrfSignals> signals;
   std::string output_name;
@@ -146,25 +219,12 @@ void Run(FrfCliOptions o, const std::string& command_line) {
     return 0;
   });
   if (o.output.empty()) o.output_is = output_name == "qd_motor" ? "rate" : "position";
-
-  FrfOptions options;
-  options.estimate.resolution = o.resolution;
-  options.estimate.period = o.period;
-  options.estimate.method = o.method == "welch" ? FrequencyMethod::kWelch
-                            : o.method == "periodic" ? FrequencyMethod::kPeriodic : FrequencyMethod::kAuto;
-  options.fit = o.fit == "two-mass";
-  options.hold = o.hold == "zoh";
-  options.two_mass.free = o.free;
   options.two_mass.motor_output = Quantity(o.output_is);
-  options.two_mass.link_output = Quantity(o.link_is);
-  if (o.band.size() == 2) {
-    if (!(o.band[1] > o.band[0])) throw OptionError(fmt::format("--band {},{}: LO must be below HI", o.band[0], o.band[1]));
-    options.two_mass.band_low = o.band[0];
-    options.two_mass.band_high = o.band[1];
-  }
-  SetProgress(options.two_mass.fit, o.out.verbose);
-  const FrfResult result = AnalyseFrequencyResponse(signals, section, options);
+  return AnalyseFrequencyResponse(signals, section, options);
+}
 
+void Emit(const FrfCliOptions& o, const ParameterFile& start, const JointSection& section, const FrfResult& result,
+          const FitProvenance& provenance) {
   FitOutputs outputs;
   outputs.provenance = provenance;
   ParameterFile fitted = start;

@@ -145,7 +145,73 @@ void RunSimulateStepCommand(const SimulateStepOptions& options, const std::strin
   }
 }
 
+CLI::App* SetupSimulateJointCommand(CLI::App& simulate, SimulateJointOptions& o) {
+  CLI::App* joint = simulate.add_subcommand(
+      "joint", "Elastic joint under an excitation torque, open loop or injected after a PI speed loop: plan a "
+               "frequency-response measurement (docs/models.md#frequency-response)");
+  JointExperiment& e = o.experiment;
+  joint->add_option("--params", o.params, "parameter file with a joint section (gear_ratio, inertias, stiffness, ...)")
+      ->required();
+  joint->add_option("-o,--output", o.output, "log file to write (default: stdout)");
+  joint->add_option("--excitation", e.excitation, "multisine, chirp or prbs")->capture_default_str()
+      ->check(CLI::IsMember({"multisine", "chirp", "prbs"}));
+  joint->add_option("--band", o.band, "LO,HI: excited band [Hz]")->delimiter(',')->expected(2)
+      ->check(FiniteAtLeast(0.0));
+  joint->add_option("--amplitude", e.amplitude, "rms of the excitation torque [N m, motor shaft]")
+      ->capture_default_str()->check(FiniteAtLeast(0.0));
+  joint->add_option("--period", e.period, "multisine period, chirp sweep or PRBS sequence [s]")->capture_default_str()
+      ->check(FiniteAbove(0.0));
+  joint->add_option("--rate", e.rate, "sampling rate [Hz]")->capture_default_str()->check(FiniteWithin(1.0, 1e6));
+  joint->add_option("--duration", e.duration, "log length [s]")->capture_default_str()->check(FiniteAbove(0.0));
+  joint->add_option("--kp", e.kp, "PI speed loop: proportional gain [N m s/rad] (0: open loop)")->capture_default_str()
+      ->check(FiniteWithin(-1e12, 1e12));
+  joint->add_option("--ki", e.ki, "PI speed loop: integral gain [N m/rad]")->capture_default_str()
+      ->check(FiniteWithin(-1e12, 1e12));
+  joint->add_option("--noise", e.noise, "std of the motor-speed measurement noise [rad/s]")->capture_default_str()
+      ->check(FiniteAtLeast(0.0));
+  joint->add_option("--seed", e.seed, "noise seed")->check(Seed())->capture_default_str();
+  joint->footer("Example:\n  drivetrain-fit simulate joint --params data/joint_example_truth.yaml --kp 0.0004 "
+                "--ki 0.002 --noise 0.5 -o bench.csv\n  drivetrain-fit frf bench.csv --reference r --params "
+                "data/joint_example_truth.yaml --fit two-mass --plot bode.png");
+  return joint;
+}
+
+void RunSimulateJointCommand(const SimulateJointOptions& o, const std::string& command_line) {
+  CheckDistinctFiles({o.params}, {{"-o", o.output}});
+  const ParameterFile file = ReadParameterFile(o.params);
+  if (!file.Find<JointSection>()) throw InputError(fmt::format("{}: no 'joint' section", o.params));
+  const JointSection& section = *file.Find<JointSection>();
+  JointParameters p;
+  for (const auto& row : JointParameterTable()) {
+    if (row.in_model != nullptr) p.*(row.in_model) = (section.*(row.in_section)).value_or(0.0);
+  }
+  JointExperiment e = o.experiment;
+  if (o.band.size() == 2) {
+    e.f_low = o.band[0];
+    e.f_high = o.band[1];
+  }
+  const double n = section.gear_ratio.value_or(1.0);
+  const JointExperimentLog log = SimulateJointExperiment(p, n, e);
+  const std::string text = FormatJointExperimentLog(
+      log, {"synthetic joint log (docs/formats.md#logs) made by: " + command_line,
+            fmt::format("{} {} .. {} Hz, period {} s, rms {} N m; PI speed loop kp {} ki {}; rate {} Hz; speed noise {} "
+                        "rad/s (seed {}); r is the injected excitation",
+                        e.excitation, e.f_low, e.f_high, e.period, e.amplitude, e.kp, e.ki, e.rate, e.noise, e.seed),
+            fmt::format("truth (link side): n {}, J_m {}, J_l {}, k {}, d {}, b_m {}, c_m {}, b_l {}, c_l {}", n,
+                        p.motor_inertia, p.link_inertia, p.stiffness, p.damping, p.motor_viscous, p.motor_coulomb,
+                        p.link_viscous, p.link_coulomb)});
+  if (o.output.empty()) {
+    WriteStdout(text);
+  } else {
+    WriteFileAtomically(o.output, text);
+  }
+}
+
 namespace {
+SimulateJointOptions joint_options;
+const bool kJoint = RegisterCommand({"drivetrain-fit", "simulate", 4,
+                                     [](CLI::App& parent) { return SetupSimulateJointCommand(parent, joint_options); },
+                                     [](const std::string& line) { RunSimulateJointCommand(joint_options, line); }});
 SimulateStepOptions step_options;
 SimulateAxisOptions axis_options;
 SimulateRobotOptions robot_options;

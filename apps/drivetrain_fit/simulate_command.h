@@ -2,10 +2,12 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "sim/axis_experiment.h"
+#include "sim/joint_experiment.h"
 #include "sim/robot_experiment.h"
 #include "sim/step_experiment.h"
 
@@ -30,6 +32,13 @@ struct SimulateRobotOptions {
   RobotExperiment experiment;
 };
 
+struct SimulateJointOptions {
+  std::string params;
+  std::string output;
+  std::vector<double> band;
+  JointExperiment experiment;
+};
+
 /// Each declares its subcommand on the `simulate` group.
 CLI::App* SetupSimulateStepCommand(CLI::App& simulate, SimulateStepOptions& options);
 CLI::App* SetupSimulateAxisCommand(CLI::App& simulate, SimulateAxisOptions& options);
@@ -37,5 +46,7 @@ CLI::App* SetupSimulateRobotCommand(CLI::App& simulate, SimulateRobotOptions& op
 void RunSimulateRobotCommand(const SimulateRobotOptions& options, const std::string& command_line);
 void RunSimulateStepCommand(const SimulateStepOptions& options, const std::string& command_line);
 void RunSimulateAxisCommand(const SimulateAxisOptions& options, const std::string& command_line);
+CLI::App* SetupSimulateJointCommand(CLI::App& simulate, SimulateJointOptions& options);
+void RunSimulateJointCommand(const SimulateJointOptions& options, const std::string& command_line);
 
 }  // namespace driveid::cli

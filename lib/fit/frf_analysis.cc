@@ -26,6 +26,26 @@ std::vector<double> Resample(const std::vector<double>& time, const std::vector<
   return out;
 }
 
+// Features read from out.motor and, if asked, the two-mass fit.
+void FitResponse(FrfResult& out, const JointSection& start, const FrfOptions& options, double hold_rate) {
+  const ResponseData motor_data{out.motor.frequency, out.motor.response, out.motor.coherence,
+                                out.motor.log_magnitude_std, out.motor.phase_std};
+  TwoMassFitOptions fit_options = options.two_mass;
+  fit_options.hold_rate = hold_rate;
+  out.read = ReadResponseFeatures(motor_data, fit_options.motor_output, fit_options);
+  if (options.fit) {
+    std::optional<ResponseData> link_data;
+    if (out.link) {
+      link_data = ResponseData{out.link->frequency, out.link->response, out.link->coherence,
+                               out.link->log_magnitude_std, out.link->phase_std};
+    }
+    out.fit = FitTwoMassResponse(motor_data, link_data ? &*link_data : nullptr, start, fit_options);
+    const auto low = CheckFitPercent(out.fit->fit);
+    out.warnings.insert(out.warnings.end(), low.begin(), low.end());
+    out.fit->fit.warnings.insert(out.fit->fit.warnings.end(), out.warnings.begin(), out.warnings.end());
+  }
+}
+
 }  // namespace
 
 FrequencyResponseSection FrfResult::Section() const {
@@ -103,22 +123,32 @@ FrfResult AnalyseFrequencyResponse(const std::vector<FrfSignals>& logs, const Jo
                                          low_coherence, f.coherence.size()));
     }
   }
-  const ResponseData motor_data{out.motor.frequency, out.motor.response, out.motor.coherence,
-                                out.motor.log_magnitude_std, out.motor.phase_std};
-  TwoMassFitOptions fit_options = options.two_mass;
-  if (options.hold) fit_options.hold_rate = out.rate;
-  out.read = ReadResponseFeatures(motor_data, fit_options.motor_output, fit_options);
-  if (options.fit) {
-    std::optional<ResponseData> link_data;
-    if (out.link) {
-      link_data = ResponseData{out.link->frequency, out.link->response, out.link->coherence,
-                               out.link->log_magnitude_std, out.link->phase_std};
+  FitResponse(out, start, options, options.hold ? out.rate : 0.0);
+  return out;
+}
+
+FrfResult AnalyseMeasuredResponse(const MeasuredResponse& measured, const JointSection& start, const FrfOptions& options) {
+  const std::size_t n = measured.frequency.size();
+  if (n < 5) throw InputError(fmt::format("a measured response of {} bins: at least 5 are needed", n));
+  FrfResult out;
+  FrequencyResponse& r = out.motor;
+  r.method = FrequencyMethod::kWelch;
+  r.description = fmt::format("measured elsewhere ({} bins, read with --measured)", n);
+  for (std::size_t b = 0; b < n; ++b) {
+    const double f = measured.frequency[b], m = measured.magnitude[b];
+    if (!(f > 0.0) || !(m > 0.0) || !std::isfinite(m) || !std::isfinite(measured.phase[b])) {
+      throw InputError(fmt::format("measured response, bin {} ({} Hz): frequency and magnitude must be positive and "
+                                   "finite (magnitude {}, phase {})",
+                                   b + 1, f, m, measured.phase[b]));
     }
-    out.fit = FitTwoMassResponse(motor_data, link_data ? &*link_data : nullptr, start, fit_options);
-    const auto low = CheckFitPercent(out.fit->fit);
-    out.warnings.insert(out.warnings.end(), low.begin(), low.end());
-    out.fit->fit.warnings.insert(out.fit->fit.warnings.end(), out.warnings.begin(), out.warnings.end());
+    r.frequency.push_back(f);
+    r.response.push_back(std::polar(m, measured.phase[b]));
+    r.coherence.push_back(measured.coherence.empty() ? 1.0 : std::clamp(measured.coherence[b], 0.0, 1.0));
   }
+  r.resolution = n > 1 ? (r.frequency.back() - r.frequency.front()) / static_cast<double>(n - 1) : 0.0;
+  out.notes.push_back("no std with the measured response: every bin weighs the same and the fit estimates the residual "
+                      "scale; the model is continuous (the measurement's sampling is unknown)");
+  FitResponse(out, start, options, 0.0);
   return out;
 }
 

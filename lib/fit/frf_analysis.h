@@ -45,4 +45,14 @@ struct FrfResult {
 FrfResult AnalyseFrequencyResponse(const std::vector<FrfSignals>& logs, const JointSection& start,
                                    const FrfOptions& options);
 
+/// A response measured elsewhere (`frf --measured`): frequency [Hz],
+/// magnitude (linear), phase [rad] and optionally coherence; without a std
+/// every bin weighs the same (the fit estimates the residual scale).
+struct MeasuredResponse {
+  std::vector<double> frequency, magnitude, phase, coherence;
+};
+/// Features and (options.fit) the two-mass fit of a measured response; the
+/// model is continuous (no hold: the sampling is unknown).
+FrfResult AnalyseMeasuredResponse(const MeasuredResponse& measured, const JointSection& start, const FrfOptions& options);
+
 }  // namespace driveid

@@ -30,4 +30,15 @@ JointLog MakeJointLog(CsvLog csv, double torque_constant) {
   return log;
 }
 
+std::string FormatJointExperimentLog(const JointExperimentLog& log, const std::vector<std::string>& comments) {
+  std::string out;
+  for (const auto& c : comments) out += "# " + c + "\n";
+  out += "t,tau,q_motor,qd_motor,q_link,r\n";
+  for (std::size_t i = 0; i < log.t.size(); ++i) {
+    out += fmt::format("{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", log.t[i], log.tau[i], log.q_motor[i],
+                       log.qd_motor[i], log.q_link[i], log.r[i]);
+  }
+  return out;
+}
+
 }  // namespace driveid

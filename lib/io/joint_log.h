@@ -19,6 +19,15 @@ struct JointLog {
   std::vector<double> link_torque;     ///< tau_link [N m], shaft torque; empty: not logged
 };
 
+/// A synthetic joint experiment as `simulate joint` writes it: the joint
+/// log's columns plus the measured motor speed and the injected excitation.
+struct JointExperimentLog {
+  std::vector<double> t, tau, q_motor, qd_motor, q_link, r;
+};
+
+/// CSV text with `#` comment lines first: t,tau,q_motor,qd_motor,q_link,r.
+std::string FormatJointExperimentLog(const JointExperimentLog& log, const std::vector<std::string>& comments);
+
 /// The logical columns (an entry "a|b": a, or else b).
 const std::vector<std::string>& JointLogColumns();
 

@@ -15,8 +15,11 @@ double Decibels(const std::complex<double>& h) { return 20.0 * std::log10(std::a
 void AppendResponse(std::string& out, const FrequencyResponse& r, std::size_t b,
                     const std::vector<std::complex<double>>* model) {
   const double magnitude = std::abs(r.response[b]);
-  out += fmt::format(",{:.9g},{:.6g},{:.6g},{:.6g},{:.6g}", magnitude, Degrees(std::arg(r.response[b])),
-                     r.coherence[b], magnitude * r.log_magnitude_std[b], Degrees(r.phase_std[b]));
+  out += fmt::format(",{:.9g},{:.6g},{:.6g}", magnitude, Degrees(std::arg(r.response[b])), r.coherence[b]);
+  // An unknown std (a response measured elsewhere) leaves its cells empty.
+  out += r.log_magnitude_std.empty() ? std::string(",,")
+                                     : fmt::format(",{:.6g},{:.6g}", magnitude * r.log_magnitude_std[b],
+                                                   Degrees(r.phase_std[b]));
   if (model != nullptr) out += fmt::format(",{:.9g},{:.6g}", std::abs((*model)[b]), Degrees(std::arg((*model)[b])));
 }
 
@@ -87,9 +90,13 @@ std::string FormatFrfCsv(const FrfResult& result) {
 }
 
 std::vector<PlotPanel> MakeBodePanels(const FrfResult& result) {
-  PlotPanel magnitude{"frequency response: " + result.motor.description, "magnitude [dB]", {}};
+  const char* method = result.motor.method == FrequencyMethod::kPeriodic ? "per period" : "Welch";
+  PlotPanel magnitude{fmt::format("frequency response ({}, {} averages, {:.3g} Hz bins{})", method,
+                                  result.motor.averages, result.motor.resolution,
+                                  result.motor.closed_loop ? ", closed loop, with the reference" : ""),
+                      "magnitude [dB]", {}};
   PlotPanel phase{"phase", "phase [deg]", {}};
-  PlotPanel coherence{"coherence (bins below 0.5 grey above)", "coherence", {}};
+  PlotPanel coherence{"coherence (bins below 0.5 grey above)", "coherence", {}, 0.0, 1.0};
   AddResponseLines(result.motor, result.fit ? &result.fit->motor_model : nullptr, "motor", magnitude, phase, coherence);
   if (result.link) {
     AddResponseLines(*result.link, result.fit ? &result.fit->link_model : nullptr, "link", magnitude, phase, coherence);

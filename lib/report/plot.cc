@@ -92,6 +92,8 @@ std::string RenderPanels(const std::string& path, const std::vector<PlotPanel>& 
   for (std::size_t p = 0; p < panels.size(); ++p) {
     const auto& panel = panels[p];
     script += fmt::format("set title {}\nset ylabel {}\n", GnuplotString(panel.title), GnuplotString(panel.y_label));
+    script += panel.y_max > panel.y_min ? fmt::format("set yrange [{}:{}]\n", panel.y_min, panel.y_max)
+                                        : std::string("set autoscale y\n");
     script += p + 1 == panels.size() ? fmt::format("set xlabel {}\n", GnuplotString(x_label)) : "unset xlabel\n";
     std::string plot = "plot ";
     int colour = 1;

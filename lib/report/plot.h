@@ -34,6 +34,7 @@ struct PlotPanel {
   std::string title;
   std::string y_label;
   std::vector<PlotLine> lines;
+  double y_min = 0.0, y_max = 0.0;  ///< fixed y range when y_max > y_min (e.g. a coherence's [0, 1])
 };
 
 /// Renders stacked panels as the image `path` will hold (PNG or SVG by its

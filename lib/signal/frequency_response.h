@@ -39,8 +39,8 @@ struct FrequencyResponse {
   std::vector<double> frequency;                 ///< [Hz], DC left out
   std::vector<std::complex<double>> response;    ///< output / input
   std::vector<double> coherence;                 ///< gamma^2 in [0, 1]
-  std::vector<double> log_magnitude_std;         ///< std of ln |H| (relative std of |H|)
-  std::vector<double> phase_std;                 ///< [rad]
+  std::vector<double> log_magnitude_std;         ///< std of ln |H| (relative std of |H|); empty: unknown
+  std::vector<double> phase_std;                 ///< [rad]; empty: unknown
   int averages = 0;     ///< segments (Welch) or periods (periodic), over all records
   double resolution = 0.0;  ///< [Hz]
   bool closed_loop = false;  ///< ratio of cross spectra with the reference

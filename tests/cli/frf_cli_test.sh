@@ -50,6 +50,33 @@ head -2 frf.csv | tail -1 | grep -q "^frequency_hz,magnitude,phase_deg,coherence
 # --json: one object with the fitted resonance.
 "$bin" frf twomass.csv --params gear.yaml --fit two-mass --json -o /dev/null > out.json 2> err.txt \
   && grep -q '"fitted":{"resonance":{"value_hz":11\.' out.json && ok || fail "json: $(head -c 300 out.json) $(cat err.txt)"
+# A response measured elsewhere (--measured): the CSV just written, read back
+# in dB and with its own column names, fitted the same way.
+awk -F, 'NR <= 2 { next } { printf "%s,%.9g,%s\n", $1, 20 * log($2) / log(10), $3 }' frf.csv > bode_db.csv
+sed -i '1i f_hz,mag_db,phase_deg' bode_db.csv
+"$bin" frf --measured bode_db.csv --col frequency=f_hz --col magnitude=mag_db --col phase=phase_deg --magnitude-unit db \
+  --output-is rate --params gear.yaml --fit two-mass -o measured.yaml > measured.txt 2>&1 \
+  && grep -q "^  resonance_hz: 11\.[56]" measured.yaml && grep -q "measured elsewhere" measured.yaml && ok \
+  || fail "--measured: $(cat measured.txt) $(grep resonance measured.yaml)"
+expect 2 "give logs, or --measured FILE" -- frf twomass.csv --measured bode_db.csv
+expect 2 "--output-is" -- frf --measured bode_db.csv --col frequency=f_hz --col magnitude=mag_db --col phase=phase_deg
+# simulate joint plans a measurement: the shipped joint's truth (resonance
+# sqrt(20 (1/0.02 + 1/0.05))/2pi = 5.955 Hz, anti-resonance sqrt(20/0.05)/2pi
+# = 3.183 Hz; Coulomb friction is not in the linear model), a PI speed loop
+# with the excitation injected; frf with the reference finds both within 2 %.
+"$bin" simulate joint --params "$src/data/joint_example_truth.yaml" --kp 0.0004 --ki 0.002 --noise 0.5 --band 0.5,20 \
+  -o sim.csv 2> sim_err.txt && head -4 sim.csv | grep -q "^t,tau,q_motor,qd_motor,q_link,r$" && ok || fail "simulate joint: $(cat sim_err.txt)"
+"$bin" frf sim.csv --reference r --params "$src/data/joint_example_truth.yaml" --fit two-mass -q -o sim_fit.yaml \
+  2> sim_fit.txt || fail "frf of simulate joint: $(cat sim_fit.txt)"
+awk '/^  resonance_hz:/ { exit !($2 > 5.84 && $2 < 6.07) }' sim_fit.yaml && ok || fail "$(grep resonance_hz: sim_fit.yaml)"
+awk '/^  antiresonance_hz:/ { exit !($2 > 3.12 && $2 < 3.25) }' sim_fit.yaml && ok || fail "$(grep antiresonance_hz: sim_fit.yaml)"
+for excitation in chirp prbs; do
+  "$bin" simulate joint --params "$src/data/joint_example_truth.yaml" --excitation "$excitation" --duration 8 \
+    --period 8 --band 0.5,20 -o "sim_$excitation.csv" && [ "$(wc -l < "sim_$excitation.csv")" -eq 8004 ] && ok \
+    || fail "simulate joint --excitation $excitation"
+done
+EXPECT_OUTPUT=-o expect 2 "period" -- simulate joint --params "$src/data/joint_example_truth.yaml" --period 100 --duration 10
+EXPECT_OUTPUT=-o expect 3 "no 'joint' section" -- simulate joint --params "$src/data/axis_example.yaml"
 
 # Refusals: the band below the resonance (exit 4, named), an output whose
 # quantity is unknown (exit 2), an unknown free name (exit 2), a missing column (exit 3).
