@@ -16,6 +16,52 @@ using Complex = std::complex<double>;
 constexpr int kMinAverages = 4;
 constexpr double kPeriodTolerance = 1e-3;
 
+// Largest prime factor of n (n >= 1).
+std::size_t LargestPrimeFactor(std::size_t n) {
+  std::size_t largest = 1;
+  for (std::size_t p = 2; p * p <= n; ++p) {
+    while (n % p == 0) {
+      largest = p;
+      n /= p;
+    }
+  }
+  return n > 1 ? n : largest;
+}
+
+// DFT of real x, all n bins, in O(n log n) for any n: Eigen's FFT (kissfft)
+// where n has only small prime factors (it is O(n p) in a prime factor p),
+// else Bluestein's chirp-z transform through power-of-two FFTs:
+// X_k = conj(w_k) sum_j (x_j conj(w_j)) w_(k-j), w_j = exp(i pi j^2 / n).
+std::vector<Complex> Dft(Eigen::FFT<double>& fft, const std::vector<double>& x) {
+  const std::size_t n = x.size();
+  std::vector<Complex> out;
+  if (n == 0) return out;
+  if (LargestPrimeFactor(n) <= 7) {
+    fft.ClearFlag(Eigen::FFT<double>::HalfSpectrum);
+    fft.fwd(out, x);
+    return out;
+  }
+  std::size_t m = 1;
+  while (m < 2 * n - 1) m *= 2;
+  std::vector<Complex> chirp(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    // j^2 mod 2n keeps the angle exact for large j.
+    const auto square = static_cast<double>((static_cast<unsigned __int128>(j) * j) % (2 * n));
+    chirp[j] = std::polar(1.0, M_PI * square / static_cast<double>(n));
+  }
+  std::vector<Complex> a(m, 0.0), b(m, 0.0), fa, fb, conv;
+  for (std::size_t j = 0; j < n; ++j) a[j] = x[j] * std::conj(chirp[j]);
+  b[0] = chirp[0];
+  for (std::size_t j = 1; j < n; ++j) b[j] = b[m - j] = chirp[j];
+  fft.fwd(fa, a);
+  fft.fwd(fb, b);
+  for (std::size_t k = 0; k < m; ++k) fa[k] *= fb[k];
+  fft.inv(conv, fa);
+  out.resize(n);
+  for (std::size_t k = 0; k < n; ++k) out[k] = std::conj(chirp[k]) * conv[k];
+  return out;
+}
+
 // Spectrum of x[begin, begin + n) after removing its least-squares line and
 // multiplying by `window` (empty: rectangular); bins 0 .. n/2.
 std::vector<Complex> SegmentSpectrum(Eigen::FFT<double>& fft, const std::vector<double>& x, std::size_t begin,
@@ -39,9 +85,7 @@ std::vector<Complex> SegmentSpectrum(Eigen::FFT<double>& fft, const std::vector<
   if (!window.empty()) {
     for (std::size_t k = 0; k < n; ++k) segment[k] *= window[k];
   }
-  std::vector<Complex> spectrum;
-  fft.SetFlag(Eigen::FFT<double>::HalfSpectrum);
-  fft.fwd(spectrum, segment);
+  std::vector<Complex> spectrum = Dft(fft, segment);
   spectrum.resize(n / 2 + 1);
   return spectrum;
 }
@@ -229,14 +273,18 @@ std::size_t DetectPeriod(const std::vector<double>& signal) {
   double mean = 0.0;
   for (double v : signal) mean += v;
   mean /= static_cast<double>(n);
-  std::vector<double> x(2 * n, 0.0);
+  std::vector<double> x(n, 0.0);
   double energy = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
     x[k] = signal[k] - mean;
     energy += x[k] * x[k];
   }
   if (!(energy > 0.0)) return 0;
-  // Autocorrelation through the FFT of the zero-padded signal.
+  // Autocorrelation through the FFT of the signal zero-padded to a power of
+  // two of at least twice its length (no wrap-around, and fast for any n).
+  std::size_t padded = 1;
+  while (padded < 2 * n) padded *= 2;
+  x.resize(padded, 0.0);
   Eigen::FFT<double> fft;
   std::vector<Complex> spectrum;
   fft.fwd(spectrum, x);

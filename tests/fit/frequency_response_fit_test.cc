@@ -2,6 +2,7 @@
 // generator (tests/support/reference_two_mass.cc), and the model's response
 // against finite differences and its closed form.
 #include <cmath>
+#include <random>
 
 #include <catch2/catch.hpp>
 
@@ -198,4 +199,49 @@ TEST_CASE("two-mass fit: 95 % intervals cover the truth over seeds (closed loop,
   }
   CHECK(total >= 88);
   CHECK(total <= 99);
+}
+
+TEST_CASE("periodic and Welch estimates are exact for a known system at any length, primes included") {
+  // y[k] = 2 u[k-1]: H = 2 exp(-j w / rate) at every line; a random periodic
+  // input whose period is smooth (1000), prime (1009) or a large prime (100003).
+  for (std::size_t period : {std::size_t{1000}, std::size_t{1009}, std::size_t{100003}}) {
+    std::mt19937_64 rng(period);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    std::vector<double> one(period);
+    for (auto& v : one) v = normal(rng);
+    FrequencyRecord record;
+    for (std::size_t i = 0; i < 5 * period; ++i) record.input.push_back(one[i % period]);
+    record.output.push_back(2.0 * one[period - 1]);
+    for (std::size_t i = 1; i < record.input.size(); ++i) record.output.push_back(2.0 * record.input[i - 1]);
+    const double rate = 1000.0;
+    const FrequencyResponse r = EstimateFrequencyResponse({record}, rate, {});
+    REQUIRE(r.method == FrequencyMethod::kPeriodic);
+    // Every line (a random line below 1e-3 of the largest counts as not excited).
+    REQUIRE(static_cast<double>(r.frequency.size()) >= 0.999 * static_cast<double>(period / 2));
+    double worst = 0.0;
+    for (std::size_t b = 0; b < r.frequency.size(); ++b) {
+      const std::complex<double> expected = 2.0 * std::exp(std::complex<double>(0.0, -2.0 * M_PI * r.frequency[b] / rate));
+      worst = std::max(worst, std::abs(r.response[b] - expected));
+    }
+    INFO("period " << period);
+    CHECK(worst < 1e-8);
+  }
+  // Welch with a prime segment length on white noise through the same system.
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  FrequencyRecord record;
+  for (int i = 0; i < 40000; ++i) record.input.push_back(normal(rng));
+  record.output.push_back(0.0);
+  for (std::size_t i = 1; i < record.input.size(); ++i) record.output.push_back(2.0 * record.input[i - 1]);
+  FrequencyResponseOptions options;
+  options.method = FrequencyMethod::kWelch;
+  options.resolution = 1000.0 / 4001.0;  // 4001 samples, prime
+  const FrequencyResponse w = EstimateFrequencyResponse({record}, 1000.0, options);
+  REQUIRE(w.resolution == 1000.0 / 4001.0);
+  double worst = 0.0;
+  for (std::size_t b = 0; b < w.frequency.size(); b += 97) {
+    const std::complex<double> expected = 2.0 * std::exp(std::complex<double>(0.0, -2.0 * M_PI * w.frequency[b] / 1000.0));
+    worst = std::max(worst, std::abs(w.response[b] - expected) / 2.0);
+  }
+  CHECK(worst < 0.05);  // the one-sample delay against the Hann window's length
 }
