@@ -6,7 +6,6 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
-#include "fit/adequacy.h"
 #include "signal/butterworth.h"
 
 namespace driveid {
@@ -40,8 +39,7 @@ void FitResponse(FrfResult& out, const JointSection& start, const FrfOptions& op
                                out.link->log_magnitude_std, out.link->phase_std};
     }
     out.fit = FitTwoMassResponse(motor_data, link_data ? &*link_data : nullptr, start, fit_options);
-    const auto low = CheckFitPercent(out.fit->fit);
-    out.warnings.insert(out.warnings.end(), low.begin(), low.end());
+    // The fit core has added its low-fit warnings already; the response's own join them.
     out.fit->fit.warnings.insert(out.fit->fit.warnings.end(), out.warnings.begin(), out.warnings.end());
   }
 }

@@ -197,7 +197,7 @@ JointFitOutput FitJoint(const std::vector<JointLog>& logs, const JointSection& s
   // Several logs: each alone too, and whether they agree (docs/models.md#adequacy).
   if (options.per_log && logs.size() > 1) {
     JointFitOptions alone = options;
-    alone.per_log = false;
+    alone.per_log = alone.sensitivity = false;  // only its estimates are kept
     for (const auto& log : logs) {
       EstimateSet estimates{log.path, {}, ""};
       try {
