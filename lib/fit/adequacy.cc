@@ -104,6 +104,21 @@ std::vector<HeterogeneityTest> TestHeterogeneity(const std::vector<EstimateSet>&
   return tests;
 }
 
+void AddPerLogFits(FitResult& fit, const std::vector<std::string>& labels,
+                   const std::function<std::vector<ParameterEstimate>(std::size_t)>& fit_one) {
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    EstimateSet estimates{labels[i], {}, ""};
+    try {
+      estimates.estimates = fit_one(i);
+    } catch (const std::exception& e) {
+      estimates.failure = e.what();
+    }
+    fit.per_log.push_back(std::move(estimates));
+  }
+  fit.heterogeneity = TestHeterogeneity(fit.per_log);
+  for (auto& w : HeterogeneityWarnings(fit.heterogeneity)) fit.warnings.push_back(std::move(w));
+}
+
 std::vector<std::string> HeterogeneityWarnings(const std::vector<HeterogeneityTest>& tests) {
   std::vector<std::string> warnings;
   for (const auto& t : tests) {

@@ -9,6 +9,7 @@
 //    their uncertainties (Cochran's Q, I^2).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,21 @@ std::vector<HeterogeneityTest> TestHeterogeneity(const std::vector<EstimateSet>&
 /// than 2 of their std and more than 5 %; `cutoff` [Hz] the fit's own,
 /// `advice` what to try.
 std::vector<std::string> ProcessingWarnings(const FitResult& fit, double cutoff, const std::string& advice);
+
+/// Several logs: fits each alone through `fit_one(i)` (its estimates of the
+/// shared parameters; an exception is recorded as that log's failure) into
+/// fit.per_log labelled by `labels`, tests them for agreement
+/// (fit.heterogeneity) and adds a warning where they disagree.
+void AddPerLogFits(FitResult& fit, const std::vector<std::string>& labels,
+                   const std::function<std::vector<ParameterEstimate>(std::size_t)>& fit_one);
+
+/// The paths of logs, as labels of their per-log fits.
+template <class Log>
+std::vector<std::string> LogLabels(const std::vector<Log>& logs) {
+  std::vector<std::string> labels;
+  for (const auto& log : logs) labels.push_back(log.path);
+  return labels;
+}
 
 /// A warning for each test with p below 0.001.
 std::vector<std::string> HeterogeneityWarnings(const std::vector<HeterogeneityTest>& tests);

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "fit/adequacy.h"
 #include "fit/axis_rows.h"
 #include "fit/linear_regression.h"
 #include "fit/omitted_terms.h"
@@ -270,17 +271,7 @@ AxisFitOutput FitAxisAtCutoff(const std::vector<AxisLog>& logs, const AxisSectio
   if (options.per_log && logs.size() > 1) {
     AxisFitOptions alone = options;
     alone.per_log = false;
-    for (const auto& log : logs) {
-      EstimateSet estimates{log.path, {}, ""};
-      try {
-        estimates.estimates = FitAxis({log}, start, alone).fit.estimates;
-      } catch (const std::exception& e) {
-        estimates.failure = e.what();
-      }
-      out.fit.per_log.push_back(std::move(estimates));
-    }
-    out.fit.heterogeneity = TestHeterogeneity(out.fit.per_log);
-    for (auto& w : HeterogeneityWarnings(out.fit.heterogeneity)) out.fit.warnings.push_back(std::move(w));
+    AddPerLogFits(out.fit, LogLabels(logs), [&](std::size_t i) { return FitAxis({logs[i]}, start, alone).fit.estimates; });
   }
   std::vector<std::string> nonnegative;
   for (int j = 0; j < kModelColumns; ++j) {

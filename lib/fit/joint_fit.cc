@@ -198,23 +198,15 @@ JointFitOutput FitJoint(const std::vector<JointLog>& logs, const JointSection& s
   if (options.per_log && logs.size() > 1) {
     JointFitOptions alone = options;
     alone.per_log = alone.sensitivity = false;  // only its estimates are kept
-    for (const auto& log : logs) {
-      EstimateSet estimates{log.path, {}, ""};
-      try {
-        estimates.estimates = FitJoint({log}, start, alone).fit.estimates;
-        // Each log's own offset is not a shared parameter to compare.
-        if (per_log_offset) {
-          auto& e = estimates.estimates;
-          e.erase(std::remove_if(e.begin(), e.end(), [&](const ParameterEstimate& x) { return x.name == offset_key; }),
-                  e.end());
-        }
-      } catch (const std::exception& e) {
-        estimates.failure = e.what();
+    AddPerLogFits(out.fit, LogLabels(logs), [&](std::size_t i) {
+      auto e = FitJoint({logs[i]}, start, alone).fit.estimates;
+      // Each log's own offset is not a shared parameter to compare.
+      if (per_log_offset) {
+        e.erase(std::remove_if(e.begin(), e.end(), [&](const ParameterEstimate& x) { return x.name == offset_key; }),
+                e.end());
       }
-      out.fit.per_log.push_back(std::move(estimates));
-    }
-    out.fit.heterogeneity = TestHeterogeneity(out.fit.per_log);
-    for (auto& w : HeterogeneityWarnings(out.fit.heterogeneity)) out.fit.warnings.push_back(std::move(w));
+      return e;
+    });
   }
   // The same fit at half and twice the cutoff; a resonance near the cutoff.
   if (options.sensitivity) {
@@ -246,7 +238,7 @@ JointFitOutput FitJoint(const std::vector<JointLog>& logs, const JointSection& s
                                              out.cutoff, resonance));
     }
   }
-  RequireDetermined(out.fit, nonnegative, kMaxRelativeStd, out.fit.warnings);
+  if (options.refuse_undetermined) RequireDetermined(out.fit, nonnegative, kMaxRelativeStd, out.fit.warnings);
   out.model = regression.Predict(values);
   return out;
 }

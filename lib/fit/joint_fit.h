@@ -28,6 +28,8 @@ struct JointFitOptions {
   double min_rate_fraction = 0.01;
   bool per_log = true;  ///< several logs: each fitted alone too, and tested for agreement
   bool sensitivity = true;  ///< the same fit at half and twice the cutoff (adequacy.h ProcessingWarnings)
+  /// false: estimates however uncertain (start values of an output-error fit).
+  bool refuse_undetermined = true;
   FitOptions fit;
 };
 

@@ -8,14 +8,14 @@
 namespace driveid {
 
 const std::vector<std::string>& JointLogColumns() {
-  static const std::vector<std::string> columns = {"t", "q_motor", "q_link", "?tau|i", "?tau_link"};
+  static const std::vector<std::string> columns = {"t", "q_motor", "q_link", "?tau|i", "?tau_link", "?qd_motor", "?qd_link"};
   return columns;
 }
 
 JointLog MakeJointLog(CsvLog csv, double torque_constant) {
   const std::string path = csv.label();
   JointLog log{path, std::move(csv.columns[0]), std::move(csv.columns[1]), std::move(csv.columns[2]),
-               std::move(csv.columns[3]), std::move(csv.columns[4])};
+               std::move(csv.columns[3]), std::move(csv.columns[4]), std::move(csv.columns[5]), std::move(csv.columns[6])};
   if (log.torque.empty() && log.link_torque.empty()) {
     throw InputError(fmt::format("{}: a joint log needs the motor torque tau (or the current i) or the shaft torque "
                                  "tau_link (map them with --col tau=COLUMN, --col tau_link=COLUMN)",

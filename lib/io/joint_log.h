@@ -1,6 +1,7 @@
 // Elastic-joint logs (docs/formats.md#logs): t, q_motor (motor shaft angle),
 // q_link (link angle), and tau (motor shaft torque; or i with joint.k_t)
-// or tau_link (a torque sensor in the elastic element) or both.
+// or tau_link (a torque sensor in the elastic element) or both; optional
+// rates qd_motor, qd_link (output error fits them too).
 #pragma once
 
 #include <string>
@@ -17,6 +18,8 @@ struct JointLog {
   std::vector<double> link_position;   ///< q_link [rad]
   std::vector<double> torque;          ///< tau [N m], motor shaft (from i x k_t if given as current); empty: not logged
   std::vector<double> link_torque;     ///< tau_link [N m], shaft torque; empty: not logged
+  std::vector<double> motor_rate;      ///< qd_motor [rad/s], motor shaft; empty: not logged
+  std::vector<double> link_rate;       ///< qd_link [rad/s]; empty: not logged
 };
 
 /// A synthetic joint experiment as `simulate joint` writes it: the joint

@@ -1,0 +1,367 @@
+#include "fit/joint_oe_fit.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "fit/adequacy.h"
+#include "fit/axis_rows.h"
+#include "fit/joint_fit.h"
+#include "sim/joint_simulator.h"
+
+namespace driveid {
+namespace {
+
+// Samples over which a start rate is taken when it is not logged.
+constexpr std::size_t kStartRateSamples = 10;
+
+enum class Channel { kMotorAngle, kLinkAngle, kMotorRate, kLinkRate, kShaftTorque };
+
+struct OeChannel {
+  Channel kind;
+  const std::vector<double>* measured = nullptr;
+  double weight = 1.0;
+  int first_row = 0;
+  std::vector<double> weighted;  // measured x weight, for fit %
+  std::string name;
+};
+
+struct OeLog {
+  const JointLog* log = nullptr;
+  std::vector<double> torque;  // n tau, link side
+  std::array<double, 4> x0{};
+  std::vector<OeChannel> channels;
+  int offset_parameter = -1;  // index of its tau_l0 among the fit's parameters
+};
+
+double StartRate(const std::vector<double>& time, const std::vector<double>& angle, const std::vector<double>& rate) {
+  if (!rate.empty()) return rate.front();
+  const std::size_t m = std::min(kStartRateSamples, time.size() - 1);
+  return (angle[m] - angle[0]) / (time[m] - time[0]);
+}
+
+class JointOeResiduals final : public ResidualModel {
+ public:
+  JointOeResiduals(std::vector<OeLog>& logs, const JointParameters& fixed, std::vector<int> terms, int offsets,
+                   double gear_ratio, double angle_tolerance, double rate_tolerance)
+      : logs_(logs), params_(fixed), terms_(terms), offsets_(offsets), n_(gear_ratio),
+        simulator_(std::move(terms), angle_tolerance, rate_tolerance) {
+    for (auto& l : logs_) {
+      for (auto& c : l.channels) {
+        c.first_row = rows_;
+        rows_ += static_cast<int>(l.log->time.size());
+      }
+    }
+    for (std::size_t j = 0; j < terms_.size(); ++j) {
+      if (terms_[j] == kJointStiffness) stiffness_ = static_cast<int>(j);
+      if (terms_[j] == kJointDamping) damping_ = static_cast<int>(j);
+    }
+  }
+  int residual_count() const override { return rows_; }
+  int parameter_count() const { return static_cast<int>(terms_.size()) + offsets_; }
+
+  bool Evaluate(const double* parameters, double* residuals, double* jacobian) override {
+    Set(parameters);
+    try {
+      for (const auto& l : logs_) {
+        simulator_.Simulate(params_, l.log->time, l.torque, l.x0, jacobian != nullptr, &response_);
+        for (const auto& c : l.channels) Fill(l, c, parameters, residuals, jacobian);
+      }
+    } catch (const IdentificationError& e) {
+      last_failure_ = e.what();
+      return false;
+    }
+    for (int i = 0; i < rows_; ++i) {
+      if (!std::isfinite(residuals[i])) {
+        last_failure_ = "the simulated joint is not finite";
+        return false;
+      }
+    }
+    last_failure_.clear();
+    return true;
+  }
+  std::string LastFailure() const override { return last_failure_; }
+
+  /// The simulated angles of log i (log units) at `parameters`.
+  void SimulateAngles(const double* parameters, std::size_t i, std::vector<double>* motor, std::vector<double>* link) {
+    Set(parameters);
+    const OeLog& l = logs_[i];
+    simulator_.Simulate(params_, l.log->time, l.torque, l.x0, false, &response_);
+    const std::size_t samples = l.log->time.size();
+    motor->resize(samples);
+    link->resize(samples);
+    for (std::size_t k = 0; k < samples; ++k) {
+      (*motor)[k] = n_ * response_.state[4 * k];
+      (*link)[k] = response_.state[4 * k + 2];
+    }
+  }
+
+ private:
+  void Set(const double* parameters) {
+    for (std::size_t j = 0; j < terms_.size(); ++j) params_.*(JointParameterTable()[terms_[j]].in_model) = parameters[j];
+  }
+
+  // Model value of a channel from the state x and its derivative from the
+  // state sensitivity s (d x / d p).
+  double Value(Channel kind, const double* x, double offset) const {
+    switch (kind) {
+      case Channel::kMotorAngle: return n_ * x[0];
+      case Channel::kMotorRate: return n_ * x[1];
+      case Channel::kLinkAngle: return x[2];
+      case Channel::kLinkRate: return x[3];
+      case Channel::kShaftTorque:
+        return params_.stiffness * (x[0] - x[2]) + params_.damping * (x[1] - x[3]) + offset;
+    }
+    return 0.0;
+  }
+
+  void Fill(const OeLog& l, const OeChannel& c, const double* parameters, double* residuals, double* jacobian) const {
+    const std::size_t samples = l.log->time.size(), p = terms_.size(), columns = p + static_cast<std::size_t>(offsets_);
+    const double offset = l.offset_parameter >= 0 ? parameters[l.offset_parameter] : params_.link_torque_offset;
+    const std::vector<double>& measured = *c.measured;
+    for (std::size_t k = 0; k < samples; ++k) {
+      const double* x = &response_.state[4 * k];
+      const std::size_t row = static_cast<std::size_t>(c.first_row) + k;
+      residuals[row] = c.weight * (Value(c.kind, x, offset) - measured[k]);
+      if (jacobian == nullptr) continue;
+      double* out = jacobian + row * columns;
+      std::fill(out, out + columns, 0.0);
+      for (std::size_t j = 0; j < p; ++j) {
+        const double* s = &response_.sensitivity[(k * p + j) * 4];
+        double d = Value(c.kind, s, 0.0);  // linear in the state (tau_link: at fixed k, d)
+        if (c.kind == Channel::kShaftTorque) {
+          if (static_cast<int>(j) == stiffness_) d += x[0] - x[2];
+          if (static_cast<int>(j) == damping_) d += x[1] - x[3];
+        }
+        out[j] = c.weight * d;
+      }
+      if (c.kind == Channel::kShaftTorque && l.offset_parameter >= 0) out[l.offset_parameter] = c.weight;
+    }
+  }
+
+  std::vector<OeLog>& logs_;
+  JointParameters params_;
+  std::vector<int> terms_;
+  int offsets_ = 0;
+  double n_ = 1.0;
+  int stiffness_ = -1, damping_ = -1;
+  JointSimulator simulator_;
+  JointStateResponse response_;
+  int rows_ = 0;
+  std::string last_failure_;
+};
+
+std::string OeAdvice(const std::vector<std::string>& involved) {
+  std::vector<std::string> advice;
+  const auto has = [&](const char* key) { return std::find(involved.begin(), involved.end(), key) != involved.end(); };
+  if (has("stiffness") || has("damping")) {
+    advice.push_back("stiffness and damping need the joint to deflect: excite it across its resonance");
+  }
+  if (has("offset") && has("motor_coulomb")) {
+    advice.push_back("the offset and Coulomb friction separate only with motion in both directions");
+  }
+  if (has("gravity_cos") || has("gravity_sin")) advice.push_back("gravity terms need the link to move through angles");
+  return fmt::format("{}", fmt::join(advice, "; "));
+}
+
+// The logs' channels, start states and first-pass weights.
+std::vector<OeLog> PrepareLogs(const std::vector<JointLog>& logs, double n) {
+  std::vector<OeLog> oe(logs.size());
+  for (std::size_t i = 0; i < logs.size(); ++i) {
+    const JointLog& log = logs[i];
+    if (log.time.size() < kMinAxisLogSamples) {
+      throw InputError(fmt::format("{}: {} samples: the joint fit needs at least {}", log.path, log.time.size(),
+                                   kMinAxisLogSamples));
+    }
+    if (log.torque.empty()) {
+      throw InputError(fmt::format("{}: --method oe simulates the joint from the motor torque tau (or i), which the "
+                                   "log lacks: use --method id",
+                                   log.path));
+    }
+    OeLog& l = oe[i];
+    l.log = &log;
+    for (double tau : log.torque) l.torque.push_back(n * tau);
+    l.x0 = {log.motor_position.front() / n, StartRate(log.time, log.motor_position, log.motor_rate) / n,
+            log.link_position.front(), StartRate(log.time, log.link_position, log.link_rate)};
+    const auto add = [&](Channel kind, const std::vector<double>& measured, const char* name) {
+      if (measured.empty()) return;
+      const double spread = CalcRmsDeviation(measured);
+      if (!(spread > 0.0)) {
+        if (kind == Channel::kMotorAngle || kind == Channel::kLinkAngle) {
+          throw IdentificationError(fmt::format("{}: {} never changes: output error has nothing to fit", log.path, name));
+        }
+        return;
+      }
+      l.channels.push_back({kind, &measured, 1.0 / spread, 0, {}, fmt::format("{}:{}", log.path, name)});
+    };
+    add(Channel::kMotorAngle, log.motor_position, "q_motor");
+    add(Channel::kLinkAngle, log.link_position, "q_link");
+    add(Channel::kMotorRate, log.motor_rate, "qd_motor");
+    add(Channel::kLinkRate, log.link_rate, "qd_link");
+    add(Channel::kShaftTorque, log.link_torque, "tau_link");
+  }
+  return oe;
+}
+
+void SetWeighted(std::vector<OeLog>& oe, std::vector<FitChannel>* channels) {
+  channels->clear();
+  for (auto& l : oe) {
+    for (auto& c : l.channels) {
+      c.weighted.clear();
+      for (double v : *c.measured) c.weighted.push_back(v * c.weight);
+      channels->push_back({c.name, c.first_row, static_cast<int>(c.weighted.size()), c.weighted.data()});
+    }
+  }
+}
+
+// Integrator tolerances: the angles resolve the smallest measured deflection
+// spread by 1e-6, the rates the same over 1 ms.
+std::array<double, 2> Tolerances(const std::vector<JointLog>& logs, double n) {
+  double deflection = HUGE_VAL;
+  for (const auto& log : logs) {
+    std::vector<double> d(log.time.size());
+    for (std::size_t k = 0; k < d.size(); ++k) d[k] = log.motor_position[k] / n - log.link_position[k];
+    const double spread = CalcRmsDeviation(d);
+    if (spread > 0.0) deflection = std::min(deflection, spread);
+  }
+  if (!std::isfinite(deflection)) deflection = 1e-6;
+  const double angle = std::max(1e-6 * deflection, 1e-14);
+  return {angle, 1e3 * angle};
+}
+
+}  // namespace
+
+std::vector<std::string> JointOeDefaultFree(const std::vector<JointLog>& logs) {
+  std::vector<std::string> free = JointDefaultFree(logs);
+  const std::string link_coulomb = KeyOf(JointParameterTable(), &JointParameters::link_coulomb);
+  free.erase(std::remove(free.begin(), free.end(), link_coulomb), free.end());
+  return free;
+}
+
+JointOeOutput FitJointOutputError(const std::vector<JointLog>& logs, const JointSection& start,
+                                  const JointParameters* initial, const JointOeOptions& given) {
+  if (logs.empty()) throw OptionError("no logs given");
+  JointOeOptions options = given;
+  if (options.free.empty()) options.free = JointOeDefaultFree(logs);
+  CheckFreeNames(JointParameterTable(), "joint", options.free);
+  if (!start.gear_ratio || !(*start.gear_ratio > 0.0)) {
+    throw InputError("--params: joint.gear_ratio is needed (q_motor = n theta_m; n = 1 for a direct drive)");
+  }
+  const double n = *start.gear_ratio;
+  const std::string link_coulomb = KeyOf(JointParameterTable(), &JointParameters::link_coulomb);
+  const std::string offset_key = KeyOf(JointParameterTable(), &JointParameters::link_torque_offset);
+  const auto is_free = [&](const std::string& key) {
+    return std::find(options.free.begin(), options.free.end(), key) != options.free.end();
+  };
+  if (is_free(link_coulomb) || start.link_coulomb.value_or(0.0) != 0.0) {
+    throw OptionError("--method oe does not simulate the link's Coulomb friction: leave link_coulomb out of --free "
+                      "and at 0 in --params, or use --method id");
+  }
+  std::vector<OeLog> oe = PrepareLogs(logs, n);
+
+  // Start and fixed values; the free terms in table order, then tau_l0.
+  JointParameters fixed;
+  std::vector<int> terms;
+  std::vector<FitParameter> parameters;
+  std::vector<std::string> needed;
+  for (int j = 0; j <= kJointGravitySin; ++j) {
+    const auto& row = JointParameterTable()[static_cast<std::size_t>(j)];
+    const std::optional<double> given_value = start.*(row.in_section);
+    double value = given_value.value_or(0.0);
+    if (is_free(row.spec.key)) {
+      const double guess = initial != nullptr ? (*initial).*(row.in_model) : value;
+      const bool positive = j == kJointMotorInertia || j == kJointLinkInertia || j == kJointStiffness;
+      value = positive && !(guess > 0.0) ? value : std::max(guess, row.spec.lower_bound);
+      if (positive && !(value > 0.0)) {
+        throw InputError(fmt::format("--method oe: joint.{} needs a start value > 0 in --params (the inverse-dynamics "
+                                     "start did not give one)",
+                                     row.spec.key));
+      }
+      terms.push_back(j);
+      parameters.push_back({row.spec.key, value, row.spec.lower_bound, value != 0.0 ? 0.0 : 1e-3});
+    } else if (!given_value && row.spec.default_free && j != kJointLinkCoulomb) {
+      needed.push_back(fmt::format("joint.{}", row.spec.key));
+    }
+    fixed.*(row.in_model) = value;
+  }
+  if (!needed.empty()) {
+    throw InputError(fmt::format("--params: {} {} needed (fixed in this fit); add to the joint section",
+                                 fmt::join(needed, ", "), needed.size() > 1 ? "are" : "is"));
+  }
+  if (!(fixed.motor_inertia > 0.0) || !(fixed.link_inertia > 0.0)) {
+    throw InputError("--method oe: the joint needs both inertias > 0: give joint.motor_inertia and joint.link_inertia");
+  }
+  fixed.link_torque_offset = start.link_torque_offset.value_or(0.0);
+  int offsets = 0;
+  if (is_free(offset_key)) {
+    const double value = initial != nullptr ? initial->link_torque_offset : fixed.link_torque_offset;
+    for (std::size_t i = 0; i < oe.size(); ++i) {
+      if (logs[i].link_torque.empty()) continue;
+      oe[i].offset_parameter = static_cast<int>(terms.size()) + offsets++;
+      parameters.push_back({logs.size() > 1 ? fmt::format("{}_{}", offset_key, i + 1) : offset_key, value,
+                            -HUGE_VAL, 0.0});
+    }
+  }
+
+  const auto tolerance = Tolerances(logs, n);
+  JointOeResiduals residuals(oe, fixed, terms, offsets, n, tolerance[0], tolerance[1]);
+  std::vector<FitChannel> channels;
+  SetWeighted(oe, &channels);
+  FitOptions fit_options = options.fit;
+  if (!fit_options.advice) fit_options.advice = OeAdvice;
+  // First pass by the channels' spread, second by their residual noise.
+  FitOptions first_pass = fit_options;
+  first_pass.identifiability_threshold = 0.0;  // judged on the final fit
+  const FitResult first = FitLeastSquares(residuals, parameters, channels, first_pass);
+  for (std::size_t j = 0; j < parameters.size(); ++j) parameters[j].initial = first.estimates[j].value;
+  {
+    std::size_t c = 0;
+    for (auto& l : oe) {
+      for (auto& ch : l.channels) {
+        const double rmse = first.channels[c++].rmse / ch.weight;
+        if (rmse > 0.0) ch.weight = 1.0 / rmse;
+      }
+    }
+  }
+  SetWeighted(oe, &channels);
+  JointOeOutput out;
+  out.fit = FitLeastSquares(residuals, parameters, channels, fit_options);
+  // RMSE back in the channels' units (fit % and lag-1 do not depend on the weight).
+  {
+    std::size_t c = 0;
+    for (const auto& l : oe) {
+      for (const auto& ch : l.channels) out.fit.channels[c++].rmse /= ch.weight;
+    }
+  }
+  std::vector<double> estimate;
+  for (const auto& e : out.fit.estimates) estimate.push_back(e.value);
+  out.params = fixed;
+  for (std::size_t j = 0; j < terms.size(); ++j) out.params.*(JointParameterTable()[terms[j]].in_model) = estimate[j];
+  if (offsets > 0) out.params.link_torque_offset = estimate[terms.size()];
+  out.motor_angle.resize(oe.size());
+  out.link_angle.resize(oe.size());
+  for (std::size_t i = 0; i < oe.size(); ++i) {
+    residuals.SimulateAngles(estimate.data(), i, &out.motor_angle[i], &out.link_angle[i]);
+  }
+  if (options.per_log && logs.size() > 1) {
+    JointOeOptions alone = options;
+    alone.per_log = false;
+    AddPerLogFits(out.fit, LogLabels(logs), [&](std::size_t i) {
+      auto e = FitJointOutputError({logs[i]}, start, initial, alone).fit.estimates;
+      e.erase(std::remove_if(e.begin(), e.end(), [&](const ParameterEstimate& x) { return x.name == offset_key; }),
+              e.end());
+      return e;
+    });
+  }
+  std::vector<std::string> nonnegative;
+  for (const auto& row : JointParameterTable()) {
+    if (row.in_model != nullptr && row.spec.lower_bound == 0.0) nonnegative.emplace_back(row.spec.key);
+  }
+  RequireDetermined(out.fit, nonnegative, kMaxRelativeStd, out.fit.warnings);
+  return out;
+}
+
+}  // namespace driveid

@@ -1,0 +1,50 @@
+// Output-error identification of the elastic joint
+// (docs/models.md#joint-output-error): simulate the two-mass joint from the
+// logged motor torque (held between samples) with motor Coulomb friction
+// that truly sticks (sim/joint_simulator.h), from the logged initial state
+// (angles of the first sample; rates qd_motor, qd_link if logged, else the
+// slope of the first 10 samples), and fit the free terms to the measured
+// q_motor and q_link, to qd_motor and qd_link where logged and to the shaft
+// torque tau_link where logged, jointly over all logs, through the shared
+// fit core (robust covariance, identifiability). Two passes: the channels
+// first weighted by 1 / RMS of their measured deviation from the mean, then
+// by 1 / RMS of that fit's residuals (each channel counts by its noise).
+// The link's Coulomb friction is not simulated: it must be 0.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "fit/least_squares.h"
+#include "io/joint_log.h"
+#include "models/joint.h"
+
+namespace driveid {
+
+struct JointOeOptions {
+  /// Empty: JointOeDefaultFree.
+  std::vector<std::string> free;
+  bool per_log = true;  ///< several logs: each fitted alone too, and tested for agreement
+  FitOptions fit;
+};
+
+/// The inverse-dynamics default (JointDefaultFree) without link_coulomb.
+std::vector<std::string> JointOeDefaultFree(const std::vector<JointLog>& logs);
+
+struct JointOeOutput {
+  JointParameters params;
+  FitResult fit;
+  /// Simulated q_motor and q_link per log, at the log's samples (log units).
+  std::vector<std::vector<double>> motor_angle, link_angle;
+};
+
+/// Fits the free terms; fixed ones from `start` (as FitJoint: J_m, J_l, k,
+/// d, friction and offset must be given when fixed). `initial`: start values
+/// of the free terms (e.g. the inverse-dynamics fit); an inertia or
+/// stiffness <= 0 there starts from `start`. Needs joint.gear_ratio and the
+/// motor torque in every log. Throws OptionError, InputError,
+/// IdentificationError (naming the parameters).
+JointOeOutput FitJointOutputError(const std::vector<JointLog>& logs, const JointSection& start,
+                                  const JointParameters* initial, const JointOeOptions& options);
+
+}  // namespace driveid
