@@ -33,22 +33,61 @@ struct OeLog {
   const JointLog* log = nullptr;
   std::vector<double> torque;  // n tau, link side
   std::array<double, 4> x0{};
+  std::array<int, 4> start_parameter{-1, -1, -1, -1};  // index of x_i(t_0) among the fit's parameters; -1: fixed
+  bool motor_moving = false;  // whether its motor's start rate is estimated
   std::vector<OeChannel> channels;
   int offset_parameter = -1;  // index of its tau_l0 among the fit's parameters
 };
 
-double StartRate(const std::vector<double>& time, const std::vector<double>& angle, const std::vector<double>& rate) {
-  if (!rate.empty()) return rate.front();
-  const std::size_t m = std::min(kStartRateSamples, time.size() - 1);
-  return (angle[m] - angle[0]) / (time[m] - time[0]);
+// The simulator's terms: the fit's free joint terms, then the initial state.
+std::vector<int> SimulatedTerms(std::vector<int> terms) {
+  for (int t : {kJointInitialMotorAngle, kJointInitialMotorRate, kJointInitialLinkAngle, kJointInitialLinkRate}) {
+    terms.push_back(t);
+  }
+  return terms;
+}
+
+// A log's start rate: the logged rate, else the slope of a line through the
+// first samples; `moving` when that slope is more than 5 of its standard
+// errors from 0 (a log that starts at rest leaves a sticking motor's start
+// rate at 0: nothing in the log could determine it).
+struct StartRate {
+  double value = 0.0;
+  bool moving = false;
+};
+StartRate CalcStartRate(const std::vector<double>& time, const std::vector<double>& angle,
+                        const std::vector<double>& rate) {
+  const std::size_t m = std::min(kStartRateSamples, time.size());
+  double mean_t = 0.0, mean_q = 0.0;
+  for (std::size_t k = 0; k < m; ++k) {
+    mean_t += time[k] / static_cast<double>(m);
+    mean_q += angle[k] / static_cast<double>(m);
+  }
+  double sxx = 0.0, sxy = 0.0;
+  for (std::size_t k = 0; k < m; ++k) {
+    sxx += (time[k] - mean_t) * (time[k] - mean_t);
+    sxy += (time[k] - mean_t) * (angle[k] - mean_q);
+  }
+  StartRate out;
+  if (!(sxx > 0.0)) return out;
+  const double slope = sxy / sxx;
+  double scatter = 0.0;
+  for (std::size_t k = 0; k < m; ++k) {
+    const double r = angle[k] - mean_q - slope * (time[k] - mean_t);
+    scatter += r * r;
+  }
+  const double standard_error = std::sqrt(scatter / static_cast<double>(m - 2) / sxx);
+  out.value = rate.empty() ? slope : rate.front();
+  out.moving = std::abs(slope) > 5.0 * standard_error;
+  return out;
 }
 
 class JointOeResiduals final : public ResidualModel {
  public:
-  JointOeResiduals(std::vector<OeLog>& logs, const JointParameters& fixed, std::vector<int> terms, int offsets,
+  JointOeResiduals(std::vector<OeLog>& logs, const JointParameters& fixed, std::vector<int> terms, int columns,
                    double gear_ratio, double angle_tolerance, double rate_tolerance)
-      : logs_(logs), params_(fixed), terms_(terms), offsets_(offsets), n_(gear_ratio),
-        simulator_(std::move(terms), angle_tolerance, rate_tolerance) {
+      : logs_(logs), params_(fixed), terms_(terms), columns_(columns), n_(gear_ratio),
+        simulator_(SimulatedTerms(std::move(terms)), angle_tolerance, rate_tolerance) {
     for (auto& l : logs_) {
       for (auto& c : l.channels) {
         c.first_row = rows_;
@@ -61,13 +100,12 @@ class JointOeResiduals final : public ResidualModel {
     }
   }
   int residual_count() const override { return rows_; }
-  int parameter_count() const { return static_cast<int>(terms_.size()) + offsets_; }
 
   bool Evaluate(const double* parameters, double* residuals, double* jacobian) override {
     Set(parameters);
     try {
       for (const auto& l : logs_) {
-        simulator_.Simulate(params_, l.log->time, l.torque, l.x0, jacobian != nullptr, &response_);
+        simulator_.Simulate(params_, l.log->time, l.torque, Start(l, parameters), jacobian != nullptr, &response_);
         for (const auto& c : l.channels) Fill(l, c, parameters, residuals, jacobian);
       }
     } catch (const IdentificationError& e) {
@@ -89,7 +127,7 @@ class JointOeResiduals final : public ResidualModel {
   void SimulateAngles(const double* parameters, std::size_t i, std::vector<double>* motor, std::vector<double>* link) {
     Set(parameters);
     const OeLog& l = logs_[i];
-    simulator_.Simulate(params_, l.log->time, l.torque, l.x0, false, &response_);
+    simulator_.Simulate(params_, l.log->time, l.torque, Start(l, parameters), false, &response_);
     const std::size_t samples = l.log->time.size();
     motor->resize(samples);
     link->resize(samples);
@@ -102,6 +140,13 @@ class JointOeResiduals final : public ResidualModel {
  private:
   void Set(const double* parameters) {
     for (std::size_t j = 0; j < terms_.size(); ++j) params_.*(JointParameterTable()[terms_[j]].in_model) = parameters[j];
+  }
+  static std::array<double, 4> Start(const OeLog& l, const double* parameters) {
+    std::array<double, 4> x0 = l.x0;
+    for (std::size_t i = 0; i < 4; ++i) {
+      if (l.start_parameter[i] >= 0) x0[i] = parameters[l.start_parameter[i]];
+    }
+    return x0;
   }
 
   // Model value of a channel from the state x and its derivative from the
@@ -119,7 +164,8 @@ class JointOeResiduals final : public ResidualModel {
   }
 
   void Fill(const OeLog& l, const OeChannel& c, const double* parameters, double* residuals, double* jacobian) const {
-    const std::size_t samples = l.log->time.size(), p = terms_.size(), columns = p + static_cast<std::size_t>(offsets_);
+    const std::size_t samples = l.log->time.size(), p = terms_.size(), columns = static_cast<std::size_t>(columns_);
+    const std::size_t simulated = p + 4;  // sensitivities per sample: the terms, then x(t_0)
     const double offset = l.offset_parameter >= 0 ? parameters[l.offset_parameter] : params_.link_torque_offset;
     const std::vector<double>& measured = *c.measured;
     for (std::size_t k = 0; k < samples; ++k) {
@@ -129,8 +175,12 @@ class JointOeResiduals final : public ResidualModel {
       if (jacobian == nullptr) continue;
       double* out = jacobian + row * columns;
       std::fill(out, out + columns, 0.0);
+      for (std::size_t i = 0; i < 4; ++i) {
+        if (l.start_parameter[i] < 0) continue;
+        out[l.start_parameter[i]] = c.weight * Value(c.kind, &response_.sensitivity[(k * simulated + p + i) * 4], 0.0);
+      }
       for (std::size_t j = 0; j < p; ++j) {
-        const double* s = &response_.sensitivity[(k * p + j) * 4];
+        const double* s = &response_.sensitivity[(k * simulated + j) * 4];
         double d = Value(c.kind, s, 0.0);  // linear in the state (tau_link: at fixed k, d)
         if (c.kind == Channel::kShaftTorque) {
           if (static_cast<int>(j) == stiffness_) d += x[0] - x[2];
@@ -145,7 +195,7 @@ class JointOeResiduals final : public ResidualModel {
   std::vector<OeLog>& logs_;
   JointParameters params_;
   std::vector<int> terms_;
-  int offsets_ = 0;
+  int columns_ = 0;  // parameters: the terms, the logs' tau_l0, the logs' x(t_0)
   double n_ = 1.0;
   int stiffness_ = -1, damping_ = -1;
   JointSimulator simulator_;
@@ -184,8 +234,10 @@ std::vector<OeLog> PrepareLogs(const std::vector<JointLog>& logs, double n) {
     OeLog& l = oe[i];
     l.log = &log;
     for (double tau : log.torque) l.torque.push_back(n * tau);
-    l.x0 = {log.motor_position.front() / n, StartRate(log.time, log.motor_position, log.motor_rate) / n,
-            log.link_position.front(), StartRate(log.time, log.link_position, log.link_rate)};
+    const StartRate motor = CalcStartRate(log.time, log.motor_position, log.motor_rate);
+    l.x0 = {log.motor_position.front() / n, motor.moving ? motor.value / n : 0.0, log.link_position.front(),
+            CalcStartRate(log.time, log.link_position, log.link_rate).value};
+    l.motor_moving = motor.moving;
     const auto add = [&](Channel kind, const std::vector<double>& measured, const char* name) {
       if (measured.empty()) return;
       const double spread = CalcRmsDeviation(measured);
@@ -306,8 +358,25 @@ JointOeOutput FitJointOutputError(const std::vector<JointLog>& logs, const Joint
     }
   }
 
+  // The logs' initial states, nuisance parameters dropped from the result
+  // (a sticking motor that starts at rest keeps its start rate at 0).
+  const std::size_t reported = parameters.size();
+  for (std::size_t i = 0; i < oe.size(); ++i) {
+    static const char* const kNames[] = {"q_motor", "qd_motor", "q_link", "qd_link"};
+    const double scale = std::max(std::abs(oe[i].x0[2]), 1e-3);
+    for (std::size_t s = 0; s < 4; ++s) {
+      if (s == 1 && !oe[i].motor_moving) continue;
+      oe[i].start_parameter[s] = static_cast<int>(parameters.size());
+      const std::string suffix = logs.size() > 1 ? fmt::format("_{}", i + 1) : "";
+      parameters.push_back({fmt::format("{}(t0){}", kNames[s], suffix), oe[i].x0[s], -HUGE_VAL,
+                            s % 2 == 0 ? scale : std::max(std::abs(oe[i].x0[s]), 1e-3)});
+    }
+  }
+  std::vector<bool> keep(parameters.size(), false);
+  std::fill(keep.begin(), keep.begin() + static_cast<std::ptrdiff_t>(reported), true);
+
   const auto tolerance = Tolerances(logs, n);
-  JointOeResiduals residuals(oe, fixed, terms, offsets, n, tolerance[0], tolerance[1]);
+  JointOeResiduals residuals(oe, fixed, terms, static_cast<int>(parameters.size()), n, tolerance[0], tolerance[1]);
   std::vector<FitChannel> channels;
   SetWeighted(oe, &channels);
   FitOptions fit_options = options.fit;
@@ -338,6 +407,7 @@ JointOeOutput FitJointOutputError(const std::vector<JointLog>& logs, const Joint
   }
   std::vector<double> estimate;
   for (const auto& e : out.fit.estimates) estimate.push_back(e.value);
+  DropParameters(out.fit, keep);
   out.params = fixed;
   for (std::size_t j = 0; j < terms.size(); ++j) out.params.*(JointParameterTable()[terms[j]].in_model) = estimate[j];
   if (offsets > 0) out.params.link_torque_offset = estimate[terms.size()];

@@ -442,4 +442,25 @@ FitResult FitBlockLeastSquares(BlockResidualModel& model, const std::vector<FitP
   return result;
 }
 
+void DropParameters(FitResult& fit, const std::vector<bool>& keep) {
+  const std::size_t p = fit.estimates.size();
+  std::vector<std::size_t> kept;
+  for (std::size_t j = 0; j < p; ++j) {
+    if (j >= keep.size() || keep[j]) kept.push_back(j);
+  }
+  const auto shrink = [&](std::vector<double>& matrix) {
+    if (matrix.size() != p * p) return;
+    std::vector<double> smaller;
+    for (std::size_t a : kept) {
+      for (std::size_t b : kept) smaller.push_back(matrix[a * p + b]);
+    }
+    matrix = std::move(smaller);
+  };
+  shrink(fit.covariance);
+  shrink(fit.correlation);
+  std::vector<ParameterEstimate> estimates;
+  for (std::size_t j : kept) estimates.push_back(fit.estimates[j]);
+  fit.estimates = std::move(estimates);
+}
+
 }  // namespace driveid

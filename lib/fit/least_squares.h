@@ -106,6 +106,11 @@ FitResult FitLeastSquares(ResidualModel& model, const std::vector<FitParameter>&
 FitResult FitBlockLeastSquares(BlockResidualModel& model, const std::vector<FitParameter>& parameters,
                                const std::vector<FitChannel>& channels, const FitOptions& options);
 
+/// Removes the estimates whose `keep` is false (nuisance parameters such as
+/// a simulation's initial state) with their rows and columns of the
+/// covariance and correlation; the rest of the fit stays as solved.
+void DropParameters(FitResult& fit, const std::vector<bool>& keep);
+
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
 struct JacobianBlock;  // fit/fit_statistics.h

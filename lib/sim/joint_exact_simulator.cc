@@ -7,8 +7,7 @@
 // The exponentials are computed once per mode and interval length. A mode
 // event inside an interval (the sliding motor's rate reaching 0, the stuck
 // motor's static torque leaving [-c_m, c_m]), seen at the interval's end or
-// its midpoint, is located by safeguarded Newton steps on the exact solution
-// and handled as the integrator's root (the same jump conditions).
+// its midpoint, is located by bisection on the exact solution and handled as the integrator's root (the same jump conditions).
 #include <cmath>
 #include <vector>
 
@@ -129,6 +128,11 @@ class JointExactSimulator::Impl {
     u_ = torque[0];
     mode_ = Sign(x_(kOmegaM));
     if (mode_ == 0) DecideModeAtRest();
+    for (std::size_t j = 0; j < np; ++j) {
+      const int i = InitialStateIndex(terms_[j]);
+      // (a stuck motor's rate is held at 0: no sensitivity to its start value)
+      if (i >= 0 && !(mode_ == 0 && i == kOmegaM)) s_[j](i) = 1.0;
+    }
     switches_ = 0;
     const long budget = kSwitchBudgetConstant + kSwitchesPerSample * static_cast<long>(samples);
     Record(0, out);

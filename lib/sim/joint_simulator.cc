@@ -20,7 +20,7 @@ class JointSimulator::System final : public SensitivityOdeSystem, public HeldInp
  public:
   System(std::vector<int> terms, double angle_tolerance, double rate_tolerance) : terms_(std::move(terms)) {
     for (int j : terms_) {
-      if (j < 0 || j >= kSimulatedTerms || j == kJointLinkCoulomb) {
+      if (j < 0 || j > kJointInitialLinkRate || j == kJointLinkCoulomb) {
         throw std::logic_error("JointSimulator: term not simulated");
       }
     }
@@ -111,6 +111,11 @@ class JointSimulator::System final : public SensitivityOdeSystem, public HeldInp
     u_ = torque[0];
     mode_ = Sign(x_[kOmegaM]);
     if (mode_ == 0) DecideModeAtRest();
+    for (std::size_t j = 0; j < np; ++j) {
+      const int i = InitialStateIndex(terms_[j]);
+      // (a stuck motor's rate is held at 0: no sensitivity to its start value)
+      if (i >= 0 && !(mode_ == 0 && i == kOmegaM)) s_[kStates * j + static_cast<std::size_t>(i)] = 1.0;
+    }
     out_ = out;
     Record(0);
     out->switch_count = RunHeldInput(*integrator_, time, torque, *this, "joint");

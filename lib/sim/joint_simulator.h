@@ -44,7 +44,15 @@ enum JointTerm {
   kJointOffset,
   kJointGravityCos,
   kJointGravitySin,
+  // The initial state x_i(t_0) (sensitivity s_i(t_0) = e_i): the start of a
+  // log is measured, not known, and an output-error fit estimates it.
+  kJointInitialMotorAngle,
+  kJointInitialMotorRate,
+  kJointInitialLinkAngle,
+  kJointInitialLinkRate,
 };
+/// The state index of an initial-state term, or -1 for a parameter.
+inline int InitialStateIndex(int term) { return term >= kJointInitialMotorAngle ? term - kJointInitialMotorAngle : -1; }
 
 struct JointStateResponse {
   /// theta_m, omega_m, theta_l, omega_l at t_k, row-major (sample k, state i).

@@ -17,9 +17,12 @@
 
 #include "fit/axis_fit.h"
 #include "fit/axis_oe_fit.h"
+#include "fit/joint_fit.h"
+#include "fit/joint_oe_fit.h"
 #include "fit/step_fit.h"
 #include "support/paper000.h"
 #include "support/reference_drivetrain.h"
+#include "support/reference_joint_friction.h"
 
 using namespace driveid;
 
@@ -241,4 +244,61 @@ void OutputErrorCoverage(double rho, int seeds, double low, double high) {
 // the axis sticks), which the docs state.
 TEST_CASE("axis output error, torque steps, 13-bit encoder, AR(1) rate noise: intervals cover") {
   OutputErrorCoverage(0.9, 100, 0.85, 0.99);
+}
+
+namespace {
+
+// Output-error joint: closed-loop joints with sticking motor friction from
+// tests/support/reference_joint_friction.h (its own RK4 generator, PI speed
+// loop, quantising encoders, AR(1) 0.7 angle noise), 10 s at 1 kHz each,
+// started from the inverse-dynamics fit as the command does.
+struct JointSamples {
+  std::vector<std::pair<std::string, double>> truth;
+  std::vector<Sample> samples;
+};
+
+JointSamples JointOutputErrorSeeds(unsigned first, unsigned count) {
+  const driveid::testing::FrictionJointTruth truth;
+  JointSamples out;
+  out.truth = {{"motor_inertia", truth.motor_inertia}, {"link_inertia", truth.link_inertia},
+               {"stiffness", truth.stiffness},         {"damping", truth.damping},
+               {"motor_viscous", truth.motor_viscous}, {"motor_coulomb", truth.motor_coulomb},
+               {"link_viscous", truth.link_viscous},   {"offset", truth.offset}};
+  out.samples.resize(out.truth.size());
+  JointSection start;
+  start.gear_ratio = truth.gear_ratio;
+  start.motor_inertia = 0.6;
+  start.link_inertia = 1.0;
+  start.stiffness = 3000.0;
+  start.damping = start.motor_viscous = start.motor_coulomb = 1.0;
+  start.link_viscous = start.link_coulomb = start.offset = 0.0;
+  JointFitOptions id_options;
+  id_options.per_log = id_options.sensitivity = id_options.refuse_undetermined = false;
+  for (unsigned seed = first; seed < first + count; ++seed) {
+    driveid::testing::FrictionJointExperiment experiment;
+    experiment.seed = seed;
+    const auto g = driveid::testing::SimulateFrictionJoint(truth, experiment);
+    JointLog log;
+    log.path = "joint_mc.csv";
+    log.time = g.t;
+    log.motor_position = g.q_motor;
+    log.link_position = g.q_link;
+    log.torque = g.tau;
+    const JointFitOutput id = FitJoint({log}, start, id_options);
+    const FitResult fit = FitJointOutputError({log}, start, &id.params, {}).fit;
+    for (std::size_t j = 0; j < out.truth.size(); ++j) out.samples[j].Add(Find(fit, out.truth[j].first), out.truth[j].second);
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("joint output error, closed loop, sticking motor, quantised AR(1) encoders: intervals cover over 100 seeds") {
+  const JointSamples s = JointOutputErrorSeeds(500, 100);
+  for (std::size_t j = 0; j < s.truth.size(); ++j) {
+    INFO("joint OE, " << s.truth[j].first << ": empirical / reported std = " << s.samples[j].Ratio()
+                      << ", 95 % coverage " << s.samples[j].Coverage());
+    CHECK(s.samples[j].Coverage() >= 0.88);
+    CHECK(s.samples[j].Coverage() <= 0.99);
+  }
 }

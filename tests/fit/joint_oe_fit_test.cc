@@ -4,7 +4,7 @@
 // test's own generator (tests/support/reference_joint_friction.h), refusals.
 #include "fit/joint_oe_fit.h"
 
-#include <chrono>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -99,6 +99,31 @@ const std::vector<int> kTerms = {kJointMotorInertia, kJointLinkInertia, kJointSt
                                  kJointMotorViscous, kJointMotorCoulomb, kJointLinkViscous, kJointOffset};
 }  // namespace
 
+TEST_CASE("joint simulator: the exact path reproduces the independent generator", "[joint-oe]") {
+  // Noise-free, unquantised: the generator's RK4 (200 sub-steps, stops located
+  // by interpolation) against the simulator's matrix exponentials.
+  const FrictionJointTruth truth;
+  FrictionJointExperiment experiment;
+  experiment.noise = 0.0;
+  experiment.motor_counts = experiment.link_counts = 1e15;
+  experiment.substeps = 200;
+  const auto g = driveid::testing::SimulateFrictionJoint(truth, experiment);
+  REQUIRE(g.sticks >= 10);
+  std::vector<double> u;
+  for (double t : g.tau) u.push_back(truth.gear_ratio * t);
+  JointSimulator exact(kTerms, 1e-12, 1e-9);
+  JointStateResponse a;
+  exact.Simulate(TruthParameters(truth), g.t, u, {0, 0, 0, 0}, false, &a);
+  double motor = 0.0, link = 0.0;
+  for (std::size_t k = 0; k < g.t.size(); ++k) {
+    motor = std::max(motor, std::abs(a.state[4 * k] - g.q_motor[k] / truth.gear_ratio));
+    link = std::max(link, std::abs(a.state[4 * k + 2] - g.q_link[k]));
+  }
+  INFO("worst motor " << motor << " rad, link " << link << " rad");
+  CHECK(motor < 1e-8);
+  CHECK(link < 1e-8);
+}
+
 TEST_CASE("joint simulator: exact path, integrator and finite differences agree through stick-slip", "[joint-oe]") {
   const FrictionJointTruth truth;
   FrictionJointExperiment experiment;
@@ -107,27 +132,46 @@ TEST_CASE("joint simulator: exact path, integrator and finite differences agree 
   const JointParameters p = TruthParameters(truth);
   std::vector<double> u;
   for (double t : g.tau) u.push_back(truth.gear_ratio * t);
-  JointSimulator exact(kTerms, 1e-12, 1e-9), integrated(kTerms, 1e-12, 1e-9);
+  // A moving start, so that every initial state matters (a stuck motor's start rate does not).
+  const std::array<double, 4> x0 = {0.01, 0.5, 0.0, 0.2};
+  std::vector<int> terms = kTerms;
+  for (int t : {kJointInitialMotorAngle, kJointInitialMotorRate, kJointInitialLinkAngle, kJointInitialLinkRate}) {
+    terms.push_back(t);
+  }
+  JointSimulator exact(terms, 1e-12, 1e-9), integrated(terms, 1e-12, 1e-9);
   integrated.set_use_integrator(true);
   JointStateResponse a, b;
-  exact.Simulate(p, g.t, u, {0, 0, 0, 0}, true, &a);
-  integrated.Simulate(p, g.t, u, {0, 0, 0, 0}, true, &b);
+  exact.Simulate(p, g.t, u, x0, true, &a);
+  integrated.Simulate(p, g.t, u, x0, true, &b);
   REQUIRE(a.switch_count >= 4);
   CHECK(a.switch_count == b.switch_count);
-  // States: angles to 1e-7 of the deflection's scale (about 2e-3 rad).
-  double worst = 0.0;
+  // States: the integrator agrees to 1e-3 of the deflection's scale (its tolerances).
+  double worst = 0.0, deflection = 0.0;
   for (std::size_t i = 0; i < a.state.size(); ++i) worst = std::max(worst, std::abs(a.state[i] - b.state[i]));
-  CHECK(worst < 1e-7);
+  for (std::size_t k = 0; k < g.t.size(); ++k) {
+    deflection = std::max(deflection, std::abs(a.state[4 * k] - a.state[4 * k + 2]));
+  }
+  INFO("deflection up to " << deflection << " rad");
+  CHECK(worst < 1e-3 * deflection);
   // Sensitivities of the link angle: exact path vs integrator vs central differences.
-  const std::size_t np = kTerms.size(), samples = g.t.size();
+  const std::size_t np = terms.size(), samples = g.t.size();
   for (std::size_t j = 0; j < np; ++j) {
     JointParameters up = p, down = p;
-    const double value = p.*(JointParameterTable()[kTerms[j]].in_model), h = 1e-5 * std::max(std::abs(value), 1e-3);
-    up.*(JointParameterTable()[kTerms[j]].in_model) += h;
-    down.*(JointParameterTable()[kTerms[j]].in_model) -= h;
+    std::array<double, 4> x_up = x0, x_down = x0;
+    const int state = InitialStateIndex(terms[j]);
+    double h = 1e-6;
+    if (state < 0) {
+      const double value = p.*(JointParameterTable()[terms[j]].in_model);
+      h = 1e-5 * std::max(std::abs(value), 1e-3);
+      up.*(JointParameterTable()[terms[j]].in_model) += h;
+      down.*(JointParameterTable()[terms[j]].in_model) -= h;
+    } else {
+      x_up[static_cast<std::size_t>(state)] += h;
+      x_down[static_cast<std::size_t>(state)] -= h;
+    }
     JointStateResponse ru, rd;
-    exact.Simulate(up, g.t, u, {0, 0, 0, 0}, false, &ru);
-    exact.Simulate(down, g.t, u, {0, 0, 0, 0}, false, &rd);
+    exact.Simulate(up, g.t, u, x_up, false, &ru);
+    exact.Simulate(down, g.t, u, x_down, false, &rd);
     double scale = 0.0, error_fd = 0.0, error_integrator = 0.0;
     for (std::size_t k = 0; k < samples; ++k) {
       for (int i : {0, 2}) {
@@ -138,29 +182,10 @@ TEST_CASE("joint simulator: exact path, integrator and finite differences agree 
         error_integrator = std::max(error_integrator, std::abs(s - b.sensitivity[(k * np + j) * 4 + i]));
       }
     }
-    INFO("term " << JointParameterTable()[kTerms[j]].spec.key << ": scale " << scale << ", fd error " << error_fd
+    INFO("term " << terms[j] << ": scale " << scale << ", fd error " << error_fd
                  << ", integrator error " << error_integrator);
     CHECK(error_fd < 1e-3 * scale);
     CHECK(error_integrator < 1e-3 * scale);
   }
 }
 
-TEST_CASE("joint OE simulation timing", "[.bench]") {
-  const FrictionJointTruth truth;
-  FrictionJointExperiment experiment;
-  const auto g = driveid::testing::SimulateFrictionJoint(truth, experiment);
-  JointParameters p;
-  p.motor_inertia = truth.motor_inertia; p.link_inertia = truth.link_inertia; p.stiffness = truth.stiffness;
-  p.damping = truth.damping; p.motor_viscous = truth.motor_viscous; p.motor_coulomb = truth.motor_coulomb;
-  p.link_viscous = truth.link_viscous; p.offset = truth.offset;
-  std::vector<double> u;
-  for (double t : g.tau) u.push_back(truth.gear_ratio * t);
-  JointSimulator sim({0, 1, 2, 3, 4, 5, 6, 8}, 1e-10, 1e-7);
-  JointStateResponse r;
-  for (bool sens : {false, true}) {
-    const auto t0 = std::chrono::steady_clock::now();
-    sim.Simulate(p, g.t, u, {0, 0, 0, 0}, sens, &r);
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    WARN("sens " << sens << ": " << s << " s, switches " << r.switch_count);
-  }
-}
