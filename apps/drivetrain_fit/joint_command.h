@@ -18,6 +18,7 @@ struct JointOptions {
   std::vector<std::string> free;  ///< empty: the default for the logs (JointDefaultFree)
   LogInputCli input;
   double cutoff = 0.0;
+  std::string method = "auto";  ///< auto, id, oe
   FitOutputOptions output;
 };
 

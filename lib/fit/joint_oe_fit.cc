@@ -15,6 +15,10 @@
 namespace driveid {
 namespace {
 
+// A simulated deflection below this fit % (with correlated residuals) draws
+// a warning: the angles' own fit % stays high whatever the spring does.
+constexpr double kLowDeflectionFitPercent = 80.0;
+
 // Samples over which a start rate is taken when it is not logged.
 constexpr std::size_t kStartRateSamples = 10;
 
@@ -415,6 +419,24 @@ JointOeOutput FitJointOutputError(const std::vector<JointLog>& logs, const Joint
   out.link_angle.resize(oe.size());
   for (std::size_t i = 0; i < oe.size(); ++i) {
     residuals.SimulateAngles(estimate.data(), i, &out.motor_angle[i], &out.link_angle[i]);
+  }
+  // The deflection q_motor / n - q_link is what the spring sees; the angles'
+  // fit % hides a poor fit of it behind the motion.
+  for (std::size_t i = 0; i < oe.size(); ++i) {
+    std::vector<double> measured, residual;
+    for (std::size_t k = 0; k < logs[i].time.size(); ++k) {
+      measured.push_back(logs[i].motor_position[k] / n - logs[i].link_position[k]);
+      residual.push_back(measured.back() - (out.motor_angle[i][k] / n - out.link_angle[i][k]));
+    }
+    const ChannelStatistics d = DescribeResiduals(logs[i].path + ":deflection q_motor/n - q_link", measured.data(),
+                                                  residual.data(), static_cast<int>(measured.size()));
+    out.deflection_fit_percent.push_back(d.fit_percent);
+    if (d.fit_percent < kLowDeflectionFitPercent && d.autocorrelation >= kLowFitMinAutocorrelation) {
+      out.fit.warnings.push_back(fmt::format(
+          "low fit: {}: the simulated deflection fits {:.1f} % (below {:.0f} %, residual lag-1 {:.2f}): the model misses what was "
+          "measured (link Coulomb friction, which output error does not simulate? backlash?)",
+          d.name, d.fit_percent, kLowDeflectionFitPercent, d.autocorrelation));
+    }
   }
   if (options.per_log && logs.size() > 1) {
     JointOeOptions alone = options;

@@ -36,6 +36,9 @@ struct JointOeOutput {
   FitResult fit;
   /// Simulated q_motor and q_link per log, at the log's samples (log units).
   std::vector<std::vector<double>> motor_angle, link_angle;
+  /// Per log: fit % of the simulated deflection q_motor / n - q_link (a
+  /// warning below 80 % with correlated residuals).
+  std::vector<double> deflection_fit_percent;
 };
 
 /// Fits the free terms; fixed ones from `start` (as FitJoint: J_m, J_l, k,

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
 #include <unsupported/Eigen/MatrixFunctions>
 #include <fmt/format.h>
 
@@ -119,6 +120,7 @@ class JointExactSimulator::Impl {
     if (samples == 0) return;
     for (int mode = -1; mode <= 1; ++mode) {
       fields_[mode + 1] = Field(p, mode);
+      radius_[mode + 1] = Eigen::EigenSolver<Eigen::Matrix4d>(fields_[mode + 1].a, false).eigenvalues().cwiseAbs().maxCoeff();
       derivatives_[mode + 1].clear();
       for (int term : terms_) derivatives_[mode + 1].push_back(FieldDerivative(p, mode, term));
     }
@@ -163,6 +165,8 @@ class JointExactSimulator::Impl {
     cache_.push_back(Make(length));
     return cache_.back();
   }
+  // Initial-state terms need no block exponential: their sensitivity moves
+  // with the state's own transition.
   Transitions Make(double length) const {
     Transitions t;
     t.length = length;
@@ -171,7 +175,11 @@ class JointExactSimulator::Impl {
     t.state = StateTransition(f, length);
     t.half = StateTransition(f, 0.5 * length);
     if (sensitivities_) {
-      for (const auto& g : derivatives_[mode_ + 1]) t.sensitivity.push_back(SensitivityTransition(f, g, length));
+      for (std::size_t j = 0; j < terms_.size(); ++j) {
+        t.sensitivity.push_back(InitialStateIndex(terms_[j]) >= 0
+                                    ? Eigen::Matrix<double, 8, 10>::Zero()
+                                    : SensitivityTransition(f, derivatives_[mode_ + 1][j], length));
+      }
     }
     return t;
   }
@@ -181,6 +189,10 @@ class JointExactSimulator::Impl {
   void Apply(const Transitions& t) {
     if (sensitivities_) {
       for (std::size_t j = 0; j < s_.size(); ++j) {
+        if (InitialStateIndex(terms_[j]) >= 0) {
+          s_[j] = t.state.leftCols<4>() * s_[j];
+          continue;
+        }
         const auto& e = t.sensitivity[j];
         s_[j] = e.block<4, 4>(4, 0) * x_ + e.block<4, 4>(4, 4) * s_[j] + e.block<4, 1>(4, 8) + e.block<4, 1>(4, 9) * u_;
       }
@@ -201,21 +213,26 @@ class JointExactSimulator::Impl {
     mode_ = std::abs(net) <= p_.motor_coulomb ? 0 : Sign(net);
   }
 
-  // One held interval, with the events inside it.
+  // One held interval, with the events inside it. Whole intervals use the
+  // cached exponentials; pieces between events the Taylor series.
   void Interval(double length, long budget, double start) {
     double left = length;
     while (left > 0.0) {
       const bool whole = left == length;
-      const Transitions local = whole ? Transitions{} : Make(left);
-      const Transitions& full = whole ? Transition(length) : local;
-      const Vector4 end = Propagate(full.state, x_);
-      const double mid_margin = Margin(Propagate(full.half, x_));
+      const ModeField& f = fields_[mode_ + 1];
+      const Transitions* full = whole ? &Transition(length) : nullptr;
+      const Vector4 end = Propagate(whole ? full->state : StateTransition(f, left), x_);
+      const double mid_margin = Margin(Propagate(whole ? full->half : StateTransition(f, 0.5 * left), x_));
       if (Margin(end) > 0.0 && mid_margin > 0.0) {
-        Apply(full);
+        if (whole) {
+          Apply(*full);
+        } else {
+          AdvanceBySeries(left);
+        }
         return;
       }
       const double hit = LocateEvent(Margin(end) > 0.0 ? 0.5 * left : left);
-      Apply(Make(hit));
+      AdvanceBySeries(hit);
       HandleSwitch();
       if (++switches_ > budget) {
         throw IdentificationError(fmt::format(
@@ -226,16 +243,73 @@ class JointExactSimulator::Impl {
     }
   }
 
+  // Advances x and the sensitivities over `length` (a piece between events,
+  // of arbitrary length: no reuse of exponentials) by the Taylor series of
+  // exp(M length) applied to z = (x, s_1 .. s_P): z' = M z with
+  // x' = A x + c + b u and s_j' = A s_j + dA_j x + dc_j + db_j u, in pieces
+  // short enough (spectral radius of A times h <= 1/2; the sensitivity
+  // blocks share A's spectrum) that 40 terms reach rounding.
+  void AdvanceBySeries(double length) {
+    if (!(length > 0.0)) return;
+    const ModeField& f = fields_[mode_ + 1];
+    const auto& g = derivatives_[mode_ + 1];
+    const std::size_t np = sensitivities_ ? s_.size() : 0;
+    const int pieces = std::max(1, static_cast<int>(std::ceil(2.0 * radius_[mode_ + 1] * length)));
+    const double h = length / pieces;
+    std::vector<Vector4> term_s(np), next_s(np);
+    for (int piece = 0; piece < pieces; ++piece) {
+      Vector4 term_x = x_;
+      for (std::size_t j = 0; j < np; ++j) term_s[j] = s_[j];
+      for (int k = 1; k <= 40; ++k) {
+        const double scale = h / k;
+        // The constant columns (c, b u) enter the first term only.
+        Vector4 next_x = f.a * term_x;
+        if (k == 1) next_x += f.c + f.b * u_;
+        for (std::size_t j = 0; j < np; ++j) {
+          next_s[j] = f.a * term_s[j] + g[j].a * term_x;
+          if (k == 1) next_s[j] += g[j].c + g[j].b * u_;
+          next_s[j] *= scale;
+          s_[j] += next_s[j];
+          term_s[j] = next_s[j];
+        }
+        next_x *= scale;
+        x_ += next_x;
+        term_x = next_x;
+        bool converged = next_x.cwiseAbs().maxCoeff() <= 1e-17 * x_.cwiseAbs().maxCoeff();
+        for (std::size_t j = 0; j < np && converged; ++j) {
+          converged = next_s[j].cwiseAbs().maxCoeff() <= 1e-17 * s_[j].cwiseAbs().maxCoeff();
+        }
+        if (converged) break;
+      }
+    }
+  }
+
   // The first time in (0, upper] where the margin reaches 0 (it is > 0 at 0
-  // and <= 0 at upper): bisection, refined to the last bit of time.
+  // and <= 0 at upper): Newton steps on the exact solution (the margin's
+  // rate from the field), kept inside the bracket, else bisection; each
+  // step aims just past its root so that the bracket closes from both sides.
   double LocateEvent(double upper) const {
     const ModeField& f = fields_[mode_ + 1];
-    double lo = 0.0, hi = upper;
-    for (int iteration = 0; iteration < 200 && hi - lo > 1e-15 * upper; ++iteration) {
-      const double mid = 0.5 * (lo + hi);
-      (Margin(Propagate(StateTransition(f, mid), x_)) > 0.0 ? lo : hi) = mid;
+    const double tolerance = 1e-13 * upper;
+    double lo = 0.0, hi = upper, tau = 0.0;
+    Vector4 x = x_;
+    for (int iteration = 0; iteration < 100 && hi - lo > tolerance; ++iteration) {
+      if (iteration > 0) x = Propagate(StateTransition(f, tau), x_);
+      const double margin = Margin(x);
+      if (iteration > 0) (margin > 0.0 ? lo : hi) = tau;  // (at 0 it may start at 0, as a motor that breaks away)
+      const double rate = MarginRate(x, f);
+      double next = rate != 0.0 ? tau - margin / rate + (margin > 0.0 ? 0.25 : -0.25) * tolerance : lo - 1.0;
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+      tau = next;
     }
     return hi;
+  }
+  // d Margin / dt along the mode's field at x.
+  double MarginRate(const Vector4& x, const ModeField& f) const {
+    const Vector4 dx = f.a * x + f.c + f.b * u_;
+    if (mode_ != 0) return mode_ * dx(kOmegaM);
+    const double static_rate = -p_.stiffness * (dx(0) - dx(kThetaL)) + p_.damping * dx(kOmegaL);
+    return -Sign(StaticTorque(x)) * static_rate;
   }
 
   void HandleSwitch() {
@@ -272,6 +346,7 @@ class JointExactSimulator::Impl {
   JointParameters p_;
   bool sensitivities_ = false;
   std::array<ModeField, 3> fields_;
+  std::array<double, 3> radius_{};  // spectral radius of each mode's A [1/s]
   std::array<std::vector<ModeField>, 3> derivatives_;
   std::vector<Transitions> cache_;
   Vector4 x_;
