@@ -149,7 +149,7 @@ std::pair<std::string, std::string> ChooseMethod(const std::vector<JointLog>& lo
       section.link_coulomb.value_or(0.0) != 0.0) {
     return {"id", "auto: output error does not simulate the link's Coulomb friction"};
   }
-  if (!start) return {"oe", "auto: inverse dynamics gave no start"};
+  if (!start) return {"id", "auto: inverse dynamics, which output error starts from, refused the logs"};
   const JointParameters& p = start->params;
   for (const auto& e : start->fit.estimates) {
     if (e.name == link_coulomb && e.value > 3.0 * e.standard_error) {
@@ -191,7 +191,10 @@ void RunJointCommand(const JointOptions& options, const std::string& command_lin
                                        JointLogColumns(), [&](CsvLog csv) {
                                          return MakeJointLog(std::move(csv), section.torque_constant.value_or(0.0));
                                        });
-  if (options.method == "oe" && options.cutoff > 0.0) throw OptionError("--cutoff applies to --method id only");
+  if (options.method == "oe") {
+    if (options.cutoff > 0.0) throw OptionError("--cutoff applies to --method id only");
+    CheckOutputErrorSimulates(section, options.free);
+  }
   // Output error starts from inverse dynamics (its estimates however
   // uncertain); --method auto decides from it.
   std::optional<JointFitOutput> id_start;
@@ -203,9 +206,7 @@ void RunJointCommand(const JointOptions& options, const std::string& command_lin
     id_options.per_log = id_options.sensitivity = id_options.refuse_undetermined = false;
     try {
       id_start = FitJoint(logs, section, id_options);
-    } catch (const OptionError&) {
-      throw;
-    } catch (const std::exception&) {
+    } catch (const IdentificationError&) {
       // Inverse dynamics refused these logs: output error starts from the parameter file.
     }
   }

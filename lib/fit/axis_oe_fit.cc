@@ -268,6 +268,12 @@ AxisOeOutput FitAxisOutputError(const std::vector<AxisLog>& logs, const AxisSect
   out.rate.resize(oe.size());
   for (std::size_t i = 0; i < oe.size(); ++i) residuals.Simulate(estimate.data(), i, &out.position[i], &out.rate[i]);
   out.start_from = initial != nullptr ? "IDIM-LS estimates" : "the parameter file";
+  if (options.per_log && logs.size() > 1) {
+    AxisOeOptions alone = options;
+    alone.per_log = false;
+    AddPerLogFits(out.fit, LogLabels(logs),
+                  [&](std::size_t i) { return FitAxisOutputError({logs[i]}, start, initial, alone).fit.estimates; });
+  }
   return out;
 }
 

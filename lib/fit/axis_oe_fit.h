@@ -22,6 +22,7 @@ namespace driveid {
 
 struct AxisOeOptions {
   std::vector<std::string> free = FitParameterKeys(AxisParameterTable(), "axis", true);
+  bool per_log = true;  ///< several logs: each fitted alone too, and tested for agreement
   FitOptions fit;
 };
 

@@ -297,6 +297,14 @@ std::vector<std::string> JointOeDefaultFree(const std::vector<JointLog>& logs) {
   return free;
 }
 
+void CheckOutputErrorSimulates(const JointSection& start, const std::vector<std::string>& free) {
+  const std::string link_coulomb = KeyOf(JointParameterTable(), &JointParameters::link_coulomb);
+  if (std::find(free.begin(), free.end(), link_coulomb) != free.end() || start.link_coulomb.value_or(0.0) != 0.0) {
+    throw OptionError("--method oe does not simulate the link's Coulomb friction: leave link_coulomb out of --free "
+                      "and at 0 in --params, or use --method id");
+  }
+}
+
 JointOeOutput FitJointOutputError(const std::vector<JointLog>& logs, const JointSection& start,
                                   const JointParameters* initial, const JointOeOptions& given) {
   if (logs.empty()) throw OptionError("no logs given");
@@ -307,15 +315,11 @@ JointOeOutput FitJointOutputError(const std::vector<JointLog>& logs, const Joint
     throw InputError("--params: joint.gear_ratio is needed (q_motor = n theta_m; n = 1 for a direct drive)");
   }
   const double n = *start.gear_ratio;
-  const std::string link_coulomb = KeyOf(JointParameterTable(), &JointParameters::link_coulomb);
   const std::string offset_key = KeyOf(JointParameterTable(), &JointParameters::link_torque_offset);
   const auto is_free = [&](const std::string& key) {
     return std::find(options.free.begin(), options.free.end(), key) != options.free.end();
   };
-  if (is_free(link_coulomb) || start.link_coulomb.value_or(0.0) != 0.0) {
-    throw OptionError("--method oe does not simulate the link's Coulomb friction: leave link_coulomb out of --free "
-                      "and at 0 in --params, or use --method id");
-  }
+  CheckOutputErrorSimulates(start, options.free);
   std::vector<OeLog> oe = PrepareLogs(logs, n);
 
   // Start and fixed values; the free terms in table order, then tau_l0.

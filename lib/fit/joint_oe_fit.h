@@ -41,6 +41,9 @@ struct JointOeOutput {
   std::vector<double> deflection_fit_percent;
 };
 
+/// Throws OptionError when link_coulomb is in `free` or nonzero in `start`.
+void CheckOutputErrorSimulates(const JointSection& start, const std::vector<std::string>& free);
+
 /// Fits the free terms; fixed ones from `start` (as FitJoint: J_m, J_l, k,
 /// d, friction and offset must be given when fixed). `initial`: start values
 /// of the free terms (e.g. the inverse-dynamics fit); an inertia or

@@ -290,6 +290,38 @@ awk -F, 'BEGIN { OFS = "," } /^#/ { next } NR > 2 { $3 = 0 } { print }' "$src/da
 expect 4 "not identifiable.*link_inertia" -- joint joint_still.csv --params "$src/data/joint_start.yaml"
 expect 2 "not a parameter of the joint fit" -- joint "$src/data/joint_example.csv" --params "$src/data/joint_start.yaml" --free mass
 
+# joint --method (docs/models.md#joint-output-error): a stiff joint (resonance
+# 26 Hz near the inverse-dynamics cutoff 25 Hz) in a PI speed loop, no link
+# Coulomb friction: auto takes output error, which finds k within 2 %.
+printf 'joint:\n  gear_ratio: 50\n  motor_inertia: 0.02\n  link_inertia: 0.05\n  stiffness: 400\n  damping: 0.2\n  motor_viscous: 0.1\n  motor_coulomb: 0.2\n  link_viscous: 0.05\n  link_coulomb: 0\n  offset: 0.05\n' > stiff_truth.yaml
+printf 'joint:\n  gear_ratio: 50\n' > stiff_start.yaml
+"$bin" simulate joint --params stiff_truth.yaml --kp 0.0004 --ki 0.002 --duration 10 --band 1,60 --amplitude 0.5 \
+  --noise 0.5 -o stiff.csv && ok || fail "simulate joint (stiff)"
+"$bin" joint stiff.csv --params stiff_start.yaml -o stiff_fit.yaml --trace stiff_trace.csv --plot stiff_fit.svg > stiff.txt 2>&1 \
+  && grep -q "^method: output error (auto: the inverse-dynamics cutoff 25 Hz is below twice the resonance" stiff.txt \
+  && grep -q "^  stiffness: \(39[2-9]\|40[0-8]\)" stiff_fit.yaml && grep -q "output error (exact ZOH" stiff_fit.yaml \
+  && head -2 stiff_trace.csv | grep -q "^log,t,q_motor_measured,q_motor_model,q_link_measured,q_link_model" \
+  && [ -s stiff_fit.svg ] && ok || fail "joint auto -> output error: $(cat stiff.txt)"
+"$bin" joint stiff.csv --params stiff_start.yaml --method id -q -o /dev/null 2> stiff_id.txt
+grep -q "not identifiable.*link_viscous\|within a factor 2 of the fitted resonance" stiff_id.txt && ok \
+  || fail "joint --method id on the stiff joint: $(cat stiff_id.txt)"
+expect 2 "--method oe does not simulate the link's Coulomb friction" -- joint stiff.csv --params stiff_start.yaml \
+  --method oe --free stiffness,link_coulomb
+expect 2 "--cutoff applies to --method id only" -- joint stiff.csv --params stiff_start.yaml --method oe --cutoff 30
+cut -d, -f1,3,5 stiff.csv > stiff_notau.csv
+awk -F, '/^#/ { next } !header { print $0 ",tau_link"; header = 1; next } { print $0 "," 400 * ($2 / 50 - $3) }' \
+  stiff_notau.csv > stiff_shaft.csv
+expect 3 "stiff_shaft.csv: --method oe simulates the joint from the motor torque" -- joint stiff_shaft.csv \
+  --params stiff_start.yaml --method oe
+# The shipped example has link Coulomb friction: auto keeps inverse dynamics
+# and says why; forced output error warns that the deflection fits poorly.
+"$bin" joint "$src/data/joint_example.csv" --params "$src/data/joint_start.yaml" -o /dev/null > example_auto.txt 2>&1
+grep -q "^method: inverse dynamics (auto: inverse dynamics finds link Coulomb friction" example_auto.txt && ok \
+  || fail "joint auto on the example: $(cat example_auto.txt)"
+"$bin" joint "$src/data/joint_example.csv" --params "$src/data/joint_start.yaml" --method oe -o /dev/null > example_oe.txt 2>&1
+grep -q "low fit: .*deflection q_motor/n - q_link: the simulated deflection fits" example_oe.txt && ok \
+  || fail "joint --method oe on the example: $(cat example_oe.txt)"
+
 # robot (docs/models.md#planar-robot).
 cp "$src/data/robot_paper000.yaml" robot.yaml
 cp "$src/data/robot_start.yaml" robot_start.yaml

@@ -189,3 +189,31 @@ TEST_CASE("axis OE: a Stribeck excess and its velocity recovered from torque ste
                                      nullptr, options),
                   InputError);
 }
+
+TEST_CASE("axis OE: repeats are fitted one by one, and one that ran differently is named") {
+  AxisOeOptions options;
+  options.free = {"inertia", "viscous", "coulomb", "offset"};
+  AxisSection start{0.08, 0.1, 0.5, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+  std::vector<AxisLog> logs;
+  for (unsigned seed : {11u, 12u, 13u}) {
+    logs.push_back(StepLog({}, 2 * M_PI / 4096, 0.05, seed, true));
+    logs.back().path = "repeat" + std::to_string(seed) + ".csv";
+  }
+  const AxisOeOutput agree = FitAxisOutputError(logs, start, nullptr, options);
+  REQUIRE(agree.fit.per_log.size() == 3);
+  for (const auto& set : agree.fit.per_log) {
+    CHECK(set.failure.empty());
+    CHECK(set.estimates.size() == 4);
+  }
+  for (const auto& w : agree.fit.warnings) CHECK(w.find("logs disagree") == std::string::npos);
+  // The third repeat with 30 % more viscous friction (a warmer gearbox).
+  Truth warm;
+  warm.viscous = 0.26;
+  logs[2] = StepLog(warm, 2 * M_PI / 4096, 0.05, 13u, true);
+  logs[2].path = "warm.csv";
+  const AxisOeOutput differ = FitAxisOutputError(logs, start, nullptr, options);
+  bool named = false;
+  for (const auto& w : differ.fit.warnings) named = named || w.find("logs disagree: viscous") != std::string::npos;
+  INFO(differ.fit.warnings.size() << " warnings");
+  CHECK(named);
+}
