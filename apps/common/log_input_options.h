@@ -14,6 +14,7 @@
 #include "io/csv_log.h"
 #include "io/log_input.h"
 #include "io/sha256.h"
+#include "io/transpose_table.h"
 
 namespace driveid::cli {
 
@@ -47,10 +48,12 @@ std::string JoinFor(const LogInputCli& options, std::size_t k, std::size_t count
 /// records each one's provenance (file, SHA-256, samples, segment, notes).
 /// Refuses (exit 2) a file whose contents were given already. The column
 /// `time_column` must increase strictly (a frequency for a measured response).
+/// `transpose`: the files hold one signal per row (io/transpose_table.h).
 template <typename Log, typename Make>
 std::vector<Log> LoadLogs(const std::vector<std::string>& paths, const LogInputCli& input,
                           const FitOutputOptions& output, FitProvenance& provenance,
-                          const std::vector<std::string>& columns, Make make, const std::string& time_column = "t") {
+                          const std::vector<std::string>& columns, Make make, const std::string& time_column = "t",
+                          bool transpose = false) {
   ReadLimits limits;
   limits.lines_unless_structured = true;  // logs may be JSON or MAT
   limits.max_bytes = static_cast<std::size_t>(output.max_log_gib * 1073741824.0);
@@ -61,8 +64,9 @@ std::vector<Log> LoadLogs(const std::vector<std::string>& paths, const LogInputC
   std::vector<std::pair<std::string, std::string>> seen;  // hash, file
   for (std::size_t i = 0; i < paths.size(); ++i) {
     const std::string& path = paths[i];
-    const std::string text = ReadFileToString(path, limits);
-    const std::string hash = Sha256Hex(text);
+    const std::string raw = ReadFileToString(path, limits);
+    const std::string hash = Sha256Hex(raw);
+    const std::string text = transpose ? TransposeTable(path, raw) : raw;
     // The same data twice would count twice and shrink every std by sqrt(2).
     for (const auto& [earlier_hash, earlier] : seen) {
       if (earlier_hash == hash) {

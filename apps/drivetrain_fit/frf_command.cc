@@ -30,6 +30,7 @@ struct FrfCliOptions {
   std::string hold = "zoh";
   std::vector<std::string> free = TwoMassFitOptions{}.free;
   std::string measured, frequency_unit = "hz", magnitude_unit = "abs", phase_unit = "deg";
+  bool transpose = false;
   LogInputCli log_input;
   FitOutputOptions out;
 };
@@ -61,6 +62,9 @@ CLI::App* Setup(CLI::App& app, FrfCliOptions& o) {
       ->check(CLI::IsMember({"abs", "db"}));
   c->add_option("--phase-unit", o.phase_unit, "of --measured")->capture_default_str()
       ->check(CLI::IsMember({"deg", "rad"}));
+  c->add_flag("--transpose", o.transpose,
+              "--measured stores one signal per row (frequency, magnitude, phase as rows; a row may start with its "
+              "name; docs/formats.md#logs)");
   c->add_option("--input", o.input, "the torque: a column expression as --col takes (default tau, or i with joint.k_t)");
   c->add_option("--output", o.output, "the motor-side output (default qd_motor if logged, else q_motor)");
   c->add_option("--output-is", o.output_is, "what --output is (default from its name: q_* position, qd_* rate)")
@@ -123,7 +127,7 @@ MeasuredResponse ReadMeasured(const FrfCliOptions& o, FitProvenance& provenance)
         m.coherence = csv.columns[3];
         return 0;
       },
-      "frequency");
+      "frequency", o.transpose);
   for (double& f : m.frequency) f /= o.frequency_unit == "rad/s" ? 2.0 * M_PI : 1.0;
   if (o.magnitude_unit == "db") {
     for (double& v : m.magnitude) v = std::pow(10.0, v / 20.0);
@@ -146,6 +150,7 @@ void Run(FrfCliOptions o, const std::string& command_line) {
     start = ReadParameterFile(o.params);
     if (const auto* joint = start.Find<JointSection>()) section = *joint;
   }
+  if (o.transpose && o.measured.empty()) throw OptionError("--transpose applies to --measured");
   if (!o.measured.empty() && (!o.input.empty() || !o.reference.empty() || !o.link.empty())) {
     throw OptionError("--measured: --input, --reference and --link are for logs");
   }

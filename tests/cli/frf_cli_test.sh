@@ -59,6 +59,18 @@ sed -i '1i f_hz,mag_db,phase_deg' bode_db.csv
   && grep -q "^  resonance_hz: 11\.[56]" measured.yaml && grep -q "measured elsewhere" measured.yaml && ok \
   || fail "--measured: $(cat measured.txt) $(grep resonance measured.yaml)"
 expect 2 "give logs, or --measured FILE" -- frf twomass.csv --measured bode_db.csv
+# The same table stored one signal per row (--transpose), names first; a
+# ragged row is refused naming its line.
+awk -F, '{ for (j = 1; j <= NF; ++j) row[j] = row[j] (NR > 1 ? ";" : "") $j } END { for (j = 1; j <= 3; ++j) print row[j] }' \
+  bode_db.csv > bode_rows.csv
+"$bin" frf --measured bode_rows.csv --transpose --col frequency=f_hz --col magnitude=mag_db --col phase=phase_deg \
+  --magnitude-unit db --output-is rate --params gear.yaml --fit two-mass -o measured_rows.yaml > measured_rows.txt 2>&1 \
+  && grep -q "^  stiffness:" measured_rows.yaml && [ "$(grep -A3 '^  stiffness:' measured_rows.yaml)" = "$(grep -A3 '^  stiffness:' measured.yaml)" ] && ok \
+  || fail "--transpose: $(cat measured_rows.txt)"
+sed '2s/;[^;]*$//' bode_rows.csv > bode_ragged.csv
+expect 3 "bode_ragged.csv:2: --transpose: [0-9]+ cells, line 1 has [0-9]+" -- frf --measured bode_ragged.csv --transpose \
+  --col frequency=f_hz --col magnitude=mag_db --col phase=phase_deg --output-is rate --params gear.yaml
+expect 2 "--transpose applies to --measured" -- frf twomass.csv --transpose
 expect 2 "--output-is" -- frf --measured bode_db.csv --col frequency=f_hz --col magnitude=mag_db --col phase=phase_deg
 # simulate joint plans a measurement: the shipped joint's truth (resonance
 # sqrt(20 (1/0.02 + 1/0.05))/2pi = 5.955 Hz, anti-resonance sqrt(20/0.05)/2pi
