@@ -188,23 +188,3 @@ TEST_CASE("joint simulator: exact path, integrator and finite differences agree 
     CHECK(error_integrator < 1e-3 * scale);
   }
 }
-
-
-TEST_CASE("scratch chatter", "[.scratch]") {
-  const FrictionJointTruth truth;
-  FrictionJointExperiment experiment;
-  experiment.reference_speed = 0.0;
-  experiment.amplitude = std::stod(getenv("AMP"));
-  const auto generated = driveid::testing::SimulateFrictionJoint(truth, experiment);
-  WARN("sticks " << generated.sticks);
-  const std::vector<JointLog> logs = {ToLog(generated, "closed_loop.csv")};
-  const JointSection start = StartSection(truth);
-  JointFitOptions id_options;
-  id_options.per_log = id_options.sensitivity = false;
-  id_options.refuse_undetermined = false;
-  const JointFitOutput id = FitJoint(logs, start, id_options);
-  JointOeOptions o;
-  o.fit.progress = [](const FitIteration& i) { fprintf(stderr, "it %d cost %g\n", i.iteration, i.cost); };
-  const JointOeOutput oe = FitJointOutputError(logs, start, &id.params, o);
-  for (const auto& e : oe.fit.estimates) WARN(e.name << " " << e.value << " +- " << e.standard_error);
-}

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <random>
 
+#include "support/schroeder_multisine.h"
+
 namespace driveid::testing {
 namespace {
 
@@ -53,18 +55,7 @@ FrictionJointLog SimulateFrictionJoint(const FrictionJointTruth& truth, const Fr
   const double dt = 1.0 / e.rate, h = dt / e.substeps;
   // Schroeder multisine on every line of the period in the band.
   const auto period = static_cast<std::size_t>(std::llround(e.period * e.rate));
-  const int first = static_cast<int>(std::ceil(e.f_min * e.period)), last = static_cast<int>(e.f_max * e.period);
-  const int lines = last - first + 1;
-  std::vector<double> one(period, 0.0);
-  double power = 0.0;
-  for (std::size_t i = 0; i < period; ++i) {
-    for (int l = first; l <= last; ++l) {
-      one[i] += std::cos(2.0 * M_PI * l * static_cast<double>(i) / static_cast<double>(period) -
-                         M_PI * (l - first) * (l - first + 1) / lines);
-    }
-    power += one[i] * one[i];
-  }
-  const double scale = e.amplitude / std::sqrt(power / static_cast<double>(period));
+  const std::vector<double> one = SchroederPeriod(period, e.period, e.f_min, e.f_max, e.amplitude);
   const double motor_step = 2.0 * M_PI / e.motor_counts, link_step = 2.0 * M_PI / e.link_counts;
   const double innovation = std::sqrt(1.0 - e.noise_ar * e.noise_ar);
 
@@ -82,7 +73,7 @@ FrictionJointLog SimulateFrictionJoint(const FrictionJointTruth& truth, const Fr
     previous = q_motor;
     const double error = e.reference_speed * std::sin(2.0 * M_PI * e.reference_hz * t) - speed;
     integral += error * dt;
-    const double tau = e.kp * error + e.ki * integral + scale * one[i % period];
+    const double tau = e.kp * error + e.ki * integral + one[i % period];
     log.t.push_back(t);
     log.tau.push_back(tau);
     log.q_motor.push_back(q_motor);

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <random>
 
+#include "support/schroeder_multisine.h"
+
 namespace driveid::testing {
 namespace {
 
@@ -30,19 +32,8 @@ TwoMassLog SimulateTwoMassClosedLoop(const TwoMassTruth& truth, const TwoMassExp
   std::vector<double> r(samples, 0.0);
   if (e.excitation == Excitation::kMultisine) {
     const auto period = static_cast<std::size_t>(std::llround(e.period * e.rate));
-    const int first = static_cast<int>(std::ceil(e.f_min * e.period)), last = static_cast<int>(e.f_max * e.period);
-    const int lines = last - first + 1;
-    std::vector<double> one(period, 0.0);
-    double power = 0.0;
-    for (std::size_t i = 0; i < period; ++i) {
-      for (int l = first; l <= last; ++l) {
-        const double phase = -M_PI * (l - first) * (l - first + 1) / lines;
-        one[i] += std::cos(2.0 * M_PI * l * static_cast<double>(i) / static_cast<double>(period) + phase);
-      }
-      power += one[i] * one[i];
-    }
-    const double scale = e.amplitude / std::sqrt(power / static_cast<double>(period));
-    for (std::size_t i = 0; i < samples; ++i) r[i] = scale * one[i % period];
+    const std::vector<double> one = SchroederPeriod(period, e.period, e.f_min, e.f_max, e.amplitude);
+    for (std::size_t i = 0; i < samples; ++i) r[i] = one[i % period];
   } else {
     for (auto& v : r) v = e.amplitude * normal(rng);
   }
