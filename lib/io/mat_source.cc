@@ -26,6 +26,7 @@
 #include <matio.h>
 
 #include "core/errors.h"
+#include "io/mat_structure_check.h"
 #include "io/table_source.h"
 #include "io/temporary_files.h"
 
@@ -136,6 +137,7 @@ const char* ClassName(matio_classes c) {
 class MatSource : public TableSource {
  public:
   MatSource(std::string path, const std::string& text) : path_(std::move(path)) {
+    CheckHdf5Length(path_, text);
     // The bytes go to a temporary file for matio.
     std::string name = (std::filesystem::temp_directory_path() / "driveid-mat.tmp.XXXXXX").string();
     const int fd = CreateTemporaryFile(name);
@@ -153,7 +155,7 @@ class MatSource : public TableSource {
     ::close(fd);
     try {
       if (!ok) throw InputError(fmt::format("{}: cannot write a temporary copy for the MAT reader", path_));
-      Load(name, text.size());
+      Load(name, text);
     } catch (...) {
       RemoveTemporaryFile(name);
       throw;
@@ -260,7 +262,8 @@ class MatSource : public TableSource {
   // plus 1 s per 10 MB of file, at most 120 s); the
   // variables come back through a pipe, and a child that dies is an
   // unreadable file, not a dead tool.
-  void Load(const std::string& file, std::size_t text_size) {
+  void Load(const std::string& file, const std::string& text) {
+    const std::size_t text_size = text.size();
     int fds[2];
     if (::pipe(fds) != 0) throw InputError(fmt::format("{}: cannot start the MAT reader", path_));
     const pid_t child = ::fork();
@@ -282,6 +285,7 @@ class MatSource : public TableSource {
 #endif
       std::string message;
       try {
+        CheckMatV5Elements(path_, text);
         LoadHere(file);
         message = Serialise();
       } catch (const std::exception& e) {
