@@ -92,9 +92,7 @@ void RunCDriveSimulateCommand(const CDriveSimulateOptions& options, const std::s
     files.emplace_back(options.trace, std::move(trace));
   }
   if (!options.output.empty()) files.emplace_back(options.output, log_text);
-  WriteFilesAtomically(files);
-
-  std::FILE* summary = options.output.empty() ? stderr : stdout;
+  std::string summary;
   if (options.json) {
     const Json json = {{"program", loop.program.name},
                        {"law", ControlLawName(settings.law)},
@@ -103,16 +101,20 @@ void RunCDriveSimulateCommand(const CDriveSimulateOptions& options, const std::s
                        {"max_u_error", result.max_translation_error},
                        {"max_theta_error", result.max_rotation_error},
                        {"switches", result.switches}};
-    std::fputs(DumpJson(json).c_str(), summary);
+    summary = DumpJson(json);
   } else {
-    std::fprintf(summary,
-                 "%s, %s: end-point error u %.4f mm, theta %.5f rad (seed 001: < 0.1 mm, < 0.01 rad); max over the "
-                 "run u %.3f mm, theta %.4f rad; %d stick/slip switches\n",
-                 loop.program.name.c_str(), ControlLawName(settings.law), result.endpoint_translation_error * 1e3,
+    summary = fmt::format(
+                 "{}, {}: end-point error u {:.4f} mm, theta {:.5f} rad (seed 001: < 0.1 mm, < 0.01 rad); max over the "
+                 "run u {:.3f} mm, theta {:.4f} rad; {} stick/slip switches\n",
+                 loop.program.name, ControlLawName(settings.law), result.endpoint_translation_error * 1e3,
                  result.endpoint_rotation_error, result.max_translation_error * 1e3, result.max_rotation_error,
                  result.switches);
   }
-  if (options.output.empty()) WriteStdout(log_text);
+  // Standard output belongs to the transaction (docs/formats.md#outputs).
+  WriteFilesAtomically(files, [&] {
+    if (options.output.empty()) std::fputs(summary.c_str(), stderr);
+    WriteStdout(options.output.empty() ? log_text : summary);
+  });
 }
 
 namespace {

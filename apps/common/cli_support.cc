@@ -312,15 +312,16 @@ void EmitFitOutputs(const FitOutputOptions& options, const FitOutputs& outputs) 
   if (!options.plot.empty()) files.emplace_back(options.plot, RenderPanels(options.plot, outputs.plot_panels, outputs.plot_x_label, outputs.plot_log_x));
   if (!options.trace.empty()) files.emplace_back(options.trace, outputs.trace_csv);
   if (!options.output.empty()) files.emplace_back(options.output, outputs.parameter_file);
-  WriteFilesAtomically(files);
-
-  std::FILE* summary = options.output.empty() ? stderr : stdout;
-  if (options.json) {
-    std::fputs(DumpJson(FitJson(outputs.fit, outputs.provenance)).c_str(), summary);
-  } else if (!options.quiet) {
-    std::fputs(FormatFitTable(outputs.fit, outputs.provenance).c_str(), summary);
-  }
-  WriteStdout(options.output.empty() ? outputs.parameter_file : std::string());
+  // The summary and standard output belong to the transaction: a full disk
+  // or a closed pipe there leaves the files as they were.
+  WriteFilesAtomically(files, [&] {
+    const bool summary_on_stdout = !options.output.empty();
+    std::string summary;
+    if (options.json) summary = DumpJson(FitJson(outputs.fit, outputs.provenance));
+    else if (!options.quiet) summary = FormatFitTable(outputs.fit, outputs.provenance);
+    if (!summary_on_stdout) std::fputs(summary.c_str(), stderr);
+    WriteStdout(summary_on_stdout ? summary : outputs.parameter_file);
+  });
 }
 
 void SetProgress(FitOptions& fit, bool verbose) {

@@ -43,14 +43,15 @@ void EmitValidation(const FitOutputOptions& options, const ValidationReport& rep
                                                   "time [s]"));
   }
   if (!options.trace.empty()) files.emplace_back(options.trace, trace);
-  WriteFilesAtomically(files);
-  if (options.json) {
-    Json document = {{"command", report.command_line}, {"version", DRIVEID_VERSION}, {"model", report.method}};
-    document["logs"] = ValidationJson(stats);
-    WriteStdout(DumpJson(document));
-  } else if (!options.quiet) {
-    WriteStdout(fmt::format("{}\n{}", report.method, FormatValidationTable(stats)));
-  }
+  WriteFilesAtomically(files, [&] {
+    if (options.json) {
+      Json document = {{"command", report.command_line}, {"version", DRIVEID_VERSION}, {"model", report.method}};
+      document["logs"] = ValidationJson(stats);
+      WriteStdout(DumpJson(document));
+    } else if (!options.quiet) {
+      WriteStdout(fmt::format("{}\n{}", report.method, FormatValidationTable(stats)));
+    }
+  });
 }
 
 }  // namespace driveid::cli

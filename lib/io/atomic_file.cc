@@ -114,37 +114,32 @@ StagedOutput Stage(const std::string& path, const std::string& contents) {
 
 }  // namespace
 
-void WriteFilesAtomically(const std::vector<std::pair<std::string, std::string>>& files) {
+void WriteFilesAtomically(const std::vector<std::pair<std::string, std::string>>& files,
+                          const std::function<void()>& before_commit) {
   std::vector<StagedOutput> staged;
-  auto discard = [&] {
-    for (const auto& s : staged) {
-      if (!s.temporary.empty()) RemoveTemporaryFile(s.temporary);
-    }
-  };
   try {
     for (const auto& [path, contents] : files) staged.push_back(Stage(path, contents));
-    // Everything is written: now replace the files (with the termination
-    // signals held back, so that a signal commits all or none), then write
-    // in place.
-    {
-      TerminationSignalsBlocked blocked;
-      for (std::size_t i = 0; i < staged.size(); ++i) {
-        if (staged[i].temporary.empty()) continue;
-        if (::rename(staged[i].temporary.c_str(), staged[i].destination.c_str()) != 0) {
-          Fail(staged[i].path, "cannot write output file", errno);  // the rest is discarded below
-        }
-        ForgetTemporaryFile(staged[i].temporary);
-        staged[i].temporary = "committed";
-      }
-    }
+    // What can still fail and cannot be undone (devices, FIFOs, the caller's
+    // standard output) goes first; a failure there leaves every file as it was.
     for (const auto& s : staged) {
       if (s.temporary.empty()) WriteInPlace(s.destination, *s.contents);
     }
-  } catch (...) {
+    if (before_commit) before_commit();
+    // Now replace the files, with the termination signals held back so that
+    // a signal commits all or none.
+    TerminationSignalsBlocked blocked;
     for (auto& s : staged) {
-      if (s.temporary == "committed") s.temporary.clear();
+      if (s.temporary.empty()) continue;
+      if (::rename(s.temporary.c_str(), s.destination.c_str()) != 0) {
+        Fail(s.path, "cannot write output file", errno);  // the rest is discarded below
+      }
+      ForgetTemporaryFile(s.temporary);
+      s.temporary.clear();
     }
-    discard();
+  } catch (...) {
+    for (const auto& s : staged) {
+      if (!s.temporary.empty()) RemoveTemporaryFile(s.temporary);
+    }
     throw;
   }
 }

@@ -8,6 +8,7 @@
 // file keeps its permissions.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,10 +19,13 @@ namespace driveid {
 /// the path when it cannot (directory not writable, disk full, read-only).
 void WriteFileAtomically(const std::string& path, const std::string& contents);
 
-/// Writes several files (path, contents) all or nothing: each is first
-/// written to a temporary file beside it, and only when every one is written
-/// are they renamed into place (devices and FIFOs written last, in place).
-/// On a failure before the renames no file is changed.
-void WriteFilesAtomically(const std::vector<std::pair<std::string, std::string>>& files);
+/// Writes several files (path, contents) as one transaction: each regular
+/// file is first written to a temporary file beside it; then devices and
+/// FIFOs are written in place (a FIFO without a reader fails here), then
+/// `before_commit` runs (the caller's standard output, which can fail too);
+/// only when all of that succeeded are the temporary files renamed into
+/// place. On any failure before the renames no regular file is changed.
+void WriteFilesAtomically(const std::vector<std::pair<std::string, std::string>>& files,
+                          const std::function<void()>& before_commit = {});
 
 }  // namespace driveid

@@ -144,6 +144,28 @@ fi
 "$bin" report paper.yaml >&- 2> stderr.txt
 [ $? -eq 3 ] && ok || fail "report with stdout closed: $(cat stderr.txt)"
 
+# All outputs are one transaction (issue 21): a FIFO without a reader or a
+# full standard output leaves the parameter file as it was (and creates none).
+mkfifo lonely.fifo lonely_plot.png
+printf 'kept\n' > kept.yaml
+expect 3 "lonely.fifo: cannot open output" -- step good.csv --params start.yaml --trace lonely.fifo
+expect 3 "lonely_plot.png: cannot open output" -- step good.csv --params start.yaml --plot lonely_plot.png
+"$bin" step good.csv --params start.yaml -o kept.yaml --trace lonely.fifo 2> stderr.txt
+[ $? -eq 3 ] && [ "$(cat kept.yaml)" = kept ] && ok || fail "--trace FIFO without a reader committed -o: $(cat stderr.txt)"
+if [ -w /dev/full ]; then
+  "$bin" step good.csv --params start.yaml --json -o kept.yaml > /dev/full 2> stderr.txt
+  [ $? -eq 3 ] && grep -q "standard output: write error" stderr.txt && [ "$(cat kept.yaml)" = kept ] && ok ||
+    fail "--json -o with stdout on /dev/full: $(cat stderr.txt); kept.yaml: $(head -c 80 kept.yaml)"
+  "$bin" validate paper.yaml good.csv --trace new_trace.csv > /dev/full 2> stderr.txt
+  [ $? -eq 3 ] && [ ! -e new_trace.csv ] && ok || fail "validate --trace with stdout on /dev/full: $(cat stderr.txt)"
+fi
+( cat lonely.fifo > fifo_copy.csv ) &
+"$bin" step good.csv --params start.yaml -o kept.yaml --trace lonely.fifo 2> stderr.txt
+code=$?
+wait
+[ $code -eq 0 ] && grep -q "drivetrain-fit step trace" fifo_copy.csv && grep -q "^drivetrain:" kept.yaml && ok ||
+  fail "--trace to a read FIFO: exit $code $(cat stderr.txt)"
+
 # The same log twice (by content, not name) is refused: it would count twice.
 cp good.csv good_copy.csv
 expect 2 "good_copy.csv: the same data as good.csv" -- step good.csv good_copy.csv --params start.yaml
