@@ -159,6 +159,15 @@ std::string Quoted(const std::string& text) {
   return out + "\"";
 }
 
+constexpr std::size_t kMaxUnitBytes = 64;  // feedforward.effort_unit, position_unit
+
+// Text for a comment: as is when it is printable ASCII, else quoted and
+// escaped — a unit read from a log must not end the comment and start a key.
+std::string Comment(const std::string& text) {
+  const bool plain = std::all_of(text.begin(), text.end(), [](char c) { return c >= 0x20 && c < 0x7F; });
+  return plain ? text : Quoted(text);
+}
+
 std::string Number(double value) { return fmt::format("{}", value); }
 std::string Short(double value) { return fmt::format("{:.6g}", value); }
 
@@ -367,7 +376,11 @@ Feedforward ParseFeedforward(const std::string& path, const YAML::Node& node) {
     const std::string name = "feedforward." + key;
     if (key == "effort_unit" || key == "position_unit" || key == "law") {
       if (!item.second.IsScalar()) throw InputError(fmt::format("{}: {}: expected a name", Where(path, item.second), name));
-      const std::string value = item.second.Scalar().substr(0, 64);
+      const std::string value = item.second.Scalar();
+      if (value.size() > kMaxUnitBytes) {
+        throw InputError(fmt::format("{}: {}: {} bytes: at most {}", Where(path, item.second), name, value.size(),
+                                     kMaxUnitBytes));
+      }
       if (key == "law" && value != kAxisFeedforwardLaw && value != kCDriveCompensationLaw) {
         throw InputError(fmt::format("{}: {}: \"{}\": expected {} or {}", Where(path, item.second), name, value,
                                      kAxisFeedforwardLaw, kCDriveCompensationLaw));
@@ -392,6 +405,12 @@ Feedforward ParseFeedforward(const std::string& path, const YAML::Node& node) {
 }
 
 std::string FormatFeedforward(const Feedforward& f) {
+  for (const auto& [name, unit] : {std::pair{"effort_unit", &f.effort_unit}, std::pair{"position_unit", &f.position_unit}}) {
+    if (unit->size() > kMaxUnitBytes) {
+      throw OutputError(fmt::format("feedforward.{}: {} bytes, a parameter file holds at most {}; nothing written", name,
+                                    unit->size(), kMaxUnitBytes));
+    }
+  }
   std::string out =
       f.law == kCDriveCompensationLaw
           ? "feedforward:  # eq. (31): tau_I = beta w_I + delta RL{sgn DZ(w_I)} + gamma_half (w_I - w_J) + eta "
@@ -402,7 +421,7 @@ std::string FormatFeedforward(const Feedforward& f) {
                      Quoted(f.position_unit));
   for (const auto& g : f.gains) {
     out += fmt::format("  {}: {{value: {}, std: {}}}  # {}\n", g.key, Number(g.value), Short(g.standard_error),
-                       FeedforwardUnit(g.key, f.effort_unit, f.position_unit));
+                       Comment(FeedforwardUnit(g.key, f.effort_unit, f.position_unit)));
   }
   return out;
 }
@@ -543,7 +562,7 @@ std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit,
       out += "  derived:\n";
       for (const auto& d : derived) {
         out += fmt::format("    {}: {{value: {}, std: {}}}  # {}\n", d.name, Number(d.value), Short(d.standard_error),
-                           d.unit);
+                           Comment(d.unit));
       }
     }
     const std::size_t p = fit->estimates.size();

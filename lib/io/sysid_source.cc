@@ -86,6 +86,9 @@ std::vector<std::unique_ptr<TableSource>> OpenSysIdSources(const std::string& pa
   const double per_rotation = Number(path, doc["unitsPerRotation"], "unitsPerRotation");
   if (!(per_rotation > 0.0)) throw InputError(fmt::format("{}: unitsPerRotation = {}: must be > 0", path, per_rotation));
   const std::string units = doc.contains("units") && doc["units"].is_string() ? doc["units"].get<std::string>() : "?";
+  if (units.size() > 64) {  // what a parameter file's position_unit holds
+    throw InputError(fmt::format("{}: 'units' is {} bytes long: at most 64", path, units.size()));
+  }
 
   std::vector<std::string> sides = {""};
   if (drivetrain) {
