@@ -23,6 +23,7 @@ void AddValidationOutputOptions(CLI::App& command, FitOutputOptions& options) {
 
 void EmitValidation(const FitOutputOptions& options, const ValidationReport& report,
                     const std::vector<ValidatedLog>& logs) {
+  RequireValidated(logs);
   std::vector<ChannelStatistics> stats;
   std::vector<PlotSeries> series;
   std::string trace =

@@ -16,6 +16,7 @@
 #include "fit/joint_oe_fit.h"
 #include "io/csv_log.h"
 #include "io/parameter_file.h"
+#include "report/fit_summary.h"
 
 namespace driveid::cli {
 
@@ -121,8 +122,8 @@ JointRun RunOutputError(const std::vector<JointLog>& logs, const JointSection& s
       }
     }
     link.push_back({log.path + " q_link", log.time, log.link_position, result.link_angle[i]});
-    run.summary.push_back(fmt::format("{}: simulated deflection q_motor/n - q_link fits {:.1f} %", log.path,
-                                      result.deflection_fit_percent[i]));
+    run.summary.push_back(fmt::format("{}: simulated deflection q_motor/n - q_link fits {}", log.path,
+                                      FitPercentText(result.deflection_fit_percent[i])));
     deflection.push_back(std::move(d));
   }
   if (!options.output.plot.empty()) {

@@ -23,7 +23,10 @@ struct ChannelStatistics {
   std::string name;
   int samples = 0;
   double rmse = 0.0;         ///< root mean square residual, channel unit
-  double fit_percent = 0.0;  ///< NRMSE fit, 100 (1 - |y - yhat| / |y - mean(y)|)
+  /// NRMSE fit, 100 (1 - |y - yhat| / |y - mean(y)|); NaN when the measured
+  /// channel does not vary (its spread is below 1e-9 of its magnitude): a fit
+  /// % of a constant means nothing (shown as "n/a", null in JSON and files).
+  double fit_percent = 0.0;
   double autocorrelation = 0.0;  ///< lag-1 autocorrelation of the residuals
   int bandwidth = 0;             ///< Newey-West lags used (Andrews' AR(1) rule; 0: none)
   double inflation = 1.0;        ///< std with / without the correlation of residuals (trace ratio, sqrt)

@@ -49,7 +49,10 @@ ChannelStatistics DescribeResiduals(const std::string& name, const double* measu
   if (measured != nullptr) {
     mean /= count;
     for (int k = 0; k < count; ++k) spread += (measured[k] - mean) * (measured[k] - mean);
-    stats.fit_percent = spread > 0.0 ? 100.0 * (1.0 - std::sqrt(ssr / spread)) : 0.0;
+    double magnitude = 0.0;
+    for (int k = 0; k < count; ++k) magnitude = std::max(magnitude, std::abs(measured[k]));
+    const bool varies = spread > count * (1e-9 * magnitude) * (1e-9 * magnitude) && spread > 0.0;
+    stats.fit_percent = varies ? 100.0 * (1.0 - std::sqrt(ssr / spread)) : std::nan("");
   }
   return stats;
 }

@@ -106,6 +106,34 @@ std::vector<double> RequireIdentifiable(const std::vector<JacobianBlock>& blocks
   throw IdentificationError(message);
 }
 
+namespace {
+
+// Statistics that overflowed (data near the end of double's range, a design
+// that overflows when normalised) are not a fit: refused, never written.
+void RequireFiniteStatistics(const std::vector<FitChannel>& channels, const FitResult& result) {
+  for (std::size_t c = 0; c < result.channels.size(); ++c) {
+    const ChannelStatistics& s = result.channels[c];
+    if (std::isfinite(s.rmse) && std::isfinite(s.autocorrelation) && std::isfinite(s.inflation)) continue;
+    std::string range;
+    if (channels[c].measured != nullptr && channels[c].count > 0) {
+      const auto [low, high] = std::minmax_element(channels[c].measured, channels[c].measured + channels[c].count);
+      range = fmt::format(" (measured from {:.4g} to {:.4g})", *low, *high);
+    }
+    throw IdentificationError(fmt::format("{}: the fit's statistics are not finite (rmse {}, residual lag-1 {}){}: the "
+                                          "numbers overflow double precision; rescale the data",
+                                          s.name, s.rmse, s.autocorrelation, range));
+  }
+  for (const auto& e : result.estimates) {
+    if (!std::isfinite(e.value) || !std::isfinite(e.standard_error)) {
+      throw IdentificationError(fmt::format("{}: {} +- {}: not finite (the design overflows when normalised); "
+                                            "rescale the data",
+                                            e.name, e.value, e.standard_error));
+    }
+  }
+}
+
+}  // namespace
+
 void DescribeFit(std::vector<JacobianBlock> blocks, const Eigen::VectorXd& residuals,
                  const std::vector<FitParameter>& parameters, const std::vector<double>& values,
                  const std::vector<FitChannel>& channels, FitResult& result) {
@@ -187,6 +215,7 @@ void DescribeFit(std::vector<JacobianBlock> blocks, const Eigen::VectorXd& resid
       result.correlation[Index(i) * Index(p) + Index(j)] = denominator > 0.0 ? covariance(i, j) / denominator : 0.0;
     }
   }
+  RequireFiniteStatistics(all, result);
   result.warnings = CheckFitPercent(result);  // adequacy.h; fits add their own checks
 }
 

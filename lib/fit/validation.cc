@@ -1,5 +1,6 @@
 #include "fit/validation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -49,6 +50,23 @@ std::vector<ValidatedLog> ValidateAxis(const std::vector<AxisLog>& logs, const A
                                      static_cast<int>(residuals.size()));
   }
   return out;
+}
+
+void RequireValidated(const std::vector<ValidatedLog>& logs) {
+  if (logs.empty()) throw IdentificationError("no logs to validate");
+  for (const auto& log : logs) {
+    if (log.stats.samples == 0) {
+      throw IdentificationError(fmt::format("{}: no usable samples to compare (check --min-rate, --window, --from/--to)",
+                                            log.stats.name));
+    }
+    if (!std::isfinite(log.stats.rmse) || !std::isfinite(log.stats.autocorrelation)) {
+      const auto [low, high] = std::minmax_element(log.measured.begin(), log.measured.end());
+      const auto [model_low, model_high] = std::minmax_element(log.model.begin(), log.model.end());
+      throw IdentificationError(fmt::format("{}: rmse {}: not finite (measured {:.4g} .. {:.4g}, predicted {:.4g} .. "
+                                            "{:.4g}): the numbers overflow double precision",
+                                            log.stats.name, log.stats.rmse, *low, *high, *model_low, *model_high));
+    }
+  }
 }
 
 double ChooseAxisValidationCutoff(const std::vector<AxisLog>& logs, const AxisParameters& params, int decimation) {

@@ -26,6 +26,12 @@ struct ValidatedLog {
   std::vector<double> time, measured, model;
 };
 
+/// Refuses what is not a validation: a log without usable samples
+/// (IdentificationError, exit 4, naming it) or statistics that are not finite
+/// (IdentificationError naming the log and the measured range). A fit % of a
+/// channel that does not vary is NaN by design (ChannelStatistics) and passes.
+void RequireValidated(const std::vector<ValidatedLog>& logs);
+
 /// The axis logs predicted by `params` at the position cutoff `cutoff` [Hz]
 /// (> 0; the fit's, or ChooseAxisValidationCutoff) and `decimation`.
 std::vector<ValidatedLog> ValidateAxis(const std::vector<AxisLog>& logs, const AxisParameters& params, double cutoff,

@@ -254,6 +254,18 @@ CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>&
     }
     break;
   }
+  // Magnitudes a fit can square and sum: beyond 1e150 the sums of squares
+  // overflow, below 1e-150 they underflow (every estimate 0 +- 0).
+  for (std::size_t k = 0; k < required.size(); ++k) {
+    double largest = 0.0;
+    for (double v : log.columns[k]) largest = std::max(largest, std::abs(v));
+    if (largest > kLargestLogMagnitude || (largest > 0.0 && largest < kSmallestLogMagnitude)) {
+      throw InputError(fmt::format("{}: column '{}': values up to {:.4g} in magnitude, outside {:g} .. {:g} where a "
+                                   "fit's sums of squares stay finite; rescale it (--col {}=EXPR*FACTOR)",
+                                   where, log.names[k], largest, kSmallestLogMagnitude, kLargestLogMagnitude,
+                                   log.names[k]));
+    }
+  }
   log.comments = source.comments();
   const auto source_notes = source.notes();
   log.notes.insert(log.notes.begin(), source_notes.begin(), source_notes.end());

@@ -17,6 +17,11 @@
 
 namespace driveid {
 
+/// A log column whose largest magnitude exceeds this (or is below the
+/// smallest, other than all zeros) is refused: a fit could not square it.
+inline constexpr double kLargestLogMagnitude = 1e150;
+inline constexpr double kSmallestLogMagnitude = 1e-150;
+
 struct LogInputOptions {
   /// Logical column name -> expression (`--col NAME=EXPR`).
   std::map<std::string, std::string> columns;

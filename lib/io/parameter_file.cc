@@ -57,6 +57,18 @@ void CheckMapping(const std::string& path, const std::string& name, const YAML::
   }
 }
 
+// CheckMapping, and every key one of `known`.
+void CheckKeys(const std::string& path, const std::string& name, const YAML::Node& node,
+               const std::vector<std::string>& known) {
+  CheckMapping(path, name, node);
+  for (const auto& item : node) {
+    if (std::find(known.begin(), known.end(), item.first.Scalar()) == known.end()) {
+      throw InputError(fmt::format("{}: {}.{}: unknown key (known: {})", Where(path, item.first), name,
+                                   item.first.Scalar().substr(0, 64), fmt::join(known, ", ")));
+    }
+  }
+}
+
 template <class Section, class Model>
 std::string KnownKeys(const ParameterTable<Section, Model>& table, const std::vector<std::string>& extra) {
   std::string known;
@@ -169,6 +181,18 @@ std::string Comment(const std::string& text) {
 }
 
 std::string Number(double value) { return fmt::format("{}", value); }
+
+// A value as the reader will accept it (ParseNumber): finite, 0 or within
+// 1e-100 <= |v| <= 1e100; else nothing is written.
+double Writable(const std::string& name, double value) {
+  if (!std::isfinite(value) ||
+      (value != 0.0 && !(std::abs(value) >= kSmallestParameterMagnitude && std::abs(value) <= kLargestParameterMagnitude))) {
+    throw OutputError(fmt::format("{} = {}: outside what a parameter file holds (finite, 0 or 1e-100 <= |value| <= "
+                                  "1e100); nothing written (rescale the data)",
+                                  name, value));
+  }
+  return value;
+}
 std::string Short(double value) { return fmt::format("{:.6g}", value); }
 
 template <class Values, class Model>
@@ -177,11 +201,9 @@ std::string FormatSection(const Values& values, const ParameterTable<Values, Mod
   for (const auto& row : table) {
     const std::optional<double>& value = values.*(row.in_section);
     if (!value) continue;
-    if (!std::isfinite(*value)) {
-      throw OutputError(fmt::format("{}: {} is {}: a parameter file holds finite numbers only; nothing written",
-                                    Values::kSectionName, row.spec.key, *value));
-    }
-    const std::string line = fmt::format("{}{}: {}", indent, row.spec.key, Number(*value));
+    const std::string line = fmt::format(
+        "{}{}: {}", indent, row.spec.key,
+        Number(Writable(fmt::format("{}.{}", Values::kSectionName, row.spec.key), *value)));
     const std::string symbol = row.spec.symbol == std::string(row.spec.key) ? "" : std::string(row.spec.symbol) + ", ";
     out += fmt::format("{:<28} # {}{}\n", line, symbol, row.spec.Doc());
   }
@@ -392,7 +414,7 @@ Feedforward ParseFeedforward(const std::string& path, const YAML::Node& node) {
       throw InputError(fmt::format("{}: {}: unknown key (known: law, effort_unit, position_unit, {})",
                                    Where(path, item.first), name, fmt::join(kFeedforwardKeys, ", ")));
     }
-    CheckMapping(path, name, item.second);
+    CheckKeys(path, name, item.second, {"value", "std"});
     if (!item.second["value"]) throw InputError(fmt::format("{}: {}: needs a value", Where(path, item.second), name));
     FeedforwardGain gain;
     gain.key = key;
@@ -420,7 +442,9 @@ std::string FormatFeedforward(const Feedforward& f) {
   out += fmt::format("  law: {}\n  effort_unit: {}\n  position_unit: {}\n", f.law, Quoted(f.effort_unit),
                      Quoted(f.position_unit));
   for (const auto& g : f.gains) {
-    out += fmt::format("  {}: {{value: {}, std: {}}}  # {}\n", g.key, Number(g.value), Short(g.standard_error),
+    const std::string name = "feedforward." + g.key;
+    out += fmt::format("  {}: {{value: {}, std: {}}}  # {}\n", g.key, Number(Writable(name, g.value)),
+                       Short(Writable(name + ".std", g.standard_error)),
                        Comment(FeedforwardUnit(g.key, f.effort_unit, f.position_unit)));
   }
   return out;
@@ -486,12 +510,23 @@ ParameterFile ParseParameterFile(const std::string& path, const std::string& tex
         }
       }
       file.had_fit_section = true;
+      const YAML::Node data = item.second["data"];
+      if (data && data.IsSequence()) {
+        for (const auto& record : data) CheckKeys(path, "fit.data", record, {"file", "sha256", "samples", "segment", "notes"});
+      }
+      const YAML::Node derived = item.second["derived"];
+      if (derived && derived.IsMap()) {
+        for (const auto& entry : derived) CheckKeys(path, "fit.derived." + entry.first.Scalar(), entry.second, {"value", "std"});
+      }
       const YAML::Node estimates = item.second["estimates"];
       if (estimates && estimates.IsMap()) {
         for (const auto& entry : estimates) {
           const YAML::Node& e = entry.second;
-          if (!e.IsMap() || !e["value"] || !e["std"]) continue;
           const std::string name = "fit.estimates." + entry.first.Scalar();
+          CheckKeys(path, name, e, {"value", "std", "ci95"});
+          if (!e["value"] || !e["std"]) {
+            throw InputError(fmt::format("{}: {}: needs a value and a std", Where(path, e), name));
+          }
           ParameterEstimate estimate;
           estimate.name = entry.first.Scalar();
           estimate.value = ParseNumber(path, name + ".value", e["value"]);
@@ -555,13 +590,16 @@ std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit,
                                         e.standard_error));
         }
       }
-      out += fmt::format("    {}: {{value: {}, std: {}, ci95: [{}, {}]}}\n", e.name, Number(e.value),
-                         Short(e.standard_error), Short(e.ci95_low), Short(e.ci95_high));
+      const std::string name = "fit.estimates." + e.name;
+      out += fmt::format("    {}: {{value: {}, std: {}, ci95: [{}, {}]}}\n", e.name, Number(Writable(name, e.value)),
+                         Short(Writable(name + ".std", e.standard_error)), Short(Writable(name + ".ci95", e.ci95_low)),
+                         Short(Writable(name + ".ci95", e.ci95_high)));
     }
     if (!derived.empty()) {
       out += "  derived:\n";
       for (const auto& d : derived) {
-        out += fmt::format("    {}: {{value: {}, std: {}}}  # {}\n", d.name, Number(d.value), Short(d.standard_error),
+        out += fmt::format("    {}: {{value: {}, std: {}}}  # {}\n", d.name, Number(Writable("fit.derived." + d.name, d.value)),
+                           Short(Writable("fit.derived." + d.name + ".std", d.standard_error)),
                            Comment(d.unit));
       }
     }
@@ -586,7 +624,10 @@ std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit,
     out += "  rmse:\n";
     for (const auto& c : fit->channels) out += fmt::format("    {}: {}\n", Quoted(c.name), Short(c.rmse));
     out += "  fit_percent:\n";
-    for (const auto& c : fit->channels) out += fmt::format("    {}: {:.3f}\n", Quoted(c.name), c.fit_percent);
+    for (const auto& c : fit->channels) {
+      out += std::isnan(c.fit_percent) ? fmt::format("    {}: null  # the channel does not vary\n", Quoted(c.name))
+                                       : fmt::format("    {}: {:.3f}\n", Quoted(c.name), c.fit_percent);
+    }
     out += "  autocorrelation:  # residual lag-1, per channel\n";
     for (const auto& c : fit->channels) out += fmt::format("    {}: {:.4f}\n", Quoted(c.name), c.autocorrelation);
     out += "  inflation:  # std with / without the correlation of the residuals (docs/models.md#identification)\n";

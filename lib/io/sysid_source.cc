@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/errors.h"
+#include "io/log_input.h"
 #include "io/table_source.h"
 
 namespace driveid {
@@ -119,8 +120,16 @@ std::vector<std::unique_ptr<TableSource>> OpenSysIdSources(const std::string& pa
       const std::size_t v = side == "right" ? 2 : 1, p = drivetrain ? (side == "right" ? 4 : 3) : 2,
                         w = drivetrain ? (side == "right" ? 6 : 5) : 3;
       columns = {raw[0], raw[v], raw[p], raw[w]};
-      for (double& x : columns[2]) x *= per_rotation;
-      for (double& x : columns[3]) x *= per_rotation;
+      for (std::size_t c : {2, 3}) {
+        for (std::size_t k = 0; k < columns[c].size(); ++k) {
+          columns[c][k] *= per_rotation;
+          if (!(std::abs(columns[c][k]) <= kLargestLogMagnitude)) {
+            throw InputError(fmt::format("{}: unitsPerRotation = {}: {}[{}] {} x unitsPerRotation overflows (beyond "
+                                         "{:g}, where a fit's sums of squares stay finite)",
+                                         path, per_rotation, test, k, names[c], kLargestLogMagnitude));
+          }
+        }
+      }
       if (drivetrain) {
         names.insert(names.end(), {"gyro", "gyro_rate"});
         columns.push_back(raw[7]);

@@ -7,15 +7,23 @@
 
 namespace driveid {
 
+std::string FitPercentText(double fit_percent) {
+  return std::isnan(fit_percent) ? "n/a (constant)" : fmt::format("{:.2f} %", fit_percent);
+}
+
 namespace {
+
+// NaN (no fit %: a constant channel) sorts above every fit %.
+double FitKey(const ChannelStatistics& c) { return std::isnan(c.fit_percent) ? HUGE_VAL : c.fit_percent; }
 
 // A line per channel; beyond kListedChannels the ranges over all channels
 // and the channels of the lowest fit and the most correlated residuals.
 std::string FormatChannelLines(const std::vector<ChannelStatistics>& channels) {
   const auto line = [](const ChannelStatistics& c) {
-    return fmt::format("{}: {} samples, rmse {:.4g}, fit {:.2f} %, residual lag-1 autocorrelation {:.3f}, std x {:.2f} "
+    return fmt::format("{}: {} samples, rmse {:.4g}, fit {}, residual lag-1 autocorrelation {:.3f}, std x {:.2f} "
                        "for it ({} lags)\n",
-                       c.name, c.samples, c.rmse, c.fit_percent, c.autocorrelation, c.inflation, c.bandwidth);
+                       c.name, c.samples, c.rmse, FitPercentText(c.fit_percent), c.autocorrelation, c.inflation,
+                       c.bandwidth);
   };
   std::string out;
   if (channels.size() <= kListedChannels) {
@@ -27,16 +35,23 @@ std::string FormatChannelLines(const std::vector<ChannelStatistics>& channels) {
                                                  [&](const auto& a, const auto& b) { return a.*member < b.*member; });
     return std::pair{(*low).*member, (*high).*member};
   };
-  const auto [fit_low, fit_high] = range(&ChannelStatistics::fit_percent);
+  double fit_low = HUGE_VAL, fit_high = -HUGE_VAL;
+  for (const auto& c : channels) {
+    if (std::isnan(c.fit_percent)) continue;
+    fit_low = std::min(fit_low, c.fit_percent);
+    fit_high = std::max(fit_high, c.fit_percent);
+  }
   const auto [rmse_low, rmse_high] = range(&ChannelStatistics::rmse);
   const auto [lag_low, lag_high] = range(&ChannelStatistics::autocorrelation);
   const auto [inflation_low, inflation_high] = range(&ChannelStatistics::inflation);
-  out += fmt::format("{} channels (each in the parameter file and --json): fit {:.2f} to {:.2f} %, rmse {:.4g} to "
+  const std::string fit_range =
+      fit_low <= fit_high ? fmt::format("{:.2f} to {:.2f} %", fit_low, fit_high) : std::string("n/a (constant)");
+  out += fmt::format("{} channels (each in the parameter file and --json): fit {}, rmse {:.4g} to "
                      "{:.4g}, residual lag-1 {:.3f} to {:.3f}, std x {:.2f} to {:.2f}\n",
-                     channels.size(), fit_low, fit_high, rmse_low, rmse_high, lag_low, lag_high, inflation_low,
+                     channels.size(), fit_range, rmse_low, rmse_high, lag_low, lag_high, inflation_low,
                      inflation_high);
   const auto worst_fit = std::min_element(channels.begin(), channels.end(),
-                                          [](const auto& a, const auto& b) { return a.fit_percent < b.fit_percent; });
+                                          [](const auto& a, const auto& b) { return FitKey(a) < FitKey(b); });
   const auto most_correlated = std::max_element(
       channels.begin(), channels.end(), [](const auto& a, const auto& b) { return a.autocorrelation < b.autocorrelation; });
   out += "  lowest fit: " + line(*worst_fit);
@@ -131,8 +146,8 @@ std::string FormatValidationTable(const std::vector<ChannelStatistics>& logs) {
   std::string out = fmt::format("{:<40} {:>8} {:>12} {:>8} {:>8}\n", "validation: log", "samples", "rmse", "fit %",
                                 "lag-1");
   for (const auto& c : logs) {
-    out += fmt::format("{:<40} {:>8} {:>12.4g} {:>8.2f} {:>8.3f}\n", c.name, c.samples, c.rmse, c.fit_percent,
-                       c.autocorrelation);
+    const std::string fit = std::isnan(c.fit_percent) ? "n/a" : fmt::format("{:.2f}", c.fit_percent);
+    out += fmt::format("{:<40} {:>8} {:>12.4g} {:>8} {:>8.3f}\n", c.name, c.samples, c.rmse, fit, c.autocorrelation);
   }
   return out;
 }

@@ -9,6 +9,9 @@
 
 namespace driveid {
 
+/// "12.34 %", or "n/a (constant)" for a channel that does not vary (NaN).
+std::string FitPercentText(double fit_percent);
+
 /// Human-readable table: estimates with std, 95 % interval and relative
 /// error, per-channel RMSE and fit %, correlations, solver status, per-log
 /// estimates and the adequacy warnings.

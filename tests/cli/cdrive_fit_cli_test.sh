@@ -100,6 +100,7 @@ sed 's/^\(  beta: \).*/\10.5/' table1.yaml > wrong.yaml
 "$bin" validate wrong.yaml helical.csv --json | grep -o '"fit_percent":[-0-9.]*' | awk -F: '$2 > 90 { bad = 1 } END { exit bad }' \
   && ok || fail "validate with a wrong beta"
 printf 'axis:\n  inertia: 1\n' > no_cdrive.yaml
+EXPECT_OUTPUT=--trace expect 4 "helical.csv:tau_L: no usable samples to compare" -- validate table1.yaml helical.csv --min-rate 1e300
 EXPECT_OUTPUT=--trace expect 3 "no_cdrive.yaml: no 'cdrive' section" -- validate no_cdrive.yaml helical.csv
 EXPECT_OUTPUT=--trace expect 3 "missing.csv:1: missing column 'tau_R' or 'i_R'" -- validate table1.yaml missing.csv
 

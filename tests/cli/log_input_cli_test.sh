@@ -88,6 +88,27 @@ cp sysid.yaml sysid_first.yaml
 "$bin" axis sysid.json -q -o sysid.yaml 2> /dev/null && cmp -s sysid.yaml sysid_first.yaml && ok || fail "SysId rerun differs"
 sed 's/"Simple"/"Drivetrain"/' sysid.json > drive.json
 expect 2 "drive.json: a SysId Drivetrain file: give --side left, right or both" -- axis drive.json
+# Hostile text and numbers (issue 21): units with a line break and a key are
+# escaped and read back; a unitsPerRotation that overflows is named; columns
+# beyond what a fit can square are refused naming the column and its range.
+sed 's/"units": "Radians"/"units": "Rad\\n  Kg: {value: 99, std: 0}"/' sysid.json > units.json
+"$bin" axis units.json -q -o units.yaml 2> /dev/null && "$bin" report units.yaml > units_report.txt 2>&1 &&
+  ! grep -q "^  Kg:" units.yaml && [ "$(grep -c '^  Kv: ' units.yaml)" -eq 1 ] && ok ||
+  fail "units with a line break: $(grep -A8 'feedforward:' units.yaml) $(cat units_report.txt)"
+sed 's/"unitsPerRotation": 6.283185307179586/"unitsPerRotation": 1e308/' sysid.json > per_rotation.json
+expect 3 "per_rotation.json: unitsPerRotation = 1e\+308: slow-forward\[[0-9]+\] (position|velocity) x unitsPerRotation overflows" -- \
+  axis per_rotation.json
+awk -F, 'NR > 1 { printf "%s,%s,%.6g\n", $1, $2, $3 * 8e306 }' bare.csv > huge.csv
+expect 3 "huge.csv: column 'tau': values up to [0-9.e+]+ in magnitude, outside 1e-150 .. 1e\+150" -- \
+  axis huge.csv --col t=#1 --col 'q=pi/180*#2' --col tau=#3
+expect 3 "bare.csv: column 'tau': values up to [0-9.e-]+ in magnitude, outside 1e-150" -- \
+  axis bare.csv --col t=#1 --col 'q=pi/180*#2' --col 'tau=1e-300*#3'
+expect 3 "bare.csv: column 'tau': values up to" -- axis bare.csv --col t=#1 --col 'q=pi/180*#2' --col 'tau=1e300*#3'
+# A log whose torque does not vary: its fit % means nothing (n/a, null), not -3.6e16.
+awk -F, '{ printf "%s,%s,%s\n", $1, $2, ($1 == "t" ? "tau" : 0.5) }' <(grep -v '^#' axis.csv) > constant.csv
+"$bin" validate reference.yaml constant.csv --json > constant.json 2> stderr.txt && grep -q '"fit_percent":null' constant.json &&
+  "$bin" validate reference.yaml constant.csv > constant.txt 2>&1 && grep -q " n/a " constant.txt && ok ||
+  fail "validate of a constant torque: $(cat constant.json constant.txt stderr.txt)"
 # inspect: columns, rate, and the columns as a fit reads them.
 "$bin" inspect bare.csv --col t=#1 --col 'q=pi/180*#2' > inspect.txt && grep -q "10001 samples, t = 0 .. 10 s (10 s), rate 1000 Hz" inspect.txt \
   && grep -q "q = pi/180\*#2" inspect.txt && ok || fail "inspect: $(cat inspect.txt)"

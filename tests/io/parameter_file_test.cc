@@ -1,4 +1,5 @@
 #include "io/parameter_file.h"
+#include "models/axis.h"
 
 #include <string>
 
@@ -240,6 +241,39 @@ TEST_CASE("units from a log cannot end a comment and start a key: escaped, read 
   CHECK_THROWS_AS(FormatParameterFile(file), OutputError);
   CHECK(ErrorOf("axis:\n  inertia: 1\nfeedforward:\n  position_unit: " + std::string(65, 'm') + "\n") ==
         "p.yaml:4:18: feedforward.position_unit: 65 bytes: at most 64");
+}
+
+TEST_CASE("unknown keys are refused at every level; the writer writes only what the reader accepts") {
+  CHECK(ErrorOf("axis:\n  inertia: 1\nfeedforward:\n  Ks: {value: 1, std: 0.1, foo: 3}\n") ==
+        "p.yaml:4:28: feedforward.Ks.foo: unknown key (known: value, std)");
+  CHECK(ErrorOf("axis:\n  inertia: 1\nfit:\n  estimates:\n    inertia: {value: 1, std: 0.1, bias: 2}\n")
+            .find("fit.estimates.inertia.bias: unknown key (known: value, std, ci95)") != std::string::npos);
+  CHECK(ErrorOf("axis:\n  inertia: 1\nfit:\n  estimates:\n    inertia: 3\n")
+            .find("fit.estimates.inertia: expected a mapping") != std::string::npos);
+  CHECK(ErrorOf("axis:\n  inertia: 1\nfit:\n  data:\n    - {file: a.csv, sha256: 00, samples: 3, extra: 1}\n")
+            .find("fit.data.extra: unknown key") != std::string::npos);
+  CHECK(ErrorOf("axis:\n  inertia: 1\nfit:\n  derived:\n    d_g: {value: 1, std: 0.1, unit: 3}\n")
+            .find("fit.derived.d_g.unit: unknown key") != std::string::npos);
+  // What a fit of data scaled by 1e150 would write: refused, not written unreadable.
+  auto file = ParseParameterFile("p.yaml", "axis:\n  inertia: 0.05\n");
+  file.Find<AxisSection>()->inertia = 5e148;
+  try {
+    FormatParameterFile(file);
+    FAIL("written");
+  } catch (const OutputError& e) {
+    CHECK(std::string(e.what()).find("axis.inertia = 5e+148: outside what a parameter file holds") == 0);
+  }
+  file.Find<AxisSection>()->inertia = 0.05;
+  FitResult fit;
+  fit.estimates.push_back({"inertia", 0.05, 1e-120, 0.05, 0.05});
+  fit.correlation = {1.0};
+  fit.singular_values = {1.0};
+  FitProvenance provenance{"drivetrain-fit axis", "0.1.0", "", {}};
+  CHECK_THROWS_AS(FormatParameterFile(file, &fit, &provenance), OutputError);
+  fit.estimates[0].standard_error = 1e-4;
+  fit.estimates[0].ci95_low = 0.0498;
+  fit.estimates[0].ci95_high = 0.0502;
+  CHECK(ParseParameterFile("q.yaml", FormatParameterFile(file, &fit, &provenance)).fit_estimates.size() == 1);
 }
 
 TEST_CASE("the frf section reads back, its method text escaped, its band checked") {
