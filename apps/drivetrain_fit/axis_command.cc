@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <exception>
 #include <optional>
 
 #include <fmt/format.h>
@@ -105,6 +106,7 @@ AxisRun RunInverseDynamics(const std::vector<AxisLog>& logs, const AxisSection& 
 AxisRun RunOutputError(const std::vector<AxisLog>& logs, const AxisSection& section, const AxisOptions& options) {
   // Start values from inverse dynamics where it gives a usable inertia.
   std::optional<AxisParameters> initial;
+  std::exception_ptr refused;
   try {
     // The linear terms only: the Stribeck pair is the output-error fit's.
     AxisFitOptions idim;
@@ -123,8 +125,13 @@ AxisRun RunOutputError(const std::vector<AxisLog>& logs, const AxisSection& sect
     const AxisFitOutput start = FitAxis(logs, linear, idim);
     if (start.params.inertia > 0.0) initial = start.params;
   } catch (const std::exception&) {
-    // Inverse dynamics refused these logs: start from the parameter file.
+    // Inverse dynamics refused these logs: start from the parameter file,
+    // or, without a start there, say why inverse dynamics refused them.
+    refused = std::current_exception();
   }
+  const bool inertia_free = std::find(options.free.begin(), options.free.end(),
+                                      KeyOf(AxisParameterTable(), &AxisParameters::inertia)) != options.free.end();
+  if (!initial && refused && inertia_free && !(section.inertia.value_or(0.0) > 0.0)) std::rethrow_exception(refused);
   AxisOeOptions oe_options;
   oe_options.free = options.free;
   SetProgress(oe_options.fit, options.output.verbose);

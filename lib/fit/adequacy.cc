@@ -32,6 +32,18 @@ void RequireDetermined(const FitResult& fit, const std::vector<std::string>& non
   throw IdentificationError(message);
 }
 
+bool MeasurementVaries(const double* measured, int count) {
+  if (count <= 1) return false;
+  double mean = 0.0, magnitude = 0.0, spread = 0.0;
+  for (int k = 0; k < count; ++k) {
+    mean += measured[k];
+    magnitude = std::max(magnitude, std::abs(measured[k]));
+  }
+  mean /= count;
+  for (int k = 0; k < count; ++k) spread += (measured[k] - mean) * (measured[k] - mean);
+  return spread > 0.0 && spread > count * (1e-9 * magnitude) * (1e-9 * magnitude);
+}
+
 ChannelStatistics DescribeResiduals(const std::string& name, const double* measured, const double* residuals,
                                     int count) {
   ChannelStatistics stats;
@@ -49,10 +61,7 @@ ChannelStatistics DescribeResiduals(const std::string& name, const double* measu
   if (measured != nullptr) {
     mean /= count;
     for (int k = 0; k < count; ++k) spread += (measured[k] - mean) * (measured[k] - mean);
-    double magnitude = 0.0;
-    for (int k = 0; k < count; ++k) magnitude = std::max(magnitude, std::abs(measured[k]));
-    const bool varies = spread > count * (1e-9 * magnitude) * (1e-9 * magnitude) && spread > 0.0;
-    stats.fit_percent = varies ? 100.0 * (1.0 - std::sqrt(ssr / spread)) : std::nan("");
+    stats.fit_percent = MeasurementVaries(measured, count) ? 100.0 * (1.0 - std::sqrt(ssr / spread)) : std::nan("");
   }
   return stats;
 }

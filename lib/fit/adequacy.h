@@ -34,6 +34,10 @@ void RequireDetermined(const FitResult& fit, const std::vector<std::string>& non
 /// RMSE, fit % = 100 (1 - |r| / |y - mean(y)|) and the lag-1
 /// autocorrelation of the residuals r = y - model of one channel (`measured`
 /// may be null: fit % 0).
+/// False when `count` measured values do not vary: their spread about the mean
+/// is below 1e-9 of their largest magnitude (rounding), or zero.
+bool MeasurementVaries(const double* measured, int count);
+
 ChannelStatistics DescribeResiduals(const std::string& name, const double* measured, const double* residuals,
                                     int count);
 

@@ -134,6 +134,17 @@ void RequireFiniteStatistics(const std::vector<FitChannel>& channels, const FitR
 
 }  // namespace
 
+void RequireVaryingMeasurements(const std::vector<FitChannel>& channels) {
+  if (channels.empty()) return;
+  std::vector<std::string> constant;
+  for (const auto& c : channels) {
+    if (c.measured == nullptr || MeasurementVaries(c.measured, c.count)) return;
+    constant.push_back(c.count > 0 ? fmt::format("{} ({:.6g} throughout)", c.name, c.measured[0]) : c.name);
+  }
+  throw IdentificationError(fmt::format("nothing to identify: the measured {} do{} not vary",
+                                        fmt::join(constant, ", "), constant.size() == 1 ? "es" : ""));
+}
+
 void DescribeFit(std::vector<JacobianBlock> blocks, const Eigen::VectorXd& residuals,
                  const std::vector<FitParameter>& parameters, const std::vector<double>& values,
                  const std::vector<FitChannel>& channels, FitResult& result) {

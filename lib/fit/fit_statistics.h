@@ -24,6 +24,11 @@ struct JacobianBlock {
   RowMatrix values;
 };
 
+/// Throws IdentificationError naming the channels when every measured channel
+/// is constant (MeasurementVaries): there is nothing to identify (a torque of
+/// zeros would otherwise fit every parameter as 0 +- 0).
+void RequireVaryingMeasurements(const std::vector<FitChannel>& channels);
+
 /// Throws IdentificationError naming the parameters when the normalised
 /// Jacobian's columns are (nearly) collinear or dead; returns its singular
 /// values (descending) otherwise. `where` is put into the message.

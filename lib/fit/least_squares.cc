@@ -197,6 +197,7 @@ FitResult FitLeastSquares(ResidualModel& model, const std::vector<FitParameter>&
   const int n = model.residual_count();
   const int p = static_cast<int>(parameters.size());
   RequireEnoughSamples(n, p);
+  RequireVaryingMeasurements(channels);
 
   const std::vector<double> scale = ParameterScales(parameters);
   std::vector<double> z(static_cast<std::size_t>(p));
@@ -323,6 +324,7 @@ FitResult FitLinearLeastSquares(JacobianBlock design, const Eigen::VectorXd& y,
   const auto n = static_cast<int>(y.size());
   const int p = static_cast<int>(parameters.size());
   RequireEnoughSamples(n, p);
+  RequireVaryingMeasurements(channels);
   if (design.values.rows() != n || design.values.cols() != p) {
     throw std::logic_error("FitLinearLeastSquares: the design does not match the parameters or y");
   }
@@ -381,6 +383,7 @@ FitResult FitBlockLeastSquares(BlockResidualModel& model, const std::vector<FitP
   }
   if (next != p) throw std::logic_error("FitBlockLeastSquares: parameters do not match the blocks");
   RequireEnoughSamples(n, p);
+  RequireVaryingMeasurements(channels);
 
   const std::vector<double> scale = ParameterScales(parameters);
   std::vector<double> z(static_cast<std::size_t>(p));

@@ -104,6 +104,11 @@ expect 3 "huge.csv: column 'tau': values up to [0-9.e+]+ in magnitude, outside 1
 expect 3 "bare.csv: column 'tau': values up to [0-9.e-]+ in magnitude, outside 1e-150" -- \
   axis bare.csv --col t=#1 --col 'q=pi/180*#2' --col 'tau=1e-300*#3'
 expect 3 "bare.csv: column 'tau': values up to" -- axis bare.csv --col t=#1 --col 'q=pi/180*#2' --col 'tau=1e300*#3'
+# A torque of zeros or a constant: nothing to identify (exit 4 naming it), whatever the method.
+awk -F, '{ printf "%s,%s,%s\n", $1, $2, ($1 == "t" ? "tau" : 0) }' <(grep -v '^#' axis.csv) > zeros.csv
+for method in idim oe auto; do
+  expect 4 "nothing to identify: the measured zeros.csv:tau \(0 throughout\) does not vary" -- axis zeros.csv --method $method
+done
 # A log whose torque does not vary: its fit % means nothing (n/a, null), not -3.6e16.
 awk -F, '{ printf "%s,%s,%s\n", $1, $2, ($1 == "t" ? "tau" : 0.5) }' <(grep -v '^#' axis.csv) > constant.csv
 "$bin" validate reference.yaml constant.csv --json > constant.json 2> stderr.txt && grep -q '"fit_percent":null' constant.json &&
