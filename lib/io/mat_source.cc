@@ -18,6 +18,7 @@
 
 #include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -266,6 +267,7 @@ class MatSource : public TableSource {
     const std::size_t text_size = text.size();
     int fds[2];
     if (::pipe(fds) != 0) throw InputError(fmt::format("{}: cannot start the MAT reader", path_));
+    const pid_t parent = ::getpid();
     const pid_t child = ::fork();
     if (child < 0) {
       ::close(fds[0]);
@@ -273,6 +275,9 @@ class MatSource : public TableSource {
       throw InputError(fmt::format("{}: cannot start the MAT reader", path_));
     }
     if (child == 0) {
+      // The reader dies with the tool, however the tool ends (SIGKILL too).
+      ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+      if (::getppid() != parent) ::_exit(1);
       ::close(fds[0]);
 #if !defined(DRIVEID_ASAN)
       // 1 GiB for the process itself plus three copies of what the file
@@ -302,6 +307,7 @@ class MatSource : public TableSource {
       ::_exit(written == message.size() ? 0 : 1);
     }
     ::close(fds[1]);
+    SetTemporaryFileWriter(child);  // killed by the tools' signal handlers
     std::string reply;
     std::vector<char> chunk(1 << 16);
     const long seconds_allowed = std::min<long>(120, 5 + static_cast<long>(text_size / 10'000'000));
@@ -331,6 +337,7 @@ class MatSource : public TableSource {
     int status = 0;
     while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
     }
+    SetTemporaryFileWriter(0);
     if (timed_out) {
       throw InputError(fmt::format("{}: the MAT reader took longer than {} s (a corrupt file?)", path_, seconds_allowed));
     }
