@@ -27,6 +27,7 @@
 #include <matio.h>
 
 #include "core/errors.h"
+#include "io/hdf5_storage_check.h"
 #include "io/mat_structure_check.h"
 #include "io/table_source.h"
 #include "io/temporary_files.h"
@@ -291,6 +292,7 @@ class MatSource : public TableSource {
       std::string message;
       try {
         CheckMatV5Elements(path_, text);
+        CheckHdf5Storage(path_, file);
         LoadHere(file);
         message = Serialise();
       } catch (const std::exception& e) {

@@ -1,0 +1,105 @@
+// Hostile MAT v7.3 (HDF5) files (issue 21): cut short at every length —
+// refused naming the file, or the same data as the whole file (the v5 sweep
+// is in log_input_test.cc); variables whose bytes come from other files. Prefixes that hold the superblock are refused before a
+// reader process starts; the first ~520 start one each.
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <catch2/catch.hpp>
+#include <hdf5.h>
+#include <matio.h>
+
+#include "core/errors.h"
+#include "io/log_input.h"
+#include "support/mat_fixture.h"
+
+using namespace driveid;
+
+TEST_CASE("MAT v7.3 cut short at every length: refused naming the file, or the same data as the whole file") {
+  const std::string bytes = driveid::testing::WriteMat(MAT_FT_MAT73);
+  const std::vector<std::string> columns = {"t", "q", "tau|i"};
+  LogInputOptions options;
+  options.columns = {{"q", "data(:,2)"}, {"i", "data(:,3)"}};
+  const auto whole = ReadLogs("whole.mat", bytes, {}, columns, options);
+  REQUIRE(whole.size() == 1);
+  int refused = 0;
+  for (std::size_t length = 0; length < bytes.size(); ++length) {
+    try {
+      const auto logs = ReadLogs("cut.mat", bytes.substr(0, length), {}, columns, options);
+      INFO("prefix of " << length << " of " << bytes.size() << " bytes read");
+      REQUIRE(logs.size() == 1);
+      CHECK(logs[0].columns == whole[0].columns);
+    } catch (const InputError& e) {
+      INFO("prefix of " << length << " bytes: " << e.what());
+      CHECK(std::string(e.what()).rfind("cut.mat", 0) == 0);
+      ++refused;
+    }
+  }
+  CHECK(refused > 0);
+}
+
+namespace {
+
+// Adds to a v7.3 file (HDF5, written by matio) a double variable `name` of 5
+// samples as MATLAB stores one, its data in `how`: "external" raw storage in
+// another file, or an "external link" to a dataset of another file.
+std::string WithForeignData(const std::string& how) {
+  const std::string bytes = driveid::testing::WriteMat(MAT_FT_MAT73);
+  const auto dir = std::filesystem::temp_directory_path();
+  const std::string path = (dir / "driveid_test73_foreign.mat").string();
+  const std::string secret = (dir / "driveid_test73_secret.bin").string();
+  {
+    std::ofstream out(path, std::ios::binary);
+    out << bytes;
+    std::ofstream other(secret, std::ios::binary);
+    const double values[5] = {7, 7, 7, 7, 7};
+    other.write(reinterpret_cast<const char*>(values), sizeof values);
+  }
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  REQUIRE(file >= 0);
+  if (how == "external") {
+    const hsize_t dims[2] = {1, 5};
+    const hid_t space = H5Screate_simple(2, dims, nullptr);
+    const hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
+    REQUIRE(H5Pset_external(plist, secret.c_str(), 0, 5 * sizeof(double)) >= 0);
+    const hid_t dataset = H5Dcreate2(file, "stolen", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, plist, H5P_DEFAULT);
+    REQUIRE(dataset >= 0);
+    const hid_t text = H5Tcopy(H5T_C_S1);
+    H5Tset_size(text, 6);
+    const hid_t scalar = H5Screate(H5S_SCALAR);
+    const hid_t attribute = H5Acreate2(dataset, "MATLAB_class", text, scalar, H5P_DEFAULT, H5P_DEFAULT);
+    H5Awrite(attribute, text, "double");
+    H5Aclose(attribute);
+    H5Sclose(scalar);
+    H5Tclose(text);
+    H5Dclose(dataset);
+    H5Pclose(plist);
+    H5Sclose(space);
+  } else {
+    REQUIRE(H5Lcreate_external(secret.c_str(), "/time", file, "stolen", H5P_DEFAULT, H5P_DEFAULT) >= 0);
+  }
+  H5Fclose(file);
+  return driveid::testing::Slurp(path);
+}
+
+}  // namespace
+
+TEST_CASE("MAT v7.3 whose variable reads another file's bytes (external storage, external link) is refused naming it") {
+  LogInputOptions options;
+  options.columns = {{"q", "data(:,2)"}, {"i", "data(:,3)"}};
+  for (const std::string how : {"external", "external link"}) {
+    INFO(how);
+    const std::string bytes = WithForeignData(how);
+    try {
+      ReadLogs("foreign.mat", bytes, {}, {"t", "q", "tau|i"}, options);
+      FAIL("read");
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      CHECK(message.rfind("foreign.mat: ", 0) == 0);
+      CHECK(message.find("'stolen'") != std::string::npos);
+      CHECK(message.find(how == "external" ? "external files" : "external link") != std::string::npos);
+    }
+  }
+}
