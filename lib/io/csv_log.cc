@@ -61,7 +61,7 @@ std::string ReadFileToString(const std::string& path, const ReadLimits& limits) 
     if (first_chunk) {
       // JSON (SysId writes one long line), MAT and HDF5 files are not lines.
       first_chunk = false;
-      std::size_t i = 0;
+      std::size_t i = n >= 3 && std::memcmp(chunk.data(), "\xEF\xBB\xBF", 3) == 0 ? 3 : 0;  // byte-order mark
       while (i < n && (chunk[i] == ' ' || chunk[i] == '\n' || chunk[i] == '\r' || chunk[i] == '\t')) ++i;
       const std::string_view head(chunk.data() + i, n - i);
       if (head.substr(0, 1) == "{" || head.substr(0, 7) == "MATLAB " || head.substr(0, 4) == "\x89HDF") {

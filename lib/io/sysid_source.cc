@@ -6,7 +6,11 @@
 //   Drivetrain: [t, left V, right V, left pos, right pos, left vel, right vel, gyro angle, gyro rate]
 // Positions and velocities are in rotations; they are multiplied by
 // unitsPerRotation into `units`. Each test (and side) is one source.
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <optional>
+#include <set>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -54,39 +58,160 @@ class SysIdSource : public TableSource {
   std::vector<std::string> notes_;
 };
 
-double Number(const std::string& path, const nlohmann::json& value, const std::string& where) {
-  if (!value.is_number()) throw InputError(fmt::format("{}: {}: expected a number", path, where));
-  const double v = value.get<double>();
-  if (!std::isfinite(v)) throw InputError(fmt::format("{}: {}: not a finite number", path, where));
-  return v;
-}
+// What the SAX pass collects: the scalars, and each test's samples as one
+// flat run of numbers with the width of its samples (all equal), so that
+// the file's text is the only large thing besides the numbers themselves.
+struct SysIdDocument {
+  std::optional<std::string> layout, units;
+  std::optional<double> per_rotation;
+  struct Test {
+    bool present = false;
+    std::vector<double> values;
+    std::size_t width = 0, samples = 0;
+  };
+  std::map<std::string, Test> tests;
+};
+
+// nlohmann's SAX interface: one pass over the text, no DOM (a DOM of 10^7
+// samples took 23 times the file). Refuses duplicate keys at the top level,
+// which a DOM would silently resolve (the last wins).
+class SysIdHandler : public nlohmann::json_sax<nlohmann::json> {
+ public:
+  SysIdHandler(const std::string& path, SysIdDocument& doc) : path_(path), doc_(doc) {}
+
+  bool null() override { return Scalar("null"); }
+  bool boolean(bool) override { return Scalar("a boolean"); }
+  bool number_integer(number_integer_t v) override { return Number(static_cast<double>(v)); }
+  bool number_unsigned(number_unsigned_t v) override { return Number(static_cast<double>(v)); }
+  bool number_float(number_float_t v, const string_t&) override { return Number(v); }
+  bool binary(binary_t&) override { return Scalar("binary data"); }
+  bool string(string_t& v) override {
+    if (depth_ == 1 && (key_ == "test" || key_ == "units")) {
+      (key_ == "test" ? doc_.layout : doc_.units) = v;
+      return true;
+    }
+    return Scalar("a string");
+  }
+  bool start_object(std::size_t) override {
+    if (depth_ == 0) {
+      root_ = true;
+    } else if (InTest()) {
+      Refuse("expected an array of numbers per sample");
+    }
+    ++depth_;
+    return true;
+  }
+  bool key(string_t& k) override {
+    if (depth_ == 1) {
+      if (!seen_.insert(k).second) {
+        throw InputError(fmt::format("{}: key '{}' appears twice (JSON leaves it undefined which one counts)", path_,
+                                     k.substr(0, 64)));
+      }
+      key_ = k;
+    }
+    return true;
+  }
+  bool end_object() override {
+    --depth_;
+    return true;
+  }
+  bool start_array(std::size_t) override {
+    if (depth_ == 1 && IsTest(key_)) {
+      test_ = &doc_.tests[key_];
+      test_->present = true;
+    } else if (InTest() && depth_ == 2) {
+      count_ = 0;
+    } else if (InTest()) {
+      Refuse("expected numbers in a sample");
+    }
+    ++depth_;
+    return true;
+  }
+  bool end_array() override {
+    --depth_;
+    if (InTest() && depth_ == 2) {
+      if (test_->samples == 0) test_->width = count_;
+      if (count_ != test_->width) {
+        Refuse(fmt::format("{} numbers, the first sample has {}", count_, test_->width));
+      }
+      ++test_->samples;
+    } else if (InTest() && depth_ == 1) {
+      test_ = nullptr;
+    }
+    return true;
+  }
+  bool parse_error(std::size_t position, const std::string&, const nlohmann::detail::exception& e) override {
+    throw InputError(fmt::format("{}: invalid JSON at byte {}{}", path_, position,
+                                 e.id == 406 ? " (a number out of range)" : ""));
+  }
+  bool root() const { return root_; }
+
+ private:
+  bool InTest() const { return test_ != nullptr; }
+  static bool IsTest(const std::string& k) {
+    return std::find(std::begin(kTests), std::end(kTests), k) != std::end(kTests);
+  }
+  [[noreturn]] void Refuse(const std::string& what) const {
+    throw InputError(fmt::format("{}: {}[{}]: {}", path_, key_, test_->samples, what));
+  }
+  bool Scalar(const char* what) {
+    if (InTest()) Refuse(fmt::format("expected a number, found {}", what));
+    if (depth_ == 1 && (key_ == "test" || key_ == "units" || key_ == "unitsPerRotation")) {
+      throw InputError(fmt::format("{}: '{}': not {}", path_, key_, key_ == "unitsPerRotation" ? "a number" : "text"));
+    }
+    return true;
+  }
+  bool Number(double v) {
+    if (InTest() && depth_ == 3) {
+      if (!std::isfinite(v)) Refuse("not a finite number");
+      test_->values.push_back(v);
+      ++count_;
+      return true;
+    }
+    if (InTest()) Refuse("expected an array of numbers per sample");
+    if (depth_ == 1 && key_ == "unitsPerRotation") {
+      if (!std::isfinite(v)) throw InputError(fmt::format("{}: unitsPerRotation: not a finite number", path_));
+      doc_.per_rotation = v;
+      return true;
+    }
+    return Scalar("a number");
+  }
+
+  const std::string& path_;
+  SysIdDocument& doc_;
+  int depth_ = 0;
+  bool root_ = false;
+  std::string key_;
+  std::set<std::string> seen_;
+  SysIdDocument::Test* test_ = nullptr;
+  std::size_t count_ = 0;
+};
 
 }  // namespace
 
 std::vector<std::unique_ptr<TableSource>> OpenSysIdSources(const std::string& path, const std::string& text,
                                                            const SysIdFormat& format) {
-  nlohmann::json doc;
+  SysIdDocument doc;
+  SysIdHandler handler(path, doc);
   try {
-    doc = nlohmann::json::parse(text, nullptr, true, false);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(fmt::format("{}: invalid JSON at byte {}", path, e.byte));
-  } catch (const nlohmann::json::exception& e) {  // e.g. a number out of range (1e999)
+    nlohmann::json::sax_parse(text, &handler);
+  } catch (const nlohmann::json::exception& e) {
     throw InputError(fmt::format("{}: invalid JSON: {}", path, e.what()));
   }
-  if (!doc.is_object() || !doc.contains("test") || !doc["test"].is_string()) {
+  if (!handler.root() || !doc.layout) {
     throw InputError(fmt::format("{}: not a WPILib SysId file (a JSON object with 'test', 'units', "
                                  "'unitsPerRotation' and the tests slow-forward ... fast-backward)",
                                  path));
   }
-  const std::string layout = doc["test"].get<std::string>();
+  const std::string layout = *doc.layout;
   const bool drivetrain = layout == "Drivetrain" || layout == "Drivetrain (Angular)";
   if (!drivetrain && layout != "Simple" && layout != "Elevator" && layout != "Arm") {
     throw InputError(fmt::format("{}: SysId test '{}' is not one of Simple, Elevator, Arm, Drivetrain", path, layout));
   }
-  if (!doc.contains("unitsPerRotation")) throw InputError(fmt::format("{}: no 'unitsPerRotation'", path));
-  const double per_rotation = Number(path, doc["unitsPerRotation"], "unitsPerRotation");
+  if (!doc.per_rotation) throw InputError(fmt::format("{}: no 'unitsPerRotation'", path));
+  const double per_rotation = *doc.per_rotation;
   if (!(per_rotation > 0.0)) throw InputError(fmt::format("{}: unitsPerRotation = {}: must be > 0", path, per_rotation));
-  const std::string units = doc.contains("units") && doc["units"].is_string() ? doc["units"].get<std::string>() : "?";
+  const std::string units = doc.units.value_or("?");
   if (units.size() > 64) {  // what a parameter file's position_unit holds
     throw InputError(fmt::format("{}: 'units' is {} bytes long: at most 64", path, units.size()));
   }
@@ -102,18 +227,19 @@ std::vector<std::unique_ptr<TableSource>> OpenSysIdSources(const std::string& pa
   const std::size_t width = drivetrain ? 9 : 4;
   std::vector<std::unique_ptr<TableSource>> out;
   for (const char* test : kTests) {
-    if (!doc.contains(test)) throw InputError(fmt::format("{}: no test '{}'", path, test));
-    const auto& samples = doc[test];
-    if (!samples.is_array()) throw InputError(fmt::format("{}: {}: expected an array of samples", path, test));
-    std::vector<std::vector<double>> raw(width);
-    for (std::size_t k = 0; k < samples.size(); ++k) {
-      const auto& s = samples[k];
-      if (!s.is_array() || s.size() != width) {
-        throw InputError(fmt::format("{}: {}[{}]: expected {} numbers per sample for the {} layout", path, test, k,
-                                     width, layout));
-      }
-      for (std::size_t i = 0; i < width; ++i) raw[i].push_back(Number(path, s[i], fmt::format("{}[{}][{}]", test, k, i)));
+    auto found = doc.tests.find(test);
+    if (found == doc.tests.end() || !found->second.present) throw InputError(fmt::format("{}: no test '{}'", path, test));
+    SysIdDocument::Test& samples = found->second;
+    if (samples.samples > 0 && samples.width != width) {
+      throw InputError(fmt::format("{}: {}[0]: expected {} numbers per sample for the {} layout, found {}", path, test,
+                                   width, layout, samples.width));
     }
+    std::vector<std::vector<double>> raw(width);
+    for (std::size_t i = 0; i < width; ++i) {
+      raw[i].resize(samples.samples);
+      for (std::size_t k = 0; k < samples.samples; ++k) raw[i][k] = samples.values[k * width + i];
+    }
+    std::vector<double>().swap(samples.values);
     for (const auto& side : sides) {
       std::vector<std::string> names = {"t", "voltage", "position", "velocity"};
       std::vector<std::vector<double>> columns;

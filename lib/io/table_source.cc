@@ -305,7 +305,8 @@ bool LooksLikeMat(const std::string& text) {
 }
 
 bool LooksLikeJson(const std::string& text) {
-  for (char c : text) {
+  const bool bom = text.compare(0, 3, "\xEF\xBB\xBF") == 0;  // a UTF-8 byte-order mark (the parser skips it too)
+  for (char c : std::string_view(text).substr(bom ? 3 : 0)) {
     if (c == ' ' || c == '\n' || c == '\r' || c == '\t') continue;
     return c == '{';
   }
@@ -347,10 +348,16 @@ std::unique_ptr<TableSource> JoinSources(std::unique_ptr<TableSource> first, std
 std::vector<std::unique_ptr<TableSource>> OpenTableSources(const std::string& path, const std::string& text,
                                                            const CsvFormat& csv, const SysIdFormat& sysid) {
   std::vector<std::unique_ptr<TableSource>> out;
+  if (LooksLikeJson(text)) {
+    out = OpenSysIdSources(path, text, sysid);
+    return out;
+  }
+  if (!sysid.side.empty()) {
+    throw OptionError(fmt::format("--side {}: {} is a {} file; --side applies to SysId Drivetrain files", sysid.side,
+                                  path, LooksLikeMat(text) ? "MAT" : "CSV"));
+  }
   if (LooksLikeMat(text)) {
     out.push_back(OpenMatSource(path, text));
-  } else if (LooksLikeJson(text)) {
-    out = OpenSysIdSources(path, text, sysid);
   } else {
     if (text.size() >= 8 && text.compare(0, 8, "\x89HDF\r\n\x1a\n") == 0) {
       throw InputError(fmt::format("{}: an HDF5 file without a MAT header: not a MAT v7.3 file", path));

@@ -137,6 +137,28 @@ awk -F, '{ printf "%s,%s,%s\n", $1, $2, ($1 == "t" ? "tau" : 0.5) }' <(grep -v '
 "$bin" validate reference.yaml constant.csv --json > constant.json 2> stderr.txt && grep -q '"fit_percent":null' constant.json &&
   "$bin" validate reference.yaml constant.csv > constant.txt 2>&1 && grep -q " n/a " constant.txt && ok ||
   fail "validate of a constant torque: $(cat constant.json constant.txt stderr.txt)"
+# SysId JSON is streamed (issue 21): 17 MB of samples read within 120 MB of
+# address space (a DOM took 23 times the file); a byte-order mark is read;
+# a key given twice and --side on a CSV are refused.
+awk 'BEGIN { srand(1); n = 100000; printf "{\"test\": \"Simple\", \"units\": \"Radians\", \"unitsPerRotation\": 1"
+  split("slow-forward slow-backward fast-forward fast-backward", T, " ")
+  for (j = 1; j <= 4; j++) { printf ", \"%s\": [", T[j]
+    for (k = 0; k < n; k++) printf "%s[%.4f, %.6f, %.6f, %.6f]", (k ? ", " : ""), k * 0.005, 1 + rand(), k * 0.001, 0.2 + rand() * 0.01
+    printf "]" }
+  printf "}\n" }' > big_sysid.json
+if ldd "$bin" 2> /dev/null | grep -q libasan; then
+  echo "skipped: SysId memory under AddressSanitizer (its shadow memory needs the address space)"
+else
+  ( ulimit -v 120000; "$bin" inspect big_sysid.json > big_inspect.txt 2> stderr.txt ) &&
+    grep -q "100000 samples" big_inspect.txt && ok || fail "SysId 17 MB within 120 MB: $(cat stderr.txt)"
+fi
+{ printf '\xef\xbb\xbf'; cat sysid.json; } > bom.json
+"$bin" inspect bom.json > inspect.txt 2> stderr.txt && grep -q "bom.json \[slow-forward\] (sysid)" inspect.txt && ok ||
+  fail "SysId with a byte-order mark: $(head -3 inspect.txt) $(cat stderr.txt)"
+sed 's/"units": "Radians"/"units": "Radians", "unitsPerRotation": 1/' sysid.json > twice.json
+expect 3 "twice.json: key 'unitsPerRotation' appears twice" -- axis twice.json
+expect 2 "--side left: bare.csv is a CSV file; --side applies to SysId Drivetrain files" -- \
+  axis bare.csv --col t=#1 --col q=#2 --col tau=#3 --side left
 # inspect: columns, rate, and the columns as a fit reads them.
 "$bin" inspect bare.csv --col t=#1 --col 'q=pi/180*#2' > inspect.txt && grep -q "10001 samples, t = 0 .. 10 s (10 s), rate 1000 Hz" inspect.txt \
   && grep -q "q = pi/180\*#2" inspect.txt && ok || fail "inspect: $(cat inspect.txt)"

@@ -188,7 +188,7 @@ TEST_CASE("SysId JSON: four tests as logs, positions in units, sides of a drivet
   CHECK(sides[1].columns[2] == std::vector<double>{2, 2});
   CHECK_THAT(ErrorOf<OptionError>(drive, {}, "d.json"), Catch::Contains("give --side left, right or both"));
   CHECK(ErrorOf(R"({"test": "Simple", "unitsPerRotation": 1, "slow-forward": [[0, 1]]})", {}, "x.json") ==
-        "x.json: slow-forward[0]: expected 4 numbers per sample for the Simple layout");
+        "x.json: slow-forward[0]: expected 4 numbers per sample for the Simple layout, found 2");
   CHECK(ErrorOf("{\"test\": ", {}, "x.json").rfind("x.json: invalid JSON at byte", 0) == 0);
   // Fuzzer regression: a number beyond double's range is an input error, not a crash.
   CHECK(ErrorOf(R"({"test": "Simple", "unitsPerRotation": 1e999})", {}, "x.json").rfind("x.json: invalid JSON", 0) == 0);
