@@ -57,6 +57,7 @@ void CaptureMatioLog(int, char* message) {
 // Elements one file may expand to (2 GiB of doubles): a compressed variable
 // can claim far more than its bytes.
 constexpr std::size_t kMaxElements = std::size_t{1} << 28;
+constexpr std::size_t kMaxVariables = 100000;  // top-level variables of one file
 
 struct Variable {
   std::string name;  // dotted path
@@ -419,29 +420,46 @@ class MatSource : public TableSource {
     std::error_code error;
     const std::uintmax_t file_size = std::filesystem::file_size(file, error);
     const double byte_budget = 1100.0 * static_cast<double>(error ? 0 : file_size) + 4096.0;
-    std::vector<std::string> names;
+    // First pass: headers only. Second pass in the same order: each
+    // variable read in turn (Mat_VarRead by name rescans the file from the
+    // start: quadratic in the number of variables), the refused ones skipped
+    // by their headers.
+    std::vector<bool> wanted;
+    std::size_t variables = 0;
     while (matvar_t* info = Mat_VarReadNextInfo(mat)) {
+      bool ok = false;
       if (info->name != nullptr) {
+        if (++variables > kMaxVariables) {
+          Mat_VarFree(info);
+          Mat_Close(mat);
+          throw InputError(fmt::format("{}: more than {} variables: a log file holds at most {}", path_, kMaxVariables,
+                                       kMaxVariables));
+        }
         const double claimed = ClaimedBytes(info, 0);
-        if (claimed <= byte_budget && claimed <= 8.0 * static_cast<double>(kMaxElements)) {
-          names.emplace_back(info->name);
-        } else {
+        ok = claimed <= byte_budget && claimed <= 8.0 * static_cast<double>(kMaxElements);
+        if (!ok) {
           notes_.push_back(fmt::format("{}: skipped (its header claims {:.3g} bytes in a file of {} bytes)", info->name,
                                        claimed, file_size));
         }
       }
+      wanted.push_back(ok);
       Mat_VarFree(info);
-      if (names.size() > 10000) break;
     }
     std::size_t elements = 0;
     try {
-      for (const auto& name : names) {
-        matvar_t* var = Mat_VarRead(mat, name.c_str());
+      if (Mat_Rewind(mat) != 0) throw InputError(fmt::format("{}: not a readable MAT file (cannot rewind)", path_));
+      for (std::size_t index = 0; index < wanted.size(); ++index) {
+        if (!wanted[index]) {
+          if (matvar_t* info = Mat_VarReadNextInfo(mat)) Mat_VarFree(info);
+          continue;
+        }
+        matvar_t* var = Mat_VarReadNext(mat);
         if (var == nullptr) {
-          notes_.push_back(fmt::format("{}: skipped (matio cannot read it{})", name,
+          notes_.push_back(fmt::format("variable {}: skipped (matio cannot read it{})", index + 1,
                                        last_matio_message.empty() ? "" : ": " + last_matio_message));
           continue;
         }
+        const std::string name = var->name != nullptr ? var->name : "";
         try {
           Add(var, name, 0, elements);
         } catch (...) {
