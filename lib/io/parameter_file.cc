@@ -172,6 +172,18 @@ std::string Quoted(const std::string& text) {
 }
 
 constexpr std::size_t kMaxUnitBytes = 64;  // feedforward.effort_unit, position_unit
+constexpr std::size_t kMaxParameterFileBytes = 1 << 20, kMaxParameterLineBytes = 1 << 16;  // what the reader accepts
+
+// Provenance text (the command line, notes) is information, not data: cut
+// beyond `limit` bytes, saying so, so that a line stays within what the
+// reader accepts (64 KiB).
+constexpr std::size_t kMaxProvenanceText = 4096;
+std::string Abbreviated(const std::string& text, std::size_t limit) {
+  if (text.size() <= limit) return text;
+  std::size_t cut = limit;
+  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // not inside a UTF-8 character
+  return fmt::format("{} ... ({} bytes in all)", text.substr(0, cut), text.size());
+}
 
 // Text for a comment: as is when it is printable ASCII, else quoted and
 // escaped — a unit read from a log must not end the comment and start a key.
@@ -552,8 +564,8 @@ ParameterFile ParseParameterFile(const std::string& path, const std::string& tex
 
 ParameterFile ReadParameterFile(const std::string& path) {
   ReadLimits limits;
-  limits.max_bytes = 1 << 20;
-  limits.max_line_bytes = 1 << 16;
+  limits.max_bytes = kMaxParameterFileBytes;
+  limits.max_line_bytes = kMaxParameterLineBytes;
   limits.max_bytes_hint = "a parameter file may be at most 1 MiB";
   return ParseParameterFile(path, ReadFileToString(path, limits));
 }
@@ -567,7 +579,7 @@ std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit,
   if (!file.feedforward.gains.empty()) out += FormatFeedforward(file.feedforward);
   if (fit != nullptr && provenance != nullptr) {
     out += "fit:\n";
-    out += fmt::format("  command: {}\n", Quoted(provenance->command));
+    out += fmt::format("  command: {}\n", Quoted(Abbreviated(provenance->command, kMaxProvenanceText)));
     out += fmt::format("  version: {}\n", Quoted(provenance->version));
     if (!provenance->model.empty()) out += fmt::format("  model: {}\n", provenance->model);
     out += "  data:\n";
@@ -577,7 +589,7 @@ std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit,
       if (!record.segment.empty()) out += fmt::format(", segment: {}", Quoted(record.segment));
       if (!record.notes.empty()) {
         std::vector<std::string> quoted;
-        for (const auto& note : record.notes) quoted.push_back(Quoted(note));
+        for (const auto& note : record.notes) quoted.push_back(Quoted(Abbreviated(note, kMaxProvenanceText / 4)));
         out += fmt::format(", notes: [{}]", fmt::join(quoted, ", "));
       }
       out += "}\n";
@@ -639,6 +651,21 @@ std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit,
     out += "]\n";
     out += fmt::format("  iterations: {}\n", fit->iterations);
     out += fmt::format("  converged: {}\n", fit->converged ? "true" : "false");
+  }
+  // What ReadParameterFile accepts (1 MiB, lines of 64 KiB): else nothing is written.
+  if (out.size() > kMaxParameterFileBytes) {
+    throw OutputError(fmt::format("the parameter file would be {} bytes, a parameter file holds at most {}; nothing "
+                                  "written",
+                                  out.size(), kMaxParameterFileBytes));
+  }
+  for (std::size_t begin = 0, line = 1; begin < out.size(); ++line) {
+    const std::size_t end = std::min(out.find('\n', begin), out.size());
+    if (end - begin > kMaxParameterLineBytes) {
+      throw OutputError(fmt::format("line {} of the parameter file would be {} bytes (\"{}...\"), at most {}; nothing "
+                                    "written",
+                                    line, end - begin, out.substr(begin, 40), kMaxParameterLineBytes));
+    }
+    begin = end + 1;
   }
   return out;
 }

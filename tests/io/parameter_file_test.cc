@@ -276,6 +276,23 @@ TEST_CASE("unknown keys are refused at every level; the writer writes only what 
   CHECK(ParseParameterFile("q.yaml", FormatParameterFile(file, &fit, &provenance)).fit_estimates.size() == 1);
 }
 
+TEST_CASE("long provenance text is abbreviated so the file reads back; a file the reader would refuse is not written") {
+  auto file = ParseParameterFile("p.yaml", kValid);
+  FitResult fit;
+  fit.estimates.push_back({"d_g", 0.016, 2e-5, 0.01594, 0.01602});
+  fit.correlation = {1.0};
+  fit.singular_values = {1.0};
+  const std::string expression(200000, 'x');
+  FitProvenance provenance{"drivetrain-fit axis --col tau=" + expression, "0.1.0", "", {{"log.csv", "00ff", 3, "", {"tau = " + expression}}}};
+  const std::string text = FormatParameterFile(file, &fit, &provenance);
+  CHECK(text.find(" bytes in all)") != std::string::npos);
+  CHECK(text.size() < 10000);
+  CHECK(ParseParameterFile("q.yaml", text).had_fit_section);
+  provenance.data.assign(20000, {"a_long_log_file_name_of_a_big_campaign.csv", std::string(64, 'f'), 3, "", {}});
+  CHECK_THROWS_WITH(FormatParameterFile(file, &fit, &provenance),
+                    Catch::Contains("a parameter file holds at most 1048576; nothing written"));
+}
+
 TEST_CASE("the frf section reads back, its method text escaped, its band checked") {
   ParameterFile file;
   FrequencyResponseSection frf;
