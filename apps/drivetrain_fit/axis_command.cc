@@ -21,7 +21,7 @@ namespace driveid::cli {
 
 CLI::App* SetupAxisCommand(CLI::App& app, AxisOptions& options) {
   CLI::App* command = app.add_subcommand(
-      "axis", "Inertia, viscous and Coulomb friction and offset of a rigid axis by IDIM-LS (docs/models.md#axis)");
+      "axis", "Inertia, viscous and Coulomb friction and offset of a rigid axis by inverse dynamics (IDIM-LS) or output error (docs/models.md#axis)");
   command->add_option("logs", options.logs, "axis logs (CSV, MAT, SysId JSON; docs/formats.md#logs) with t, q and tau (or i with axis.k_t), optional qd")->required();
   command->add_option("--params", options.params, "parameter file with an axis section (start values, k_t, n_g)");
   AddFreeOption(*command, options.free, FreeOptionHelp(AxisParameterTable(), "axis"));

@@ -1,7 +1,7 @@
 // Temporary files of a run (staged outputs, gnuplot's script and image) and
 // the child process writing one, kept where a signal handler can reach them:
 // on SIGINT/SIGTERM/SIGHUP the tools remove them before they die
-// (README, "Robustness and the error bars"). The library installs no handler;
+// (docs/validation.md, "Robustness and the error bars"). The library installs no handler;
 // the applications call RemoveTemporaryFilesNow() from theirs.
 #pragma once
 

@@ -25,7 +25,7 @@ void AppendResponse(std::string& out, const FrequencyResponse& r, std::size_t b,
 
 void AddResponseLines(const FrequencyResponse& r, const std::vector<std::complex<double>>* model,
                       const std::string& name, PlotPanel& magnitude, PlotPanel& phase, PlotPanel& coherence) {
-  PlotLine coherent_mag{name + " measured", {}, {}, false, true}, grey_mag{name + " coherence < 0.5", {}, {}, true, false};
+  PlotLine coherent_mag{name + " measured", {}, {}, false, true}, grey_mag{name + " coherence < 0.5", {}, {}, false, false, true};
   PlotLine coherent_phase = coherent_mag, grey_phase = grey_mag;
   for (std::size_t b = 0; b < r.frequency.size(); ++b) {
     const bool coherent = r.coherence[b] >= kGreyCoherence;

@@ -55,6 +55,30 @@ std::string TemporaryName(const std::string& base, const std::string& suffix) {
 
 }  // namespace
 
+std::vector<std::string> LineStyles(const std::vector<PlotLine>& lines) {
+  // Colour-blind-safe pairs (full, light tint): blue, orange, green, purple, red, grey.
+  static const char* const kFull[] = {"#1f5fa8", "#d9600f", "#238b45", "#6a3d9a", "#c0262d", "#4d4d4d"};
+  static const char* const kLight[] = {"#a9c6e8", "#f7c29b", "#a8dcb5", "#cab2d6", "#f2a9ac", "#c4c4c4"};
+  constexpr std::size_t kColours = sizeof kFull / sizeof kFull[0];
+  std::vector<std::string> out;
+  std::size_t channel = 0;
+  for (const auto& line : lines) {
+    const std::size_t c = channel % kColours;
+    if (line.grey) {
+      out.push_back("with points pt 7 ps 0.35 lc rgb '#9a9a9a'");
+    } else if (line.points) {
+      out.push_back(fmt::format("with points pt 7 ps 0.3 lc rgb '{}'", kLight[c]));  // the model follows
+    } else if (line.dots) {
+      out.push_back(fmt::format("with points pt 7 ps 0.3 lc rgb '{}'", kFull[c]));
+      ++channel;
+    } else {
+      out.push_back(fmt::format("with lines lw 2 lc rgb '{}'", kFull[c]));
+      ++channel;
+    }
+  }
+  return out;
+}
+
 bool IsSupportedPlotPath(const std::string& path) {
   const std::string lower = Lower(path);
   return EndsWith(lower, ".png") || EndsWith(lower, ".svg");
@@ -96,19 +120,10 @@ std::string RenderPanels(const std::string& path, const std::vector<PlotPanel>& 
                                         : std::string("set autoscale y\n");
     script += p + 1 == panels.size() ? fmt::format("set xlabel {}\n", GnuplotString(x_label)) : "unset xlabel\n";
     std::string plot = "plot ";
-    int colour = 1;
+    const std::vector<std::string> styles = LineStyles(panel.lines);
     for (std::size_t l = 0; l < panel.lines.size(); ++l) {
-      const auto& line = panel.lines[l];
-      plot += l ? ", " : "";
-      if (line.points) {
-        plot += fmt::format("$d{} using 1:2 with points pt 7 ps 0.35 lc rgb '#9a9a9a' title {}", block++,
-                            GnuplotString(line.title));
-      } else if (line.dots) {
-        plot += fmt::format("$d{} using 1:2 with points pt 7 ps 0.3 lc {} title {}", block++, colour++,
-                            GnuplotString(line.title));
-      } else {
-        plot += fmt::format("$d{} using 1:2 with lines lw 2 lc {} title {}", block++, colour++, GnuplotString(line.title));
-      }
+      plot += fmt::format("{}$d{} using 1:2 {} title {}", l ? ", " : "", block++, styles[l],
+                          GnuplotString(panel.lines[l].title));
     }
     script += plot + "\n";
   }

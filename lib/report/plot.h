@@ -25,8 +25,9 @@ struct PlotLine {
   std::string title;
   std::vector<double> x;
   std::vector<double> y;
-  bool points = false;  ///< grey dots (measurements) instead of a line
+  bool points = false;  ///< thin dots in a light tint (measurements), under the next line (the model) in its full colour
   bool dots = false;    ///< coloured dots (scattered samples, e.g. residuals with gaps)
+  bool grey = false;    ///< grey dots: samples shown but not counted (e.g. coherence below 0.5); no colour taken
 };
 
 /// One panel (stacked vertically, sharing the time axis).
@@ -43,6 +44,12 @@ struct PlotPanel {
 /// (a Bode plot). Throws OutputError if gnuplot is missing or fails.
 std::string RenderPanels(const std::string& path, const std::vector<PlotPanel>& panels, const std::string& x_label,
                          bool log_x = false);
+
+/// The gnuplot style of each line of a panel ("with points ... lc rgb '#...'").
+/// Channels take colours in turn; a measured series (`points`) takes the
+/// light tint of the colour its model line (the next line) takes in full, so
+/// measured and model differ and each channel's pair belongs together.
+std::vector<std::string> LineStyles(const std::vector<PlotLine>& lines);
 
 /// True for a path ending in .png or .svg (case-insensitive).
 bool IsSupportedPlotPath(const std::string& path);

@@ -1,5 +1,5 @@
 // C-drive identification against logs of the independent generator with the
-// Table I values (README.md#reproduction): friction from slow programs within 3 %, inertia
+// Table I values (docs/reproduction.md): friction from slow programs within 3 %, inertia
 // from fast programs within 5 %, refusals naming what cannot be determined.
 #include "fit/cdrive_fit.h"
 
