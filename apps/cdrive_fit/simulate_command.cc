@@ -9,6 +9,7 @@
 #include "core/errors.h"
 #include "io/atomic_file.h"
 #include "io/parameter_file.h"
+#include "models/missing_values.h"
 #include "report/json.h"
 #include "report/fit_summary.h"
 #include "report/plot.h"

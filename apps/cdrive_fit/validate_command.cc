@@ -15,6 +15,7 @@
 #include "fit/validation.h"
 #include "io/cdrive_log.h"
 #include "io/parameter_file.h"
+#include "models/missing_values.h"
 
 namespace driveid::cli {
 namespace {

@@ -21,6 +21,7 @@ struct InspectOptions {
   LogInputCli input;
   double max_log_gib = 4.0;
   bool json = false;
+  bool columns = false;
 };
 
 CLI::App* SetupInspect(CLI::App& app, InspectOptions& options) {
@@ -32,6 +33,9 @@ CLI::App* SetupInspect(CLI::App& app, InspectOptions& options) {
       ->capture_default_str()
       ->check(FiniteWithin(1e-6, 1024.0));
   command->add_flag("--json", options.json, "print one JSON object");
+  command->add_flag("--columns", options.columns,
+                    "also list every column of a MAT file with its range (by default its variables and struct "
+                    "fields, with their sizes and how to address them)");
   command->footer(
       "Examples:\n  " + app.get_name() + " inspect data/fig6_step.csv\n  " + app.get_name() +
       " inspect arm.csv --no-header --col t=#1 --col q=#2 --col tau=10*#14 --from 5");
@@ -56,7 +60,7 @@ void RunInspect(const InspectOptions& options) {
       joins.push_back({join_path, &join_text});
     }
     for (const auto& source : OpenLogSources(options.logs[i], text, joins, input)) {
-      const InspectedLog inspected = InspectLog(*source, input);
+      const InspectedLog inspected = InspectLog(*source, input, options.columns);
       if (options.json) json.push_back(LogInspectionJson(inspected));
       else text_out += FormatLogInspection(inspected);
     }

@@ -24,7 +24,8 @@ CLI::App* SetupAxisCommand(CLI::App& app, AxisOptions& options) {
       "axis", "Inertia, viscous and Coulomb friction and offset of a rigid axis by inverse dynamics (IDIM-LS) or output error (docs/models.md#axis)");
   command->add_option("logs", options.logs, "axis logs (CSV, MAT, SysId JSON; docs/formats.md#logs) with t, q and tau (or i with axis.k_t), optional qd")->required();
   command->add_option("--params", options.params, "parameter file with an axis section (start values, k_t, n_g)");
-  AddFreeOption(*command, options.free, FreeOptionHelp(AxisParameterTable(), "axis"));
+  AddFreeOption(*command, options.free,
+                FreeOptionHelp(AxisParameterTable(), "axis", " (rotary units; on a linear axis, --linear: kg, N s/m, N, m/s)"));
   AddLogInputOptions(*command, options.input, "q=pi/180*#2, tau=10*#14");
   command->add_option("--validate", options.validate,
                       "held-out logs (same columns) to predict with the fitted parameters: fit %, RMSE, lag-1 per log "
@@ -35,6 +36,10 @@ CLI::App* SetupAxisCommand(CLI::App& app, AxisOptions& options) {
                       "docs/models.md#axis-output-error); auto: oe when every log's torque is held in steps")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "idim", "oe"}));
+  command->add_flag("--linear", options.linear,
+                    "a linear axis: q in m, forces in N; units kg, N s/m, N in every output, no cos q / sin q gravity "
+                    "(the weight is a constant force: the offset). Also axis.linear: true in --params, and SysId logs "
+                    "in Meters, Feet or Inches (docs/models.md#axis)");
   command->add_option("--cutoff", options.cutoff,
                       "position low-pass cutoff [Hz] (default: from the data, docs/models.md#axis-cutoff-from-the-data)")
       ->check(FiniteAbove(0.0));
@@ -95,6 +100,7 @@ AxisRun RunInverseDynamics(const std::vector<AxisLog>& logs, const AxisSection& 
       run.fit.validation.push_back(v.stats);
     }
   }
+  run.summary.push_back(fmt::format("processing: {}", result.method));
   run.summary.push_back(fmt::format("relative error of the fit {:.2f} %, {} decimated samples, acceleration content "
                                     "{:.3g} 1/s",
                                     result.relative_error_percent, result.samples_used, result.acceleration_content));
@@ -159,7 +165,8 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
   CheckFitOutputs(options.output, LogCommandInputs(options.logs, options.params, options.input, options.validate));
   ParameterFile start;
   if (!options.params.empty()) start = ReadParameterFile(options.params);
-  const AxisSection section = start.Find<AxisSection>() ? *start.Find<AxisSection>() : AxisSection{};
+  AxisSection section = start.Find<AxisSection>() ? *start.Find<AxisSection>() : AxisSection{};
+  section.linear = section.linear || options.linear;
 
   FitOutputs outputs;
   outputs.provenance.command = command_line;
@@ -170,6 +177,10 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
                                           sysid_units.push_back(csv.format == "sysid" ? csv.units : "");
                                           return MakeAxisLog(std::move(csv), section.torque_constant.value_or(0.0));
                                         });
+  // SysId logs in a length unit are of a linear mechanism (an elevator, a drivetrain).
+  const bool sysid = std::all_of(sysid_units.begin(), sysid_units.end(),
+                                 [&](const std::string& u) { return !u.empty() && u == sysid_units.front(); });
+  if (sysid && IsLengthUnit(sysid_units.front())) section.linear = true;
   // The method (docs/models.md#axis-output-error): auto takes output error
   // when every log's torque is held in steps.
   std::string method = options.method, why = "--method " + options.method;
@@ -194,6 +205,13 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
   AxisSection out_section = section;
   StoreModelParameters(AxisParameterTable(), run.params, out_section);
   fitted.Set(out_section);
+  // Units of the estimates, in the log's units (SysId: the feed-forward's;
+  // else rotary or linear SI).
+  for (auto& e : run.fit.estimates) {
+    if (const auto* row = FindParameter(AxisParameterTable(), e.name)) {
+      e.unit = sysid ? AxisUnitIn(row->spec, "V", sysid_units.front()) : AxisUnit(row->spec, section.linear);
+    }
+  }
   outputs.fit = run.fit;
   std::vector<DerivedQuantity> derived = run.derived;
   if (section.gear_ratio) {
@@ -202,18 +220,18 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
       if (e.name == KeyOf(AxisParameterTable(), &AxisParameters::viscous)) viscous_std = e.standard_error;
     }
     const double n2 = *section.gear_ratio * *section.gear_ratio;
-    derived.push_back({"d_g", run.params.viscous / n2, viscous_std / n2, "N m s/rad at the gear input, b / n_g^2"});
+    derived.push_back({"d_g", run.params.viscous / n2, viscous_std / n2,
+                       section.linear ? "N m s/rad at the gear input, b / n_g^2 (n_g in rad/m)"
+                                      : "N m s/rad at the gear input, b / n_g^2"});
   }
   // Feed-forward gains in the log's units (docs/models.md#feed-forward): SysId
   // logs carry voltage and their own position unit.
-  const bool sysid = std::all_of(sysid_units.begin(), sysid_units.end(),
-                                 [&](const std::string& u) { return !u.empty() && u == sysid_units.front(); });
   const bool with_inertia = section.inertia.value_or(0.0) > 0.0 ||
                             std::any_of(run.fit.estimates.begin(), run.fit.estimates.end(), [](const auto& e) {
                               return e.name == KeyOf(AxisParameterTable(), &AxisParameters::inertia);
                             });
-  fitted.feedforward = CalcAxisFeedforward(run.params, run.fit, sysid ? "V" : "N m",
-                                           sysid ? sysid_units.front() : "rad", with_inertia);
+  fitted.feedforward = CalcAxisFeedforward(run.params, run.fit, sysid ? "V" : (section.linear ? "N" : "N m"),
+                                           sysid ? sysid_units.front() : (section.linear ? "m" : "rad"), with_inertia);
   outputs.parameter_file = FormatParameterFile(fitted, &outputs.fit, &outputs.provenance, derived);
   outputs.trace_csv = run.trace_csv;
   if (!options.output.plot.empty()) outputs.plot_panels = MakeFitPanels(run.series, run.labels);

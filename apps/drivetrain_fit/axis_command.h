@@ -21,6 +21,7 @@ struct AxisOptions {
   double cutoff = 0.0;
   int decimation = 10;
   std::vector<std::string> validate;  ///< held-out logs predicted by the fit
+  bool linear = false;                ///< q in m, forces in N (or axis.linear in --params)
   FitOutputOptions output;
 };
 

@@ -12,6 +12,7 @@
 #include "io/axis_log.h"
 #include "io/parameter_file.h"
 #include "io/step_log.h"
+#include "models/missing_values.h"
 
 namespace driveid::cli {
 

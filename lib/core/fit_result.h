@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@ struct ParameterEstimate {
   double standard_error = 0.0;  ///< from the Jacobian at the optimum
   double ci95_low = 0.0;        ///< 95 % confidence interval (Student t)
   double ci95_high = 0.0;
+  std::string unit{};           ///< as the command knows it ("": not stated)
 };
 
 /// Goodness of fit of one measured channel (e.g. tau_link of one log).
@@ -24,9 +26,12 @@ struct ChannelStatistics {
   int samples = 0;
   double rmse = 0.0;         ///< root mean square residual, channel unit
   /// NRMSE fit, 100 (1 - |y - yhat| / |y - mean(y)|); NaN when the measured
-  /// channel does not vary (its spread is below 1e-9 of its magnitude): a fit
-  /// % of a constant means nothing (shown as "n/a", null in JSON and files).
+  /// channel does not vary (its spread is below 1e-9 of its magnitude) or
+  /// hardly varies (`variation` below kNearlyConstant): a fit % against a
+  /// near-constant means nothing (shown as "n/a", null in JSON and files).
   double fit_percent = 0.0;
+  /// std(y) / RMS(y) of the measured channel (NaN: none measured).
+  double variation = std::numeric_limits<double>::quiet_NaN();
   double autocorrelation = 0.0;  ///< lag-1 autocorrelation of the residuals
   int bandwidth = 0;             ///< Newey-West lags used (Andrews' AR(1) rule; 0: none)
   double inflation = 1.0;        ///< std with / without the correlation of residuals (trace ratio, sqrt)

@@ -60,8 +60,15 @@ ChannelStatistics DescribeResiduals(const std::string& name, const double* measu
   stats.autocorrelation = ssr > 0.0 ? lag1 / ssr : 0.0;
   if (measured != nullptr) {
     mean /= count;
-    for (int k = 0; k < count; ++k) spread += (measured[k] - mean) * (measured[k] - mean);
-    stats.fit_percent = MeasurementVaries(measured, count) ? 100.0 * (1.0 - std::sqrt(ssr / spread)) : std::nan("");
+    double square = 0.0;
+    for (int k = 0; k < count; ++k) {
+      spread += (measured[k] - mean) * (measured[k] - mean);
+      square += measured[k] * measured[k];
+    }
+    stats.variation = square > 0.0 ? std::sqrt(spread / square) : 0.0;
+    stats.fit_percent = MeasurementVaries(measured, count) && stats.variation >= kNearlyConstant
+                            ? 100.0 * (1.0 - std::sqrt(ssr / spread))
+                            : std::nan("");
   }
   return stats;
 }

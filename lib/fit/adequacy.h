@@ -24,6 +24,10 @@ constexpr double kMaxRelativeStd = 0.5;
 /// white residuals at a low fit % only say the channel hardly varies.
 constexpr double kLowFitPercent = 50.0;
 constexpr double kLowFitMinAutocorrelation = 0.3;
+/// A measured channel whose std is below this fraction of its RMS (a
+/// voltage step held constant, a constant-speed friction test) has no fit %:
+/// it would compare the model with a constant that is as good.
+constexpr double kNearlyConstant = 0.05;
 
 /// Throws IdentificationError naming every free parameter with lower bound 0
 /// (per `nonnegative`) whose standard error exceeds `max_relative_std` of
@@ -31,9 +35,10 @@ constexpr double kLowFitMinAutocorrelation = 0.3;
 void RequireDetermined(const FitResult& fit, const std::vector<std::string>& nonnegative, double max_relative_std,
                        const std::vector<std::string>& context);
 
-/// RMSE, fit % = 100 (1 - |r| / |y - mean(y)|) and the lag-1
-/// autocorrelation of the residuals r = y - model of one channel (`measured`
-/// may be null: fit % 0).
+/// RMSE, fit % = 100 (1 - |r| / |y - mean(y)|) (NaN for a channel that
+/// does not vary or varies by less than kNearlyConstant of its RMS) and the
+/// lag-1 autocorrelation of the residuals r = y - model of one channel
+/// (`measured` may be null: fit % 0).
 /// False when `count` measured values do not vary: their spread about the mean
 /// is below 1e-9 of their largest magnitude (rounding), or zero.
 bool MeasurementVaries(const double* measured, int count);

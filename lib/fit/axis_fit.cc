@@ -12,6 +12,7 @@
 #include "fit/axis_rows.h"
 #include "fit/linear_regression.h"
 #include "fit/omitted_terms.h"
+#include "models/missing_values.h"
 #include "io/csv_log.h"
 #include "signal/butterworth.h"
 #include "signal/local_polynomial.h"
@@ -32,31 +33,75 @@ bool Contains(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
 }
 
-std::string JoinFree(const std::vector<std::string>& free, const std::vector<std::string>& more) {
+std::vector<std::string> WithFree(const std::vector<std::string>& free, const std::vector<std::string>& more) {
   std::vector<std::string> all = free;
   for (const auto& m : more) {
     if (!Contains(all, m)) all.push_back(m);
   }
-  return fmt::format("{}", fmt::join(all, ","));
+  return all;
 }
 
 // The free set with the direction-dependent terms in place of coulomb,
 // viscous and offset (an offset and both Coulomb directions are collinear).
-std::string DirectionFree(const std::vector<std::string>& free) {
+std::vector<std::string> DirectionFree(const std::vector<std::string>& free) {
   const std::string coulomb = Key(&AxisParameters::coulomb), viscous = Key(&AxisParameters::viscous),
                     offset = Key(&AxisParameters::offset);
   std::vector<std::string> kept;
   for (const auto& f : free) {
     if (f != coulomb && f != viscous && f != offset) kept.push_back(f);
   }
-  return JoinFree(kept, {Key(&AxisParameters::coulomb_pos), Key(&AxisParameters::coulomb_neg),
+  return WithFree(kept, {Key(&AxisParameters::coulomb_pos), Key(&AxisParameters::coulomb_neg),
                          Key(&AxisParameters::viscous_pos), Key(&AxisParameters::viscous_neg)});
 }
 
-// Terms the residuals ask for (omitted_terms.h), with what to do.
+// Advice to free more terms is tried before it is given: the fit with
+// `trial` free (`zeroed` held at 0, the rest at `values`) must run, be well
+// conditioned (collinearity index s_max / s_min of the normalised Jacobian
+// below kAdviceCollinearity) and determine each term of `added` (|value|
+// above 2 std). Returns "" when it does, else why not.
+constexpr double kAdviceCollinearity = 100.0;
+std::string TryFreeing(const LinearRegression& regression, const std::vector<std::string>& trial,
+                       std::map<std::string, double> values, const std::vector<std::string>& zeroed,
+                       const std::vector<std::string>& added) {
+  for (const auto& z : zeroed) values[z] = 0.0;
+  std::vector<FitParameter> parameters;
+  for (const auto& name : trial) {
+    const double bound = FindParameter(AxisParameterTable(), name)->spec.lower_bound;
+    parameters.push_back({name, std::max(bound, values.at(name)), bound, 0.0});
+  }
+  FitResult fit;
+  try {
+    fit = regression.Fit(parameters, values, FitOptions{});
+  } catch (const std::exception& e) {
+    const std::string what = e.what();
+    return what.substr(0, what.find('\n'));
+  }
+  const auto& s = fit.singular_values;
+  if (!s.empty() && !(s.back() * kAdviceCollinearity > s.front())) {
+    return fmt::format("the terms would be nearly collinear over these logs (collinearity index {:.3g})",
+                       s.back() > 0.0 ? s.front() / s.back() : HUGE_VAL);
+  }
+  // Some added term must be determined (a gravity amplitude may lie all in
+  // cos q), and no non-negative term may become undetermined (the fit would
+  // refuse it, docs/models.md#adequacy).
+  bool determined = false;
+  for (const auto& e : fit.estimates) {
+    if (Contains(added, e.name) && std::abs(e.value) > 2.0 * e.standard_error) determined = true;
+    const double bound = FindParameter(AxisParameterTable(), e.name)->spec.lower_bound;
+    if (bound == 0.0 && e.standard_error > kMaxRelativeStd * std::abs(e.value)) {
+      return fmt::format("{} would be {:.4g} +- {:.2g}, not determined", e.name, e.value, e.standard_error);
+    }
+  }
+  if (!determined) return fmt::format("none of {} would be determined", fmt::join(added, ", "));
+  return "";
+}
+
+// Terms the residuals ask for (omitted_terms.h), with what to do: a remedy
+// is named only where its fit works (TryFreeing); on a linear axis gravity
+// is a constant force, the offset, and has no cos q / sin q test.
 std::vector<std::string> CheckAxisAdequacy(const LinearRegression& regression, const FitResult& fit,
                                            const std::vector<std::string>& free,
-                                           const std::map<std::string, double>& values) {
+                                           const std::map<std::string, double>& values, bool linear) {
   std::vector<std::string> warnings = fit.warnings;  // the core's (low fit)
   const auto evidence = [](const OmittedTermTest& t) {
     return fmt::format("explain {:.0f} % of the residual; robust Wald {:.3g} > {:.3g}", 100.0 * t.share, t.wald,
@@ -64,28 +109,51 @@ std::vector<std::string> CheckAxisAdequacy(const LinearRegression& regression, c
   };
   const std::string gravity_cos = Key(&AxisParameters::gravity_cos), gravity_sin = Key(&AxisParameters::gravity_sin);
   const std::string inertia = Key(&AxisParameters::inertia);
-  if (!Contains(free, gravity_cos) && !Contains(free, gravity_sin)) {
+  if (!linear && !Contains(free, gravity_cos) && !Contains(free, gravity_sin)) {
     const auto t = TestOmittedTerm(regression, free, values, "gravity", {gravity_cos, gravity_sin});
     if (t.missing) {
-      warnings.push_back(fmt::format("gravity missing?: the residual follows the position (cos q and sin q {}): try the "
-                                     "gravity term: --free {}",
-                                     evidence(t), JoinFree(free, {gravity_cos, gravity_sin})));
+      const auto trial = WithFree(free, {gravity_cos, gravity_sin});
+      const std::string why_not = TryFreeing(regression, trial, values, {}, {gravity_cos, gravity_sin});
+      warnings.push_back(
+          why_not.empty()
+              ? fmt::format("gravity missing?: the residual follows the position (cos q and sin q {}): try the "
+                            "gravity term: --free {}",
+                            evidence(t), fmt::join(trial, ","))
+              : fmt::format("position-dependent force: the residual follows the position (cos q and sin q {}), but "
+                            "the gravity terms would not be identifiable from these logs ({}): log a wider range of "
+                            "q; a linear axis (axis.linear: true, --linear) has its weight in the offset",
+                            evidence(t), why_not));
     }
   }
   if (!Contains(free, inertia)) {
     const auto t = TestOmittedTerm(regression, free, values, "inertia", {inertia});
     if (t.missing) {
+      const auto trial = WithFree(free, {inertia});
+      const std::string why_not = TryFreeing(regression, trial, values, {}, {inertia});
       warnings.push_back(fmt::format("inertia: the residual follows the acceleration (q'' {}): the fixed J = {:.4g} is "
-                                     "off: try --free {}",
-                                     evidence(t), values.at(inertia), JoinFree(free, {inertia})));
+                                     "off{}",
+                                     evidence(t), values.at(inertia),
+                                     why_not.empty() ? fmt::format(": try --free {}", fmt::join(trial, ","))
+                                                     : fmt::format(" (freeing it would not help: {})", why_not)));
     }
   }
   const auto direction = TestOmittedTerm(regression, free, values, "direction", {kAxisAbsRateColumn});
   if (direction.missing) {
-    warnings.push_back(fmt::format("direction-dependent friction: the residual follows |q'| ({}): friction differs "
-                                   "between the directions of motion: try the direction-dependent terms in place of "
-                                   "coulomb, viscous and the offset they absorb: --free {}",
-                                   evidence(direction), DirectionFree(free)));
+    const auto trial = DirectionFree(free);
+    const std::vector<std::string> replaced = {Key(&AxisParameters::coulomb), Key(&AxisParameters::viscous),
+                                               Key(&AxisParameters::offset)};
+    const std::string why_not =
+        TryFreeing(regression, trial, values, replaced,
+                   {Key(&AxisParameters::coulomb_pos), Key(&AxisParameters::coulomb_neg)});
+    warnings.push_back(
+        why_not.empty()
+            ? fmt::format("direction-dependent friction: the residual follows |q'| ({}): friction differs between "
+                          "the directions of motion: try the direction-dependent terms in place of coulomb, viscous "
+                          "and the offset they absorb: --free {}",
+                          evidence(direction), fmt::join(trial, ","))
+            : fmt::format("direction-dependent friction: the residual follows |q'| ({}), but the direction-dependent "
+                          "terms would not be identifiable from these logs ({}): log motion in both directions",
+                          evidence(direction), why_not));
   }
   const auto drift = TestOmittedTerm(regression, free, values, "drift", {kAxisTimeColumn});
   if (drift.missing) {
@@ -155,13 +223,36 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
   }
   // Warn where the processing moves an estimate by more than 2 of its std
   // and by more than 5 % (clean logs move by a fraction of a percent).
-  for (auto& w : ProcessingWarnings(out.fit, out.cutoff, "try a measured rate qd, or check the cutoff with --cutoff")) {
+  // With a measured rate already used, only the acceleration (differentiated
+  // qd) depends on the cutoff: do not suggest what was given.
+  const bool rate_measured = std::all_of(logs.begin(), logs.end(), [](const AxisLog& l) { return !l.rate.empty(); });
+  const char* advice = rate_measured ? "the measured rate qd is used and differentiated once; check the cutoff with "
+                                       "--cutoff, or --method oe, which does not differentiate"
+                                     : "try a measured rate qd, or check the cutoff with --cutoff";
+  for (auto& w : ProcessingWarnings(out.fit, out.cutoff, advice)) {
     out.fit.warnings.push_back(std::move(w));
   }
   return out;
 }
 
 std::vector<AxisTerm> ResolveAxisTerms(const AxisSection& start, const std::vector<std::string>& free) {
+  // A linear axis has no angle: its weight is a constant force, the offset.
+  if (start.linear) {
+    for (const auto member : {&AxisParameters::gravity_cos, &AxisParameters::gravity_sin}) {
+      const std::string key = Key(member);
+      const auto given = start.*(FindParameter(AxisParameterTable(), key)->in_section);
+      if (Contains(free, key)) {
+        throw OptionError(fmt::format("--free {}: a linear axis (axis.linear, --linear) has no cos q / sin q "
+                                      "gravity: its weight is a constant force, fitted as the offset",
+                                      key));
+      }
+      if (given.value_or(0.0) != 0.0) {
+        throw InputError(fmt::format("--params: axis.{} = {} on a linear axis: gravity there is a constant force, "
+                                     "the offset; remove {}",
+                                     key, *given, key));
+      }
+    }
+  }
   // Parameters a free direction-dependent pair replaces (coulomb, viscous).
   std::vector<std::string> replaced;
   for (const auto& key : free) {
@@ -179,18 +270,20 @@ std::vector<AxisTerm> ResolveAxisTerms(const AxisSection& start, const std::vect
     replaced.push_back(Key(&AxisParameters::offset));
   }
   std::vector<AxisTerm> terms;
+  std::vector<const ParameterSpec*> needed;
   for (int j = 0; j < kAxisAllTerms; ++j) {
     const ParameterSpec& spec = AxisTermRow(j).spec;
     const std::optional<double> value = start.*(AxisTermRow(j).in_section);
     const bool is_free = Contains(free, spec.key);
-    if (!is_free && !value && spec.default_free && j != 0 && !Contains(replaced, spec.key)) {
-      throw InputError(fmt::format("--params: axis.{} is needed (fixed in this fit)", spec.key));
-    }
+    if (!is_free && !value && spec.default_free && j != 0 && !Contains(replaced, spec.key)) needed.push_back(&spec);
     // A fixed inertia, a gravity or direction term, or a replaced friction
     // term that is not given counts as 0; the adequacy checks say when the
     // residuals contradict that.
     const double v = is_free ? std::max(spec.lower_bound, value.value_or(0.0)) : value.value_or(0.0);
     terms.push_back({spec.key, static_cast<std::size_t>(j), is_free, v});
+  }
+  if (!needed.empty()) {
+    throw MissingValuesError("--params", "axis", needed, "(fixed in this fit)", " (or name them in --free)");
   }
   return terms;
 }
@@ -267,7 +360,7 @@ AxisFitOutput FitAxisAtCutoff(const std::vector<AxisLog>& logs, const AxisSectio
   for (int j = 0; j < kModelColumns; ++j) out.params.*(Column(j).in_model) = fitted[Column(j).spec.key];
   std::vector<std::string> free_names;
   for (const auto& e : out.fit.estimates) free_names.push_back(e.name);
-  out.fit.warnings = CheckAxisAdequacy(regression, out.fit, free_names, fitted);
+  out.fit.warnings = CheckAxisAdequacy(regression, out.fit, free_names, fitted, start.linear);
   if (options.per_log && logs.size() > 1) {
     AxisFitOptions alone = options;
     alone.per_log = false;

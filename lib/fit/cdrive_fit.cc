@@ -12,6 +12,7 @@
 #include "core/errors.h"
 #include "fit/linear_regression.h"
 #include "io/csv_log.h"
+#include "models/missing_values.h"
 #include "signal/local_polynomial.h"
 
 namespace driveid {
@@ -147,7 +148,6 @@ struct Derivatives {
 CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& start_section,
                     const CDriveFitOptions& options, Kind kind) {
   const CDriveParameters start = ModelValuesOrNaN(CDriveParameterTable(), start_section);  // NaN = not given
-  if (!start_section.lead) throw InputError("--params: cdrive.p is needed");
   if (logs.empty()) throw OptionError("no logs given");
   if (!(options.half_window > 0.0) || !std::isfinite(options.half_window)) {
     throw OptionError(fmt::format("--window = {}: violated constraint: window > 0 s", options.half_window));
@@ -170,12 +170,15 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
   // differenced accelerations, are nearly orthogonal to the friction columns).
   const bool inertia_nuisance =
       friction && !(start_section.hub_inertia && start_section.collar_inertia && start_section.collar_mass);
+  std::vector<const ParameterSpec*> needed;
+  if (!start_section.lead) needed.push_back(&SpecOf(CDriveParameterTable(), &CDriveSection::lead));
   for (const auto& row : CDriveParameterTable()) {
     if (row.in_model == nullptr || row.spec.required) continue;  // k_t; p was checked
     if (inertia_nuisance && row.spec.InFit("inertia")) continue;
-    if (!Contains(free, row.spec.key) && !(start_section.*(row.in_section))) {
-      throw InputError(fmt::format("--params: cdrive.{} is needed (fixed in this fit)", row.spec.key));
-    }
+    if (!Contains(free, row.spec.key) && !(start_section.*(row.in_section))) needed.push_back(&row.spec);
+  }
+  if (!needed.empty()) {
+    throw MissingValuesError("--params", "cdrive", needed, "(fixed in this fit)", " (or name the fitted ones in --free)");
   }
 
   std::vector<int> free_columns;  // index into table

@@ -9,6 +9,7 @@
 
 #include "core/errors.h"
 #include "fit/adequacy.h"
+#include "models/missing_values.h"
 
 namespace driveid {
 namespace {
@@ -356,15 +357,16 @@ TwoMassFitOutput FitTwoMassResponse(const ResponseData& motor, const ResponseDat
                                                       s.damping,       s.motor_viscous, s.link_viscous};
   for (std::size_t i = 0; i < kMembers.size(); ++i) fixed.*(kMembers[i]) = given[i].value_or(0.0);
   // The inertias and the stiffness, when fixed, must be given (all named at once).
-  std::vector<std::string> needed;
+  std::vector<const ParameterSpec*> needed;
   for (std::size_t i = 0; i < 3; ++i) {
     const bool is_free = std::find(free_terms.begin(), free_terms.end(), i) != free_terms.end();
-    if (!is_free && !(given[i].value_or(0.0) > 0.0)) needed.push_back(fmt::format("joint.{}", kTerms[i]));
+    if (!is_free && !(given[i].value_or(0.0) > 0.0)) {
+      needed.push_back(&FindParameter(JointParameterTable(), kTerms[i])->spec);
+    }
   }
   if (!needed.empty()) {
-    throw InputError(fmt::format("--params: {} {} needed (fixed in this fit; give a value > 0 or add {} to --free)",
-                                 fmt::join(needed, ", "), needed.size() > 1 ? "are" : "is",
-                                 needed.size() > 1 ? "them" : "it"));
+    throw MissingValuesError("--params", "joint", needed, "(fixed in this fit)",
+                             " (values > 0), or name them in --free");
   }
   const bool read_ok = out.read.resonance.value > 0.0 && out.read.antiresonance.value > 0.0 &&
                        out.read.antiresonance.value < out.read.resonance.value;

@@ -10,6 +10,7 @@
 #include "fit/adequacy.h"
 #include "fit/axis_rows.h"
 #include "fit/linear_regression.h"
+#include "models/missing_values.h"
 #include "signal/butterworth.h"
 
 namespace driveid {
@@ -57,16 +58,15 @@ JointFitOutput FitJoint(const std::vector<JointLog>& logs, const JointSection& s
   JointFitOptions options = given;
   if (options.free.empty()) options.free = JointDefaultFree(logs);
   CheckFreeNames(JointParameterTable(), "joint", options.free);
-  if (!start.gear_ratio || !(*start.gear_ratio > 0.0)) {
-    throw InputError("--params: joint.gear_ratio is needed (q_motor = n theta_m; n = 1 for a direct drive)");
-  }
-  const double n = *start.gear_ratio;
   std::vector<std::string> columns = JointColumnNames();
   bool has_torque = false;
   for (const auto& log : logs) has_torque = has_torque || !log.torque.empty();
   std::vector<FitParameter> parameters;
   std::map<std::string, double> fixed;
-  std::vector<std::string> needed;
+  std::vector<const ParameterSpec*> needed;
+  if (!start.gear_ratio || !(*start.gear_ratio > 0.0)) {
+    needed.push_back(&SpecOf(JointParameterTable(), &JointSection::gear_ratio));
+  }
   for (const auto& row : JointParameterTable()) {
     if (row.in_model == nullptr) continue;
     const std::optional<double> value = start.*(row.in_section);
@@ -74,15 +74,14 @@ JointFitOutput FitJoint(const std::vector<JointLog>& logs, const JointSection& s
     if (is_free) {
       parameters.push_back({row.spec.key, std::max(row.spec.lower_bound, value.value_or(0.0)), row.spec.lower_bound, 0.0});
     } else if (!value && row.spec.default_free && has_torque) {
-      needed.push_back(fmt::format("joint.{}", row.spec.key));
+      needed.push_back(&row.spec);
     }
     fixed[row.spec.key] = value.value_or(0.0);
   }
   if (!needed.empty()) {
-    throw InputError(fmt::format("--params: {} {} needed (fixed in this fit); add to the joint section, e.g. '{}: 0'",
-                                 fmt::join(needed, ", "), needed.size() > 1 ? "are" : "is",
-                                 needed.front().substr(6)));
+    throw MissingValuesError("--params", "joint", needed, "(fixed in this fit)", " (or name the fitted ones in --free)");
   }
+  const double n = *start.gear_ratio;
 
   // Several logs with a shaft torque: its offset (sensor bias + k x the
   // initial twist of integrated angles) is each log's own,

@@ -10,6 +10,7 @@
 #include "fit/adequacy.h"
 #include "fit/axis_rows.h"
 #include "fit/joint_fit.h"
+#include "models/missing_values.h"
 #include "sim/joint_simulator.h"
 
 namespace driveid {
@@ -311,22 +312,22 @@ JointOeOutput FitJointOutputError(const std::vector<JointLog>& logs, const Joint
   JointOeOptions options = given;
   if (options.free.empty()) options.free = JointOeDefaultFree(logs);
   CheckFreeNames(JointParameterTable(), "joint", options.free);
-  if (!start.gear_ratio || !(*start.gear_ratio > 0.0)) {
-    throw InputError("--params: joint.gear_ratio is needed (q_motor = n theta_m; n = 1 for a direct drive)");
-  }
-  const double n = *start.gear_ratio;
   const std::string offset_key = KeyOf(JointParameterTable(), &JointParameters::link_torque_offset);
   const auto is_free = [&](const std::string& key) {
     return std::find(options.free.begin(), options.free.end(), key) != options.free.end();
   };
   CheckOutputErrorSimulates(start, options.free);
-  std::vector<OeLog> oe = PrepareLogs(logs, n);
+  std::vector<OeLog> oe;  // each log's channels, refused by name before the missing values
+  if (start.gear_ratio && *start.gear_ratio > 0.0) oe = PrepareLogs(logs, *start.gear_ratio);
 
   // Start and fixed values; the free terms in table order, then tau_l0.
   JointParameters fixed;
   std::vector<int> terms;
   std::vector<FitParameter> parameters;
-  std::vector<std::string> needed;
+  std::vector<const ParameterSpec*> needed;
+  if (!start.gear_ratio || !(*start.gear_ratio > 0.0)) {
+    needed.push_back(&SpecOf(JointParameterTable(), &JointSection::gear_ratio));
+  }
   for (int j = 0; j <= kJointGravitySin; ++j) {
     const auto& row = JointParameterTable()[static_cast<std::size_t>(j)];
     const std::optional<double> given_value = start.*(row.in_section);
@@ -343,14 +344,14 @@ JointOeOutput FitJointOutputError(const std::vector<JointLog>& logs, const Joint
       terms.push_back(j);
       parameters.push_back({row.spec.key, value, row.spec.lower_bound, value != 0.0 ? 0.0 : 1e-3});
     } else if (!given_value && row.spec.default_free && j != kJointLinkCoulomb) {
-      needed.push_back(fmt::format("joint.{}", row.spec.key));
+      needed.push_back(&row.spec);
     }
     fixed.*(row.in_model) = value;
   }
   if (!needed.empty()) {
-    throw InputError(fmt::format("--params: {} {} needed (fixed in this fit); add to the joint section",
-                                 fmt::join(needed, ", "), needed.size() > 1 ? "are" : "is"));
+    throw MissingValuesError("--params", "joint", needed, "(fixed in this fit)", " (or name the fitted ones in --free)");
   }
+  const double n = *start.gear_ratio;
   if (!(fixed.motor_inertia > 0.0) || !(fixed.link_inertia > 0.0)) {
     throw InputError("--method oe: the joint needs both inertias > 0: give joint.motor_inertia and joint.link_inertia");
   }

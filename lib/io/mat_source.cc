@@ -1,6 +1,7 @@
 // MAT files (v5 and v7.3) through libmatio: vector variables are columns,
-// matrices give their columns `name(:,k)` and rows `name(k,:)`, struct fields
-// are reached by dotted paths, 1 x 1 numbers are scalars for expressions.
+// matrices give their columns `name(:,k)` and rows `name(k,:)` (the longer
+// side listed), struct fields are reached by dotted paths, 1 x 1 numbers and
+// elements `name(i)`, `name(i,j)` are scalars for expressions.
 // Cells, characters, sparse, objects and function handles are skipped with a
 // note. matio reads from a file: the bytes already read (and hashed) are
 // written to a registered temporary file first, so the data read is the data
@@ -164,17 +165,18 @@ class MatSource : public TableSource {
       throw;
     }
     RemoveTemporaryFile(name);
+    // Listed columns: vectors, and each matrix along its longer side (the
+    // samples): the columns name(:,k) of a tall one, the rows name(k,:) of
+    // a wide one. The other side is found on request (Find).
     for (std::size_t v = 0; v < variables_.size(); ++v) {
       const Variable& var = variables_[v];
       if (var.rows == 1 && var.cols == 1) continue;  // a scalar
       if (var.rows == 1 || var.cols == 1) {
         columns_.push_back({var.name, v, 0, 1, var.rows * var.cols});
+      } else if (var.rows >= var.cols) {
+        for (std::size_t k = 0; k < var.cols; ++k) columns_.push_back(MatrixColumn(v, k + 1));
       } else {
-        for (std::size_t k = 0; k < var.cols; ++k) {
-          columns_.push_back({fmt::format("{}(:,{})", var.name, k + 1), v, k * var.rows, 1, var.rows});
-        }
-        notes_.push_back(fmt::format("{}: {} x {} matrix (columns {}(:,k), rows {}(k,:))", var.name, var.rows,
-                                     var.cols, var.name, var.name));
+        for (std::size_t k = 0; k < var.rows; ++k) columns_.push_back(MatrixRow(v, k + 1));
       }
     }
     listed_ = columns_.size();
@@ -201,11 +203,46 @@ class MatSource : public TableSource {
     for (std::size_t i = 0; i < listed_; ++i) lengths.push_back(columns_[i].length);
     return lengths;
   }
+  // A 1 x 1 variable, or one element of a vector or matrix: name(i) (in
+  // MATLAB's column-major order) or name(i,j), 1-based.
   std::optional<double> scalar(const std::string& name) const override {
     for (const auto& v : variables_) {
       if (v.name == name && v.rows == 1 && v.cols == 1) return v.data[0];
     }
+    const std::size_t open = name.rfind('(');
+    if (open == std::string::npos || name.back() != ')') return std::nullopt;
+    const std::string inside = name.substr(open + 1, name.size() - open - 2);
+    const std::size_t comma = inside.find(',');
+    const auto first = Index(inside.substr(0, comma));
+    const auto second = comma == std::string::npos ? std::optional<std::size_t>{1} : Index(inside.substr(comma + 1));
+    if (!first || !second) return std::nullopt;
+    for (const auto& v : variables_) {
+      if (v.name != name.substr(0, open)) continue;
+      if (comma == std::string::npos) {
+        if (*first <= v.data.size()) return v.data[*first - 1];
+      } else if (*first <= v.rows && *second <= v.cols) {
+        return v.data[(*second - 1) * v.rows + (*first - 1)];
+      }
+    }
     return std::nullopt;
+  }
+
+  std::vector<SourceVariable> variables() const override {
+    std::vector<SourceVariable> out;
+    for (const auto& v : variables_) {
+      SourceVariable entry{v.name, v.rows, v.cols, ""};
+      if (v.rows == 1 && v.cols == 1) {
+        entry.address = fmt::format("{} = {:.6g} (a scalar for expressions)", v.name, v.data[0]);
+      } else if (v.rows == 1 || v.cols == 1) {
+        entry.address = fmt::format("{} (elements {}(i) for expressions)", v.name, v.name);
+      } else if (v.rows >= v.cols) {
+        entry.address = fmt::format("columns {}(:,1) .. {}(:,{}); rows {}(k,:)", v.name, v.name, v.cols, v.name);
+      } else {
+        entry.address = fmt::format("rows {}(1,:) .. {}({},:); columns {}(:,k)", v.name, v.name, v.rows, v.name);
+      }
+      out.push_back(std::move(entry));
+    }
+    return out;
   }
   std::vector<std::string> notes() const override { return notes_; }
   // Without --col t=..., a variable `t` or else `time` is the time base.
@@ -216,24 +253,23 @@ class MatSource : public TableSource {
 
   std::optional<std::size_t> Find(const std::string& reference) const override {
     if (auto found = TableSource::Find(reference)) return found;
-    // name(k,:): a row of a matrix, added on first use.
+    // name(k,:) or name(:,k): the side of a matrix not listed, added on first use.
     const std::size_t open = reference.rfind('(');
-    if (open == std::string::npos || reference.size() < open + 5 || reference.compare(reference.size() - 3, 3, ",:)") != 0) {
-      return std::nullopt;
-    }
-    const std::string var_name = reference.substr(0, open);
-    std::size_t k = 0;
-    const char* b = reference.data() + open + 1;
-    const char* e = reference.data() + reference.size() - 3;
-    const auto result = std::from_chars(b, e, k);
-    if (result.ec != std::errc() || result.ptr != e || k == 0) return std::nullopt;
+    if (open == std::string::npos || reference.back() != ')') return std::nullopt;
+    const std::string inside = reference.substr(open + 1, reference.size() - open - 2);
+    const bool row = inside.size() > 2 && inside.compare(inside.size() - 2, 2, ",:") == 0;
+    const bool column = inside.size() > 2 && inside.compare(0, 2, ":,") == 0;
+    if (!row && !column) return std::nullopt;
+    const auto k = Index(row ? inside.substr(0, inside.size() - 2) : inside.substr(2));
+    if (!k) return std::nullopt;
     for (std::size_t v = 0; v < variables_.size(); ++v) {
       const Variable& var = variables_[v];
-      if (var.name != var_name || k > var.rows || var.cols < 2) continue;
+      if (var.name != reference.substr(0, open) || var.rows < 2 || var.cols < 2) continue;
+      if (*k > (row ? var.rows : var.cols)) continue;
       for (std::size_t i = listed_; i < columns_.size(); ++i) {
         if (columns_[i].name == reference) return i;
       }
-      columns_.push_back({reference, v, k - 1, var.rows, var.cols});
+      columns_.push_back(row ? MatrixRow(v, *k) : MatrixColumn(v, *k));
       return columns_.size() - 1;
     }
     return std::nullopt;
@@ -511,6 +547,23 @@ class MatSource : public TableSource {
     }
     elements += rows * cols;
     variables_.push_back(std::move(v));
+  }
+
+  // A 1-based index written in a reference ("12"), or nullopt.
+  static std::optional<std::size_t> Index(const std::string& text) {
+    std::size_t k = 0;
+    const char* end = text.data() + text.size();
+    const auto result = std::from_chars(text.data(), end, k);
+    if (result.ec != std::errc() || result.ptr != end || k == 0) return std::nullopt;
+    return k;
+  }
+  ColumnRef MatrixColumn(std::size_t v, std::size_t k) const {
+    const Variable& var = variables_[v];
+    return {fmt::format("{}(:,{})", var.name, k), v, (k - 1) * var.rows, 1, var.rows};
+  }
+  ColumnRef MatrixRow(std::size_t v, std::size_t k) const {
+    const Variable& var = variables_[v];
+    return {fmt::format("{}({},:)", var.name, k), v, k - 1, var.rows, var.cols};
   }
 
   std::string path_;

@@ -207,8 +207,12 @@ double Writable(const std::string& name, double value) {
 }
 std::string Short(double value) { return fmt::format("{:.6g}", value); }
 
+// The values of a section, each with its symbol, description and unit
+// (`unit_of`: the unit a section states for itself, e.g. a linear axis';
+// else the table's).
 template <class Values, class Model>
-std::string FormatSection(const Values& values, const ParameterTable<Values, Model>& table, const std::string& indent) {
+std::string FormatSection(const Values& values, const ParameterTable<Values, Model>& table, const std::string& indent,
+                          const std::function<std::string(const ParameterSpec&)>& unit_of = {}) {
   std::string out;
   for (const auto& row : table) {
     const std::optional<double>& value = values.*(row.in_section);
@@ -217,7 +221,8 @@ std::string FormatSection(const Values& values, const ParameterTable<Values, Mod
         "{}{}: {}", indent, row.spec.key,
         Number(Writable(fmt::format("{}.{}", Values::kSectionName, row.spec.key), *value)));
     const std::string symbol = row.spec.symbol == std::string(row.spec.key) ? "" : std::string(row.spec.symbol) + ", ";
-    out += fmt::format("{:<28} # {}{}\n", line, symbol, row.spec.Doc());
+    const std::string doc = unit_of ? fmt::format("{} [{}]", row.spec.description, unit_of(row.spec)) : row.spec.Doc();
+    out += fmt::format("{:<28} # {}{}\n", line, symbol, doc);
   }
   return out;
 }
@@ -244,7 +249,8 @@ SectionHandler MakeSection(
     const ParameterTable<Section, Model>& (*table)(), const char* comment, std::vector<std::string> extra_keys = {},
     typename NotDeduced<std::function<void(const std::string&, const std::string&, const YAML::Node&, Section&,
                                            ParameterFile&)>>::type parse_extra = {},
-    typename NotDeduced<std::function<std::string(const Section&, const ParameterFile&)>>::type format_extra = {}) {
+    typename NotDeduced<std::function<std::string(const Section&, const ParameterFile&)>>::type format_extra = {},
+    typename NotDeduced<std::function<std::string(const ParameterSpec&, const Section&)>>::type unit_of = {}) {
   const char* name = Section::kSectionName;
   SectionHandler handler;
   handler.name = name;
@@ -258,7 +264,9 @@ SectionHandler MakeSection(
   };
   handler.format = [=](const ParameterFile& file) {
     const Section& section = *file.Find<Section>();
-    std::string body = FormatSection(section, table(), "  ");
+    std::function<std::string(const ParameterSpec&)> unit;
+    if (unit_of) unit = [&](const ParameterSpec& spec) { return unit_of(spec, section); };
+    std::string body = FormatSection(section, table(), "  ", unit);
     if (format_extra) body += format_extra(section, file);
     // A section with no value must still read back as a mapping.
     const std::string key = body.empty() ? fmt::format("{}: {{}}", name) : fmt::format("{}:", name);
@@ -287,6 +295,22 @@ std::string FormatElbows(const PlanarRobotSection& robot, const ParameterFile&) 
   const auto e = robot.elbow.value_or(std::array<int, 3>{1, 1, 1});
   return fmt::format("{:<28} # {}\n", fmt::format("  elbow: [{}, {}, {}]", e[0], e[1], e[2]),
                      "+1: B_i counter-clockwise of the ray A_i -> C");
+}
+
+void ParseAxisKey(const std::string& path, const std::string&, const YAML::Node& value, AxisSection& axis,
+                  ParameterFile&) {
+  if (value.IsNull()) return;
+  const std::string text = value.IsScalar() ? value.Scalar() : "";
+  if (text != "true" && text != "false") {
+    throw InputError(fmt::format("{}: axis.linear: expected true (q in m, forces in N) or false (rotary)",
+                                 Where(path, value)));
+  }
+  axis.linear = text == "true";
+}
+
+std::string FormatAxisKeys(const AxisSection& axis, const ParameterFile&) {
+  if (!axis.linear) return "";
+  return fmt::format("{:<28} # {}\n", "  linear: true", "q in m, forces in N, inertia in kg (docs/models.md#axis)");
 }
 
 void ParseControlKey(const std::string& path, const std::string&, const YAML::Node& value, CDriveSection&,
@@ -339,7 +363,9 @@ const std::vector<SectionHandler>& Sections() {
       MakeSection(DriveTrainParameterTable, "seed 000 section 4; docs/models.md#drive-train"),
       MakeSection(PlanarRobotParameterTable, "seed 000 sections 2, 5; docs/models.md#planar-robot", {"elbow"},
                   ParseElbows, FormatElbows),
-      MakeSection(AxisParameterTable, "docs/models.md#axis: tau = J q'' + b q' + tau_c sgn(q') + tau_0"),
+      MakeSection(AxisParameterTable, "docs/models.md#axis: tau = J q'' + b q' + tau_c sgn(q') + tau_0", {"linear"},
+                  ParseAxisKey, FormatAxisKeys,
+                  [](const ParameterSpec& spec, const AxisSection& axis) { return AxisUnit(spec, axis.linear); }),
       MakeSection(CDriveParameterTable, "seed 001; docs/models.md#c-drive", {"control"}, ParseControlKey,
                   FormatControl),
       MakeSection(JointParameterTable, "docs/models.md#elastic-joint: two masses, link side"),
@@ -603,9 +629,10 @@ std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit,
         }
       }
       const std::string name = "fit.estimates." + e.name;
-      out += fmt::format("    {}: {{value: {}, std: {}, ci95: [{}, {}]}}\n", e.name, Number(Writable(name, e.value)),
+      out += fmt::format("    {}: {{value: {}, std: {}, ci95: [{}, {}]}}{}\n", e.name, Number(Writable(name, e.value)),
                          Short(Writable(name + ".std", e.standard_error)), Short(Writable(name + ".ci95", e.ci95_low)),
-                         Short(Writable(name + ".ci95", e.ci95_high)));
+                         Short(Writable(name + ".ci95", e.ci95_high)),
+                         e.unit.empty() ? "" : "  # " + Comment(e.unit));
     }
     if (!derived.empty()) {
       out += "  derived:\n";
@@ -637,8 +664,10 @@ std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit,
     for (const auto& c : fit->channels) out += fmt::format("    {}: {}\n", Quoted(c.name), Short(c.rmse));
     out += "  fit_percent:\n";
     for (const auto& c : fit->channels) {
-      out += std::isnan(c.fit_percent) ? fmt::format("    {}: null  # the channel does not vary\n", Quoted(c.name))
-                                       : fmt::format("    {}: {:.3f}\n", Quoted(c.name), c.fit_percent);
+      out += std::isnan(c.fit_percent)
+                 ? fmt::format("    {}: null  # the channel (nearly) does not vary: docs/models.md#adequacy\n",
+                               Quoted(c.name))
+                 : fmt::format("    {}: {:.3f}\n", Quoted(c.name), c.fit_percent);
     }
     out += "  autocorrelation:  # residual lag-1, per channel\n";
     for (const auto& c : fit->channels) out += fmt::format("    {}: {:.4f}\n", Quoted(c.name), c.autocorrelation);

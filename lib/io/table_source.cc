@@ -276,6 +276,11 @@ class JoinedSource : public TableSource {
     auto v = a_->scalar(name);
     return v ? v : b_->scalar(name);
   }
+  std::vector<SourceVariable> variables() const override {
+    auto variables = a_->variables();
+    for (auto& v : b_->variables()) variables.push_back(std::move(v));
+    return variables;
+  }
   std::vector<std::string> comments() const override { return a_->comments(); }
   std::vector<std::string> notes() const override {
     auto notes = a_->notes();

@@ -20,6 +20,14 @@ struct TableData {
   std::vector<int> line_numbers;
 };
 
+/// A variable of a structured source (a MAT file): its path, size and how
+/// its data is addressed (`inspect` lists these rather than every column).
+struct SourceVariable {
+  std::string name;  ///< dotted path, e.g. "rec.act_pos_mot_deg"
+  std::size_t rows = 0, cols = 0;
+  std::string address;  ///< e.g. "rows rec.x(1,:) .. rec.x(6,:); columns rec.x(:,k)"
+};
+
 class TableSource {
  public:
   virtual ~TableSource() = default;
@@ -38,6 +46,8 @@ class TableSource {
   /// Rows of each column (0 when they differ, as in a MAT file of several
   /// variables; then only columns of equal length can make a log).
   virtual std::vector<std::size_t> column_lengths() const = 0;
+  /// The variables of a structured source (empty for CSV and SysId).
+  virtual std::vector<SourceVariable> variables() const { return {}; }
   /// A named constant (MAT scalar variables), for column expressions.
   virtual std::optional<double> scalar(const std::string& name) const {
     (void)name;

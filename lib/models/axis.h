@@ -13,7 +13,10 @@
 // The gravity terms g_c cos q + g_s sin q = A cos(q - phi) (A = hypot(g_c,
 // g_s), phi = atan2(g_s, g_c)) hold for a joint whose other joints stand
 // still, q in rad; they are 0 unless given or fitted.
-// Unit-agnostic: rotary (rad, N m, kg m^2) or linear (m, N, kg) axes.
+// Unit-agnostic: rotary (rad, N m, kg m^2) or linear (m, N, kg) axes; the
+// table states rotary units, AxisUnit the linear ones. On a linear axis
+// (`axis.linear: true`, --linear) gravity is a constant force — the offset —
+// and the cos q / sin q terms do not exist.
 #pragma once
 
 #include <algorithm>
@@ -50,18 +53,19 @@ struct AxisSection {
   std::optional<double> torque_constant;  ///< k_t [N m/A], for logs of current
   std::optional<double> gear_ratio;       ///< n_g [-], to report d_g = b / n_g^2
   std::optional<double> stribeck, stribeck_velocity;
+  bool linear = false;  ///< q in m, forces in N (`linear: true`); else rotary
 };
 
 /// The axis parameters: key, symbol, unit, bound, fit membership.
 inline const ParameterTable<AxisSection, AxisParameters>& AxisParameterTable() {
   static const ParameterTable<AxisSection, AxisParameters> table = {
-      {{"inertia", "J", "kg m^2 (linear axis: kg)", "inertia", 0.0, false, false, "axis", true, 0.0},
+      {{"inertia", "J", "kg m^2", "inertia", 0.0, false, false, "axis", true, 0.0},
        &AxisSection::inertia, &AxisParameters::inertia},
-      {{"viscous", "b", "N m s/rad (linear: N s/m)", "viscous friction", 0.0, false, false, "axis", true, 0.0},
+      {{"viscous", "b", "N m s/rad", "viscous friction", 0.0, false, false, "axis", true, 0.0},
        &AxisSection::viscous, &AxisParameters::viscous},
-      {{"coulomb", "tau_c", "N m (linear: N)", "Coulomb friction", 0.0, false, false, "axis", true, 0.0},
+      {{"coulomb", "tau_c", "N m", "Coulomb friction", 0.0, false, false, "axis", true, 0.0},
        &AxisSection::coulomb, &AxisParameters::coulomb},
-      {{"offset", "tau_0", "N m (linear: N)", "constant offset", kUnbounded, false, false, "axis", true, 0.0},
+      {{"offset", "tau_0", "N m", "constant offset", kUnbounded, false, false, "axis", true, 0.0},
        &AxisSection::offset, &AxisParameters::offset},
       {{"gravity_cos", "g_c", "N m", "gravity torque amplitude of cos q (q in rad)", kUnbounded, false, false, "axis",
         false, 0.0},
@@ -69,16 +73,16 @@ inline const ParameterTable<AxisSection, AxisParameters>& AxisParameterTable() {
       {{"gravity_sin", "g_s", "N m", "gravity torque amplitude of sin q (q in rad)", kUnbounded, false, false, "axis",
         false, 0.0},
        &AxisSection::gravity_sin, &AxisParameters::gravity_sin},
-      {{"coulomb_pos", "tau_c+", "N m (linear: N)", "Coulomb friction moving forward (q' > 0)", 0.0, false, false,
+      {{"coulomb_pos", "tau_c+", "N m", "Coulomb friction moving forward (q' > 0)", 0.0, false, false,
         "axis", false, 0.0},
        &AxisSection::coulomb_pos, &AxisParameters::coulomb_pos},
-      {{"coulomb_neg", "tau_c-", "N m (linear: N)", "Coulomb friction moving backward (magnitude, q' < 0)", 0.0, false,
+      {{"coulomb_neg", "tau_c-", "N m", "Coulomb friction moving backward (magnitude, q' < 0)", 0.0, false,
         false, "axis", false, 0.0},
        &AxisSection::coulomb_neg, &AxisParameters::coulomb_neg},
-      {{"viscous_pos", "b+", "N m s/rad (linear: N s/m)", "viscous friction moving forward", 0.0, false, false,
+      {{"viscous_pos", "b+", "N m s/rad", "viscous friction moving forward", 0.0, false, false,
         "axis", false, 0.0},
        &AxisSection::viscous_pos, &AxisParameters::viscous_pos},
-      {{"viscous_neg", "b-", "N m s/rad (linear: N s/m)", "viscous friction moving backward", 0.0, false, false,
+      {{"viscous_neg", "b-", "N m s/rad", "viscous friction moving backward", 0.0, false, false,
         "axis", false, 0.0},
        &AxisSection::viscous_neg, &AxisParameters::viscous_neg},
       {{"k_t", "k_t", "N m/A", "torque constant for logs of current", 0.0, true, false, "", false, 0.0},
@@ -87,14 +91,41 @@ inline const ParameterTable<AxisSection, AxisParameters>& AxisParameterTable() {
        &AxisSection::gear_ratio, nullptr},
       // Nonlinear terms after the settings, so that rows 0 .. kAxisTerms - 1
       // are the linear ones (CalcAxisRegressors).
-      {{"stribeck", "tau_s", "N m (linear: N)", "Stribeck breakaway excess over Coulomb (output error only)", 0.0,
+      {{"stribeck", "tau_s", "N m", "Stribeck breakaway excess over Coulomb (output error only)", 0.0,
         false, false, "axis", false, 0.0},
        &AxisSection::stribeck, &AxisParameters::stribeck},
-      {{"stribeck_velocity", "v_s", "rad/s (linear: m/s)", "Stribeck velocity: the excess fades as exp(-(q'/v_s)^2)",
+      {{"stribeck_velocity", "v_s", "rad/s", "Stribeck velocity: the excess fades as exp(-(q'/v_s)^2)",
         0.0, false, false, "axis", false, 0.0},
        &AxisSection::stribeck_velocity, &AxisParameters::stribeck_velocity},
   };
   return table;
+}
+
+/// The unit of an axis parameter (the table's, rotary) on a rotary or a
+/// linear axis: kg m^2 -> kg, N m s/rad -> N s/m, N m -> N, rad/s -> m/s,
+/// N m/A -> N/A.
+inline std::string AxisUnit(const ParameterSpec& spec, bool linear) {
+  const std::string unit = spec.unit;
+  if (!linear) return unit;
+  if (unit == "kg m^2") return "kg";
+  if (unit == "N m s/rad") return "N s/m";
+  if (unit == "N m") return "N";
+  if (unit == "rad/s") return "m/s";
+  if (unit == "N m/A") return "N/A";
+  return unit;
+}
+
+/// The unit of an axis parameter in a log's own units, effort `effort` and
+/// position `position` (SysId: "V" and "Meters"): kg m^2 -> V s^2/Meters,
+/// N m s/rad -> V s/Meters, N m -> V, rad/s -> Meters/s (the feed-forward
+/// gains' units, models/feedforward.h).
+inline std::string AxisUnitIn(const ParameterSpec& spec, const std::string& effort, const std::string& position) {
+  const std::string unit = spec.unit;
+  if (unit == "kg m^2") return effort + " s^2/" + position;
+  if (unit == "N m s/rad") return effort + " s/" + position;
+  if (unit == "N m") return effort;
+  if (unit == "rad/s") return position + "/s";
+  return unit;
 }
 
 /// The linear model terms: the table's first rows, in table order (the

@@ -27,6 +27,15 @@
 
 namespace driveid {
 
+/// True for a position unit of length ("m", SysId's "Meters", "Feet",
+/// "Inches"): the mechanism is linear (models/axis.h).
+inline bool IsLengthUnit(const std::string& unit) {
+  for (const char* length : {"m", "mm", "Meters", "Meter", "meters", "Feet", "feet", "ft", "Inches", "inches", "in"}) {
+    if (unit == length) return true;
+  }
+  return false;
+}
+
 /// The gain keys a feed-forward section may hold, in the order written.
 /// Axis: Ks ... offset; C-drive eq. (31) (law "cdrive"): beta, gamma_half,
 /// delta, eta, dead_zone, rate_limit.

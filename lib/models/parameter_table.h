@@ -81,6 +81,15 @@ std::string KeyOf(const ParameterTable<Section, Model>& table, double Model::*me
   throw std::logic_error("KeyOf: member not in the table");
 }
 
+/// The spec of the row stored in the section member `member` (settings too).
+template <class Section, class Model>
+const ParameterSpec& SpecOf(const ParameterTable<Section, Model>& table, std::optional<double> Section::*member) {
+  for (const auto& row : table) {
+    if (row.in_section == member) return row.spec;
+  }
+  throw std::logic_error("SpecOf: member not in the table");
+}
+
 /// Keys a fit estimates (all of them, or only its default --free set).
 template <class Section, class Model>
 std::vector<std::string> FitParameterKeys(const ParameterTable<Section, Model>& table, const std::string& fit,
@@ -126,22 +135,6 @@ Model MakeModelParameters(const ParameterTable<Section, Model>& table, const Sec
     }
   }
   return defaults;
-}
-
-/// Throws InputError "<where>: section.key: needed by <purpose>" for the
-/// first model parameter (a row with a model member) that is not given,
-/// except `zero_unless_given` (terms such as gravity that are 0 when absent).
-template <class Section, class Model>
-void RequireModelValues(const ParameterTable<Section, Model>& table, const Section& section, const std::string& where,
-                        const char* section_name, const std::string& purpose,
-                        const std::vector<std::string>& zero_unless_given = {}) {
-  for (const auto& row : table) {
-    if (std::find(zero_unless_given.begin(), zero_unless_given.end(), row.spec.key) != zero_unless_given.end()) continue;
-    if (row.in_model != nullptr && !(section.*(row.in_section))) {
-      throw InputError(
-          fmt::format("{}: {}.{}: needed by {} ({})", where, section_name, row.spec.key, purpose, row.spec.Doc()));
-    }
-  }
 }
 
 /// The model parameters of a section with NaN where a value is not given

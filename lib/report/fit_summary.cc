@@ -7,8 +7,10 @@
 
 namespace driveid {
 
-std::string FitPercentText(double fit_percent) {
-  return std::isnan(fit_percent) ? "n/a (constant)" : fmt::format("{:.2f} %", fit_percent);
+std::string FitPercentText(double fit_percent, double variation) {
+  if (!std::isnan(fit_percent)) return fmt::format("{:.2f} %", fit_percent);
+  return variation > 0.0 ? fmt::format("n/a (nearly constant: std {:.2g} % of its RMS)", 100.0 * variation)
+                         : "n/a (constant)";
 }
 
 namespace {
@@ -22,7 +24,7 @@ std::string FormatChannelLines(const std::vector<ChannelStatistics>& channels) {
   const auto line = [](const ChannelStatistics& c) {
     return fmt::format("{}: {} samples, rmse {:.4g}, fit {}, residual lag-1 autocorrelation {:.3f}, std x {:.2f} "
                        "for it ({} lags)\n",
-                       c.name, c.samples, c.rmse, FitPercentText(c.fit_percent), c.autocorrelation, c.inflation,
+                       c.name, c.samples, c.rmse, FitPercentText(c.fit_percent, c.variation), c.autocorrelation, c.inflation,
                        c.bandwidth);
   };
   std::string out;
@@ -63,13 +65,18 @@ std::string FormatChannelLines(const std::vector<ChannelStatistics>& channels) {
 
 std::string FormatFitTable(const FitResult& fit, const FitProvenance& provenance) {
   std::string out;
-  out += fmt::format("{:<14} {:>14} {:>12} {:>9}   {:<27}\n", "parameter", "estimate", "std", "rel.std", "95 % interval");
+  const bool units = std::any_of(fit.estimates.begin(), fit.estimates.end(), [](const auto& e) { return !e.unit.empty(); });
+  out += fmt::format("{:<14} {:>14} {:>12} {:>9}   {:<27}{}\n", "parameter", "estimate", "std", "rel.std", "95 % interval",
+                     units ? " unit" : "");
   for (const auto& e : fit.estimates) {
     // At zero (e.g. a friction stuck at its bound) a relative std means nothing.
     const std::string relative =
         e.value != 0.0 ? fmt::format("{:>8.3f}%", 100.0 * e.standard_error / std::abs(e.value)) : fmt::format("{:>9}", "-");
-    out += fmt::format("{:<14} {:>14.6g} {:>12.3g} {}   [{:.6g}, {:.6g}]\n", e.name, e.value, e.standard_error,
-                       relative, e.ci95_low, e.ci95_high);
+    const std::string interval = fmt::format("[{:.6g}, {:.6g}]", e.ci95_low, e.ci95_high);
+    out += units ? fmt::format("{:<14} {:>14.6g} {:>12.3g} {}   {:<27} {}\n", e.name, e.value, e.standard_error,
+                               relative, interval, e.unit)
+                 : fmt::format("{:<14} {:>14.6g} {:>12.3g} {}   {}\n", e.name, e.value, e.standard_error, relative,
+                               interval);
   }
   out += "\n";
   out += FormatChannelLines(fit.channels);
@@ -113,8 +120,35 @@ std::string FormatFitTable(const FitResult& fit, const FitProvenance& provenance
 
 namespace {
 
+// A failure's first line with every number blanked: logs that failed for the
+// same reason (each SysId test moves one way only) compare equal.
+std::string FailureKind(const std::string& failure) {
+  std::string out;
+  bool in_number = false;
+  for (const char c : failure.substr(0, failure.find('\n'))) {
+    const bool digit = c >= '0' && c <= '9';
+    if (digit || (in_number && (c == '.' || c == 'e' || c == '-' || c == '+'))) {
+      if (!in_number) out += '#';
+      in_number = true;
+    } else {
+      in_number = false;
+      out += c;
+    }
+  }
+  return out;
+}
+
 std::string FormatEstimateSets(const std::vector<EstimateSet>& sets) {
   std::string out;
+  // Several sets that all failed alike: one line, not one per log.
+  const bool alike = sets.size() > 1 && std::all_of(sets.begin(), sets.end(), [&](const EstimateSet& set) {
+    return !set.failure.empty() && FailureKind(set.failure) == FailureKind(sets.front().failure);
+  });
+  if (alike) {
+    const std::string& first = sets.front().failure;
+    return fmt::format("  none of the {} fits alone succeeded, each for the same reason: {}\n", sets.size(),
+                       first.substr(0, first.find('\n')));
+  }
   for (const auto& log : sets) {
     out += fmt::format("  {}\n", log.label);
     if (!log.failure.empty()) {
@@ -191,6 +225,7 @@ Json FitJson(const FitResult& fit, const FitProvenance& provenance) {
   out["estimates"] = Json::object();
   for (const auto& e : fit.estimates) {
     out["estimates"][e.name] = {{"value", e.value}, {"std", e.standard_error}, {"ci95", {e.ci95_low, e.ci95_high}}};
+    if (!e.unit.empty()) out["estimates"][e.name]["unit"] = e.unit;
   }
   const std::size_t p = fit.estimates.size();
   out["correlation"] = Json::array();

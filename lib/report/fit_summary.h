@@ -9,8 +9,9 @@
 
 namespace driveid {
 
-/// "12.34 %", or "n/a (constant)" for a channel that does not vary (NaN).
-std::string FitPercentText(double fit_percent);
+/// "12.34 %"; for NaN "n/a (nearly constant: std 3.1 % of its RMS)" given
+/// the channel's `variation` (ChannelStatistics), else "n/a (constant)".
+std::string FitPercentText(double fit_percent, double variation = 0.0);
 
 /// Human-readable table: estimates with std, 95 % interval and relative
 /// error, per-channel RMSE and fit %, correlations, solver status, per-log

@@ -20,13 +20,14 @@ void Range(const std::vector<double>& values, InspectedColumn& column) {
 
 }  // namespace
 
-InspectedLog InspectLog(const TableSource& source, const LogInputOptions& options) {
+InspectedLog InspectLog(const TableSource& source, const LogInputOptions& options, bool list_columns) {
   InspectedLog out;
   out.path = source.path();
   out.segment = source.segment();
   out.format = source.format();
   out.notes = source.notes();
-  const auto names = source.column_names();
+  out.variables = source.variables();
+  const auto names = out.variables.empty() || list_columns ? source.column_names() : std::vector<std::string>{};
   std::vector<std::size_t> all(names.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
   // All at once; a column that is not numbers is read alone to say so.
@@ -97,10 +98,21 @@ std::string FormatLogInspection(const InspectedLog& log) {
     out += fmt::format("  {} samples, t = {:.6g} .. {:.6g} s ({:.6g} s), rate {:.6g} Hz, jitter {:.3g} % of the step\n",
                        log.rows, log.start, log.end, log.end - log.start, log.rate, 100.0 * log.jitter);
   } else {
-    out += fmt::format("  {} rows; no time base: {}\n", log.rows, log.time_problem);
+    out += fmt::format("  {} rows; not readable as a fit would read it: {}\n", log.rows, log.time_problem);
   }
   for (const auto& note : log.notes) out += "  note: " + note + "\n";
-  out += fmt::format("  {:>5}  {:<28} {:>8} {:>14} {:>14}\n", "#", "column", "values", "min", "max");
+  if (!log.variables.empty()) {
+    std::size_t width = 8;
+    for (const auto& v : log.variables) width = std::max(width, std::min<std::size_t>(v.name.size(), 48));
+    out += fmt::format("  {:<{}} {:>13}  {}\n", "variable", width, "size", "address (--col NAME=...)");
+    for (const auto& v : log.variables) {
+      out += fmt::format("  {:<{}} {:>13}  {}\n", v.name, width, fmt::format("{} x {}", v.rows, v.cols), v.address);
+    }
+    if (log.columns.empty()) out += "  (columns with their ranges: inspect --columns)\n";
+  }
+  if (!log.columns.empty()) {
+    out += fmt::format("  {:>5}  {:<28} {:>8} {:>14} {:>14}\n", "#", "column", "values", "min", "max");
+  }
   for (const auto& c : log.columns) {
     if (!c.problem.empty()) {
       out += fmt::format("  {:>5}  {:<28} {}\n", c.position, c.name, c.problem);
@@ -127,6 +139,10 @@ Json LogInspectionJson(const InspectedLog& log) {
     out["time_problem"] = log.time_problem;
   }
   out["notes"] = log.notes;
+  out["variables"] = Json::array();
+  for (const auto& v : log.variables) {
+    out["variables"].push_back({{"name", v.name}, {"rows", v.rows}, {"cols", v.cols}, {"address", v.address}});
+  }
   out["columns"] = Json::array();
   for (const auto& c : log.columns) {
     Json column = {{"position", c.position}, {"name", c.name}, {"values", c.length}};

@@ -25,7 +25,8 @@ struct InspectedColumn {
 struct InspectedLog {
   std::string path, segment, format;
   std::size_t rows = 0;
-  std::vector<InspectedColumn> columns;  ///< every column of the source
+  std::vector<SourceVariable> variables;  ///< a MAT file's variables and struct fields
+  std::vector<InspectedColumn> columns;  ///< every column of the source (of a MAT file: on request)
   std::vector<InspectedColumn> mapped;   ///< t and each --col, after expressions and crops
   bool has_time = false;
   double start = 0.0, end = 0.0;         ///< time span [s]
@@ -35,8 +36,10 @@ struct InspectedLog {
   std::string time_problem;              ///< why there is no time base
 };
 
-/// Inspects one source with the options a fit would use.
-InspectedLog InspectLog(const TableSource& source, const LogInputOptions& options);
+/// Inspects one source with the options a fit would use. A source with
+/// variables (MAT) lists them, and its columns only with `list_columns`
+/// (a file of structs has tens of thousands); other sources list columns.
+InspectedLog InspectLog(const TableSource& source, const LogInputOptions& options, bool list_columns = false);
 
 std::string FormatLogInspection(const InspectedLog& log);
 Json LogInspectionJson(const InspectedLog& log);

@@ -45,6 +45,10 @@ sed '/  beta:/d' table1.yaml > no_beta.yaml
 expect 3 "negative.yaml:[0-9]+:8: cdrive.eta: must be >= 0" -- friction translation.csv --params negative.yaml
 expect 3 "law.yaml:[0-9]+:10: cdrive.control.law: must be PI, PD or PID" -- friction translation.csv --params law.yaml
 expect 3 "cdrive.beta is needed" -- inertia translation.csv --params no_beta.yaml
+# Every missing value in one message, each with the line to add.
+sed -e '/  beta:/d' -e '/  gamma:/d' -e '/  delta:/d' table1.yaml > no_friction.yaml
+expect 3 "cdrive.beta, cdrive.gamma and cdrive.delta are needed \\(fixed in this fit\\)" -- inertia translation.csv --params no_friction.yaml
+expect 3 "add to the cdrive section .*: 'beta: <value>' \\(.*\\[N m s/rad\\]\\), 'gamma: <value>'" -- inertia translation.csv --params no_friction.yaml
 expect 3 "no 'cdrive' section" -- friction translation.csv --params "$src/data/paper000.yaml"
 
 # Refusals: exit 4, naming what cannot be determined; no output file.

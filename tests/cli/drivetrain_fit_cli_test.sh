@@ -263,6 +263,19 @@ expect 4 "--strict: 1 adequacy warning; nothing written: gravity missing?" -- ax
 expect 4 "not identifiable.*coulomb_pos, coulomb_neg, offset|not identifiable.*offset, coulomb_pos, coulomb_neg" \
   -- axis direction.csv --free inertia,viscous,offset,coulomb_pos,coulomb_neg
 expect 2 "coulomb and coulomb_pos describe the same friction" -- axis direction.csv --free coulomb,coulomb_pos
+# A linear axis (docs/models.md#axis): units kg, N s/m, N in the file, the
+# JSON and the feed-forward section; read back; no cos/sin gravity (refused, never advised).
+"$bin" axis axis.csv --linear -o linear.yaml --json > linear.json 2> stderr.txt && grep -q "^  linear: true" linear.yaml &&
+  grep -q "^  inertia: .*inertia \[kg\]" linear.yaml && grep -q "^  viscous: .*\[N s/m\]" linear.yaml &&
+  grep -q 'effort_unit: "\?N"\?$' linear.yaml && grep -q 'position_unit: "\?m"\?$' linear.yaml &&
+  grep -q '"inertia":{[^}]*"unit":"kg"' linear.json && ok || fail "linear axis: $(cat stderr.txt linear.yaml)"
+"$bin" axis axis.csv --params linear.yaml -q -o relinear.yaml && grep -q "^  linear: true" relinear.yaml && ok ||
+  fail "axis.linear read back"
+expect 2 "--free gravity_cos: a linear axis" -- axis axis.csv --linear --free inertia,viscous,coulomb,offset,gravity_cos
+"$bin" axis gravity.csv --linear -q -o /dev/null 2> stderr.txt; ! grep -q "gravity" stderr.txt && ok ||
+  fail "gravity advice on a linear axis: $(cat stderr.txt)"
+"$bin" axis axis.csv -o rotary.yaml 2> /dev/null && grep -q "^  inertia: .*inertia \[kg m^2\]" rotary.yaml &&
+  ! grep -q "^  linear:" rotary.yaml && ok || fail "rotary axis units: $(cat rotary.yaml)"
 # A known torque column (docs/models.md#axis): a spring 3 q added to tau
 # and logged as tau_known is subtracted; the fit finds the same axis.
 awk -F, '/^#/ { next } !h { print $0 ",tau_known"; h = 1; next } { k = 3 * $2; printf "%s,%s,%.7g,%.7g\n", $1, $2, $3 + k, k }' \
@@ -304,7 +317,7 @@ grep -q "^    d_g: {value: 3.1" axis_fit.yaml && ok || fail "axis fit lacks d_g 
   || fail "joint refit from its own output"
 printf 'joint:\n  motor_inertia: 0.02\n' > joint_nogear.yaml
 expect 3 "joint.gear_ratio: missing value" -- joint "$src/data/joint_example.csv" --params joint_nogear.yaml
-expect 3 "joint.link_inertia, joint.damping, joint.motor_viscous, joint.motor_coulomb, joint.link_viscous, joint.link_coulomb, joint.offset are needed \\(fixed in this fit\\)" -- joint "$src/data/joint_example.csv" \
+expect 3 "joint.link_inertia, joint.damping, joint.motor_viscous, joint.motor_coulomb, joint.link_viscous, joint.link_coulomb and joint.offset are needed \\(fixed in this fit\\)" -- joint "$src/data/joint_example.csv" \
   --params "$src/data/joint_start.yaml" --free motor_inertia,stiffness
 cut -d, -f1,2,4 "$src/data/joint_example.csv" > joint_nolink.csv
 expect 3 "joint_nolink.csv:[0-9]+: missing column 'q_link'" -- joint joint_nolink.csv --params "$src/data/joint_start.yaml"

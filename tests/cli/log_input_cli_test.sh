@@ -137,6 +137,10 @@ awk -F, '{ printf "%s,%s,%s\n", $1, $2, ($1 == "t" ? "tau" : 0.5) }' <(grep -v '
 "$bin" validate reference.yaml constant.csv --json > constant.json 2> stderr.txt && grep -q '"fit_percent":null' constant.json &&
   "$bin" validate reference.yaml constant.csv > constant.txt 2>&1 && grep -q " n/a " constant.txt && ok ||
   fail "validate of a constant torque: $(cat constant.json constant.txt stderr.txt)"
+# Nearly constant (std 0.7 % of the level, like a held voltage step): no fit % either, and no "low fit" warning.
+awk -F, '{ printf "%s,%s,%s\n", $1, $2, ($1 == "t" ? "tau" : 0.5 + 0.005 * sin(NR)) }' <(grep -v '^#' axis.csv) > held.csv
+"$bin" validate reference.yaml held.csv --json > held.json 2> stderr.txt && grep -q '"fit_percent":null' held.json &&
+  ! grep -q "low fit" stderr.txt && ok || fail "validate of a nearly constant torque: $(cat held.json stderr.txt)"
 # SysId JSON is streamed (issue 21): 17 MB of samples read within 120 MB of
 # address space (a DOM took 23 times the file); a byte-order mark is read;
 # a key given twice and --side on a CSV are refused.

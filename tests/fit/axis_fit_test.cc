@@ -142,18 +142,19 @@ TEST_CASE("axis: constant-rate logs identify friction only, a free inertia is re
 namespace {
 
 // The tests' own generator (not lib/sim): a joint swinging about the
-// horizontal, q = 0.6 sin(2 pi 0.5 t) + 0.2 sin(2 pi 1.7 t), 1 kHz for 20 s,
-// tau = torque(t, q, q', q'') + white noise 0.02.
-AxisLog SwingWith(const std::function<double(double, double, double, double)>& torque, unsigned seed) {
+// horizontal, q = s (0.6 sin(2 pi 0.5 t) + 0.2 sin(2 pi 1.7 t)) (s = `scale`),
+// 1 kHz for 20 s, tau = torque(t, q, q', q'') + white noise 0.02.
+AxisLog SwingWith(const std::function<double(double, double, double, double)>& torque, unsigned seed,
+                  double scale = 1.0) {
   std::mt19937 random(seed);
   std::normal_distribution<double> noise(0.0, 0.02);
   AxisLog log;
   log.path = "swing.csv";
   for (int k = 0; k <= 20000; ++k) {
     const double t = k / 1000.0, w1 = 2 * M_PI * 0.5, w2 = 2 * M_PI * 1.7;
-    const double q = 0.6 * std::sin(w1 * t) + 0.2 * std::sin(w2 * t);
-    const double qd = 0.6 * w1 * std::cos(w1 * t) + 0.2 * w2 * std::cos(w2 * t);
-    const double qdd = -0.6 * w1 * w1 * std::sin(w1 * t) - 0.2 * w2 * w2 * std::sin(w2 * t);
+    const double q = scale * (0.6 * std::sin(w1 * t) + 0.2 * std::sin(w2 * t));
+    const double qd = scale * (0.6 * w1 * std::cos(w1 * t) + 0.2 * w2 * std::cos(w2 * t));
+    const double qdd = -scale * (0.6 * w1 * w1 * std::sin(w1 * t) + 0.2 * w2 * w2 * std::sin(w2 * t));
     log.time.push_back(t);
     log.position.push_back(q);
     log.force.push_back(torque(t, q, qd, qdd) + noise(random));
@@ -369,4 +370,69 @@ TEST_CASE("axis IDIM-LS: the nonlinear Stribeck term is refused by name, fixed o
   CHECK(CalcAxisForce(p, 0.0, 0.5, 0.0) == Approx(1.0 + 0.2 / std::exp(1.0)));
   CHECK(CalcAxisForce(p, 0.0, -0.5, 0.0) == Approx(-1.0 - 0.2 / std::exp(1.0)));
   CHECK(CalcAxisForce(p, 0.0, 0.0, 0.0) == 0.0);
+}
+
+namespace {
+// The warning that starts with `start`, or "".
+std::string WarningText(const FitResult& fit, const std::string& start) {
+  for (const auto& w : fit.warnings) {
+    if (w.rfind(start, 0) == 0) return w;
+  }
+  return "";
+}
+}  // namespace
+
+TEST_CASE("axis processing advice: a measured rate is suggested only to logs without one") {
+  // A cutoff at the multisine's top component (2.3 Hz, which dominates q''):
+  // the inertia moves with the cutoff, with or without a measured rate.
+  AxisExperiment e;
+  e.noise = 0.05;
+  e.duration = 25.0;
+  const AxisLog without_rate = SimulateAxisExperiment(kTruth, e);
+  AxisLog with_rate = without_rate;
+  // qd in closed form from the profile in sim/axis_experiment.h (A = 1).
+  const double w1 = 2.0 * M_PI * 0.3, w2 = 2.0 * M_PI * 1.1, w3 = 2.0 * M_PI * 2.3;
+  for (const double t : with_rate.time) {
+    with_rate.rate.push_back(0.6 * w1 * std::cos(w1 * t) + 0.3 * w2 * std::cos(w2 * t + 1.0) +
+                             0.1 * w3 * std::cos(w3 * t + 2.0));
+  }
+  AxisFitOptions options;
+  options.cutoff = 2.0;
+  const AxisSection start{0.1, 0.5, 2.0, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+  const std::string differentiated = WarningText(FitAxis({without_rate}, start, options).fit, "processing: inertia");
+  const std::string measured = WarningText(FitAxis({with_rate}, start, options).fit, "processing: inertia");
+  REQUIRE_FALSE(differentiated.empty());
+  REQUIRE_FALSE(measured.empty());
+  CHECK(differentiated.find("try a measured rate qd") != std::string::npos);
+  CHECK(measured.find("try a measured rate qd") == std::string::npos);
+  CHECK(measured.find("the measured rate qd is used") != std::string::npos);
+}
+
+TEST_CASE("axis advice: gravity terms collinear with the offset over a short stroke are not suggested") {
+  // A force growing with q^2 over +-0.06 rad (400 (1 - cos q) to 0.1 %): it
+  // follows cos q, but cos q stays within 0.2 % of 1 there, the offset's
+  // twin: "fitting" it gives offset ~ +400 and g_c ~ -400 (the issue's
+  // +356.6 N / -358.8 N on a ball screw).
+  const AxisLog log = SwingWith(
+      [](double, double q, double qd, double qdd) {
+        return 0.05 * qdd + 0.2 * qd + 0.3 * ((qd > 0) - (qd < 0)) + 0.1 + 200.0 * q * q;
+      },
+      5, 0.075);
+  const AxisFitOutput out = FitAxis({log}, AxisSection{}, {});
+  const std::string warning = WarningText(out.fit, "position-dependent force");
+  INFO(fmt::format("{}", fmt::join(out.fit.warnings, "\n")));
+  REQUIRE_FALSE(warning.empty());
+  CHECK(warning.find("--free") == std::string::npos);
+  CHECK_FALSE(HasWarning(out.fit, "gravity missing?"));
+  // On a linear axis there is no cos q / sin q test at all, and the terms are refused.
+  AxisSection linear;
+  linear.linear = true;
+  const AxisFitOutput on_linear = FitAxis({log}, linear, {});
+  CHECK(WarningText(on_linear.fit, "position-dependent force").empty());
+  CHECK_FALSE(HasWarning(on_linear.fit, "gravity missing?"));
+  AxisFitOptions with_gravity;
+  with_gravity.free = {"inertia", "viscous", "coulomb", "offset", "gravity_cos"};
+  CHECK_THROWS_WITH(FitAxis({log}, linear, with_gravity), Catch::Contains("--free gravity_cos: a linear axis"));
+  linear.gravity_sin = 2.0;
+  CHECK_THROWS_WITH(FitAxis({log}, linear, {}), Catch::Contains("axis.gravity_sin = 2 on a linear axis"));
 }

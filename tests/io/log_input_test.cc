@@ -163,6 +163,45 @@ TEST_CASE("MAT v5 and v7.3: vectors, matrix columns and rows, struct fields, sca
              Catch::StartsWith("bad.mat:"));
 }
 
+TEST_CASE("MAT: a wide matrix lists its rows, the other side on request; elements as scalars; variables listed") {
+  for (mat_ft version : {MAT_FT_MAT5, MAT_FT_MAT73}) {
+    const std::string bytes = WriteMat(version);
+    INFO((version == MAT_FT_MAT73 ? "v7.3" : "v5"));
+    const auto source = OpenMatSource("m.mat", bytes);
+    const auto names = source->column_names();
+    const auto listed = [&](const std::string& name) { return std::find(names.begin(), names.end(), name) != names.end(); };
+    // rec.pos is 2 x 5 (wide): its rows are the signals; data is 5 x 3 (tall): its columns.
+    CHECK(listed("rec.pos(1,:)"));
+    CHECK(listed("rec.pos(2,:)"));
+    CHECK_FALSE(listed("rec.pos(:,1)"));
+    CHECK(listed("data(:,3)"));
+    CHECK_FALSE(listed("data(1,:)"));
+    REQUIRE(source->Find("rec.pos(:,4)"));
+    CHECK(source->Read({*source->Find("rec.pos(:,4)")}).columns.front() == std::vector<double>{4, 400});
+    CHECK_FALSE(source->Find("rec.pos(:,6)"));
+    CHECK_FALSE(source->Find("rec.pos(3,:)"));
+    // Elements of vectors and matrices are scalars: name(i) column-major, name(i,j).
+    CHECK(source->scalar("gain") == 2.5);
+    CHECK(source->scalar("gain(1)") == 2.5);
+    CHECK(source->scalar("rec.pos(2,3)") == 300);
+    CHECK(source->scalar("rec.pos(4)") == 200);
+    CHECK(source->scalar("data(5,2)") == 50);
+    CHECK_FALSE(source->scalar("rec.pos(3,1)"));
+    CHECK_FALSE(source->scalar("rec.pos(11)"));
+    CHECK_FALSE(source->scalar("rec.pos(0)"));
+    CHECK_FALSE(source->scalar("rec.pos(1,)"));
+    const auto b = ReadOne("m.mat", bytes, Columns({{"t", "time"}, {"q", "rec.pos(2,1)*rec.pos(1,:)"}, {"tau", "data(:,3)"}}));
+    CHECK(b.columns[1] == std::vector<double>{100, 200, 300, 400, 500});
+    // Variables and struct fields with their sizes and how to address them.
+    const auto variables = source->variables();
+    const auto pos = std::find_if(variables.begin(), variables.end(), [](const SourceVariable& v) { return v.name == "rec.pos"; });
+    REQUIRE(pos != variables.end());
+    CHECK(pos->rows == 2);
+    CHECK(pos->cols == 5);
+    CHECK(pos->address == "rows rec.pos(1,:) .. rec.pos(2,:); columns rec.pos(:,k)");
+  }
+}
+
 TEST_CASE("SysId JSON: four tests as logs, positions in units, sides of a drivetrain") {
   const std::string simple = R"({"test": "Simple", "units": "Radians", "unitsPerRotation": 6.0, "sysid": true,
     "slow-forward": [[0, 1, 0.5, 0.1], [0.005, 1.1, 0.6, 0.2]], "slow-backward": [[1, -1, 2, -0.1], [1.005, -1.1, 1.9, -0.2]],
