@@ -14,11 +14,41 @@ namespace {
 constexpr int kQ = 0, kV = 1;
 
 int Sign(double value) { return (value > 0.0) - (value < 0.0); }
+
+// The flow of v' = w - a v over a time t (a >= 0): with E = exp(-a t),
+//   v(t) = v0 E + w phi1,  q(t) = q0 + v0 phi1 + w phi2,
+//   phi1 = (1 - E) / a,  phi2 = (t - phi1) / a   (t and t^2 / 2 as a -> 0),
+// and the derivatives dE/da = -t E, dphi1/da = (t E - phi1) / a,
+// dphi2/da = -(dphi1/da + phi2) / a; series in x = a t below |x| 1e-3
+// (truncation below 1e-15 relative, where the closed forms cancel).
+struct Flow {
+  double e, phi1, phi2, de, dphi1, dphi2;
+};
+
+Flow CalcFlow(double a, double t) {
+  Flow f{};
+  const double x = a * t;
+  f.e = std::exp(-x);
+  if (std::abs(x) < 1e-3) {
+    f.phi1 = t * (1.0 - x / 2.0 + x * x / 6.0 - x * x * x / 24.0 + x * x * x * x / 120.0);
+    f.phi2 = t * t * (0.5 - x / 6.0 + x * x / 24.0 - x * x * x / 120.0 + x * x * x * x / 720.0);
+    f.dphi1 = t * t * (-0.5 + x / 3.0 - x * x / 8.0 + x * x * x / 30.0);
+    f.dphi2 = t * t * t * (-1.0 / 6.0 + x / 12.0 - x * x / 40.0 + x * x * x / 180.0);
+  } else {
+    f.phi1 = -std::expm1(-x) / a;
+    f.phi2 = (t - f.phi1) / a;
+    f.dphi1 = (t * f.e - f.phi1) / a;
+    f.dphi2 = -(f.dphi1 + f.phi2) / a;
+  }
+  f.de = -t * f.e;
+  return f;
+}
 }  // namespace
 
 class AxisSimulator::System final : public SensitivityOdeSystem, public HeldInputSystem {
  public:
-  System(std::vector<int> terms, double position_tolerance, double rate_tolerance) : terms_(std::move(terms)) {
+  System(std::vector<int> terms, double position_tolerance, double rate_tolerance, bool allow_exact)
+      : terms_(std::move(terms)), allow_exact_(allow_exact) {
     for (int j : terms_) {
       if (j < 0 || j >= kAxisAllTerms) throw std::logic_error("AxisSimulator: term index out of range");
     }
@@ -88,7 +118,7 @@ class AxisSimulator::System final : public SensitivityOdeSystem, public HeldInpu
     with_sensitivities_ = with_sensitivities;
     out_ = out;
     Record(0);
-    out->switch_count = RunHeldInput(*integrator_, time, torque, *this, "axis");
+    out->switch_count = ExactApplies() ? RunExact(time, torque) : RunHeldInput(*integrator_, time, torque, *this, "axis");
   }
 
   // HeldInputSystem (sim/held_input_driver.h): stuck, the axis has no dynamics.
@@ -154,6 +184,9 @@ class AxisSimulator::System final : public SensitivityOdeSystem, public HeldInpu
   // conditions of the header.
   void HandleSwitch(bool with_sensitivities) {
     CopyFromIntegrator(with_sensitivities);
+    SwitchAtZeroRate(with_sensitivities);
+  }
+  void SwitchAtZeroRate(bool with_sensitivities) {
     x_[kV] = 0.0;
     const double before = Acceleration(x_.data());
     DecideModeAtRest();
@@ -177,7 +210,104 @@ class AxisSimulator::System final : public SensitivityOdeSystem, public HeldInpu
     }
   }
 
+  // Without gravity and Stribeck terms (values 0 and not estimated) the
+  // axis is linear in v per friction mode: J v' = u - b_m v - c_m, with
+  // b_m, c_m the rate and constant parts of the friction regressors. Each
+  // held sample is then solved exactly (Flow), rate zero crossings in closed
+  // form, so a torque that changes every sample costs no integrator restart.
+  bool ExactApplies() const {
+    if (!allow_exact_) return false;
+    for (const int j : {static_cast<int>(kAxisGravityCos), static_cast<int>(kAxisGravitySin), kAxisStribeck, kAxisStribeckVelocity}) {
+      if (j != kAxisStribeckVelocity && theta_[static_cast<std::size_t>(j)] != 0.0) return false;
+      if (std::find(terms_.begin(), terms_.end(), j) != terms_.end()) return false;
+    }
+    return true;
+  }
+
+  // b_m / J = a, the acceleration at v = 0 (u - c_m) / J = w, and their
+  // derivatives with respect to each estimated term, for the current mode:
+  // each friction regressor is alpha_j + beta_j v in a mode.
+  void ModeCoefficients(double* a, double* w, std::vector<double>* da, std::vector<double>* dw) const {
+    const auto at_rest = CalcAxisRegressors(0.0, 0.0, 0.0, mode_), moving = CalcAxisRegressors(0.0, 1.0, 0.0, mode_);
+    const double inertia = theta_[kAxisInertia];
+    double rate_part = 0.0, constant_part = 0.0;
+    for (std::size_t j = 1; j < kAxisTerms; ++j) {
+      if (j == kAxisGravityCos || j == kAxisGravitySin) continue;  // 0 on this path
+      rate_part += theta_[j] * (moving[j] - at_rest[j]);
+      constant_part += theta_[j] * at_rest[j];
+    }
+    *a = rate_part / inertia;
+    *w = (u_ - constant_part) / inertia;
+    if (da == nullptr) return;
+    da->assign(terms_.size(), 0.0);
+    dw->assign(terms_.size(), 0.0);
+    for (std::size_t i = 0; i < terms_.size(); ++i) {
+      const auto j = static_cast<std::size_t>(terms_[i]);
+      if (j == kAxisInertia) {
+        (*da)[i] = -*a / inertia;
+        (*dw)[i] = -*w / inertia;
+      } else {
+        (*da)[i] = (moving[j] - at_rest[j]) / inertia;
+        (*dw)[i] = -at_rest[j] / inertia;
+      }
+    }
+  }
+
+  // Advances the sliding state (and its sensitivities) by t in the current
+  // mode: the flow's derivatives by a and w times those of a and w.
+  void Advance(double t, double a, double w, const std::vector<double>& da, const std::vector<double>& dw) {
+    const Flow f = CalcFlow(a, t);
+    const double v0 = x_[kV];
+    if (with_sensitivities_) {
+      for (std::size_t i = 0; i < terms_.size(); ++i) {
+        const double sq = s_[2 * i], sv = s_[2 * i + 1];
+        s_[2 * i] = sq + sv * f.phi1 + (v0 * f.dphi1 + w * f.dphi2) * da[i] + dw[i] * f.phi2;
+        s_[2 * i + 1] = sv * f.e + (v0 * f.de + w * f.dphi1) * da[i] + dw[i] * f.phi1;
+      }
+    }
+    x_[kQ] += v0 * f.phi1 + w * f.phi2;
+    x_[kV] = v0 * f.e + w * f.phi1;
+  }
+
+  // The held-sample loop of sim/held_input_driver.h, solved exactly: per
+  // sample the mode at rest is decided from the new torque, a sliding axis
+  // flows to the sample or to its rate's zero crossing (closed form: for
+  // v0 w < 0, E* = w / (w - a v0), t* = log1p(-a v0 / w) / a, -v0 / w as
+  // a -> 0), where it sticks or reverses with the jump conditions of the
+  // header; at most two pieces per sample (a reversal cannot cross again).
+  int RunExact(const std::vector<double>& time, const std::vector<double>& torque) {
+    int switches = 0;
+    double a = 0.0, w = 0.0;
+    std::vector<double> da, dw;
+    for (std::size_t k = 1; k < time.size(); ++k) {
+      SetInput(torque[k - 1]);
+      double left = time[k] - time[k - 1];
+      for (int piece = 0; piece < 3 && left > 0.0 && mode_ != 0; ++piece) {
+        ModeCoefficients(&a, &w, with_sensitivities_ ? &da : nullptr, &dw);
+        const double v0 = x_[kV];
+        double crossing = HUGE_VAL;
+        if (v0 * w < 0.0) crossing = a > 0.0 ? std::log1p(-a * v0 / w) / a : -v0 / w;
+        if (!(crossing < left)) {
+          Advance(left, a, w, da, dw);
+          left = 0.0;
+          break;
+        }
+        Advance(crossing, a, w, da, dw);
+        left -= crossing;
+        ++switches;
+        SwitchAtZeroRate(with_sensitivities_);
+      }
+      if (mode_ != 0 && left > 0.0) {
+        throw IdentificationError(fmt::format("simulation: the axis switches mode more than twice in the sample at "
+                                              "t = {} s (chattering)", time[k - 1]));
+      }
+      Record(k, with_sensitivities_, out_);
+    }
+    return switches;
+  }
+
   std::vector<int> terms_;
+  bool allow_exact_ = true;
   std::unique_ptr<CvodesIntegrator> integrator_;
   std::array<double, kAxisAllTerms> theta_{};
   std::array<double, 2> x_{};
@@ -189,8 +319,9 @@ class AxisSimulator::System final : public SensitivityOdeSystem, public HeldInpu
   AxisResponse* out_ = nullptr;
 };
 
-AxisSimulator::AxisSimulator(std::vector<int> terms, double position_tolerance, double rate_tolerance)
-    : system_(std::make_unique<System>(std::move(terms), position_tolerance, rate_tolerance)) {}
+AxisSimulator::AxisSimulator(std::vector<int> terms, double position_tolerance, double rate_tolerance,
+                             bool allow_exact)
+    : system_(std::make_unique<System>(std::move(terms), position_tolerance, rate_tolerance, allow_exact)) {}
 
 AxisSimulator::~AxisSimulator() = default;
 

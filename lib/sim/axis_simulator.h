@@ -14,6 +14,12 @@
 // so sticking gives s_v+ = 0 (s_q unchanged, v = 0 there) and a reversal
 // s_v+ = s_v- v'+ / v'-. u[k] is held on [t_k, t_{k+1}); samples are taken
 // at t_k before the new torque applies.
+// Without gravity and Stribeck terms each mode is linear, J v' = u - b_m v
+// - c_m, and the simulator solves each held sample in closed form
+// (v = v0 e^{-a t} + w (1 - e^{-a t}) / a, a = b_m / J, w = (u - c_m) / J;
+// zero crossings and sensitivities likewise): no integrator restart per
+// sample, which makes logs whose torque changes every sample (closed loop)
+// as cheap as stepped ones. Otherwise CVODES integrates.
 #pragma once
 
 #include <memory>
@@ -34,8 +40,10 @@ struct AxisResponse {
 class AxisSimulator {
  public:
   /// `terms`: indices of the axis terms (AxisTermMembers order) whose
-  /// sensitivities Simulate computes. Absolute tolerances of q and v.
-  AxisSimulator(std::vector<int> terms, double position_tolerance, double rate_tolerance);
+  /// sensitivities Simulate computes. Absolute tolerances of q and v (of
+  /// the integrator). Without gravity and Stribeck terms the axis is solved
+  /// exactly per held sample (no integrator) unless `allow_exact` is false.
+  AxisSimulator(std::vector<int> terms, double position_tolerance, double rate_tolerance, bool allow_exact = true);
   ~AxisSimulator();
   AxisSimulator(const AxisSimulator&) = delete;
   AxisSimulator& operator=(const AxisSimulator&) = delete;
