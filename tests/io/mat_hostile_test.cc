@@ -1,6 +1,7 @@
 // Hostile MAT v7.3 (HDF5) files (issue 21): cut short at every length —
 // refused naming the file, or the same data as the whole file (the v5 sweep
-// is in log_input_test.cc); variables whose bytes come from other files. Prefixes that hold the superblock are refused before a
+// is in log_input_test.cc); variables whose bytes come from other files.
+// Prefixes that hold the superblock are refused before a
 // reader process starts; the first ~520 start one each.
 #include <cstdint>
 #include <filesystem>

@@ -1,0 +1,29 @@
+// The MAT reader proper: libmatio (v5 and v7.3), HDF5 and zlib below it,
+// run as its own process, driveid-mat-reader (lib/io/mat_reader_main.cc),
+// started by the MAT source (lib/io/mat_source.cc). So the tools map those
+// libraries (and what HDF5 pulls in: curl, Kerberos, LDAP, ...) only when a
+// MAT file is read, and a corrupt file that makes them crash, hang or
+// allocate without bound ends that process, not the tool.
+#pragma once
+
+#include <string>
+
+#include "io/mat_reply.h"
+
+namespace driveid {
+
+/// Reads the MAT file `file` (a copy of `bytes`, which came from `path`):
+/// the structural checks first (io/mat_structure_check.h,
+/// io/hdf5_storage_check.h; the tool has run io/hdf5_length_check.h), then
+/// every numeric vector and matrix, struct fields by dotted path; other
+/// classes are notes. Throws InputError naming `path`.
+MatContents ReadMatFile(const std::string& path, const std::string& file, const std::string& bytes);
+
+/// The reader process's reply (io/mat_reply.h) for the MAT file `file`,
+/// named `path` in messages: its contents or the error that ended reading.
+std::string MatReaderReply(const std::string& path, const std::string& file);
+
+/// Writes `reply` to the file descriptor `fd`; false if it could not.
+bool WriteMatReaderReply(int fd, const std::string& reply);
+
+}  // namespace driveid
