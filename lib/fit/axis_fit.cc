@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -12,8 +13,8 @@
 #include "fit/axis_rows.h"
 #include "fit/linear_regression.h"
 #include "fit/omitted_terms.h"
-#include "models/missing_values.h"
 #include "io/csv_log.h"
+#include "models/missing_values.h"
 #include "signal/butterworth.h"
 #include "signal/local_polynomial.h"
 
@@ -166,7 +167,25 @@ std::vector<std::string> CheckAxisAdequacy(const LinearRegression& regression, c
 
 }  // namespace
 
-double ChooseAxisCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options) {
+namespace {
+
+// Rows built for the same logs, decimation and rate floor, by cutoff: the
+// cutoff search builds each candidate's, and the central fit and the
+// half/twice sensitivity fits take them from here (the candidates double,
+// so half and twice the chosen one are usually among them). Rows larger
+// than kCachedRowBytes are not kept.
+using AxisRowCache = std::map<double, std::shared_ptr<const AxisRows>>;
+constexpr std::size_t kCachedRowBytes = std::size_t{64} << 20;
+
+// What a fit at one cutoff does beyond the estimates: the adequacy checks
+// and the per-log fits (a candidate of the cutoff search needs neither).
+enum class AtCutoff { kFull, kScore };
+
+AxisFitOutput FitAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options,
+                          AxisRowCache* cache, AtCutoff extent);
+
+double ChooseCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options,
+                    AxisRowCache* cache) {
   // Of the candidates (axis_rows.h), the one whose fit leaves the smallest
   // mean squared residual of the (identically filtered) torque: lower
   // cutoffs distort the motion, higher ones let the encoder's noise into q''.
@@ -179,7 +198,7 @@ double ChooseAxisCutoff(const std::vector<AxisLog>& logs, const AxisSection& sta
   for (const double c : candidates) {
     trial.cutoff = c;
     try {
-      const FitResult fit = FitAxisAtCutoff(logs, start, trial).fit;
+      const FitResult fit = FitAtCutoff(logs, start, trial, cache, AtCutoff::kScore).fit;
       int rows = 0;
       for (const auto& channel : fit.channels) rows += channel.samples;
       const double mean_square = rows > 0 ? 2.0 * fit.cost / rows : HUGE_VAL;
@@ -194,13 +213,21 @@ double ChooseAxisCutoff(const std::vector<AxisLog>& logs, const AxisSection& sta
   return best;
 }
 
+}  // namespace
+
+double ChooseAxisCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options) {
+  AxisRowCache cache;
+  return ChooseCutoff(logs, start, options, &cache);
+}
+
 AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options) {
   if (logs.empty()) throw OptionError("no logs given");
   AxisFitOptions central = options;
   central.sensitivity = false;
   CheckFreeNames(AxisParameterTable(), "axis", options.free);
-  central.cutoff = options.cutoff > 0.0 ? options.cutoff : ChooseAxisCutoff(logs, start, central);
-  AxisFitOutput out = FitAxisAtCutoff(logs, start, central);
+  AxisRowCache cache;
+  central.cutoff = options.cutoff > 0.0 ? options.cutoff : ChooseCutoff(logs, start, central, &cache);
+  AxisFitOutput out = FitAtCutoff(logs, start, central, &cache, AtCutoff::kFull);
   out.cutoff_rule = options.cutoff > 0.0
                         ? "given (--cutoff)"
                         : "from the data: of 5, 10, 20, ... x the motion frequency RMS(q')/(2 pi RMS(q)) up to the "
@@ -215,7 +242,7 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
     if (!(other.cutoff < 0.4 * rate)) continue;
     EstimateSet entry{fmt::format("cutoff {:.3g} Hz", other.cutoff), {}, ""};
     try {
-      entry.estimates = FitAxisAtCutoff(logs, start, other).fit.estimates;
+      entry.estimates = FitAtCutoff(logs, start, other, &cache, AtCutoff::kScore).fit.estimates;
     } catch (const std::exception& e) {
       entry.failure = e.what();
     }
@@ -289,6 +316,13 @@ std::vector<AxisTerm> ResolveAxisTerms(const AxisSection& start, const std::vect
 }
 
 AxisFitOutput FitAxisAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options) {
+  return FitAtCutoff(logs, start, options, nullptr, AtCutoff::kFull);
+}
+
+namespace {
+
+AxisFitOutput FitAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options,
+                          AxisRowCache* cache, AtCutoff extent) {
   if (logs.empty()) throw OptionError("no logs given");
   CheckFreeNames(AxisParameterTable(), "axis", options.free);
   if (options.decimation < 1) {
@@ -320,13 +354,25 @@ AxisFitOutput FitAxisAtCutoff(const std::vector<AxisLog>& logs, const AxisSectio
   const int p = static_cast<int>(parameters.size());
 
   AxisFitOutput out;
-  AxisRows rows = BuildAxisRows(logs, options.cutoff, options.decimation, options.min_rate_fraction, column_names);
-  LinearRegression& regression = rows.regression;
+  std::shared_ptr<const AxisRows> built;
+  if (cache != nullptr) {
+    const auto found = cache->find(options.cutoff);
+    if (found != cache->end()) built = found->second;
+  }
+  if (!built) {
+    built = std::make_shared<const AxisRows>(
+        BuildAxisRows(logs, options.cutoff, options.decimation, options.min_rate_fraction, column_names));
+    if (cache != nullptr && built->regression.rows() * column_names.size() * sizeof(double) <= kCachedRowBytes) {
+      (*cache)[options.cutoff] = built;
+    }
+  }
+  const AxisRows& rows = *built;
+  const LinearRegression& regression = rows.regression;
   out.method = rows.method;
   out.cutoff = options.cutoff;
-  out.time = std::move(rows.time);
-  out.measured = std::move(rows.measured);
-  out.log_index = std::move(rows.log_index);
+  out.time = rows.time;
+  out.measured = rows.measured;
+  out.log_index = rows.log_index;
   const int rows_used = static_cast<int>(regression.rows());
   if (rows_used <= p) {
     throw IdentificationError(fmt::format("{} usable samples after decimation cannot determine {} parameters (the logs "
@@ -360,8 +406,8 @@ AxisFitOutput FitAxisAtCutoff(const std::vector<AxisLog>& logs, const AxisSectio
   for (int j = 0; j < kModelColumns; ++j) out.params.*(Column(j).in_model) = fitted[Column(j).spec.key];
   std::vector<std::string> free_names;
   for (const auto& e : out.fit.estimates) free_names.push_back(e.name);
-  out.fit.warnings = CheckAxisAdequacy(regression, out.fit, free_names, fitted, start.linear);
-  if (options.per_log && logs.size() > 1) {
+  if (extent == AtCutoff::kFull) out.fit.warnings = CheckAxisAdequacy(regression, out.fit, free_names, fitted, start.linear);
+  if (extent == AtCutoff::kFull && options.per_log && logs.size() > 1) {
     AxisFitOptions alone = options;
     alone.per_log = false;
     AddPerLogFits(out.fit, LogLabels(logs), [&](std::size_t i) { return FitAxis({logs[i]}, start, alone).fit.estimates; });
@@ -382,5 +428,7 @@ AxisFitOutput FitAxisAtCutoff(const std::vector<AxisLog>& logs, const AxisSectio
   out.samples_used = rows_used;
   return out;
 }
+
+}  // namespace
 
 }  // namespace driveid
