@@ -54,6 +54,8 @@ def main():
     print(f"d_g {d_g:.6g} ({100 * (d_g / 0.016 - 1):+.1f} %), Theta_motor {theta_motor:.6g} "
           f"({100 * (theta_motor / (0.413 / 6400) - 1):+.1f} %), tau_c {tau_c:.6g} ({100 * (tau_c / 5 - 1):+.1f} %), "
           f"offset {offset:.4g}, evaluations {fit.nfev}")
+    print(f"estimates: d_g={d_g:.8g} Theta_motor={theta_motor:.8g} tau_c={tau_c:.8g} offset={offset:.8g} "
+          f"nfev={fit.nfev}")
 
 
 if __name__ == "__main__":

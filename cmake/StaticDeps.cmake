@@ -29,6 +29,16 @@ function(driveid_static_deps)
     endif()
     list(APPEND archives ${DRIVEID_STATIC_${name}})
   endforeach()
+  # The compiler's own runtime archives (libgfortran.a from gcc's libgfortran
+  # development package, which Debian's gfortran pulls in).
+  foreach(name gfortran quadmath gomp)
+    execute_process(COMMAND ${CMAKE_CXX_COMPILER} -print-file-name=lib${name}.a OUTPUT_VARIABLE path
+                    OUTPUT_STRIP_TRAILING_WHITESPACE)
+    if(NOT IS_ABSOLUTE "${path}" OR NOT EXISTS "${path}")
+      message(STATUS "Static dependencies: lib${name}.a not found; linking the shared libraries")
+      return()
+    endif()
+  endforeach()
   find_library(DRIVEID_SHARED_unwind NAMES unwind)
   find_library(DRIVEID_SHARED_metis NAMES metis libmetis.so.5)
   if(NOT DRIVEID_SHARED_unwind OR NOT DRIVEID_SHARED_metis)
