@@ -1,0 +1,66 @@
+// drivetrain-fit export: a fitted axis' parameter file written for MuJoCo,
+// URDF, WPILib (Java), firmware (C header) or as JSON (docs/export.md).
+// Parse, call the library, write: the formats live in report/parameter_export.
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "common/cli_support.h"
+#include "common/command_registry.h"
+#include "io/atomic_file.h"
+#include "io/parameter_file.h"
+#include "report/parameter_export.h"
+
+namespace driveid::cli {
+namespace {
+
+struct ExportCommandOptions {
+  std::string params;
+  std::string target;
+  std::string joint = "axis";
+  std::string output;
+};
+
+ExportCommandOptions export_options;
+
+CLI::App* SetupExportCommand(CLI::App& parent, ExportCommandOptions& options) {
+  CLI::App* command = parent.add_subcommand(
+      "export", "Write a fitted axis' parameters for MuJoCo (MJCF), URDF, WPILib Java, a C header or JSON, with std "
+                "and provenance in comments; what a target cannot hold is said in the file (docs/export.md)");
+  command->add_option("params", options.params, "parameter file with an axis and a feedforward section (drivetrain-fit axis -o)")
+      ->required();
+  command->add_option("--to", options.target, "mjcf, urdf, wpilib-java, c-header or json")
+      ->required()
+      ->check(CLI::IsMember({"mjcf", "urdf", "wpilib-java", "c-header", "json"}));
+  command->add_option("--joint", options.joint,
+                      "joint name in MJCF/URDF, class prefix in Java, macro prefix in C (letters, digits, _)")
+      ->capture_default_str();
+  command->add_option("-o,--output", options.output, "file to write (default: stdout); written atomically");
+  command->footer("Example:\n  drivetrain-fit axis data/axis_steps.csv -o axis.yaml\n"
+                  "  drivetrain-fit export axis.yaml --to mjcf --joint shoulder -o shoulder.xml");
+  return command;
+}
+
+void RunExportCommand(const ExportCommandOptions& options, const std::string& command_line) {
+  ExportOptions export_opts;
+  export_opts.joint = options.joint;
+  export_opts.source = options.params;
+  export_opts.command = command_line;
+  try {
+    export_opts.Validate();
+  } catch (const InputError& e) {
+    throw OptionError(std::string("--joint: ") + e.what());
+  }
+  CheckDistinctFiles({options.params}, {{"-o", options.output}});
+  const ParameterFile file = ReadParameterFile(options.params);
+  const std::string text = ExportParameters(file, ParseExportTarget(options.target), export_opts);
+  if (options.output.empty()) WriteStdout(text);
+  else WriteFileAtomically(options.output, text);
+}
+
+const bool kRegistered = RegisterCommand({"drivetrain-fit", "", 55,
+                                          [](CLI::App& parent) { return SetupExportCommand(parent, export_options); },
+                                          [](const std::string& line) { RunExportCommand(export_options, line); }});
+
+}  // namespace
+}  // namespace driveid::cli

@@ -1,0 +1,326 @@
+#include "report/parameter_export.h"
+
+#include <cctype>
+#include <cmath>
+#include <optional>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "models/axis.h"
+#include "models/feedforward.h"
+#include "report/json.h"
+
+namespace driveid {
+namespace {
+
+constexpr double kGravity = 9.81;         // m/s^2, MuJoCo's default |g|
+constexpr double kGravityBodyShare = 0.01;  // of J carried by the gravity point mass (MJCF, URDF)
+
+// Text from a file or the command line inside an XML, C or Java comment:
+// printable ASCII only, and neither "--" nor "*/" can close the comment.
+std::string CommentText(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    const bool printable = c >= 0x20 && c < 0x7f;
+    char kept = printable ? c : '?';
+    if ((kept == '-' && !out.empty() && out.back() == '-') || (kept == '/' && !out.empty() && out.back() == '*')) {
+      out += ' ';
+    }
+    out += kept;
+  }
+  if (out.size() > 300) out = out.substr(0, 297) + "...";
+  return out;
+}
+
+std::string Number(double value) { return fmt::format("{:.17g}", value); }
+
+std::optional<double> StdOf(const ParameterFile& file, const std::string& name) {
+  for (const ParameterEstimate& e : file.fit_estimates) {
+    if (e.name == name) return e.standard_error;
+  }
+  return std::nullopt;
+}
+
+std::string WithStd(const ParameterFile& file, const std::string& name, double value, const std::string& unit) {
+  const std::optional<double> std_error = StdOf(file, name);
+  return std_error ? fmt::format("{} = {:.6g} +- {:.3g} {}", name, value, *std_error, unit)
+                   : fmt::format("{} = {:.6g} {} (not fitted)", name, value, unit);
+}
+
+// The axis as the exports see it: friction averaged over the directions
+// where it was fitted per direction (a simulator joint has one value).
+struct AxisView {
+  AxisParameters p;
+  bool linear = false;
+  double damping = 0.0;       // b + (b+ + b-) / 2
+  double friction = 0.0;      // tau_c + (tau_c+ + tau_c-) / 2
+  double gravity = 0.0;       // Kg = hypot(g_c, g_s)
+  double gravity_angle = 0.0;  // atan2(g_s, g_c)
+  bool per_direction = false;
+};
+
+AxisView ViewAxis(const ParameterFile& file) {
+  const AxisSection* section = file.Find<AxisSection>();
+  if (!section) {
+    throw InputError("no 'axis' section: export takes the parameter file of an axis fit; the drive train, joint, "
+                     "robot and C-drive have no export target yet (docs/export.md)");
+  }
+  AxisView v;
+  const AxisSection& a = *section;
+  v.p = AxisParameters{a.inertia.value_or(0.0),     a.viscous.value_or(0.0),     a.coulomb.value_or(0.0),
+                       a.offset.value_or(0.0),      a.gravity_cos.value_or(0.0), a.gravity_sin.value_or(0.0),
+                       a.coulomb_pos.value_or(0.0), a.coulomb_neg.value_or(0.0), a.viscous_pos.value_or(0.0),
+                       a.viscous_neg.value_or(0.0), a.stribeck.value_or(0.0),    a.stribeck_velocity.value_or(0.0)};
+  v.linear = section->linear;
+  v.per_direction = v.p.coulomb_pos != 0.0 || v.p.coulomb_neg != 0.0 || v.p.viscous_pos != 0.0 || v.p.viscous_neg != 0.0;
+  v.damping = v.p.viscous + 0.5 * (v.p.viscous_pos + v.p.viscous_neg);
+  v.friction = v.p.coulomb + 0.5 * (v.p.coulomb_pos + v.p.coulomb_neg);
+  v.gravity = std::hypot(v.p.gravity_cos, v.p.gravity_sin);
+  v.gravity_angle = std::atan2(v.p.gravity_sin, v.p.gravity_cos);
+  return v;
+}
+
+void RequireInertia(const AxisView& v) {
+  if (!(v.p.inertia > 0.0)) {
+    throw InputError(fmt::format("axis.inertia = {:g}: a simulator model needs an inertia > 0 (fit it, or give it)",
+                                 v.p.inertia));
+  }
+}
+
+// What a simulator joint cannot hold, one comment line each.
+std::vector<std::string> NotRepresented(const AxisView& v, bool has_offset_channel) {
+  std::vector<std::string> out;
+  if (v.per_direction) out.push_back("direction-dependent friction: the mean of the two directions is written");
+  if (v.p.stribeck != 0.0) out.push_back("Stribeck breakaway term: not representable, left out");
+  if (v.p.offset != 0.0 && !has_offset_channel) out.push_back("offset tau_0: add it to the commanded effort");
+  return out;
+}
+
+// Gravity as a point mass m at distance r from the axis at angle -Kg_angle
+// in the x-z plane, the joint turning about -y: the holding torque is
+// m g r cos(q - Kg_angle) = Kg cos(q - Kg_angle), and m r^2 is a share of J.
+struct GravityBody {
+  double mass = 0.0, radius = 0.0, x = 0.0, z = 0.0;
+};
+
+GravityBody MakeGravityBody(const AxisView& v) {
+  GravityBody b;
+  if (v.linear || v.gravity == 0.0) return b;
+  b.radius = kGravityBodyShare * v.p.inertia * kGravity / v.gravity;
+  b.mass = v.gravity / (kGravity * b.radius);
+  b.x = b.radius * std::cos(-v.gravity_angle);
+  b.z = b.radius * std::sin(-v.gravity_angle);
+  return b;
+}
+
+std::string Provenance(const ExportOptions& o, const std::string& open, const std::string& close) {
+  return fmt::format("{} driveid export of {} (docs/export.md){}\n{} made by: {}{}\n", open, CommentText(o.source), close,
+                     open, CommentText(o.command), close);
+}
+
+std::string ExportMjcf(const ParameterFile& file, const ExportOptions& o) {
+  const AxisView v = ViewAxis(file);
+  RequireInertia(v);
+  const GravityBody g = MakeGravityBody(v);
+  const std::string unit = v.linear ? "kg" : "kg m^2";
+  const std::string force = v.linear ? "N" : "N m";
+  const std::string rate = v.linear ? "N s/m" : "N m s/rad";
+  // The body's own inertia about the axis: tiny, plus the gravity mass's m r^2.
+  const double own = 1e-9 * v.p.inertia;
+  const double body_inertia = v.linear ? 0.0 : own + g.mass * g.radius * g.radius;
+  const double body_mass = v.linear ? own : (g.mass > 0.0 ? g.mass : own);
+  const double armature = v.p.inertia - body_inertia - (v.linear ? body_mass : 0.0);
+  std::string out = "<mujoco model=\"driveid_" + o.joint + "\">\n";
+  out += Provenance(o, "  <!--", " -->");
+  out += fmt::format("  <!-- {} -->\n  <!-- {} -->\n  <!-- {} -->\n", CommentText(WithStd(file, "inertia", v.p.inertia, unit)),
+                     CommentText(WithStd(file, "viscous", v.p.viscous, rate)),
+                     CommentText(WithStd(file, "coulomb", v.p.coulomb, force)));
+  if (g.mass > 0.0) {
+    out += fmt::format("  <!-- gravity Kg = {:.6g} {} at Kg_angle = {:.6g} rad: a point mass carrying {:g} % of the "
+                       "inertia -->\n", v.gravity, force, v.gravity_angle, 100.0 * kGravityBodyShare);
+  }
+  for (const std::string& note : NotRepresented(v, true)) out += "  <!-- " + CommentText(note) + " -->\n";
+  out += "  <!-- frictionloss is MuJoCo's soft dry friction, not a sticking Coulomb law: docs/export.md -->\n";
+  out += "  <option timestep=\"0.001\"/>  <!-- set it to the log's sample time -->\n";
+  out += "  <worldbody>\n";
+  out += fmt::format("    <body name=\"{}_link\">\n", o.joint);
+  out += fmt::format("      <joint name=\"{}\" type=\"{}\" axis=\"{}\" armature=\"{}\" damping=\"{}\" frictionloss=\"{}\"/>\n",
+                     o.joint, v.linear ? "slide" : "hinge", v.linear ? "1 0 0" : "0 -1 0", Number(armature),
+                     Number(v.damping), Number(v.friction));
+  out += fmt::format("      <inertial pos=\"{} 0 {}\" mass=\"{}\" diaginertia=\"{} {} {}\"/>\n", Number(g.x), Number(g.z),
+                     Number(body_mass), Number(own), Number(own), Number(own));
+  out += "    </body>\n  </worldbody>\n  <actuator>\n";
+  out += fmt::format("    <!-- force = ctrl - tau_0 ({}): ctrl is the logged effort in {} -->\n", Number(v.p.offset), force);
+  out += fmt::format("    <general name=\"{}_motor\" joint=\"{}\" gainprm=\"1\" biastype=\"affine\" biasprm=\"{} 0 0\"/>\n",
+                     o.joint, o.joint, Number(-v.p.offset));
+  out += "  </actuator>\n</mujoco>\n";
+  return out;
+}
+
+std::string ExportUrdf(const ParameterFile& file, const ExportOptions& o) {
+  const AxisView v = ViewAxis(file);
+  RequireInertia(v);
+  const GravityBody g = MakeGravityBody(v);
+  std::string out = "<?xml version=\"1.0\"?>\n";
+  out += Provenance(o, "<!--", " -->");
+  out += "<!-- URDF holds damping and friction per joint; it has no rotor inertia (armature), no offset and no "
+         "Stribeck term: the link's inertia carries J -->\n";
+  for (const std::string& note : NotRepresented(v, false)) out += "<!-- " + CommentText(note) + " -->\n";
+  out += fmt::format("<robot name=\"driveid_{}\">\n  <link name=\"base\"/>\n  <link name=\"{}_link\">\n", o.joint, o.joint);
+  double mass = 0.0, inertia = 0.0;
+  if (v.linear) {
+    mass = v.p.inertia;
+    inertia = 1e-9 * v.p.inertia;
+  } else {
+    mass = g.mass > 0.0 ? g.mass : 1e-9 * v.p.inertia;
+    inertia = v.p.inertia - g.mass * g.radius * g.radius;  // about the axis through the centre of mass
+  }
+  out += fmt::format("    <inertial>\n      <origin xyz=\"{} 0 {}\"/>\n      <mass value=\"{}\"/>\n", Number(g.x),
+                     Number(g.z), Number(mass));
+  out += fmt::format("      <inertia ixx=\"{0}\" ixy=\"0\" ixz=\"0\" iyy=\"{0}\" iyz=\"0\" izz=\"{0}\"/>\n    </inertial>\n",
+                     Number(inertia));
+  out += "  </link>\n";
+  out += fmt::format("  <joint name=\"{}\" type=\"{}\">\n    <parent link=\"base\"/>\n    <child link=\"{}_link\"/>\n",
+                     o.joint, v.linear ? "prismatic" : "continuous", o.joint);
+  out += fmt::format("    <axis xyz=\"{}\"/>\n", v.linear ? "1 0 0" : "0 -1 0");
+  out += fmt::format("    <dynamics damping=\"{}\" friction=\"{}\"/>\n", Number(v.damping), Number(v.friction));
+  if (v.linear) {
+    out += "    <!-- URDF requires limits on a prismatic joint: not identified, set them from the machine -->\n";
+    out += "    <limit lower=\"-1\" upper=\"1\" effort=\"0\" velocity=\"0\"/>\n";
+  }
+  out += "  </joint>\n</robot>\n";
+  return out;
+}
+
+const Feedforward& RequireFeedforward(const ParameterFile& file) {
+  if (file.feedforward.gains.empty() || file.feedforward.law != kAxisFeedforwardLaw) {
+    throw InputError("no axis 'feedforward' section (an axis fit writes it)");
+  }
+  return file.feedforward;
+}
+
+const FeedforwardGain* Gain(const Feedforward& ff, const std::string& key) {
+  for (const FeedforwardGain& g : ff.gains) {
+    if (g.key == key) return &g;
+  }
+  return nullptr;
+}
+
+std::string UpperFirst(std::string name) {
+  name[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(name[0])));
+  return name;
+}
+
+std::string ExportJava(const ParameterFile& file, const ExportOptions& o) {
+  const Feedforward& ff = RequireFeedforward(file);
+  const AxisView v = ViewAxis(file);
+  const std::string cls = UpperFirst(o.joint) + "FeedforwardGains";
+  const bool arm = Gain(ff, "Kg") && !v.linear;
+  const bool elevator = v.linear && Gain(ff, "offset") && Gain(ff, "offset")->value != 0.0;
+  const char* type = arm ? "ArmFeedforward" : elevator ? "ElevatorFeedforward" : "SimpleMotorFeedforward";
+  std::string out = Provenance(o, "//", "");
+  out += fmt::format("// {}: u = Ks sgn(v) + Kv v + Ka a{} in {} and {} (docs/models.md#feed-forward)\n", type,
+                     arm ? " + Kg cos(angle)" : elevator ? " + Kg" : "", CommentText(ff.effort_unit),
+                     CommentText(ff.position_unit));
+  if (arm) out += "// ArmFeedforward measures the angle from horizontal: pass q - kGAngle.\n";
+  if (!arm && !elevator && Gain(ff, "offset") && Gain(ff, "offset")->value != 0.0) {
+    out += "// The offset (kOffset) has no place in SimpleMotorFeedforward: add it to the output.\n";
+  }
+  if (v.p.stribeck != 0.0) out += "// The Stribeck term is not representable in WPILib's feed-forward classes.\n";
+  out += "import edu.wpi.first.math.controller." + std::string(type) + ";\n\n";
+  out += "public final class " + cls + " {\n  private " + cls + "() {}\n\n";
+  auto field = [&](const std::string& key, const std::string& java) {
+    const FeedforwardGain* g = Gain(ff, key);
+    if (!g) return;
+    out += fmt::format("  /** {} +- {:.3g} {} */\n  public static final double {} = {};\n",
+                       key, g->standard_error, CommentText(g->unit), java, Number(g->value));
+  };
+  for (const auto& [key, java] : std::vector<std::pair<std::string, std::string>>{
+           {"Ks", "kS"}, {"Ks_forward", "kSForward"}, {"Ks_backward", "kSBackward"}, {"Kv", "kV"},
+           {"Kv_forward", "kVForward"}, {"Kv_backward", "kVBackward"}, {"Ka", "kA"}, {"Kg", "kG"},
+           {"Kg_angle", "kGAngle"}, {"offset", elevator ? "kGElevator" : "kOffset"}}) {
+    field(key, java);
+  }
+  auto factory = [&](const std::string& name, const std::string& ks, const std::string& kv) {
+    std::string args = arm ? fmt::format("{}, kG, {}, kA", ks, kv)
+                           : elevator ? fmt::format("{}, kGElevator, {}, kA", ks, kv) : fmt::format("{}, {}, kA", ks, kv);
+    out += fmt::format("\n  public static {} {}() {{\n    return new {}({});\n  }}\n", type, name, type, args);
+  };
+  if (Gain(ff, "Ks_forward")) {
+    factory("createForward", "kSForward", Gain(ff, "Kv_forward") ? "kVForward" : "kV");
+    factory("createBackward", "kSBackward", Gain(ff, "Kv_backward") ? "kVBackward" : "kV");
+  } else {
+    factory("create", "kS", Gain(ff, "Kv_forward") ? "kVForward" : "kV");
+    if (Gain(ff, "Kv_backward")) factory("createBackward", "kS", "kVBackward");
+  }
+  out += "}\n";
+  return out;
+}
+
+std::string ExportCHeader(const ParameterFile& file, const ExportOptions& o) {
+  const Feedforward& ff = RequireFeedforward(file);
+  std::string upper;
+  for (char c : o.joint) upper += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  std::string out = Provenance(o, "/*", " */");
+  out += "/* u = Ks sgn(v) + Kv v + Ka a + Kg cos(q - Kg_angle) + offset (docs/models.md#feed-forward) */\n";
+  out += fmt::format("#ifndef DRIVEID_{0}_H\n#define DRIVEID_{0}_H\n\n", upper);
+  out += "#ifndef DRIVEID_CONSTANT\n#ifdef __cplusplus\n#define DRIVEID_CONSTANT inline constexpr double\n#else\n"
+         "#define DRIVEID_CONSTANT static const double\n#endif\n#endif\n\n";
+  for (const FeedforwardGain& g : ff.gains) {
+    out += fmt::format("DRIVEID_CONSTANT {}_{} = {};  /* {} */\n", upper, g.key, Number(g.value), CommentText(g.unit));
+    out += fmt::format("DRIVEID_CONSTANT {}_{}_STD = {:.6g};\n", upper, g.key, g.standard_error);
+  }
+  out += fmt::format("\n#endif /* DRIVEID_{}_H */\n", upper);
+  return out;
+}
+
+std::string ExportJson(const ParameterFile& file, const ExportOptions& o) {
+  const Feedforward& ff = RequireFeedforward(file);
+  Json doc = Json::object();
+  doc["source"] = o.source;
+  doc["joint"] = o.joint;
+  doc["law"] = ff.law;
+  doc["effort_unit"] = ff.effort_unit;
+  doc["position_unit"] = ff.position_unit;
+  Json gains = Json::object();
+  for (const FeedforwardGain& g : ff.gains) gains[g.key] = {{"value", g.value}, {"std", g.standard_error}, {"unit", g.unit}};
+  doc["gains"] = gains;
+  return DumpJson(doc);
+}
+
+}  // namespace
+
+ExportTarget ParseExportTarget(const std::string& name) {
+  if (name == "mjcf") return ExportTarget::kMjcf;
+  if (name == "urdf") return ExportTarget::kUrdf;
+  if (name == "wpilib-java") return ExportTarget::kWpilibJava;
+  if (name == "c-header") return ExportTarget::kCHeader;
+  if (name == "json") return ExportTarget::kJson;
+  throw InputError(fmt::format("export target '{}': one of mjcf, urdf, wpilib-java, c-header, json", CommentText(name)));
+}
+
+void ExportOptions::Validate() const {
+  bool valid = !joint.empty() && joint.size() <= 64 &&
+               (std::isalpha(static_cast<unsigned char>(joint[0])) || joint[0] == '_');
+  for (char c : joint) valid = valid && (std::isalnum(static_cast<unsigned char>(c)) || c == '_');
+  if (!valid) {
+    throw InputError(fmt::format("joint name '{}': letters, digits and _ only, starting with a letter or _, at most 64 "
+                                 "(it becomes an XML name and a Java/C identifier)", CommentText(joint)));
+  }
+}
+
+std::string ExportParameters(const ParameterFile& file, ExportTarget target, const ExportOptions& options) {
+  options.Validate();
+  switch (target) {
+    case ExportTarget::kMjcf: return ExportMjcf(file, options);
+    case ExportTarget::kUrdf: return ExportUrdf(file, options);
+    case ExportTarget::kWpilibJava: return ExportJava(file, options);
+    case ExportTarget::kCHeader: return ExportCHeader(file, options);
+    case ExportTarget::kJson: return ExportJson(file, options);
+  }
+  return {};
+}
+
+}  // namespace driveid

@@ -1,0 +1,87 @@
+#!/usr/bin/env bash
+# drivetrain-fit export (docs/export.md): every target written from a fitted
+# axis and read back by its consumer where this machine has it — check_urdf
+# (Debian's liburdfdom-tools) for URDF, javac against stub classes with
+# WPILib's constructor signatures for Java (WPILib is not in Debian: the
+# stubs check the syntax, the class, the constructor arity and the types),
+# gcc and g++ for the C header (its values printed and compared with the
+# parameter file), json_check for JSON; MuJoCo loads the MJCF in
+# tests/export/mjcf_mujoco_test.cc. Refusals by name.
+# Usage: export_cli_test.sh DRIVETRAIN_FIT SOURCE_DIR JSON_CHECK
+set -u
+bin="$1"
+src="$2"
+json_check="$3"
+program=drivetrain-fit
+# shellcheck source=cli_test_lib.sh
+source "$(dirname "$0")/cli_test_lib.sh"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work" || exit 1
+
+"$bin" axis "$src/data/axis_steps.csv" -q -o axis.yaml || fail "axis fit"
+for target in mjcf urdf wpilib-java c-header json; do
+  "$bin" export axis.yaml --to "$target" --joint shoulder -o "out.$target" 2> stderr.txt && [ -s "out.$target" ] && ok ||
+    fail "export --to $target: $(cat stderr.txt)"
+done
+grep -q 'frictionloss="1.00' out.mjcf && grep -q 'type="hinge"' out.mjcf && ok || fail "mjcf: $(head -c 400 out.mjcf)"
+"$json_check" out.json > /dev/null && grep -q '"Ks":{"value":1.00' out.json && ok || fail "json: $(cat out.json)"
+
+if command -v check_urdf > /dev/null; then
+  check_urdf out.urdf > check.txt 2>&1 && grep -q "robot name is: driveid_shoulder" check.txt && ok ||
+    fail "check_urdf: $(cat check.txt)"
+  "$bin" axis "$src/data/axis_steps.csv" --linear -q -o linear.yaml &&
+    "$bin" export linear.yaml --to urdf -o linear.urdf && check_urdf linear.urdf > check.txt 2>&1 && ok ||
+    fail "check_urdf, linear axis: $(cat check.txt)"
+else
+  echo "check_urdf not installed (liburdfdom-tools): URDF not checked by its parser"
+fi
+
+# The C header from C and from C++: the values it holds are the file's.
+ks=$(awk '/^  Ks:/ { gsub(/[{},]/, " "); print $3 }' axis.yaml)
+printf '#include <stdio.h>\n#include "out.c-header"\nint main(void) { printf("%%.17g %%.3g\\n", SHOULDER_Ks, SHOULDER_Ks_STD); return 0; }\n' > use.c
+cp out.c-header use.cc.h
+printf '#include <cstdio>\n#include "out.c-header"\nstatic_assert(SHOULDER_Ka > 0.0, "constexpr");\nint main() { std::printf("%%.17g\\n", SHOULDER_Ks); }\n' > use.cc
+if command -v cc > /dev/null && cc -std=c99 -Wall -Werror use.c -o use_c 2> cc.txt && [ "$(./use_c | cut -d' ' -f1)" = "$(printf '%.17g' "$ks")" ]; then
+  ok
+else
+  fail "C header from C: $(cat cc.txt) $(./use_c 2>&1) vs Ks $ks"
+fi
+c++ -std=c++17 -Wall -Werror use.cc -o use_cc 2> cxx.txt && ./use_cc > /dev/null && ok || fail "C header from C++: $(cat cxx.txt)"
+
+if command -v javac > /dev/null; then
+  mkdir -p stubs/edu/wpi/first/math/controller
+  for class in SimpleMotorFeedforward:3 ArmFeedforward:4 ElevatorFeedforward:4; do
+    name=${class%%:*}
+    args=$(seq -s, -f 'double a%g' "${class##*:}")
+    printf 'package edu.wpi.first.math.controller;\npublic class %s { public %s(%s) {} }\n' "$name" "$name" "$args" \
+      > "stubs/edu/wpi/first/math/controller/$name.java"
+  done
+  cp out.wpilib-java ShoulderFeedforwardGains.java
+  javac -d classes stubs/edu/wpi/first/math/controller/*.java ShoulderFeedforwardGains.java 2> javac.txt && ok ||
+    fail "javac: $(cat javac.txt)"
+  # With gravity: ArmFeedforward(ks, kg, kv, ka).
+  printf 'axis:\n  inertia: 0.05\n  viscous: 0.2\n  coulomb: 1\n  gravity_cos: 4\n  gravity_sin: -3\nfeedforward:\n  law: axis\n  effort_unit: "V"\n  position_unit: "Radians"\n  Ks: {value: 1, std: 0.1}\n  Kv: {value: 0.2, std: 0.01}\n  Ka: {value: 0.05, std: 0.001}\n  Kg: {value: 5, std: 0.1}\n  Kg_angle: {value: -0.6435, std: 0.01}\n' > arm.yaml
+  # (a joint named "arm": its class must not clash with WPILib's ArmFeedforward)
+  "$bin" export arm.yaml --to wpilib-java --joint arm -o ArmFeedforwardGains.java &&
+    grep -q "new ArmFeedforward(kS, kG, kV, kA)" ArmFeedforwardGains.java &&
+    javac -d classes stubs/edu/wpi/first/math/controller/*.java ArmFeedforwardGains.java 2> javac.txt && ok ||
+    fail "arm: $(cat javac.txt ArmFeedforwardGains.java)"
+  # A linear axis with a constant force: ElevatorFeedforward(ks, kg, kv, ka).
+  printf 'axis:\n  inertia: 12\n  viscous: 40\n  coulomb: 15\n  offset: 90\n  linear: true\nfeedforward:\n  law: axis\n  effort_unit: "N"\n  position_unit: "m"\n  Ks: {value: 15, std: 0.5}\n  Kv: {value: 40, std: 1}\n  Ka: {value: 12, std: 0.2}\n  offset: {value: 90, std: 1}\n' > lift.yaml
+  "$bin" export lift.yaml --to wpilib-java --joint lift -o LiftFeedforwardGains.java &&
+    grep -q "new ElevatorFeedforward(kS, kGElevator, kV, kA)" LiftFeedforwardGains.java &&
+    javac -d classes stubs/edu/wpi/first/math/controller/*.java LiftFeedforwardGains.java 2> javac.txt && ok ||
+    fail "elevator: $(cat javac.txt LiftFeedforwardGains.java)"
+else
+  echo "javac not installed: the Java export not compiled"
+fi
+
+# Refusals: a name that is no identifier (exit 2), a file without an axis (exit 3).
+EXPECT_OUTPUT=-o expect 2 "--joint: joint name 'a-b'" -- export axis.yaml --to mjcf --joint a-b
+expect 2 "--to" -- export axis.yaml --to sdf
+expect 3 "no 'axis' section" -- export "$src/data/paper000.yaml" --to mjcf
+printf 'axis:\n  inertia: 0\n' > zero.yaml
+expect 3 "axis.inertia = 0" -- export zero.yaml --to urdf
+expect 3 "no axis 'feedforward' section" -- export zero.yaml --to json
+finish

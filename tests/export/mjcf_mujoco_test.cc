@@ -1,0 +1,89 @@
+// The MJCF export loaded by MuJoCo itself (Debian's libmujoco): the joint's
+// inertia, damping and friction loss, the gravity torque over a turn and
+// the actuator's offset are what the axis model says (docs/export.md).
+// Built only where CMake finds MuJoCo.
+#include <cmath>
+#include <string>
+
+#include <catch2/catch.hpp>
+#include <mujoco/mujoco.h>
+
+#include "io/parameter_file.h"
+#include "report/parameter_export.h"
+
+using namespace driveid;
+
+namespace {
+struct Loaded {
+  mjModel* model = nullptr;
+  mjData* data = nullptr;
+  ~Loaded() {
+    if (data) mj_deleteData(data);
+    if (model) mj_deleteModel(model);
+  }
+};
+
+void Load(const std::string& xml, Loaded& out) {
+  char error[1000] = "";
+  mjVFS vfs;
+  mj_defaultVFS(&vfs);
+  REQUIRE(mj_makeEmptyFileVFS(&vfs, "model.xml", static_cast<int>(xml.size())) == 0);
+  const int index = mj_findFileVFS(&vfs, "model.xml");
+  std::copy(xml.begin(), xml.end(), static_cast<char*>(vfs.filedata[index]));
+  out.model = mj_loadXML("model.xml", &vfs, error, sizeof(error));
+  mj_deleteVFS(&vfs);
+  INFO("MuJoCo: " << error);
+  REQUIRE(out.model != nullptr);
+  out.data = mj_makeData(out.model);
+}
+
+ParameterFile Axis(const std::string& section) {
+  return ParseParameterFile("axis.yaml", "axis:\n" + section +
+                                             "feedforward:\n  law: axis\n  effort_unit: \"N m\"\n  position_unit: \"rad\"\n"
+                                             "  Ks: {value: 1, std: 0.01}\n");
+}
+}  // namespace
+
+TEST_CASE("MJCF export: MuJoCo loads it; inertia, damping, friction, gravity and offset as the axis model") {
+  const double inertia = 0.05, viscous = 0.2, coulomb = 1.0, offset = 0.3, gc = 4.0, gs = -3.0;
+  const ParameterFile file = Axis("  inertia: 0.05\n  viscous: 0.2\n  coulomb: 1\n  offset: 0.3\n  gravity_cos: 4\n"
+                                  "  gravity_sin: -3\n");
+  ExportOptions options;
+  options.joint = "shoulder";
+  options.source = "axis.yaml";
+  Loaded m;
+  Load(ExportParameters(file, ExportTarget::kMjcf, options), m);
+  REQUIRE(m.model->nv == 1);
+  REQUIRE(m.model->nu == 1);
+  CHECK(m.model->dof_damping[0] == Approx(viscous));
+  CHECK(m.model->dof_frictionloss[0] == Approx(coulomb));
+  for (double q : {-2.5, -1.0, 0.0, 0.4, 1.3, 3.0}) {
+    m.data->qpos[0] = q;
+    m.data->qvel[0] = 0.0;
+    m.data->ctrl[0] = 2.0;
+    mj_forward(m.model, m.data);
+    double mass[1];
+    mj_fullM(m.model, mass, m.data->qM);
+    INFO("q = " << q);
+    CHECK(mass[0] == Approx(inertia).epsilon(1e-9));  // armature + body about the axis
+    // MuJoCo's bias force is the torque that holds the joint against gravity.
+    CHECK(m.data->qfrc_bias[0] == Approx(gc * std::cos(q) + gs * std::sin(q)).margin(1e-9));
+    CHECK(m.data->qfrc_actuator[0] == Approx(2.0 - offset).margin(1e-12));
+  }
+}
+
+TEST_CASE("MJCF export of a linear axis: a slide joint with the mass J, no gravity torque") {
+  const ParameterFile file = Axis("  inertia: 12\n  viscous: 40\n  coulomb: 15\n  offset: -20\n  linear: true\n");
+  Loaded m;
+  Load(ExportParameters(file, ExportTarget::kMjcf, ExportOptions{}), m);
+  REQUIRE(m.model->nv == 1);
+  CHECK(m.model->jnt_type[0] == mjJNT_SLIDE);
+  m.data->qpos[0] = 0.3;
+  mj_forward(m.model, m.data);
+  double mass[1];
+  mj_fullM(m.model, mass, m.data->qM);
+  CHECK(mass[0] == Approx(12.0).epsilon(1e-9));
+  CHECK(m.data->qfrc_bias[0] == Approx(0.0).margin(1e-9));
+  CHECK(m.model->dof_damping[0] == Approx(40.0));
+  CHECK(m.model->dof_frictionloss[0] == Approx(15.0));
+}
