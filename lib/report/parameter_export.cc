@@ -124,9 +124,14 @@ std::string ExportMjcf(const ParameterFile& file, const ExportOptions& o) {
   const AxisView v = ViewAxis(file);
   RequireInertia(v);
   const GravityBody g = MakeGravityBody(v);
-  const std::string unit = v.linear ? "kg" : "kg m^2";
-  const std::string force = v.linear ? "N" : "N m";
-  const std::string rate = v.linear ? "N s/m" : "N m s/rad";
+  // Units: the log's, as the feed-forward section names them (V for SysId
+  // logs), else the axis model's SI units.
+  const Feedforward& ff = file.feedforward;
+  const bool log_units = !ff.effort_unit.empty() && !ff.position_unit.empty();
+  const std::string force = log_units ? ff.effort_unit : v.linear ? "N" : "N m";
+  const std::string unit = log_units ? FeedforwardUnit("Ka", ff.effort_unit, ff.position_unit) : v.linear ? "kg" : "kg m^2";
+  const std::string rate = log_units ? FeedforwardUnit("Kv", ff.effort_unit, ff.position_unit)
+                                     : v.linear ? "N s/m" : "N m s/rad";
   // The body's own inertia about the axis: tiny, plus the gravity mass's m r^2.
   const double own = 1e-9 * v.p.inertia;
   const double body_inertia = v.linear ? 0.0 : own + g.mass * g.radius * g.radius;
@@ -152,9 +157,10 @@ std::string ExportMjcf(const ParameterFile& file, const ExportOptions& o) {
   out += fmt::format("      <inertial pos=\"{} 0 {}\" mass=\"{}\" diaginertia=\"{} {} {}\"/>\n", Number(g.x), Number(g.z),
                      Number(body_mass), Number(own), Number(own), Number(own));
   out += "    </body>\n  </worldbody>\n  <actuator>\n";
-  out += fmt::format("    <!-- force = ctrl - tau_0 ({}): ctrl is the logged effort in {} -->\n", Number(v.p.offset), force);
+  out += fmt::format("    <!-- force = ctrl - tau_0 ({}): ctrl is the logged effort in {} -->\n", Number(v.p.offset),
+                     CommentText(force));
   out += fmt::format("    <general name=\"{}_motor\" joint=\"{}\" gainprm=\"1\" biastype=\"affine\" biasprm=\"{} 0 0\"/>\n",
-                     o.joint, o.joint, Number(-v.p.offset));
+                     o.joint, o.joint, Number(v.p.offset == 0.0 ? 0.0 : -v.p.offset));
   out += "  </actuator>\n</mujoco>\n";
   return out;
 }
