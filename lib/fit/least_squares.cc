@@ -2,6 +2,7 @@
 
 #include "fit/fit_statistics.h"
 #include "fit/scaled_cost.h"
+#include "signal/lagged_products.h"
 
 #include <algorithm>
 #include <cmath>
@@ -113,8 +114,6 @@ void TakeSummary(const ceres::Solver::Summary& summary, FitResult& result) {
 
 namespace {
 
-// sum_{|l|<=L} w_l gamma_u(l) sum_t G_t' G_{t-l} with Bartlett weights and
-// Andrews' AR(1) plug-in bandwidth for lag-1 autocorrelation `lag1`.
 // Above this bandwidth the lag sum goes through the FFT: the direct sum
 // costs n p^2 per lag, and an output-error fit whose residuals have lag-1
 // 0.999 asks for thousands of lags (25 000 samples: 3 300 lags, half the
@@ -153,25 +152,8 @@ Eigen::MatrixXd LagSumByFft(const Eigen::Ref<const RowMatrix>& g, const std::vec
   return sum + sum.transpose();
 }
 
-// gamma_l = sum_t u_t u_{t+l} / n for l = 0..L, through the FFT (zero padded
-// to N >= n + L).
-std::vector<double> AutocovarianceByFft(const Eigen::VectorXd& u, int lags) {
-  const Eigen::Index n = u.size();
-  Eigen::Index size = 1;
-  while (size < n + lags) size *= 2;
-  Eigen::FFT<double> fft;
-  std::vector<double> padded(static_cast<std::size_t>(size), 0.0);
-  for (Eigen::Index t = 0; t < n; ++t) padded[static_cast<std::size_t>(t)] = u(t);
-  std::vector<std::complex<double>> spectrum;
-  fft.fwd(spectrum, padded);
-  for (auto& v : spectrum) v = std::norm(v);
-  std::vector<double> correlation;
-  fft.inv(correlation, spectrum);
-  std::vector<double> gamma(static_cast<std::size_t>(lags) + 1);
-  for (int l = 0; l <= lags; ++l) gamma[static_cast<std::size_t>(l)] = correlation[static_cast<std::size_t>(l)] / static_cast<double>(n);
-  return gamma;
-}
-
+// sum_{|l|<=L} w_l gamma_u(l) sum_t G_t' G_{t-l} with Bartlett weights and
+// Andrews' AR(1) plug-in bandwidth for lag-1 autocorrelation `lag1`.
 Eigen::MatrixXd BartlettCovariance(const Eigen::Ref<const RowMatrix>& g, const Eigen::VectorXd& u, double lag1,
                                    int& bandwidth_out) {
   const Eigen::Index n = u.size();
@@ -185,10 +167,12 @@ Eigen::MatrixXd BartlettCovariance(const Eigen::Ref<const RowMatrix>& g, const E
   const double bandwidth = 1.1447 * std::cbrt(alpha * static_cast<double>(n));
   bandwidth_out = static_cast<int>(std::min<double>(std::floor(bandwidth), static_cast<double>(n - 1)));
   if (bandwidth_out > kDirectLagSumMax) {
-    const std::vector<double> gamma = AutocovarianceByFft(u, bandwidth_out);
-    std::vector<double> c(gamma.size(), 0.0);
+    // c_l = w_l gamma_l, gamma_l = sum_t u_t u_{t+l} / n.
+    std::vector<double> c = LaggedProducts(std::vector<double>(u.data(), u.data() + n), bandwidth_out);
+    c[0] = 0.0;
     for (int lag = 1; lag <= bandwidth_out; ++lag) {
-      c[static_cast<std::size_t>(lag)] = (1.0 - static_cast<double>(lag) / (bandwidth_out + 1.0)) * gamma[static_cast<std::size_t>(lag)];
+      const std::size_t l = static_cast<std::size_t>(lag);
+      c[l] = (1.0 - static_cast<double>(lag) / (bandwidth_out + 1.0)) * (c[l] / static_cast<double>(n));
     }
     return covariance + LagSumByFft(g, c);
   }

@@ -1,4 +1,5 @@
 #include "signal/frequency_response.h"
+#include "signal/lagged_products.h"
 
 #include <algorithm>
 #include <cmath>
@@ -280,17 +281,9 @@ std::size_t DetectPeriod(const std::vector<double>& signal) {
     energy += x[k] * x[k];
   }
   if (!(energy > 0.0)) return 0;
-  // Autocorrelation through the FFT of the signal zero-padded to a power of
-  // two of at least twice its length (no wrap-around, and fast for any n).
-  std::size_t padded = 1;
-  while (padded < 2 * n) padded *= 2;
-  x.resize(padded, 0.0);
-  Eigen::FFT<double> fft;
-  std::vector<Complex> spectrum;
-  fft.fwd(spectrum, x);
-  for (auto& c : spectrum) c = std::norm(c);
-  std::vector<double> correlation;
-  fft.inv(correlation, spectrum);
+  // Autocorrelation through the FFT, padded to at least twice the length
+  // (lags up to n - 1; those above n / 2 + 1 are not used).
+  const std::vector<double> correlation = LaggedProducts(x, n - 1);
   const double r0 = correlation[0];
   int checked = 0;
   for (std::size_t lag = 4; lag <= n / 2 && checked < 64; ++lag) {
