@@ -144,7 +144,7 @@ class JointExactSimulator::Impl {
       Interval(time[k + 1] - time[k], budget, time[k]);
       Record(k + 1, out);
     }
-    out->switch_count = switches_;
+    out->switch_count = static_cast<int>(switches_);  // at most the budget
   }
 
  private:
