@@ -13,15 +13,20 @@
 #include "io/parameter_file.h"
 #include "io/step_log.h"
 #include "models/missing_values.h"
+#include "sim/mujoco_axis_simulator.h"
 
 namespace driveid::cli {
 
 CLI::App* SetupValidateCommand(CLI::App& app, ValidateOptions& options) {
   CLI::App* command = app.add_subcommand(
       "validate",
-      "Predict logs from a parameter file (axis: inverse dynamics; step: simulation from the motor torque) and report "
-      "fit %, RMSE and residual autocorrelation per log (docs/models.md#validation)");
-  command->add_option("params", options.params, "parameter file with an axis or drivetrain section")->required();
+      "Predict logs from a parameter file (axis: inverse dynamics, or simulation with --simulate; step: simulation "
+      "from the motor torque) or from an MJCF in MuJoCo, and report fit %, RMSE and residual autocorrelation per log "
+      "(docs/models.md#validation, docs/export.md#validation-in-mujoco)");
+  command->add_option("params", options.params,
+                      "parameter file with an axis or drivetrain section, or an MJCF (.xml) as `export --to mjcf` "
+                      "writes it, simulated in MuJoCo")
+      ->required();
   command->add_option("logs", options.logs, "logs to predict (CSV, MAT, SysId JSON; docs/formats.md#logs)")->required();
   command->add_option("--model", options.model, "axis or step (default: the parameter file's one model section)")
       ->check(CLI::IsMember({"axis", "step"}));
@@ -36,15 +41,64 @@ CLI::App* SetupValidateCommand(CLI::App& app, ValidateOptions& options) {
   command->add_option("--decimation", options.decimation, "axis: parallel decimation factor")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
+  command->add_flag("--simulate", options.simulate,
+                    "axis: simulate the position from the logged torque, Coulomb friction that sticks "
+                    "(docs/models.md#axis-output-error), instead of the torque by inverse dynamics");
+  command->add_option("--joint", options.joint, "MJCF: the joint the logged effort drives")->capture_default_str();
+  command->add_option("--mujoco-step", options.mujoco_step,
+                      "MJCF: largest MuJoCo time step [s] (docs/export.md#validation-in-mujoco)")
+      ->capture_default_str()
+      ->check(FiniteAbove(0.0));
   AddValidationOutputOptions(*command, options.output);
   command->footer(
       "Example:\n  drivetrain-fit axis train.csv -o axis_fit.yaml\n"
-      "  drivetrain-fit validate axis_fit.yaml held_out.csv --plot validation.png");
+      "  drivetrain-fit validate axis_fit.yaml held_out.csv --plot validation.png\n"
+      "  drivetrain-fit export axis_fit.yaml --to mjcf -o axis.xml\n"
+      "  drivetrain-fit validate axis.xml held_out.csv   # in MuJoCo; compare: validate axis_fit.yaml --simulate");
   return command;
 }
 
+namespace {
+
+bool IsMjcf(const std::string& path) {
+  const auto ends = [&](const std::string& suffix) {
+    return path.size() >= suffix.size() && path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
+  };
+  return ends(".xml") || ends(".XML") || ends(".mjcf");
+}
+
+// An MJCF simulated in MuJoCo from the logged effort.
+void RunMujocoValidation(const ValidateOptions& options, const std::string& command_line) {
+  if (!options.model.empty() && options.model != "axis") {
+    throw OptionError(fmt::format("--model {}: an MJCF is validated as an axis", options.model));
+  }
+  if (options.simulate) throw OptionError("--simulate: an MJCF is always simulated (in MuJoCo)");
+  std::string why;
+  if (!MujocoAvailable(&why)) throw InputError(fmt::format("{}: {}", options.params, why));
+  FitProvenance provenance;
+  provenance.command = command_line;
+  const auto logs = LoadLogs<AxisLog>(options.logs, options.input, options.output, provenance, AxisLogColumns(),
+                                      [&](CsvLog csv) { return MakeAxisLog(std::move(csv), 0.0); });
+  MujocoAxisOptions mujoco;
+  mujoco.joint = options.joint;
+  mujoco.max_step = options.mujoco_step;
+  const std::vector<ValidatedLog> validated = ValidateMujocoAxis(logs, options.params, mujoco);
+  EmitValidation(options.output,
+                 {"drivetrain-fit", command_line,
+                  fmt::format("MuJoCo simulation of joint '{}' from the logged effort (held per sample, step <= {:g} s)",
+                              options.joint, options.mujoco_step),
+                  "axis validation in MuJoCo: position simulated from the logged effort", "position"},
+                 validated);
+}
+
+}  // namespace
+
 void RunValidateCommand(const ValidateOptions& options, const std::string& command_line) {
   CheckFitOutputs(options.output, LogCommandInputs(options.logs, options.params, options.input));
+  if (IsMjcf(options.params)) {
+    RunMujocoValidation(options, command_line);
+    return;
+  }
   const ParameterFile file = ReadParameterFile(options.params);
   const AxisSection* axis = file.Find<AxisSection>();
   const DriveTrainSection* drivetrain = file.Find<DriveTrainSection>();
@@ -57,6 +111,7 @@ void RunValidateCommand(const ValidateOptions& options, const std::string& comma
     model = axis != nullptr ? "axis" : "step";
   }
   if (model == "axis" && axis == nullptr) throw InputError(fmt::format("{}: no 'axis' section", options.params));
+  if (options.simulate && model != "axis") throw OptionError("--simulate: only an axis is simulated by validate --simulate (a drive train always is)");
   if (model == "step" && drivetrain == nullptr) {
     throw InputError(fmt::format("{}: no 'drivetrain' section", options.params));
   }
@@ -70,13 +125,20 @@ void RunValidateCommand(const ValidateOptions& options, const std::string& comma
     const AxisParameters params = MakeModelParameters(AxisParameterTable(), *axis, AxisParameters{}, "axis");
     const auto logs = LoadLogs<AxisLog>(options.logs, options.input, options.output, provenance, AxisLogColumns(),
                                         [&](CsvLog csv) { return MakeAxisLog(std::move(csv), axis->torque_constant.value_or(0.0)); });
-    const double cutoff =
-        options.cutoff > 0.0 ? options.cutoff : ChooseAxisValidationCutoff(logs, params, options.decimation);
-    validated = ValidateAxis(logs, params, cutoff, options.decimation);
-    title = "axis validation: inverse dynamics (filtered, decimated)";
-    unit = "force or torque";
-    method = fmt::format("axis inverse dynamics, position cutoff {:.4g} Hz ({})", cutoff,
-                         options.cutoff > 0.0 ? "given" : "the candidate that predicts best");
+    if (options.simulate) {
+      validated = ValidateAxisBySimulation(logs, params);
+      title = "axis validation: position simulated from the logged torque";
+      unit = axis->linear ? "position [m]" : "position [rad]";
+      method = "axis simulation from the logged torque (held per sample, Coulomb friction that sticks)";
+    } else {
+      const double cutoff =
+          options.cutoff > 0.0 ? options.cutoff : ChooseAxisValidationCutoff(logs, params, options.decimation);
+      validated = ValidateAxis(logs, params, cutoff, options.decimation);
+      title = "axis validation: inverse dynamics (filtered, decimated)";
+      unit = "force or torque";
+      method = fmt::format("axis inverse dynamics, position cutoff {:.4g} Hz ({})", cutoff,
+                           options.cutoff > 0.0 ? "given" : "the candidate that predicts best");
+    }
   } else {
     const DriveTrainParameters params = MakeDriveTrainParameters(*drivetrain);
     const auto logs = LoadLogs<StepLog>(options.logs, options.input, options.output, provenance, StepLogColumns(),

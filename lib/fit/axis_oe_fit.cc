@@ -118,6 +118,18 @@ bool IsTorqueStepLog(const AxisLog& log) {
   return static_cast<double>(changes) < 0.02 * static_cast<double>(log.force.size());
 }
 
+AxisStart AxisLogStart(const AxisLog& log) {
+  AxisStart start;
+  start.position = log.position.front();
+  if (!log.rate.empty()) {
+    start.rate = log.rate.front();
+  } else if (log.time.size() > 1) {
+    const std::size_t m = std::min(kStartRateSamples, log.time.size() - 1);
+    start.rate = (log.position[m] - log.position[0]) / (log.time[m] - log.time[0]);
+  }
+  return start;
+}
+
 AxisOeOutput FitAxisOutputError(const std::vector<AxisLog>& logs, const AxisSection& start,
                                 const AxisParameters* initial, const AxisOeOptions& options) {
   if (logs.empty()) throw OptionError("no logs given");
@@ -171,13 +183,9 @@ AxisOeOutput FitAxisOutputError(const std::vector<AxisLog>& logs, const AxisSect
     }
     OeLog& l = oe[i];
     l.log = &log;
-    l.q0 = log.position.front();
-    if (!log.rate.empty()) {
-      l.v0 = log.rate.front();
-    } else {
-      const std::size_t m = std::min(kStartRateSamples, log.time.size() - 1);
-      l.v0 = (log.position[m] - log.position[0]) / (log.time[m] - log.time[0]);
-    }
+    const AxisStart log_start = AxisLogStart(log);
+    l.q0 = log_start.position;
+    l.v0 = log_start.rate;
     const double q_scale = CalcRmsDeviation(log.position);
     if (!(q_scale > 0.0)) {
       throw IdentificationError(fmt::format("{}: the position never changes: output error has nothing to fit",

@@ -34,6 +34,13 @@ struct AxisOeOutput {
   std::vector<std::vector<double>> position, rate;
 };
 
+/// Where a simulation of a log starts: the logged position, and the logged
+/// rate qd if there is one, else the slope of the first 10 samples.
+struct AxisStart {
+  double position = 0.0, rate = 0.0;
+};
+AxisStart AxisLogStart(const AxisLog& log);
+
 /// Whether a log's torque looks like held steps (it changes at fewer than
 /// 2 % of the samples): output error suits it, inverse dynamics does not.
 bool IsTorqueStepLog(const AxisLog& log);

@@ -4,11 +4,16 @@
 #include <cmath>
 #include <map>
 
+#include <fmt/format.h>
+
 #include "core/errors.h"
 #include "fit/adequacy.h"
+#include "fit/axis_oe_fit.h"
 #include "fit/axis_rows.h"
+#include "fit/least_squares.h"
 #include "fit/linear_regression.h"
 #include "fit/step_fit.h"
+#include "sim/axis_simulator.h"
 
 namespace driveid {
 namespace {
@@ -107,6 +112,50 @@ std::vector<ValidatedLog> ValidateCDrive(const std::vector<CDriveLog>& logs, con
                                   static_cast<int>(residuals.size()));
       out.push_back(std::move(v));
     }
+  }
+  return out;
+}
+
+namespace {
+
+ValidatedLog PositionValidation(const AxisLog& log, std::vector<double> simulated) {
+  ValidatedLog v;
+  v.time = log.time;
+  v.measured = log.position;
+  std::vector<double> measured_minus_model(log.time.size());
+  for (std::size_t k = 0; k < log.time.size(); ++k) measured_minus_model[k] = log.position[k] - simulated[k];
+  v.model = std::move(simulated);
+  v.stats = DescribeResiduals(log.path + ":q", v.measured.data(), measured_minus_model.data(),
+                              static_cast<int>(log.time.size()));
+  return v;
+}
+
+}  // namespace
+
+std::vector<ValidatedLog> ValidateAxisBySimulation(const std::vector<AxisLog>& logs, const AxisParameters& params) {
+  if (!(params.inertia > 0.0)) {
+    throw InputError(fmt::format("axis.inertia = {:g}: the simulation needs an inertia > 0", params.inertia));
+  }
+  std::vector<ValidatedLog> out;
+  for (const AxisLog& log : logs) {
+    const AxisStart start = AxisLogStart(log);
+    const double scale = std::max(CalcRmsDeviation(log.position), 1e-12);
+    const double duration = std::max(log.time.back() - log.time.front(), 1e-9);
+    AxisSimulator simulator({}, 1e-8 * scale, 1e-8 * scale / duration);
+    AxisResponse response;
+    simulator.Simulate(params, log.time, log.force, start.position, start.rate, false, &response);
+    out.push_back(PositionValidation(log, std::move(response.position)));
+  }
+  return out;
+}
+
+std::vector<ValidatedLog> ValidateMujocoAxis(const std::vector<AxisLog>& logs, const std::string& mjcf,
+                                             const MujocoAxisOptions& options) {
+  std::vector<ValidatedLog> out;
+  for (const AxisLog& log : logs) {
+    const AxisStart start = AxisLogStart(log);
+    MujocoAxisResponse response = SimulateMujocoAxis(mjcf, options, log.time, log.force, start.position, start.rate);
+    out.push_back(PositionValidation(log, std::move(response.position)));
   }
   return out;
 }

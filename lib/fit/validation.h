@@ -4,7 +4,10 @@
 //    same differentiation, filtering and decimation as the fit (axis_rows.h);
 //  - step: simulation of the drive train from the logged motor torque
 //    (CVODES, stick-slip), compared with the logged link torque;
-//  - C-drive: inverse dynamics (28) of both motor torques from the angles.
+//  - C-drive: inverse dynamics (28) of both motor torques from the angles;
+//  - axis by simulation: the position simulated from the logged effort from
+//    the logged start, by driveid's axis simulator (output error's, Coulomb
+//    friction that sticks) or by MuJoCo from an exported MJCF.
 // Per log: samples, RMSE, fit % and the residual lag-1 autocorrelation, and
 // the measured and predicted series for plots and traces.
 #pragma once
@@ -18,6 +21,7 @@
 #include "io/step_log.h"
 #include "models/axis.h"
 #include "models/drivetrain.h"
+#include "sim/mujoco_axis_simulator.h"
 
 namespace driveid {
 
@@ -41,6 +45,15 @@ std::vector<ValidatedLog> ValidateAxis(const std::vector<AxisLog>& logs, const A
 /// rule (ChooseAxisCutoff), the one whose prediction leaves the smallest
 /// mean squared residual.
 double ChooseAxisValidationCutoff(const std::vector<AxisLog>& logs, const AxisParameters& params, int decimation);
+
+/// The axis logs' positions simulated from their logged effort with `params`
+/// (sim/axis_simulator.h), each from its start (fit/axis_oe_fit.h's
+/// AxisLogStart); "path:q". Needs params.inertia > 0.
+std::vector<ValidatedLog> ValidateAxisBySimulation(const std::vector<AxisLog>& logs, const AxisParameters& params);
+
+/// The same simulated in MuJoCo from the MJCF at `mjcf` (sim/mujoco_axis_simulator.h).
+std::vector<ValidatedLog> ValidateMujocoAxis(const std::vector<AxisLog>& logs, const std::string& mjcf,
+                                             const MujocoAxisOptions& options);
 
 /// The C-drive logs' motor torques tau_L, tau_R predicted by inverse
 /// dynamics (28) from the logged angles (two entries per log, "path:tau_L"

@@ -9,7 +9,6 @@
 // recorded, and a FIFO works too.
 #include <algorithm>
 #include <cerrno>
-#include <chrono>
 #include <cstdint>
 #include <charconv>
 #include <cmath>
@@ -17,16 +16,12 @@
 #include <filesystem>
 #include <map>
 
-#include <poll.h>
-#include <signal.h>
-#include <sys/prctl.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "io/child_process.h"
 #include "io/hdf5_length_check.h"
 #include "io/mat_reply.h"
 #if defined(DRIVEID_MAT_READER_IN_CHILD)
@@ -34,16 +29,6 @@
 #endif
 #include "io/table_source.h"
 #include "io/temporary_files.h"
-
-// AddressSanitizer reserves its shadow memory up front: an address-space
-// cap would make every allocation fail, so the cap is left out there.
-#if defined(__SANITIZE_ADDRESS__)
-#define DRIVEID_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define DRIVEID_ASAN 1
-#endif
-#endif
 
 namespace driveid {
 namespace {
@@ -237,96 +222,41 @@ class MatSource : public TableSource {
   // unreadable file, not a dead tool.
   void Load(const std::string& file, const std::string& text) {
     CheckHdf5Length(path_, text);  // a cut v7.3 file is refused without a process
-    const std::size_t text_size = text.size();
     const std::string reader = MatReaderPath();
     const char* arguments[] = {reader.c_str(), path_.c_str(), file.c_str(), nullptr};
-    int fds[2];
-    if (::pipe(fds) != 0) throw InputError(fmt::format("{}: cannot start the MAT reader", path_));
-    const pid_t parent = ::getpid();
-    const pid_t child = ::fork();
-    if (child < 0) {
-      ::close(fds[0]);
-      ::close(fds[1]);
-      throw InputError(fmt::format("{}: cannot start the MAT reader", path_));
-    }
-    if (child == 0) {
-      // The reader dies with the tool, however the tool ends (SIGKILL too).
-      ::prctl(PR_SET_PDEATHSIG, SIGKILL);
-      if (::getppid() != parent) ::_exit(1);
-      ::close(fds[0]);
-#if !defined(DRIVEID_ASAN)
-      // 1 GiB for the process itself plus three copies of what the file
-      // could inflate to, at most three copies of the element cap.
-      const double budget = 3.0 * (1100.0 * static_cast<double>(text_size) + 4096.0);
-      const rlim_t cap = (rlim_t{1} << 30) +
-                         static_cast<rlim_t>(std::min(budget, 3.0 * 8.0 * static_cast<double>(kMaxMatElements)));
-      const struct rlimit limit = {cap, cap};
-      ::setrlimit(RLIMIT_AS, &limit);
-#endif
-      if (fds[1] != STDOUT_FILENO) {
-        ::dup2(fds[1], STDOUT_FILENO);
-        ::close(fds[1]);
-      }
+    ChildLimits limits;
+    // 1 GiB for the process itself plus three copies of what the file could
+    // inflate to, at most three copies of the element cap.
+    const double budget = 3.0 * (1100.0 * static_cast<double>(text.size()) + 4096.0);
+    limits.address_space_bytes = static_cast<double>(1 << 30) + std::min(budget, 3.0 * 8.0 * static_cast<double>(kMaxMatElements));
+    limits.seconds = std::min<long>(120, 5 + static_cast<long>(text.size() / 10'000'000));
+    limits.max_output_bytes = kMaxMatElements * 8 + (std::size_t{64} << 20);
+    const ChildOutcome outcome = RunInChild(
+        [&] {
 #if defined(DRIVEID_MAT_READER_IN_CHILD)
-      // The fuzzing build: the forked child reads the file itself (an exec
-      // per input would slow the log-reader fuzzer tenfold).
-      (void)arguments;
-      ::_exit(WriteMatReaderReply(STDOUT_FILENO, MatReaderReply(path_, file)) ? 0 : 1);
+          // The fuzzing build: the forked child reads the file itself (an
+          // exec per input would slow the log-reader fuzzer tenfold).
+          (void)arguments;
+          ::_exit(WriteMatReaderReply(STDOUT_FILENO, MatReaderReply(path_, file)) ? 0 : 1);
 #endif
-      ::execv(reader.c_str(), const_cast<char* const*>(arguments));
-      // Not started: say so through the pipe.
-      const std::string message = SerialiseMatError(fmt::format(
-          "{}: cannot start the MAT reader {} ({}): reinstall driveid (it lives beside the tools or in "
-          "libexec/driveid)",
-          path_, reader, std::strerror(errno)));
-      std::size_t written = 0;
-      while (written < message.size()) {
-        const ssize_t n = ::write(STDOUT_FILENO, message.data() + written, message.size() - written);
-        if (n <= 0) break;
-        written += static_cast<std::size_t>(n);
-      }
-      ::_exit(0);
+          ::execv(reader.c_str(), const_cast<char* const*>(arguments));
+          // Not started: say so through the pipe.
+          const std::string message = SerialiseMatError(fmt::format(
+              "{}: cannot start the MAT reader {} ({}): reinstall driveid (it lives beside the tools or in "
+              "libexec/driveid)",
+              path_, reader, std::strerror(errno)));
+          WriteAll(STDOUT_FILENO, message.data(), message.size());
+        },
+        limits);
+    if (!outcome.started) throw InputError(fmt::format("{}: cannot start the MAT reader", path_));
+    if (outcome.timed_out) {
+      throw InputError(fmt::format("{}: the MAT reader took longer than {} s (a corrupt file?)", path_, limits.seconds));
     }
-    ::close(fds[1]);
-    SetTemporaryFileWriter(child);  // killed by the tools' signal handlers
-    std::string reply;
-    std::vector<char> chunk(1 << 16);
-    const long seconds_allowed = std::min<long>(120, 5 + static_cast<long>(text_size / 10'000'000));
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(seconds_allowed);
-    bool timed_out = false;
-    while (true) {
-      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
-      if (left.count() <= 0) {
-        timed_out = true;
-        break;
-      }
-      struct pollfd p = {fds[0], POLLIN, 0};
-      const int ready = ::poll(&p, 1, static_cast<int>(left.count()));
-      if (ready < 0 && errno == EINTR) continue;
-      if (ready <= 0) {
-        timed_out = ready == 0;
-        break;
-      }
-      const ssize_t n = ::read(fds[0], chunk.data(), chunk.size());
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) break;
-      reply.append(chunk.data(), static_cast<std::size_t>(n));
-      if (reply.size() > kMaxMatElements * 8 + (std::size_t{64} << 20)) break;
-    }
-    ::close(fds[0]);
-    if (timed_out) ::kill(child, SIGKILL);
-    int status = 0;
-    while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
-    }
-    SetTemporaryFileWriter(0);
-    if (timed_out) {
-      throw InputError(fmt::format("{}: the MAT reader took longer than {} s (a corrupt file?)", path_, seconds_allowed));
-    }
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || reply.empty()) {
+    if (!outcome.exited || outcome.exit_code != 0 || outcome.output.empty()) {
       throw InputError(fmt::format("{}: not a readable MAT file (the reader {})", path_,
-                                   WIFSIGNALED(status) ? fmt::format("died of signal {}", WTERMSIG(status))
-                                                       : "failed"));
+                                   outcome.signal != 0 ? fmt::format("died of signal {}", outcome.signal) : "failed"));
     }
+    const std::string& reply = outcome.output;
     MatContents contents = DeserialiseMatReply(path_, reply);
     variables_ = std::move(contents.variables);
     notes_ = std::move(contents.notes);

@@ -17,6 +17,7 @@ namespace {
 
 constexpr double kGravity = 9.81;         // m/s^2, MuJoCo's default |g|
 constexpr double kGravityBodyShare = 0.01;  // of J carried by the gravity point mass (MJCF, URDF)
+constexpr double kMjcfTimestep = 0.001;     // s, the MJCF's <option timestep>
 
 // Text from a file or the command line inside an XML, C or Java comment:
 // printable ASCII only, and neither "--" nor "*/" can close the comment.
@@ -148,12 +149,16 @@ std::string ExportMjcf(const ParameterFile& file, const ExportOptions& o) {
   }
   for (const std::string& note : NotRepresented(v, true)) out += "  <!-- " + CommentText(note) + " -->\n";
   out += "  <!-- frictionloss is MuJoCo's soft dry friction, not a sticking Coulomb law: docs/export.md -->\n";
-  out += "  <option timestep=\"0.001\"/>  <!-- set it to the log's sample time -->\n";
+  out += fmt::format("  <option timestep=\"{}\"/>  <!-- the log's sample time or less -->\n", Number(kMjcfTimestep));
+  out += fmt::format("  <!-- solreffriction {}: the stiffest friction loss MuJoCo allows at this timestep (twice it); "
+                     "a joint at rest creeps in proportion to it (MuJoCo's default 0.02 s creeps ten times "
+                     "faster) -->\n", Number(2.0 * kMjcfTimestep));
   out += "  <worldbody>\n";
   out += fmt::format("    <body name=\"{}_link\">\n", o.joint);
-  out += fmt::format("      <joint name=\"{}\" type=\"{}\" axis=\"{}\" armature=\"{}\" damping=\"{}\" frictionloss=\"{}\"/>\n",
+  out += fmt::format("      <joint name=\"{}\" type=\"{}\" axis=\"{}\" armature=\"{}\" damping=\"{}\" frictionloss=\"{}\" "
+                     "solreffriction=\"{} 1\"/>\n",
                      o.joint, v.linear ? "slide" : "hinge", v.linear ? "1 0 0" : "0 -1 0", Number(armature),
-                     Number(v.damping), Number(v.friction));
+                     Number(v.damping), Number(v.friction), Number(2.0 * kMjcfTimestep));
   out += fmt::format("      <inertial pos=\"{} 0 {}\" mass=\"{}\" diaginertia=\"{} {} {}\"/>\n", Number(g.x), Number(g.z),
                      Number(body_mass), Number(own), Number(own), Number(own));
   out += "    </body>\n  </worldbody>\n  <actuator>\n";

@@ -6,12 +6,14 @@
 # stubs check the syntax, the class, the constructor arity and the types),
 # gcc and g++ for the C header (its values printed and compared with the
 # parameter file), json_check for JSON; MuJoCo loads the MJCF in
-# tests/export/mjcf_mujoco_test.cc. Refusals by name.
-# Usage: export_cli_test.sh DRIVETRAIN_FIT SOURCE_DIR JSON_CHECK
+# tests/export/mjcf_mujoco_test.cc, and `validate MODEL.xml` simulates it
+# in MuJoCo against driveid's own simulation of the same fit. Refusals by name.
+# Usage: export_cli_test.sh DRIVETRAIN_FIT SOURCE_DIR JSON_CHECK [HAVE_MUJOCO: ON|OFF]
 set -u
 bin="$1"
 src="$2"
 json_check="$3"
+have_mujoco="${4:-OFF}"
 program=drivetrain-fit
 # shellcheck source=cli_test_lib.sh
 source "$(dirname "$0")/cli_test_lib.sh"
@@ -75,6 +77,44 @@ if command -v javac > /dev/null; then
     fail "elevator: $(cat javac.txt LiftFeedforwardGains.java)"
 else
   echo "javac not installed: the Java export not compiled"
+fi
+
+# The MJCF in MuJoCo (validate MODEL.xml) against driveid's simulation of
+# the same fit (validate P.yaml --simulate, Coulomb friction that sticks) on
+# the shipped steps log, which rests between steps: fit % within 2 points,
+# rotary (hinge) and linear (slide). docs/export.md#validation-in-mujoco.
+fit_percent() { sed -n 's/.*"fit_percent":\([-0-9.e+]*\).*/\1/p' "$1"; }
+steps="$src/data/axis_steps.csv"
+if [ "$have_mujoco" = ON ]; then
+  "$bin" axis "$steps" --linear -q -o linear.yaml || fail "linear axis fit"
+  for kind in axis linear; do
+    "$bin" export "$kind.yaml" --to mjcf -o "$kind.xml" &&
+      "$bin" validate "$kind.yaml" "$steps" --simulate --json > own.json 2> stderr.txt &&
+      "$bin" validate "$kind.xml" "$steps" --json > mujoco.json 2>> stderr.txt || fail "$kind: $(cat stderr.txt)"
+    own=$(fit_percent own.json)
+    mujoco=$(fit_percent mujoco.json)
+    awk -v a="$own" -v b="$mujoco" 'BEGIN { exit !(a > 99 && b > 97 && a - b < 2 && b - a < 2) }' && ok ||
+      fail "$kind: fit % driveid $own, MuJoCo $mujoco (not within 2 points)"
+  done
+  grep -q 'type="slide"' linear.xml && ok || fail "linear axis: no slide joint"
+  # MuJoCo's default friction time constant (0.02 s) creeps ten times more at rest: the fit drops.
+  soft=""
+  sed 's/solreffriction="[^"]*"//' axis.xml > soft.xml
+  "$bin" validate soft.xml "$steps" --json > soft.json && soft=$(fit_percent soft.json) &&
+    awk -v a="$soft" -v b="$mujoco" 'BEGIN { exit !(a < b - 1) }' && ok || fail "default solref: fit % $soft"
+  EXPECT_OUTPUT=--trace expect 3 "axis.xml \(joint 'nosuch'\): no hinge or slide joint 'nosuch' \(the file's: 'axis'" \
+    -- validate axis.xml "$steps" --joint nosuch
+  printf '<mujoco><worldbody><body><joint name="axis"/></body>\n' > cut.xml
+  EXPECT_OUTPUT=--trace expect 3 "cut.xml .*MuJoCo cannot load it" -- validate cut.xml "$steps"
+  sed 's|<general name="axis_motor"|<general name="second" joint="axis"/><general name="axis_motor"|' axis.xml > two.xml
+  EXPECT_OUTPUT=--trace expect 3 "joint 'axis' has 2 actuators" -- validate two.xml "$steps"
+  awk -F, '/^#/ || $3 == "tau" { print; next } { printf "%s,%s,%s\n", $1, $2, $3 * 1e12 }' "$steps" > huge.csv
+  EXPECT_OUTPUT=--trace expect 4 "unstable: MuJoCo warned" -- validate axis.xml huge.csv
+  EXPECT_OUTPUT=--trace expect 2 "--simulate: an MJCF is always simulated" -- validate axis.xml "$steps" --simulate
+  EXPECT_OUTPUT=--trace expect 2 "--mujoco-step" -- validate axis.xml "$steps" --mujoco-step 0
+else
+  "$bin" export axis.yaml --to mjcf -o axis.xml
+  EXPECT_OUTPUT=--trace expect 3 "this build has no MuJoCo" -- validate axis.xml "$steps"
 fi
 
 # Refusals: a name that is no identifier (exit 2), a file without an axis (exit 3).

@@ -1,0 +1,223 @@
+#include "sim/mujoco_axis_simulator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "io/child_process.h"
+
+#if defined(DRIVEID_HAVE_MUJOCO)
+#include <dlfcn.h>
+#include <unistd.h>
+
+#include <mujoco/mujoco.h>
+#endif
+
+namespace driveid {
+
+#if defined(DRIVEID_HAVE_MUJOCO)
+namespace {
+
+// The child's reply on its standard output: 'E' and a message, or 'R', the
+// version text's length (one byte) and text, then n positions and n rates.
+[[noreturn]] void ReplyError(const std::string& message) {
+  const std::string reply = "E" + message;
+  WriteAll(STDOUT_FILENO, reply.data(), reply.size());
+  ::_exit(0);
+}
+
+void OnMujocoError(const char* message) { ReplyError(fmt::format("MuJoCo: {}", message)); }
+
+// MuJoCo's first warning (a bad acceleration, a full constraint buffer): it
+// resets the simulation and its warning counts, so the message is kept here.
+char first_warning[512] = "";
+void OnMujocoWarning(const char* message) {
+  if (first_warning[0] == '\0') std::snprintf(first_warning, sizeof first_warning, "%s", message);
+}
+
+template <typename F>
+F Symbol(void* library, const char* name) {
+  void* address = ::dlsym(library, name);
+  if (address == nullptr) ReplyError(fmt::format("{} has no symbol {}", DRIVEID_MUJOCO_LIBRARY, name));
+  return reinterpret_cast<F>(address);
+}
+
+struct Api {
+  int (*version)();
+  mjModel* (*load_xml)(const char*, const mjVFS*, char*, int);
+  mjData* (*make_data)(const mjModel*);
+  void (*forward)(const mjModel*, mjData*);
+  void (*step)(const mjModel*, mjData*);
+  int (*name2id)(const mjModel*, int, const char*);
+  const char* (*id2name)(const mjModel*, int, int);
+};
+
+Api LoadApi() {
+  void* library = ::dlopen(DRIVEID_MUJOCO_LIBRARY, RTLD_NOW | RTLD_LOCAL);
+  if (library == nullptr) {
+    const char* why = ::dlerror();
+    ReplyError(fmt::format("cannot load MuJoCo ({}): install Debian's libmujoco-dev (scripts/setup)",
+                           why ? why : DRIVEID_MUJOCO_LIBRARY));
+  }
+  *Symbol<void (**)(const char*)>(library, "mju_user_error") = OnMujocoError;
+  *Symbol<void (**)(const char*)>(library, "mju_user_warning") = OnMujocoWarning;
+  Api api;
+  api.version = Symbol<int (*)()>(library, "mj_version");
+  api.load_xml = Symbol<mjModel* (*)(const char*, const mjVFS*, char*, int)>(library, "mj_loadXML");
+  api.make_data = Symbol<mjData* (*)(const mjModel*)>(library, "mj_makeData");
+  api.forward = Symbol<void (*)(const mjModel*, mjData*)>(library, "mj_forward");
+  api.step = Symbol<void (*)(const mjModel*, mjData*)>(library, "mj_step");
+  api.name2id = Symbol<int (*)(const mjModel*, int, const char*)>(library, "mj_name2id");
+  api.id2name = Symbol<const char* (*)(const mjModel*, int, int)>(library, "mj_id2name");
+  if (api.version() != mjVERSION_HEADER) {
+    ReplyError(fmt::format("MuJoCo library version {} differs from the header driveid was built with ({}): rebuild",
+                           api.version(), mjVERSION_HEADER));
+  }
+  return api;
+}
+
+// The hinge and slide joints' names, for a message.
+std::string JointNames(const Api& api, const mjModel* m) {
+  std::string out;
+  int listed = 0;
+  for (int j = 0; j < m->njnt && listed < 10; ++j) {
+    if (m->jnt_type[j] != mjJNT_HINGE && m->jnt_type[j] != mjJNT_SLIDE) continue;
+    const char* name = api.id2name(m, mjOBJ_JOINT, j);
+    out += fmt::format("{}'{}'", listed++ ? ", " : "", name ? name : "");
+  }
+  return listed ? out : "none";
+}
+
+// Runs in the child: loads, simulates, replies, never returns.
+[[noreturn]] void SimulateInChild(const std::string& path, const MujocoAxisOptions& options,
+                                  const std::vector<double>& time, const std::vector<double>& effort, double q0,
+                                  double v0) {
+  const Api api = LoadApi();
+  char error[1000] = "";
+  mjModel* m = api.load_xml(path.c_str(), nullptr, error, sizeof error);
+  if (m == nullptr) ReplyError(fmt::format("MuJoCo cannot load it: {}", error));
+  const int joint = api.name2id(m, mjOBJ_JOINT, options.joint.c_str());
+  if (joint < 0 || (m->jnt_type[joint] != mjJNT_HINGE && m->jnt_type[joint] != mjJNT_SLIDE)) {
+    ReplyError(fmt::format("no hinge or slide joint '{}' (the file's: {}; give --joint)", options.joint,
+                           JointNames(api, m)));
+  }
+  int actuator = -1, actuators = 0;
+  for (int a = 0; a < m->nu; ++a) {
+    if (m->actuator_trntype[a] == mjTRN_JOINT && m->actuator_trnid[2 * a] == joint) {
+      actuator = a;
+      ++actuators;
+    }
+  }
+  if (actuators != 1) {
+    ReplyError(fmt::format("joint '{}' has {} actuators: the logged effort drives exactly one", options.joint,
+                           actuators));
+  }
+  mjData* d = api.make_data(m);
+  if (d == nullptr) ReplyError("MuJoCo cannot allocate its data for this model");
+  const int qadr = m->jnt_qposadr[joint], vadr = m->jnt_dofadr[joint];
+  d->qpos[qadr] = q0;
+  d->qvel[vadr] = v0;
+  api.forward(m, d);
+  const std::size_t n = time.size();
+  std::vector<double> out(2 * n);
+  for (std::size_t k = 0; k < n; ++k) {
+    out[k] = d->qpos[qadr];
+    out[n + k] = d->qvel[vadr];
+    if (k + 1 == n) break;
+    const double interval = time[k + 1] - time[k];
+    const double steps = std::ceil(interval / options.max_step);
+    m->opt.timestep = interval / steps;
+    d->ctrl[actuator] = effort[k];
+    for (double s = 0; s < steps; ++s) api.step(m, d);
+    if (first_warning[0] != '\0' || d->warning[mjWARN_BADQACC].number > 0 || !std::isfinite(d->qpos[qadr]) ||
+        !std::isfinite(d->qvel[vadr])) {
+      ReplyError(fmt::format("unstable: MuJoCo warned before t = {} s ({}): a smaller --mujoco-step, or an effort "
+                             "or parameters that are not physical",
+                             time[k + 1], first_warning[0] != '\0' ? first_warning : "a bad acceleration"));
+    }
+  }
+  const int version = api.version();
+  const std::string library = fmt::format("{}.{}.{}", version / 100, version / 10 % 10, version % 10);
+  std::string reply = "R";
+  reply += static_cast<char>(library.size());
+  reply += library;
+  reply.append(reinterpret_cast<const char*>(out.data()), out.size() * sizeof(double));
+  ::_exit(WriteAll(STDOUT_FILENO, reply.data(), reply.size()) ? 0 : 1);
+}
+
+}  // namespace
+
+bool MujocoAvailable(std::string*) { return true; }
+
+MujocoAxisResponse SimulateMujocoAxis(const std::string& path, const MujocoAxisOptions& options,
+                                      const std::vector<double>& time, const std::vector<double>& effort, double q0,
+                                      double v0) {
+  if (!(options.max_step > 0.0) || !std::isfinite(options.max_step)) {
+    throw OptionError(fmt::format("MuJoCo's largest step must be a finite number > 0, not {}", options.max_step));
+  }
+  const std::size_t n = time.size();
+  if (n == 0 || effort.size() != n) throw InputError(fmt::format("{}: no samples to simulate", path));
+  double steps = 0.0;
+  for (std::size_t k = 0; k + 1 < n; ++k) steps += std::ceil((time[k + 1] - time[k]) / options.max_step);
+  if (steps > 1e9) {
+    throw OptionError(fmt::format("{}: {:.3g} MuJoCo steps (the log's length / the largest step): at most 1e9",
+                                  path, steps));
+  }
+  ChildLimits limits;
+  // About a microsecond per step of a one-joint model; a generous margin.
+  limits.seconds = std::min<long>(3600, 10 + static_cast<long>(steps * 2e-5));
+  limits.address_space_bytes = 4.0 * (1 << 30) + 32.0 * static_cast<double>(n);
+  limits.max_output_bytes = 2 * n * sizeof(double) + 4096;
+  const ChildOutcome outcome =
+      RunInChild([&] { SimulateInChild(path, options, time, effort, q0, v0); }, limits);
+  const std::string where = fmt::format("{} (joint '{}')", path, options.joint);
+  if (!outcome.started) throw InputError(fmt::format("{}: cannot start the MuJoCo process", where));
+  if (outcome.timed_out) throw InputError(fmt::format("{}: MuJoCo took longer than {} s", where, limits.seconds));
+  const std::string& r = outcome.output;
+  if (!r.empty() && r[0] == 'E') {
+    const std::string message = r.substr(1, 2000);
+    if (message.rfind("unstable", 0) == 0) throw IdentificationError(fmt::format("{}: {}", where, message));
+    throw InputError(fmt::format("{}: {}", where, message));
+  }
+  if (!outcome.exited || outcome.exit_code != 0 || r.size() < 2 || r[0] != 'R') {
+    throw InputError(fmt::format("{}: the MuJoCo process {}", where,
+                                 outcome.signal != 0 ? fmt::format("died of signal {} (a file MuJoCo cannot read?)",
+                                                                   outcome.signal)
+                                                     : "failed"));
+  }
+  const std::size_t version_length = static_cast<unsigned char>(r[1]);
+  if (r.size() != 2 + version_length + 2 * n * sizeof(double)) {
+    throw InputError(fmt::format("{}: the MuJoCo process replied {} bytes, not {}", where, r.size(),
+                                 2 + version_length + 2 * n * sizeof(double)));
+  }
+  MujocoAxisResponse response;
+  response.library = r.substr(2, version_length);
+  response.position.resize(n);
+  response.rate.resize(n);
+  const char* data = r.data() + 2 + version_length;
+  std::memcpy(response.position.data(), data, n * sizeof(double));
+  std::memcpy(response.rate.data(), data + n * sizeof(double), n * sizeof(double));
+  return response;
+}
+
+#else  // no MuJoCo in this build
+
+bool MujocoAvailable(std::string* why) {
+  if (why) *why = "this build has no MuJoCo (libmujoco-dev was not found when it was built): install it and rebuild";
+  return false;
+}
+
+MujocoAxisResponse SimulateMujocoAxis(const std::string& path, const MujocoAxisOptions&, const std::vector<double>&,
+                                      const std::vector<double>&, double, double) {
+  std::string why;
+  MujocoAvailable(&why);
+  throw InputError(fmt::format("{}: {} (scripts/setup installs it where Debian has it)", path, why));
+}
+
+#endif
+
+}  // namespace driveid
