@@ -1,4 +1,4 @@
-// drivetrain-fit export: a fitted axis' parameter file written for MuJoCo,
+// drivetrain-fit export: a fitted axis' (or elastic joint's) parameter file written for MuJoCo,
 // URDF, WPILib (Java), firmware (C header) or as JSON (docs/export.md).
 // Parse, call the library, write: the formats live in report/parameter_export.
 #include <string>
@@ -25,9 +25,12 @@ ExportCommandOptions export_options;
 
 CLI::App* SetupExportCommand(CLI::App& parent, ExportCommandOptions& options) {
   CLI::App* command = parent.add_subcommand(
-      "export", "Write a fitted axis' parameters for MuJoCo (MJCF), URDF, WPILib Java, a C header or JSON, with std "
-                "and provenance in comments; what a target cannot hold is said in the file (docs/export.md)");
-  command->add_option("params", options.params, "parameter file with an axis and a feedforward section (drivetrain-fit axis -o)")
+      "export", "Write a fitted axis' parameters for MuJoCo (MJCF), URDF, WPILib Java, a C header or JSON, or an "
+                "elastic joint's for MJCF, URDF or a C header, with std and provenance in comments; what a target "
+                "cannot hold is said in the file (docs/export.md)");
+  command->add_option("params", options.params,
+                      "parameter file with an axis and a feedforward section (drivetrain-fit axis -o), or a joint "
+                      "section (drivetrain-fit joint -o)")
       ->required();
   command->add_option("--to", options.target, "mjcf, urdf, wpilib-java, c-header or json")
       ->required()
@@ -37,7 +40,8 @@ CLI::App* SetupExportCommand(CLI::App& parent, ExportCommandOptions& options) {
       ->capture_default_str();
   command->add_option("-o,--output", options.output, "file to write (default: stdout); written atomically");
   command->footer("Example:\n  drivetrain-fit axis data/axis_steps.csv -o axis.yaml\n"
-                  "  drivetrain-fit export axis.yaml --to mjcf --joint shoulder -o shoulder.xml");
+                  "  drivetrain-fit export axis.yaml --to mjcf --joint shoulder -o shoulder.xml\n"
+                  "  drivetrain-fit export data/joint_example_truth.yaml --to mjcf --joint elbow -o elbow.xml");
   return command;
 }
 

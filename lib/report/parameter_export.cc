@@ -10,45 +10,14 @@
 #include "core/errors.h"
 #include "models/axis.h"
 #include "models/feedforward.h"
+#include "report/export_text.h"
+#include "report/joint_export.h"
 #include "report/json.h"
 
 namespace driveid {
 namespace {
 
-constexpr double kGravity = 9.81;         // m/s^2, MuJoCo's default |g|
-constexpr double kGravityBodyShare = 0.01;  // of J carried by the gravity point mass (MJCF, URDF)
-constexpr double kMjcfTimestep = 0.001;     // s, the MJCF's <option timestep>
-
-// Text from a file or the command line inside an XML, C or Java comment:
-// printable ASCII only, and neither "--" nor "*/" can close the comment.
-std::string CommentText(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    const bool printable = c >= 0x20 && c < 0x7f;
-    char kept = printable ? c : '?';
-    if ((kept == '-' && !out.empty() && out.back() == '-') || (kept == '/' && !out.empty() && out.back() == '*')) {
-      out += ' ';
-    }
-    out += kept;
-  }
-  if (out.size() > 300) out = out.substr(0, 297) + "...";
-  return out;
-}
-
-std::string Number(double value) { return fmt::format("{:.17g}", value); }
-
-std::optional<double> StdOf(const ParameterFile& file, const std::string& name) {
-  for (const ParameterEstimate& e : file.fit_estimates) {
-    if (e.name == name) return e.standard_error;
-  }
-  return std::nullopt;
-}
-
-std::string WithStd(const ParameterFile& file, const std::string& name, double value, const std::string& unit) {
-  const std::optional<double> std_error = StdOf(file, name);
-  return std_error ? fmt::format("{} = {:.6g} +- {:.3g} {}", name, value, *std_error, unit)
-                   : fmt::format("{} = {:.6g} {} (not fitted)", name, value, unit);
-}
+using namespace export_text;
 
 // The axis as the exports see it: friction averaged over the directions
 // where it was fitted per direction (a simulator joint has one value).
@@ -65,8 +34,8 @@ struct AxisView {
 AxisView ViewAxis(const ParameterFile& file) {
   const AxisSection* section = file.Find<AxisSection>();
   if (!section) {
-    throw InputError("no 'axis' section: export takes the parameter file of an axis fit; the drive train, joint, "
-                     "robot and C-drive have no export target yet (docs/export.md)");
+    throw InputError("no 'axis' or 'joint' section: export takes the parameter file of an axis or an elastic-joint "
+                     "fit; the drive train, robot and C-drive have no export target yet (docs/export.md)");
   }
   AxisView v;
   const AxisSection& a = *section;
@@ -99,26 +68,9 @@ std::vector<std::string> NotRepresented(const AxisView& v, bool has_offset_chann
   return out;
 }
 
-// Gravity as a point mass m at distance r from the axis at angle -Kg_angle
-// in the x-z plane, the joint turning about -y: the holding torque is
-// m g r cos(q - Kg_angle) = Kg cos(q - Kg_angle), and m r^2 is a share of J.
-struct GravityBody {
-  double mass = 0.0, radius = 0.0, x = 0.0, z = 0.0;
-};
-
 GravityBody MakeGravityBody(const AxisView& v) {
-  GravityBody b;
-  if (v.linear || v.gravity == 0.0) return b;
-  b.radius = kGravityBodyShare * v.p.inertia * kGravity / v.gravity;
-  b.mass = v.gravity / (kGravity * b.radius);
-  b.x = b.radius * std::cos(-v.gravity_angle);
-  b.z = b.radius * std::sin(-v.gravity_angle);
-  return b;
-}
-
-std::string Provenance(const ExportOptions& o, const std::string& open, const std::string& close) {
-  return fmt::format("{} driveid export of {} (docs/export.md){}\n{} made by: {}{}\n", open, CommentText(o.source), close,
-                     open, CommentText(o.command), close);
+  if (v.linear) return {};
+  return export_text::MakeGravityBody(v.p.inertia, v.p.gravity_cos, v.p.gravity_sin);
 }
 
 std::string ExportMjcf(const ParameterFile& file, const ExportOptions& o) {
@@ -148,11 +100,7 @@ std::string ExportMjcf(const ParameterFile& file, const ExportOptions& o) {
                        "inertia -->\n", v.gravity, force, v.gravity_angle, 100.0 * kGravityBodyShare);
   }
   for (const std::string& note : NotRepresented(v, true)) out += "  <!-- " + CommentText(note) + " -->\n";
-  out += "  <!-- frictionloss is MuJoCo's soft dry friction, not a sticking Coulomb law: docs/export.md -->\n";
-  out += fmt::format("  <option timestep=\"{}\"/>  <!-- the log's sample time or less -->\n", Number(kMjcfTimestep));
-  out += fmt::format("  <!-- solreffriction {}: the stiffest friction loss MuJoCo allows at this timestep (twice it); "
-                     "a joint at rest creeps in proportion to it (MuJoCo's default 0.02 s creeps ten times "
-                     "faster) -->\n", Number(2.0 * kMjcfTimestep));
+  out += MjcfOptionLines();
   out += "  <worldbody>\n";
   out += fmt::format("    <body name=\"{}_link\">\n", o.joint);
   out += fmt::format("      <joint name=\"{}\" type=\"{}\" axis=\"{}\" armature=\"{}\" damping=\"{}\" frictionloss=\"{}\" "
@@ -272,18 +220,13 @@ std::string ExportJava(const ParameterFile& file, const ExportOptions& o) {
 
 std::string ExportCHeader(const ParameterFile& file, const ExportOptions& o) {
   const Feedforward& ff = RequireFeedforward(file);
-  std::string upper;
-  for (char c : o.joint) upper += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  std::string out = Provenance(o, "/*", " */");
-  out += "/* u = Ks sgn(v) + Kv v + Ka a + Kg cos(q - Kg_angle) + offset (docs/models.md#feed-forward) */\n";
-  out += fmt::format("#ifndef DRIVEID_{0}_H\n#define DRIVEID_{0}_H\n\n", upper);
-  out += "#ifndef DRIVEID_CONSTANT\n#ifdef __cplusplus\n#define DRIVEID_CONSTANT inline constexpr double\n#else\n"
-         "#define DRIVEID_CONSTANT static const double\n#endif\n#endif\n\n";
+  const std::string upper = UpperCase(o.joint);
+  std::string out = CHeaderOpen(o, upper, "/* u = Ks sgn(v) + Kv v + Ka a + Kg cos(q - Kg_angle) + offset (docs/models.md#feed-forward) */\n");
   for (const FeedforwardGain& g : ff.gains) {
     out += fmt::format("DRIVEID_CONSTANT {}_{} = {};  /* {} */\n", upper, g.key, Number(g.value), CommentText(g.unit));
     out += fmt::format("DRIVEID_CONSTANT {}_{}_STD = {:.6g};\n", upper, g.key, g.standard_error);
   }
-  out += fmt::format("\n#endif /* DRIVEID_{}_H */\n", upper);
+  out += CHeaderClose(upper);
   return out;
 }
 
@@ -324,6 +267,8 @@ void ExportOptions::Validate() const {
 
 std::string ExportParameters(const ParameterFile& file, ExportTarget target, const ExportOptions& options) {
   options.Validate();
+  const JointSection* joint = file.Find<JointSection>();
+  if (joint != nullptr && file.Find<AxisSection>() == nullptr) return ExportJoint(*joint, file, target, options);
   switch (target) {
     case ExportTarget::kMjcf: return ExportMjcf(file, options);
     case ExportTarget::kUrdf: return ExportUrdf(file, options);

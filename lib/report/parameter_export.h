@@ -38,8 +38,9 @@ struct ExportOptions {
 };
 
 /// The text of `target` for the file's axis section and feed-forward
-/// section. Throws InputError when the file has no axis section (the
-/// drive train, joint, robot and C-drive have no export target yet).
+/// section, or for its elastic joint (report/joint_export.h). Throws
+/// InputError when the file has neither (the drive train, robot and C-drive
+/// have no export target yet).
 std::string ExportParameters(const ParameterFile& file, ExportTarget target, const ExportOptions& options);
 
 }  // namespace driveid

@@ -102,7 +102,7 @@ std::string JointNames(const Api& api, const mjModel* m) {
   if (m == nullptr) ReplyError(fmt::format("MuJoCo cannot load it: {}", error));
   const int joint = api.name2id(m, mjOBJ_JOINT, options.joint.c_str());
   if (joint < 0 || (m->jnt_type[joint] != mjJNT_HINGE && m->jnt_type[joint] != mjJNT_SLIDE)) {
-    ReplyError(fmt::format("no hinge or slide joint '{}' (the file's: {}; give --joint)", options.joint,
+    ReplyError(fmt::format("no hinge or slide joint '{}' (the file's: {})", options.joint,
                            JointNames(api, m)));
   }
   int actuator = -1, actuators = 0;
@@ -135,7 +135,7 @@ std::string JointNames(const Api& api, const mjModel* m) {
     for (double s = 0; s < steps; ++s) api.step(m, d);
     if (first_warning[0] != '\0' || d->warning[mjWARN_BADQACC].number > 0 || !std::isfinite(d->qpos[qadr]) ||
         !std::isfinite(d->qvel[vadr])) {
-      ReplyError(fmt::format("unstable: MuJoCo warned before t = {} s ({}): a smaller --mujoco-step, or an effort "
+      ReplyError(fmt::format("unstable: MuJoCo warned before t = {} s ({}): a smaller MuJoCo step, or an effort "
                              "or parameters that are not physical",
                              time[k + 1], first_warning[0] != '\0' ? first_warning : "a bad acceleration"));
     }

@@ -117,10 +117,29 @@ else
   EXPECT_OUTPUT=--trace expect 3 "this build has no MuJoCo" -- validate axis.xml "$steps"
 fi
 
+# The elastic joint (docs/export.md#elastic-joint): MJCF (loaded and checked
+# in tests/export/mjcf_mujoco_test.cc), URDF through check_urdf, the C header
+# compiled; no feed-forward targets; missing values named together.
+truth="$src/data/joint_example_truth.yaml"
+"$bin" export "$truth" --to mjcf --joint elbow -o joint.xml && grep -q '<fixed name="elbow_spring" stiffness="20"' joint.xml &&
+  grep -q 'joint="elbow_motor" gear="50"' joint.xml && ok || fail "joint mjcf: $(head -c 600 joint.xml)"
+"$bin" export "$truth" --to urdf --joint elbow -o joint.urdf && grep -q "no joint elasticity" joint.urdf && ok ||
+  fail "joint urdf"
+if command -v check_urdf > /dev/null; then
+  check_urdf joint.urdf > check.txt 2>&1 && ok || fail "check_urdf, joint: $(cat check.txt)"
+fi
+"$bin" export "$truth" --to c-header --joint elbow -o joint.h &&
+  printf '#include <stdio.h>\n#include "joint.h"\nint main(void) { printf("%%g %%g\\n", ELBOW_stiffness, ELBOW_gear_ratio); return 0; }\n' \
+    > joint_use.c &&
+  cc -std=c99 -Wall -Werror joint_use.c -o joint_use && [ "$(./joint_use)" = "20 50" ] && ok || fail "joint C header"
+expect 3 "elastic joint has no feed-forward section" -- export "$truth" --to json
+printf 'joint:\n  gear_ratio: 50\n  motor_inertia: 0.02\n' > joint_partial.yaml
+expect 3 "joint.link_inertia, joint.stiffness: a simulator model" -- export joint_partial.yaml --to mjcf
+
 # Refusals: a name that is no identifier (exit 2), a file without an axis (exit 3).
 EXPECT_OUTPUT=-o expect 2 "--joint: joint name 'a-b'" -- export axis.yaml --to mjcf --joint a-b
 expect 2 "--to" -- export axis.yaml --to sdf
-expect 3 "no 'axis' section" -- export "$src/data/paper000.yaml" --to mjcf
+expect 3 "no 'axis' or 'joint' section" -- export "$src/data/paper000.yaml" --to mjcf
 printf 'axis:\n  inertia: 0\n' > zero.yaml
 expect 3 "axis.inertia = 0" -- export zero.yaml --to urdf
 expect 3 "no axis 'feedforward' section" -- export zero.yaml --to json

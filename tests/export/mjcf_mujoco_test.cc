@@ -87,3 +87,52 @@ TEST_CASE("MJCF export of a linear axis: a slide joint with the mass J, no gravi
   CHECK(m.model->dof_damping[0] == Approx(40.0));
   CHECK(m.model->dof_frictionloss[0] == Approx(15.0));
 }
+
+TEST_CASE("MJCF export of the elastic joint: motor and link joints, the spring as a tendon, gear and offset") {
+  const double jm = 0.02, jl = 0.05, k = 20.0, d = 0.05, bm = 0.1, cm = 0.2, bl = 0.07, cl = 0.1, offset = 0.05;
+  const double gc = 1.5, gs = -0.5, n = 50.0;
+  const ParameterFile file = ParseParameterFile(
+      "joint.yaml", "joint:\n  gear_ratio: 50\n  motor_inertia: 0.02\n  link_inertia: 0.05\n  stiffness: 20\n"
+                    "  damping: 0.05\n  motor_viscous: 0.1\n  motor_coulomb: 0.2\n  link_viscous: 0.07\n"
+                    "  link_coulomb: 0.1\n  offset: 0.05\n  gravity_cos: 1.5\n  gravity_sin: -0.5\n");
+  ExportOptions options;
+  options.joint = "elbow";
+  Loaded m;
+  Load(ExportParameters(file, ExportTarget::kMjcf, options), m);
+  REQUIRE(m.model->nv == 2);
+  REQUIRE(m.model->nu == 1);
+  const int motor = mj_name2id(m.model, mjOBJ_JOINT, "elbow_motor");
+  const int link = mj_name2id(m.model, mjOBJ_JOINT, "elbow");
+  REQUIRE(motor >= 0);
+  REQUIRE(link >= 0);
+  const int vm = m.model->jnt_dofadr[motor], vl = m.model->jnt_dofadr[link];
+  CHECK(m.model->dof_damping[vm] == Approx(bm));
+  CHECK(m.model->dof_damping[vl] == Approx(bl));
+  CHECK(m.model->dof_frictionloss[vm] == Approx(cm));
+  CHECK(m.model->dof_frictionloss[vl] == Approx(cl));
+  for (double twist : {-0.2, 0.0, 0.15}) {
+    for (double ql : {-2.0, 0.0, 0.7}) {
+      const double qm = ql + twist, wm = 0.3, wl = -0.1;
+      m.data->qpos[m.model->jnt_qposadr[motor]] = qm;
+      m.data->qpos[m.model->jnt_qposadr[link]] = ql;
+      m.data->qvel[vm] = wm;
+      m.data->qvel[vl] = wl;
+      m.data->ctrl[0] = 2.0;
+      mj_forward(m.model, m.data);
+      double mass[4];
+      mj_fullM(m.model, mass, m.data->qM);
+      INFO("twist " << twist << ", theta_l " << ql);
+      CHECK(mass[vm * 2 + vm] == Approx(jm).epsilon(1e-9));
+      CHECK(mass[vl * 2 + vl] == Approx(jl).epsilon(1e-9));
+      CHECK(mass[vm * 2 + vl] == Approx(0.0).margin(1e-15));
+      // The spring-damper k D + d D' between them, each viscous term on its own rate.
+      const double spring = k * (qm - ql) + d * (wm - wl);
+      CHECK(m.data->qfrc_passive[vm] == Approx(-spring - bm * wm).margin(1e-9));
+      CHECK(m.data->qfrc_passive[vl] == Approx(spring - bl * wl).margin(1e-9));
+      CHECK(m.data->qfrc_bias[vm] == Approx(0.0).margin(1e-9));
+      CHECK(m.data->qfrc_bias[vl] == Approx(gc * std::cos(ql) + gs * std::sin(ql)).margin(1e-9));
+      CHECK(m.data->qfrc_actuator[vm] == Approx(n * 2.0 - offset).margin(1e-9));
+      CHECK(m.data->qfrc_actuator[vl] == Approx(0.0).margin(1e-15));
+    }
+  }
+}

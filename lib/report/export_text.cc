@@ -1,0 +1,75 @@
+#include "report/export_text.h"
+
+#include <cctype>
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace driveid::export_text {
+
+std::string CommentText(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    const bool printable = c >= 0x20 && c < 0x7f;
+    char kept = printable ? c : '?';
+    if ((kept == '-' && !out.empty() && out.back() == '-') || (kept == '/' && !out.empty() && out.back() == '*')) {
+      out += ' ';
+    }
+    out += kept;
+  }
+  if (out.size() > 300) out = out.substr(0, 297) + "...";
+  return out;
+}
+
+std::string Number(double value) { return fmt::format("{:.17g}", value); }
+
+std::string WithStd(const ParameterFile& file, const std::string& name, double value, const std::string& unit) {
+  for (const ParameterEstimate& e : file.fit_estimates) {
+    if (e.name == name) return fmt::format("{} = {:.6g} +- {:.3g} {}", name, value, e.standard_error, unit);
+  }
+  return fmt::format("{} = {:.6g} {} (not fitted)", name, value, unit);
+}
+
+std::string Provenance(const ExportOptions& o, const std::string& open, const std::string& close) {
+  return fmt::format("{} driveid export of {} (docs/export.md){}\n{} made by: {}{}\n", open, CommentText(o.source), close,
+                     open, CommentText(o.command), close);
+}
+
+std::string UpperCase(const std::string& name) {
+  std::string upper;
+  for (char c : name) upper += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return upper;
+}
+
+std::string CHeaderOpen(const ExportOptions& o, const std::string& upper, const std::string& description) {
+  std::string out = Provenance(o, "/*", " */") + description;
+  out += fmt::format("#ifndef DRIVEID_{0}_H\n#define DRIVEID_{0}_H\n\n", upper);
+  out += "#ifndef DRIVEID_CONSTANT\n#ifdef __cplusplus\n#define DRIVEID_CONSTANT inline constexpr double\n#else\n"
+         "#define DRIVEID_CONSTANT static const double\n#endif\n#endif\n\n";
+  return out;
+}
+
+std::string CHeaderClose(const std::string& upper) { return fmt::format("\n#endif /* DRIVEID_{}_H */\n", upper); }
+
+std::string MjcfOptionLines() {
+  std::string out = "  <!-- frictionloss is MuJoCo's soft dry friction, not a sticking Coulomb law: docs/export.md -->\n";
+  out += fmt::format("  <option timestep=\"{}\"/>  <!-- the log's sample time or less -->\n", Number(kMjcfTimestep));
+  out += fmt::format("  <!-- solreffriction {}: the stiffest friction loss MuJoCo allows at this timestep (twice it); "
+                     "a joint at rest creeps in proportion to it (MuJoCo's default 0.02 s creeps ten times "
+                     "faster) -->\n", Number(2.0 * kMjcfTimestep));
+  return out;
+}
+
+GravityBody MakeGravityBody(double inertia, double gravity_cos, double gravity_sin) {
+  GravityBody b;
+  const double gravity = std::hypot(gravity_cos, gravity_sin);
+  if (gravity == 0.0) return b;
+  const double angle = std::atan2(gravity_sin, gravity_cos);
+  b.radius = kGravityBodyShare * inertia * kGravity / gravity;
+  b.mass = gravity / (kGravity * b.radius);
+  b.x = b.radius * std::cos(-angle);
+  b.z = b.radius * std::sin(-angle);
+  return b;
+}
+
+}  // namespace driveid::export_text

@@ -1,0 +1,53 @@
+// What the export targets share (report/parameter_export.h,
+// report/joint_export.h): comment-safe text, exact numbers, a value with its
+// std from the fit section, the provenance lines, and gravity as a point
+// mass for MJCF and URDF.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "io/parameter_file.h"
+#include "report/parameter_export.h"
+
+namespace driveid::export_text {
+
+constexpr double kGravity = 9.81;           // m/s^2, MuJoCo's default |g|
+constexpr double kGravityBodyShare = 0.01;  // of J carried by the gravity point mass (MJCF, URDF)
+constexpr double kMjcfTimestep = 0.001;     // s, the MJCF's <option timestep>
+
+/// Text from a file or the command line inside an XML, C or Java comment:
+/// printable ASCII only, and neither "--" nor "*/" can close the comment.
+std::string CommentText(const std::string& text);
+
+/// All 17 significant digits.
+std::string Number(double value);
+
+/// "name = value +- std unit", or "(not fitted)" when the fit section has no std for it.
+std::string WithStd(const ParameterFile& file, const std::string& name, double value, const std::string& unit);
+
+/// Two comment lines: the source file and the command.
+std::string Provenance(const ExportOptions& o, const std::string& open, const std::string& close);
+
+/// `name` in upper case (a C macro prefix).
+std::string UpperCase(const std::string& name);
+
+/// A C header's start: provenance, `description` (a comment line), the
+/// include guard DRIVEID_<upper>_H and DRIVEID_CONSTANT (static const double
+/// in C, inline constexpr double in C++17). CHeaderClose ends the guard.
+std::string CHeaderOpen(const ExportOptions& o, const std::string& upper, const std::string& description);
+std::string CHeaderClose(const std::string& upper);
+
+/// The MJCF's solver lines: the time step and why the friction time constant.
+std::string MjcfOptionLines();
+
+/// Gravity as a point mass m at distance r from the axis at angle -Kg_angle
+/// in the x-z plane, the joint turning about -y: the holding torque is
+/// m g r cos(q - Kg_angle) = Kg cos(q - Kg_angle) with Kg = hypot(g_c, g_s),
+/// Kg_angle = atan2(g_s, g_c), and m r^2 is kGravityBodyShare of `inertia`.
+struct GravityBody {
+  double mass = 0.0, radius = 0.0, x = 0.0, z = 0.0;
+};
+GravityBody MakeGravityBody(double inertia, double gravity_cos, double gravity_sin);
+
+}  // namespace driveid::export_text
