@@ -25,18 +25,18 @@ ExportCommandOptions export_options;
 
 CLI::App* SetupExportCommand(CLI::App& parent, ExportCommandOptions& options) {
   CLI::App* command = parent.add_subcommand(
-      "export", "Write a fitted axis' parameters for MuJoCo (MJCF), URDF, WPILib Java, a C header or JSON, or an "
+      "export", "Write a fitted axis' parameters for MuJoCo (MJCF), URDF, WPILib Java or C++, a C header or JSON, or an "
                 "elastic joint's for MJCF, URDF or a C header, with std and provenance in comments; what a target "
                 "cannot hold is said in the file (docs/export.md)");
   command->add_option("params", options.params,
                       "parameter file with an axis and a feedforward section (drivetrain-fit axis -o), or a joint "
                       "section (drivetrain-fit joint -o)")
       ->required();
-  command->add_option("--to", options.target, "mjcf, urdf, wpilib-java, c-header or json")
+  command->add_option("--to", options.target, "mjcf, urdf, wpilib-java, wpilib-cpp, c-header or json")
       ->required()
-      ->check(CLI::IsMember({"mjcf", "urdf", "wpilib-java", "c-header", "json"}));
+      ->check(CLI::IsMember({"mjcf", "urdf", "wpilib-java", "wpilib-cpp", "c-header", "json"}));
   command->add_option("--joint", options.joint,
-                      "joint name in MJCF/URDF, class prefix in Java, macro prefix in C (letters, digits, _)")
+                      "joint name in MJCF/URDF, class prefix in Java, namespace prefix in C++, macro prefix in C (letters, digits, _)")
       ->capture_default_str();
   command->add_option("-o,--output", options.output, "file to write (default: stdout); written atomically");
   command->footer("Example:\n  drivetrain-fit axis data/axis_steps.csv -o axis.yaml\n"

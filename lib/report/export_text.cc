@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "core/errors.h"
+
 namespace driveid::export_text {
 
 std::string CommentText(const std::string& text) {
@@ -33,6 +35,20 @@ std::string WithStd(const ParameterFile& file, const std::string& name, double v
 std::string Provenance(const ExportOptions& o, const std::string& open, const std::string& close) {
   return fmt::format("{} driveid export of {} (docs/export.md){}\n{} made by: {}{}\n", open, CommentText(o.source), close,
                      open, CommentText(o.command), close);
+}
+
+const Feedforward& RequireFeedforward(const ParameterFile& file) {
+  if (file.feedforward.gains.empty() || file.feedforward.law != kAxisFeedforwardLaw) {
+    throw InputError("no axis 'feedforward' section (an axis fit writes it)");
+  }
+  return file.feedforward;
+}
+
+const FeedforwardGain* Gain(const Feedforward& ff, const std::string& key) {
+  for (const FeedforwardGain& g : ff.gains) {
+    if (g.key == key) return &g;
+  }
+  return nullptr;
 }
 
 std::string UpperCase(const std::string& name) {

@@ -29,6 +29,12 @@ std::string WithStd(const ParameterFile& file, const std::string& name, double v
 /// Two comment lines: the source file and the command.
 std::string Provenance(const ExportOptions& o, const std::string& open, const std::string& close);
 
+/// The file's axis feed-forward section; InputError when it has none.
+const Feedforward& RequireFeedforward(const ParameterFile& file);
+
+/// The gain `key` of `ff`, or null.
+const FeedforwardGain* Gain(const Feedforward& ff, const std::string& key);
+
 /// `name` in upper case (a C macro prefix).
 std::string UpperCase(const std::string& name);
 

@@ -12,6 +12,7 @@
 #include "models/feedforward.h"
 #include "report/export_text.h"
 #include "report/joint_export.h"
+#include "report/wpilib_export.h"
 #include "report/json.h"
 
 namespace driveid {
@@ -153,69 +154,9 @@ std::string ExportUrdf(const ParameterFile& file, const ExportOptions& o) {
   return out;
 }
 
-const Feedforward& RequireFeedforward(const ParameterFile& file) {
-  if (file.feedforward.gains.empty() || file.feedforward.law != kAxisFeedforwardLaw) {
-    throw InputError("no axis 'feedforward' section (an axis fit writes it)");
-  }
-  return file.feedforward;
-}
-
-const FeedforwardGain* Gain(const Feedforward& ff, const std::string& key) {
-  for (const FeedforwardGain& g : ff.gains) {
-    if (g.key == key) return &g;
-  }
-  return nullptr;
-}
-
-std::string UpperFirst(std::string name) {
-  name[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(name[0])));
-  return name;
-}
-
-std::string ExportJava(const ParameterFile& file, const ExportOptions& o) {
-  const Feedforward& ff = RequireFeedforward(file);
+WpilibAxis WpilibOf(const ParameterFile& file) {
   const AxisView v = ViewAxis(file);
-  const std::string cls = UpperFirst(o.joint) + "FeedforwardGains";
-  const bool arm = Gain(ff, "Kg") && !v.linear;
-  const bool elevator = v.linear && Gain(ff, "offset") && Gain(ff, "offset")->value != 0.0;
-  const char* type = arm ? "ArmFeedforward" : elevator ? "ElevatorFeedforward" : "SimpleMotorFeedforward";
-  std::string out = Provenance(o, "//", "");
-  out += fmt::format("// {}: u = Ks sgn(v) + Kv v + Ka a{} in {} and {} (docs/models.md#feed-forward)\n", type,
-                     arm ? " + Kg cos(angle)" : elevator ? " + Kg" : "", CommentText(ff.effort_unit),
-                     CommentText(ff.position_unit));
-  if (arm) out += "// ArmFeedforward measures the angle from horizontal: pass q - kGAngle.\n";
-  if (!arm && !elevator && Gain(ff, "offset") && Gain(ff, "offset")->value != 0.0) {
-    out += "// The offset (kOffset) has no place in SimpleMotorFeedforward: add it to the output.\n";
-  }
-  if (v.p.stribeck != 0.0) out += "// The Stribeck term is not representable in WPILib's feed-forward classes.\n";
-  out += "import edu.wpi.first.math.controller." + std::string(type) + ";\n\n";
-  out += "public final class " + cls + " {\n  private " + cls + "() {}\n\n";
-  auto field = [&](const std::string& key, const std::string& java) {
-    const FeedforwardGain* g = Gain(ff, key);
-    if (!g) return;
-    out += fmt::format("  /** {} +- {:.3g} {} */\n  public static final double {} = {};\n",
-                       key, g->standard_error, CommentText(g->unit), java, Number(g->value));
-  };
-  for (const auto& [key, java] : std::vector<std::pair<std::string, std::string>>{
-           {"Ks", "kS"}, {"Ks_forward", "kSForward"}, {"Ks_backward", "kSBackward"}, {"Kv", "kV"},
-           {"Kv_forward", "kVForward"}, {"Kv_backward", "kVBackward"}, {"Ka", "kA"}, {"Kg", "kG"},
-           {"Kg_angle", "kGAngle"}, {"offset", elevator ? "kGElevator" : "kOffset"}}) {
-    field(key, java);
-  }
-  auto factory = [&](const std::string& name, const std::string& ks, const std::string& kv) {
-    std::string args = arm ? fmt::format("{}, kG, {}, kA", ks, kv)
-                           : elevator ? fmt::format("{}, kGElevator, {}, kA", ks, kv) : fmt::format("{}, {}, kA", ks, kv);
-    out += fmt::format("\n  public static {} {}() {{\n    return new {}({});\n  }}\n", type, name, type, args);
-  };
-  if (Gain(ff, "Ks_forward")) {
-    factory("createForward", "kSForward", Gain(ff, "Kv_forward") ? "kVForward" : "kV");
-    factory("createBackward", "kSBackward", Gain(ff, "Kv_backward") ? "kVBackward" : "kV");
-  } else {
-    factory("create", "kS", Gain(ff, "Kv_forward") ? "kVForward" : "kV");
-    if (Gain(ff, "Kv_backward")) factory("createBackward", "kS", "kVBackward");
-  }
-  out += "}\n";
-  return out;
+  return {RequireFeedforward(file), v.linear, v.p.stribeck != 0.0};
 }
 
 std::string ExportCHeader(const ParameterFile& file, const ExportOptions& o) {
@@ -250,9 +191,10 @@ ExportTarget ParseExportTarget(const std::string& name) {
   if (name == "mjcf") return ExportTarget::kMjcf;
   if (name == "urdf") return ExportTarget::kUrdf;
   if (name == "wpilib-java") return ExportTarget::kWpilibJava;
+  if (name == "wpilib-cpp") return ExportTarget::kWpilibCpp;
   if (name == "c-header") return ExportTarget::kCHeader;
   if (name == "json") return ExportTarget::kJson;
-  throw InputError(fmt::format("export target '{}': one of mjcf, urdf, wpilib-java, c-header, json", CommentText(name)));
+  throw InputError(fmt::format("export target '{}': one of mjcf, urdf, wpilib-java, wpilib-cpp, c-header, json", CommentText(name)));
 }
 
 void ExportOptions::Validate() const {
@@ -272,7 +214,8 @@ std::string ExportParameters(const ParameterFile& file, ExportTarget target, con
   switch (target) {
     case ExportTarget::kMjcf: return ExportMjcf(file, options);
     case ExportTarget::kUrdf: return ExportUrdf(file, options);
-    case ExportTarget::kWpilibJava: return ExportJava(file, options);
+    case ExportTarget::kWpilibJava: return ExportWpilibJava(WpilibOf(file), options);
+    case ExportTarget::kWpilibCpp: return ExportWpilibCpp(WpilibOf(file), options);
     case ExportTarget::kCHeader: return ExportCHeader(file, options);
     case ExportTarget::kJson: return ExportJson(file, options);
   }

@@ -12,7 +12,7 @@
 //          actuator force = ctrl - tau_0 (affine bias), gravity as a point
 //          mass m at distance r with m g r = Kg, placed at angle Kg_angle;
 //   URDF   <dynamics damping="b" friction="tau_c"/>, the link's inertia J;
-//   WPILib SimpleMotorFeedforward(ks, kv, ka), ArmFeedforward(ks, kg, kv, ka)
+//   WPILib (Java and C++, report/wpilib_export.h) SimpleMotorFeedforward(ks, kv, ka), ArmFeedforward(ks, kg, kv, ka)
 //          when gravity was fitted, ElevatorFeedforward(ks, kg, kv, ka) for a
 //          linear axis (kg = the offset); per direction where fitted;
 //   C header and JSON: the feed-forward gains with units and std.
@@ -24,9 +24,9 @@
 
 namespace driveid {
 
-enum class ExportTarget { kMjcf, kUrdf, kWpilibJava, kCHeader, kJson };
+enum class ExportTarget { kMjcf, kUrdf, kWpilibJava, kWpilibCpp, kCHeader, kJson };
 
-/// Parses "mjcf", "urdf", "wpilib-java", "c-header", "json".
+/// Parses "mjcf", "urdf", "wpilib-java", "wpilib-cpp", "c-header", "json".
 ExportTarget ParseExportTarget(const std::string& name);
 
 struct ExportOptions {

@@ -117,6 +117,96 @@ else
   EXPECT_OUTPUT=--trace expect 3 "this build has no MuJoCo" -- validate axis.xml "$steps"
 fi
 
+# WPILib C++ (not in Debian): compiled against stub headers with WPILib's
+# constructor signatures and the units library's type structure (unit_t,
+# compound_unit, inverse; a unit_t converts from another unit_t as the units
+# library's compatible units do), three classes, SysId's rotations too; the
+# values printed equal the feed-forward section's.
+mkdir -p cppstubs/frc/controller cppstubs/units
+cat > cppstubs/units/base.h << 'STUB'
+#pragma once
+namespace units {
+template <class... U> struct compound_unit_tag {};
+template <class... U> using compound_unit = compound_unit_tag<U...>;
+template <class U> struct inverse_tag {};
+template <class U> using inverse = inverse_tag<U>;
+struct volts {}; struct seconds {}; struct radians {}; struct turns {}; struct degrees {};
+struct meters {}; struct millimeters {}; struct feet {}; struct inches {};
+using radians_per_second = compound_unit<radians, inverse<seconds>>;
+using meters_per_second = compound_unit<meters, inverse<seconds>>;
+template <class U> class unit_t {
+ public:
+  constexpr explicit unit_t(double v) : v_(v) {}
+  template <class V> constexpr unit_t(const unit_t<V>& other) : v_(other.value()) {}
+  constexpr double value() const { return v_; }
+ private:
+  double v_;
+};
+using volt_t = unit_t<volts>;
+using radian_t = unit_t<radians>;
+}  // namespace units
+STUB
+for h in angle length time voltage; do echo '#include "base.h"' > "cppstubs/units/$h.h"; done
+cat > cppstubs/frc/controller/SimpleMotorFeedforward.h << 'STUB'
+#pragma once
+#include <units/base.h>
+namespace frc {
+template <class Distance> class SimpleMotorFeedforward {
+ public:
+  using Velocity = units::compound_unit<Distance, units::inverse<units::seconds>>;
+  using Acceleration = units::compound_unit<Velocity, units::inverse<units::seconds>>;
+  using kv_unit = units::compound_unit<units::volts, units::inverse<Velocity>>;
+  using ka_unit = units::compound_unit<units::volts, units::inverse<Acceleration>>;
+  constexpr SimpleMotorFeedforward(units::volt_t kS, units::unit_t<kv_unit> kV,
+                                   units::unit_t<ka_unit> kA = units::unit_t<ka_unit>(0)) : kS(kS), kV(kV), kA(kA) {}
+  units::volt_t kS; units::unit_t<kv_unit> kV; units::unit_t<ka_unit> kA;
+};
+}  // namespace frc
+STUB
+for class in ArmFeedforward:radians ElevatorFeedforward:meters; do
+  name=${class%%:*}
+  unit=${class##*:}
+  cat > "cppstubs/frc/controller/$name.h" << STUB
+#pragma once
+#include <units/base.h>
+namespace frc {
+class $name {
+ public:
+  using Velocity = units::compound_unit<units::$unit, units::inverse<units::seconds>>;
+  using Acceleration = units::compound_unit<Velocity, units::inverse<units::seconds>>;
+  using kv_unit = units::compound_unit<units::volts, units::inverse<Velocity>>;
+  using ka_unit = units::compound_unit<units::volts, units::inverse<Acceleration>>;
+  constexpr $name(units::volt_t kS, units::volt_t kG, units::unit_t<kv_unit> kV,
+                  units::unit_t<ka_unit> kA = units::unit_t<ka_unit>(0)) : kS(kS), kG(kG), kV(kV), kA(kA) {}
+  units::volt_t kS, kG; units::unit_t<kv_unit> kV; units::unit_t<ka_unit> kA;
+};
+}  // namespace frc
+STUB
+done
+printf 'axis:\n  inertia: 0.01\n  viscous: 0.12\n  coulomb: 0.3\nfeedforward:\n  law: axis\n  effort_unit: "V"\n  position_unit: "Rotations"\n  Ks_forward: {value: 0.31, std: 0.01}\n  Ks_backward: {value: 0.29, std: 0.01}\n  Kv: {value: 0.12, std: 0.002}\n  Ka: {value: 0.01, std: 0.001}\n' > flywheel.yaml
+sed 's/effort_unit: "N"/effort_unit: "V"/' lift.yaml > lift_volts.yaml
+for case in flywheel:CreateForward:0.31 arm:Create:1 lift_volts:Create:15; do
+  name=${case%%:*}; rest=${case#*:}; factory=${rest%%:*}; ks=${rest#*:}
+  if "$bin" export "$name.yaml" --to wpilib-cpp --joint "$name" -o "$name.h" 2> stderr.txt; then
+    printf '#include <cstdio>\n#include "%s.h"\nint main() { auto f = %s_feedforward::%s(); std::printf("%%.17g\\n", f.kS.value()); }\n' \
+      "$name" "$name" "$factory" > "${name}_use.cc"
+    if c++ -std=c++20 -Wall -Werror -I cppstubs "${name}_use.cc" -o "${name}_use" 2> cxx.txt &&
+        [ "$(./"${name}_use")" = "$ks" ]; then
+      ok
+    else
+      fail "wpilib-cpp $name: $(cat cxx.txt) $(./"${name}_use" 2>&1)"
+    fi
+  else
+    fail "wpilib-cpp $name: $(cat stderr.txt)"
+  fi
+done
+grep -q "using Distance = units::turns" flywheel.h && grep -q "frc::SimpleMotorFeedforward<Distance>" flywheel.h && ok ||
+  fail "flywheel: $(cat flywheel.h)"
+grep -q "frc::ElevatorFeedforward" lift_volts.h && grep -q "kGElevator{90}" lift_volts.h && ok || fail "elevator C++"
+expect 3 "wpilib-cpp: WPILib's feed-forward classes take volts, and this fit's effort is in 'N m'" -- export axis.yaml --to wpilib-cpp
+sed 's/position_unit: "Rotations"/position_unit: "furlongs"/' flywheel.yaml > furlong.yaml
+expect 3 "position unit 'furlongs'" -- export furlong.yaml --to wpilib-cpp
+
 # The elastic joint (docs/export.md#elastic-joint): MJCF (loaded and checked
 # in tests/export/mjcf_mujoco_test.cc), URDF through check_urdf, the C header
 # compiled; no feed-forward targets; missing values named together.

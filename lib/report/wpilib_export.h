@@ -1,0 +1,32 @@
+// An axis' feed-forward section (models/feedforward.h) as WPILib's
+// feed-forward classes take it (docs/export.md): SimpleMotorFeedforward(kS,
+// kV, kA), ArmFeedforward(kS, kG, kV, kA) when gravity was fitted on a
+// rotary axis, ElevatorFeedforward(kS, kG, kV, kA) for a linear axis with a
+// constant force (the offset); per direction where friction was fitted so.
+//   Java: plain doubles in the log's units, a class with factory methods;
+//   C++:  the units library's types in the log's units (the position unit
+//         mapped to units::radians, turns, degrees, meters, feet, inches),
+//         so WPILib's own types convert where its class fixes the unit
+//         (ArmFeedforward: radians, ElevatorFeedforward: meters); volts only.
+#pragma once
+
+#include <string>
+
+#include "io/parameter_file.h"
+#include "report/parameter_export.h"
+
+namespace driveid {
+
+struct WpilibAxis {
+  const Feedforward& feedforward;
+  bool linear = false;
+  bool stribeck = false;  ///< a Stribeck term was fitted (not representable)
+};
+
+std::string ExportWpilibJava(const WpilibAxis& axis, const ExportOptions& options);
+
+/// Throws InputError when the effort is not in volts or the position unit
+/// has no units-library type.
+std::string ExportWpilibCpp(const WpilibAxis& axis, const ExportOptions& options);
+
+}  // namespace driveid
