@@ -159,10 +159,22 @@ WpilibAxis WpilibOf(const ParameterFile& file) {
   return {RequireFeedforward(file), v.linear, v.p.stribeck != 0.0};
 }
 
+// The axis feed-forward section, or the C-drive's compensation law (31).
+const Feedforward& GainsOf(const ParameterFile& file) {
+  if (file.feedforward.law == kCDriveCompensationLaw && !file.feedforward.gains.empty()) return file.feedforward;
+  return RequireFeedforward(file);
+}
+
 std::string ExportCHeader(const ParameterFile& file, const ExportOptions& o) {
-  const Feedforward& ff = RequireFeedforward(file);
+  const Feedforward& ff = GainsOf(file);
   const std::string upper = UpperCase(o.joint);
-  std::string out = CHeaderOpen(o, upper, "/* u = Ks sgn(v) + Kv v + Ka a + Kg cos(q - Kg_angle) + offset (docs/models.md#feed-forward) */\n");
+  const char* law =
+      ff.law == kCDriveCompensationLaw
+          ? "/* eq. (31), per motor I with the other J: tau_I = beta w_I + delta RL{sgn DZ(w_I)} + gamma_half (w_I - w_J)"
+            " + eta RL{sgn DZ(w_I - w_J)}; DZ the dead zone dead_zone, RL the rate limit rate_limit "
+            "(docs/models.md#c-drive) */\n"
+          : "/* u = Ks sgn(v) + Kv v + Ka a + Kg cos(q - Kg_angle) + offset (docs/models.md#feed-forward) */\n";
+  std::string out = CHeaderOpen(o, upper, law);
   for (const FeedforwardGain& g : ff.gains) {
     out += fmt::format("DRIVEID_CONSTANT {}_{} = {};  /* {} */\n", upper, g.key, Number(g.value), CommentText(g.unit));
     out += fmt::format("DRIVEID_CONSTANT {}_{}_STD = {:.6g};\n", upper, g.key, g.standard_error);
@@ -172,7 +184,7 @@ std::string ExportCHeader(const ParameterFile& file, const ExportOptions& o) {
 }
 
 std::string ExportJson(const ParameterFile& file, const ExportOptions& o) {
-  const Feedforward& ff = RequireFeedforward(file);
+  const Feedforward& ff = GainsOf(file);
   Json doc = Json::object();
   doc["source"] = o.source;
   doc["joint"] = o.joint;
@@ -209,6 +221,12 @@ void ExportOptions::Validate() const {
 
 std::string ExportParameters(const ParameterFile& file, ExportTarget target, const ExportOptions& options) {
   options.Validate();
+  if (file.feedforward.law == kCDriveCompensationLaw && target != ExportTarget::kCHeader &&
+      target != ExportTarget::kJson) {
+    throw InputError("the C-drive's compensation law (31) couples the two motors through their rate difference: "
+                     "MJCF and URDF joints hold friction per joint and WPILib has no such class; export it to "
+                     "c-header or json (docs/export.md#c-drive)");
+  }
   const JointSection* joint = file.Find<JointSection>();
   if (joint != nullptr && file.Find<AxisSection>() == nullptr) return ExportJoint(*joint, file, target, options);
   switch (target) {

@@ -108,4 +108,18 @@ EXPECT_OUTPUT=--trace expect 4 "helical.csv:tau_L: no usable samples to compare"
 EXPECT_OUTPUT=--trace expect 3 "no_cdrive.yaml: no 'cdrive' section" -- validate no_cdrive.yaml helical.csv
 EXPECT_OUTPUT=--trace expect 3 "missing.csv:1: missing column 'tau_R' or 'i_R'" -- validate table1.yaml missing.csv
 
+# export (docs/export.md#c-drive): the compensation law (31) as a C header
+# (compiled; beta printed equals the file's) and JSON; other targets have no
+# form for it.
+"$bin" friction "$src"/data/cdrive_slow_*.csv --params "$src/data/cdrive_start.yaml" -q -o comp.yaml ||
+  fail "friction fit for export"
+beta=$(awk '/^  beta: {value:/ { gsub(/[{},]/, " "); print $3 }' comp.yaml)
+"$bin" export comp.yaml --to c-header --joint ct -o comp.h &&
+  printf '#include <stdio.h>\n#include "comp.h"\nint main(void) { printf("%%.17g\\n", CT_beta + 0 * CT_eta_STD); return 0; }\n' > comp_use.c &&
+  cc -std=c99 -Wall -Werror comp_use.c -o comp_use && [ "$(./comp_use)" = "$(printf '%.17g' "$beta")" ] && ok ||
+  fail "C-drive C header: $(./comp_use 2>&1) vs beta $beta"
+"$bin" export comp.yaml --to json > comp.json && grep -q '"law":"cdrive"' comp.json && grep -q '"gamma_half":{"value":' comp.json &&
+  ok || fail "C-drive JSON: $(cat comp.json)"
+expect 2 "--to: mjcf not in" -- export comp.yaml --to mjcf
+
 finish

@@ -230,6 +230,12 @@ expect 3 "joint.link_inertia, joint.stiffness: a simulator model" -- export join
 EXPECT_OUTPUT=-o expect 2 "--joint: joint name 'a-b'" -- export axis.yaml --to mjcf --joint a-b
 expect 2 "--to" -- export axis.yaml --to sdf
 expect 3 "no 'axis' or 'joint' section" -- export "$src/data/paper000.yaml" --to mjcf
+# The C-drive's law (31) has no simulator or WPILib form (cdrive-fit export writes C and JSON).
+{ grep -v '^#' "$src/data/cdrive_start.yaml"; printf 'feedforward:\n  law: cdrive\n  effort_unit: "N m"\n  position_unit: "rad"\n  beta: {value: 0.007, std: 0.0001}\n  gamma_half: {value: 0.001, std: 0.0001}\n  delta: {value: 0.3, std: 0.001}\n  eta: {value: 0.06, std: 0.001}\n  dead_zone: {value: 0.5, std: 0}\n  rate_limit: {value: 50, std: 0}\n'; } > comp.yaml
+for target in mjcf urdf wpilib-java wpilib-cpp; do
+  expect 3 "the C-drive's compensation law \(31\) couples the two motors" -- export comp.yaml --to "$target"
+done
+"$bin" export comp.yaml --to c-header | grep -q "DRIVEID_CONSTANT AXIS_gamma_half = 0.001;" && ok || fail "C-drive c-header"
 printf 'axis:\n  inertia: 0\n' > zero.yaml
 expect 3 "axis.inertia = 0" -- export zero.yaml --to urdf
 expect 3 "no axis 'feedforward' section" -- export zero.yaml --to json

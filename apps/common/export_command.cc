@@ -1,5 +1,7 @@
-// drivetrain-fit export: a fitted axis' (or elastic joint's) parameter file written for MuJoCo,
-// URDF, WPILib (Java), firmware (C header) or as JSON (docs/export.md).
+// drivetrain-fit export: a fitted axis' (or elastic joint's) parameter file
+// written for MuJoCo, URDF, WPILib (Java, C++), firmware (C header) or as
+// JSON; cdrive-fit export: the C-drive's compensation law (31) as a C header
+// or JSON (docs/export.md).
 // Parse, call the library, write: the formats live in report/parameter_export.
 #include <string>
 
@@ -45,6 +47,22 @@ CLI::App* SetupExportCommand(CLI::App& parent, ExportCommandOptions& options) {
   return command;
 }
 
+CLI::App* SetupCDriveExportCommand(CLI::App& parent, ExportCommandOptions& options) {
+  options.joint = "cdrive";
+  CLI::App* command = parent.add_subcommand(
+      "export", "Write a fitted C-drive's compensation law (31) as a C header or JSON, with std and provenance "
+                "(docs/export.md#c-drive); MJCF, URDF and WPILib have no form for it");
+  command->add_option("params", options.params, "parameter file with a cdrive feedforward section (cdrive-fit friction -o)")
+      ->required();
+  command->add_option("--to", options.target, "c-header or json")->required()->check(CLI::IsMember({"c-header", "json"}));
+  command->add_option("--joint", options.joint, "macro prefix in C, name in JSON (letters, digits, _)")
+      ->capture_default_str();
+  command->add_option("-o,--output", options.output, "file to write (default: stdout); written atomically");
+  command->footer("Example:\n  cdrive-fit friction data/cdrive_slow_*.csv --params data/cdrive_start.yaml -o friction.yaml\n"
+                  "  cdrive-fit export friction.yaml --to c-header -o cdrive_compensation.h");
+  return command;
+}
+
 void RunExportCommand(const ExportCommandOptions& options, const std::string& command_line) {
   ExportOptions export_opts;
   export_opts.joint = options.joint;
@@ -62,9 +80,12 @@ void RunExportCommand(const ExportCommandOptions& options, const std::string& co
   else WriteFileAtomically(options.output, text);
 }
 
-const bool kRegistered = RegisterCommand({"drivetrain-fit", "", 55,
+const bool kDrivetrain = RegisterCommand({"drivetrain-fit", "", 55,
                                           [](CLI::App& parent) { return SetupExportCommand(parent, export_options); },
                                           [](const std::string& line) { RunExportCommand(export_options, line); }});
+const bool kCDrive = RegisterCommand({"cdrive-fit", "", 55,
+                                      [](CLI::App& parent) { return SetupCDriveExportCommand(parent, export_options); },
+                                      [](const std::string& line) { RunExportCommand(export_options, line); }});
 
 }  // namespace
 }  // namespace driveid::cli
