@@ -53,16 +53,28 @@ std::vector<std::string> JointDefaultFree(const std::vector<JointLog>& logs) {
   return free;
 }
 
-JointFitOutput FitJoint(const std::vector<JointLog>& logs, const JointSection& start, const JointFitOptions& given) {
-  if (logs.empty()) throw OptionError("no logs given");
-  JointFitOptions options = given;
-  if (options.free.empty()) options.free = JointDefaultFree(logs);
-  CheckFreeNames(JointParameterTable(), "joint", options.free);
+namespace {
+
+// The fit's columns and parameters: free ones from the start values (or
+// their bound), fixed ones at their value; every fixed value the model needs
+// and the file lacks named in one message. Several logs with a shaft torque:
+// its offset (sensor bias + k x the initial twist of integrated angles) is
+// each log's own, link_torque_offset_1 .. _L (the section keeps log 1's).
+struct JointDesign {
   std::vector<std::string> columns = JointColumnNames();
-  bool has_torque = false;
-  for (const auto& log : logs) has_torque = has_torque || !log.torque.empty();
   std::vector<FitParameter> parameters;
   std::map<std::string, double> fixed;
+  double gear = 0.0;
+  std::string offset_key = KeyOf(JointParameterTable(), &JointParameters::link_torque_offset);
+  std::size_t offset_column = 0;
+  bool per_log_offset = false;
+};
+
+JointDesign MakeJointDesign(const std::vector<JointLog>& logs, const JointSection& start,
+                            const std::vector<std::string>& free) {
+  JointDesign d;
+  bool has_torque = false;
+  for (const auto& log : logs) has_torque = has_torque || !log.torque.empty();
   std::vector<const ParameterSpec*> needed;
   if (!start.gear_ratio || !(*start.gear_ratio > 0.0)) {
     needed.push_back(&SpecOf(JointParameterTable(), &JointSection::gear_ratio));
@@ -70,144 +82,128 @@ JointFitOutput FitJoint(const std::vector<JointLog>& logs, const JointSection& s
   for (const auto& row : JointParameterTable()) {
     if (row.in_model == nullptr) continue;
     const std::optional<double> value = start.*(row.in_section);
-    const bool is_free = std::find(options.free.begin(), options.free.end(), row.spec.key) != options.free.end();
+    const bool is_free = std::find(free.begin(), free.end(), row.spec.key) != free.end();
     if (is_free) {
-      parameters.push_back({row.spec.key, std::max(row.spec.lower_bound, value.value_or(0.0)), row.spec.lower_bound, 0.0});
+      d.parameters.push_back({row.spec.key, std::max(row.spec.lower_bound, value.value_or(0.0)), row.spec.lower_bound, 0.0});
     } else if (!value && row.spec.default_free && has_torque) {
       needed.push_back(&row.spec);
     }
-    fixed[row.spec.key] = value.value_or(0.0);
+    d.fixed[row.spec.key] = value.value_or(0.0);
   }
   if (!needed.empty()) {
     throw MissingValuesError("--params", "joint", needed, "(fixed in this fit)", " (or name the fitted ones in --free)");
   }
-  const double n = *start.gear_ratio;
-
-  // Several logs with a shaft torque: its offset (sensor bias + k x the
-  // initial twist of integrated angles) is each log's own,
-  // link_torque_offset_1 .. _L (the section keeps log 1's).
-  const std::string offset_key = KeyOf(JointParameterTable(), &JointParameters::link_torque_offset);
-  const auto offset_column = static_cast<std::size_t>(
-      std::find(columns.begin(), columns.end(), offset_key) - columns.begin());
-  const auto free_offset = std::find_if(parameters.begin(), parameters.end(),
-                                        [&](const FitParameter& fp) { return fp.name == offset_key; });
-  const bool per_log_offset = logs.size() > 1 && free_offset != parameters.end();
-  if (per_log_offset) {
+  d.gear = *start.gear_ratio;
+  d.offset_column = static_cast<std::size_t>(std::find(d.columns.begin(), d.columns.end(), d.offset_key) -
+                                             d.columns.begin());
+  const auto free_offset = std::find_if(d.parameters.begin(), d.parameters.end(),
+                                        [&](const FitParameter& fp) { return fp.name == d.offset_key; });
+  d.per_log_offset = logs.size() > 1 && free_offset != d.parameters.end();
+  if (d.per_log_offset) {
     const FitParameter base = *free_offset;
-    parameters.erase(free_offset);
+    d.parameters.erase(free_offset);
     for (std::size_t i = 0; i < logs.size(); ++i) {
       FitParameter own = base;
-      own.name = fmt::format("{}_{}", offset_key, i + 1);
-      parameters.push_back(own);
-      columns.push_back(own.name);
+      own.name = fmt::format("{}_{}", d.offset_key, i + 1);
+      d.parameters.push_back(own);
+      d.columns.push_back(own.name);
     }
   }
-  JointFitOutput out;
-  LinearRegression regression(columns);
-  for (std::size_t i = 0; i < logs.size(); ++i) {
-    const JointLog& log = logs[i];
-    if (log.time.size() < kMinAxisLogSamples) {
-      throw InputError(fmt::format("{}: {} samples: the joint fit needs at least {}", log.path, log.time.size(),
-                                   kMinAxisLogSamples));
-    }
-    AxisLog motor{log.path, log.time, log.motor_position, {}, {}}, link{log.path, log.time, log.link_position, {}, {}};
-    for (double& q : motor.position) q /= n;
-    const AxisDerivatives dm = DifferentiateAxisLog(motor, options.cutoff);
-    const AxisDerivatives dl = DifferentiateAxisLog(link, options.cutoff);
-    if (dm.rate_hz == 0.0) {
-      // Irregular time stamps: the zero-phase filter needs a constant rate (never a silent 0 Hz cutoff).
-      double shortest = INFINITY, longest = 0.0;
-      for (std::size_t k = 1; k < log.time.size(); ++k) {
-        shortest = std::min(shortest, log.time[k] - log.time[k - 1]);
-        longest = std::max(longest, log.time[k] - log.time[k - 1]);
-      }
-      throw InputError(fmt::format("{}: time steps from {:.6g} to {:.6g} s (jitter {:.3g} % of the mean): the joint fit "
-                                   "filters at a constant rate; resample the log, or give --rate HZ when the stamps "
-                                   "themselves are the noise",
-                                   log.path, shortest, longest,
-                                   100.0 * (longest - shortest) /
-                                       ((log.time.back() - log.time.front()) / static_cast<double>(log.time.size() - 1))));
-    }
-    out.rate = dm.rate_hz;
-    // The same zero-phase filter on the angles and the torque as on the rates.
-    std::vector<double> theta_m = motor.position, theta_l = link.position, tau = log.torque,
-                        tau_link = log.link_torque;
-    out.cutoff = dm.rate_hz > 0.0 ? (options.cutoff > 0.0 ? options.cutoff : dm.rate_hz / 40.0) : 0.0;
-    if (dm.rate_hz > 0.0) {
-      theta_m = ZeroPhaseLowPass(theta_m, out.cutoff, dm.rate_hz);
-      theta_l = ZeroPhaseLowPass(theta_l, out.cutoff, dm.rate_hz);
-      if (!tau.empty()) tau = ZeroPhaseLowPass(tau, out.cutoff, dm.rate_hz);
-      if (!tau_link.empty()) tau_link = ZeroPhaseLowPass(tau_link, out.cutoff, dm.rate_hz);
-    }
-    // The zero-phase filter's start-up at both ends: two cutoff periods left out.
-    const std::size_t edge = dm.rate_hz > 0.0 ? static_cast<std::size_t>(std::ceil(2.0 * dm.rate_hz / out.cutoff)) : 0;
-    std::vector<char> valid(log.time.size(), 0);
-    for (std::size_t k = edge; k + edge < log.time.size(); ++k) valid[k] = dm.valid[k] && dl.valid[k];
-    double max_m = 0.0, max_l = 0.0;
+  return d;
+}
+
+// Irregular time stamps: the zero-phase filter needs a constant rate (never a silent 0 Hz cutoff).
+[[noreturn]] void RefuseIrregularTime(const JointLog& log) {
+  double shortest = INFINITY, longest = 0.0;
+  for (std::size_t k = 1; k < log.time.size(); ++k) {
+    shortest = std::min(shortest, log.time[k] - log.time[k - 1]);
+    longest = std::max(longest, log.time[k] - log.time[k - 1]);
+  }
+  throw InputError(fmt::format("{}: time steps from {:.6g} to {:.6g} s (jitter {:.3g} % of the mean): the joint fit "
+                               "filters at a constant rate; resample the log, or give --rate HZ when the stamps "
+                               "themselves are the noise",
+                               log.path, shortest, longest,
+                               100.0 * (longest - shortest) /
+                                   ((log.time.back() - log.time.front()) / static_cast<double>(log.time.size() - 1))));
+}
+
+// Log i's rows: angles, rates and accelerations through the zero-phase
+// filter, then equation 0 (motor) where the motor moves, 1 (total) where
+// both move (each with the motor torque), 2 (shaft torque, no friction
+// term) on every valid sample.
+void AddJointLogRows(const JointLog& log, std::size_t i, const JointDesign& d, const JointFitOptions& options,
+                     LinearRegression& regression, JointFitOutput& out) {
+  if (log.time.size() < kMinAxisLogSamples) {
+    throw InputError(fmt::format("{}: {} samples: the joint fit needs at least {}", log.path, log.time.size(),
+                                 kMinAxisLogSamples));
+  }
+  AxisLog motor{log.path, log.time, log.motor_position, {}, {}}, link{log.path, log.time, log.link_position, {}, {}};
+  for (double& q : motor.position) q /= d.gear;
+  const AxisDerivatives dm = DifferentiateAxisLog(motor, options.cutoff);
+  const AxisDerivatives dl = DifferentiateAxisLog(link, options.cutoff);
+  if (dm.rate_hz == 0.0) RefuseIrregularTime(log);
+  out.rate = dm.rate_hz;
+  // The same zero-phase filter on the angles and the torque as on the rates.
+  std::vector<double> theta_m = motor.position, theta_l = link.position, tau = log.torque, tau_link = log.link_torque;
+  out.cutoff = dm.rate_hz > 0.0 ? (options.cutoff > 0.0 ? options.cutoff : dm.rate_hz / 40.0) : 0.0;
+  if (dm.rate_hz > 0.0) {
+    theta_m = ZeroPhaseLowPass(theta_m, out.cutoff, dm.rate_hz);
+    theta_l = ZeroPhaseLowPass(theta_l, out.cutoff, dm.rate_hz);
+    if (!tau.empty()) tau = ZeroPhaseLowPass(tau, out.cutoff, dm.rate_hz);
+    if (!tau_link.empty()) tau_link = ZeroPhaseLowPass(tau_link, out.cutoff, dm.rate_hz);
+  }
+  // The zero-phase filter's start-up at both ends: two cutoff periods left out.
+  const std::size_t edge = dm.rate_hz > 0.0 ? static_cast<std::size_t>(std::ceil(2.0 * dm.rate_hz / out.cutoff)) : 0;
+  std::vector<char> valid(log.time.size(), 0);
+  for (std::size_t k = edge; k + edge < log.time.size(); ++k) valid[k] = dm.valid[k] && dl.valid[k];
+  double max_m = 0.0, max_l = 0.0;
+  for (std::size_t k = 0; k < log.time.size(); ++k) {
+    if (!valid[k]) continue;
+    max_m = std::max(max_m, std::abs(dm.rate[k]));
+    max_l = std::max(max_l, std::abs(dl.rate[k]));
+  }
+  const double floor_m = options.min_rate_fraction * max_m, floor_l = options.min_rate_fraction * max_l;
+  for (int equation : {0, 1, 2}) {
+    if ((equation < 2 && tau.empty()) || (equation == 2 && tau_link.empty())) continue;
+    regression.BeginChannel(log.path + (equation == 0 ? ":motor" : equation == 1 ? ":total" : ":shaft torque"));
     for (std::size_t k = 0; k < log.time.size(); ++k) {
-      if (!valid[k]) continue;
-      max_m = std::max(max_m, std::abs(dm.rate[k]));
-      max_l = std::max(max_l, std::abs(dl.rate[k]));
-    }
-    const double floor_m = options.min_rate_fraction * max_m, floor_l = options.min_rate_fraction * max_l;
-    // Equation 0 (motor) needs the motor moving, 1 (total) both (each with
-    // the motor torque); 2 (shaft torque) has no friction term and takes
-    // every valid sample.
-    for (int equation : {0, 1, 2}) {
-      if ((equation < 2 && tau.empty()) || (equation == 2 && tau_link.empty())) continue;
-      regression.BeginChannel(log.path + (equation == 0 ? ":motor" : equation == 1 ? ":total" : ":shaft torque"));
-      for (std::size_t k = 0; k < log.time.size(); ++k) {
-        const bool motor_moves = max_m > 0.0 && std::abs(dm.rate[k]) >= floor_m;
-        const bool link_moves = max_l > 0.0 && std::abs(dl.rate[k]) >= floor_l;
-        if (!valid[k] || (equation < 2 && !motor_moves) || (equation == 1 && !link_moves)) continue;
-        const JointRegressors r = CalcJointRegressors(theta_m[k], dm.rate[k], dm.acceleration[k], theta_l[k],
-                                                      dl.rate[k], dl.acceleration[k]);
-        const auto& row = equation == 0 ? r.motor : equation == 1 ? r.total : r.link;
-        const double target = equation == 2 ? tau_link[k] : n * tau[k];
-        std::vector<double> regressor(row.begin(), row.end());
-        regressor.resize(columns.size(), 0.0);
-        if (per_log_offset) std::swap(regressor[offset_column], regressor[kJointTerms + i]);
-        regression.AddRow(regressor, target);
-        out.time.push_back(log.time[k]);
-        out.measured.push_back(target);
-        out.equation.push_back(equation);
-        out.log_index.push_back(static_cast<int>(i));
-      }
+      const bool motor_moves = max_m > 0.0 && std::abs(dm.rate[k]) >= floor_m;
+      const bool link_moves = max_l > 0.0 && std::abs(dl.rate[k]) >= floor_l;
+      if (!valid[k] || (equation < 2 && !motor_moves) || (equation == 1 && !link_moves)) continue;
+      const JointRegressors r = CalcJointRegressors(theta_m[k], dm.rate[k], dm.acceleration[k], theta_l[k],
+                                                    dl.rate[k], dl.acceleration[k]);
+      const auto& row = equation == 0 ? r.motor : equation == 1 ? r.total : r.link;
+      const double target = equation == 2 ? tau_link[k] : d.gear * tau[k];
+      std::vector<double> regressor(row.begin(), row.end());
+      regressor.resize(d.columns.size(), 0.0);
+      if (d.per_log_offset) std::swap(regressor[d.offset_column], regressor[kJointTerms + i]);
+      regression.AddRow(regressor, target);
+      out.time.push_back(log.time[k]);
+      out.measured.push_back(target);
+      out.equation.push_back(equation);
+      out.log_index.push_back(static_cast<int>(i));
     }
   }
-  if (regression.rows() <= parameters.size()) {
-    throw IdentificationError(fmt::format("the logs leave {} usable rows for {} free parameters: the joint does not move",
-                                          regression.rows(), parameters.size()));
-  }
-  FitOptions fit_options = options.fit;
-  if (!fit_options.advice) fit_options.advice = JointAdvice;
-  out.fit = regression.Fit(parameters, fixed, fit_options);
-  std::map<std::string, double> values = fixed;
-  for (const auto& e : out.fit.estimates) values[e.name] = e.value;
-  if (per_log_offset) values[offset_key] = values[offset_key + "_1"];
-  out.params = JointParameters{};
-  for (const auto& row : JointParameterTable()) {
-    if (row.in_model != nullptr) out.params.*(row.in_model) = values[row.spec.key];
-  }
-  std::vector<std::string> nonnegative;
-  for (const auto& row : JointParameterTable()) {
-    if (row.in_model != nullptr && row.spec.lower_bound == 0.0) nonnegative.emplace_back(row.spec.key);
-  }
-  // Several logs: each alone too, and whether they agree (docs/models.md#adequacy).
+}
+
+// Adequacy (docs/models.md#adequacy): several logs each fitted alone and
+// whether they agree; the same fit at half and twice the cutoff; a
+// resonance near the cutoff.
+void CheckJointAdequacy(const std::vector<JointLog>& logs, const JointSection& start, const JointFitOptions& options,
+                        const JointDesign& d, JointFitOutput& out) {
   if (options.per_log && logs.size() > 1) {
     JointFitOptions alone = options;
     alone.per_log = alone.sensitivity = false;  // only its estimates are kept
     AddPerLogFits(out.fit, LogLabels(logs), [&](std::size_t i) {
       auto e = FitJoint({logs[i]}, start, alone).fit.estimates;
       // Each log's own offset is not a shared parameter to compare.
-      if (per_log_offset) {
-        e.erase(std::remove_if(e.begin(), e.end(), [&](const ParameterEstimate& x) { return x.name == offset_key; }),
+      if (d.per_log_offset) {
+        e.erase(std::remove_if(e.begin(), e.end(), [&](const ParameterEstimate& x) { return x.name == d.offset_key; }),
                 e.end());
       }
       return e;
     });
   }
-  // The same fit at half and twice the cutoff; a resonance near the cutoff.
   if (options.sensitivity) {
     for (const double factor : {0.5, 2.0}) {
       JointFitOptions other = options;
@@ -237,6 +233,38 @@ JointFitOutput FitJoint(const std::vector<JointLog>& logs, const JointSection& s
                                              out.cutoff, resonance));
     }
   }
+}
+
+}  // namespace
+
+JointFitOutput FitJoint(const std::vector<JointLog>& logs, const JointSection& start, const JointFitOptions& given) {
+  if (logs.empty()) throw OptionError("no logs given");
+  JointFitOptions options = given;
+  if (options.free.empty()) options.free = JointDefaultFree(logs);
+  CheckFreeNames(JointParameterTable(), "joint", options.free);
+  const JointDesign d = MakeJointDesign(logs, start, options.free);
+  JointFitOutput out;
+  LinearRegression regression(d.columns);
+  for (std::size_t i = 0; i < logs.size(); ++i) AddJointLogRows(logs[i], i, d, options, regression, out);
+  if (regression.rows() <= d.parameters.size()) {
+    throw IdentificationError(fmt::format("the logs leave {} usable rows for {} free parameters: the joint does not move",
+                                          regression.rows(), d.parameters.size()));
+  }
+  FitOptions fit_options = options.fit;
+  if (!fit_options.advice) fit_options.advice = JointAdvice;
+  out.fit = regression.Fit(d.parameters, d.fixed, fit_options);
+  std::map<std::string, double> values = d.fixed;
+  for (const auto& e : out.fit.estimates) values[e.name] = e.value;
+  if (d.per_log_offset) values[d.offset_key] = values[d.offset_key + "_1"];
+  out.params = JointParameters{};
+  for (const auto& row : JointParameterTable()) {
+    if (row.in_model != nullptr) out.params.*(row.in_model) = values[row.spec.key];
+  }
+  std::vector<std::string> nonnegative;
+  for (const auto& row : JointParameterTable()) {
+    if (row.in_model != nullptr && row.spec.lower_bound == 0.0) nonnegative.emplace_back(row.spec.key);
+  }
+  CheckJointAdequacy(logs, start, options, d, out);
   if (options.refuse_undetermined) RequireDetermined(out.fit, nonnegative, kMaxRelativeStd, out.fit.warnings);
   out.model = regression.Predict(values);
   return out;
