@@ -145,21 +145,25 @@ struct Derivatives {
 };
 
 
-CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& start_section,
-                    const CDriveFitOptions& options, Kind kind) {
-  const CDriveParameters start = ModelValuesOrNaN(CDriveParameterTable(), start_section);  // NaN = not given
-  if (logs.empty()) throw OptionError("no logs given");
-  if (!(options.half_window > 0.0) || !std::isfinite(options.half_window)) {
-    throw OptionError(fmt::format("--window = {}: violated constraint: window > 0 s", options.half_window));
-  }
-  if (!(options.min_rate >= 0.0) || !std::isfinite(options.min_rate)) {
-    throw OptionError(fmt::format("--min-rate = {}: violated constraint: min rate >= 0", options.min_rate));
-  }
-  const bool friction = kind == Kind::kFriction;
-  const double settle = options.settle >= 0.0 ? options.settle : (friction ? 0.1 : 0.0);
+// The fit's parameters: the free members of the fitted group, a + b and
+// a - b of eq. (17) as nuisances when the friction fit lacks the inertia;
+// every column not free fixed (at its value, the nuisance-replaced inertias
+// and the unknown columns at 0); every value the fit needs and the file
+// lacks named in one message.
+struct CDriveDesign {
+  std::vector<const CDriveRow*> table;
+  std::vector<int> free_columns;  // index into table
+  std::vector<FitParameter> parameters;
+  std::vector<std::string> columns = RegressorColumns();
+  std::map<std::string, double> fixed;
+  bool inertia_nuisance = false;
+};
+
+CDriveDesign MakeCDriveDesign(const CDriveSection& start_section, const CDriveParameters& start,
+                              const CDriveFitOptions& options, bool friction) {
+  CDriveDesign d;
   const char* fit_name = friction ? "friction" : "inertia";
-  const std::vector<const CDriveRow*> table = FitRows(fit_name);
-  const int table_size = static_cast<int>(table.size());
+  d.table = FitRows(fit_name);
   std::vector<std::string> free = options.free;
   if (free.empty()) free = FitParameterKeys(CDriveParameterTable(), fit_name, true);
   CheckFreeNames(CDriveParameterTable(), fit_name, free);
@@ -168,60 +172,54 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
   // Without I_h, I_c and m the friction fit estimates a + b and a - b of
   // eq. (17) alongside, as nuisance parameters (their columns, the summed and
   // differenced accelerations, are nearly orthogonal to the friction columns).
-  const bool inertia_nuisance =
+  d.inertia_nuisance =
       friction && !(start_section.hub_inertia && start_section.collar_inertia && start_section.collar_mass);
   std::vector<const ParameterSpec*> needed;
   if (!start_section.lead) needed.push_back(&SpecOf(CDriveParameterTable(), &CDriveSection::lead));
   for (const auto& row : CDriveParameterTable()) {
     if (row.in_model == nullptr || row.spec.required) continue;  // k_t; p was checked
-    if (inertia_nuisance && row.spec.InFit("inertia")) continue;
+    if (d.inertia_nuisance && row.spec.InFit("inertia")) continue;
     if (!Contains(free, row.spec.key) && !(start_section.*(row.in_section))) needed.push_back(&row.spec);
   }
   if (!needed.empty()) {
     throw MissingValuesError("--params", "cdrive", needed, "(fixed in this fit)", " (or name the fitted ones in --free)");
   }
-
-  std::vector<int> free_columns;  // index into table
-  std::vector<FitParameter> parameters;
-  for (int j = 0; j < table_size; ++j) {
-    if (!Contains(free, table[j]->spec.key)) continue;
-    free_columns.push_back(j);
-    const double value = start.*(table[j]->in_model);
+  for (int j = 0; j < static_cast<int>(d.table.size()); ++j) {
+    if (!Contains(free, d.table[j]->spec.key)) continue;
+    d.free_columns.push_back(j);
+    const double value = start.*(d.table[j]->in_model);
     const double initial = value == value && value > 0.0 ? value : 0.0;
-    parameters.push_back({table[j]->spec.key, initial, 0.0, initial > 0.0 ? initial : table[j]->spec.typical});
+    d.parameters.push_back({d.table[j]->spec.key, initial, 0.0, initial > 0.0 ? initial : d.table[j]->spec.typical});
   }
-  if (inertia_nuisance) {
-    parameters.push_back({"a_plus_b", 0.0, 0.0, 1e-3});
-    parameters.push_back({"a_minus_b", 0.0, 0.0, 1e-3});
+  if (d.inertia_nuisance) {
+    d.parameters.push_back({"a_plus_b", 0.0, 0.0, 1e-3});
+    d.parameters.push_back({"a_minus_b", 0.0, 0.0, 1e-3});
   }
-  const int p = static_cast<int>(parameters.size());
-
-  // Every column not free is fixed: at its given value, the inertias at 0
-  // when a + b and a - b stand in for them, the nuisances at 0 otherwise.
-  const std::vector<std::string> columns = RegressorColumns();
-  std::map<std::string, double> fixed;
-  for (const auto& name : columns) {
+  for (const auto& name : d.columns) {
     const auto* row = FindParameter(CDriveParameterTable(), name);
-    const bool nuisance_inertia = inertia_nuisance && row != nullptr && row->spec.InFit("inertia");
-    fixed[name] = row == nullptr || nuisance_inertia ? 0.0 : (start_section.*(row->in_section)).value_or(0.0);
+    const bool nuisance_inertia = d.inertia_nuisance && row != nullptr && row->spec.InFit("inertia");
+    d.fixed[name] = row == nullptr || nuisance_inertia ? 0.0 : (start_section.*(row->in_section)).value_or(0.0);
   }
+  return d;
+}
 
-  // Rows: per log the sum rows, then the difference rows.
+// Rates and accelerations of every log from the +-half_window fit, and the
+// samples usable for the sum and difference rows. When a + b and a - b are
+// estimated, the accelerations are regressors and their noise would
+// attenuate them: take those from a window twice as wide. (When M is known
+// the narrow window is better: the subtracted inertial torque must follow
+// the closed-loop oscillations after reversals.)
+Derivatives DifferentiateCDriveLogs(const std::vector<CDriveLog>& logs, const CDriveFitOptions& options, double settle,
+                                    bool wide_accelerations, std::vector<UsableMask>& usable, std::size_t& row_count) {
   Derivatives design;
-  std::vector<UsableMask> usable;
-  std::size_t row_count = 0;
+  row_count = 0;
   for (const auto& log : logs) {
     if (log.time.size() < kMinCDriveLogSamples) {
       throw InputError(fmt::format("{}: {} samples: too few to differentiate", log.path, log.time.size()));
     }
-    // Rates and accelerations from the +-half_window fit. When a + b and
-    // a - b are estimated, the accelerations are regressors and their noise
-    // would attenuate them: take those from a window twice as wide. (When M
-    // is known the narrow window is better: the subtracted inertial torque
-    // must follow the closed-loop oscillations after reversals.)
     design.left.push_back(EstimateDerivatives(log.time, log.angle_left, options.half_window));
     design.right.push_back(EstimateDerivatives(log.time, log.angle_right, options.half_window));
-    if (inertia_nuisance) {
+    if (wide_accelerations) {
       const double wide = 2.0 * options.half_window;
       const SignalDerivatives wide_left = EstimateDerivatives(log.time, log.angle_left, wide);
       const SignalDerivatives wide_right = EstimateDerivatives(log.time, log.angle_right, wide);
@@ -243,70 +241,59 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
       row_count += static_cast<std::size_t>(usable.back().sum[k]) + static_cast<std::size_t>(usable.back().difference[k]);
     }
   }
-  // The design holds the fitted columns only, in the parameters' order; the
-  // fixed columns' part of each row is its known part.
+  return design;
+}
+
+// Rows: per log the sum rows, then the difference rows. The design holds the
+// fitted columns only, in the parameters' order; the fixed columns' part of
+// each row is its known part. Arrays no later step needs are released.
+void AddCDriveRows(const std::vector<CDriveLog>& logs, const CDriveDesign& d, double lead, bool keep_derivatives,
+                   Derivatives& design, std::vector<UsableMask>& usable, LinearRegression& regression) {
   std::vector<std::string> fit_columns;
   std::vector<std::size_t> take;
-  for (const auto& parameter : parameters) {
+  for (const auto& parameter : d.parameters) {
     fit_columns.push_back(parameter.name);
-    take.push_back(static_cast<std::size_t>(std::find(columns.begin(), columns.end(), parameter.name) - columns.begin()));
+    take.push_back(static_cast<std::size_t>(std::find(d.columns.begin(), d.columns.end(), parameter.name) -
+                                            d.columns.begin()));
   }
   std::vector<std::pair<std::size_t, double>> fixed_terms;
-  for (std::size_t j = 0; j < columns.size(); ++j) {
-    if (!Contains(fit_columns, columns[j]) && fixed.at(columns[j]) != 0.0) fixed_terms.emplace_back(j, fixed.at(columns[j]));
+  for (std::size_t j = 0; j < d.columns.size(); ++j) {
+    if (!Contains(fit_columns, d.columns[j]) && d.fixed.at(d.columns[j]) != 0.0) {
+      fixed_terms.emplace_back(j, d.fixed.at(d.columns[j]));
+    }
   }
-  std::optional<LinearRegression> regression(std::in_place, fit_columns);
-  regression->Reserve(row_count);  // the design is the largest thing held: no regrowth
   std::vector<double> row(take.size());
   for (std::size_t i = 0; i < logs.size(); ++i) {
     const auto& log = logs[i];
     const auto& left = design.left[i];
     const auto& right = design.right[i];
     for (int part = 0; part < 2; ++part) {
-      regression->BeginChannel(log.path + (part == 0 ? ":tau_L+tau_R" : ":tau_L-tau_R"));
+      regression.BeginChannel(log.path + (part == 0 ? ":tau_L+tau_R" : ":tau_L-tau_R"));
       for (std::size_t k = 0; k < log.time.size(); ++k) {
         if (!left.valid[k] || !right.valid[k]) continue;
         if (!(part == 0 ? usable[i].sum[k] : usable[i].difference[k])) continue;
-        const SampleRows sample =
-            CalcSampleRows(start.lead, left.rate[k], right.rate[k], left.acceleration[k], right.acceleration[k]);
+        const SampleRows sample = CalcSampleRows(lead, left.rate[k], right.rate[k], left.acceleration[k], right.acceleration[k]);
         const std::vector<double>& all = part == 0 ? sample.sum : sample.difference;
         for (std::size_t c = 0; c < take.size(); ++c) row[c] = all[take[c]];
         double known = 0.0;
         for (const auto& [j, value] : fixed_terms) known += value * all[j];
-        regression->AddRow(row, part == 0 ? log.torque_left[k] + log.torque_right[k] : log.torque_left[k] - log.torque_right[k],
-                           known);
+        regression.AddRow(row, part == 0 ? log.torque_left[k] + log.torque_right[k] : log.torque_left[k] - log.torque_right[k],
+                          known);
       }
     }
     usable[i].difference = {};
-    if (!options.traces) design.left[i] = design.right[i] = {};  // only the traces use them further
+    if (!keep_derivatives) design.left[i] = design.right[i] = {};  // only the traces use them further
   }
-  const int n = static_cast<int>(regression->rows());
-  if (n == 0) {
-    throw IdentificationError(fmt::format(
-        "no usable samples: every sample has a motor rate below --min-rate {} rad/s (or the logs are shorter than the "
-        "differentiator window)",
-        options.min_rate));
-  }
+}
 
-  FitOptions fit_options = options.fit;
-  if (!fit_options.advice) fit_options.advice = friction ? FrictionAdvice : InertiaAdvice;
-  CDriveFitOutput out;
-  out.fit = regression->FitAndRelease(parameters, {}, fit_options);
-  regression.reset();  // before the traces
-  // fit% is of the measured sum/difference, not of the part left after the known terms.
-  CDriveParameters fitted = start;
-  out.section = start_section;
-  for (std::size_t j = 0; j < free_columns.size(); ++j) {
-    const CDriveRow& row = *table[free_columns[j]];
-    fitted.*(row.in_model) = out.fit.estimates[j].value;
-    out.section.*(row.in_section) = out.fit.estimates[j].value;
-  }
-  out.rows_used = n;
-  out.rows_possible = design.rows_possible;
-
-  if (inertia_nuisance) {
+// a and b of eq. (17) with their standard errors: from the nuisances a + b
+// and a - b, or (inertia fit) linear in the fitted I_h, I_c, m.
+void AddInertiaMatrix(const CDriveDesign& d, const CDriveParameters& fitted, double lead, bool friction,
+                      CDriveFitOutput& out) {
+  const int p = static_cast<int>(d.parameters.size());
+  if (d.inertia_nuisance) {
     // a = ((a + b) + (a - b)) / 2, b = ((a + b) - (a - b)) / 2.
-    const std::size_t s_index = free_columns.size(), d_index = s_index + 1;
+    const std::size_t s_index = d.free_columns.size(), d_index = s_index + 1;
     const double sum = out.fit.estimates[s_index].value, difference = out.fit.estimates[d_index].value;
     const auto cov = [&](std::size_t i, std::size_t j) { return out.fit.covariance[i * static_cast<std::size_t>(p) + j]; };
     const double spread = 0.25 * (cov(s_index, s_index) + cov(d_index, d_index));
@@ -316,16 +303,15 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
                            "kg m^2, M off-diagonal, fitted as a nuisance"});
   }
   if (!friction) {
-    // a and b of eq. (17) with their standard errors: linear in (I_h, I_c, m).
-    const double k = CalcMassCoupling(start.lead);
+    const double k = CalcMassCoupling(lead);
     const double gradient_a[3] = {1.0, 0.25, k}, gradient_b[3] = {0.0, 0.25, -k};
     auto propagate = [&](const double* gradient) {
       double variance = 0.0;
       for (int i = 0; i < p; ++i) {
         for (int j = 0; j < p; ++j) {
-          variance += gradient[free_columns[static_cast<std::size_t>(i)]] *
+          variance += gradient[d.free_columns[static_cast<std::size_t>(i)]] *
                       out.fit.covariance[static_cast<std::size_t>(i * p + j)] *
-                      gradient[free_columns[static_cast<std::size_t>(j)]];
+                      gradient[d.free_columns[static_cast<std::size_t>(j)]];
         }
       }
       return std::sqrt(std::max(0.0, variance));
@@ -333,8 +319,12 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
     out.derived.push_back({"a", CalcInertiaDiagonal(fitted), propagate(gradient_a), "kg m^2, M diagonal (eq. 17)"});
     out.derived.push_back({"b", CalcInertiaOffDiagonal(fitted), propagate(gradient_b), "kg m^2, M off-diagonal"});
   }
+}
 
-  if (!options.traces) return out;
+// Measured and model torques per log for --trace/--plot.
+void AddCDriveTraces(const std::vector<CDriveLog>& logs, const Derivatives& design,
+                     const std::vector<UsableMask>& usable, const CDriveParameters& fitted, bool inertia_nuisance,
+                     CDriveFitOutput& out) {
   CDriveParameters fixed_with_fit = fitted;  // for the trace when M was a nuisance
   fixed_with_fit.hub_inertia = fixed_with_fit.collar_inertia = fixed_with_fit.collar_mass = 0.0;
   for (std::size_t i = 0; i < logs.size(); ++i) {
@@ -359,9 +349,55 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
     }
     out.traces.push_back(std::move(trace));
   }
-  return out;
 }
 
+CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& start_section,
+                    const CDriveFitOptions& options, Kind kind) {
+  const CDriveParameters start = ModelValuesOrNaN(CDriveParameterTable(), start_section);  // NaN = not given
+  if (logs.empty()) throw OptionError("no logs given");
+  if (!(options.half_window > 0.0) || !std::isfinite(options.half_window)) {
+    throw OptionError(fmt::format("--window = {}: violated constraint: window > 0 s", options.half_window));
+  }
+  if (!(options.min_rate >= 0.0) || !std::isfinite(options.min_rate)) {
+    throw OptionError(fmt::format("--min-rate = {}: violated constraint: min rate >= 0", options.min_rate));
+  }
+  const bool friction = kind == Kind::kFriction;
+  const double settle = options.settle >= 0.0 ? options.settle : (friction ? 0.1 : 0.0);
+  const CDriveDesign d = MakeCDriveDesign(start_section, start, options, friction);
+  std::vector<UsableMask> usable;
+  std::size_t row_count = 0;
+  Derivatives design = DifferentiateCDriveLogs(logs, options, settle, d.inertia_nuisance, usable, row_count);
+  std::vector<std::string> fit_columns;
+  for (const auto& parameter : d.parameters) fit_columns.push_back(parameter.name);
+  std::optional<LinearRegression> regression(std::in_place, fit_columns);
+  regression->Reserve(row_count);  // the design is the largest thing held: no regrowth
+  AddCDriveRows(logs, d, start.lead, options.traces, design, usable, *regression);
+  const int n = static_cast<int>(regression->rows());
+  if (n == 0) {
+    throw IdentificationError(fmt::format(
+        "no usable samples: every sample has a motor rate below --min-rate {} rad/s (or the logs are shorter than the "
+        "differentiator window)",
+        options.min_rate));
+  }
+  FitOptions fit_options = options.fit;
+  if (!fit_options.advice) fit_options.advice = friction ? FrictionAdvice : InertiaAdvice;
+  CDriveFitOutput out;
+  out.fit = regression->FitAndRelease(d.parameters, {}, fit_options);
+  regression.reset();  // before the traces
+  // fit% is of the measured sum/difference, not of the part left after the known terms.
+  CDriveParameters fitted = start;
+  out.section = start_section;
+  for (std::size_t j = 0; j < d.free_columns.size(); ++j) {
+    const CDriveRow& row = *d.table[d.free_columns[j]];
+    fitted.*(row.in_model) = out.fit.estimates[j].value;
+    out.section.*(row.in_section) = out.fit.estimates[j].value;
+  }
+  out.rows_used = n;
+  out.rows_possible = design.rows_possible;
+  AddInertiaMatrix(d, fitted, start.lead, friction, out);
+  if (options.traces) AddCDriveTraces(logs, design, usable, fitted, d.inertia_nuisance, out);
+  return out;
+}
 }  // namespace
 
 
