@@ -130,15 +130,19 @@ AxisStart AxisLogStart(const AxisLog& log) {
   return start;
 }
 
-AxisOeOutput FitAxisOutputError(const std::vector<AxisLog>& logs, const AxisSection& start,
-                                const AxisParameters* initial, const AxisOeOptions& options) {
-  if (logs.empty()) throw OptionError("no logs given");
-  CheckFreeNames(AxisParameterTable(), "axis", options.free);
-  const std::vector<AxisTerm> resolved = ResolveAxisTerms(start, options.free);
+namespace {
+
+// The free terms (start values from `initial` where given, at least their
+// bound), their indices, and every term's value for the fixed part.
+struct OeDesign {
   AxisParameters fixed;
   std::vector<int> terms;
   std::vector<FitParameter> parameters;
-  for (const auto& term : resolved) {
+};
+
+OeDesign MakeOeDesign(const AxisSection& start, const AxisParameters* initial, const std::vector<std::string>& free) {
+  OeDesign d;
+  for (const auto& term : ResolveAxisTerms(start, free)) {
     double value = term.value;
     const auto& row = AxisTermRow(static_cast<int>(term.index));
     if (term.free && initial != nullptr && term.index < kAxisTerms) value = (*initial).*(row.in_model);
@@ -149,39 +153,49 @@ AxisOeOutput FitAxisOutputError(const std::vector<AxisLog>& logs, const AxisSect
         if (!(value > 0.0)) {
           throw InputError("--method oe: the inertia needs a start value > 0 (axis.inertia in --params)");
         }
-        parameters.push_back({term.key, value, 1e-6 * value, 0.0});
+        d.parameters.push_back({term.key, value, 1e-6 * value, 0.0});
       } else if (term.index == static_cast<std::size_t>(kAxisStribeckVelocity)) {
-        parameters.push_back({term.key, value, 1e-6 * std::max(value, 1e-9), 0.0});
+        d.parameters.push_back({term.key, value, 1e-6 * std::max(value, 1e-9), 0.0});
       } else {
         double scale = std::abs(value);
         if (scale == 0.0) scale = 1e-3;  // refined by the solver; friction scales of real axes
-        parameters.push_back({term.key, value, lower, scale});
+        d.parameters.push_back({term.key, value, lower, scale});
       }
-      terms.push_back(static_cast<int>(term.index));
+      d.terms.push_back(static_cast<int>(term.index));
     }
-    fixed.*(row.in_model) = value;
+    d.fixed.*(row.in_model) = value;
   }
-  const bool stribeck_free = std::find(terms.begin(), terms.end(), kAxisStribeck) != terms.end();
-  if ((stribeck_free || fixed.stribeck != 0.0) && !(fixed.stribeck_velocity > 0.0)) {
+  const bool stribeck_free = std::find(d.terms.begin(), d.terms.end(), kAxisStribeck) != d.terms.end();
+  if ((stribeck_free || d.fixed.stribeck != 0.0) && !(d.fixed.stribeck_velocity > 0.0)) {
     throw InputError("--params: axis.stribeck_velocity must be > 0 (a start value if free) with the Stribeck term");
   }
-  if (stribeck_free && fixed.stribeck == 0.0) {
+  if (stribeck_free && d.fixed.stribeck == 0.0) {
     throw InputError("--free stribeck: give a start value > 0 in --params (axis.stribeck): at 0 the fit cannot "
                      "tell which way to move stribeck_velocity");
   }
-  if (!(fixed.inertia > 0.0)) {
+  if (!(d.fixed.inertia > 0.0)) {
     throw InputError("--method oe: the axis needs an inertia > 0: give axis.inertia or free it");
   }
+  return d;
+}
 
-  std::vector<OeLog> oe(logs.size());
+// Each log's start, channel weights (1 / RMS deviation) and weighted
+// measurements; the integrator's tolerance scales over all logs.
+struct OeLogs {
+  std::vector<OeLog> logs;
   double position_range = 0.0, rate_range = 0.0;
+};
+
+OeLogs PrepareOeLogs(const std::vector<AxisLog>& logs) {
+  OeLogs out;
+  out.logs.resize(logs.size());
   for (std::size_t i = 0; i < logs.size(); ++i) {
     const AxisLog& log = logs[i];
     if (log.time.size() < kMinAxisLogSamples) {
       throw InputError(fmt::format("{}: {} samples: the axis fit needs at least {}", log.path, log.time.size(),
                                    kMinAxisLogSamples));
     }
-    OeLog& l = oe[i];
+    OeLog& l = out.logs[i];
     l.log = &log;
     const AxisStart log_start = AxisLogStart(log);
     l.q0 = log_start.position;
@@ -192,18 +206,77 @@ AxisOeOutput FitAxisOutputError(const std::vector<AxisLog>& logs, const AxisSect
                                             log.path));
     }
     l.position_weight = 1.0 / q_scale;
-    position_range = std::max(position_range, q_scale);
+    out.position_range = std::max(out.position_range, q_scale);
     if (!log.rate.empty()) {
       const double v_scale = CalcRmsDeviation(log.rate);
       if (v_scale > 0.0) l.rate_weight = 1.0 / v_scale;
-      rate_range = std::max(rate_range, v_scale);
+      out.rate_range = std::max(out.rate_range, v_scale);
     }
     for (double q : log.position) l.weighted_position.push_back(q * l.position_weight);
     for (double v : log.rate) l.weighted_rate.push_back(v * l.rate_weight);
     const double duration = log.time.back() - log.time.front();
-    rate_range = std::max(rate_range, q_scale / std::max(duration, 1e-9));
+    out.rate_range = std::max(out.rate_range, q_scale / std::max(duration, 1e-9));
   }
-  AxisOeResiduals residuals(oe, fixed, terms, 1e-8 * position_range, 1e-8 * rate_range);
+  return out;
+}
+
+// The Stribeck velocity has a plateau (v_s -> infinity: the excess joins
+// the Coulomb term) that attracts the solver from poor linear terms: with
+// it free, the other terms are fitted first with the pair held at its
+// start, then all from there, starting v_s also at a quarter and four
+// times its value; the lowest cost wins.
+FitResult FitWithStribeckVelocity(OeLogs& prepared, const OeDesign& d, AxisOeResiduals& residuals,
+                                  const std::vector<FitChannel>& channels, const FitOptions& fit_options,
+                                  std::size_t vs) {
+  std::vector<FitParameter> parameters = d.parameters;
+  std::vector<int> linear_terms;
+  std::vector<FitParameter> linear_parameters;
+  for (std::size_t j = 0; j < d.terms.size(); ++j) {
+    if (d.terms[j] < static_cast<int>(kAxisTerms)) {
+      linear_terms.push_back(d.terms[j]);
+      linear_parameters.push_back(parameters[j]);
+    }
+  }
+  if (!linear_terms.empty()) {
+    AxisOeResiduals stage(prepared.logs, d.fixed, linear_terms, 1e-8 * prepared.position_range,
+                          1e-8 * prepared.rate_range);
+    FitOptions quiet = fit_options;
+    quiet.identifiability_threshold = 0.0;  // judged on the full fit
+    try {
+      const FitResult first = FitLeastSquares(stage, linear_parameters, channels, quiet);
+      for (std::size_t j = 0, m = 0; j < d.terms.size(); ++j) {
+        if (d.terms[j] < static_cast<int>(kAxisTerms)) parameters[j].initial = first.estimates[m++].value;
+      }
+    } catch (const IdentificationError&) {
+      // The full fit from the given start reports what is wrong.
+    }
+  }
+  std::optional<FitResult> best;
+  std::string first_failure;
+  for (double factor : {1.0, 0.25, 4.0}) {
+    std::vector<FitParameter> from = parameters;
+    from[vs].initial *= factor;
+    try {
+      FitResult fit = FitLeastSquares(residuals, from, channels, fit_options);
+      if (!best || fit.cost < best->cost) best = std::move(fit);
+    } catch (const IdentificationError& e) {
+      if (first_failure.empty()) first_failure = e.what();
+    }
+  }
+  if (!best) throw IdentificationError(first_failure);
+  return std::move(*best);
+}
+
+}  // namespace
+
+AxisOeOutput FitAxisOutputError(const std::vector<AxisLog>& logs, const AxisSection& start,
+                                const AxisParameters* initial, const AxisOeOptions& options) {
+  if (logs.empty()) throw OptionError("no logs given");
+  CheckFreeNames(AxisParameterTable(), "axis", options.free);
+  const OeDesign d = MakeOeDesign(start, initial, options.free);
+  OeLogs prepared = PrepareOeLogs(logs);
+  std::vector<OeLog>& oe = prepared.logs;
+  AxisOeResiduals residuals(oe, d.fixed, d.terms, 1e-8 * prepared.position_range, 1e-8 * prepared.rate_range);
   std::vector<FitChannel> channels;
   for (const auto& l : oe) {
     const int n = static_cast<int>(l.log->time.size());
@@ -213,51 +286,10 @@ AxisOeOutput FitAxisOutputError(const std::vector<AxisLog>& logs, const AxisSect
   FitOptions fit_options = options.fit;
   if (!fit_options.advice) fit_options.advice = OeAdvice;
   AxisOeOutput out;
-  // The Stribeck velocity has a plateau (v_s -> infinity: the excess joins
-  // the Coulomb term) that attracts the solver from poor linear terms: with
-  // it free, the other terms are fitted first with the pair held at its
-  // start, then all from there, starting v_s also at a quarter and four
-  // times its value; the lowest cost wins.
-  const auto vs = std::find(terms.begin(), terms.end(), kAxisStribeckVelocity);
-  if (vs == terms.end()) {
-    out.fit = FitLeastSquares(residuals, parameters, channels, fit_options);
-  } else {
-    std::vector<int> linear_terms;
-    std::vector<FitParameter> linear_parameters;
-    for (std::size_t j = 0; j < terms.size(); ++j) {
-      if (terms[j] < static_cast<int>(kAxisTerms)) {
-        linear_terms.push_back(terms[j]);
-        linear_parameters.push_back(parameters[j]);
-      }
-    }
-    if (!linear_terms.empty()) {
-      AxisOeResiduals stage(oe, fixed, linear_terms, 1e-8 * position_range, 1e-8 * rate_range);
-      FitOptions quiet = fit_options;
-      quiet.identifiability_threshold = 0.0;  // judged on the full fit
-      try {
-        const FitResult first = FitLeastSquares(stage, linear_parameters, channels, quiet);
-        for (std::size_t j = 0, m = 0; j < terms.size(); ++j) {
-          if (terms[j] < static_cast<int>(kAxisTerms)) parameters[j].initial = first.estimates[m++].value;
-        }
-      } catch (const IdentificationError&) {
-        // The full fit from the given start reports what is wrong.
-      }
-    }
-    std::optional<FitResult> best;
-    std::string first_failure;
-    for (double factor : {1.0, 0.25, 4.0}) {
-      std::vector<FitParameter> from = parameters;
-      from[static_cast<std::size_t>(vs - terms.begin())].initial *= factor;
-      try {
-        FitResult fit = FitLeastSquares(residuals, from, channels, fit_options);
-        if (!best || fit.cost < best->cost) best = std::move(fit);
-      } catch (const IdentificationError& e) {
-        if (first_failure.empty()) first_failure = e.what();
-      }
-    }
-    if (!best) throw IdentificationError(first_failure);
-    out.fit = std::move(*best);
-  }
+  const auto vs = std::find(d.terms.begin(), d.terms.end(), kAxisStribeckVelocity);
+  out.fit = vs == d.terms.end() ? FitLeastSquares(residuals, d.parameters, channels, fit_options)
+                                : FitWithStribeckVelocity(prepared, d, residuals, channels, fit_options,
+                                                          static_cast<std::size_t>(vs - d.terms.begin()));
   std::vector<std::string> nonnegative;
   for (int j = 0; j < kAxisAllTerms; ++j) {
     if (AxisTermRow(j).spec.lower_bound == 0.0) nonnegative.emplace_back(AxisTermRow(j).spec.key);
@@ -270,8 +302,8 @@ AxisOeOutput FitAxisOutputError(const std::vector<AxisLog>& logs, const AxisSect
   }
   std::vector<double> estimate;
   for (const auto& e : out.fit.estimates) estimate.push_back(e.value);
-  out.params = fixed;
-  for (std::size_t j = 0; j < terms.size(); ++j) out.params.*(AxisTermRow(terms[j]).in_model) = estimate[j];
+  out.params = d.fixed;
+  for (std::size_t j = 0; j < d.terms.size(); ++j) out.params.*(AxisTermRow(d.terms[j]).in_model) = estimate[j];
   out.position.resize(oe.size());
   out.rate.resize(oe.size());
   for (std::size_t i = 0; i < oe.size(); ++i) residuals.Simulate(estimate.data(), i, &out.position[i], &out.rate[i]);
