@@ -106,6 +106,76 @@ std::vector<std::pair<std::size_t, Sample>> Kinematics(const PlanarRobotParamete
 
 
 
+namespace {
+
+// Jumps (steps of the commanded acceleration) cannot be followed by any
+// smooth differentiator: find them where a current leaves its local fit by
+// more than 4 robust standard deviations, and mark every sample whose
+// window reaches one.
+std::vector<char> NearCurrentJumps(const RobotLog& log, const std::array<std::vector<double>, 3>& current,
+                                   double half_window) {
+  std::vector<char> near_jump(log.time.size(), 0);
+  for (std::size_t i = 0; i < 3; ++i) {
+    std::vector<double> deviation(log.time.size());
+    for (std::size_t k = 0; k < deviation.size(); ++k) deviation[k] = std::abs(log.current[i][k] - current[i][k]);
+    std::vector<double> sorted = deviation;
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+    const double sigma = 1.4826 * sorted[sorted.size() / 2];
+    for (std::size_t k = 0; k < deviation.size(); ++k) {
+      if (!(deviation[k] > 4.0 * sigma) || sigma <= 0.0) continue;
+      // Mark the window around k (time is increasing: scan outwards).
+      for (std::size_t m = k; m-- > 0 && log.time[k] - log.time[m] <= half_window;) near_jump[m] = 1;
+      for (std::size_t m = k; m < log.time.size() && log.time[m] - log.time[k] <= half_window; ++m) near_jump[m] = 1;
+    }
+  }
+  return near_jump;
+}
+
+// The measured currents and the model's parts (Fig. 7 decomposition) at the
+// kinematics' samples of one log, with the fitted parameters.
+RobotCurrentPrediction PredictCurrents(const RobotLog& log, const std::vector<std::pair<std::size_t, Sample>>& kinematics,
+                                       const PlanarRobotParameters& r) {
+  const double n_g = r.gear_ratio, scale = 1.0 / (n_g * r.torque_constant);
+  RobotCurrentPrediction prediction;
+  for (const auto& [k, s] : kinematics) {
+    const Matrix23 g_rate = CalcTransposedInverseJacobianRate(r, s.position, s.theta, s.velocity);
+    const Vector3 centre = ApplyPseudoInverse(s.g, {r.center_mass * s.acceleration_xy[0], r.center_mass * s.acceleration_xy[1]});
+    // G+ G i: the part of the measured current that moves the robot.
+    Vector2 projected = Vector2::Zero();
+    for (std::size_t i = 0; i < 3; ++i) {
+      projected[0] += s.g(0, i) * log.current[i][k];
+      projected[1] += s.g(1, i) * log.current[i][k];
+    }
+    const Vector3 motion = ApplyPseudoInverse(s.g, projected);
+    // Centrifugal/Coriolis: Theta dG' x' has a null-space part; the motors
+    // share the Cartesian force G Theta dG' x' by the minimum norm, G+ G.
+    Vector3 coriolis_joint = Vector3::Zero();
+    Vector2 coriolis_force = Vector2::Zero();
+    for (std::size_t i = 0; i < 3; ++i) {
+      coriolis_joint[i] = r.output_inertia * (g_rate(0, i) * s.velocity[0] + g_rate(1, i) * s.velocity[1]);
+      coriolis_force[0] += s.g(0, i) * coriolis_joint[i];
+      coriolis_force[1] += s.g(1, i) * coriolis_joint[i];
+    }
+    const Vector3 coriolis_motion = ApplyPseudoInverse(s.g, coriolis_force);
+    prediction.time.push_back(log.time[k]);
+    for (std::size_t i = 0; i < 3; ++i) {
+      const double inertia = (r.output_inertia * (s.g(0, i) * s.acceleration_xy[0] + s.g(1, i) * s.acceleration_xy[1]) +
+                              centre[i]) * scale;
+      const double coriolis = coriolis_motion[i] * scale;
+      const double friction = n_g * n_g * r.viscous_friction * s.rate[i] * scale;
+      prediction.measured[i].push_back(log.current[i][k]);
+      prediction.measured_motion[i].push_back(motion[i]);
+      prediction.inertia[i].push_back(inertia);
+      prediction.coriolis[i].push_back(coriolis);
+      prediction.friction[i].push_back(friction);
+      prediction.total[i].push_back(inertia + coriolis + friction);
+    }
+  }
+  return prediction;
+}
+
+}  // namespace
+
 RobotFitOutput FitRobot(const std::vector<RobotLog>& logs, const PlanarRobotParameters& start,
                         const RobotFitOptions& options) {
   if (logs.empty()) throw OptionError("no logs given");
@@ -143,26 +213,7 @@ RobotFitOutput FitRobot(const std::vector<RobotLog>& logs, const PlanarRobotPara
     // (the trapezoid's acceleration jumps otherwise bias Theta).
     std::array<std::vector<double>, 3> current;
     for (std::size_t i = 0; i < 3; ++i) current[i] = EstimateDerivatives(log.time, log.current[i], options.half_window).value;
-    // Jumps (steps of the commanded acceleration) cannot be followed by any
-    // smooth differentiator: find them where a current leaves its local fit
-    // by more than 4 robust standard deviations, and leave out every sample
-    // whose window reaches one.
-    std::vector<char> near_jump(log.time.size(), 0);
-    for (std::size_t i = 0; i < 3; ++i) {
-      std::vector<double> deviation(log.time.size());
-      for (std::size_t k = 0; k < deviation.size(); ++k) deviation[k] = std::abs(log.current[i][k] - current[i][k]);
-      std::vector<double> sorted = deviation;
-      std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
-      const double sigma = 1.4826 * sorted[sorted.size() / 2];
-      for (std::size_t k = 0; k < deviation.size(); ++k) {
-        if (!(deviation[k] > 4.0 * sigma) || sigma <= 0.0) continue;
-        // Mark the window around k (time is increasing: scan outwards).
-        for (std::size_t m = k; m-- > 0 && log.time[k] - log.time[m] <= options.half_window;) near_jump[m] = 1;
-        for (std::size_t m = k; m < log.time.size() && log.time[m] - log.time[k] <= options.half_window; ++m) {
-          near_jump[m] = 1;
-        }
-      }
-    }
+    const std::vector<char> near_jump = NearCurrentJumps(log, current, options.half_window);
     // Decimation to the filter band: smoothed rows are correlated over the
     // window, so keep about one row per half window (honest standard errors).
     const double mean_step = (log.time.back() - log.time.front()) / static_cast<double>(log.time.size() - 1);
@@ -200,46 +251,7 @@ RobotFitOutput FitRobot(const std::vector<RobotLog>& logs, const PlanarRobotPara
   for (const auto& e : out.fit.estimates) out.params.*(FindParameter(PlanarRobotParameterTable(), e.name)->in_model) = e.value;
 
   // Current prediction with the fitted parameters (Fig. 7 decomposition).
-  const PlanarRobotParameters& r = out.params;
-  const double scale = 1.0 / (n_g * k_t);
-  for (std::size_t l = 0; l < logs.size(); ++l) {
-    RobotCurrentPrediction prediction;
-    for (const auto& [k, s] : kinematics[l]) {
-      const Matrix23 g_rate = CalcTransposedInverseJacobianRate(r, s.position, s.theta, s.velocity);
-      const Vector3 centre = ApplyPseudoInverse(s.g, {r.center_mass * s.acceleration_xy[0], r.center_mass * s.acceleration_xy[1]});
-      // G+ G i: the part of the measured current that moves the robot.
-      Vector2 projected = Vector2::Zero();
-      for (std::size_t i = 0; i < 3; ++i) {
-        projected[0] += s.g(0, i) * logs[l].current[i][k];
-        projected[1] += s.g(1, i) * logs[l].current[i][k];
-      }
-      const Vector3 motion = ApplyPseudoInverse(s.g, projected);
-      // Centrifugal/Coriolis: Theta dG' x' has a null-space part; the motors
-      // share the Cartesian force G Theta dG' x' by the minimum norm, G+ G.
-      Vector3 coriolis_joint = Vector3::Zero();
-      Vector2 coriolis_force = Vector2::Zero();
-      for (std::size_t i = 0; i < 3; ++i) {
-        coriolis_joint[i] = r.output_inertia * (g_rate(0, i) * s.velocity[0] + g_rate(1, i) * s.velocity[1]);
-        coriolis_force[0] += s.g(0, i) * coriolis_joint[i];
-        coriolis_force[1] += s.g(1, i) * coriolis_joint[i];
-      }
-      const Vector3 coriolis_motion = ApplyPseudoInverse(s.g, coriolis_force);
-      prediction.time.push_back(logs[l].time[k]);
-      for (std::size_t i = 0; i < 3; ++i) {
-        const double inertia = (r.output_inertia * (s.g(0, i) * s.acceleration_xy[0] + s.g(1, i) * s.acceleration_xy[1]) +
-                                centre[i]) * scale;
-        const double coriolis = coriolis_motion[i] * scale;
-        const double friction = n_g * n_g * r.viscous_friction * s.rate[i] * scale;
-        prediction.measured[i].push_back(logs[l].current[i][k]);
-        prediction.measured_motion[i].push_back(motion[i]);
-        prediction.inertia[i].push_back(inertia);
-        prediction.coriolis[i].push_back(coriolis);
-        prediction.friction[i].push_back(friction);
-        prediction.total[i].push_back(inertia + coriolis + friction);
-      }
-    }
-    out.predictions.push_back(std::move(prediction));
-  }
+  for (std::size_t l = 0; l < logs.size(); ++l) out.predictions.push_back(PredictCurrents(logs[l], kinematics[l], out.params));
   return out;
 }
 
