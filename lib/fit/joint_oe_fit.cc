@@ -306,24 +306,24 @@ void CheckOutputErrorSimulates(const JointSection& start, const std::vector<std:
   }
 }
 
-JointOeOutput FitJointOutputError(const std::vector<JointLog>& logs, const JointSection& start,
-                                  const JointParameters* initial, const JointOeOptions& given) {
-  if (logs.empty()) throw OptionError("no logs given");
-  JointOeOptions options = given;
-  if (options.free.empty()) options.free = JointOeDefaultFree(logs);
-  CheckFreeNames(JointParameterTable(), "joint", options.free);
-  const std::string offset_key = KeyOf(JointParameterTable(), &JointParameters::link_torque_offset);
-  const auto is_free = [&](const std::string& key) {
-    return std::find(options.free.begin(), options.free.end(), key) != options.free.end();
-  };
-  CheckOutputErrorSimulates(start, options.free);
-  std::vector<OeLog> oe;  // each log's channels, refused by name before the missing values
-  if (start.gear_ratio && *start.gear_ratio > 0.0) oe = PrepareLogs(logs, *start.gear_ratio);
+namespace {
 
-  // Start and fixed values; the free terms in table order, then tau_l0.
+// Start and fixed values; the free terms in table order, then tau_l0 (one
+// per log with a shaft torque); every value the model needs and the file
+// lacks named in one message.
+struct JointOeDesign {
   JointParameters fixed;
   std::vector<int> terms;
   std::vector<FitParameter> parameters;
+  int offsets = 0;
+};
+
+JointOeDesign MakeJointOeDesign(const std::vector<JointLog>& logs, const JointSection& start,
+                                const JointParameters* initial, const std::vector<std::string>& free,
+                                std::vector<OeLog>& oe) {
+  const std::string offset_key = KeyOf(JointParameterTable(), &JointParameters::link_torque_offset);
+  const auto is_free = [&](const std::string& key) { return std::find(free.begin(), free.end(), key) != free.end(); };
+  JointOeDesign d;
   std::vector<const ParameterSpec*> needed;
   if (!start.gear_ratio || !(*start.gear_ratio > 0.0)) {
     needed.push_back(&SpecOf(JointParameterTable(), &JointSection::gear_ratio));
@@ -341,93 +341,78 @@ JointOeOutput FitJointOutputError(const std::vector<JointLog>& logs, const Joint
                                      "start did not give one)",
                                      row.spec.key));
       }
-      terms.push_back(j);
-      parameters.push_back({row.spec.key, value, row.spec.lower_bound, value != 0.0 ? 0.0 : 1e-3});
+      d.terms.push_back(j);
+      d.parameters.push_back({row.spec.key, value, row.spec.lower_bound, value != 0.0 ? 0.0 : 1e-3});
     } else if (!given_value && row.spec.default_free && j != kJointLinkCoulomb) {
       needed.push_back(&row.spec);
     }
-    fixed.*(row.in_model) = value;
+    d.fixed.*(row.in_model) = value;
   }
   if (!needed.empty()) {
     throw MissingValuesError("--params", "joint", needed, "(fixed in this fit)", " (or name the fitted ones in --free)");
   }
-  const double n = *start.gear_ratio;
-  if (!(fixed.motor_inertia > 0.0) || !(fixed.link_inertia > 0.0)) {
+  if (!(d.fixed.motor_inertia > 0.0) || !(d.fixed.link_inertia > 0.0)) {
     throw InputError("--method oe: the joint needs both inertias > 0: give joint.motor_inertia and joint.link_inertia");
   }
-  fixed.link_torque_offset = start.link_torque_offset.value_or(0.0);
-  int offsets = 0;
+  d.fixed.link_torque_offset = start.link_torque_offset.value_or(0.0);
   if (is_free(offset_key)) {
-    const double value = initial != nullptr ? initial->link_torque_offset : fixed.link_torque_offset;
+    const double value = initial != nullptr ? initial->link_torque_offset : d.fixed.link_torque_offset;
     for (std::size_t i = 0; i < oe.size(); ++i) {
       if (logs[i].link_torque.empty()) continue;
-      oe[i].offset_parameter = static_cast<int>(terms.size()) + offsets++;
-      parameters.push_back({logs.size() > 1 ? fmt::format("{}_{}", offset_key, i + 1) : offset_key, value,
-                            -HUGE_VAL, 0.0});
+      oe[i].offset_parameter = static_cast<int>(d.terms.size()) + d.offsets++;
+      d.parameters.push_back({logs.size() > 1 ? fmt::format("{}_{}", offset_key, i + 1) : offset_key, value,
+                              -HUGE_VAL, 0.0});
     }
   }
+  return d;
+}
 
-  // The logs' initial states, nuisance parameters dropped from the result
-  // (a sticking motor that starts at rest keeps its start rate at 0).
-  const std::size_t reported = parameters.size();
+// The logs' initial states as nuisance parameters (a sticking motor that
+// starts at rest keeps its start rate at 0).
+void AddInitialStates(std::vector<OeLog>& oe, std::size_t log_count, std::vector<FitParameter>& parameters) {
   for (std::size_t i = 0; i < oe.size(); ++i) {
     static const char* const kNames[] = {"q_motor", "qd_motor", "q_link", "qd_link"};
     const double scale = std::max(std::abs(oe[i].x0[2]), 1e-3);
     for (std::size_t s = 0; s < 4; ++s) {
       if (s == 1 && !oe[i].motor_moving) continue;
       oe[i].start_parameter[s] = static_cast<int>(parameters.size());
-      const std::string suffix = logs.size() > 1 ? fmt::format("_{}", i + 1) : "";
+      const std::string suffix = log_count > 1 ? fmt::format("_{}", i + 1) : "";
       parameters.push_back({fmt::format("{}(t0){}", kNames[s], suffix), oe[i].x0[s], -HUGE_VAL,
                             s % 2 == 0 ? scale : std::max(std::abs(oe[i].x0[s]), 1e-3)});
     }
   }
-  std::vector<bool> keep(parameters.size(), false);
-  std::fill(keep.begin(), keep.begin() + static_cast<std::ptrdiff_t>(reported), true);
+}
 
-  const auto tolerance = Tolerances(logs, n);
-  JointOeResiduals residuals(oe, fixed, terms, static_cast<int>(parameters.size()), n, tolerance[0], tolerance[1]);
+// Two passes: weighted by the channels' spread, then by the first pass's
+// residual noise; RMSE reported back in the channels' units.
+FitResult FitTwoPasses(std::vector<OeLog>& oe, JointOeResiduals& residuals, std::vector<FitParameter> parameters,
+                       const FitOptions& fit_options) {
   std::vector<FitChannel> channels;
   SetWeighted(oe, &channels);
-  FitOptions fit_options = options.fit;
-  if (!fit_options.advice) fit_options.advice = OeAdvice;
-  // First pass by the channels' spread, second by their residual noise.
   FitOptions first_pass = fit_options;
   first_pass.identifiability_threshold = 0.0;  // judged on the final fit
   const FitResult first = FitLeastSquares(residuals, parameters, channels, first_pass);
   for (std::size_t j = 0; j < parameters.size(); ++j) parameters[j].initial = first.estimates[j].value;
-  {
-    std::size_t c = 0;
-    for (auto& l : oe) {
-      for (auto& ch : l.channels) {
-        const double rmse = first.channels[c++].rmse / ch.weight;
-        if (rmse > 0.0) ch.weight = 1.0 / rmse;
-      }
+  std::size_t c = 0;
+  for (auto& l : oe) {
+    for (auto& ch : l.channels) {
+      const double rmse = first.channels[c++].rmse / ch.weight;
+      if (rmse > 0.0) ch.weight = 1.0 / rmse;
     }
   }
   SetWeighted(oe, &channels);
-  JointOeOutput out;
-  out.fit = FitLeastSquares(residuals, parameters, channels, fit_options);
-  // RMSE back in the channels' units (fit % and lag-1 do not depend on the weight).
-  {
-    std::size_t c = 0;
-    for (const auto& l : oe) {
-      for (const auto& ch : l.channels) out.fit.channels[c++].rmse /= ch.weight;
-    }
+  FitResult fit = FitLeastSquares(residuals, parameters, channels, fit_options);
+  c = 0;
+  for (const auto& l : oe) {
+    for (const auto& ch : l.channels) fit.channels[c++].rmse /= ch.weight;
   }
-  std::vector<double> estimate;
-  for (const auto& e : out.fit.estimates) estimate.push_back(e.value);
-  DropParameters(out.fit, keep);
-  out.params = fixed;
-  for (std::size_t j = 0; j < terms.size(); ++j) out.params.*(JointParameterTable()[terms[j]].in_model) = estimate[j];
-  if (offsets > 0) out.params.link_torque_offset = estimate[terms.size()];
-  out.motor_angle.resize(oe.size());
-  out.link_angle.resize(oe.size());
-  for (std::size_t i = 0; i < oe.size(); ++i) {
-    residuals.SimulateAngles(estimate.data(), i, &out.motor_angle[i], &out.link_angle[i]);
-  }
-  // The deflection q_motor / n - q_link is what the spring sees; the angles'
-  // fit % hides a poor fit of it behind the motion.
-  for (std::size_t i = 0; i < oe.size(); ++i) {
+  return fit;
+}
+
+// The deflection q_motor / n - q_link is what the spring sees; the angles'
+// fit % hides a poor fit of it behind the motion.
+void CheckDeflections(const std::vector<JointLog>& logs, double n, JointOeOutput& out) {
+  for (std::size_t i = 0; i < logs.size(); ++i) {
     std::vector<double> measured, residual;
     for (std::size_t k = 0; k < logs[i].time.size(); ++k) {
       measured.push_back(logs[i].motor_position[k] / n - logs[i].link_position[k]);
@@ -443,6 +428,46 @@ JointOeOutput FitJointOutputError(const std::vector<JointLog>& logs, const Joint
           d.name, d.fit_percent, kLowDeflectionFitPercent, d.autocorrelation));
     }
   }
+}
+
+}  // namespace
+
+JointOeOutput FitJointOutputError(const std::vector<JointLog>& logs, const JointSection& start,
+                                  const JointParameters* initial, const JointOeOptions& given) {
+  if (logs.empty()) throw OptionError("no logs given");
+  JointOeOptions options = given;
+  if (options.free.empty()) options.free = JointOeDefaultFree(logs);
+  CheckFreeNames(JointParameterTable(), "joint", options.free);
+  const std::string offset_key = KeyOf(JointParameterTable(), &JointParameters::link_torque_offset);
+  CheckOutputErrorSimulates(start, options.free);
+  std::vector<OeLog> oe;  // each log's channels, refused by name before the missing values
+  if (start.gear_ratio && *start.gear_ratio > 0.0) oe = PrepareLogs(logs, *start.gear_ratio);
+  JointOeDesign d = MakeJointOeDesign(logs, start, initial, options.free, oe);
+  const double n = *start.gear_ratio;
+  // The initial states are nuisance parameters, dropped from the result.
+  const std::size_t reported = d.parameters.size();
+  AddInitialStates(oe, logs.size(), d.parameters);
+  std::vector<bool> keep(d.parameters.size(), false);
+  std::fill(keep.begin(), keep.begin() + static_cast<std::ptrdiff_t>(reported), true);
+
+  const auto tolerance = Tolerances(logs, n);
+  JointOeResiduals residuals(oe, d.fixed, d.terms, static_cast<int>(d.parameters.size()), n, tolerance[0], tolerance[1]);
+  FitOptions fit_options = options.fit;
+  if (!fit_options.advice) fit_options.advice = OeAdvice;
+  JointOeOutput out;
+  out.fit = FitTwoPasses(oe, residuals, d.parameters, fit_options);
+  std::vector<double> estimate;
+  for (const auto& e : out.fit.estimates) estimate.push_back(e.value);
+  DropParameters(out.fit, keep);
+  out.params = d.fixed;
+  for (std::size_t j = 0; j < d.terms.size(); ++j) out.params.*(JointParameterTable()[d.terms[j]].in_model) = estimate[j];
+  if (d.offsets > 0) out.params.link_torque_offset = estimate[d.terms.size()];
+  out.motor_angle.resize(oe.size());
+  out.link_angle.resize(oe.size());
+  for (std::size_t i = 0; i < oe.size(); ++i) {
+    residuals.SimulateAngles(estimate.data(), i, &out.motor_angle[i], &out.link_angle[i]);
+  }
+  CheckDeflections(logs, n, out);
   if (options.per_log && logs.size() > 1) {
     JointOeOptions alone = options;
     alone.per_log = false;
