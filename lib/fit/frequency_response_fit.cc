@@ -318,10 +318,12 @@ ResponseFeatures ReadResponseFeatures(const ResponseData& motor, ResponseQuantit
   return out;
 }
 
-TwoMassFitOutput FitTwoMassResponse(const ResponseData& motor, const ResponseData* link, const JointSection& start,
-                                    const TwoMassFitOptions& options) {
+namespace {
+
+// The free terms' indices into kTerms, refused by name when unknown or twice.
+std::vector<std::size_t> FreeTerms(const std::vector<std::string>& free) {
   std::vector<std::size_t> free_terms;
-  for (const auto& name : options.free) {
+  for (const auto& name : free) {
     const auto it = std::find_if(kTerms.begin(), kTerms.end(), [&](const char* t) { return name == t; });
     if (it == kTerms.end()) {
       throw OptionError(fmt::format("'{}' cannot be estimated from a frequency response (possible: {})", name,
@@ -333,30 +335,18 @@ TwoMassFitOutput FitTwoMassResponse(const ResponseData& motor, const ResponseDat
     }
     free_terms.push_back(index);
   }
-  if (free_terms.empty()) throw OptionError("no parameter to estimate");
-  const double n = start.gear_ratio.value_or(1.0);
-  if (!(n > 0.0) || !std::isfinite(n)) throw InputError("joint.gear_ratio must be a positive number");
+  return free_terms;
+}
 
-  TwoMassFitOutput out;
-  out.motor_used = UsedBins(motor, options);
-  out.link_used = link != nullptr ? UsedBins(*link, options) : std::vector<char>{};
-  Band(motor, out.motor_used, out.band_low, out.band_high);
-  const auto used_count = std::count(out.motor_used.begin(), out.motor_used.end(), 1);
-  if (used_count < 3) {
-    throw InputError(fmt::format("the motor response has {} bins with coherence >= {} in the band: nothing to fit "
-                                 "(more excitation, longer logs, or --band)",
-                                 used_count, options.min_coherence));
-  }
-  out.read = ReadResponseFeatures(motor, options.motor_output, options);
-
-  // Start: the fixed values from the file, the free dynamic terms from the
-  // resonance and anti-resonance read from the data (else the file's).
-  JointParameters fixed;
-  const JointSection& s = start;
+// Start: the fixed values from the file, the free dynamic terms from the
+// resonance and anti-resonance read from the data (else the file's). The
+// inertias and the stiffness, when fixed, must be given (all named at once).
+void StartValues(const ResponseData& motor, const JointSection& s, const std::vector<std::size_t>& free_terms,
+                 double n, const TwoMassFitOptions& options, const TwoMassFitOutput& out, JointParameters& fixed,
+                 JointParameters& initial) {
   const std::array<std::optional<double>, 6> given = {s.motor_inertia, s.link_inertia,  s.stiffness,
                                                       s.damping,       s.motor_viscous, s.link_viscous};
   for (std::size_t i = 0; i < kMembers.size(); ++i) fixed.*(kMembers[i]) = given[i].value_or(0.0);
-  // The inertias and the stiffness, when fixed, must be given (all named at once).
   std::vector<const ParameterSpec*> needed;
   for (std::size_t i = 0; i < 3; ++i) {
     const bool is_free = std::find(free_terms.begin(), free_terms.end(), i) != free_terms.end();
@@ -370,34 +360,31 @@ TwoMassFitOutput FitTwoMassResponse(const ResponseData& motor, const ResponseDat
   }
   const bool read_ok = out.read.resonance.value > 0.0 && out.read.antiresonance.value > 0.0 &&
                        out.read.antiresonance.value < out.read.resonance.value;
-  JointParameters initial = fixed;
+  initial = fixed;
   if (read_ok) {
     initial = StartFromFeatures(motor, out.motor_used, options.motor_output, n, out.read);
-  } else {
-    std::vector<std::string> missing;
-    for (std::size_t index : free_terms) {
-      if (index != kDelay && !(given[index].value_or(0.0) > 0.0)) missing.emplace_back(kTerms[index]);
-    }
-    if (!missing.empty()) {
-      throw IdentificationError(fmt::format(
-          "no {} in the coherent band {:.4g} .. {:.4g} Hz of the motor response, so the two-mass model is not "
-          "determined there ({} need start values in --params, or excite across the resonance)",
-          out.read.resonance.value > 0.0 ? "anti-resonance below the resonance" : "resonance peak", out.band_low,
-          out.band_high, fmt::join(missing, ", ")));
-    }
+    return;
   }
-  std::vector<FitParameter> parameters;
+  std::vector<std::string> missing;
   for (std::size_t index : free_terms) {
-    const double value = index == kDelay ? 0.0 : initial.*(kMembers[index]);
-    FitParameter fp{kTerms[index], value, 0.0, 0.0};
-    if (index == kDelay) fp.scale = 1.0 / Omega(out.band_high);
-    parameters.push_back(fp);
+    if (index != kDelay && !(given[index].value_or(0.0) > 0.0)) missing.emplace_back(kTerms[index]);
   }
+  if (!missing.empty()) {
+    throw IdentificationError(fmt::format(
+        "no {} in the coherent band {:.4g} .. {:.4g} Hz of the motor response, so the two-mass model is not "
+        "determined there ({} need start values in --params, or excite across the resonance)",
+        out.read.resonance.value > 0.0 ? "anti-resonance below the resonance" : "resonance peak", out.band_low,
+        out.band_high, fmt::join(missing, ", ")));
+  }
+}
 
+// The fitted channels: per response its log magnitude and phase over the
+// used bins, each divided by its std; `measured` holds the values.
+struct ResponseChannels {
   std::vector<ResponseResiduals::Row> rows;
   std::vector<FitChannel> channels;
   std::vector<std::vector<double>> measured;
-  const auto add_channels = [&](const ResponseData& data, const std::vector<char>& used, bool is_link) {
+  void Add(const ResponseData& data, const std::vector<char>& used, bool is_link) {
     for (bool phase : {false, true}) {
       FitChannel channel;
       channel.name = fmt::format("{} {}", is_link ? "link" : "motor", phase ? "phase" : "log magnitude");
@@ -414,30 +401,15 @@ TwoMassFitOutput FitTwoMassResponse(const ResponseData& motor, const ResponseDat
       measured.push_back(std::move(values));
       channels.push_back(channel);
     }
-  };
-  add_channels(motor, out.motor_used, false);
-  if (link != nullptr) add_channels(*link, out.link_used, true);
-  for (std::size_t c = 0; c < channels.size(); ++c) channels[c].measured = measured[c].data();
-
-  ResponseResiduals model(rows, fixed, n, free_terms, options);
-  FitOptions fit_options = options.fit;
-  if (!fit_options.advice) fit_options.advice = TwoMassAdvice;
-  out.fit = FitLeastSquares(model, parameters, channels, fit_options);
-  out.params = fixed;
-  for (std::size_t j = 0; j < free_terms.size(); ++j) {
-    if (free_terms[j] == kDelay) {
-      out.delay = out.fit.estimates[j].value;
-    } else {
-      out.params.*(kMembers[free_terms[j]]) = out.fit.estimates[j].value;
-    }
   }
-  std::vector<std::string> nonnegative;
-  for (std::size_t index : free_terms) {
-    if (index != kDelay) nonnegative.emplace_back(kTerms[index]);
+  void Finish() {
+    for (std::size_t c = 0; c < channels.size(); ++c) channels[c].measured = measured[c].data();
   }
-  RequireDetermined(out.fit, nonnegative, kMaxRelativeStd, out.fit.warnings);
+};
 
-  // Resonance and anti-resonance of the estimates, with the delta method.
+// Resonance and anti-resonance of the estimates, with the delta method;
+// refused when either lies outside the coherent band.
+void AddFeatures(const std::vector<std::size_t>& free_terms, TwoMassFitOutput& out) {
   const auto with = [&](const std::vector<double>& x) {
     JointParameters p = out.params;
     for (std::size_t j = 0; j < free_terms.size(); ++j) {
@@ -457,6 +429,64 @@ TwoMassFitOutput FitTwoMassResponse(const ResponseData& motor, const ResponseDat
                                             name, f, out.band_low, out.band_high));
     }
   }
+}
+
+}  // namespace
+
+TwoMassFitOutput FitTwoMassResponse(const ResponseData& motor, const ResponseData* link, const JointSection& start,
+                                    const TwoMassFitOptions& options) {
+  const std::vector<std::size_t> free_terms = FreeTerms(options.free);
+  if (free_terms.empty()) throw OptionError("no parameter to estimate");
+  const double n = start.gear_ratio.value_or(1.0);
+  if (!(n > 0.0) || !std::isfinite(n)) throw InputError("joint.gear_ratio must be a positive number");
+
+  TwoMassFitOutput out;
+  out.motor_used = UsedBins(motor, options);
+  out.link_used = link != nullptr ? UsedBins(*link, options) : std::vector<char>{};
+  Band(motor, out.motor_used, out.band_low, out.band_high);
+  const auto used_count = std::count(out.motor_used.begin(), out.motor_used.end(), 1);
+  if (used_count < 3) {
+    throw InputError(fmt::format("the motor response has {} bins with coherence >= {} in the band: nothing to fit "
+                                 "(more excitation, longer logs, or --band)",
+                                 used_count, options.min_coherence));
+  }
+  out.read = ReadResponseFeatures(motor, options.motor_output, options);
+
+  JointParameters fixed, initial;
+  StartValues(motor, start, free_terms, n, options, out, fixed, initial);
+  std::vector<FitParameter> parameters;
+  for (std::size_t index : free_terms) {
+    const double value = index == kDelay ? 0.0 : initial.*(kMembers[index]);
+    FitParameter fp{kTerms[index], value, 0.0, 0.0};
+    if (index == kDelay) fp.scale = 1.0 / Omega(out.band_high);
+    parameters.push_back(fp);
+  }
+
+  ResponseChannels fitted;
+  fitted.Add(motor, out.motor_used, false);
+  if (link != nullptr) fitted.Add(*link, out.link_used, true);
+  fitted.Finish();
+  const std::vector<FitChannel>& channels = fitted.channels;
+  const std::vector<ResponseResiduals::Row>& rows = fitted.rows;
+  ResponseResiduals model(rows, fixed, n, free_terms, options);
+  FitOptions fit_options = options.fit;
+  if (!fit_options.advice) fit_options.advice = TwoMassAdvice;
+  out.fit = FitLeastSquares(model, parameters, channels, fit_options);
+  out.params = fixed;
+  for (std::size_t j = 0; j < free_terms.size(); ++j) {
+    if (free_terms[j] == kDelay) {
+      out.delay = out.fit.estimates[j].value;
+    } else {
+      out.params.*(kMembers[free_terms[j]]) = out.fit.estimates[j].value;
+    }
+  }
+  std::vector<std::string> nonnegative;
+  for (std::size_t index : free_terms) {
+    if (index != kDelay) nonnegative.emplace_back(kTerms[index]);
+  }
+  RequireDetermined(out.fit, nonnegative, kMaxRelativeStd, out.fit.warnings);
+
+  AddFeatures(free_terms, out);
   const auto model_at = [&](const ResponseData& data, bool is_link) {
     std::vector<ResponseResiduals::Row> all;
     for (std::size_t b = 0; b < data.frequency.size(); ++b) all.push_back({&data, b, is_link, false});
