@@ -519,6 +519,82 @@ bool Disagree(const StepFitOutput& kept, const StepFitOutput& other) {
 
 }  // namespace
 
+namespace {
+
+// The staged start (see FitStepResponses): the reduced model on each log's
+// first transient, then (full model) the full model on the same transients,
+// then the model on the whole logs. `transient_fit` is the last stage on the
+// transients; a failure is kept in `failure`.
+struct StagedFit {
+  std::optional<StepFitOutput> fit, transient_fit;
+  std::string failure;
+};
+
+StagedFit FitStaged(const std::vector<StepLog>& logs, const std::vector<std::size_t>& transient_lengths,
+                    const DriveTrainParameters& start, const StepFitOptions& options) {
+  StagedFit out;
+  const bool full = options.model == DriveTrainModel::kFull;
+  const std::vector<std::string> reduced_free = full ? ReducedStageFree(options.free) : options.free;
+  if (reduced_free.empty()) return out;
+  try {
+    FitOptions quiet = options.fit;
+    quiet.progress = nullptr;
+    StepFitOutput stage;
+    {
+      // The transients live only as long as their fits.
+      std::vector<StepLog> transients;
+      for (std::size_t i = 0; i < logs.size(); ++i) transients.push_back(Prefix(logs[i], transient_lengths[i]));
+      stage = FitFrom(transients, start, {}, DriveTrainModel::kReduced, reduced_free, quiet);
+      if (full) {
+        const int reduced_iterations = stage.fit.iterations;
+        stage = FitFrom(transients, stage.params, stage.offsets, options.model, options.free, quiet);
+        stage.fit.iterations += reduced_iterations;
+      }
+    }
+    out.fit = FitFrom(logs, stage.params, stage.offsets, options.model, options.free, options.fit);
+    out.fit->fit.iterations += stage.fit.iterations;  // the whole path
+    out.transient_fit = std::move(stage);
+  } catch (const IdentificationError& e) {
+    out.failure = e.what();
+  }
+  return out;
+}
+
+// Does the rest of the log pull the estimates away from what the first
+// transients alone say (by more than 3 of their standard errors)?
+void WarnIfTransientsMoved(const StepFitOutput& transient_fit, StepFitOutput& staged) {
+  std::vector<std::string> moved;
+  for (std::size_t j = 0; j < staged.fit.estimates.size() && j < transient_fit.fit.estimates.size(); ++j) {
+    const auto& a = transient_fit.fit.estimates[j];
+    const auto& b = staged.fit.estimates[j];
+    if (a.name == b.name && std::abs(b.value - a.value) > 3.0 * a.standard_error) {
+      moved.push_back(fmt::format("{} {:.4g} +- {:.2g} -> {:.4g}", a.name, a.value, a.standard_error, b.value));
+    }
+  }
+  if (!moved.empty()) {
+    staged.fit.warnings.push_back(fmt::format(
+        "the whole logs pull the estimates away from the first transients' ({}): the model may miss something "
+        "over the long run, or the cost has several optima (check with --starts both; docs/models.md#drive-train)",
+        fmt::join(moved, ", ")));
+  }
+}
+
+// Of the staged and the given start's fits, the lower cost, with a warning
+// when they disagree.
+StepFitOutput KeepLowerCost(StepFitOutput staged, StepFitOutput given) {
+  const bool staged_better = staged.fit.cost <= given.fit.cost;
+  StepFitOutput kept = staged_better ? std::move(staged) : std::move(given);
+  const StepFitOutput& other = staged_better ? given : staged;
+  if (Disagree(kept, other)) {
+    kept.fit.warnings.push_back(fmt::format(
+        "starts disagree: from {} {}; from {} {}; kept the lower cost", staged_better ? "the staged start" : "the given start",
+        DescribeOptimum(kept), staged_better ? "the given start" : "the staged start", DescribeOptimum(other)));
+  }
+  return kept;
+}
+
+}  // namespace
+
 StepFitOutput FitStepResponses(const std::vector<StepLog>& logs, const DriveTrainParameters& start,
                                const StepFitOptions& options) {
   if (logs.empty()) throw OptionError("no step logs given");
@@ -550,85 +626,35 @@ StepFitOutput FitStepResponses(const std::vector<StepLog>& logs, const DriveTrai
     transient_lengths.push_back(FirstTransientLength(log));
     shorter = shorter || transient_lengths.back() < log.time.size();
   }
-  const bool full = options.model == DriveTrainModel::kFull;
-  if (!full && !shorter) return FitFrom(logs, start, {}, options.model, options.free, options.fit);
-  std::optional<StepFitOutput> staged;
-  std::optional<StepFitOutput> transient_fit;  // the last stage on the transients
-  std::string staged_failure;
-  const std::vector<std::string> reduced_free = full ? ReducedStageFree(options.free) : options.free;
-  if (!reduced_free.empty()) {
-    try {
-      FitOptions quiet = options.fit;
-      quiet.progress = nullptr;
-      StepFitOutput stage;
-      {
-        // The transients live only as long as their fits.
-        std::vector<StepLog> transients;
-        for (std::size_t i = 0; i < logs.size(); ++i) transients.push_back(Prefix(logs[i], transient_lengths[i]));
-        stage = FitFrom(transients, start, {}, DriveTrainModel::kReduced, reduced_free, quiet);
-        if (full) {
-          const int reduced_iterations = stage.fit.iterations;
-          stage = FitFrom(transients, stage.params, stage.offsets, options.model, options.free, quiet);
-          stage.fit.iterations += reduced_iterations;
-        }
-      }
-      staged = FitFrom(logs, stage.params, stage.offsets, options.model, options.free, options.fit);
-      staged->fit.iterations += stage.fit.iterations;  // the whole path
-      transient_fit = std::move(stage);
-    } catch (const IdentificationError& e) {
-      staged_failure = e.what();
-    }
+  if (options.model != DriveTrainModel::kFull && !shorter) {
+    return FitFrom(logs, start, {}, options.model, options.free, options.fit);
   }
-  if (staged && options.starts == StepStarts::kStaged) {
-    // Does the rest of the log pull the estimates away from what the first
-    // transients alone say (by more than 3 of their standard errors)?
-    if (transient_fit) {
-      std::vector<std::string> moved;
-      for (std::size_t j = 0; j < staged->fit.estimates.size() && j < transient_fit->fit.estimates.size(); ++j) {
-        const auto& a = transient_fit->fit.estimates[j];
-        const auto& b = staged->fit.estimates[j];
-        if (a.name == b.name && std::abs(b.value - a.value) > 3.0 * a.standard_error) {
-          moved.push_back(fmt::format("{} {:.4g} +- {:.2g} -> {:.4g}", a.name, a.value, a.standard_error, b.value));
-        }
-      }
-      if (!moved.empty()) {
-        staged->fit.warnings.push_back(fmt::format(
-            "the whole logs pull the estimates away from the first transients' ({}): the model may miss something "
-            "over the long run, or the cost has several optima (check with --starts both; docs/models.md#drive-train)",
-            fmt::join(moved, ", ")));
-      }
-    }
-    return std::move(*staged);
+  StagedFit staged = FitStaged(logs, transient_lengths, start, options);
+  if (staged.fit && options.starts == StepStarts::kStaged) {
+    if (staged.transient_fit) WarnIfTransientsMoved(*staged.transient_fit, *staged.fit);
+    return std::move(*staged.fit);
   }
   std::optional<StepFitOutput> given;
   std::string given_failure;
   try {
     given = FitFrom(logs, start, {}, options.model, options.free, options.fit);
   } catch (const IdentificationError& e) {
-    if (!staged) throw;
+    if (!staged.fit) throw;
     given_failure = e.what();
   }
-  if (!staged) {
-    if (!staged_failure.empty()) {
-      given->fit.warnings.push_back("the staged start failed (" + staged_failure +
+  if (!staged.fit) {
+    if (!staged.failure.empty()) {
+      given->fit.warnings.push_back("the staged start failed (" + staged.failure +
                                     "); the fit ran from the given start only");
     }
     return std::move(*given);
   }
   if (!given) {
-    staged->fit.warnings.push_back("from the given start the fit failed (" + given_failure +
-                                   "); kept the fit from the staged start");
-    return std::move(*staged);
+    staged.fit->fit.warnings.push_back("from the given start the fit failed (" + given_failure +
+                                       "); kept the fit from the staged start");
+    return std::move(*staged.fit);
   }
-  const bool staged_better = staged->fit.cost <= given->fit.cost;
-  StepFitOutput kept = staged_better ? std::move(*staged) : std::move(*given);
-  const StepFitOutput& other = staged_better ? *given : *staged;
-  if (Disagree(kept, other)) {
-    kept.fit.warnings.push_back(fmt::format(
-        "starts disagree: from {} {}; from {} {}; kept the lower cost", staged_better ? "the staged start" : "the given start",
-        DescribeOptimum(kept), staged_better ? "the given start" : "the staged start", DescribeOptimum(other)));
-  }
-  return kept;
+  return KeepLowerCost(std::move(*staged.fit), std::move(*given));
 }
 
 }  // namespace driveid
