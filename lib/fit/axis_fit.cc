@@ -321,19 +321,13 @@ AxisFitOutput FitAxisAtCutoff(const std::vector<AxisLog>& logs, const AxisSectio
 
 namespace {
 
-AxisFitOutput FitAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options,
-                          AxisRowCache* cache, AtCutoff extent) {
-  if (logs.empty()) throw OptionError("no logs given");
-  CheckFreeNames(AxisParameterTable(), "axis", options.free);
-  if (options.decimation < 1) {
-    throw OptionError(fmt::format("--decimation = {}: violated constraint: >= 1", options.decimation));
-  }
-  std::vector<FitParameter> parameters;
-  const std::vector<std::string> column_names = AxisRowColumnNames();
-  std::map<std::string, double> fixed;
-  for (const auto& term : ResolveAxisTerms(start, options.free)) {
+// The free linear terms and the fixed values (the Stribeck pair refused:
+// inverse dynamics neither fits nor subtracts it); the adequacy checks'
+// diagnostic columns held at 0.
+void AxisDesign(const AxisSection& start, const std::vector<std::string>& free, std::vector<FitParameter>& parameters,
+                std::map<std::string, double>& fixed) {
+  for (const auto& term : ResolveAxisTerms(start, free)) {
     if (term.index >= kAxisTerms) {
-      // The Stribeck pair is nonlinear: inverse dynamics neither fits nor subtracts it.
       if (term.free) {
         throw OptionError(fmt::format("--free {}: the Stribeck term is nonlinear in the rate: fit it with --method oe",
                                       term.key));
@@ -349,23 +343,55 @@ AxisFitOutput FitAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& s
     }
     fixed[term.key] = term.value;
   }
-  // Diagnostic columns, always held at 0: the adequacy checks' candidates.
   for (const char* name : {kAxisAbsRateColumn, kAxisTimeColumn}) fixed[name] = 0.0;
-  const int p = static_cast<int>(parameters.size());
+}
 
-  AxisFitOutput out;
+// The rows at the options' cutoff: from the cache, or built (and cached
+// when small enough).
+std::shared_ptr<const AxisRows> RowsAtCutoff(const std::vector<AxisLog>& logs, const AxisFitOptions& options,
+                                             AxisRowCache* cache) {
   std::shared_ptr<const AxisRows> built;
   if (cache != nullptr) {
     const auto found = cache->find(options.cutoff);
     if (found != cache->end()) built = found->second;
   }
   if (!built) {
+    const std::vector<std::string> column_names = AxisRowColumnNames();
     built = std::make_shared<const AxisRows>(
         BuildAxisRows(logs, options.cutoff, options.decimation, options.min_rate_fraction, column_names));
     if (cache != nullptr && built->regression.rows() * column_names.size() * sizeof(double) <= kCachedRowBytes) {
       (*cache)[options.cutoff] = built;
     }
   }
+  return built;
+}
+
+// Acceleration content: with a free inertia the decimated accelerations
+// must matter next to the rates (RMS(q'') / RMS(q') in 1/s); a constant-rate
+// log has only quantisation noise there and identifies friction only.
+double AccelerationContent(const LinearRegression& regression) {
+  double acceleration_square = 0.0, rate_square = 0.0;
+  for (std::size_t r = 0; r < regression.rows(); ++r) {
+    acceleration_square += std::pow(regression.at(r, 0), 2);
+    rate_square += std::pow(regression.at(r, 1), 2);
+  }
+  return rate_square > 0.0 ? std::sqrt(acceleration_square / rate_square) : 0.0;
+}
+
+AxisFitOutput FitAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options,
+                          AxisRowCache* cache, AtCutoff extent) {
+  if (logs.empty()) throw OptionError("no logs given");
+  CheckFreeNames(AxisParameterTable(), "axis", options.free);
+  if (options.decimation < 1) {
+    throw OptionError(fmt::format("--decimation = {}: violated constraint: >= 1", options.decimation));
+  }
+  std::vector<FitParameter> parameters;
+  std::map<std::string, double> fixed;
+  AxisDesign(start, options.free, parameters, fixed);
+  const int p = static_cast<int>(parameters.size());
+
+  AxisFitOutput out;
+  const std::shared_ptr<const AxisRows> built = RowsAtCutoff(logs, options, cache);
   const AxisRows& rows = *built;
   const LinearRegression& regression = rows.regression;
   out.method = rows.method;
@@ -378,16 +404,7 @@ AxisFitOutput FitAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& s
     throw IdentificationError(fmt::format("{} usable samples after decimation cannot determine {} parameters (the logs "
                                           "barely move or are too short)", rows_used, p));
   }
-  // Acceleration content: with a free inertia the decimated accelerations
-  // must matter next to the rates (RMS(q'') / RMS(q') in 1/s); a constant-rate
-  // log has only quantisation noise there and identifies friction only.
-  double acceleration_square = 0.0, rate_square = 0.0;
-  for (std::size_t r = 0; r < regression.rows(); ++r) {
-    acceleration_square += std::pow(regression.at(r, 0), 2);
-    rate_square += std::pow(regression.at(r, 1), 2);
-  }
-  const double ratio = rate_square > 0.0 ? std::sqrt(acceleration_square / rate_square) : 0.0;
-  out.acceleration_content = ratio;
+  out.acceleration_content = AccelerationContent(regression);
   FitOptions fit_options = options.fit;
   if (!fit_options.advice) {
     fit_options.advice = [](const std::vector<std::string>& involved) -> std::string {
