@@ -596,6 +596,74 @@ ParameterFile ReadParameterFile(const std::string& path) {
   return ParseParameterFile(path, ReadFileToString(path, limits));
 }
 
+namespace {
+
+// The fit section's command, version, model and data records.
+std::string FormatProvenance(const FitProvenance* provenance) {
+  std::string out;
+  out += "fit:\n";
+  out += fmt::format("  command: {}\n", Quoted(Abbreviated(provenance->command, kMaxProvenanceText)));
+  out += fmt::format("  version: {}\n", Quoted(provenance->version));
+  if (!provenance->model.empty()) out += fmt::format("  model: {}\n", provenance->model);
+  out += "  data:\n";
+  for (const auto& record : provenance->data) {
+    out += fmt::format("    - {{file: {}, sha256: {}, samples: {}", Quoted(record.file), record.sha256,
+                       record.samples);
+    if (!record.segment.empty()) out += fmt::format(", segment: {}", Quoted(record.segment));
+    if (!record.notes.empty()) {
+      std::vector<std::string> quoted;
+      for (const auto& note : record.notes) quoted.push_back(Quoted(Abbreviated(note, kMaxProvenanceText / 4)));
+      out += fmt::format(", notes: [{}]", fmt::join(quoted, ", "));
+    }
+    out += "}\n";
+  }
+  return out;
+}
+
+// The correlation matrix, or its strongest pairs for many parameters.
+std::string FormatCorrelation(const FitResult* fit) {
+  std::string out;
+  const std::size_t p = fit->estimates.size();
+  if (p <= kFullCorrelationParameters) {
+    out += "  correlation:\n";
+    for (std::size_t i = 0; i < p; ++i) {
+      out += fmt::format("    {}: [", fit->estimates[i].name);
+      for (std::size_t j = 0; j < p; ++j) out += fmt::format("{}{:.4f}", j ? ", " : "", fit->correlation[i * p + j]);
+      out += "]\n";
+    }
+  } else {
+    // The matrix grows with the square of the parameters (a fit of 1000
+    // logs with offsets: 8 MB): the strongest pairs (the matrix: --json).
+    out += fmt::format("  correlation:  # {} parameters: the {} strongest pairs (docs/formats.md)\n", p,
+                       kFullCorrelationParameters);
+    for (const auto& pair : StrongestCorrelations(*fit, kFullCorrelationParameters)) {
+      out += fmt::format("    - [{}, {}, {:.4f}]\n", fit->estimates[pair.first].name, fit->estimates[pair.second].name,
+                         pair.correlation);
+    }
+  }
+  return out;
+}
+
+// What ReadParameterFile accepts (1 MiB, lines of 64 KiB): else nothing is written.
+void RequireReadable(const std::string& out) {
+  if (out.size() > kMaxParameterFileBytes) {
+    throw OutputError(fmt::format("the parameter file would be {} bytes, a parameter file holds at most {}; nothing "
+                                  "written",
+                                  out.size(), kMaxParameterFileBytes));
+  }
+  for (std::size_t begin = 0, line = 1; begin < out.size(); ++line) {
+    const std::size_t end = std::min(out.find('\n', begin), out.size());
+    if (end - begin > kMaxParameterLineBytes) {
+      throw OutputError(fmt::format("line {} of the parameter file would be {} bytes (\"{}...\"), at most {}; nothing "
+                                    "written",
+                                    line, end - begin, out.substr(begin, 40), kMaxParameterLineBytes));
+    }
+    begin = end + 1;
+  }
+}
+
+}  // namespace
+
 std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit, const FitProvenance* provenance,
                                 const std::vector<DerivedQuantity>& derived) {
   std::string out = "# driveid parameter file (docs/formats.md). Units: SI, radians.\n";
@@ -604,22 +672,7 @@ std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit,
   }
   if (!file.feedforward.gains.empty()) out += FormatFeedforward(file.feedforward);
   if (fit != nullptr && provenance != nullptr) {
-    out += "fit:\n";
-    out += fmt::format("  command: {}\n", Quoted(Abbreviated(provenance->command, kMaxProvenanceText)));
-    out += fmt::format("  version: {}\n", Quoted(provenance->version));
-    if (!provenance->model.empty()) out += fmt::format("  model: {}\n", provenance->model);
-    out += "  data:\n";
-    for (const auto& record : provenance->data) {
-      out += fmt::format("    - {{file: {}, sha256: {}, samples: {}", Quoted(record.file), record.sha256,
-                         record.samples);
-      if (!record.segment.empty()) out += fmt::format(", segment: {}", Quoted(record.segment));
-      if (!record.notes.empty()) {
-        std::vector<std::string> quoted;
-        for (const auto& note : record.notes) quoted.push_back(Quoted(Abbreviated(note, kMaxProvenanceText / 4)));
-        out += fmt::format(", notes: [{}]", fmt::join(quoted, ", "));
-      }
-      out += "}\n";
-    }
+    out += FormatProvenance(provenance);
     out += "  estimates:\n";
     for (const auto& e : fit->estimates) {
       for (double v : {e.value, e.standard_error, e.ci95_low, e.ci95_high}) {
@@ -642,24 +695,7 @@ std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit,
                            Comment(d.unit));
       }
     }
-    const std::size_t p = fit->estimates.size();
-    if (p <= kFullCorrelationParameters) {
-      out += "  correlation:\n";
-      for (std::size_t i = 0; i < p; ++i) {
-        out += fmt::format("    {}: [", fit->estimates[i].name);
-        for (std::size_t j = 0; j < p; ++j) out += fmt::format("{}{:.4f}", j ? ", " : "", fit->correlation[i * p + j]);
-        out += "]\n";
-      }
-    } else {
-      // The matrix grows with the square of the parameters (a fit of 1000
-      // logs with offsets: 8 MB): the strongest pairs (the matrix: --json).
-      out += fmt::format("  correlation:  # {} parameters: the {} strongest pairs (docs/formats.md)\n", p,
-                         kFullCorrelationParameters);
-      for (const auto& pair : StrongestCorrelations(*fit, kFullCorrelationParameters)) {
-        out += fmt::format("    - [{}, {}, {:.4f}]\n", fit->estimates[pair.first].name, fit->estimates[pair.second].name,
-                           pair.correlation);
-      }
-    }
+    out += FormatCorrelation(fit);
     out += "  rmse:\n";
     for (const auto& c : fit->channels) out += fmt::format("    {}: {}\n", Quoted(c.name), Short(c.rmse));
     out += "  fit_percent:\n";
@@ -681,21 +717,7 @@ std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit,
     out += fmt::format("  iterations: {}\n", fit->iterations);
     out += fmt::format("  converged: {}\n", fit->converged ? "true" : "false");
   }
-  // What ReadParameterFile accepts (1 MiB, lines of 64 KiB): else nothing is written.
-  if (out.size() > kMaxParameterFileBytes) {
-    throw OutputError(fmt::format("the parameter file would be {} bytes, a parameter file holds at most {}; nothing "
-                                  "written",
-                                  out.size(), kMaxParameterFileBytes));
-  }
-  for (std::size_t begin = 0, line = 1; begin < out.size(); ++line) {
-    const std::size_t end = std::min(out.find('\n', begin), out.size());
-    if (end - begin > kMaxParameterLineBytes) {
-      throw OutputError(fmt::format("line {} of the parameter file would be {} bytes (\"{}...\"), at most {}; nothing "
-                                    "written",
-                                    line, end - begin, out.substr(begin, 40), kMaxParameterLineBytes));
-    }
-    begin = end + 1;
-  }
+  RequireReadable(out);
   return out;
 }
 
