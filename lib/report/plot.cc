@@ -84,18 +84,11 @@ bool IsSupportedPlotPath(const std::string& path) {
   return EndsWith(lower, ".png") || EndsWith(lower, ".svg");
 }
 
-std::string RenderPanels(const std::string& path, const std::vector<PlotPanel>& panels, const std::string& x_label,
-                         bool log_x) {
-  const bool svg = EndsWith(Lower(path), ".svg");
-  // gnuplot's files live in the temporary directory, not beside the output.
-  const std::string base = (std::filesystem::temp_directory_path() / "driveid-plot").string();
-  const std::string image = TemporaryName(base, svg ? ".svg" : ".png");
-  const std::string script_path = TemporaryName(base, ".gp");
-  const std::string error_path = TemporaryName(base, ".err");
-  auto cleanup = [&] {
-    RemoveTemporaryFile(script_path);
-    RemoveTemporaryFile(error_path);
-  };
+namespace {
+
+// The gnuplot script: the data blocks, then one panel per row.
+std::string GnuplotScript(const std::vector<PlotPanel>& panels, const std::string& x_label, bool log_x, bool svg,
+                          const std::string& image) {
   const int height = 150 + 330 * static_cast<int>(panels.size());
   std::string script;
   script += svg ? fmt::format("set terminal svg size 1000,{} dynamic noenhanced font 'sans,11'\n", height)
@@ -128,22 +121,20 @@ std::string RenderPanels(const std::string& path, const std::vector<PlotPanel>& 
     script += plot + "\n";
   }
   script += "unset multiplot\nset output\n";
-  try {
-    WriteFileAtomically(script_path, script);
-  } catch (...) {
-    cleanup();
-    RemoveTemporaryFile(image);
-    throw;
-  }
+  return script;
+}
 
+// Runs gnuplot on the script (standard error to `error_path`), registered as
+// the writer of the image (killed by a termination signal before the files
+// go); it starts with no signal blocked. False when it could not start;
+// `status` is its wait status.
+bool RunGnuplot(const std::string& script_path, const std::string& error_path, int& status) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
   posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, error_path.c_str(), O_WRONLY | O_TRUNC, 0644);
   std::string program = "gnuplot";
   std::vector<char*> argv = {program.data(), const_cast<char*>(script_path.c_str()), nullptr};
-  // gnuplot is registered as the writer of the image (killed by a
-  // termination signal before the files go); it starts with no signal blocked.
   posix_spawnattr_t attributes;
   posix_spawnattr_init(&attributes);
   sigset_t none;
@@ -159,21 +150,48 @@ std::string RenderPanels(const std::string& path, const std::vector<PlotPanel>& 
   }
   posix_spawn_file_actions_destroy(&actions);
   posix_spawnattr_destroy(&attributes);
-  int status = 0;
   if (spawned == 0) {
     while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
     }
     SetTemporaryFileWriter(0);
   }
+  return spawned == 0;
+}
+
+}  // namespace
+
+std::string RenderPanels(const std::string& path, const std::vector<PlotPanel>& panels, const std::string& x_label,
+                         bool log_x) {
+  const bool svg = EndsWith(Lower(path), ".svg");
+  // gnuplot's files live in the temporary directory, not beside the output.
+  const std::string base = (std::filesystem::temp_directory_path() / "driveid-plot").string();
+  const std::string image = TemporaryName(base, svg ? ".svg" : ".png");
+  const std::string script_path = TemporaryName(base, ".gp");
+  const std::string error_path = TemporaryName(base, ".err");
+  auto cleanup = [&] {
+    RemoveTemporaryFile(script_path);
+    RemoveTemporaryFile(error_path);
+  };
+  const std::string script = GnuplotScript(panels, x_label, log_x, svg, image);
+  try {
+    WriteFileAtomically(script_path, script);
+  } catch (...) {
+    cleanup();
+    RemoveTemporaryFile(image);
+    throw;
+  }
+
+  int status = 0;
+  const bool started = RunGnuplot(script_path, error_path, status);
   std::string error_text;
   try {
     error_text = ReadFileToString(error_path);
   } catch (...) {
   }
   cleanup();
-  if (spawned != 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+  if (!started || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     RemoveTemporaryFile(image);
-    if (spawned != 0) throw OutputError("cannot run gnuplot for --plot (install the Debian package gnuplot-nox)");
+    if (!started) throw OutputError("cannot run gnuplot for --plot (install the Debian package gnuplot-nox)");
     std::string first = error_text;
     while (!first.empty() && (first.front() == '\n' || first.front() == ' ')) first.erase(first.begin());
     first = first.substr(0, first.find('\n'));
