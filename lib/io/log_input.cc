@@ -50,10 +50,18 @@ std::string Where(const TableSource& source) {
 
 }  // namespace
 
-CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>& required,
-                      const LogInputOptions& options) {
-  const std::string where = Where(source);
-  // Every --col must name a column of this log format.
+namespace {
+
+// Where each logical column comes from: an expression over a source column,
+// a time base generated from --rate, or an optional column the log lacks.
+struct ColumnPlan {
+  std::vector<ColumnExpression> expressions;
+  std::vector<std::size_t> indices;
+  std::vector<char> generated_time, absent;
+};
+
+// Every --col must name a column of this log format.
+void CheckColumnOptions(const std::vector<std::string>& required, const LogInputOptions& options) {
   std::vector<std::string> known;
   for (const auto& entry : required) {
     for (const auto& name : Alternatives(entry)) known.push_back(name);
@@ -64,16 +72,22 @@ CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>&
                                     name, fmt::join(known, ", ")));
     }
   }
-  CsvLog log;
-  log.path = source.path();
-  log.segment = source.segment();
-  log.format = source.format();
-  log.units = source.units();
-  log.names = required;
-  std::vector<ColumnExpression> expressions(required.size());
-  std::vector<std::size_t> indices(required.size());
-  std::vector<char> generated_time(required.size(), 0);
-  std::vector<char> absent(required.size(), 0);  // an optional column ("?name") the log does not have
+}
+
+// The first alternative of each logical column the source has (or --col
+// maps, or --rate generates); a missing one refused naming what the file
+// offers; two logical columns reading one source column refused.
+ColumnPlan PlanColumns(const TableSource& source, const std::vector<std::string>& required,
+                       const LogInputOptions& options, const std::string& where, CsvLog& log) {
+  ColumnPlan plan;
+  plan.expressions.resize(required.size());
+  plan.indices.resize(required.size());
+  plan.generated_time.assign(required.size(), 0);
+  plan.absent.assign(required.size(), 0);  // an optional column ("?name") the log does not have
+  std::vector<ColumnExpression>& expressions = plan.expressions;
+  std::vector<std::size_t>& indices = plan.indices;
+  std::vector<char>& generated_time = plan.generated_time;
+  std::vector<char>& absent = plan.absent;
   const auto is_column = [&](const std::string& word) { return source.Find(word).has_value(); };
   const auto scalar = [&](const std::string& word) { return source.scalar(word); };
   for (std::size_t k = 0; k < required.size(); ++k) {
@@ -141,6 +155,18 @@ CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>&
       }
     }
   }
+  return plan;
+}
+
+// The planned columns read (each source column once), scaled, with the
+// generated time base; equal lengths required.
+std::size_t ReadPlannedColumns(const TableSource& source, const std::vector<std::string>& required,
+                               const LogInputOptions& options, const std::string& where, ColumnPlan& plan,
+                               CsvLog& log) {
+  const std::vector<ColumnExpression>& expressions = plan.expressions;
+  const std::vector<std::size_t>& indices = plan.indices;
+  const std::vector<char>& generated_time = plan.generated_time;
+  const std::vector<char>& absent = plan.absent;
   // Each source column read once; `slot[k]` is logical column k's place in `data`.
   std::vector<std::size_t> to_read, slot(required.size(), 0);
   for (std::size_t k = 0; k < required.size(); ++k) {
@@ -202,8 +228,16 @@ CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>&
     if (e.text != log.names[k]) log.notes.push_back(fmt::format("{} = {}", log.names[k], e.text));
   }
   log.line_numbers = std::move(data.line_numbers);
-  if (rows == 0) throw InputError(fmt::format("{}: no samples", where));
-  // Time strictly increasing.
+  return rows;
+}
+
+// Time strictly increasing, the crop (--from/--to), then the derived
+// signals over the cropped time base.
+void ApplyTimeBase(const std::vector<std::string>& required, const LogInputOptions& options, const std::string& where,
+                   const ColumnPlan& plan, std::size_t rows, CsvLog& log) {
+  const std::vector<ColumnExpression>& expressions = plan.expressions;
+  const std::vector<char>& generated_time = plan.generated_time;
+  const std::vector<char>& absent = plan.absent;
   const auto label = [&](std::size_t i) {
     return i < log.line_numbers.size() ? fmt::format("{}:{}", where, log.line_numbers[i])
                                        : fmt::format("{}: sample {}", where, i + 1);
@@ -254,8 +288,11 @@ CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>&
     }
     break;
   }
-  // Magnitudes a fit can square and sum: beyond 1e150 the sums of squares
-  // overflow, below 1e-150 they underflow (every estimate 0 +- 0).
+}
+
+// Magnitudes a fit can square and sum: beyond 1e150 the sums of squares
+// overflow, below 1e-150 they underflow (every estimate 0 +- 0).
+void CheckMagnitudes(const std::vector<std::string>& required, const std::string& where, const CsvLog& log) {
   for (std::size_t k = 0; k < required.size(); ++k) {
     double largest = 0.0;
     for (double v : log.columns[k]) largest = std::max(largest, std::abs(v));
@@ -266,6 +303,25 @@ CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>&
                                    log.names[k]));
     }
   }
+}
+
+}  // namespace
+
+CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>& required,
+                      const LogInputOptions& options) {
+  const std::string where = Where(source);
+  CheckColumnOptions(required, options);
+  CsvLog log;
+  log.path = source.path();
+  log.segment = source.segment();
+  log.format = source.format();
+  log.units = source.units();
+  log.names = required;
+  ColumnPlan plan = PlanColumns(source, required, options, where, log);
+  const std::size_t rows = ReadPlannedColumns(source, required, options, where, plan, log);
+  if (rows == 0) throw InputError(fmt::format("{}: no samples", where));
+  ApplyTimeBase(required, options, where, plan, rows, log);
+  CheckMagnitudes(required, where, log);
   log.comments = source.comments();
   const auto source_notes = source.notes();
   log.notes.insert(log.notes.begin(), source_notes.begin(), source_notes.end());
