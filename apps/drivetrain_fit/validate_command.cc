@@ -10,6 +10,7 @@
 #include "fit/axis_rows.h"
 #include "fit/validation.h"
 #include "io/axis_log.h"
+#include "io/joint_log.h"
 #include "io/parameter_file.h"
 #include "io/step_log.h"
 #include "models/missing_values.h"
@@ -28,8 +29,10 @@ CLI::App* SetupValidateCommand(CLI::App& app, ValidateOptions& options) {
                       "writes it, simulated in MuJoCo")
       ->required();
   command->add_option("logs", options.logs, "logs to predict (CSV, MAT, SysId JSON; docs/formats.md#logs)")->required();
-  command->add_option("--model", options.model, "axis or step (default: the parameter file's one model section)")
-      ->check(CLI::IsMember({"axis", "step"}));
+  command->add_option("--model", options.model,
+                      "axis or step (default: the parameter file's one model section); joint: an elastic joint's MJCF "
+                      "driven by the motor torque")
+      ->check(CLI::IsMember({"axis", "step", "joint"}));
   command->add_option("--step-model", options.step_model, "step: reduced (eq. 16) or full (eqs. 13-14)")
       ->capture_default_str()
       ->check(CLI::IsMember({"reduced", "full"}));
@@ -44,7 +47,10 @@ CLI::App* SetupValidateCommand(CLI::App& app, ValidateOptions& options) {
   command->add_flag("--simulate", options.simulate,
                     "axis: simulate the position from the logged torque, Coulomb friction that sticks "
                     "(docs/models.md#axis-output-error), instead of the torque by inverse dynamics");
-  command->add_option("--joint", options.joint, "MJCF: the joint the logged effort drives")->capture_default_str();
+  command->add_option("--joint", options.joint,
+                      "MJCF: the joint the logged effort drives (--model joint: the link joint; the motor is "
+                      "JOINT_motor, as export names them)")
+      ->capture_default_str();
   command->add_option("--mujoco-step", options.mujoco_step,
                       "MJCF: largest MuJoCo time step [s] (docs/export.md#validation-in-mujoco)")
       ->capture_default_str()
@@ -69,14 +75,26 @@ bool IsMjcf(const std::string& path) {
 
 // An MJCF simulated in MuJoCo from the logged effort.
 void RunMujocoValidation(const ValidateOptions& options, const std::string& command_line) {
-  if (!options.model.empty() && options.model != "axis") {
-    throw OptionError(fmt::format("--model {}: an MJCF is validated as an axis", options.model));
+  if (!options.model.empty() && options.model != "axis" && options.model != "joint") {
+    throw OptionError(fmt::format("--model {}: an MJCF is validated as an axis or an elastic joint", options.model));
   }
   if (options.simulate) throw OptionError("--simulate: an MJCF is always simulated (in MuJoCo)");
   std::string why;
   if (!MujocoAvailable(&why)) throw InputError(fmt::format("{}: {}", options.params, why));
   FitProvenance provenance;
   provenance.command = command_line;
+  if (options.model == "joint") {
+    const auto logs = LoadLogs<JointLog>(options.logs, options.input, options.output, provenance, JointLogColumns(),
+                                         [&](CsvLog csv) { return MakeJointLog(std::move(csv), 0.0); });
+    EmitValidation(options.output,
+                   {"drivetrain-fit", command_line,
+                    fmt::format("MuJoCo simulation of the elastic joint '{}' (motor '{}_motor') from the logged motor "
+                                "torque (held per sample, step <= {:g} s)",
+                                options.joint, options.joint, options.mujoco_step),
+                    "elastic joint in MuJoCo: motor and link angles simulated from the motor torque", "angle [rad]"},
+                   ValidateMujocoJoint(logs, options.params, options.joint, options.mujoco_step));
+    return;
+  }
   const auto logs = LoadLogs<AxisLog>(options.logs, options.input, options.output, provenance, AxisLogColumns(),
                                       [&](CsvLog csv) { return MakeAxisLog(std::move(csv), 0.0); });
   MujocoAxisOptions mujoco;
@@ -109,6 +127,10 @@ void RunValidateCommand(const ValidateOptions& options, const std::string& comma
                                     options.params));
     }
     model = axis != nullptr ? "axis" : "step";
+  }
+  if (model == "joint") {
+    throw OptionError("--model joint: an elastic joint is validated from its MJCF in MuJoCo (drivetrain-fit export "
+                      "P.yaml --to mjcf), not from a parameter file");
   }
   if (model == "axis" && axis == nullptr) throw InputError(fmt::format("{}: no 'axis' section", options.params));
   if (options.simulate && model != "axis") throw OptionError("--simulate: only an axis is simulated by validate --simulate (a drive train always is)");

@@ -118,16 +118,20 @@ std::vector<ValidatedLog> ValidateCDrive(const std::vector<CDriveLog>& logs, con
 
 namespace {
 
-ValidatedLog PositionValidation(const AxisLog& log, std::vector<double> simulated) {
+ValidatedLog AngleValidation(const std::string& name, const std::vector<double>& time,
+                             const std::vector<double>& measured, std::vector<double> simulated) {
   ValidatedLog v;
-  v.time = log.time;
-  v.measured = log.position;
-  std::vector<double> measured_minus_model(log.time.size());
-  for (std::size_t k = 0; k < log.time.size(); ++k) measured_minus_model[k] = log.position[k] - simulated[k];
+  v.time = time;
+  v.measured = measured;
+  std::vector<double> measured_minus_model(time.size());
+  for (std::size_t k = 0; k < time.size(); ++k) measured_minus_model[k] = measured[k] - simulated[k];
   v.model = std::move(simulated);
-  v.stats = DescribeResiduals(log.path + ":q", v.measured.data(), measured_minus_model.data(),
-                              static_cast<int>(log.time.size()));
+  v.stats = DescribeResiduals(name, v.measured.data(), measured_minus_model.data(), static_cast<int>(time.size()));
   return v;
+}
+
+ValidatedLog PositionValidation(const AxisLog& log, std::vector<double> simulated) {
+  return AngleValidation(log.path + ":q", log.time, log.position, std::move(simulated));
 }
 
 }  // namespace
@@ -156,6 +160,38 @@ std::vector<ValidatedLog> ValidateMujocoAxis(const std::vector<AxisLog>& logs, c
     const AxisStart start = AxisLogStart(log);
     MujocoAxisResponse response = SimulateMujocoAxis(mjcf, options, log.time, log.force, start.position, start.rate);
     out.push_back(PositionValidation(log, std::move(response.position)));
+  }
+  return out;
+}
+
+namespace {
+
+// A logged rate, else the slope over the first 10 samples.
+double StartRate(const std::vector<double>& time, const std::vector<double>& position, const std::vector<double>& rate) {
+  if (!rate.empty()) return rate.front();
+  if (time.size() < 2) return 0.0;
+  const std::size_t m = std::min<std::size_t>(10, time.size() - 1);
+  return (position[m] - position[0]) / (time[m] - time[0]);
+}
+
+}  // namespace
+
+std::vector<ValidatedLog> ValidateMujocoJoint(const std::vector<JointLog>& logs, const std::string& mjcf,
+                                              const std::string& joint, double max_step) {
+  std::vector<ValidatedLog> out;
+  for (const JointLog& log : logs) {
+    if (log.torque.empty()) {
+      throw InputError(fmt::format("{}: no motor torque (tau, or i with joint.k_t): nothing drives the joint", log.path));
+    }
+    MujocoRun run;
+    run.drive = joint + "_motor";
+    run.max_step = max_step;
+    run.record = {{joint + "_motor", log.motor_position.front(),
+                   StartRate(log.time, log.motor_position, log.motor_rate), true},
+                  {joint, log.link_position.front(), StartRate(log.time, log.link_position, log.link_rate), false}};
+    MujocoRunResponse response = SimulateMujoco(mjcf, run, log.time, log.torque);
+    out.push_back(AngleValidation(log.path + ":q_motor", log.time, log.motor_position, std::move(response.position[0])));
+    out.push_back(AngleValidation(log.path + ":q_link", log.time, log.link_position, std::move(response.position[1])));
   }
   return out;
 }

@@ -18,6 +18,7 @@
 #include "core/fit_result.h"
 #include "fit/cdrive_fit.h"
 #include "io/axis_log.h"
+#include "io/joint_log.h"
 #include "io/step_log.h"
 #include "models/axis.h"
 #include "models/drivetrain.h"
@@ -54,6 +55,14 @@ std::vector<ValidatedLog> ValidateAxisBySimulation(const std::vector<AxisLog>& l
 /// The same simulated in MuJoCo from the MJCF at `mjcf` (sim/mujoco_axis_simulator.h).
 std::vector<ValidatedLog> ValidateMujocoAxis(const std::vector<AxisLog>& logs, const std::string& mjcf,
                                              const MujocoAxisOptions& options);
+
+/// The elastic joint's logs simulated in MuJoCo from an MJCF as `export`
+/// writes it (report/joint_export.h): the motor torque drives `joint`_motor
+/// through its actuator (gear n), motor and link start at the logged angles
+/// and rates (logged, else the slope of the first 10 samples); two entries
+/// per log, "path:q_motor" (motor shaft, n x theta_m) and "path:q_link".
+std::vector<ValidatedLog> ValidateMujocoJoint(const std::vector<JointLog>& logs, const std::string& mjcf,
+                                              const std::string& joint, double max_step);
 
 /// The C-drive logs' motor torques tau_L, tau_R predicted by inverse
 /// dynamics (28) from the logged angles (two entries per log, "path:tau_L"

@@ -92,49 +92,64 @@ std::string JointNames(const Api& api, const mjModel* m) {
   return listed ? out : "none";
 }
 
+// The hinge or slide joint `name` of the model, else the reply names the file's.
+int FindJoint(const Api& api, const mjModel* m, const std::string& name) {
+  const int joint = api.name2id(m, mjOBJ_JOINT, name.c_str());
+  if (joint < 0 || (m->jnt_type[joint] != mjJNT_HINGE && m->jnt_type[joint] != mjJNT_SLIDE)) {
+    ReplyError(fmt::format("no hinge or slide joint '{}' (the file's: {})", name, JointNames(api, m)));
+  }
+  return joint;
+}
+
 // Runs in the child: loads, simulates, replies, never returns.
-[[noreturn]] void SimulateInChild(const std::string& path, const MujocoAxisOptions& options,
-                                  const std::vector<double>& time, const std::vector<double>& effort, double q0,
-                                  double v0) {
+[[noreturn]] void SimulateInChild(const std::string& path, const MujocoRun& run, const std::vector<double>& time,
+                                  const std::vector<double>& effort) {
   const Api api = LoadApi();
   char error[1000] = "";
   mjModel* m = api.load_xml(path.c_str(), nullptr, error, sizeof error);
   if (m == nullptr) ReplyError(fmt::format("MuJoCo cannot load it: {}", error));
-  const int joint = api.name2id(m, mjOBJ_JOINT, options.joint.c_str());
-  if (joint < 0 || (m->jnt_type[joint] != mjJNT_HINGE && m->jnt_type[joint] != mjJNT_SLIDE)) {
-    ReplyError(fmt::format("no hinge or slide joint '{}' (the file's: {})", options.joint,
-                           JointNames(api, m)));
-  }
+  const int drive = FindJoint(api, m, run.drive);
   int actuator = -1, actuators = 0;
   for (int a = 0; a < m->nu; ++a) {
-    if (m->actuator_trntype[a] == mjTRN_JOINT && m->actuator_trnid[2 * a] == joint) {
+    if (m->actuator_trntype[a] == mjTRN_JOINT && m->actuator_trnid[2 * a] == drive) {
       actuator = a;
       ++actuators;
     }
   }
   if (actuators != 1) {
-    ReplyError(fmt::format("joint '{}' has {} actuators: the logged effort drives exactly one", options.joint,
-                           actuators));
+    ReplyError(fmt::format("joint '{}' has {} actuators: the logged effort drives exactly one", run.drive, actuators));
   }
+  const double gear = m->actuator_gear[6 * actuator];
+  if (!(gear != 0.0) || !std::isfinite(gear)) ReplyError(fmt::format("actuator of '{}' has gear {}", run.drive, gear));
   mjData* d = api.make_data(m);
   if (d == nullptr) ReplyError("MuJoCo cannot allocate its data for this model");
-  const int qadr = m->jnt_qposadr[joint], vadr = m->jnt_dofadr[joint];
-  d->qpos[qadr] = q0;
-  d->qvel[vadr] = v0;
+  std::vector<int> qadr, vadr;
+  std::vector<double> scale;
+  for (const MujocoJointStart& start : run.record) {
+    const int joint = FindJoint(api, m, start.joint);
+    qadr.push_back(m->jnt_qposadr[joint]);
+    vadr.push_back(m->jnt_dofadr[joint]);
+    scale.push_back(start.per_gear ? gear : 1.0);
+    d->qpos[qadr.back()] = start.position / scale.back();
+    d->qvel[vadr.back()] = start.rate / scale.back();
+  }
   api.forward(m, d);
-  const std::size_t n = time.size();
-  std::vector<double> out(2 * n);
+  const std::size_t n = time.size(), joints = run.record.size();
+  std::vector<double> out(2 * n * joints);
   for (std::size_t k = 0; k < n; ++k) {
-    out[k] = d->qpos[qadr];
-    out[n + k] = d->qvel[vadr];
+    for (std::size_t j = 0; j < joints; ++j) {
+      out[2 * n * j + k] = scale[j] * d->qpos[qadr[j]];
+      out[2 * n * j + n + k] = scale[j] * d->qvel[vadr[j]];
+    }
     if (k + 1 == n) break;
     const double interval = time[k + 1] - time[k];
-    const double steps = std::ceil(interval / options.max_step);
+    const double steps = std::ceil(interval / run.max_step);
     m->opt.timestep = interval / steps;
     d->ctrl[actuator] = effort[k];
     for (double s = 0; s < steps; ++s) api.step(m, d);
-    if (first_warning[0] != '\0' || d->warning[mjWARN_BADQACC].number > 0 || !std::isfinite(d->qpos[qadr]) ||
-        !std::isfinite(d->qvel[vadr])) {
+    bool finite = true;
+    for (std::size_t j = 0; j < joints; ++j) finite = finite && std::isfinite(d->qpos[qadr[j]]) && std::isfinite(d->qvel[vadr[j]]);
+    if (first_warning[0] != '\0' || d->warning[mjWARN_BADQACC].number > 0 || !finite) {
       ReplyError(fmt::format("unstable: MuJoCo warned before t = {} s ({}): a smaller MuJoCo step, or an effort "
                              "or parameters that are not physical",
                              time[k + 1], first_warning[0] != '\0' ? first_warning : "a bad acceleration"));
@@ -145,6 +160,7 @@ std::string JointNames(const Api& api, const mjModel* m) {
   std::string reply = "R";
   reply += static_cast<char>(library.size());
   reply += library;
+  reply.append(reinterpret_cast<const char*>(&gear), sizeof gear);
   reply.append(reinterpret_cast<const char*>(out.data()), out.size() * sizeof(double));
   ::_exit(WriteAll(STDOUT_FILENO, reply.data(), reply.size()) ? 0 : 1);
 }
@@ -153,28 +169,27 @@ std::string JointNames(const Api& api, const mjModel* m) {
 
 bool MujocoAvailable(std::string*) { return true; }
 
-MujocoAxisResponse SimulateMujocoAxis(const std::string& path, const MujocoAxisOptions& options,
-                                      const std::vector<double>& time, const std::vector<double>& effort, double q0,
-                                      double v0) {
-  if (!(options.max_step > 0.0) || !std::isfinite(options.max_step)) {
-    throw OptionError(fmt::format("MuJoCo's largest step must be a finite number > 0, not {}", options.max_step));
+MujocoRunResponse SimulateMujoco(const std::string& path, const MujocoRun& run, const std::vector<double>& time,
+                                 const std::vector<double>& effort) {
+  if (!(run.max_step > 0.0) || !std::isfinite(run.max_step)) {
+    throw OptionError(fmt::format("MuJoCo's largest step must be a finite number > 0, not {}", run.max_step));
   }
-  const std::size_t n = time.size();
+  const std::size_t n = time.size(), joints = run.record.size();
   if (n == 0 || effort.size() != n) throw InputError(fmt::format("{}: no samples to simulate", path));
   double steps = 0.0;
-  for (std::size_t k = 0; k + 1 < n; ++k) steps += std::ceil((time[k + 1] - time[k]) / options.max_step);
+  for (std::size_t k = 0; k + 1 < n; ++k) steps += std::ceil((time[k + 1] - time[k]) / run.max_step);
   if (steps > 1e9) {
     throw OptionError(fmt::format("{}: {:.3g} MuJoCo steps (the log's length / the largest step): at most 1e9",
                                   path, steps));
   }
   ChildLimits limits;
   // About a microsecond per step of a one-joint model; a generous margin.
-  limits.seconds = std::min<long>(3600, 10 + static_cast<long>(steps * 2e-5));
-  limits.address_space_bytes = 4.0 * (1 << 30) + 32.0 * static_cast<double>(n);
-  limits.max_output_bytes = 2 * n * sizeof(double) + 4096;
-  const ChildOutcome outcome =
-      RunInChild([&] { SimulateInChild(path, options, time, effort, q0, v0); }, limits);
-  const std::string where = fmt::format("{} (joint '{}')", path, options.joint);
+  limits.seconds = std::min<long>(3600, 10 + static_cast<long>(steps * 2e-5 * static_cast<double>(std::max<std::size_t>(joints, 1))));
+  limits.address_space_bytes = 4.0 * (1 << 30) + 32.0 * static_cast<double>(n * std::max<std::size_t>(joints, 1));
+  const std::size_t payload = 2 * n * joints * sizeof(double) + sizeof(double);
+  limits.max_output_bytes = payload + 4096;
+  const ChildOutcome outcome = RunInChild([&] { SimulateInChild(path, run, time, effort); }, limits);
+  const std::string where = fmt::format("{} (joint '{}')", path, run.drive);
   if (!outcome.started) throw InputError(fmt::format("{}: cannot start the MuJoCo process", where));
   if (outcome.timed_out) throw InputError(fmt::format("{}: MuJoCo took longer than {} s", where, limits.seconds));
   const std::string& r = outcome.output;
@@ -190,17 +205,37 @@ MujocoAxisResponse SimulateMujocoAxis(const std::string& path, const MujocoAxisO
                                                      : "failed"));
   }
   const std::size_t version_length = static_cast<unsigned char>(r[1]);
-  if (r.size() != 2 + version_length + 2 * n * sizeof(double)) {
+  if (r.size() != 2 + version_length + payload) {
     throw InputError(fmt::format("{}: the MuJoCo process replied {} bytes, not {}", where, r.size(),
-                                 2 + version_length + 2 * n * sizeof(double)));
+                                 2 + version_length + payload));
   }
-  MujocoAxisResponse response;
+  MujocoRunResponse response;
   response.library = r.substr(2, version_length);
-  response.position.resize(n);
-  response.rate.resize(n);
   const char* data = r.data() + 2 + version_length;
-  std::memcpy(response.position.data(), data, n * sizeof(double));
-  std::memcpy(response.rate.data(), data + n * sizeof(double), n * sizeof(double));
+  std::memcpy(&response.gear, data, sizeof(double));
+  data += sizeof(double);
+  for (std::size_t j = 0; j < joints; ++j) {
+    std::vector<double> q(n), v(n);
+    std::memcpy(q.data(), data + (2 * j) * n * sizeof(double), n * sizeof(double));
+    std::memcpy(v.data(), data + (2 * j + 1) * n * sizeof(double), n * sizeof(double));
+    response.position.push_back(std::move(q));
+    response.rate.push_back(std::move(v));
+  }
+  return response;
+}
+
+MujocoAxisResponse SimulateMujocoAxis(const std::string& path, const MujocoAxisOptions& options,
+                                      const std::vector<double>& time, const std::vector<double>& effort, double q0,
+                                      double v0) {
+  MujocoRun run;
+  run.drive = options.joint;
+  run.record = {{options.joint, q0, v0, false}};
+  run.max_step = options.max_step;
+  MujocoRunResponse full = SimulateMujoco(path, run, time, effort);
+  MujocoAxisResponse response;
+  response.position = std::move(full.position.front());
+  response.rate = std::move(full.rate.front());
+  response.library = std::move(full.library);
   return response;
 }
 
@@ -211,11 +246,17 @@ bool MujocoAvailable(std::string* why) {
   return false;
 }
 
-MujocoAxisResponse SimulateMujocoAxis(const std::string& path, const MujocoAxisOptions&, const std::vector<double>&,
-                                      const std::vector<double>&, double, double) {
+MujocoRunResponse SimulateMujoco(const std::string& path, const MujocoRun&, const std::vector<double>&,
+                                 const std::vector<double>&) {
   std::string why;
   MujocoAvailable(&why);
   throw InputError(fmt::format("{}: {} (scripts/setup installs it where Debian has it)", path, why));
+}
+
+MujocoAxisResponse SimulateMujocoAxis(const std::string& path, const MujocoAxisOptions&, const std::vector<double>& time,
+                                      const std::vector<double>& effort, double, double) {
+  SimulateMujoco(path, MujocoRun{}, time, effort);
+  return {};
 }
 
 #endif

@@ -29,11 +29,38 @@ struct MujocoAxisResponse {
   std::string library;                 ///< MuJoCo's version, e.g. "2.2.2"
 };
 
+/// A run of any MJCF: `drive` is the joint driven through its one actuator
+/// by the logged effort; `record` the joints whose state is set at the start
+/// and sampled. A joint `per_gear` is given and sampled in the actuator's
+/// input units (a motor angle q_motor for a joint on the link side: the
+/// child divides by the actuator's gear n and multiplies back).
+struct MujocoJointStart {
+  std::string joint;
+  double position = 0.0, rate = 0.0;
+  bool per_gear = false;
+};
+
+struct MujocoRun {
+  std::string drive;
+  std::vector<MujocoJointStart> record;
+  double max_step = 1e-3;  ///< largest MuJoCo time step [s], > 0
+};
+
+struct MujocoRunResponse {
+  std::vector<std::vector<double>> position, rate;  ///< per recorded joint, at t_k
+  double gear = 1.0;                                ///< the driving actuator's gear
+  std::string library;
+};
+
 /// Whether this build can run MuJoCo (libmujoco-dev found when it was
 /// built); else `why` says what is missing.
 bool MujocoAvailable(std::string* why);
 
-/// Simulates the MJCF at `path`. Throws InputError (no MuJoCo in this
+/// Simulates the MJCF at `path` as `run` says; errors as SimulateMujocoAxis.
+MujocoRunResponse SimulateMujoco(const std::string& path, const MujocoRun& run, const std::vector<double>& time,
+                                 const std::vector<double>& effort);
+
+/// Simulates the MJCF at `path` (one joint, driven and recorded). Throws InputError (no MuJoCo in this
 /// build, a file MuJoCo refuses, no such joint, not exactly one actuator on
 /// it, the child process failing or taking too long) and IdentificationError
 /// (the simulation becomes unstable), naming the file and the joint.

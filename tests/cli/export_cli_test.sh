@@ -110,6 +110,20 @@ if [ "$have_mujoco" = ON ]; then
   EXPECT_OUTPUT=--trace expect 3 "joint 'axis' has 2 actuators" -- validate two.xml "$steps"
   awk -F, '/^#/ || $3 == "tau" { print; next } { printf "%s,%s,%s\n", $1, $2, $3 * 1e12 }' "$steps" > huge.csv
   EXPECT_OUTPUT=--trace expect 4 "unstable: MuJoCo warned" -- validate axis.xml huge.csv
+  # The elastic joint's MJCF in MuJoCo against driveid's own joint simulator
+  # (simulate joint: RK4, sticking Coulomb on both sides), open loop, no noise:
+  # motor and link angles within 2 points of a perfect fit.
+  "$bin" simulate joint --params "$src/data/joint_example_truth.yaml" --duration 10 --amplitude 0.1 --band 0.5,20 \
+    -o jsim.csv 2> stderr.txt &&
+    "$bin" export "$src/data/joint_example_truth.yaml" --to mjcf --joint elbow -o elbow.xml 2>> stderr.txt &&
+    "$bin" validate elbow.xml jsim.csv --model joint --joint elbow --json > joint.json 2>> stderr.txt ||
+    fail "joint in MuJoCo: $(cat stderr.txt)"
+  worst=$(grep -o '"fit_percent":[-0-9.e+]*' joint.json | cut -d: -f2 | sort -g | head -1)
+  [ "$(grep -o '"fit_percent"' joint.json | wc -l)" -eq 2 ] && awk -v w="$worst" 'BEGIN { exit !(w > 98) }' && ok ||
+    fail "joint in MuJoCo: lowest fit % $worst: $(cat joint.json)"
+  EXPECT_OUTPUT=--trace expect 2 "--model joint: an elastic joint is validated from its MJCF" \
+    -- validate "$src/data/joint_example_truth.yaml" jsim.csv --model joint
+  EXPECT_OUTPUT=--trace expect 3 "no hinge or slide joint 'axis_motor'" -- validate elbow.xml jsim.csv --model joint
   EXPECT_OUTPUT=--trace expect 2 "--simulate: an MJCF is always simulated" -- validate axis.xml "$steps" --simulate
   EXPECT_OUTPUT=--trace expect 2 "--mujoco-step" -- validate axis.xml "$steps" --mujoco-step 0
 else
