@@ -45,7 +45,8 @@ namespace {
 
 // Adds to a v7.3 file (HDF5, written by matio) a double variable `name` of 5
 // samples as MATLAB stores one, its data in `how`: "external" raw storage in
-// another file, or an "external link" to a dataset of another file.
+// another file, a "virtual" dataset mapped from another HDF5 file, or an
+// "external link" to a dataset of another file.
 std::string WithForeignData(const std::string& how) {
   const std::string bytes = driveid::testing::WriteMat(MAT_FT_MAT73);
   const auto dir = std::filesystem::temp_directory_path();
@@ -79,6 +80,33 @@ std::string WithForeignData(const std::string& how) {
     H5Dclose(dataset);
     H5Pclose(plist);
     H5Sclose(space);
+  } else if (how == "virtual") {
+    // A virtual dataset mapped from a dataset of another HDF5 file.
+    const std::string source = (dir / "driveid_test73_secret.h5").string();
+    const hsize_t dims[2] = {1, 5};
+    const hid_t space = H5Screate_simple(2, dims, nullptr);
+    const hid_t other = H5Fcreate(source.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    REQUIRE(other >= 0);
+    const double values[5] = {7, 7, 7, 7, 7};
+    const hid_t stored = H5Dcreate2(other, "values", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    H5Dwrite(stored, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values);
+    H5Dclose(stored);
+    H5Fclose(other);
+    const hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
+    REQUIRE(H5Pset_virtual(plist, space, source.c_str(), "/values", space) >= 0);
+    const hid_t dataset = H5Dcreate2(file, "stolen", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, plist, H5P_DEFAULT);
+    REQUIRE(dataset >= 0);
+    const hid_t text = H5Tcopy(H5T_C_S1);
+    H5Tset_size(text, 6);
+    const hid_t scalar = H5Screate(H5S_SCALAR);
+    const hid_t attribute = H5Acreate2(dataset, "MATLAB_class", text, scalar, H5P_DEFAULT, H5P_DEFAULT);
+    H5Awrite(attribute, text, "double");
+    H5Aclose(attribute);
+    H5Sclose(scalar);
+    H5Tclose(text);
+    H5Dclose(dataset);
+    H5Pclose(plist);
+    H5Sclose(space);
   } else {
     REQUIRE(H5Lcreate_external(secret.c_str(), "/time", file, "stolen", H5P_DEFAULT, H5P_DEFAULT) >= 0);
   }
@@ -88,10 +116,10 @@ std::string WithForeignData(const std::string& how) {
 
 }  // namespace
 
-TEST_CASE("MAT v7.3 whose variable reads another file's bytes (external storage, external link) is refused naming it") {
+TEST_CASE("MAT v7.3 whose variable reads another file's bytes (external storage, virtual dataset, external link) is refused naming it") {
   LogInputOptions options;
   options.columns = {{"q", "data(:,2)"}, {"i", "data(:,3)"}};
-  for (const std::string how : {"external", "external link"}) {
+  for (const std::string how : {"external", "external link", "virtual"}) {
     INFO(how);
     const std::string bytes = WithForeignData(how);
     try {
@@ -101,7 +129,8 @@ TEST_CASE("MAT v7.3 whose variable reads another file's bytes (external storage,
       const std::string message = e.what();
       CHECK(message.rfind("foreign.mat: ", 0) == 0);
       CHECK(message.find("'stolen'") != std::string::npos);
-      CHECK(message.find(how == "external" ? "external files" : "external link") != std::string::npos);
+      CHECK(message.find(how == "external" ? "external files" : how == "virtual" ? "virtual dataset" : "external link") !=
+            std::string::npos);
     }
   }
 }
