@@ -302,6 +302,8 @@ class StepResiduals final : public ResidualModel, public BlockResidualModel {
     return out;
   }
 
+  void set_integration(DriveTrainIntegration integration) { simulator_.set_integration(integration); }
+
   /// The fit's channels: per log tau_link, then q_motor and q_link where used.
   std::vector<FitChannel> Channels() const {
     std::vector<FitChannel> out;
@@ -424,7 +426,8 @@ StepLog Prefix(const StepLog& log, std::size_t length) {
 // One solve from `start` (offsets from `start_offsets`, 0 when empty).
 StepFitOutput FitFrom(const std::vector<StepLog>& logs, const DriveTrainParameters& start,
                       const std::vector<double>& start_offsets, DriveTrainModel model,
-                      const std::vector<std::string>& free, const FitOptions& options) {
+                      const std::vector<std::string>& free, const FitOptions& options,
+                      DriveTrainIntegration integration) {
   std::vector<DriveTrainParameter> ode_parameters;
   std::vector<FitParameter> fit_parameters;
   for (auto parameter : kAllParameters) {
@@ -454,6 +457,7 @@ StepFitOutput FitFrom(const std::vector<StepLog>& logs, const DriveTrainParamete
   }
 
   StepResiduals residuals(logs, start, model, ode_parameters, fit_offsets, true);
+  residuals.set_integration(integration);
   const std::vector<FitChannel> channels = residuals.Channels();
   FitOptions fit_options = options;
   if (!fit_options.advice) fit_options.advice = StepAdvice;
@@ -544,14 +548,16 @@ StagedFit FitStaged(const std::vector<StepLog>& logs, const std::vector<std::siz
       // The transients live only as long as their fits.
       std::vector<StepLog> transients;
       for (std::size_t i = 0; i < logs.size(); ++i) transients.push_back(Prefix(logs[i], transient_lengths[i]));
-      stage = FitFrom(transients, start, {}, DriveTrainModel::kReduced, reduced_free, quiet);
+      stage = FitFrom(transients, start, {}, DriveTrainModel::kReduced, reduced_free, quiet, options.integration);
       if (full) {
         const int reduced_iterations = stage.fit.iterations;
-        stage = FitFrom(transients, stage.params, stage.offsets, options.model, options.free, quiet);
+        stage = FitFrom(transients, stage.params, stage.offsets, options.model, options.free, quiet,
+                        options.integration);
         stage.fit.iterations += reduced_iterations;
       }
     }
-    out.fit = FitFrom(logs, stage.params, stage.offsets, options.model, options.free, options.fit);
+    out.fit = FitFrom(logs, stage.params, stage.offsets, options.model, options.free, options.fit,
+                      options.integration);
     out.fit->fit.iterations += stage.fit.iterations;  // the whole path
     out.transient_fit = std::move(stage);
   } catch (const IdentificationError& e) {
@@ -607,7 +613,9 @@ StepFitOutput FitStepResponses(const std::vector<StepLog>& logs, const DriveTrai
       Contains(options.free, DriveTrainParameterKey(DriveTrainParameter::kGearboxInertia))) {
     throw IdentificationError("Theta_g has no effect in the reduced model (it sets Theta_g = 0): use --model full");
   }
-  if (options.starts == StepStarts::kGiven) return FitFrom(logs, start, {}, options.model, options.free, options.fit);
+  if (options.starts == StepStarts::kGiven) {
+    return FitFrom(logs, start, {}, options.model, options.free, options.fit, options.integration);
+  }
 
   // Long logs (docs/models.md#drive-train, "Starting on long logs"): once
   // the drive sticks, the rest of the log weighs the stuck level, which
@@ -627,7 +635,7 @@ StepFitOutput FitStepResponses(const std::vector<StepLog>& logs, const DriveTrai
     shorter = shorter || transient_lengths.back() < log.time.size();
   }
   if (options.model != DriveTrainModel::kFull && !shorter) {
-    return FitFrom(logs, start, {}, options.model, options.free, options.fit);
+    return FitFrom(logs, start, {}, options.model, options.free, options.fit, options.integration);
   }
   StagedFit staged = FitStaged(logs, transient_lengths, start, options);
   if (staged.fit && options.starts == StepStarts::kStaged) {
@@ -637,7 +645,7 @@ StepFitOutput FitStepResponses(const std::vector<StepLog>& logs, const DriveTrai
   std::optional<StepFitOutput> given;
   std::string given_failure;
   try {
-    given = FitFrom(logs, start, {}, options.model, options.free, options.fit);
+    given = FitFrom(logs, start, {}, options.model, options.free, options.fit, options.integration);
   } catch (const IdentificationError& e) {
     if (!staged.fit) throw;
     given_failure = e.what();

@@ -13,6 +13,7 @@
 #include "fit/least_squares.h"
 #include "io/step_log.h"
 #include "models/drivetrain.h"
+#include "sim/drivetrain_simulator.h"
 
 namespace driveid {
 
@@ -32,6 +33,9 @@ struct StepFitOptions {
   StepStarts starts = StepStarts::kStaged;
   std::vector<std::string> free = FitParameterKeys(DriveTrainParameterTable(), "step", true);  ///< may include "offset"
   FitOptions fit;
+  /// How the simulations are integrated (sim/drivetrain_simulator.h); the
+  /// default chooses per log, the others are for comparisons.
+  DriveTrainIntegration integration = DriveTrainIntegration::kAuto;
 };
 
 struct StepFitOutput {

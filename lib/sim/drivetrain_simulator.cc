@@ -8,12 +8,71 @@
 #include "core/errors.h"
 #include "sim/cvodes_integrator.h"
 #include "sim/held_input_driver.h"
+#include "sim/switched_linear_exact.h"
 
 namespace driveid {
 namespace {
 constexpr int kOmega = DriveTrainState::kMotorRate;
+static_assert(kOmega == SwitchedLinearExact::kRate, "the exact simulation's rate with friction is the motor's");
+constexpr long kSwitchesPerSample = 4, kSwitchBudgetConstant = 2000;
 
 int Sign(double value) { return (value > 0.0) - (value < 0.0); }
+
+// The drive train as the exact simulation's model: its fields are affine in
+// the state and the torque within a mode, so A, c, b and their parameter
+// derivatives are read off the model's own functions (models/drivetrain.h)
+// at the origin and the unit vectors; the reduced model's two states are
+// the first two of four (the last two stay 0).
+class DriveTrainLinearModel final : public SwitchedLinearModel {
+ public:
+  DriveTrainLinearModel(DriveTrainModel model, const DriveTrainParameters& params,
+                        const std::vector<DriveTrainParameter>& parameters)
+      : model_(model), params_(params), parameters_(parameters), n_(DriveTrainStateSize(model)) {}
+
+  ModeField Field(int mode) const override {
+    return Affine([&](const double* x, double u, double* dx) {
+      CalcDriveTrainDerivatives(params_, model_, u, mode, x, dx);
+    });
+  }
+  ModeField FieldDerivative(int mode, int j) const override {
+    const DriveTrainParameter parameter = parameters_[static_cast<std::size_t>(j)];
+    return Affine([&](const double* x, double u, double* dx) {
+      CalcDriveTrainParameterJacobian(params_, model_, u, mode, x, parameter, dx);
+    });
+  }
+  int InitialStateIndex(int) const override { return -1; }  // the drive starts at rest
+  double StaticTorque(const Eigen::Vector4d& x, double u) const override {
+    return CalcNetTorque(params_, model_, u, x.data());
+  }
+  double StaticTorqueRate(const Eigen::Vector4d& dx) const override {
+    return CalcNetTorque(params_, model_, 0.0, dx.data());  // (linear in the state without torque)
+  }
+  double Coulomb() const override { return params_.coulomb_friction; }
+
+ private:
+  // The affine map f(x, u) = A x + c + b u of n states, embedded in four.
+  template <typename Map>
+  ModeField Affine(const Map& f) const {
+    ModeField field;
+    double x[4] = {0.0, 0.0, 0.0, 0.0}, base[4] = {0.0, 0.0, 0.0, 0.0}, value[4] = {0.0, 0.0, 0.0, 0.0};
+    f(x, 0.0, base);
+    for (int i = 0; i < n_; ++i) field.c(i) = base[i];
+    f(x, 1.0, value);
+    for (int i = 0; i < n_; ++i) field.b(i) = value[i] - base[i];
+    for (int col = 0; col < n_; ++col) {
+      x[col] = 1.0;
+      f(x, 0.0, value);
+      for (int i = 0; i < n_; ++i) field.a(i, col) = value[i] - base[i];
+      x[col] = 0.0;
+    }
+    return field;
+  }
+
+  DriveTrainModel model_;
+  const DriveTrainParameters& params_;
+  const std::vector<DriveTrainParameter>& parameters_;
+  int n_;
+};
 }  // namespace
 
 class DriveTrainSimulator::System final : public SensitivityOdeSystem, public HeldInputSystem {
@@ -85,8 +144,19 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem, public He
     mode_ = 0;
     motor_torque_ = motor_torque[0];
     DecideModeAtRest();
+    exact_ = UseExact(motor_torque);
+    if (exact_) {
+      time_ = &time;
+      torque_ = &motor_torque;
+      exact_run_.Start(linear_model_, Eigen::Vector4d::Zero(), motor_torque[0],
+                       with_sensitivities_ ? static_cast<int>(parameters_.size()) : 0,
+                       kSwitchBudgetConstant + kSwitchesPerSample * static_cast<long>(samples_));
+      return;
+    }
     run_ = std::make_unique<HeldInputRun>(*integrator_, time, motor_torque, *this, "model");
   }
+
+  void set_integration(DriveTrainIntegration integration) { integration_ = integration; }
 
   void Advance(std::size_t last, DriveTrainResponse* out) {
     last = std::min(last, samples_ == 0 ? 0 : samples_ - 1);
@@ -100,14 +170,18 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem, public He
     out->deflection.assign(angle_samples, 0.0);
     out->motor_angle_sensitivity.assign(angle_samples * p, 0.0);
     out->deflection_sensitivity.assign(angle_samples * p, 0.0);
-    out->switch_count = run_ ? run_->switches() : 0;
+    out->switch_count = Switches();
     if (count == 0) return;
     out_ = out;
     window_first_ = next_;
     if (next_ == 0) Record(0);
-    run_->RunTo(last);
+    if (exact_) {
+      AdvanceExact(last);
+    } else {
+      run_->RunTo(last);
+    }
     next_ = last + 1;
-    out->switch_count = run_->switches();
+    out->switch_count = Switches();
   }
 
   std::size_t next_sample() const { return next_; }
@@ -130,6 +204,35 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem, public He
   const std::vector<DriveTrainParameter>& parameters() const { return parameters_; }
 
  private:
+  // The exact path (sim/switched_linear_exact.h) where the torque changes
+  // often: CVODES restarts at every change, the exponentials are computed
+  // once per mode.
+  bool UseExact(const std::vector<double>& torque) const {
+    if (integration_ != DriveTrainIntegration::kAuto) return integration_ == DriveTrainIntegration::kExact;
+    std::size_t changes = 0;
+    for (std::size_t k = 1; k < torque.size(); ++k) changes += torque[k] != torque[k - 1] ? 1 : 0;
+    return changes * kExactChangeFraction > torque.size();
+  }
+  int Switches() const {
+    if (exact_) return static_cast<int>(exact_run_.switches());
+    return run_ ? run_->switches() : 0;
+  }
+  void AdvanceExact(std::size_t last) {
+    const std::vector<double>& time = *time_;
+    const std::vector<double>& torque = *torque_;
+    for (std::size_t m = std::max<std::size_t>(next_, 1); m <= last; ++m) {
+      exact_run_.Advance(time[m] - time[m - 1], torque[m - 1], time[m - 1]);
+      const Eigen::Vector4d& x = exact_run_.state();
+      for (int i = 0; i < n_; ++i) x_[static_cast<std::size_t>(i)] = x(i);
+      const auto& s = exact_run_.sensitivities();
+      for (std::size_t j = 0; j < s.size(); ++j) {
+        for (int i = 0; i < n_; ++i) s_[j * static_cast<std::size_t>(n_) + static_cast<std::size_t>(i)] = s[j](i);
+      }
+      mode_ = exact_run_.mode();
+      Record(m);
+    }
+  }
+
   double jacobian_cache(int col, int row) const { return jacobian_[static_cast<std::size_t>(col * n_ + row)]; }
 
   void RefreshJacobian() { CalcDriveTrainStateJacobian(params_, model_, mode_, jacobian_.data()); }
@@ -226,6 +329,12 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem, public He
   std::unique_ptr<HeldInputRun> run_;  // the simulation under way (Start, Advance)
   std::size_t samples_ = 0, next_ = 0;  // the log's samples; the next one to record
   std::size_t window_first_ = 0;        // the sample at index 0 of out_
+  DriveTrainIntegration integration_ = DriveTrainIntegration::kAuto;
+  bool exact_ = false;                  // this run takes the exact path
+  DriveTrainLinearModel linear_model_{model_, params_, parameters_};
+  SwitchedLinearExact exact_run_;
+  const std::vector<double>* time_ = nullptr;
+  const std::vector<double>* torque_ = nullptr;
 };
 
 DriveTrainSimulator::DriveTrainSimulator(DriveTrainModel model, const DriveTrainParameters& nominal,
@@ -252,6 +361,8 @@ void DriveTrainSimulator::Advance(std::size_t last, DriveTrainResponse* response
 std::size_t DriveTrainSimulator::next_sample() const { return system_->next_sample(); }
 
 void DriveTrainSimulator::set_record_angles(bool record) { system_->set_record_angles(record); }
+
+void DriveTrainSimulator::set_integration(DriveTrainIntegration integration) { system_->set_integration(integration); }
 
 DriveTrainModel DriveTrainSimulator::model() const { return system_->model(); }
 

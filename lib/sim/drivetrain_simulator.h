@@ -4,7 +4,12 @@
 //
 // Stick/slip is a switched system. Each friction mode (-1, 0, +1) has a
 // smooth vector field, integrated by CVODES; switches are located by CVODES
-// root finding:
+// root finding. The field is linear within a mode, so where the torque
+// changes at most samples (closed-loop logs, multisines: CVODES would
+// restart at each) the run takes the exact path instead
+// (sim/switched_linear_exact.h: matrix exponentials per sample interval,
+// the same modes, events and jumps); both agree to the integrator's
+// tolerance (tests/sim/drivetrain_simulator_test.cc). Modes and events:
 //   sliding (mode +-1): root g = omega. At omega = 0 the drive sticks if
 //     |F| <= tau_c, else it reverses (mode = sgn F).
 //   stuck (mode 0): roots g = F - tau_c and g = F + tau_c; crossing one
@@ -23,6 +28,7 @@
 // starts at rest and unloaded at t_0 (phi = Delta = 0).
 #pragma once
 
+#include <cstddef>
 #include <memory>
 #include <vector>
 
@@ -49,6 +55,11 @@ struct SimulationTolerances {
   double relative = 1e-7;     ///< relative tolerance of states and sensitivities
   double link_torque = 1e-6;  ///< absolute tolerance, expressed as link torque [N m]
 };
+
+/// How a run is integrated: kAuto takes the exact path when the torque
+/// changes at more than one sample in kExactChangeFraction, else CVODES.
+enum class DriveTrainIntegration { kAuto, kCvodes, kExact };
+constexpr std::size_t kExactChangeFraction = 8;
 
 class DriveTrainSimulator {
  public:
@@ -83,6 +94,8 @@ class DriveTrainSimulator {
   /// the friction mode (default); without, they stay empty (a fit of
   /// tau_link alone saves five of the response's seven arrays).
   void set_record_angles(bool record);
+  /// The integration of the next Start (default kAuto; the others for tests).
+  void set_integration(DriveTrainIntegration integration);
 
   DriveTrainModel model() const;
   const std::vector<DriveTrainParameter>& sensitivity_parameters() const;

@@ -31,7 +31,10 @@ StepLog MakeStep(double rate, double duration, double step_time, double amplitud
 TEST_CASE("reduced step response matches the closed form, then sticks") {
   const auto params = PaperDriveTrain();
   const auto log = MakeStep(1000.0, 0.2, 0.0, -0.8);
+  const auto integration = GENERATE(DriveTrainIntegration::kCvodes, DriveTrainIntegration::kExact);
+  INFO("integration " << static_cast<int>(integration));
   DriveTrainSimulator simulator(DriveTrainModel::kReduced, params, {});
+  simulator.set_integration(integration);
   DriveTrainResponse response;
   simulator.Simulate(params, log.time, log.torque, false, &response);
   // Sliding in the negative direction: target level Y = n_g u + tau_c.
@@ -57,10 +60,13 @@ TEST_CASE("reduced step response matches the closed form, then sticks") {
 
 TEST_CASE("a stuck drive stays put under sub-breakaway torque") {
   auto params = PaperDriveTrain();
+  const auto integration = GENERATE(DriveTrainIntegration::kCvodes, DriveTrainIntegration::kExact);
+  INFO("integration " << static_cast<int>(integration));
   for (auto model : {DriveTrainModel::kReduced, DriveTrainModel::kFull}) {
     // n_g |u| = 4.8 N m < tau_c = 5 N m: nothing may move, ever.
     const auto log = MakeStep(1000.0, 1.0, 0.1, 0.06);
     DriveTrainSimulator simulator(model, params, {});
+    simulator.set_integration(integration);
     DriveTrainResponse response;
     simulator.Simulate(params, log.time, log.torque, false, &response);
     for (double y : response.link_torque) CHECK(y == 0.0);
@@ -69,6 +75,7 @@ TEST_CASE("a stuck drive stays put under sub-breakaway torque") {
   // After a real step the drive sticks and then holds without creeping.
   const auto log = MakeStep(1000.0, 2.0, 0.02, -0.8);
   DriveTrainSimulator simulator(DriveTrainModel::kReduced, params, {});
+  simulator.set_integration(integration);
   DriveTrainResponse response;
   simulator.Simulate(params, log.time, log.torque, false, &response);
   const double at_half = response.link_torque[500];
@@ -85,6 +92,9 @@ TEST_CASE("sensitivities match central differences of whole simulations") {
     double agreement;        // relative to the largest sensitivity
   };
   const SimulationTolerances tight{1e-10, 1e-9};
+  // (the exact path is exact: its differences need only a small step)
+  const auto integration = GENERATE(DriveTrainIntegration::kCvodes, DriveTrainIntegration::kExact);
+  INFO("integration " << static_cast<int>(integration));
   for (const Case c : {Case{DriveTrainModel::kReduced, 1000.0, tight, 1e-5, 2e-4},
                        Case{DriveTrainModel::kFull, 5000.0, tight, 1e-5, 2e-4},
                        Case{DriveTrainModel::kReduced, 1000.0, {}, 1e-3, 5e-3},
@@ -100,6 +110,7 @@ TEST_CASE("sensitivities match central differences of whole simulations") {
         DriveTrainParameter::kGearboxStiffness};
     if (c.model == DriveTrainModel::kFull) parameters.push_back(DriveTrainParameter::kGearboxInertia);
     DriveTrainSimulator simulator(c.model, params, parameters, c.tolerances);
+    simulator.set_integration(integration);
     DriveTrainResponse response;
     simulator.Simulate(params, log.time, log.torque, true, &response);
     CHECK(response.switch_count >= 2);
@@ -136,8 +147,12 @@ TEST_CASE("simulated in pieces (Start, Advance) = simulated at once, bit for bit
   }
   const std::vector<DriveTrainParameter> free{DriveTrainParameter::kViscousFriction,
                                               DriveTrainParameter::kCoulombFriction};
+  const auto integration = GENERATE(DriveTrainIntegration::kCvodes, DriveTrainIntegration::kExact);
+  INFO("integration " << static_cast<int>(integration));
   for (auto model : {DriveTrainModel::kReduced, DriveTrainModel::kFull}) {
     DriveTrainSimulator whole(model, params, free), pieces(model, params, free);
+    whole.set_integration(integration);
+    pieces.set_integration(integration);
     DriveTrainResponse all, part;
     whole.Simulate(params, log.time, log.torque, true, &all);
     REQUIRE(all.switch_count >= 2);
@@ -158,5 +173,68 @@ TEST_CASE("simulated in pieces (Start, Advance) = simulated at once, bit for bit
     CHECK(angle == all.motor_angle);
     pieces.Advance(end, &part);  // nothing left
     CHECK(part.link_torque.empty());
+  }
+}
+
+namespace {
+// A torque that changes at every sample (a sum of sines with reversals
+// large enough to break the drive away, stick it and reverse it).
+StepLog MakeVarying(double rate, double duration) {
+  StepLog log;
+  const int n = static_cast<int>(std::lround(duration * rate)) + 1;
+  for (int k = 0; k < n; ++k) {
+    const double t = k / rate;
+    log.time.push_back(t);
+    log.torque.push_back(0.5 * std::sin(2 * M_PI * 3.1 * t) + 0.25 * std::sin(2 * M_PI * 17.3 * t + 1.0) +
+                         0.1 * std::sin(2 * M_PI * 61.0 * t + 2.0));
+  }
+  return log;
+}
+}  // namespace
+
+TEST_CASE("a torque that changes every sample: the exact path agrees with CVODES and is the one chosen") {
+  const auto params = PaperDriveTrain();
+  const std::vector<DriveTrainParameter> free{DriveTrainParameter::kViscousFriction,
+                                              DriveTrainParameter::kMotorInertia,
+                                              DriveTrainParameter::kCoulombFriction};
+  const SimulationTolerances tight{1e-10, 1e-9};
+  for (auto model : {DriveTrainModel::kReduced, DriveTrainModel::kFull}) {
+    INFO("model " << static_cast<int>(model));
+    const auto log = MakeVarying(5000.0, 0.6);
+    DriveTrainSimulator cvodes(model, params, free, tight), exact(model, params, free), automatic(model, params, free);
+    cvodes.set_integration(DriveTrainIntegration::kCvodes);
+    exact.set_integration(DriveTrainIntegration::kExact);
+    DriveTrainResponse a, b, c;
+    cvodes.Simulate(params, log.time, log.torque, true, &a);
+    exact.Simulate(params, log.time, log.torque, true, &b);
+    automatic.Simulate(params, log.time, log.torque, true, &c);
+    REQUIRE(a.switch_count >= 4);  // sticks and breaks away several times
+    CHECK(b.switch_count == a.switch_count);
+    double scale = 0.0, worst = 0.0;
+    for (std::size_t k = 0; k < log.time.size(); ++k) {
+      scale = std::max(scale, std::abs(a.link_torque[k]));
+      worst = std::max(worst, std::abs(a.link_torque[k] - b.link_torque[k]));
+    }
+    CHECK(scale > 10.0);
+    CHECK(worst <= 1e-6 * scale);
+    for (std::size_t j = 0; j < free.size(); ++j) {
+      double s_scale = 0.0, s_worst = 0.0;
+      for (std::size_t k = 0; k < log.time.size(); ++k) {
+        const std::size_t i = k * free.size() + j;
+        s_scale = std::max(s_scale, std::abs(a.link_torque_sensitivity[i]));
+        s_worst = std::max(s_worst, std::abs(a.link_torque_sensitivity[i] - b.link_torque_sensitivity[i]));
+      }
+      INFO("parameter " << DriveTrainParameterKey(free[j]) << " worst " << s_worst << " scale " << s_scale);
+      CHECK(s_worst <= 1e-4 * s_scale);
+    }
+    // kAuto: the exact path here, bit for bit; CVODES on a stepped log.
+    CHECK(c.link_torque == b.link_torque);
+    CHECK(c.link_torque_sensitivity == b.link_torque_sensitivity);
+    const auto steps = MakeStep(5000.0, 0.3, 0.02, -0.8);
+    DriveTrainSimulator stepped(model, params, free), stepped_cvodes(model, params, free);
+    stepped_cvodes.set_integration(DriveTrainIntegration::kCvodes);
+    stepped_cvodes.Simulate(params, steps.time, steps.torque, true, &a);
+    stepped.Simulate(params, steps.time, steps.torque, true, &c);
+    CHECK(c.link_torque == a.link_torque);
   }
 }
