@@ -26,6 +26,10 @@ CLI::App* SetupStepCommand(CLI::App& app, StepOptions& options) {
                       "--params values; the lower cost wins, disagreement reported) or given (the --params values "
                       "only); docs/models.md#drive-train")
       ->check(CLI::IsMember({"staged", "both", "given"}));
+  command->add_option("--integrator", options.integrator,
+                      "exact (matrix exponentials per sample interval, the default) or cvodes (SUNDIALS CVODES, "
+                      "restarted at each torque change: to cross-check); docs/models.md#drive-train")
+      ->check(CLI::IsMember({"exact", "cvodes"}));
   AddFreeOption(*command, options.free, FreeOptionHelp(DriveTrainParameterTable(), "step", ", offset (a bias per log)"));
   AddLogInputOptions(*command, options.input, "tau_link=strain_gauge");
   command->add_option("--validate", options.validate,
@@ -49,7 +53,7 @@ void RunStepCommand(const StepOptions& options, const std::string& command_line)
   FitOutputs outputs;
   outputs.provenance.command = command_line;
   outputs.provenance.version = DRIVEID_VERSION;
-  outputs.provenance.model = options.model;
+  outputs.provenance.model = options.model + (options.integrator == "cvodes" ? ", integrated by CVODES" : "");
   const auto logs = LoadLogs<StepLog>(options.logs, options.input, options.output, outputs.provenance, StepLogColumns(),
                                         [&](CsvLog csv) { return MakeStepLog(std::move(csv)); });
 
@@ -59,6 +63,8 @@ void RunStepCommand(const StepOptions& options, const std::string& command_line)
   fit_options.starts = options.starts == "given" ? StepStarts::kGiven
                        : options.starts == "both" ? StepStarts::kBoth
                                                   : StepStarts::kStaged;
+  fit_options.integration =
+      options.integrator == "cvodes" ? DriveTrainIntegration::kCvodes : DriveTrainIntegration::kExact;
   SetProgress(fit_options.fit, options.output.verbose);
   const StepFitOutput result =
       FitStepResponses(logs, MakeDriveTrainParameters(*start_file.Find<DriveTrainSection>()), fit_options);

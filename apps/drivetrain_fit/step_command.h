@@ -17,6 +17,7 @@ struct StepOptions {
   std::string params;
   std::string model = "reduced";
   std::string starts = "staged";
+  std::string integrator = "exact";
   std::vector<std::string> free = FitParameterKeys(DriveTrainParameterTable(), "step", true);
   LogInputCli input;
   std::vector<std::string> validate;  ///< held-out logs predicted by the fit

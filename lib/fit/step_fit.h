@@ -33,9 +33,8 @@ struct StepFitOptions {
   StepStarts starts = StepStarts::kStaged;
   std::vector<std::string> free = FitParameterKeys(DriveTrainParameterTable(), "step", true);  ///< may include "offset"
   FitOptions fit;
-  /// How the simulations are integrated (sim/drivetrain_simulator.h); the
-  /// default chooses per log, the others are for comparisons.
-  DriveTrainIntegration integration = DriveTrainIntegration::kAuto;
+  /// How the simulations are integrated (sim/drivetrain_simulator.h).
+  DriveTrainIntegration integration = DriveTrainIntegration::kExact;
 };
 
 struct StepFitOutput {

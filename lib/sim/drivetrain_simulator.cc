@@ -144,7 +144,7 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem, public He
     mode_ = 0;
     motor_torque_ = motor_torque[0];
     DecideModeAtRest();
-    exact_ = UseExact(motor_torque);
+    exact_ = integration_ == DriveTrainIntegration::kExact;
     if (exact_) {
       time_ = &time;
       torque_ = &motor_torque;
@@ -204,15 +204,6 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem, public He
   const std::vector<DriveTrainParameter>& parameters() const { return parameters_; }
 
  private:
-  // The exact path (sim/switched_linear_exact.h) where the torque changes
-  // often: CVODES restarts at every change, the exponentials are computed
-  // once per mode.
-  bool UseExact(const std::vector<double>& torque) const {
-    if (integration_ != DriveTrainIntegration::kAuto) return integration_ == DriveTrainIntegration::kExact;
-    std::size_t changes = 0;
-    for (std::size_t k = 1; k < torque.size(); ++k) changes += torque[k] != torque[k - 1] ? 1 : 0;
-    return changes * kExactChangeFraction > torque.size();
-  }
   int Switches() const {
     if (exact_) return static_cast<int>(exact_run_.switches());
     return run_ ? run_->switches() : 0;
@@ -329,7 +320,7 @@ class DriveTrainSimulator::System final : public SensitivityOdeSystem, public He
   std::unique_ptr<HeldInputRun> run_;  // the simulation under way (Start, Advance)
   std::size_t samples_ = 0, next_ = 0;  // the log's samples; the next one to record
   std::size_t window_first_ = 0;        // the sample at index 0 of out_
-  DriveTrainIntegration integration_ = DriveTrainIntegration::kAuto;
+  DriveTrainIntegration integration_ = DriveTrainIntegration::kExact;
   bool exact_ = false;                  // this run takes the exact path
   DriveTrainLinearModel linear_model_{model_, params_, parameters_};
   SwitchedLinearExact exact_run_;

@@ -3,13 +3,12 @@
 // sensitivities of the link torque with respect to chosen parameters.
 //
 // Stick/slip is a switched system. Each friction mode (-1, 0, +1) has a
-// smooth vector field, integrated by CVODES; switches are located by CVODES
-// root finding. The field is linear within a mode, so where the torque
-// changes at most samples (closed-loop logs, multisines: CVODES would
-// restart at each) the run takes the exact path instead
-// (sim/switched_linear_exact.h: matrix exponentials per sample interval,
-// the same modes, events and jumps); both agree to the integrator's
-// tolerance (tests/sim/drivetrain_simulator_test.cc). Modes and events:
+// smooth vector field, linear in the state and the torque, so each sample
+// interval is solved exactly (sim/switched_linear_exact.h: matrix
+// exponentials, events located on the exact solution). CVODES (events by
+// its root finding, restarted at every change of the torque) is the
+// alternative integration; both agree to its tolerance
+// (tests/sim/drivetrain_simulator_test.cc). Modes and events:
 //   sliding (mode +-1): root g = omega. At omega = 0 the drive sticks if
 //     |F| <= tau_c, else it reverses (mode = sgn F).
 //   stuck (mode 0): roots g = F - tau_c and g = F + tau_c; crossing one
@@ -56,10 +55,10 @@ struct SimulationTolerances {
   double link_torque = 1e-6;  ///< absolute tolerance, expressed as link torque [N m]
 };
 
-/// How a run is integrated: kAuto takes the exact path when the torque
-/// changes at more than one sample in kExactChangeFraction, else CVODES.
-enum class DriveTrainIntegration { kAuto, kCvodes, kExact };
-constexpr std::size_t kExactChangeFraction = 8;
+/// How a run is integrated: exactly per sample interval (the default), or
+/// by CVODES (restarted at every change of the torque; kept to check the
+/// exact path against and for comparisons).
+enum class DriveTrainIntegration { kExact, kCvodes };
 
 class DriveTrainSimulator {
  public:
@@ -94,7 +93,7 @@ class DriveTrainSimulator {
   /// the friction mode (default); without, they stay empty (a fit of
   /// tau_link alone saves five of the response's seven arrays).
   void set_record_angles(bool record);
-  /// The integration of the next Start (default kAuto; the others for tests).
+  /// The integration of the next Start (default kExact).
   void set_integration(DriveTrainIntegration integration);
 
   DriveTrainModel model() const;

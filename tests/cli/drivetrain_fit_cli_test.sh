@@ -229,6 +229,17 @@ fit_pct=$(grep -o '"fit_percent":{[^}]*}' step_fit.json | grep -o '[0-9.]*}$' | 
 "$bin" validate step_fit.yaml "$src/data/fig6_step.csv" --plot validate.svg --trace validate.csv > validate.txt \
   && grep -q "fig6_step.csv:tau_link  *1001 " validate.txt && [ -s validate.svg ] && grep -q "^1,0,"  validate.csv \
   && ok || fail "validate table, plot, trace: $(cat validate.txt)"
+# --integrator cvodes cross-checks the exact default (docs/models.md#drive-train):
+# the same estimates to well within their std, and the file says which.
+"$bin" step "$src/data/fig6_step.csv" --params "$src/data/paper000_start.yaml" --model full --integrator cvodes \
+  --free d_g,Theta_motor,tau_c,offset -o cvodes_fit.yaml > cvodes.txt && grep -q "model full, integrated by CVODES" cvodes.txt \
+  && "$bin" step "$src/data/fig6_step.csv" --params "$src/data/paper000_start.yaml" --model full \
+    --free d_g,Theta_motor,tau_c,offset -o exact_fit.yaml > exact.txt && ! grep -q "CVODES" exact.txt \
+  && paste <(grep -E '^    (d_g|Theta_motor|tau_c|offset_1): {value' exact_fit.yaml) \
+           <(grep -E '^    (d_g|Theta_motor|tau_c|offset_1): {value' cvodes_fit.yaml) | tr -d '{},' \
+  | awk '{ d = $3 - $11; if (d < 0) d = -d; if (d > 0.05 * $5) bad = 1; n++ } END { exit bad || n != 4 }' \
+  && ok || fail "step --integrator cvodes vs exact: $(cat exact.txt cvodes.txt)"
+expect 2 "--integrator: cvode not in" -- step good.csv --params start.yaml --integrator cvode
 "$bin" axis axis.csv --validate constant.csv --json -o /dev/null 2> /dev/null | grep -q '"validation":\[{"log":"constant.csv:tau"' \
   && ok || fail "axis --validate"
 { cat step_fit.yaml; grep -v "^#" axis.yaml; } > both.yaml

@@ -124,10 +124,10 @@ TEST_CASE("(c) full truth, 2 s at 5 kHz: the fit reaches the true optimum from s
 }
 
 TEST_CASE("(d) a torque that changes every sample: recovered, the exact path within 0.05 std of CVODES") {
-  // Closed-loop logs and multisines change the torque at every sample: the
-  // simulator then takes its exact path (sim/switched_linear_exact.h)
-  // instead of restarting CVODES at each sample. The log comes from the
-  // independent generator with a level per sample.
+  // Closed-loop logs and multisines change the torque at every sample:
+  // CVODES restarts at each, the exact path (sim/switched_linear_exact.h,
+  // the default) does not. The log comes from the independent generator
+  // with a level per sample.
   for (const bool full : {false, true}) {
     INFO((full ? "full" : "reduced") << " model");
     reference::DriveTrain truth;

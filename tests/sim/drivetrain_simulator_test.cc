@@ -192,7 +192,7 @@ StepLog MakeVarying(double rate, double duration) {
 }
 }  // namespace
 
-TEST_CASE("a torque that changes every sample: the exact path agrees with CVODES and is the one chosen") {
+TEST_CASE("a torque that changes every sample: the exact path agrees with CVODES and is the default") {
   const auto params = PaperDriveTrain();
   const std::vector<DriveTrainParameter> free{DriveTrainParameter::kViscousFriction,
                                               DriveTrainParameter::kMotorInertia,
@@ -201,13 +201,13 @@ TEST_CASE("a torque that changes every sample: the exact path agrees with CVODES
   for (auto model : {DriveTrainModel::kReduced, DriveTrainModel::kFull}) {
     INFO("model " << static_cast<int>(model));
     const auto log = MakeVarying(5000.0, 0.6);
-    DriveTrainSimulator cvodes(model, params, free, tight), exact(model, params, free), automatic(model, params, free);
+    DriveTrainSimulator cvodes(model, params, free, tight), exact(model, params, free), by_default(model, params, free);
     cvodes.set_integration(DriveTrainIntegration::kCvodes);
     exact.set_integration(DriveTrainIntegration::kExact);
     DriveTrainResponse a, b, c;
     cvodes.Simulate(params, log.time, log.torque, true, &a);
     exact.Simulate(params, log.time, log.torque, true, &b);
-    automatic.Simulate(params, log.time, log.torque, true, &c);
+    by_default.Simulate(params, log.time, log.torque, true, &c);
     REQUIRE(a.switch_count >= 4);  // sticks and breaks away several times
     CHECK(b.switch_count == a.switch_count);
     double scale = 0.0, worst = 0.0;
@@ -227,13 +227,13 @@ TEST_CASE("a torque that changes every sample: the exact path agrees with CVODES
       INFO("parameter " << DriveTrainParameterKey(free[j]) << " worst " << s_worst << " scale " << s_scale);
       CHECK(s_worst <= 1e-4 * s_scale);
     }
-    // kAuto: the exact path here, bit for bit; CVODES on a stepped log.
+    // The default is the exact path, bit for bit, here and on a stepped log.
     CHECK(c.link_torque == b.link_torque);
     CHECK(c.link_torque_sensitivity == b.link_torque_sensitivity);
     const auto steps = MakeStep(5000.0, 0.3, 0.02, -0.8);
-    DriveTrainSimulator stepped(model, params, free), stepped_cvodes(model, params, free);
-    stepped_cvodes.set_integration(DriveTrainIntegration::kCvodes);
-    stepped_cvodes.Simulate(params, steps.time, steps.torque, true, &a);
+    DriveTrainSimulator stepped(model, params, free), stepped_exact(model, params, free);
+    stepped_exact.set_integration(DriveTrainIntegration::kExact);
+    stepped_exact.Simulate(params, steps.time, steps.torque, true, &a);
     stepped.Simulate(params, steps.time, steps.torque, true, &c);
     CHECK(c.link_torque == a.link_torque);
   }
