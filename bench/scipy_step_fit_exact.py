@@ -21,22 +21,15 @@ import sys
 
 import numpy as np
 from scipy.linalg import expm
-from scipy.optimize import brentq, least_squares
+from scipy.optimize import brentq
+
+from peer_common import fit_and_print, read_log
 
 GEAR = 80.0           # n_g
 STIFF_LINK = 15000.0  # k_Tl [N m/rad]
 STIFF_GEAR = 18375.0  # k_Tg [N m/rad]
 INERTIA_GEAR = 6.71875e-06  # Theta_g [kg m^2]
 MAX_SWITCHES_PER_SAMPLE = 4
-
-
-def read_log(path):
-    with open(path) as log:
-        lines = [line for line in log if line.strip() and not line.startswith("#")]
-    header = lines[0].strip().split(",")
-    values = np.loadtxt(lines[1:], delimiter=",", ndmin=2)
-    column = {name: values[:, k] for k, name in enumerate(header)}
-    return column["t"], column["tau_motor"], column["tau_link"]
 
 
 class ExactDriveTrain:
@@ -148,11 +141,7 @@ class ExactDriveTrain:
 def main():
     time, torque, measured = read_log(sys.argv[1])
     model = ExactDriveTrain(time, torque, len(sys.argv) > 2 and sys.argv[2] == "full")
-    theta0 = np.array([0.005, 1.6e-4, 12.0, 0.0])
-    fit = least_squares(lambda theta: model.link_torque(theta) - measured, theta0, method="trf", x_scale="jac",
-                        bounds=([0.0, 1e-9, 0.0, -np.inf], [np.inf, np.inf, np.inf, np.inf]))
-    names = ("d_g", "Theta_motor", "tau_c", "offset")
-    print("estimates: " + " ".join(f"{n}={v:.8g}" for n, v in zip(names, fit.x)) + f" nfev={fit.nfev}")
+    fit_and_print(model.link_torque, measured)
 
 
 if __name__ == "__main__":

@@ -1,6 +1,8 @@
 #!/usr/bin/python3
 """Second peer for scripts/benchmark (not part of driveid), written apart
 from scipy_step_fit.py with the choices a SciPy user who knows the library
+
+from peer_common import fit_and_print, read_log
 makes for this problem (issue 22 item 4):
   - LSODA (switches to BDF when the elastic mode makes the problem stiff),
     max_step one sample so that the zero-order-held torque is never stepped
@@ -16,21 +18,13 @@ import sys
 
 import numpy as np
 from scipy.integrate import solve_ivp
-from scipy.optimize import least_squares
+
+from peer_common import fit_and_print, read_log
 
 GEAR = 80.0           # n_g
 STIFF_LINK = 15000.0  # k_Tl [N m/rad]
 STIFF_GEAR = 18375.0  # k_Tg [N m/rad]
 INERTIA_GEAR = 6.71875e-06  # Theta_g [kg m^2]
-
-
-def read_log(path):
-    with open(path) as log:
-        lines = [line for line in log if line.strip() and not line.startswith("#")]
-    header = lines[0].strip().split(",")
-    values = np.loadtxt(lines[1:], delimiter=",", ndmin=2)
-    column = {name: values[:, k] for k, name in enumerate(header)}
-    return column["t"], column["tau_motor"], column["tau_link"]
 
 
 class DriveTrain:
@@ -112,11 +106,7 @@ class DriveTrain:
 def main():
     time, torque, measured = read_log(sys.argv[1])
     model = DriveTrain(time, torque, len(sys.argv) > 2 and sys.argv[2] == "full")
-    theta0 = np.array([0.005, 1.6e-4, 12.0, 0.0])
-    fit = least_squares(lambda theta: model.link_torque(theta) - measured, theta0, method="trf", x_scale="jac",
-                        bounds=([0.0, 1e-9, 0.0, -np.inf], [np.inf, np.inf, np.inf, np.inf]))
-    names = ("d_g", "Theta_motor", "tau_c", "offset")
-    print("estimates: " + " ".join(f"{n}={v:.8g}" for n, v in zip(names, fit.x)) + f" nfev={fit.nfev}")
+    fit_and_print(model.link_torque, measured)
 
 
 if __name__ == "__main__":

@@ -1,0 +1,24 @@
+"""What the SciPy peers B and C of scripts/benchmark share (not part of
+driveid): reading a step log and the fit with the choices of peer B
+(bounded least_squares, trust-region reflective, x_scale='jac', 2-point
+Jacobian, start as data/paper000_start.yaml), printed as one line."""
+import numpy as np
+from scipy.optimize import least_squares
+
+
+def read_log(path):
+    with open(path) as log:
+        lines = [line for line in log if line.strip() and not line.startswith("#")]
+    header = lines[0].strip().split(",")
+    values = np.loadtxt(lines[1:], delimiter=",", ndmin=2)
+    column = {name: values[:, k] for k, name in enumerate(header)}
+    return column["t"], column["tau_motor"], column["tau_link"]
+
+
+def fit_and_print(link_torque, measured):
+    """Fits d_g, Theta_motor, tau_c, offset of link_torque(theta) to measured."""
+    theta0 = np.array([0.005, 1.6e-4, 12.0, 0.0])
+    fit = least_squares(lambda theta: link_torque(theta) - measured, theta0, method="trf", x_scale="jac",
+                        bounds=([0.0, 1e-9, 0.0, -np.inf], [np.inf, np.inf, np.inf, np.inf]))
+    names = ("d_g", "Theta_motor", "tau_c", "offset")
+    print("estimates: " + " ".join(f"{n}={v:.8g}" for n, v in zip(names, fit.x)) + f" nfev={fit.nfev}")
