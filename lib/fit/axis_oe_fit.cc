@@ -118,16 +118,16 @@ bool IsTorqueStepLog(const AxisLog& log) {
   return static_cast<double>(changes) < 0.02 * static_cast<double>(log.force.size());
 }
 
+double CalcLoggedStartRate(const std::vector<double>& time, const std::vector<double>& position,
+                           const std::vector<double>& rate) {
+  if (!rate.empty()) return rate.front();
+  if (time.size() < 2) return 0.0;
+  const std::size_t m = std::min(kStartRateSamples, time.size() - 1);
+  return (position[m] - position[0]) / (time[m] - time[0]);
+}
+
 AxisStart AxisLogStart(const AxisLog& log) {
-  AxisStart start;
-  start.position = log.position.front();
-  if (!log.rate.empty()) {
-    start.rate = log.rate.front();
-  } else if (log.time.size() > 1) {
-    const std::size_t m = std::min(kStartRateSamples, log.time.size() - 1);
-    start.rate = (log.position[m] - log.position[0]) / (log.time[m] - log.time[0]);
-  }
-  return start;
+  return {log.position.front(), CalcLoggedStartRate(log.time, log.position, log.rate)};
 }
 
 namespace {

@@ -40,6 +40,10 @@ struct AxisStart {
   double position = 0.0, rate = 0.0;
 };
 AxisStart AxisLogStart(const AxisLog& log);
+/// A logged rate's first value, else the slope over the first 10 samples
+/// (0 for a single sample) [position unit / s].
+double CalcLoggedStartRate(const std::vector<double>& time, const std::vector<double>& position,
+                           const std::vector<double>& rate);
 
 /// Whether a log's torque looks like held steps (it changes at fewer than
 /// 2 % of the samples): output error suits it, inverse dynamics does not.

@@ -164,18 +164,6 @@ std::vector<ValidatedLog> ValidateMujocoAxis(const std::vector<AxisLog>& logs, c
   return out;
 }
 
-namespace {
-
-// A logged rate, else the slope over the first 10 samples.
-double StartRate(const std::vector<double>& time, const std::vector<double>& position, const std::vector<double>& rate) {
-  if (!rate.empty()) return rate.front();
-  if (time.size() < 2) return 0.0;
-  const std::size_t m = std::min<std::size_t>(10, time.size() - 1);
-  return (position[m] - position[0]) / (time[m] - time[0]);
-}
-
-}  // namespace
-
 std::vector<ValidatedLog> ValidateMujocoJoint(const std::vector<JointLog>& logs, const std::string& mjcf,
                                               const std::string& joint, double max_step) {
   std::vector<ValidatedLog> out;
@@ -186,9 +174,10 @@ std::vector<ValidatedLog> ValidateMujocoJoint(const std::vector<JointLog>& logs,
     MujocoRun run;
     run.drive = joint + "_motor";
     run.max_step = max_step;
-    run.record = {{joint + "_motor", log.motor_position.front(),
-                   StartRate(log.time, log.motor_position, log.motor_rate), true},
-                  {joint, log.link_position.front(), StartRate(log.time, log.link_position, log.link_rate), false}};
+    const double motor_rate = CalcLoggedStartRate(log.time, log.motor_position, log.motor_rate);
+    const double link_rate = CalcLoggedStartRate(log.time, log.link_position, log.link_rate);
+    run.record = {{joint + "_motor", log.motor_position.front(), motor_rate, true},
+                  {joint, log.link_position.front(), link_rate, false}};
     MujocoRunResponse response = SimulateMujoco(mjcf, run, log.time, log.torque);
     out.push_back(AngleValidation(log.path + ":q_motor", log.time, log.motor_position, std::move(response.position[0])));
     out.push_back(AngleValidation(log.path + ":q_link", log.time, log.link_position, std::move(response.position[1])));

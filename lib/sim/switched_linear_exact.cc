@@ -161,8 +161,8 @@ void SwitchedLinearExact::Advance(double length, double u, double start) {
     const bool whole = left == length;
     const ModeField& f = fields_[mode_ + 1];
     const Transitions* full = whole ? &Transition(length) : nullptr;
-    const Vector4 end = Propagate(whole ? full->state : StateTransition(f, left), x_);
-    const double mid_margin = Margin(Propagate(whole ? full->half : StateTransition(f, 0.5 * left), x_));
+    const Vector4 end = whole ? Propagate(full->state, x_) : PropagateBySeries(f, x_, left);
+    const double mid_margin = Margin(whole ? Propagate(full->half, x_) : PropagateBySeries(f, x_, 0.5 * left));
     if (Clear(Margin(end)) && Clear(mid_margin)) {
       if (whole) {
         Apply(*full);
@@ -224,6 +224,27 @@ void SwitchedLinearExact::AdvanceBySeries(double length) {
   }
 }
 
+// The state after `tau` in the current mode from x (no sensitivities): the
+// Taylor series of the exact solution in pieces as AdvanceBySeries, far
+// cheaper than an exponential of the augmented matrix for the many short
+// spans an event search and the pieces after an event need.
+Vector4 SwitchedLinearExact::PropagateBySeries(const ModeField& f, const Vector4& x0, double tau) const {
+  Vector4 x = x0;
+  if (!(tau > 0.0)) return x;
+  const int pieces = std::max(1, static_cast<int>(std::ceil(2.0 * radius_[mode_ + 1] * tau)));
+  const double h = tau / pieces;
+  for (int piece = 0; piece < pieces; ++piece) {
+    Vector4 term = f.a * x + f.c + f.b * u_;
+    for (int k = 1; k <= 40; ++k) {
+      term *= h / k;
+      x += term;
+      if (term.cwiseAbs().maxCoeff() <= 1e-17 * x.cwiseAbs().maxCoeff()) break;
+      term = f.a * term;
+    }
+  }
+  return x;
+}
+
 // The first time in (0, upper] where the margin reaches 0 (it is > 0 at 0
 // and <= 0 at upper): Newton steps on the exact solution (the margin's rate
 // from the field), kept inside the bracket, else bisection; each step aims
@@ -234,7 +255,7 @@ double SwitchedLinearExact::LocateEvent(double upper) const {
   double lo = 0.0, hi = upper, tau = 0.0;
   Vector4 x = x_;
   for (int iteration = 0; iteration < 100 && hi - lo > tolerance; ++iteration) {
-    if (iteration > 0) x = Propagate(StateTransition(f, tau), x_);
+    if (iteration > 0) x = PropagateBySeries(f, x_, tau);
     const double margin = Margin(x);
     if (iteration > 0) (Clear(margin) ? lo : hi) = tau;  // (at 0 it may start at 0, as a body that breaks away)
     const double rate = MarginRate(x, f);

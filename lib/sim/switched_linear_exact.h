@@ -83,6 +83,7 @@ class SwitchedLinearExact {
   bool Clear(double margin) const;
   void DecideModeAtRest();
   void AdvanceBySeries(double length);
+  Eigen::Vector4d PropagateBySeries(const ModeField& f, const Eigen::Vector4d& x, double tau) const;
   double LocateEvent(double upper) const;
   double MarginRate(const Eigen::Vector4d& x, const ModeField& f) const;
   void HandleSwitch();

@@ -43,6 +43,27 @@ TEST_CASE("MAT v7.3 cut short at every length: refused naming the file, or the s
 
 namespace {
 
+// Creates dataset "stolen" of 1 x 5 doubles in `file` with the creation
+// properties `plist` (which say where its data live), marked as MATLAB marks
+// a double variable, and closes `plist`.
+void AddMatlabDouble(hid_t file, hid_t plist) {
+  const hsize_t dims[2] = {1, 5};
+  const hid_t space = H5Screate_simple(2, dims, nullptr);
+  const hid_t dataset = H5Dcreate2(file, "stolen", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, plist, H5P_DEFAULT);
+  REQUIRE(dataset >= 0);
+  const hid_t text = H5Tcopy(H5T_C_S1);
+  H5Tset_size(text, 6);
+  const hid_t scalar = H5Screate(H5S_SCALAR);
+  const hid_t attribute = H5Acreate2(dataset, "MATLAB_class", text, scalar, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(attribute, text, "double");
+  H5Aclose(attribute);
+  H5Sclose(scalar);
+  H5Tclose(text);
+  H5Dclose(dataset);
+  H5Pclose(plist);
+  H5Sclose(space);
+}
+
 // Adds to a v7.3 file (HDF5, written by matio) a double variable `name` of 5
 // samples as MATLAB stores one, its data in `how`: "external" raw storage in
 // another file, a "virtual" dataset mapped from another HDF5 file, or an
@@ -52,34 +73,20 @@ std::string WithForeignData(const std::string& how) {
   const auto dir = std::filesystem::temp_directory_path();
   const std::string path = (dir / "driveid_test73_foreign.mat").string();
   const std::string secret = (dir / "driveid_test73_secret.bin").string();
+  const double values[5] = {7, 7, 7, 7, 7};
   {
     std::ofstream out(path, std::ios::binary);
     out << bytes;
     std::ofstream other(secret, std::ios::binary);
-    const double values[5] = {7, 7, 7, 7, 7};
     other.write(reinterpret_cast<const char*>(values), sizeof values);
   }
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
   REQUIRE(file >= 0);
   if (how == "external") {
-    const hsize_t dims[2] = {1, 5};
-    const hid_t space = H5Screate_simple(2, dims, nullptr);
     const hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
     REQUIRE(H5Pset_external(plist, secret.c_str(), 0, 5 * sizeof(double)) >= 0);
-    const hid_t dataset = H5Dcreate2(file, "stolen", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, plist, H5P_DEFAULT);
-    REQUIRE(dataset >= 0);
-    const hid_t text = H5Tcopy(H5T_C_S1);
-    H5Tset_size(text, 6);
-    const hid_t scalar = H5Screate(H5S_SCALAR);
-    const hid_t attribute = H5Acreate2(dataset, "MATLAB_class", text, scalar, H5P_DEFAULT, H5P_DEFAULT);
-    H5Awrite(attribute, text, "double");
-    H5Aclose(attribute);
-    H5Sclose(scalar);
-    H5Tclose(text);
-    H5Dclose(dataset);
-    H5Pclose(plist);
-    H5Sclose(space);
+    AddMatlabDouble(file, plist);
   } else if (how == "virtual") {
     // A virtual dataset mapped from a dataset of another HDF5 file.
     const std::string source = (dir / "driveid_test73_secret.h5").string();
@@ -87,26 +94,14 @@ std::string WithForeignData(const std::string& how) {
     const hid_t space = H5Screate_simple(2, dims, nullptr);
     const hid_t other = H5Fcreate(source.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
     REQUIRE(other >= 0);
-    const double values[5] = {7, 7, 7, 7, 7};
     const hid_t stored = H5Dcreate2(other, "values", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     H5Dwrite(stored, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values);
     H5Dclose(stored);
     H5Fclose(other);
     const hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
     REQUIRE(H5Pset_virtual(plist, space, source.c_str(), "/values", space) >= 0);
-    const hid_t dataset = H5Dcreate2(file, "stolen", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, plist, H5P_DEFAULT);
-    REQUIRE(dataset >= 0);
-    const hid_t text = H5Tcopy(H5T_C_S1);
-    H5Tset_size(text, 6);
-    const hid_t scalar = H5Screate(H5S_SCALAR);
-    const hid_t attribute = H5Acreate2(dataset, "MATLAB_class", text, scalar, H5P_DEFAULT, H5P_DEFAULT);
-    H5Awrite(attribute, text, "double");
-    H5Aclose(attribute);
-    H5Sclose(scalar);
-    H5Tclose(text);
-    H5Dclose(dataset);
-    H5Pclose(plist);
     H5Sclose(space);
+    AddMatlabDouble(file, plist);
   } else {
     REQUIRE(H5Lcreate_external(secret.c_str(), "/time", file, "stolen", H5P_DEFAULT, H5P_DEFAULT) >= 0);
   }
