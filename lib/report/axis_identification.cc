@@ -1,0 +1,188 @@
+#include "report/axis_identification.h"
+
+#include <algorithm>
+#include <exception>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "fit/axis_fit.h"
+#include "fit/axis_oe_fit.h"
+#include "fit/validation.h"
+#include "models/feedforward.h"
+#include "report/axis_feedforward.h"
+
+namespace driveid {
+namespace {
+
+std::string Key(double AxisParameters::*member) { return KeyOf(AxisParameterTable(), member); }
+
+bool Contains(const std::vector<std::string>& keys, const std::string& key) {
+  return std::find(keys.begin(), keys.end(), key) != keys.end();
+}
+
+void FitByInverseDynamics(const std::vector<AxisLog>& logs, const AxisIdentificationOptions& options,
+                          const std::vector<AxisLog>& validation, AxisIdentification& run) {
+  AxisFitOptions fit_options;
+  fit_options.free = options.free;
+  fit_options.cutoff = options.cutoff;
+  fit_options.decimation = options.decimation;
+  fit_options.fit = options.fit;
+  const AxisFitOutput result = FitAxis(logs, run.section, fit_options);
+  run.params = result.params;
+  run.fit = result.fit;
+  run.series.assign(logs.size(), {});
+  run.labels = {"axis IDIM-LS fit (filtered, decimated)", "force or torque"};
+  if (options.trace) {
+    run.trace_csv = fmt::format("# drivetrain-fit axis trace: decimated samples used by IDIM-LS ({}, cutoff {} Hz)\n",
+                                result.method, result.cutoff);
+    run.trace_csv += "log,t,tau_measured,tau_model,residual\n";
+  }
+  for (std::size_t i = 0; i < logs.size(); ++i) run.series[i].title = logs[i].path;
+  for (std::size_t k = 0; k < result.time.size(); ++k) {
+    const int i = result.log_index[k];
+    if (options.trace) {
+      run.trace_csv += fmt::format("{},{},{:.7g},{:.7g},{:.7g}\n", i + 1, result.time[k], result.measured[k],
+                                   result.model[k], result.measured[k] - result.model[k]);
+    }
+    auto& s = run.series[static_cast<std::size_t>(i)];
+    s.time.push_back(result.time[k]);
+    s.measured.push_back(result.measured[k]);
+    s.model.push_back(result.model[k]);
+  }
+  for (const auto& v : ValidateAxis(validation, result.params, result.cutoff, options.decimation)) {
+    run.fit.validation.push_back(v.stats);
+  }
+  run.summary.push_back(fmt::format("processing: {}", result.method));
+  run.summary.push_back(fmt::format("relative error of the fit {:.2f} %, {} decimated samples, acceleration content "
+                                    "{:.3g} 1/s",
+                                    result.relative_error_percent, result.samples_used, result.acceleration_content));
+  run.summary.push_back(fmt::format("position cutoff {:.4g} Hz ({})", result.cutoff, result.cutoff_rule));
+  run.derived.push_back({"relative_error_percent", result.relative_error_percent, 0.0, "% |tau - model| / |tau|"});
+  run.model = "axis (docs/models.md#axis), IDIM-LS";
+}
+
+// The output-error fit's start: inverse dynamics of the linear terms (the
+// Stribeck pair is the output-error fit's) where it gives a usable inertia.
+// Where inverse dynamics refuses the logs, the parameter file's values;
+// without a start there, inverse dynamics' reason is rethrown.
+std::optional<AxisParameters> OutputErrorStart(const std::vector<AxisLog>& logs, const AxisSection& section,
+                                               const std::vector<std::string>& free) {
+  std::optional<AxisParameters> initial;
+  std::exception_ptr refused;
+  try {
+    AxisFitOptions idim;
+    idim.free.clear();
+    for (const auto& key : free) {
+      if (key != Key(&AxisParameters::stribeck) && key != Key(&AxisParameters::stribeck_velocity)) {
+        idim.free.push_back(key);
+      }
+    }
+    idim.sensitivity = false;
+    idim.per_log = false;
+    AxisSection linear = section;
+    linear.stribeck.reset();
+    linear.stribeck_velocity.reset();
+    const AxisFitOutput start = FitAxis(logs, linear, idim);
+    if (start.params.inertia > 0.0) initial = start.params;
+  } catch (const std::exception&) {
+    refused = std::current_exception();
+  }
+  const bool inertia_free = Contains(free, Key(&AxisParameters::inertia));
+  if (!initial && refused && inertia_free && !(section.inertia.value_or(0.0) > 0.0)) std::rethrow_exception(refused);
+  return initial;
+}
+
+void FitByOutputError(const std::vector<AxisLog>& logs, const AxisIdentificationOptions& options,
+                      AxisIdentification& run) {
+  const std::optional<AxisParameters> initial = OutputErrorStart(logs, run.section, options.free);
+  AxisOeOptions oe_options;
+  oe_options.free = options.free;
+  oe_options.fit = options.fit;
+  const AxisOeOutput result = FitAxisOutputError(logs, run.section, initial ? &*initial : nullptr, oe_options);
+  run.params = result.params;
+  run.fit = result.fit;
+  run.series.assign(logs.size(), {});
+  run.labels = {"axis output-error fit (simulated from the logged torque)", "position"};
+  if (options.trace) {
+    run.trace_csv = "# drivetrain-fit axis trace: output error, simulated from the logged torque\n";
+    run.trace_csv += "log,t,q_measured,q_model,qd_measured,qd_model\n";
+  }
+  for (std::size_t i = 0; i < logs.size(); ++i) {
+    const AxisLog& log = logs[i];
+    run.series[i] = {log.path, log.time, log.position, result.position[i]};
+    for (std::size_t k = 0; k < log.time.size() && options.trace; ++k) {
+      run.trace_csv += fmt::format("{},{},{:.10g},{:.10g},{},{:.7g}\n", i + 1, log.time[k], log.position[k],
+                                   result.position[i][k], log.rate.empty() ? "" : fmt::format("{:.7g}", log.rate[k]),
+                                   result.rate[i][k]);
+    }
+  }
+  run.summary.push_back(fmt::format("start values from {}", result.start_from));
+  run.model = "axis (docs/models.md#axis-output-error), output error (exact per held sample, CVODES with gravity or "
+              "Stribeck; sticking Coulomb)";
+}
+
+// Units in the logs' units (SysId: volts and the file's unit; else rotary
+// or linear SI), d_g = b / n_g^2 with a gear ratio, and the feed-forward.
+void Interpret(const AxisIdentificationOptions& options, AxisIdentification& run) {
+  const bool sysid = !options.sysid_unit.empty();
+  const bool linear = run.section.linear;
+  for (auto& e : run.fit.estimates) {
+    if (const auto* row = FindParameter(AxisParameterTable(), e.name)) {
+      e.unit = sysid ? AxisUnitIn(row->spec, "V", options.sysid_unit) : AxisUnit(row->spec, linear);
+    }
+  }
+  if (run.section.gear_ratio) {
+    double viscous_std = 0.0;
+    for (const auto& e : run.fit.estimates) {
+      if (e.name == Key(&AxisParameters::viscous)) viscous_std = e.standard_error;
+    }
+    const double n2 = *run.section.gear_ratio * *run.section.gear_ratio;
+    run.derived.push_back({"d_g", run.params.viscous / n2, viscous_std / n2,
+                           linear ? "N m s/rad at the gear input, b / n_g^2 (n_g in rad/m)"
+                                  : "N m s/rad at the gear input, b / n_g^2"});
+  }
+  const bool with_inertia = run.section.inertia.value_or(0.0) > 0.0 ||
+                            std::any_of(run.fit.estimates.begin(), run.fit.estimates.end(), [](const auto& e) {
+                              return e.name == Key(&AxisParameters::inertia);
+                            });
+  run.feedforward = CalcAxisFeedforward(run.params, run.fit, sysid ? "V" : (linear ? "N" : "N m"),
+                                        sysid ? options.sysid_unit : (linear ? "m" : "rad"), with_inertia);
+}
+
+}  // namespace
+
+AxisMethod ChooseAxisMethod(const std::vector<AxisLog>& logs, AxisMethod requested, std::string* reason) {
+  if (requested != AxisMethod::kAuto) return requested;
+  const bool steps = std::all_of(logs.begin(), logs.end(), [](const AxisLog& l) { return IsTorqueStepLog(l); });
+  if (reason) {
+    *reason = steps ? "auto: the torque is held in steps (changes at < 2 % of the samples)"
+                    : "auto: the torque varies (changes at >= 2 % of the samples)";
+  }
+  return steps ? AxisMethod::kOutputError : AxisMethod::kInverseDynamics;
+}
+
+AxisIdentification IdentifyAxis(const std::vector<AxisLog>& logs, const AxisSection& section,
+                                const AxisIdentificationOptions& options, const std::vector<AxisLog>& validation) {
+  AxisIdentification run;
+  run.section = section;
+  // SysId logs in a length unit are of a linear mechanism (an elevator, a drivetrain).
+  if (IsLengthUnit(options.sysid_unit)) run.section.linear = true;
+  std::string reason = "asked for";
+  run.method = ChooseAxisMethod(logs, options.method, &reason);
+  if (run.method == AxisMethod::kOutputError) {
+    if (!validation.empty()) throw OptionError("held-out logs are predicted by inverse dynamics: use the idim method");
+    FitByOutputError(logs, options, run);
+  } else {
+    FitByInverseDynamics(logs, options, validation, run);
+  }
+  run.summary.insert(run.summary.begin(), fmt::format("method: {} ({})",
+                                                      run.method == AxisMethod::kOutputError ? "output error" : "IDIM-LS",
+                                                      reason));
+  Interpret(options, run);
+  StoreModelParameters(AxisParameterTable(), run.params, run.section);
+  return run;
+}
+
+}  // namespace driveid

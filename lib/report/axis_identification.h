@@ -1,0 +1,61 @@
+// The identification of a rigid axis from its logs, as `drivetrain-fit
+// axis` runs it (docs/models.md#axis): the method (inverse dynamics or
+// output error, `auto` from the logs' torque), the output-error fit's start
+// from inverse dynamics, the estimates' units in the logs' units, the
+// derived gearbox friction d_g, the feed-forward gains, and the trace and
+// plot data. The command parses, loads the logs, calls this, emits.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/fit_result.h"
+#include "fit/least_squares.h"
+#include "io/axis_log.h"
+#include "io/parameter_file.h"
+#include "models/axis.h"
+#include "report/plot.h"
+
+namespace driveid {
+
+enum class AxisMethod { kAuto, kInverseDynamics, kOutputError };
+
+/// The method for these logs: `requested`, or for kAuto output error when
+/// every log's torque is held in steps (it changes at < 2 % of the
+/// samples), else inverse dynamics; `reason` says why.
+AxisMethod ChooseAxisMethod(const std::vector<AxisLog>& logs, AxisMethod requested, std::string* reason);
+
+struct AxisIdentificationOptions {
+  AxisMethod method = AxisMethod::kAuto;
+  std::vector<std::string> free = FitParameterKeys(AxisParameterTable(), "axis", true);
+  double cutoff = 0.0;  ///< inverse dynamics: position low-pass [Hz], 0: from the data
+  int decimation = 10;  ///< inverse dynamics: parallel decimation factor
+  FitOptions fit;       ///< progress callback
+  bool trace = false;   ///< build the trace CSV
+  /// The SysId files' position unit when every log is a SysId file in one
+  /// unit (estimates, feed-forward in volts and that unit), else "".
+  std::string sysid_unit;
+};
+
+struct AxisIdentification {
+  AxisMethod method = AxisMethod::kInverseDynamics;
+  AxisSection section;                  ///< the start section with the estimates put in
+  AxisParameters params;
+  FitResult fit;                        ///< units in the logs' units; validation of the held-out logs
+  std::vector<DerivedQuantity> derived;  ///< d_g with a gear ratio; the relative error of inverse dynamics
+  Feedforward feedforward;
+  std::string model;                    ///< for the provenance
+  std::string trace_csv;                ///< when asked for
+  std::vector<PlotSeries> series;       ///< measured and model per log
+  PlotLabels labels;
+  std::vector<std::string> summary;     ///< lines for the text summary
+};
+
+/// Fits the axis to `logs` from `section` (its `linear` set from SysId
+/// logs in a length unit) and predicts `validation` logs (inverse dynamics
+/// only: OptionError with output error). Throws as FitAxis and
+/// FitAxisOutputError.
+AxisIdentification IdentifyAxis(const std::vector<AxisLog>& logs, const AxisSection& section,
+                                const AxisIdentificationOptions& options, const std::vector<AxisLog>& validation);
+
+}  // namespace driveid
