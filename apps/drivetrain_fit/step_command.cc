@@ -4,8 +4,7 @@
 
 #include "common/command_registry.h"
 #include "core/errors.h"
-#include "fit/step_fit.h"
-#include "fit/validation.h"
+#include "report/step_identification.h"
 #include "io/csv_log.h"
 #include "io/parameter_file.h"
 #include "io/sha256.h"
@@ -49,15 +48,20 @@ void RunStepCommand(const StepOptions& options, const std::string& command_line)
   if (!start_file.Find<DriveTrainSection>()) {
     throw InputError(fmt::format("{}: no 'drivetrain' section", options.params));
   }
-
   FitOutputs outputs;
   outputs.provenance.command = command_line;
   outputs.provenance.version = DRIVEID_VERSION;
-  outputs.provenance.model = options.model + (options.integrator == "cvodes" ? ", integrated by CVODES" : "");
-  const auto logs = LoadLogs<StepLog>(options.logs, options.input, options.output, outputs.provenance, StepLogColumns(),
-                                        [&](CsvLog csv) { return MakeStepLog(std::move(csv)); });
+  const auto make = [](CsvLog csv) { return MakeStepLog(std::move(csv)); };
+  const auto logs =
+      LoadLogs<StepLog>(options.logs, options.input, options.output, outputs.provenance, StepLogColumns(), make);
+  std::vector<StepLog> validation;
+  if (!options.validate.empty()) {
+    FitProvenance held_out;
+    validation = LoadLogs<StepLog>(options.validate, options.input, options.output, held_out, StepLogColumns(), make);
+  }
 
-  StepFitOptions fit_options;
+  StepIdentificationOptions run_options;
+  StepFitOptions& fit_options = run_options.fit;
   fit_options.model = options.model == "full" ? DriveTrainModel::kFull : DriveTrainModel::kReduced;
   fit_options.free = options.free;
   fit_options.starts = options.starts == "given" ? StepStarts::kGiven
@@ -66,39 +70,18 @@ void RunStepCommand(const StepOptions& options, const std::string& command_line)
   fit_options.integration =
       options.integrator == "cvodes" ? DriveTrainIntegration::kCvodes : DriveTrainIntegration::kExact;
   SetProgress(fit_options.fit, options.output.verbose);
-  const StepFitOutput result =
-      FitStepResponses(logs, MakeDriveTrainParameters(*start_file.Find<DriveTrainSection>()), fit_options);
+  run_options.trace = !options.output.trace.empty();
+  run_options.plot = !options.output.plot.empty();
+  const StepIdentification run =
+      IdentifySteps(logs, MakeDriveTrainParameters(*start_file.Find<DriveTrainSection>()), run_options, validation);
 
   ParameterFile fitted = start_file;
-  StoreModelParameters(DriveTrainParameterTable(), result.params, *fitted.Find<DriveTrainSection>());
-  outputs.fit = result.fit;
-  if (!options.validate.empty()) {
-    FitProvenance held_out;
-    const auto validation_logs = LoadLogs<StepLog>(options.validate, options.input, options.output, held_out,
-                                                   StepLogColumns(),
-                                                   [&](CsvLog csv) { return MakeStepLog(std::move(csv)); });
-    for (const auto& v : ValidateSteps(validation_logs, result.params, fit_options.model)) {
-      outputs.fit.validation.push_back(v.stats);
-    }
-  }
+  StoreModelParameters(DriveTrainParameterTable(), run.params, *fitted.Find<DriveTrainSection>());
+  outputs.provenance.model = run.model;
+  outputs.fit = run.fit;
   outputs.parameter_file = FormatParameterFile(fitted, &outputs.fit, &outputs.provenance);
-
-  outputs.trace_csv = "# drivetrain-fit step trace: measured and model link torque [N m]\n";
-  outputs.trace_csv += "log,t,tau_motor,tau_link_measured,tau_link_model,residual\n";
-  std::vector<PlotSeries> series;
-  for (std::size_t i = 0; i < logs.size(); ++i) {
-    const StepLog& log = logs[i];
-    const auto& model = result.simulated[i];
-    for (std::size_t k = 0; k < log.time.size() && !options.output.trace.empty(); ++k) {
-      outputs.trace_csv += fmt::format("{},{},{},{},{:.9g},{:.9g}\n", i + 1, log.time[k], log.motor_torque[k],
-                                       log.link_torque[k], model[k], log.link_torque[k] - model[k]);
-    }
-    if (!options.output.plot.empty()) series.push_back({log.path, log.time, log.link_torque, model});
-  }
-  if (!options.output.plot.empty()) {
-    outputs.plot_panels =
-        MakeFitPanels(series, {fmt::format("drive-train step fit ({} model)", options.model), "link torque [N m]"});
-  }
+  outputs.trace_csv = run.trace_csv;
+  if (!options.output.plot.empty()) outputs.plot_panels = MakeFitPanels(run.series, run.labels);
   EmitFitOutputs(options.output, outputs);
 }
 
