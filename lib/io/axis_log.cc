@@ -4,11 +4,25 @@
 
 #include "core/errors.h"
 #include "io/csv_log.h"
+#include "io/log_columns.h"
 
 namespace driveid {
+namespace {
+using L = AxisLog;
+constexpr LogColumn<L> kColumns[] = {
+    RequiredColumn<L>("t", &FieldOf<L, &L::time>, "{}"),
+    RequiredColumn<L>("q", &FieldOf<L, &L::position>, "{:.10g}"),
+    RequiredColumn<L>("tau|i", &FieldOf<L, &L::force>, "{:.7g}"),
+    OptionalColumn<L>("qd", &FieldOf<L, &L::rate>),
+    OptionalColumn<L>("tau_known", nullptr),  // subtracted from the force (MakeAxisLog)
+};
+constexpr std::size_t kForce = LogColumnIndex(kColumns, "tau|i");
+constexpr std::size_t kKnown = LogColumnIndex(kColumns, "tau_known");
+static_assert(kForce < std::size(kColumns) && kKnown < std::size(kColumns), "axis log columns");
+}  // namespace
 
 const std::vector<std::string>& AxisLogColumns() {
-  static const std::vector<std::string> columns = {"t", "q", "tau|i", "?qd", "?tau_known"};
+  static const std::vector<std::string> columns = LogColumnRequest(kColumns);
   return columns;
 }
 
@@ -20,33 +34,23 @@ AxisLog ParseAxisLog(const std::string& path, const std::string& text,
 }
 
 AxisLog MakeAxisLog(CsvLog csv, double torque_constant) {
-  const std::string path = csv.label();
-  AxisLog log{path, std::move(csv.columns[0]), std::move(csv.columns[1]), std::move(csv.columns[2]),
-              std::move(csv.columns[3])};
-  if (csv.names[2] == "i") {
+  const bool current = csv.names[kForce] == "i";
+  const std::vector<double> known = std::move(csv.columns[kKnown]);
+  AxisLog log = MakeLogFromColumns(kColumns, csv);
+  if (current) {
     if (!(torque_constant > 0.0)) {
-      throw InputError(fmt::format("{}: the log has a current column 'i': axis.k_t must be given in --params", path));
+      throw InputError(fmt::format("{}: the log has a current column 'i': axis.k_t must be given in --params", log.path));
     }
     for (double& v : log.force) v *= torque_constant;
   }
   // A known torque (a spring, a counterweight, a load cell's other side): the
   // model explains the rest (docs/models.md#axis).
-  const std::vector<double>& known = csv.columns[4];
-  if (!known.empty()) {
-    for (std::size_t k = 0; k < log.force.size() && k < known.size(); ++k) log.force[k] -= known[k];
-  }
+  for (std::size_t k = 0; k < log.force.size() && k < known.size(); ++k) log.force[k] -= known[k];
   return log;
 }
 
 std::string FormatAxisLog(const AxisLog& log, const std::vector<std::string>& comments) {
-  RequireFiniteColumns({{"t", &log.time}, {"q", &log.position}, {"tau", &log.force}}, log.time);
-  std::string out;
-  for (const auto& line : comments) out += "# " + line + "\n";
-  out += "t,q,tau\n";
-  for (std::size_t k = 0; k < log.time.size(); ++k) {
-    out += fmt::format("{},{:.10g},{:.7g}\n", log.time[k], log.position[k], log.force[k]);
-  }
-  return out;
+  return FormatLogColumns(kColumns, log, comments);
 }
 
 }  // namespace driveid

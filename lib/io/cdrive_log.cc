@@ -4,11 +4,24 @@
 
 #include "core/errors.h"
 #include "io/csv_log.h"
+#include "io/log_columns.h"
 
 namespace driveid {
+namespace {
+using L = CDriveLog;
+constexpr LogColumn<L> kColumns[] = {
+    RequiredColumn<L>("t", &FieldOf<L, &L::time>, "{}"),
+    RequiredColumn<L>("psi_L", &FieldOf<L, &L::angle_left>, "{:.10g}"),
+    RequiredColumn<L>("psi_R", &FieldOf<L, &L::angle_right>, "{:.10g}"),
+    RequiredColumn<L>("tau_L|i_L", &FieldOf<L, &L::torque_left>, "{:.7g}"),
+    RequiredColumn<L>("tau_R|i_R", &FieldOf<L, &L::torque_right>, "{:.7g}"),
+};
+constexpr std::size_t kLeft = LogColumnIndex(kColumns, "tau_L|i_L"), kRight = LogColumnIndex(kColumns, "tau_R|i_R");
+static_assert(kLeft < std::size(kColumns) && kRight < std::size(kColumns), "C-drive log columns");
+}  // namespace
 
 const std::vector<std::string>& CDriveLogColumns() {
-  static const std::vector<std::string> columns = {"t", "psi_L", "psi_R", "tau_L|i_L", "tau_R|i_R"};
+  static const std::vector<std::string> columns = LogColumnRequest(kColumns);
   return columns;
 }
 
@@ -20,21 +33,14 @@ CDriveLog ParseCDriveLog(const std::string& path, const std::string& text,
 }
 
 CDriveLog MakeCDriveLog(CsvLog csv, double torque_constant) {
-  const std::string path = csv.label();
-  CDriveLog log;
-  log.path = path;
-  log.time = std::move(csv.columns[0]);
-  log.angle_left = std::move(csv.columns[1]);
-  log.angle_right = std::move(csv.columns[2]);
-  log.torque_left = std::move(csv.columns[3]);
-  log.torque_right = std::move(csv.columns[4]);
-  const bool left_current = csv.names[3] == "i_L", right_current = csv.names[4] == "i_R";
+  const bool left_current = csv.names[kLeft] == "i_L", right_current = csv.names[kRight] == "i_R";
+  CDriveLog log = MakeLogFromColumns(kColumns, csv);
   if (left_current != right_current) {
-    throw InputError(fmt::format("{}: give both motor torques (tau_L, tau_R) or both currents (i_L, i_R)", path));
+    throw InputError(fmt::format("{}: give both motor torques (tau_L, tau_R) or both currents (i_L, i_R)", log.path));
   }
   if (left_current) {
     if (!(torque_constant > 0.0)) {
-      throw InputError(fmt::format("{}: the log has currents i_L, i_R: cdrive.k_t must be given in --params", path));
+      throw InputError(fmt::format("{}: the log has currents i_L, i_R: cdrive.k_t must be given in --params", log.path));
     }
     for (double& v : log.torque_left) v *= torque_constant;
     for (double& v : log.torque_right) v *= torque_constant;
@@ -43,17 +49,7 @@ CDriveLog MakeCDriveLog(CsvLog csv, double torque_constant) {
 }
 
 std::string FormatCDriveLog(const CDriveLog& log, const std::vector<std::string>& comments) {
-  RequireFiniteColumns({{"t", &log.time}, {"psi_L", &log.angle_left}, {"psi_R", &log.angle_right},
-                        {"tau_L", &log.torque_left}, {"tau_R", &log.torque_right}},
-                       log.time);
-  std::string out;
-  for (const auto& line : comments) out += "# " + line + "\n";
-  out += "t,psi_L,psi_R,tau_L,tau_R\n";
-  for (std::size_t k = 0; k < log.time.size(); ++k) {
-    out += fmt::format("{},{:.10g},{:.10g},{:.7g},{:.7g}\n", log.time[k], log.angle_left[k], log.angle_right[k],
-                       log.torque_left[k], log.torque_right[k]);
-  }
-  return out;
+  return FormatLogColumns(kColumns, log, comments);
 }
 
 }  // namespace driveid

@@ -4,24 +4,39 @@
 
 #include "core/errors.h"
 #include "io/csv_log.h"
+#include "io/log_columns.h"
 
 namespace driveid {
+namespace {
+using L = JointLog;
+constexpr LogColumn<L> kColumns[] = {
+    RequiredColumn<L>("t", &FieldOf<L, &L::time>),
+    RequiredColumn<L>("q_motor", &FieldOf<L, &L::motor_position>),
+    RequiredColumn<L>("q_link", &FieldOf<L, &L::link_position>),
+    OptionalColumn<L>("tau|i", &FieldOf<L, &L::torque>),
+    OptionalColumn<L>("tau_link", &FieldOf<L, &L::link_torque>),
+    OptionalColumn<L>("qd_motor", &FieldOf<L, &L::motor_rate>),
+    OptionalColumn<L>("qd_link", &FieldOf<L, &L::link_rate>),
+};
+constexpr std::size_t kTorque = LogColumnIndex(kColumns, "tau|i");
+static_assert(kTorque < std::size(kColumns), "joint log columns");
+}  // namespace
 
 const std::vector<std::string>& JointLogColumns() {
-  static const std::vector<std::string> columns = {"t", "q_motor", "q_link", "?tau|i", "?tau_link", "?qd_motor", "?qd_link"};
+  static const std::vector<std::string> columns = LogColumnRequest(kColumns);
   return columns;
 }
 
 JointLog MakeJointLog(CsvLog csv, double torque_constant) {
-  const std::string path = csv.label();
-  JointLog log{path, std::move(csv.columns[0]), std::move(csv.columns[1]), std::move(csv.columns[2]),
-               std::move(csv.columns[3]), std::move(csv.columns[4]), std::move(csv.columns[5]), std::move(csv.columns[6])};
+  const bool current = csv.names[kTorque] == "i";
+  JointLog log = MakeLogFromColumns(kColumns, csv);
+  const std::string& path = log.path;
   if (log.torque.empty() && log.link_torque.empty()) {
     throw InputError(fmt::format("{}: a joint log needs the motor torque tau (or the current i) or the shaft torque "
                                  "tau_link (map them with --col tau=COLUMN, --col tau_link=COLUMN)",
                                  path));
   }
-  if (!log.torque.empty() && csv.names[3] == "i") {
+  if (!log.torque.empty() && current) {
     if (!(torque_constant > 0.0)) {
       throw InputError(fmt::format("{}: the log has a current column 'i': joint.k_t must be given in --params", path));
     }

@@ -4,11 +4,32 @@
 
 #include "core/errors.h"
 #include "io/csv_log.h"
+#include "io/log_columns.h"
 
 namespace driveid {
+namespace {
+using L = RobotLog;
+template <std::size_t I>
+std::vector<double>& Angle(L& log) {
+  return log.angle[I];
+}
+template <std::size_t I>
+std::vector<double>& Current(L& log) {
+  return log.current[I];
+}
+constexpr LogColumn<L> kColumns[] = {
+    RequiredColumn<L>("t", &FieldOf<L, &L::time>, "{}"),
+    RequiredColumn<L>("theta1", &Angle<0>, "{:.10g}"),
+    RequiredColumn<L>("theta2", &Angle<1>, "{:.10g}"),
+    RequiredColumn<L>("theta3", &Angle<2>, "{:.10g}"),
+    RequiredColumn<L>("i1", &Current<0>, "{:.6g}"),
+    RequiredColumn<L>("i2", &Current<1>, "{:.6g}"),
+    RequiredColumn<L>("i3", &Current<2>, "{:.6g}"),
+};
+}  // namespace
 
 const std::vector<std::string>& RobotLogColumns() {
-  static const std::vector<std::string> columns = {"t", "theta1", "theta2", "theta3", "i1", "i2", "i3"};
+  static const std::vector<std::string> columns = LogColumnRequest(kColumns);
   return columns;
 }
 
@@ -20,30 +41,13 @@ RobotLog ParseRobotLog(const std::string& path, const std::string& text,
 }
 
 RobotLog MakeRobotLog(CsvLog csv) {
-  const std::string path = csv.label();
-  RobotLog log;
-  log.path = path;
-  log.time = std::move(csv.columns[0]);
+  RobotLog log = MakeLogFromColumns(kColumns, csv);
   log.line_numbers = std::move(csv.line_numbers);
-  for (std::size_t i = 0; i < 3; ++i) {
-    log.angle[i] = std::move(csv.columns[1 + i]);
-    log.current[i] = std::move(csv.columns[4 + i]);
-  }
   return log;
 }
 
 std::string FormatRobotLog(const RobotLog& log, const std::vector<std::string>& comments) {
-  RequireFiniteColumns({{"t", &log.time}, {"theta1", &log.angle[0]}, {"theta2", &log.angle[1]}, {"theta3", &log.angle[2]},
-                        {"i1", &log.current[0]}, {"i2", &log.current[1]}, {"i3", &log.current[2]}},
-                       log.time);
-  std::string out;
-  for (const auto& line : comments) out += "# " + line + "\n";
-  out += "t,theta1,theta2,theta3,i1,i2,i3\n";
-  for (std::size_t k = 0; k < log.time.size(); ++k) {
-    out += fmt::format("{},{:.10g},{:.10g},{:.10g},{:.6g},{:.6g},{:.6g}\n", log.time[k], log.angle[0][k],
-                       log.angle[1][k], log.angle[2][k], log.current[0][k], log.current[1][k], log.current[2][k]);
-  }
-  return out;
+  return FormatLogColumns(kColumns, log, comments);
 }
 
 }  // namespace driveid

@@ -1,14 +1,22 @@
 #include "io/step_log.h"
 
-#include <fmt/format.h>
-
-#include "core/errors.h"
 #include "io/csv_log.h"
+#include "io/log_columns.h"
 
 namespace driveid {
+namespace {
+using L = StepLog;
+constexpr LogColumn<L> kColumns[] = {
+    RequiredColumn<L>("t", &FieldOf<L, &L::time>, "{}"),
+    RequiredColumn<L>("tau_motor", &FieldOf<L, &L::motor_torque>, "{}"),
+    RequiredColumn<L>("tau_link", &FieldOf<L, &L::link_torque>, "{:.9g}"),
+    OptionalColumn<L>("q_motor", &FieldOf<L, &L::motor_angle>),
+    OptionalColumn<L>("q_link", &FieldOf<L, &L::link_angle>),
+};
+}  // namespace
 
 const std::vector<std::string>& StepLogColumns() {
-  static const std::vector<std::string> columns = {"t", "tau_motor", "tau_link", "?q_motor", "?q_link"};
+  static const std::vector<std::string> columns = LogColumnRequest(kColumns);
   return columns;
 }
 
@@ -19,27 +27,10 @@ StepLog ParseStepLog(const std::string& path, const std::string& text,
   return MakeStepLog(ParseCsvLog(path, text, StepLogColumns(), options));
 }
 
-StepLog MakeStepLog(CsvLog csv) {
-  const std::string path = csv.label();
-  StepLog log;
-  log.path = path;
-  log.time = std::move(csv.columns[0]);
-  log.motor_torque = std::move(csv.columns[1]);
-  log.link_torque = std::move(csv.columns[2]);
-  log.motor_angle = std::move(csv.columns[3]);
-  log.link_angle = std::move(csv.columns[4]);
-  return log;
-}
+StepLog MakeStepLog(CsvLog csv) { return MakeLogFromColumns(kColumns, csv); }
 
 std::string FormatStepLog(const StepLog& log, const std::vector<std::string>& comments) {
-  RequireFiniteColumns({{"t", &log.time}, {"tau_motor", &log.motor_torque}, {"tau_link", &log.link_torque}}, log.time);
-  std::string out;
-  for (const auto& line : comments) out += "# " + line + "\n";
-  out += "t,tau_motor,tau_link\n";
-  for (std::size_t k = 0; k < log.time.size(); ++k) {
-    out += fmt::format("{},{},{:.9g}\n", log.time[k], log.motor_torque[k], log.link_torque[k]);
-  }
-  return out;
+  return FormatLogColumns(kColumns, log, comments);
 }
 
 }  // namespace driveid
