@@ -92,7 +92,7 @@ void RunCDriveSimulateCommand(const CDriveSimulateOptions& options, const std::s
     }
     files.emplace_back(options.trace, std::move(trace));
   }
-  if (!options.output.empty()) files.emplace_back(options.output, log_text);
+  if (!options.output.empty()) files.emplace_back(options.output, ShowFlags(log_text));
   std::string summary;
   if (options.json) {
     const Json json = {{"program", loop.program.name},
@@ -113,7 +113,7 @@ void RunCDriveSimulateCommand(const CDriveSimulateOptions& options, const std::s
   }
   // Standard output belongs to the transaction (docs/formats.md#outputs).
   WriteFilesAtomically(files, [&] {
-    if (options.output.empty()) std::fputs(summary.c_str(), stderr);
+    if (options.output.empty()) WriteText(stderr, summary);
     WriteStdout(options.output.empty() ? log_text : summary);
   });
 }

@@ -1,5 +1,7 @@
 #include "common/cli_support.h"
 
+#include <algorithm>
+
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -36,7 +38,7 @@ std::string OneLine(std::string text) {
 }
 
 void Fail(const std::string& program, const std::string& message) {
-  std::fprintf(stderr, "%s: %s\n", program.c_str(), OneLine(message).c_str());
+  std::fprintf(stderr, "%s: %s\n", program.c_str(), OneLine(ShowFlags(message)).c_str());
 }
 
 // SIGINT, SIGTERM, SIGHUP: remove the run's temporary files (and stop
@@ -127,8 +129,25 @@ std::string CommandLine(int argc, char** argv) {
   return out;
 }
 
+std::string ShowFlags(std::string text) {
+  static const std::string open = "\u2039", close = "\u203a";  // the library's marks around a field: ‹field›
+  std::size_t at = 0;
+  while ((at = text.find(open, at)) != std::string::npos) {
+    const std::size_t end = text.find(close, at + open.size());
+    if (end == std::string::npos) break;
+    std::string flag = "--" + text.substr(at + open.size(), end - at - open.size());
+    std::replace(flag.begin(), flag.end(), '_', '-');
+    text.replace(at, end + close.size() - at, flag);
+    at += flag.size();
+  }
+  return text;
+}
+
+void WriteText(std::FILE* stream, const std::string& text) { std::fputs(ShowFlags(text).c_str(), stream); }
+
 void WriteStdout(const std::string& text) {
-  if (std::fwrite(text.data(), 1, text.size(), stdout) != text.size() || std::fflush(stdout) != 0 ||
+  const std::string shown = ShowFlags(text);
+  if (std::fwrite(shown.data(), 1, shown.size(), stdout) != shown.size() || std::fflush(stdout) != 0 ||
       std::ferror(stdout)) {
     throw OutputError("standard output: write error");
   }
@@ -305,13 +324,13 @@ void EmitFitOutputs(const FitOutputOptions& options, const FitOutputs& outputs) 
   // On stderr once: the summary table lists them when it goes there itself.
   const bool table_on_stderr = options.output.empty() && !options.quiet && !options.json;
   if (!table_on_stderr) {
-    for (const auto& w : outputs.fit.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    for (const auto& w : outputs.fit.warnings) WriteText(stderr, "warning: " + w + "\n");
   }
   // All or nothing: render the plot, then write every file together.
   std::vector<std::pair<std::string, std::string>> files;
   if (!options.plot.empty()) files.emplace_back(options.plot, RenderPanels(options.plot, outputs.plot_panels, outputs.plot_x_label, outputs.plot_log_x));
   if (!options.trace.empty()) files.emplace_back(options.trace, outputs.trace_csv);
-  if (!options.output.empty()) files.emplace_back(options.output, outputs.parameter_file);
+  if (!options.output.empty()) files.emplace_back(options.output, ShowFlags(outputs.parameter_file));
   // The summary and standard output belong to the transaction: a full disk
   // or a closed pipe there leaves the files as they were.
   WriteFilesAtomically(files, [&] {
@@ -319,7 +338,7 @@ void EmitFitOutputs(const FitOutputOptions& options, const FitOutputs& outputs) 
     std::string summary;
     if (options.json) summary = DumpJson(FitJson(outputs.fit, outputs.provenance));
     else if (!options.quiet) summary = FormatFitTable(outputs.fit, outputs.provenance);
-    if (!summary_on_stdout) std::fputs(summary.c_str(), stderr);
+    if (!summary_on_stdout) WriteText(stderr, summary);
     WriteStdout(summary_on_stdout ? summary : outputs.parameter_file);
   });
 }

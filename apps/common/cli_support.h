@@ -2,6 +2,7 @@
 // options every fitting subcommand has, and writing its outputs.
 #pragma once
 
+#include <cstdio>
 #include <functional>
 #include <string>
 #include <vector>
@@ -31,6 +32,14 @@ std::string CommandLine(int argc, char** argv);
 /// Writes `text` to standard output and flushes it; throws OutputError (exit
 /// 3) when that fails (a full disk, a closed pipe).
 void WriteStdout(const std::string& text);
+
+/// The library names options by their field between marks, ‹free_name›
+/// (lib/ holds no flag spelling); the tools print the flag, --free-name.
+/// Every text from the library passes through this on its way out
+/// (WriteStdout, WriteText, error messages, written parameter files).
+std::string ShowFlags(std::string text);
+/// Writes text from the library to a stream (stderr, or stdout for summaries).
+void WriteText(std::FILE* stream, const std::string& text);
 
 /// Validators for option values (exit 2 with the option named): a finite
 /// number above (or at least) `minimum`, or within [minimum, maximum]; a

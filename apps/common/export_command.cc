@@ -77,7 +77,7 @@ void RunExportCommand(const ExportCommandOptions& options, const std::string& co
   const ParameterFile file = ReadParameterFile(options.params);
   const std::string text = ExportParameters(file, ParseExportTarget(options.target), export_opts);
   if (options.output.empty()) WriteStdout(text);
-  else WriteFileAtomically(options.output, text);
+  else WriteFileAtomically(options.output, ShowFlags(text));
 }
 
 const bool kDrivetrain = RegisterCommand({"drivetrain-fit", "", 55,

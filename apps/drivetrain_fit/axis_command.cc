@@ -103,7 +103,7 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
   EmitFitOutputs(options.output, outputs);
   if (!options.output.quiet && !options.output.json) {
     std::FILE* summary = options.output.output.empty() ? stderr : stdout;
-    for (const auto& line : run.summary) std::fprintf(summary, "%s\n", line.c_str());
+    for (const auto& line : run.summary) WriteText(summary, line + "\n");
   }
 }
 

@@ -250,7 +250,7 @@ void Emit(const FrfCliOptions& o, const ParameterFile& start, const JointSection
   files_only.quiet = true;
   files_only.json = false;
   for (const auto& w : result.warnings) {
-    if (!result.fit) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    if (!result.fit) WriteText(stderr, "warning: " + w + "\n");
   }
   // Files (and the parameter file on stdout when no -o) first, all or nothing.
   EmitFitOutputs(files_only, outputs);
@@ -258,11 +258,11 @@ void Emit(const FrfCliOptions& o, const ParameterFile& start, const JointSection
   if (o.out.json) {
     Json j = FrfJson(result);
     if (result.fit) j["fit"] = FitJson(outputs.fit, outputs.provenance);
-    std::fputs(DumpJson(j).c_str(), summary);
+    WriteText(summary, DumpJson(j));
   } else if (!o.out.quiet) {
     std::string text = FormatFrfSummary(result);
     if (result.fit) text += FormatFitTable(outputs.fit, outputs.provenance);
-    std::fputs(text.c_str(), summary);
+    WriteText(summary, text);
   }
 }
 

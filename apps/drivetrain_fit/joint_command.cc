@@ -235,7 +235,7 @@ void RunJointCommand(const JointOptions& options, const std::string& command_lin
   if (!options.output.quiet && !options.output.json) {
     std::FILE* summary = options.output.output.empty() ? stderr : stdout;
     const JointParameters& p = run.params;
-    for (const auto& line : run.summary) std::fprintf(summary, "%s\n", line.c_str());
+    for (const auto& line : run.summary) WriteText(summary, line + "\n");
     if (p.motor_inertia > 0.0 && p.link_inertia > 0.0 && p.stiffness > 0.0) {
       std::fprintf(summary, "resonance sqrt(k (1/J_m + 1/J_l)) / (2 pi) = %.4g Hz\n", JointResonance(p) / (2.0 * M_PI));
     }

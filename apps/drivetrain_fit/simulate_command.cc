@@ -93,7 +93,7 @@ void RunSimulateRobotCommand(const SimulateRobotOptions& options, const std::str
   if (options.output.empty()) {
     WriteStdout(text);
   } else {
-    WriteFileAtomically(options.output, text);
+    WriteFileAtomically(options.output, ShowFlags(text));
   }
 }
 
@@ -115,7 +115,7 @@ void RunSimulateAxisCommand(const SimulateAxisOptions& options, const std::strin
   if (options.output.empty()) {
     WriteStdout(text);
   } else {
-    WriteFileAtomically(options.output, text);
+    WriteFileAtomically(options.output, ShowFlags(text));
   }
 }
 
@@ -142,7 +142,7 @@ void RunSimulateStepCommand(const SimulateStepOptions& options, const std::strin
   if (options.output.empty()) {
     WriteStdout(text);
   } else {
-    WriteFileAtomically(options.output, text);
+    WriteFileAtomically(options.output, ShowFlags(text));
   }
 }
 
@@ -204,7 +204,7 @@ void RunSimulateJointCommand(const SimulateJointOptions& o, const std::string& c
   if (o.output.empty()) {
     WriteStdout(text);
   } else {
-    WriteFileAtomically(o.output, text);
+    WriteFileAtomically(o.output, ShowFlags(text));
   }
 }
 

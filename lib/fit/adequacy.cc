@@ -24,7 +24,7 @@ void RequireDetermined(const FitResult& fit, const std::vector<std::string>& non
   if (undetermined.empty()) return;
   std::string message = fmt::format(
       "not identifiable: {}: the logs do not determine {} (robust relative std above {:.0f} %, docs/models.md#adequacy): "
-      "fix {} in --params and leave {} out of --free, or log motion that excites {}",
+      "fix {} in ‹params› and leave {} out of ‹free›, or log motion that excites {}",
       fmt::join(undetermined, "; "), undetermined.size() > 1 ? "them" : "it", 100.0 * max_relative_std,
       undetermined.size() > 1 ? "them" : "it", undetermined.size() > 1 ? "them" : "it",
       undetermined.size() > 1 ? "them" : "it");

@@ -118,11 +118,11 @@ std::vector<std::string> CheckAxisAdequacy(const LinearRegression& regression, c
       warnings.push_back(
           why_not.empty()
               ? fmt::format("gravity missing?: the residual follows the position (cos q and sin q {}): try the "
-                            "gravity term: --free {}",
+                            "gravity term: ‹free› {}",
                             evidence(t), fmt::join(trial, ","))
               : fmt::format("position-dependent force: the residual follows the position (cos q and sin q {}), but "
                             "the gravity terms would not be identifiable from these logs ({}): log a wider range of "
-                            "q; a linear axis (axis.linear: true, --linear) has its weight in the offset",
+                            "q; a linear axis (axis.linear: true, ‹linear›) has its weight in the offset",
                             evidence(t), why_not));
     }
   }
@@ -134,7 +134,7 @@ std::vector<std::string> CheckAxisAdequacy(const LinearRegression& regression, c
       warnings.push_back(fmt::format("inertia: the residual follows the acceleration (q'' {}): the fixed J = {:.4g} is "
                                      "off{}",
                                      evidence(t), values.at(inertia),
-                                     why_not.empty() ? fmt::format(": try --free {}", fmt::join(trial, ","))
+                                     why_not.empty() ? fmt::format(": try ‹free› {}", fmt::join(trial, ","))
                                                      : fmt::format(" (freeing it would not help: {})", why_not)));
     }
   }
@@ -150,7 +150,7 @@ std::vector<std::string> CheckAxisAdequacy(const LinearRegression& regression, c
         why_not.empty()
             ? fmt::format("direction-dependent friction: the residual follows |q'| ({}): friction differs between "
                           "the directions of motion: try the direction-dependent terms in place of coulomb, viscous "
-                          "and the offset they absorb: --free {}",
+                          "and the offset they absorb: ‹free› {}",
                           evidence(direction), fmt::join(trial, ","))
             : fmt::format("direction-dependent friction: the residual follows |q'| ({}), but the direction-dependent "
                           "terms would not be identifiable from these logs ({}): log motion in both directions",
@@ -159,7 +159,7 @@ std::vector<std::string> CheckAxisAdequacy(const LinearRegression& regression, c
   const auto drift = TestOmittedTerm(regression, free, values, "drift", {kAxisTimeColumn});
   if (drift.missing) {
     warnings.push_back(fmt::format("drift: the residual follows time within the logs ({}): friction or a sensor "
-                                   "changed during the log (warm-up?); fit shorter windows with --from/--to",
+                                   "changed during the log (warm-up?); fit shorter windows with ‹from›/‹to›",
                                    evidence(drift)));
   }
   return warnings;
@@ -229,7 +229,7 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
   central.cutoff = options.cutoff > 0.0 ? options.cutoff : ChooseCutoff(logs, start, central, &cache);
   AxisFitOutput out = FitAtCutoff(logs, start, central, &cache, AtCutoff::kFull);
   out.cutoff_rule = options.cutoff > 0.0
-                        ? "given (--cutoff)"
+                        ? "given (‹cutoff›)"
                         : "from the data: of 5, 10, 20, ... x the motion frequency RMS(q')/(2 pi RMS(q)) up to the "
                           "decimated band 0.8 x rate / (2 x decimation), the one with the smallest residual";
   if (!options.sensitivity) return out;
@@ -254,8 +254,8 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
   // qd) depends on the cutoff: do not suggest what was given.
   const bool rate_measured = std::all_of(logs.begin(), logs.end(), [](const AxisLog& l) { return !l.rate.empty(); });
   const char* advice = rate_measured ? "the measured rate qd is used and differentiated once; check the cutoff with "
-                                       "--cutoff, or --method oe, which does not differentiate"
-                                     : "try a measured rate qd, or check the cutoff with --cutoff";
+                                       "‹cutoff›, or ‹method› oe, which does not differentiate"
+                                     : "try a measured rate qd, or check the cutoff with ‹cutoff›";
   for (auto& w : ProcessingWarnings(out.fit, out.cutoff, advice)) {
     out.fit.warnings.push_back(std::move(w));
   }
@@ -269,12 +269,12 @@ std::vector<AxisTerm> ResolveAxisTerms(const AxisSection& start, const std::vect
       const std::string key = Key(member);
       const auto given = start.*(FindParameter(AxisParameterTable(), key)->in_section);
       if (Contains(free, key)) {
-        throw OptionError(fmt::format("--free {}: a linear axis (axis.linear, --linear) has no cos q / sin q "
+        throw OptionError(fmt::format("‹free› {}: a linear axis (axis.linear, ‹linear›) has no cos q / sin q "
                                       "gravity: its weight is a constant force, fitted as the offset",
                                       key));
       }
       if (given.value_or(0.0) != 0.0) {
-        throw InputError(fmt::format("--params: axis.{} = {} on a linear axis: gravity there is a constant force, "
+        throw InputError(fmt::format("‹params›: axis.{} = {} on a linear axis: gravity there is a constant force, "
                                      "the offset; remove {}",
                                      key, *given, key));
       }
@@ -286,7 +286,7 @@ std::vector<AxisTerm> ResolveAxisTerms(const AxisSection& start, const std::vect
     const std::string original = AxisReplacedBy(key);
     if (original.empty()) continue;
     if (Contains(free, original)) {
-      throw OptionError(fmt::format("--free: {} and {} describe the same friction: give one or the other", original,
+      throw OptionError(fmt::format("‹free›: {} and {} describe the same friction: give one or the other", original,
                                     key));
     }
     replaced.push_back(original);
@@ -310,7 +310,7 @@ std::vector<AxisTerm> ResolveAxisTerms(const AxisSection& start, const std::vect
     terms.push_back({spec.key, static_cast<std::size_t>(j), is_free, v});
   }
   if (!needed.empty()) {
-    throw MissingValuesError("--params", "axis", needed, "(fixed in this fit)", " (or name them in --free)");
+    throw MissingValuesError("‹params›", "axis", needed, "(fixed in this fit)", " (or name them in ‹free›)");
   }
   return terms;
 }
@@ -329,11 +329,11 @@ void AxisDesign(const AxisSection& start, const std::vector<std::string>& free, 
   for (const auto& term : ResolveAxisTerms(start, free)) {
     if (term.index >= kAxisTerms) {
       if (term.free) {
-        throw OptionError(fmt::format("--free {}: the Stribeck term is nonlinear in the rate: fit it with --method oe",
+        throw OptionError(fmt::format("‹free› {}: the Stribeck term is nonlinear in the rate: fit it with ‹method› oe",
                                       term.key));
       }
       if (term.key == Key(&AxisParameters::stribeck) && term.value != 0.0) {
-        throw InputError(fmt::format("--params: axis.stribeck = {}: the Stribeck term needs --method oe (inverse "
+        throw InputError(fmt::format("‹params›: axis.stribeck = {}: the Stribeck term needs ‹method› oe (inverse "
                                      "dynamics would ignore it)", term.value));
       }
       continue;
@@ -383,7 +383,7 @@ AxisFitOutput FitAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& s
   if (logs.empty()) throw OptionError("no logs given");
   CheckFreeNames(AxisParameterTable(), "axis", options.free);
   if (options.decimation < 1) {
-    throw OptionError(fmt::format("--decimation = {}: violated constraint: >= 1", options.decimation));
+    throw OptionError(fmt::format("‹decimation› = {}: violated constraint: >= 1", options.decimation));
   }
   std::vector<FitParameter> parameters;
   std::map<std::string, double> fixed;
@@ -409,7 +409,7 @@ AxisFitOutput FitAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& s
   if (!fit_options.advice) {
     fit_options.advice = [](const std::vector<std::string>& involved) -> std::string {
       if (Contains(involved, Key(&AxisParameters::inertia))) {
-        return "the log has no acceleration content: fit friction alone with --free viscous,coulomb,offset";
+        return "the log has no acceleration content: fit friction alone with ‹free› viscous,coulomb,offset";
       }
       if (Contains(involved, Key(&AxisParameters::coulomb)) && Contains(involved, Key(&AxisParameters::offset))) {
         return "coulomb and offset need motion in both directions";

@@ -151,7 +151,7 @@ OeDesign MakeOeDesign(const AxisSection& start, const AxisParameters* initial, c
       value = std::max(value, lower);
       if (term.index == kAxisInertia) {
         if (!(value > 0.0)) {
-          throw InputError("--method oe: the inertia needs a start value > 0 (axis.inertia in --params)");
+          throw InputError("‹method› oe: the inertia needs a start value > 0 (axis.inertia in ‹params›)");
         }
         d.parameters.push_back({term.key, value, 1e-6 * value, 0.0});
       } else if (term.index == static_cast<std::size_t>(kAxisStribeckVelocity)) {
@@ -167,14 +167,14 @@ OeDesign MakeOeDesign(const AxisSection& start, const AxisParameters* initial, c
   }
   const bool stribeck_free = std::find(d.terms.begin(), d.terms.end(), kAxisStribeck) != d.terms.end();
   if ((stribeck_free || d.fixed.stribeck != 0.0) && !(d.fixed.stribeck_velocity > 0.0)) {
-    throw InputError("--params: axis.stribeck_velocity must be > 0 (a start value if free) with the Stribeck term");
+    throw InputError("‹params›: axis.stribeck_velocity must be > 0 (a start value if free) with the Stribeck term");
   }
   if (stribeck_free && d.fixed.stribeck == 0.0) {
-    throw InputError("--free stribeck: give a start value > 0 in --params (axis.stribeck): at 0 the fit cannot "
+    throw InputError("‹free› stribeck: give a start value > 0 in ‹params› (axis.stribeck): at 0 the fit cannot "
                      "tell which way to move stribeck_velocity");
   }
   if (!(d.fixed.inertia > 0.0)) {
-    throw InputError("--method oe: the axis needs an inertia > 0: give axis.inertia or free it");
+    throw InputError("‹method› oe: the axis needs an inertia > 0: give axis.inertia or free it");
   }
   return d;
 }

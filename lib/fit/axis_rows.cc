@@ -22,7 +22,7 @@ AxisDerivatives DifferentiateAxisLog(const AxisLog& log, double cutoff_request) 
   if (d.rate_hz > 0.0) {
     const double cutoff = cutoff_request > 0.0 ? cutoff_request : d.rate_hz / 40.0;
     if (!(cutoff < 0.5 * d.rate_hz)) {
-      throw OptionError(fmt::format("--cutoff = {}: violated constraint: below half the sampling rate {} Hz", cutoff,
+      throw OptionError(fmt::format("‹cutoff› = {}: violated constraint: below half the sampling rate {} Hz", cutoff,
                                     d.rate_hz));
     }
     const double dt = 1.0 / d.rate_hz;

@@ -82,7 +82,7 @@ std::string FrictionAdvice(const std::vector<std::string>& involved) {
     return "gamma and eta need motion with psi_L' != psi_R' (translation or helical programs): in pure rotation the "
            "collar does not move on the screws";
   }
-  return "add programs with other velocity profiles or fix some coefficients with --params";
+  return "add programs with other velocity profiles or fix some coefficients with ‹params›";
 }
 
 std::string InertiaAdvice(const std::vector<std::string>& involved) {
@@ -91,7 +91,7 @@ std::string InertiaAdvice(const std::vector<std::string>& involved) {
                     Contains(involved, Key(&CDriveParameters::collar_mass));
   if (count >= 2) {
     return "only a = I_h + I_c/4 + p^2 m/(16 pi^2) and b = I_c/4 - p^2 m/(16 pi^2) are identifiable from motor "
-           "torques (a + b from rotation, a - b from translation): fix one of I_h, I_c, m with --params";
+           "torques (a + b from rotation, a - b from translation): fix one of I_h, I_c, m with ‹params›";
   }
   return "";
 }
@@ -182,7 +182,7 @@ CDriveDesign MakeCDriveDesign(const CDriveSection& start_section, const CDrivePa
     if (!Contains(free, row.spec.key) && !(start_section.*(row.in_section))) needed.push_back(&row.spec);
   }
   if (!needed.empty()) {
-    throw MissingValuesError("--params", "cdrive", needed, "(fixed in this fit)", " (or name the fitted ones in --free)");
+    throw MissingValuesError("‹params›", "cdrive", needed, "(fixed in this fit)", " (or name the fitted ones in ‹free›)");
   }
   for (int j = 0; j < static_cast<int>(d.table.size()); ++j) {
     if (!Contains(free, d.table[j]->spec.key)) continue;
@@ -356,10 +356,10 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
   const CDriveParameters start = ModelValuesOrNaN(CDriveParameterTable(), start_section);  // NaN = not given
   if (logs.empty()) throw OptionError("no logs given");
   if (!(options.half_window > 0.0) || !std::isfinite(options.half_window)) {
-    throw OptionError(fmt::format("--window = {}: violated constraint: window > 0 s", options.half_window));
+    throw OptionError(fmt::format("‹window› = {}: violated constraint: window > 0 s", options.half_window));
   }
   if (!(options.min_rate >= 0.0) || !std::isfinite(options.min_rate)) {
-    throw OptionError(fmt::format("--min-rate = {}: violated constraint: min rate >= 0", options.min_rate));
+    throw OptionError(fmt::format("‹min_rate› = {}: violated constraint: min rate >= 0", options.min_rate));
   }
   const bool friction = kind == Kind::kFriction;
   const double settle = options.settle >= 0.0 ? options.settle : (friction ? 0.1 : 0.0);
@@ -375,7 +375,7 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
   const int n = static_cast<int>(regression->rows());
   if (n == 0) {
     throw IdentificationError(fmt::format(
-        "no usable samples: every sample has a motor rate below --min-rate {} rad/s (or the logs are shorter than the "
+        "no usable samples: every sample has a motor rate below ‹min_rate› {} rad/s (or the logs are shorter than the "
         "differentiator window)",
         options.min_rate));
   }
@@ -405,7 +405,7 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
 std::vector<CDriveTrace> PredictCDriveTorques(const std::vector<CDriveLog>& logs, const CDriveParameters& params,
                                               const CDriveFitOptions& options) {
   if (!(options.half_window > 0.0) || !std::isfinite(options.half_window)) {
-    throw OptionError(fmt::format("--window = {}: violated constraint: window > 0 s", options.half_window));
+    throw OptionError(fmt::format("‹window› = {}: violated constraint: window > 0 s", options.half_window));
   }
   const double settle = options.settle >= 0.0 ? options.settle : 0.1;
   std::vector<CDriveTrace> traces;

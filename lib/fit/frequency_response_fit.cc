@@ -257,7 +257,7 @@ std::string TwoMassAdvice(const std::vector<std::string>& involved) {
   const auto has = [&](const char* key) { return std::find(involved.begin(), involved.end(), key) != involved.end(); };
   if (has("motor_viscous") || has("link_viscous")) {
     advice.push_back("viscous friction needs the band to reach down to where friction dominates the inertia; fix "
-                     "motor_viscous/link_viscous in --params and leave them out of --free");
+                     "motor_viscous/link_viscous in ‹params› and leave them out of ‹free›");
   }
   if (has("damping")) advice.push_back("the damping needs coherent bins around the resonance and anti-resonance");
   if (has("delay")) advice.push_back("a delay separates from damping only with phase data well above the resonance");
@@ -355,8 +355,8 @@ void StartValues(const ResponseData& motor, const JointSection& s, const std::ve
     }
   }
   if (!needed.empty()) {
-    throw MissingValuesError("--params", "joint", needed, "(fixed in this fit)",
-                             " (values > 0), or name them in --free");
+    throw MissingValuesError("‹params›", "joint", needed, "(fixed in this fit)",
+                             " (values > 0), or name them in ‹free›");
   }
   const bool read_ok = out.read.resonance.value > 0.0 && out.read.antiresonance.value > 0.0 &&
                        out.read.antiresonance.value < out.read.resonance.value;
@@ -372,7 +372,7 @@ void StartValues(const ResponseData& motor, const JointSection& s, const std::ve
   if (!missing.empty()) {
     throw IdentificationError(fmt::format(
         "no {} in the coherent band {:.4g} .. {:.4g} Hz of the motor response, so the two-mass model is not "
-        "determined there ({} need start values in --params, or excite across the resonance)",
+        "determined there ({} need start values in ‹params›, or excite across the resonance)",
         out.read.resonance.value > 0.0 ? "anti-resonance below the resonance" : "resonance peak", out.band_low,
         out.band_high, fmt::join(missing, ", ")));
   }
@@ -425,7 +425,7 @@ void AddFeatures(const std::vector<std::size_t>& free_terms, TwoMassFitOutput& o
     if (!(f >= out.band_low && f <= out.band_high)) {
       throw IdentificationError(fmt::format("the fitted {} at {:.4g} Hz lies outside the coherent band {:.4g} .. {:.4g} "
                                             "Hz: the response does not determine the two-mass model (excite across it, "
-                                            "or --band)",
+                                            "or ‹band›)",
                                             name, f, out.band_low, out.band_high));
     }
   }
@@ -447,7 +447,7 @@ TwoMassFitOutput FitTwoMassResponse(const ResponseData& motor, const ResponseDat
   const auto used_count = std::count(out.motor_used.begin(), out.motor_used.end(), 1);
   if (used_count < 3) {
     throw InputError(fmt::format("the motor response has {} bins with coherence >= {} in the band: nothing to fit "
-                                 "(more excitation, longer logs, or --band)",
+                                 "(more excitation, longer logs, or ‹band›)",
                                  used_count, options.min_coherence));
   }
   out.read = ReadResponseFeatures(motor, options.motor_output, options);

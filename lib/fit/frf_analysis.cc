@@ -117,7 +117,7 @@ FrfResult AnalyseFrequencyResponse(const std::vector<FrfSignals>& logs, const Jo
     for (double c : f.coherence) low_coherence += c < 0.5;
     if (low_coherence > static_cast<int>(f.coherence.size() / 2)) {
       out.warnings.push_back(fmt::format("coherence below 0.5 in {} of {} bins: in closed loop give the injected "
-                                         "excitation with --reference (S_ry/S_ru is not biased by the feedback)",
+                                         "excitation with ‹reference› (S_ry/S_ru is not biased by the feedback)",
                                          low_coherence, f.coherence.size()));
     }
   }
@@ -131,7 +131,7 @@ FrfResult AnalyseMeasuredResponse(const MeasuredResponse& measured, const JointS
   FrfResult out;
   FrequencyResponse& r = out.motor;
   r.method = FrequencyMethod::kWelch;
-  r.description = fmt::format("measured elsewhere ({} bins, read with --measured)", n);
+  r.description = fmt::format("measured elsewhere ({} bins, read with ‹measured›)", n);
   for (std::size_t b = 0; b < n; ++b) {
     const double f = measured.frequency[b], m = measured.magnitude[b];
     if (!(f > 0.0) || !(m > 0.0) || !std::isfinite(m) || !std::isfinite(measured.phase[b])) {

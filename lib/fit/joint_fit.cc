@@ -91,7 +91,7 @@ JointDesign MakeJointDesign(const std::vector<JointLog>& logs, const JointSectio
     d.fixed[row.spec.key] = value.value_or(0.0);
   }
   if (!needed.empty()) {
-    throw MissingValuesError("--params", "joint", needed, "(fixed in this fit)", " (or name the fitted ones in --free)");
+    throw MissingValuesError("‹params›", "joint", needed, "(fixed in this fit)", " (or name the fitted ones in ‹free›)");
   }
   d.gear = *start.gear_ratio;
   d.offset_column = static_cast<std::size_t>(std::find(d.columns.begin(), d.columns.end(), d.offset_key) -
@@ -120,7 +120,7 @@ JointDesign MakeJointDesign(const std::vector<JointLog>& logs, const JointSectio
     longest = std::max(longest, log.time[k] - log.time[k - 1]);
   }
   throw InputError(fmt::format("{}: time steps from {:.6g} to {:.6g} s (jitter {:.3g} % of the mean): the joint fit "
-                               "filters at a constant rate; resample the log, or give --rate HZ when the stamps "
+                               "filters at a constant rate; resample the log, or give ‹rate› HZ when the stamps "
                                "themselves are the noise",
                                log.path, shortest, longest,
                                100.0 * (longest - shortest) /
@@ -218,7 +218,7 @@ void CheckJointAdequacy(const std::vector<JointLog>& logs, const JointSection& s
       }
       out.fit.sensitivity.push_back(std::move(entry));
     }
-    for (auto& w : ProcessingWarnings(out.fit, out.cutoff, "check the cutoff with --cutoff: the resonance must lie "
+    for (auto& w : ProcessingWarnings(out.fit, out.cutoff, "check the cutoff with ‹cutoff›: the resonance must lie "
                                                            "well below it")) {
       out.fit.warnings.push_back(std::move(w));
     }
@@ -229,7 +229,7 @@ void CheckJointAdequacy(const std::vector<JointLog>& logs, const JointSection& s
     if (out.cutoff < 2.0 * resonance) {
       out.fit.warnings.push_back(fmt::format("the angle cutoff {:.4g} Hz is within a factor 2 of the fitted resonance "
                                              "{:.4g} Hz: the zero-phase filter biases the damping and stiffness there; "
-                                             "raise --cutoff, or measure the frequency response (drivetrain-fit frf)",
+                                             "raise ‹cutoff›, or measure the frequency response (drivetrain-fit frf)",
                                              out.cutoff, resonance));
     }
   }

@@ -232,8 +232,8 @@ std::vector<OeLog> PrepareLogs(const std::vector<JointLog>& logs, double n) {
                                    kMinAxisLogSamples));
     }
     if (log.torque.empty()) {
-      throw InputError(fmt::format("{}: --method oe simulates the joint from the motor torque tau (or i), which the "
-                                   "log lacks: use --method id",
+      throw InputError(fmt::format("{}: ‹method› oe simulates the joint from the motor torque tau (or i), which the "
+                                   "log lacks: use ‹method› id",
                                    log.path));
     }
     OeLog& l = oe[i];
@@ -301,8 +301,8 @@ std::vector<std::string> JointOeDefaultFree(const std::vector<JointLog>& logs) {
 void CheckOutputErrorSimulates(const JointSection& start, const std::vector<std::string>& free) {
   const std::string link_coulomb = KeyOf(JointParameterTable(), &JointParameters::link_coulomb);
   if (std::find(free.begin(), free.end(), link_coulomb) != free.end() || start.link_coulomb.value_or(0.0) != 0.0) {
-    throw OptionError("--method oe does not simulate the link's Coulomb friction: leave link_coulomb out of --free "
-                      "and at 0 in --params, or use --method id");
+    throw OptionError("‹method› oe does not simulate the link's Coulomb friction: leave link_coulomb out of ‹free› "
+                      "and at 0 in ‹params›, or use ‹method› id");
   }
 }
 
@@ -337,7 +337,7 @@ JointOeDesign MakeJointOeDesign(const std::vector<JointLog>& logs, const JointSe
       const bool positive = j == kJointMotorInertia || j == kJointLinkInertia || j == kJointStiffness;
       value = positive && !(guess > 0.0) ? value : std::max(guess, row.spec.lower_bound);
       if (positive && !(value > 0.0)) {
-        throw InputError(fmt::format("--method oe: joint.{} needs a start value > 0 in --params (the inverse-dynamics "
+        throw InputError(fmt::format("‹method› oe: joint.{} needs a start value > 0 in ‹params› (the inverse-dynamics "
                                      "start did not give one)",
                                      row.spec.key));
       }
@@ -349,10 +349,10 @@ JointOeDesign MakeJointOeDesign(const std::vector<JointLog>& logs, const JointSe
     d.fixed.*(row.in_model) = value;
   }
   if (!needed.empty()) {
-    throw MissingValuesError("--params", "joint", needed, "(fixed in this fit)", " (or name the fitted ones in --free)");
+    throw MissingValuesError("‹params›", "joint", needed, "(fixed in this fit)", " (or name the fitted ones in ‹free›)");
   }
   if (!(d.fixed.motor_inertia > 0.0) || !(d.fixed.link_inertia > 0.0)) {
-    throw InputError("--method oe: the joint needs both inertias > 0: give joint.motor_inertia and joint.link_inertia");
+    throw InputError("‹method› oe: the joint needs both inertias > 0: give joint.motor_inertia and joint.link_inertia");
   }
   d.fixed.link_torque_offset = start.link_torque_offset.value_or(0.0);
   if (is_free(offset_key)) {

@@ -54,12 +54,12 @@ void CheckClosure(const PlanarRobotParameters& robot, const RobotLog& log) {
     if (!(check.length_error <= kClosureTolerance)) {
       throw InputError(fmt::format(
           "{}: the joint angles do not close the robot (a leg misses the centre joint by {:.3g} % of l = {} m; "
-          "tolerance {} %): check base_distance and l in --params, that the angles are in radians at the gear "
+          "tolerance {} %): check base_distance and l in ‹params›, that the angles are in radians at the gear "
           "output, and the column order (docs/models.md#planar-robot)",
           where, 100.0 * check.length_error, robot.link_length, 100.0 * kClosureTolerance));
     }
     if (check.wrong_elbow != 0) {
-      throw InputError(fmt::format("{}: leg {}'s elbow is on the other side of the one given by elbow in --params",
+      throw InputError(fmt::format("{}: leg {}'s elbow is on the other side of the one given by elbow in ‹params›",
                                    where, check.wrong_elbow));
     }
     guess = c;
@@ -181,9 +181,9 @@ RobotFitOutput FitRobot(const std::vector<RobotLog>& logs, const PlanarRobotPara
   if (logs.empty()) throw OptionError("no logs given");
   CheckFreeNames(PlanarRobotParameterTable(), "robot", options.free);
   if (!(options.half_window > 0.0)) {
-    throw OptionError(fmt::format("--window = {}: violated constraint: > 0 s", options.half_window));
+    throw OptionError(fmt::format("‹window› = {}: violated constraint: > 0 s", options.half_window));
   }
-  if (!(start.torque_constant > 0.0)) throw InputError("--params: planar_robot.k_t is needed (currents to torques)");
+  if (!(start.torque_constant > 0.0)) throw InputError("‹params›: planar_robot.k_t is needed (currents to torques)");
   std::vector<FitParameter> parameters;
   std::vector<std::string> column_names;
   std::map<std::string, double> fixed;

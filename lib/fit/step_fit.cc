@@ -34,11 +34,11 @@ std::string StepAdvice(const std::vector<std::string>& involved) {
   const bool link = Contains(involved, key(DriveTrainParameter::kLinkStiffness));
   const bool gearbox = Contains(involved, key(DriveTrainParameter::kGearboxStiffness));
   if (link && gearbox) {
-    advice.push_back("fix k_Tl or k_Tg with --params: only their series combination enters the strain gauge's step "
+    advice.push_back("fix k_Tl or k_Tg with ‹params›: only their series combination enters the strain gauge's step "
                      "response; a logged link angle q_link separates them (docs/models.md#drive-train)");
   } else if ((link || gearbox) && (Contains(involved, key(DriveTrainParameter::kMotorInertia)) ||
                                     Contains(involved, key(DriveTrainParameter::kViscousFriction)))) {
-    advice.push_back("a step response fixes only Theta_motor/k_eq and d_g/k_eq: fix the stiffness with --params");
+    advice.push_back("a step response fixes only Theta_motor/k_eq and d_g/k_eq: fix the stiffness with ‹params›");
   }
   if (Contains(involved, "offset") || Contains(involved, "offset_1")) {
     advice.push_back("a per-log offset needs samples before the step to separate it from tau_c");
@@ -435,7 +435,7 @@ StepFitOutput FitFrom(const std::vector<StepLog>& logs, const DriveTrainParamete
     if (!Contains(free, key)) continue;
     const double value = GetDriveTrainParameter(start, parameter);
     if (!(value > 0.0)) {
-      throw InputError(fmt::format("--free {}: the starting value in --params must be > 0, got {}", key, value));
+      throw InputError(fmt::format("‹free› {}: the starting value in ‹params› must be > 0, got {}", key, value));
     }
     ode_parameters.push_back(parameter);
     // Friction may vanish; inertias and stiffnesses must stay strictly positive.
@@ -580,7 +580,7 @@ void WarnIfTransientsMoved(const StepFitOutput& transient_fit, StepFitOutput& st
   if (!moved.empty()) {
     staged.fit.warnings.push_back(fmt::format(
         "the whole logs pull the estimates away from the first transients' ({}): the model may miss something "
-        "over the long run, or the cost has several optima (check with --starts both; docs/models.md#drive-train)",
+        "over the long run, or the cost has several optima (check with ‹starts› both; docs/models.md#drive-train)",
         fmt::join(moved, ", ")));
   }
 }
@@ -607,11 +607,11 @@ StepFitOutput FitStepResponses(const std::vector<StepLog>& logs, const DriveTrai
   CheckFreeNames(DriveTrainParameterTable(), "step", options.free, {"offset"});
   for (const auto& log : logs) CheckStepLog(log);
   if (options.model == DriveTrainModel::kFull && !(start.gearbox_inertia > 0.0)) {
-    throw InputError("the full model needs drivetrain.Theta_g > 0 in --params");
+    throw InputError("the full model needs drivetrain.Theta_g > 0 in ‹params›");
   }
   if (options.model == DriveTrainModel::kReduced &&
       Contains(options.free, DriveTrainParameterKey(DriveTrainParameter::kGearboxInertia))) {
-    throw IdentificationError("Theta_g has no effect in the reduced model (it sets Theta_g = 0): use --model full");
+    throw IdentificationError("Theta_g has no effect in the reduced model (it sets Theta_g = 0): use ‹model› full");
   }
   if (options.starts == StepStarts::kGiven) {
     return FitFrom(logs, start, {}, options.model, options.free, options.fit, options.integration);

@@ -61,7 +61,7 @@ void RequireValidated(const std::vector<ValidatedLog>& logs) {
   if (logs.empty()) throw IdentificationError("no logs to validate");
   for (const auto& log : logs) {
     if (log.stats.samples == 0) {
-      throw IdentificationError(fmt::format("{}: no usable samples to compare (check --min-rate, --window, --from/--to)",
+      throw IdentificationError(fmt::format("{}: no usable samples to compare (check ‹min_rate›, ‹window›, ‹from›/‹to›)",
                                             log.stats.name));
     }
     if (!std::isfinite(log.stats.rmse) || !std::isfinite(log.stats.autocorrelation)) {

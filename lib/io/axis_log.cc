@@ -39,7 +39,7 @@ AxisLog MakeAxisLog(CsvLog csv, double torque_constant) {
   AxisLog log = MakeLogFromColumns(kColumns, csv);
   if (current) {
     if (!(torque_constant > 0.0)) {
-      throw InputError(fmt::format("{}: the log has a current column 'i': axis.k_t must be given in --params", log.path));
+      throw InputError(fmt::format("{}: the log has a current column 'i': axis.k_t must be given in ‹params›", log.path));
     }
     for (double& v : log.force) v *= torque_constant;
   }

@@ -40,7 +40,7 @@ CDriveLog MakeCDriveLog(CsvLog csv, double torque_constant) {
   }
   if (left_current) {
     if (!(torque_constant > 0.0)) {
-      throw InputError(fmt::format("{}: the log has currents i_L, i_R: cdrive.k_t must be given in --params", log.path));
+      throw InputError(fmt::format("{}: the log has currents i_L, i_R: cdrive.k_t must be given in ‹params›", log.path));
     }
     for (double& v : log.torque_left) v *= torque_constant;
     for (double& v : log.torque_right) v *= torque_constant;

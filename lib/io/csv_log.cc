@@ -111,7 +111,7 @@ std::map<std::string, std::string> ParseColumnMap(const std::vector<std::string>
   for (const auto& entry : entries) {
     const auto eq = entry.find('=');
     if (eq == std::string::npos || eq == 0 || eq + 1 == entry.size()) {
-      throw InputError(fmt::format("--col {}: expected NAME=HEADER", entry));
+      throw InputError(fmt::format("‹col› {}: expected NAME=HEADER", entry));
     }
     map[entry.substr(0, eq)] = entry.substr(eq + 1);
   }

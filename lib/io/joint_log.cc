@@ -33,12 +33,12 @@ JointLog MakeJointLog(CsvLog csv, double torque_constant) {
   const std::string& path = log.path;
   if (log.torque.empty() && log.link_torque.empty()) {
     throw InputError(fmt::format("{}: a joint log needs the motor torque tau (or the current i) or the shaft torque "
-                                 "tau_link (map them with --col tau=COLUMN, --col tau_link=COLUMN)",
+                                 "tau_link (map them with ‹col› tau=COLUMN, ‹col› tau_link=COLUMN)",
                                  path));
   }
   if (!log.torque.empty() && current) {
     if (!(torque_constant > 0.0)) {
-      throw InputError(fmt::format("{}: the log has a current column 'i': joint.k_t must be given in --params", path));
+      throw InputError(fmt::format("{}: the log has a current column 'i': joint.k_t must be given in ‹params›", path));
     }
     for (double& v : log.torque) v *= torque_constant;
   }

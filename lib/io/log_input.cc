@@ -34,7 +34,7 @@ std::string Offered(const TableSource& source) {
   const auto names = source.column_names();
   const bool unnamed = std::all_of(names.begin(), names.end(), [](const std::string& n) { return n.empty(); });
   if (unnamed) {
-    return fmt::format("the file has no header: name its {} columns by position, e.g. --col t=#1", names.size());
+    return fmt::format("the file has no header: name its {} columns by position, e.g. ‹col› t=#1", names.size());
   }
   std::string have;
   for (std::size_t i = 0; i < names.size() && i < 12; ++i) {
@@ -68,7 +68,7 @@ void CheckColumnOptions(const std::vector<std::string>& required, const LogInput
   }
   for (const auto& [name, expression] : options.columns) {
     if (std::find(known.begin(), known.end(), name) == known.end()) {
-      throw OptionError(fmt::format("--col {}={}: this log has no column '{}' (its columns: {})", name, expression,
+      throw OptionError(fmt::format("‹col› {}={}: this log has no column '{}' (its columns: {})", name, expression,
                                     name, fmt::join(known, ", ")));
     }
   }
@@ -101,11 +101,11 @@ ColumnPlan PlanColumns(const TableSource& source, const std::vector<std::string>
       wanted_all += (wanted_all.empty() ? "'" : "' or '") + text;
       if (name == options.time_column && options.rate > 0.0) {
         if (mapped != options.columns.end()) {
-          throw OptionError(fmt::format("--rate and --col {}={}: give the time column or the rate, not both", name,
+          throw OptionError(fmt::format("‹rate› and ‹col› {}={}: give the time column or the rate, not both", name,
                                         mapped->second));
         }
         if (is_column(text)) {
-          throw OptionError(fmt::format("--rate: {} has a time column '{}'; --rate is for logs without one", where,
+          throw OptionError(fmt::format("‹rate›: {} has a time column '{}'; ‹rate› is for logs without one", where,
                                         text));
         }
         generated_time[k] = 1;
@@ -116,7 +116,7 @@ ColumnPlan PlanColumns(const TableSource& source, const std::vector<std::string>
       if (mapped == options.columns.end() || IsPlainWord(text)) {
         if (!is_column(text)) continue;  // try the next alternative
       }
-      expressions[k] = ParseColumnExpression(fmt::format("--col {}={}", name, text), text, is_column, scalar);
+      expressions[k] = ParseColumnExpression(fmt::format("‹col› {}={}", name, text), text, is_column, scalar);
       indices[k] = *source.Find(expressions[k].reference);
       log.names[k] = name;
       found = true;
@@ -137,9 +137,9 @@ ColumnPlan PlanColumns(const TableSource& source, const std::vector<std::string>
           if (note.rfind(text + ": skipped", 0) == 0) throw InputError(fmt::format("{}: {}", where, note));
         }
       }
-      throw InputError(fmt::format("{}{}: missing column {}' ({}; map another name with --col {}=COLUMN{})", where,
+      throw InputError(fmt::format("{}{}: missing column {}' ({}; map another name with ‹col› {}=COLUMN{})", where,
                                    source.header_line() > 0 ? fmt::format(":{}", source.header_line()) : "", wanted_all, Offered(source),
-                                   alternatives.front(), time ? ", or give --rate HZ" : ""));
+                                   alternatives.front(), time ? ", or give ‹rate› HZ" : ""));
     }
   }
   // Two logical columns may not read one source column.
@@ -150,7 +150,7 @@ ColumnPlan PlanColumns(const TableSource& source, const std::vector<std::string>
       const bool derived = (!expressions[a].operations.empty() || !expressions[b].operations.empty()) &&
                            expressions[a].operations != expressions[b].operations;
       if (!generated_time[a] && !generated_time[b] && !absent[a] && !absent[b] && indices[a] == indices[b] && !derived) {
-        throw OptionError(fmt::format("--col: '{}' and '{}' would both read column '{}' of {}", log.names[a],
+        throw OptionError(fmt::format("‹col›: '{}' and '{}' would both read column '{}' of {}", log.names[a],
                                       log.names[b], expressions[a].reference, where));
       }
     }
@@ -206,7 +206,7 @@ std::size_t ReadPlannedColumns(const TableSource& source, const std::vector<std:
     if (generated_time[k]) {
       log.columns[k].resize(rows);
       for (std::size_t i = 0; i < rows; ++i) log.columns[k][i] = static_cast<double>(i) / options.rate;
-      log.notes.push_back(fmt::format("{}: samples at {} Hz from 0 s (--rate)", log.names[k], options.rate));
+      log.notes.push_back(fmt::format("{}: samples at {} Hz from 0 s (‹rate›)", log.names[k], options.rate));
       continue;
     }
     // The last user of a source column takes it; earlier ones copy.
@@ -220,7 +220,7 @@ std::size_t ReadPlannedColumns(const TableSource& source, const std::vector<std:
       for (double& v : log.columns[k]) v *= e.factor;
       for (std::size_t i = 0; i < rows; ++i) {
         if (!std::isfinite(log.columns[k][i])) {
-          throw InputError(fmt::format("{}: --col {}={}: the value at sample {} overflows", where, log.names[k], e.text,
+          throw InputError(fmt::format("{}: ‹col› {}={}: the value at sample {} overflows", where, log.names[k], e.text,
                                        i + 1));
         }
       }
@@ -258,7 +258,7 @@ void ApplyTimeBase(const std::vector<std::string>& required, const LogInputOptio
       while (begin < end && time[begin] < from) ++begin;
       while (end > begin && time[end - 1] > to) --end;
       if (begin == end) {
-        throw InputError(fmt::format("{}: no samples between --from {} s and --to {} s (the log spans {} .. {} s)",
+        throw InputError(fmt::format("{}: no samples between ‹from› {} s and ‹to› {} s (the log spans {} .. {} s)",
                                      where, from, to, time.front(), time.back()));
       }
       for (auto& c : log.columns) {
@@ -269,19 +269,19 @@ void ApplyTimeBase(const std::vector<std::string>& required, const LogInputOptio
         log.line_numbers = std::vector<int>(log.line_numbers.begin() + static_cast<std::ptrdiff_t>(begin),
                                             log.line_numbers.begin() + static_cast<std::ptrdiff_t>(end));
       }
-      log.notes.push_back(fmt::format("cropped to {} .. {} s (--from/--to): samples {} .. {} of {}",
+      log.notes.push_back(fmt::format("cropped to {} .. {} s (‹from›/‹to›): samples {} .. {} of {}",
                                       log.columns[k].front(), log.columns[k].back(), begin + 1, end, rows));
     }
     // Derived signals (integral, derivative, detrend) over the cropped time base.
     for (std::size_t j = 0; j < required.size(); ++j) {
       if (absent[j] || generated_time[j] || expressions[j].operations.empty()) continue;
-      if (j == k) throw OptionError(fmt::format("--col {}={}: the time base cannot be derived", log.names[j], expressions[j].text));
+      if (j == k) throw OptionError(fmt::format("‹col› {}={}: the time base cannot be derived", log.names[j], expressions[j].text));
       for (const auto& operation : expressions[j].operations) {
         ApplyColumnOperation(operation, log.columns[k], log.columns[j]);
       }
       for (double v : log.columns[j]) {
         if (!std::isfinite(v)) {
-          throw InputError(fmt::format("{}: --col {}={}: the derived signal overflows", where, log.names[j],
+          throw InputError(fmt::format("{}: ‹col› {}={}: the derived signal overflows", where, log.names[j],
                                        expressions[j].text));
         }
       }
@@ -298,7 +298,7 @@ void CheckMagnitudes(const std::vector<std::string>& required, const std::string
     for (double v : log.columns[k]) largest = std::max(largest, std::abs(v));
     if (largest > kLargestLogMagnitude || (largest > 0.0 && largest < kSmallestLogMagnitude)) {
       throw InputError(fmt::format("{}: column '{}': values up to {:.4g} in magnitude, outside {:g} .. {:g} where a "
-                                   "fit's sums of squares stay finite; rescale it (--col {}=EXPR*FACTOR)",
+                                   "fit's sums of squares stay finite; rescale it (‹col› {}=EXPR*FACTOR)",
                                    where, log.names[k], largest, kSmallestLogMagnitude, kLargestLogMagnitude,
                                    log.names[k]));
     }
@@ -335,7 +335,7 @@ std::vector<std::unique_ptr<TableSource>> OpenLogSources(const std::string& path
   for (const auto& join : joins) {
     auto joined = OpenTableSources(join.path, *join.text, options.csv, SysIdFormat{});
     if (joined.size() != 1 || sources.size() != 1) {
-      throw OptionError(fmt::format("--join {}: only single-table files (CSV, MAT) can be joined", join.path));
+      throw OptionError(fmt::format("‹join› {}: only single-table files (CSV, MAT) can be joined", join.path));
     }
     sources.front() = JoinSources(std::move(sources.front()), std::move(joined.front()));
   }

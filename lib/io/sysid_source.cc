@@ -220,9 +220,9 @@ std::vector<std::unique_ptr<TableSource>> OpenSysIdSources(const std::string& pa
   if (drivetrain) {
     if (format.side == "left" || format.side == "right") sides = {format.side};
     else if (format.side == "both") sides = {"left", "right"};
-    else throw OptionError(fmt::format("{}: a SysId Drivetrain file: give --side left, right or both", path));
+    else throw OptionError(fmt::format("{}: a SysId Drivetrain file: give ‹side› left, right or both", path));
   } else if (!format.side.empty()) {
-    throw OptionError(fmt::format("--side {}: {} is a SysId '{}' file with one side", format.side, path, layout));
+    throw OptionError(fmt::format("‹side› {}: {} is a SysId '{}' file with one side", format.side, path, layout));
   }
   const std::size_t width = drivetrain ? 9 : 4;
   std::vector<std::unique_ptr<TableSource>> out;

@@ -253,7 +253,7 @@ class JoinedSource : public TableSource {
     const auto la = a_->column_lengths(), lb = b_->column_lengths();
     const std::size_t rows_a = la.empty() ? 0 : la.front(), rows_b = lb.empty() ? 0 : lb.front();
     if (rows_a != rows_b) {
-      throw InputError(fmt::format("{}: {} rows, but {} (joined with --join) has {}: a joined file must have one row "
+      throw InputError(fmt::format("{}: {} rows, but {} (joined with ‹join›) has {}: a joined file must have one row "
                                    "per row of the log",
                                    a_->path(), rows_a, b_->path(), rows_b));
     }
@@ -358,7 +358,7 @@ std::vector<std::unique_ptr<TableSource>> OpenTableSources(const std::string& pa
     return out;
   }
   if (!sysid.side.empty()) {
-    throw OptionError(fmt::format("--side {}: {} is a {} file; --side applies to SysId Drivetrain files", sysid.side,
+    throw OptionError(fmt::format("‹side› {}: {} is a {} file; ‹side› applies to SysId Drivetrain files", sysid.side,
                                   path, LooksLikeMat(text) ? "MAT" : "CSV"));
   }
   if (LooksLikeMat(text)) {

@@ -72,11 +72,11 @@ std::string TransposeTable(const std::string& path, const std::string& text) {
     }
     rows.push_back(Split(trimmed, delimiter));
     if (rows.back().size() != rows.front().size()) {
-      throw InputError(fmt::format("{}:{}: --transpose: {} cells, line {} has {} (each row is one signal)", path,
+      throw InputError(fmt::format("{}:{}: ‹transpose›: {} cells, line {} has {} (each row is one signal)", path,
                                    line_number, rows.back().size(), first_line, rows.front().size()));
     }
   }
-  if (rows.empty()) throw InputError(fmt::format("{}: --transpose: no rows", path));
+  if (rows.empty()) throw InputError(fmt::format("{}: ‹transpose›: no rows", path));
   std::string out = comments;
   for (std::size_t j = 0; j < rows.front().size(); ++j) {
     for (std::size_t i = 0; i < rows.size(); ++i) {

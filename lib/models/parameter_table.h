@@ -110,7 +110,7 @@ void CheckFreeNames(const ParameterTable<Section, Model>& table, const std::stri
   for (const auto& name : names) {
     if (std::find(known.begin(), known.end(), name) == known.end()) {
       throw OptionError(
-          fmt::format("--free {}: not a parameter of the {} fit (choose from {})", name, fit, fmt::join(known, ", ")));
+          fmt::format("‹free› {}: not a parameter of the {} fit (choose from {})", name, fit, fmt::join(known, ", ")));
     }
   }
 }

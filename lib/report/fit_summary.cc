@@ -48,7 +48,7 @@ std::string FormatChannelLines(const std::vector<ChannelStatistics>& channels) {
   const auto [inflation_low, inflation_high] = range(&ChannelStatistics::inflation);
   const std::string fit_range =
       fit_low <= fit_high ? fmt::format("{:.2f} to {:.2f} %", fit_low, fit_high) : std::string("n/a (constant)");
-  out += fmt::format("{} channels (each in the parameter file and --json): fit {}, rmse {:.4g} to "
+  out += fmt::format("{} channels (each in the parameter file and ‹json›): fit {}, rmse {:.4g} to "
                      "{:.4g}, residual lag-1 {:.3f} to {:.3f}, std x {:.2f} to {:.2f}\n",
                      channels.size(), fit_range, rmse_low, rmse_high, lag_low, lag_high, inflation_low,
                      inflation_high);
@@ -82,7 +82,7 @@ std::string FormatFitTable(const FitResult& fit, const FitProvenance& provenance
   out += FormatChannelLines(fit.channels);
   const std::size_t p = fit.estimates.size();
   if (p > kFullCorrelationParameters) {
-    out += fmt::format("correlation: {} parameters, the 10 strongest pairs (all: --json):\n", p);
+    out += fmt::format("correlation: {} parameters, the 10 strongest pairs (all: ‹json›):\n", p);
     for (const auto& pair : StrongestCorrelations(fit, 10)) {
       out += fmt::format("  {:<14} {:<14} {:>7.3f}\n", fit.estimates[pair.first].name, fit.estimates[pair.second].name,
                          pair.correlation);

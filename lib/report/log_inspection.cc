@@ -104,11 +104,11 @@ std::string FormatLogInspection(const InspectedLog& log) {
   if (!log.variables.empty()) {
     std::size_t width = 8;
     for (const auto& v : log.variables) width = std::max(width, std::min<std::size_t>(v.name.size(), 48));
-    out += fmt::format("  {:<{}} {:>13}  {}\n", "variable", width, "size", "address (--col NAME=...)");
+    out += fmt::format("  {:<{}} {:>13}  {}\n", "variable", width, "size", "address (‹col› NAME=...)");
     for (const auto& v : log.variables) {
       out += fmt::format("  {:<{}} {:>13}  {}\n", v.name, width, fmt::format("{} x {}", v.rows, v.cols), v.address);
     }
-    if (log.columns.empty()) out += "  (columns with their ranges: inspect --columns)\n";
+    if (log.columns.empty()) out += "  (columns with their ranges: inspect ‹columns›)\n";
   }
   if (!log.columns.empty()) {
     out += fmt::format("  {:>5}  {:<28} {:>8} {:>14} {:>14}\n", "#", "column", "values", "min", "max");

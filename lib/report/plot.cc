@@ -191,7 +191,7 @@ std::string RenderPanels(const std::string& path, const std::vector<PlotPanel>& 
   cleanup();
   if (!started || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     RemoveTemporaryFile(image);
-    if (!started) throw OutputError("cannot run gnuplot for --plot (install the Debian package gnuplot-nox)");
+    if (!started) throw OutputError("cannot run gnuplot for ‹plot› (install the Debian package gnuplot-nox)");
     std::string first = error_text;
     while (!first.empty() && (first.front() == '\n' || first.front() == ' ')) first.erase(first.begin());
     first = first.substr(0, first.find('\n'));

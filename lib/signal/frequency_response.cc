@@ -114,14 +114,14 @@ FrequencyResponse EstimateWelch(const std::vector<FrequencyRecord>& records, dou
   // Segment length: the resolution asked for, else about 8 averages over the
   // shortest record (K = 2 N / n - 1 with 50 % overlap).
   if (resolution > 0.0 && !(rate / resolution <= static_cast<double>(shortest))) {
-    throw OptionError(fmt::format("--resolution {:.4g} Hz: finer than the shortest log ({} samples at {} Hz) can give; "
+    throw OptionError(fmt::format("‹resolution› {:.4g} Hz: finer than the shortest log ({} samples at {} Hz) can give; "
                                   "at least {:.4g} Hz",
                                   resolution, shortest, rate, rate * (kMinAverages + 1) / (2.0 * static_cast<double>(shortest))));
   }
   std::size_t n = resolution > 0.0 ? static_cast<std::size_t>(std::lround(rate / resolution))
                                    : static_cast<std::size_t>(2.0 * static_cast<double>(shortest) / 9.0);
   if (n < 16) {
-    throw OptionError(fmt::format("--resolution {} Hz: segments of {} samples are too short (at {} Hz; at most {:.4g} Hz)",
+    throw OptionError(fmt::format("‹resolution› {} Hz: segments of {} samples are too short (at {} Hz; at most {:.4g} Hz)",
                                   resolution, n, rate, rate / 16.0));
   }
   const std::size_t step = n / 2;
@@ -130,7 +130,7 @@ FrequencyResponse EstimateWelch(const std::vector<FrequencyRecord>& records, dou
     if (r.input.size() >= n) averages += static_cast<int>((r.input.size() - n) / step + 1);
   }
   if (averages < kMinAverages) {
-    throw OptionError(fmt::format("--resolution {:.4g} Hz: the logs give {} averages of {} samples; at least {} are "
+    throw OptionError(fmt::format("‹resolution› {:.4g} Hz: the logs give {} averages of {} samples; at least {} are "
                                   "needed (a coarser resolution, at least {:.4g} Hz here, or longer logs)",
                                   rate / static_cast<double>(n), averages, n, kMinAverages,
                                   rate * (kMinAverages + 1) / (2.0 * static_cast<double>(shortest))));
@@ -207,7 +207,7 @@ FrequencyResponse EstimatePeriodic(const std::vector<FrequencyRecord>& records, 
   const std::size_t m = u_spectra.size();
   if (m < static_cast<std::size_t>(kMinAverages)) {
     throw InputError(fmt::format("the excitation repeats every {} samples, but the logs hold {} whole periods; at least "
-                                 "{} are needed (or use --method welch)",
+                                 "{} are needed (or use ‹method› welch)",
                                  period, m, kMinAverages));
   }
   FrequencyResponse out;
@@ -309,18 +309,18 @@ FrequencyResponse EstimateFrequencyResponse(const std::vector<FrequencyRecord>& 
   std::size_t longest = 0;
   for (const auto& r : records) longest = std::max(longest, r.input.size());
   if (options.period > 0.0 && !(options.period * rate <= static_cast<double>(longest) / 2.0)) {
-    throw OptionError(fmt::format("--period {} s: longer than half the longest log ({} samples at {} Hz)",
+    throw OptionError(fmt::format("‹period› {} s: longer than half the longest log ({} samples at {} Hz)",
                                   options.period, longest, rate));
   }
   std::size_t period = options.period > 0.0 ? static_cast<std::size_t>(std::lround(options.period * rate)) : 0;
   if (options.period > 0.0 && std::abs(static_cast<double>(period) - options.period * rate) > 1e-6 * options.period * rate) {
-    throw OptionError(fmt::format("--period {} s: not a whole number of samples at {} Hz", options.period, rate));
+    throw OptionError(fmt::format("‹period› {} s: not a whole number of samples at {} Hz", options.period, rate));
   }
   if (options.method == FrequencyMethod::kPeriodic && period == 0) {
     // Every record must repeat with one period.
     const auto& excitation = closed_loop ? records.front().reference : records.front().input;
     period = DetectPeriod(excitation);
-    if (period == 0) throw InputError("--method periodic: the excitation does not repeat (give --period S)");
+    if (period == 0) throw InputError("‹method› periodic: the excitation does not repeat (give ‹period› S)");
   }
   if (options.method == FrequencyMethod::kAuto && period == 0) {
     std::size_t common = 0;

@@ -13,14 +13,14 @@
 namespace driveid {
 
 AxisLog SimulateAxisExperiment(const AxisParameters& params, const AxisExperiment& e) {
-  RequireOption(std::isfinite(e.rate) && e.rate > 0.0, "--rate", e.rate, "rate > 0 Hz");
-  RequireOption(std::isfinite(e.duration) && e.duration > 0.0, "--duration", e.duration, "duration > 0 s");
+  RequireOption(std::isfinite(e.rate) && e.rate > 0.0, "‹rate›", e.rate, "rate > 0 Hz");
+  RequireOption(std::isfinite(e.duration) && e.duration > 0.0, "‹duration›", e.duration, "duration > 0 s");
   RequireSampleCount(std::round(e.duration * e.rate) + 1, kMinAxisLogSamples,
-                     fmt::format("--duration {} at --rate {}", e.duration, e.rate));
-  RequireOption(std::isfinite(e.noise) && e.noise >= 0.0, "--noise", e.noise, "noise >= 0");
-  RequireOption(std::isfinite(e.resolution) && e.resolution >= 0.0, "--resolution", e.resolution, "resolution >= 0");
+                     fmt::format("‹duration› {} at ‹rate› {}", e.duration, e.rate));
+  RequireOption(std::isfinite(e.noise) && e.noise >= 0.0, "‹noise›", e.noise, "noise >= 0");
+  RequireOption(std::isfinite(e.resolution) && e.resolution >= 0.0, "‹resolution›", e.resolution, "resolution >= 0");
   if (e.profile != "multisine" && e.profile != "constant") {
-    throw OptionError("--profile " + e.profile + ": choose multisine or constant");
+    throw OptionError("‹profile› " + e.profile + ": choose multisine or constant");
   }
   GaussianNoise noise(e.seed);
   AxisLog log;

@@ -14,11 +14,11 @@
 namespace driveid {
 
 void ValidateClosedLoop(const ClosedLoopOptions& o, const CDriveControlSettings& s) {
-  RequireOption(std::isfinite(o.program.stroke) && o.program.stroke > 0.0, "--stroke", o.program.stroke, "stroke > 0 s");
-  RequireOption(o.cycles >= 1 && o.cycles <= 1000, "--cycles", o.cycles, "1 <= cycles <= 1000");
-  RequireOption(std::isfinite(o.torque_noise) && o.torque_noise >= 0.0, "--noise", o.torque_noise, "noise >= 0");
+  RequireOption(std::isfinite(o.program.stroke) && o.program.stroke > 0.0, "‹stroke›", o.program.stroke, "stroke > 0 s");
+  RequireOption(o.cycles >= 1 && o.cycles <= 1000, "‹cycles›", o.cycles, "1 <= cycles <= 1000");
+  RequireOption(std::isfinite(o.torque_noise) && o.torque_noise >= 0.0, "‹noise›", o.torque_noise, "noise >= 0");
   RequireSampleCount(std::round(2.0 * o.program.stroke * o.cycles / s.sample_time) + 1, kMinCDriveLogSamples,
-                     fmt::format("--stroke {} with --cycles {} at cdrive.control.sample_time {} s", o.program.stroke,
+                     fmt::format("‹stroke› {} with ‹cycles› {} at cdrive.control.sample_time {} s", o.program.stroke,
                                  o.cycles, s.sample_time));
   RequireOption(s.velocity_window >= s.sample_time, "cdrive.control.velocity_window", s.velocity_window,
           "velocity window >= sample time");

@@ -27,7 +27,7 @@ std::vector<double> Excitation(const JointExperiment& e, std::size_t samples) {
   if (e.excitation == "multisine") {
     const int first = std::max(1, static_cast<int>(std::ceil(e.f_low * e.period)));
     const int last = static_cast<int>(std::floor(e.f_high * e.period));
-    if (last < first) throw OptionError(fmt::format("--band {},{}: no line of the {} s period in it", e.f_low, e.f_high, e.period));
+    if (last < first) throw OptionError(fmt::format("‹band› {},{}: no line of the {} s period in it", e.f_low, e.f_high, e.period));
     const int lines = last - first + 1;
     for (std::size_t i = 0; i < period; ++i) {
       for (int l = first; l <= last; ++l) {
@@ -62,21 +62,21 @@ std::vector<double> Excitation(const JointExperiment& e, std::size_t samples) {
 JointExperimentLog SimulateJointExperiment(const JointParameters& p, double n, const JointExperiment& e) {
   const auto finite_above = [](double v, double lo) { return std::isfinite(v) && v > lo; };
   if (e.excitation != "multisine" && e.excitation != "chirp" && e.excitation != "prbs") {
-    throw OptionError(fmt::format("--excitation {}: multisine, chirp or prbs", e.excitation));
+    throw OptionError(fmt::format("‹excitation› {}: multisine, chirp or prbs", e.excitation));
   }
-  if (!finite_above(e.rate, 0.0) || e.rate > 1e6) throw OptionError(fmt::format("--rate {}: (0, 1e6] Hz", e.rate));
+  if (!finite_above(e.rate, 0.0) || e.rate > 1e6) throw OptionError(fmt::format("‹rate› {}: (0, 1e6] Hz", e.rate));
   if (!finite_above(e.duration, 0.0) || e.duration * e.rate > 5e6) {
-    throw OptionError(fmt::format("--duration {} s: positive, at most 5e6 samples at --rate", e.duration));
+    throw OptionError(fmt::format("‹duration› {} s: positive, at most 5e6 samples at ‹rate›", e.duration));
   }
   if (!finite_above(e.period, 0.0) || e.period * e.rate < 16 || e.period > e.duration) {
-    throw OptionError(fmt::format("--period {} s: at least 16 samples and at most --duration", e.period));
+    throw OptionError(fmt::format("‹period› {} s: at least 16 samples and at most ‹duration›", e.period));
   }
   if (!(e.f_low >= 0.0) || !(e.f_high > e.f_low) || !(e.f_high <= 0.5 * e.rate)) {
-    throw OptionError(fmt::format("--band {},{}: 0 <= LO < HI <= rate/2", e.f_low, e.f_high));
+    throw OptionError(fmt::format("‹band› {},{}: 0 <= LO < HI <= rate/2", e.f_low, e.f_high));
   }
   if (!std::isfinite(e.amplitude) || !std::isfinite(e.kp) || !std::isfinite(e.ki) || !(e.noise >= 0.0) ||
       !std::isfinite(e.noise)) {
-    throw OptionError("--amplitude, --kp, --ki and --noise must be finite (--noise >= 0)");
+    throw OptionError("‹amplitude›, ‹kp›, ‹ki› and ‹noise› must be finite (‹noise› >= 0)");
   }
   if (!finite_above(p.motor_inertia, 0.0) || !finite_above(p.link_inertia, 0.0) || !(p.stiffness >= 0.0)) {
     throw InputError("joint: motor_inertia and link_inertia > 0 and stiffness >= 0 are needed for the simulation");

@@ -11,7 +11,7 @@ MotionProgram TableTwoProgram(const std::string& name, double stroke) {
   if (name == "translation") return {name, 20.0, -20.0, stroke};
   if (name == "rotation") return {name, 20.0, 20.0, stroke};
   if (name == "helical") return {name, 14.0, -28.0, stroke};
-  throw OptionError("--program " + name + ": choose translation, rotation or helical");
+  throw OptionError("‹program› " + name + ": choose translation, rotation or helical");
 }
 
 ReferenceSample CalcProgramReference(double amplitude, double stroke, double time) {

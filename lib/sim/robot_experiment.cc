@@ -82,17 +82,17 @@ PathSample CalcTrianglePath(const PlanarRobotParameters& robot, const RobotExper
 }
 
 RobotLog SimulateRobotExperiment(const PlanarRobotParameters& robot, const RobotExperiment& e) {
-  RequireOption(e.side > 0.0 && std::isfinite(e.side), "--side", e.side, "side > 0 m");
-  RequireOption(e.acceleration > 0.0 && std::isfinite(e.acceleration), "--acceleration", e.acceleration, "> 0 m/s^2");
-  RequireOption(e.speed > 0.0 && std::isfinite(e.speed), "--speed", e.speed, "> 0 m/s");
-  RequireOption(e.dwell >= 0.0 && std::isfinite(e.dwell), "--dwell", e.dwell, ">= 0 s");
-  RequireOption(e.loops >= 1 && e.loops <= 10000, "--loops", e.loops, "1 <= loops <= 10000");
-  RequireOption(e.rate > 0.0 && std::isfinite(e.rate), "--rate", e.rate, "> 0 Hz");
-  RequireOption(e.current_noise >= 0.0 && std::isfinite(e.current_noise), "--noise", e.current_noise, ">= 0 A");
-  RequireOption(std::isfinite(e.prestress), "--prestress", e.prestress, "finite");
+  RequireOption(e.side > 0.0 && std::isfinite(e.side), "‹side›", e.side, "side > 0 m");
+  RequireOption(e.acceleration > 0.0 && std::isfinite(e.acceleration), "‹acceleration›", e.acceleration, "> 0 m/s^2");
+  RequireOption(e.speed > 0.0 && std::isfinite(e.speed), "‹speed›", e.speed, "> 0 m/s");
+  RequireOption(e.dwell >= 0.0 && std::isfinite(e.dwell), "‹dwell›", e.dwell, ">= 0 s");
+  RequireOption(e.loops >= 1 && e.loops <= 10000, "‹loops›", e.loops, "1 <= loops <= 10000");
+  RequireOption(e.rate > 0.0 && std::isfinite(e.rate), "‹rate›", e.rate, "> 0 Hz");
+  RequireOption(e.current_noise >= 0.0 && std::isfinite(e.current_noise), "‹noise›", e.current_noise, ">= 0 A");
+  RequireOption(std::isfinite(e.prestress), "‹prestress›", e.prestress, "finite");
   const double duration = CalcTriangleDuration(e);
   RequireSampleCount(std::round(duration * e.rate) + 1, kMinRobotLogSamples,
-                     fmt::format("--rate {} with --loops {} (a {:.4g} s triangle program)", e.rate, e.loops, duration));
+                     fmt::format("‹rate› {} with ‹loops› {} (a {:.4g} s triangle program)", e.rate, e.loops, duration));
   GaussianNoise noise(e.seed);
   const double quantum = 2.0 * M_PI / (e.encoder_counts * robot.gear_ratio);
   RobotLog log;

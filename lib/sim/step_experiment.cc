@@ -15,15 +15,15 @@ namespace {
 }  // namespace
 
 void ValidateStepExperiment(const StepExperiment& e) {
-  RequireOption(std::isfinite(e.rate) && e.rate > 0.0, "--rate", e.rate, "rate > 0 Hz");
-  RequireOption(std::isfinite(e.duration) && e.duration > 0.0, "--duration", e.duration, "duration > 0 s");
+  RequireOption(std::isfinite(e.rate) && e.rate > 0.0, "‹rate›", e.rate, "rate > 0 Hz");
+  RequireOption(std::isfinite(e.duration) && e.duration > 0.0, "‹duration›", e.duration, "duration > 0 s");
   RequireSampleCount(std::round(e.duration * e.rate) + 1, kMinStepLogSamples,
-                     fmt::format("--duration {} at --rate {}", e.duration, e.rate));
-  RequireOption(std::isfinite(e.step_time) && e.step_time >= 0.0 && e.step_time < e.duration, "--step-time", e.step_time,
+                     fmt::format("‹duration› {} at ‹rate› {}", e.duration, e.rate));
+  RequireOption(std::isfinite(e.step_time) && e.step_time >= 0.0 && e.step_time < e.duration, "‹step_time›", e.step_time,
           "0 <= step time < duration");
-  RequireOption(std::isfinite(e.step_torque), "--step-torque", e.step_torque, "finite");
-  RequireOption(std::isfinite(e.noise) && e.noise >= 0.0, "--noise", e.noise, "noise >= 0");
-  RequireOption(std::isfinite(e.offset), "--offset", e.offset, "finite");
+  RequireOption(std::isfinite(e.step_torque), "‹step_torque›", e.step_torque, "finite");
+  RequireOption(std::isfinite(e.noise) && e.noise >= 0.0, "‹noise›", e.noise, "noise >= 0");
+  RequireOption(std::isfinite(e.offset), "‹offset›", e.offset, "finite");
 }
 
 StepLog SimulateStepExperiment(const DriveTrainParameters& params, const StepExperiment& e) {

@@ -23,6 +23,8 @@ expect() {
     fail "$* -> $lines stderr lines: $(head -c 300 stderr.txt)"
   elif ! grep -q "^$program: " stderr.txt; then
     fail "$* -> message does not start with the program name: $(cat stderr.txt)"
+  elif grep -q "‹\|›" stderr.txt stdout.txt; then
+    fail "$* -> the library's option mark reached the user (apps/common/cli_support.h: ShowFlags): $(cat stderr.txt)"
   elif ! grep -qE -- "$pattern" stderr.txt; then
     fail "$* -> message does not match /$pattern/: $(cat stderr.txt)"
   elif [ -e out.yaml ] || ls out.yaml.tmp.* > /dev/null 2>&1; then
@@ -33,6 +35,11 @@ expect() {
 }
 
 finish() {
+  # Nothing the tests made (outputs, messages kept in files) shows the
+  # library's option marks instead of the flags.
+  local marked
+  marked=$(grep -rlI "‹\|›" . 2> /dev/null | head -3)
+  [ -z "$marked" ] || fail "the library's option mark (‹field›) reached the user in: $marked"
   echo "$passed passed, $failed failed"
   [ "$failed" -eq 0 ]
 }

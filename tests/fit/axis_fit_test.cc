@@ -357,11 +357,11 @@ TEST_CASE("axis IDIM-LS: the nonlinear Stribeck term is refused by name, fixed o
   AxisFitOptions free_stribeck;
   free_stribeck.free = {"inertia", "viscous", "coulomb", "offset", "stribeck"};
   CHECK_THROWS_WITH(FitAxis({log}, AxisSection{}, free_stribeck),
-                    Catch::Contains("--free stribeck") && Catch::Contains("--method oe"));
+                    Catch::Contains("‹free› stribeck") && Catch::Contains("‹method› oe"));
   AxisSection given;
   given.stribeck = 0.2;
   given.stribeck_velocity = 0.5;
-  CHECK_THROWS_WITH(FitAxis({log}, given, {}), Catch::Contains("axis.stribeck = 0.2") && Catch::Contains("--method oe"));
+  CHECK_THROWS_WITH(FitAxis({log}, given, {}), Catch::Contains("axis.stribeck = 0.2") && Catch::Contains("‹method› oe"));
   // The model function carries the excess: at v = v_s it is tau_s / e.
   AxisParameters p;
   p.coulomb = 1.0;
@@ -432,7 +432,7 @@ TEST_CASE("axis advice: gravity terms collinear with the offset over a short str
   CHECK_FALSE(HasWarning(on_linear.fit, "gravity missing?"));
   AxisFitOptions with_gravity;
   with_gravity.free = {"inertia", "viscous", "coulomb", "offset", "gravity_cos"};
-  CHECK_THROWS_WITH(FitAxis({log}, linear, with_gravity), Catch::Contains("--free gravity_cos: a linear axis"));
+  CHECK_THROWS_WITH(FitAxis({log}, linear, with_gravity), Catch::Contains("‹free› gravity_cos: a linear axis"));
   linear.gravity_sin = 2.0;
   CHECK_THROWS_WITH(FitAxis({log}, linear, {}), Catch::Contains("axis.gravity_sin = 2 on a linear axis"));
 }

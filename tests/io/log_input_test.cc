@@ -86,17 +86,17 @@ TEST_CASE("column expressions: factors, pi, division; refused forms are named") 
   CHECK(log.columns[1][0] == Approx(M_PI / 2));
   CHECK(log.columns[2][1] == 0.5);
   CHECK(ErrorOf<OptionError>(text, Columns({{"q", "pos_deg*amps"}, {"tau", "amps"}})) ==
-        "--col q=pos_deg*amps: two columns ('pos_deg' and 'amps'); an expression scales one column");
+        "‹col› q=pos_deg*amps: two columns ('pos_deg' and 'amps'); an expression scales one column");
   CHECK(ErrorOf<OptionError>(text, Columns({{"q", "1/pos_deg"}, {"tau", "amps"}})) ==
-        "--col q=1/pos_deg: the column 'pos_deg' may not be a divisor");
+        "‹col› q=1/pos_deg: the column 'pos_deg' may not be a divisor");
   CHECK(ErrorOf<OptionError>(text, Columns({{"q", "pos_deg/0"}, {"tau", "amps"}})) ==
-        "--col q=pos_deg/0: division by zero ('0')");
+        "‹col› q=pos_deg/0: division by zero ('0')");
   CHECK(ErrorOf<OptionError>(text, Columns({{"q", "2*degrees"}, {"tau", "amps"}})) ==
-        "--col q=2*degrees: 'degrees' is neither a column of the log, a number, pi, nor a scalar of the file");
+        "‹col› q=2*degrees: 'degrees' is neither a column of the log, a number, pi, nor a scalar of the file");
   CHECK(ErrorOf<OptionError>(text, Columns({{"q", "pos_deg*"}, {"tau", "amps"}})).find("an operand is missing") !=
         std::string::npos);
   CHECK(ErrorOf<OptionError>(text, Columns({{"q", "pos_deg"}, {"tau", "2*pos_deg"}})) ==
-        "--col: 'q' and 'tau' would both read column 'pos_deg' of log.csv");
+        "‹col›: 'q' and 'tau' would both read column 'pos_deg' of log.csv");
   CHECK_THAT(ErrorOf(text, Columns({{"q", "position"}})), Catch::StartsWith("log.csv:1: missing column 'position'"));
 }
 
@@ -113,10 +113,10 @@ TEST_CASE("--rate makes the time base; crops keep [from, to] in log time") {
   CHECK(cropped.line_numbers == std::vector<int>{2, 3});
   crop.from = 5.0;
   crop.to = 6.0;
-  CHECK(ErrorOf("1,2\n3,4\n", crop) == "log.csv: no samples between --from 5 s and --to 6 s (the log spans 0 .. 0.01 s)");
+  CHECK(ErrorOf("1,2\n3,4\n", crop) == "log.csv: no samples between ‹from› 5 s and ‹to› 6 s (the log spans 0 .. 0.01 s)");
   LogInputOptions both;
   both.rate = 10.0;
-  CHECK_THAT(ErrorOf<OptionError>("t,q,tau\n0,1,2\n", both), Catch::Contains("--rate is for logs without one"));
+  CHECK_THAT(ErrorOf<OptionError>("t,q,tau\n0,1,2\n", both), Catch::Contains("‹rate› is for logs without one"));
   CHECK(ErrorOf("t,q,tau\n0,1,2\n0,2,3\n", {}) == "log.csv:3: column 't': time not strictly increasing (0 after 0)");
 }
 
@@ -128,7 +128,7 @@ TEST_CASE("--join: a second file's columns row by row, positions count on") {
   CHECK(log.columns[2] == std::vector<double>{0.5, 0.6, 0.7});
   CHECK(std::find(log.notes.begin(), log.notes.end(), "joined row by row with c.csv") != log.notes.end());
   CHECK_THROWS_WITH(ReadOne("p.csv", positions, Columns({{"tau", "#3"}}), {{"c.csv", &short_file}}),
-                    "p.csv: 3 rows, but c.csv (joined with --join) has 2: a joined file must have one row per row "
+                    "p.csv: 3 rows, but c.csv (joined with ‹join›) has 2: a joined file must have one row per row "
                     "of the log");
 }
 
@@ -225,7 +225,7 @@ TEST_CASE("SysId JSON: four tests as logs, positions in units, sides of a drivet
   CHECK(sides[1].segment == "slow-forward/right");
   CHECK(sides[1].columns[1] == std::vector<double>{10, 10.5});
   CHECK(sides[1].columns[2] == std::vector<double>{2, 2});
-  CHECK_THAT(ErrorOf<OptionError>(drive, {}, "d.json"), Catch::Contains("give --side left, right or both"));
+  CHECK_THAT(ErrorOf<OptionError>(drive, {}, "d.json"), Catch::Contains("give ‹side› left, right or both"));
   CHECK(ErrorOf(R"({"test": "Simple", "unitsPerRotation": 1, "slow-forward": [[0, 1]]})", {}, "x.json") ==
         "x.json: slow-forward[0]: expected 4 numbers per sample for the Simple layout, found 2");
   CHECK(ErrorOf("{\"test\": ", {}, "x.json").rfind("x.json: invalid JSON at byte", 0) == 0);

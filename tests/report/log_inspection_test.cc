@@ -38,7 +38,7 @@ TEST_CASE("inspect of a MAT file: variables and struct fields with sizes and add
   CHECK(text.find("rec.time_cont 5 x 1 rec.time_cont (elements rec.time_cont(i) for expressions)") !=
         std::string::npos);
   CHECK(text.find("gain 1 x 1 gain = 2.5 (a scalar for expressions)") != std::string::npos);
-  CHECK(text.find("inspect --columns") != std::string::npos);
+  CHECK(text.find("inspect ‹columns›") != std::string::npos);
   CHECK(text.find("5 samples, t = 0 .. 0.04 s") != std::string::npos);
   CHECK(text.find("q = rec.pos(1,:)") != std::string::npos);
   const InspectedLog full = InspectLog(*source, options, true);
