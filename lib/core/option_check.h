@@ -12,9 +12,24 @@
 
 namespace driveid {
 
+/// The message of a violated option constraint, as RequireOption's.
+inline std::string ViolatedConstraint(const char* option, double value, const char* constraint) {
+  return fmt::format("{} = {}: violated constraint: {}", option, value, constraint);
+}
+
 /// Throws OptionError naming the option, its value and the constraint unless `ok`.
 inline void RequireOption(bool ok, const char* option, double value, const char* constraint) {
-  if (!ok) throw OptionError(fmt::format("{} = {}: violated constraint: {}", option, value, constraint));
+  if (!ok) throw OptionError(ViolatedConstraint(option, value, constraint));
+}
+
+/// Options structs validate themselves in one place each, as Ceres's
+/// Solver::Options::IsValid: `bool IsValid(std::string* error) const` names
+/// the field (‹field›, apps/ prints the flag) and the constraint; this
+/// throws OptionError with that message.
+template <typename Options>
+void RequireValid(const Options& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw OptionError(error);
 }
 
 /// Most samples a simulated log may have (its memory is bounded, ~100 B per sample).

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/option_check.h"
 #include "fit/adequacy.h"
 #include "fit/axis_rows.h"
 #include "fit/linear_regression.h"
@@ -19,6 +20,20 @@
 #include "signal/local_polynomial.h"
 
 namespace driveid {
+
+bool AxisFitOptions::IsValid(std::string* error) const {
+  if (decimation < 1) {
+    *error = ViolatedConstraint("‹decimation›", decimation, ">= 1");
+  } else if (!(cutoff >= 0.0) || !std::isfinite(cutoff)) {
+    *error = ViolatedConstraint("‹cutoff›", cutoff, "cutoff > 0 Hz (0: from the data)");
+  } else if (!(min_rate_fraction >= 0.0 && min_rate_fraction < 1.0)) {
+    *error = ViolatedConstraint("min_rate_fraction", min_rate_fraction, "0 <= fraction < 1");
+  } else {
+    return true;
+  }
+  return false;
+}
+
 namespace {
 
 // The regressor columns: the axis table's model rows, in order.
@@ -382,9 +397,7 @@ AxisFitOutput FitAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& s
                           AxisRowCache* cache, AtCutoff extent) {
   if (logs.empty()) throw OptionError("no logs given");
   CheckFreeNames(AxisParameterTable(), "axis", options.free);
-  if (options.decimation < 1) {
-    throw OptionError(fmt::format("‹decimation› = {}: violated constraint: >= 1", options.decimation));
-  }
+  RequireValid(options);
   std::vector<FitParameter> parameters;
   std::map<std::string, double> fixed;
   AxisDesign(start, options.free, parameters, fixed);

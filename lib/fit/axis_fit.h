@@ -44,6 +44,8 @@ struct AxisFitOptions {
   double max_relative_std = kMaxRelativeStd;  ///< refuse a free J, b or tau_c less certain than this
   bool per_log = true;                ///< with several logs, also fit each alone and compare
   FitOptions fit;
+  /// Whether the values can be used; else `error` names the field and the constraint.
+  bool IsValid(std::string* error) const;
 };
 
 struct AxisFitOutput {

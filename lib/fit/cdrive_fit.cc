@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/option_check.h"
 #include "fit/linear_regression.h"
 #include "io/csv_log.h"
 #include "models/missing_values.h"
@@ -355,12 +356,7 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
                     const CDriveFitOptions& options, Kind kind) {
   const CDriveParameters start = ModelValuesOrNaN(CDriveParameterTable(), start_section);  // NaN = not given
   if (logs.empty()) throw OptionError("no logs given");
-  if (!(options.half_window > 0.0) || !std::isfinite(options.half_window)) {
-    throw OptionError(fmt::format("‹window› = {}: violated constraint: window > 0 s", options.half_window));
-  }
-  if (!(options.min_rate >= 0.0) || !std::isfinite(options.min_rate)) {
-    throw OptionError(fmt::format("‹min_rate› = {}: violated constraint: min rate >= 0", options.min_rate));
-  }
+  RequireValid(options);
   const bool friction = kind == Kind::kFriction;
   const double settle = options.settle >= 0.0 ? options.settle : (friction ? 0.1 : 0.0);
   const CDriveDesign d = MakeCDriveDesign(start_section, start, options, friction);
@@ -404,9 +400,7 @@ CDriveFitOutput Fit(const std::vector<CDriveLog>& logs, const CDriveSection& sta
 
 std::vector<CDriveTrace> PredictCDriveTorques(const std::vector<CDriveLog>& logs, const CDriveParameters& params,
                                               const CDriveFitOptions& options) {
-  if (!(options.half_window > 0.0) || !std::isfinite(options.half_window)) {
-    throw OptionError(fmt::format("‹window› = {}: violated constraint: window > 0 s", options.half_window));
-  }
+  RequireValid(options);
   const double settle = options.settle >= 0.0 ? options.settle : 0.1;
   std::vector<CDriveTrace> traces;
   for (const auto& log : logs) {
@@ -431,6 +425,17 @@ std::vector<CDriveTrace> PredictCDriveTorques(const std::vector<CDriveLog>& logs
     traces.push_back(std::move(trace));
   }
   return traces;
+}
+
+bool CDriveFitOptions::IsValid(std::string* error) const {
+  if (!(half_window > 0.0) || !std::isfinite(half_window)) {
+    *error = ViolatedConstraint("‹window›", half_window, "window > 0 s");
+  } else if (!(min_rate >= 0.0) || !std::isfinite(min_rate)) {
+    *error = ViolatedConstraint("‹min_rate›", min_rate, "min rate >= 0");
+  } else {
+    return true;
+  }
+  return false;
 }
 
 CDriveFitOutput FitCDriveFriction(const std::vector<CDriveLog>& logs, const CDriveSection& start,

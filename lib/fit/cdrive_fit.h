@@ -42,6 +42,8 @@ struct CDriveFitOptions {
   /// torques at every sample: memory of the order of the logs).
   bool traces = true;
   FitOptions fit;
+  /// Whether the values can be used; else `error` names the field and the constraint.
+  bool IsValid(std::string* error) const;
 };
 
 /// Per-log comparison of measured and model torques (model from (28) with

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/option_check.h"
 #include "fit/linear_regression.h"
 #include "io/csv_log.h"
 #include "signal/local_polynomial.h"
@@ -176,13 +177,17 @@ RobotCurrentPrediction PredictCurrents(const RobotLog& log, const std::vector<st
 
 }  // namespace
 
+bool RobotFitOptions::IsValid(std::string* error) const {
+  if (half_window > 0.0 && std::isfinite(half_window)) return true;
+  *error = ViolatedConstraint("‹window›", half_window, "> 0 s");
+  return false;
+}
+
 RobotFitOutput FitRobot(const std::vector<RobotLog>& logs, const PlanarRobotParameters& start,
                         const RobotFitOptions& options) {
   if (logs.empty()) throw OptionError("no logs given");
   CheckFreeNames(PlanarRobotParameterTable(), "robot", options.free);
-  if (!(options.half_window > 0.0)) {
-    throw OptionError(fmt::format("‹window› = {}: violated constraint: > 0 s", options.half_window));
-  }
+  RequireValid(options);
   if (!(start.torque_constant > 0.0)) throw InputError("‹params›: planar_robot.k_t is needed (currents to torques)");
   std::vector<FitParameter> parameters;
   std::vector<std::string> column_names;

@@ -29,6 +29,8 @@ struct RobotFitOptions {
   std::vector<std::string> free = FitParameterKeys(PlanarRobotParameterTable(), "robot", true);
   double half_window = 0.005;  ///< differentiator half window [s]
   FitOptions fit;
+  /// Whether the values can be used; else `error` names the field and the constraint.
+  bool IsValid(std::string* error) const;
 };
 
 /// Current prediction along one log, per motor (Fig. 7).
