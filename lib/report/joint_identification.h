@@ -1,0 +1,49 @@
+// The identification of an elastic joint from its logs, as `drivetrain-fit
+// joint` runs it (docs/models.md#elastic-joint, #joint-output-error): the
+// inverse-dynamics fit that output error starts from, the method (`auto`
+// from that fit and the logs), the fit, and the trace, plot and summary.
+// The command parses, loads the logs, calls this, emits.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/fit_result.h"
+#include "fit/least_squares.h"
+#include "io/joint_log.h"
+#include "models/joint.h"
+#include "report/plot.h"
+
+namespace driveid {
+
+enum class JointMethod { kAuto, kInverseDynamics, kOutputError };
+
+struct JointIdentificationOptions {
+  JointMethod method = JointMethod::kAuto;
+  std::vector<std::string> free;  ///< empty: the default for the logs
+  double cutoff = 0.0;            ///< inverse dynamics: angle low-pass [Hz], 0: rate / 40
+  FitOptions fit;                 ///< progress callback
+  bool trace = false;             ///< build the trace CSV
+  bool plot = false;              ///< build the plot panels
+};
+
+struct JointIdentification {
+  JointMethod method = JointMethod::kInverseDynamics;
+  JointParameters params;
+  FitResult fit;
+  std::string model;                  ///< for the provenance
+  std::string trace_csv;              ///< when asked for
+  std::vector<PlotPanel> panels;      ///< when asked for
+  std::vector<std::string> summary;   ///< lines for the text summary
+};
+
+/// Fits the joint to `logs` from `section`. `auto` takes output error when
+/// every log has the motor torque, the link's Coulomb friction is neither
+/// free nor given, and the inverse-dynamics fit (output error's start) shows
+/// its filter reaching the resonance (cutoff < 2 x resonance) or leaves the
+/// stiffness undetermined; the summary says why. Throws as FitJoint and
+/// FitJointOutputError; OptionError for a cutoff with output error.
+JointIdentification IdentifyJoint(const std::vector<JointLog>& logs, const JointSection& section,
+                                  const JointIdentificationOptions& options);
+
+}  // namespace driveid
