@@ -2,13 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <Eigen/Dense>
+#include <boost/math/distributions/students_t.hpp>
 #include <fmt/format.h>
 
 #include "core/errors.h"
 #include "fit/adequacy.h"
+#include "fit/covariance.h"
 
 namespace driveid {
 namespace {
@@ -228,6 +231,23 @@ void DescribeFit(std::vector<JacobianBlock> blocks, const Eigen::VectorXd& resid
   }
   RequireFiniteStatistics(all, result);
   result.warnings = CheckFitPercent(result);  // adequacy.h; fits add their own checks
+}
+
+double CalcRmsDeviation(const std::vector<double>& values) {
+  if (values.empty()) return 0.0;
+  const double n = static_cast<double>(values.size());
+  double mean = 0.0;
+  for (double v : values) mean += v;
+  mean /= n;
+  double sum = 0.0;
+  for (double v : values) sum += (v - mean) * (v - mean);
+  return std::sqrt(sum / n);
+}
+
+double StudentT975(int dof) {
+  if (dof < 1) return std::numeric_limits<double>::infinity();
+  const boost::math::students_t distribution(static_cast<double>(dof));
+  return boost::math::quantile(boost::math::complement(distribution, 0.025));
 }
 
 }  // namespace driveid

@@ -12,7 +12,8 @@
 
 #include <Eigen/Core>
 
-#include "fit/least_squares.h"
+#include "core/fit_result.h"
+#include "fit/residual_model.h"
 
 namespace driveid {
 
@@ -42,5 +43,12 @@ std::vector<double> RequireIdentifiable(const std::vector<JacobianBlock>& blocks
 void DescribeFit(std::vector<JacobianBlock> blocks, const Eigen::VectorXd& residuals,
                  const std::vector<FitParameter>& parameters, const std::vector<double>& values,
                  const std::vector<FitChannel>& channels, FitResult& result);
+
+/// Root mean square deviation of `values` from their mean (0 for none): the
+/// scale by which fits weight a channel against another of other units.
+double CalcRmsDeviation(const std::vector<double>& values);
+
+/// Two-sided 97.5 % quantile of Student's t with `dof` degrees of freedom.
+double StudentT975(int dof);
 
 }  // namespace driveid

@@ -91,7 +91,7 @@ FitResult LinearRegression::Fit(const std::vector<FitParameter>& free, const std
 FitResult LinearRegression::FitAndRelease(const std::vector<FitParameter>& free,
                                           const std::map<std::string, double>& fixed, const FitOptions& options) {
   const std::size_t n = rows(), p = free.size();
-  if (n * p * sizeof(double) <= kMemoJacobianBytes) {
+  if (!options.large.IsLarge(n, p)) {
     FitResult result = Fit(free, fixed, options);
     *this = LinearRegression(columns_);
     return result;

@@ -51,7 +51,7 @@ class LinearRegression {
                 const FitOptions& options) const;
 
   /// The same, for a fit whose design is not needed afterwards: a large one
-  /// (Jacobian above kMemoJacobianBytes) is solved exactly on the normal
+  /// (FitOptions::large) is solved exactly on the normal
   /// equations (FitLinearLeastSquares) with the design itself as the
   /// Jacobian when every column is free, in order; the rows are gone after.
   FitResult FitAndRelease(const std::vector<FitParameter>& free, const std::map<std::string, double>& fixed,

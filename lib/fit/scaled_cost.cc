@@ -6,8 +6,9 @@
 namespace driveid {
 
 ScaledBlockCost::ScaledBlockCost(BlockResidualModel& model, int block, std::vector<double> shared_scale,
-                                 std::vector<double> local_scale)
+                                 std::vector<double> local_scale, LargeProblemPolicy large)
     : model_(model), block_(block), shared_scale_(std::move(shared_scale)), local_scale_(std::move(local_scale)),
+      large_(large),
       shared_(shared_scale_.size()), local_(local_scale_.size()) {
   set_num_residuals(model.block_rows(block));
   if (!shared_scale_.empty()) mutable_parameter_block_sizes()->push_back(static_cast<int>(shared_scale_.size()));
@@ -33,11 +34,11 @@ bool ScaledBlockCost::Evaluate(double const* const* parameters, double* residual
     }
     return true;
   }
-  // A Jacobian of shared parameters only above kMemoJacobianBytes goes
+  // A large Jacobian (LargeProblemPolicy) of shared parameters only goes
   // straight into Ceres's buffer and is not kept (memory before time: a
   // repeated point is evaluated again unless the model remembers it, as the
   // single-log step model does).
-  const bool direct = want_jacobian && l == 0 && n * p * sizeof(double) > kMemoJacobianBytes;
+  const bool direct = want_jacobian && l == 0 && large_.IsLarge(n, p);
   memo_valid_ = false;
   for (std::size_t j = 0; j < q; ++j) shared_[j] = shared[j] * shared_scale_[j];
   for (std::size_t j = 0; j < l; ++j) local_[j] = local[j] * local_scale_[j];

@@ -12,20 +12,18 @@
 
 #include <ceres/cost_function.h>
 
-#include "fit/least_squares.h"
+#include "fit/residual_model.h"
 
 namespace driveid {
-
-/// Largest Jacobian the memo copies [bytes].
-inline constexpr std::size_t kMemoJacobianBytes = std::size_t{16} << 20;
 
 /// One block of a BlockResidualModel: parameter blocks (shared z, the
 /// block's own z), either omitted when empty.
 class ScaledBlockCost final : public ceres::CostFunction {
  public:
   /// `model` must outlive the cost; scales of the shared and own parameters.
+  /// The memo keeps no Jacobian of a problem `large` counts as large.
   ScaledBlockCost(BlockResidualModel& model, int block, std::vector<double> shared_scale,
-                  std::vector<double> local_scale);
+                  std::vector<double> local_scale, LargeProblemPolicy large = {});
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
   /// Evaluations of the model so far (memoised repeats not counted).
   int model_evaluations() const { return evaluations_; }
@@ -34,10 +32,11 @@ class ScaledBlockCost final : public ceres::CostFunction {
   BlockResidualModel& model_;
   const int block_;
   const std::vector<double> shared_scale_, local_scale_;
+  const LargeProblemPolicy large_;
   mutable std::vector<double> shared_, local_;
   // Memo of the last successful evaluation: the scaled point (shared, then
-  // own; compared bit for bit), its residuals and, if computed and not above
-  // kMemoJacobianBytes, its scaled Jacobian (rows x (shared + own)).
+  // own; compared bit for bit), its residuals and, if computed and not
+  // large, its scaled Jacobian (rows x (shared + own)).
   mutable std::vector<double> memo_point_, memo_residuals_, memo_jacobian_;
   mutable bool memo_valid_ = false;
   mutable bool memo_has_jacobian_ = false;

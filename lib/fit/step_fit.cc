@@ -62,7 +62,8 @@ constexpr int kStreamRows = 8192;
 class StepResiduals final : public ResidualModel, public BlockResidualModel {
  public:
   StepResiduals(const std::vector<StepLog>& logs, const DriveTrainParameters& start, DriveTrainModel model,
-                std::vector<DriveTrainParameter> ode_parameters, bool fit_offsets, bool use_angles)
+                std::vector<DriveTrainParameter> ode_parameters, bool fit_offsets, bool use_angles,
+                const LargeProblemPolicy& large = {})
       : logs_(logs), params_(start), ode_parameters_(ode_parameters), fit_offsets_(fit_offsets),
         simulator_(model, start, std::move(ode_parameters)) {
     for (const auto& log : logs_) {
@@ -91,8 +92,7 @@ class StepResiduals final : public ResidualModel, public BlockResidualModel {
     // are held once (in the solver's Jacobian), not twice; only the
     // simulated torque of the last point is remembered.
     streaming_ = logs_.size() == 1 && !angles &&
-                 static_cast<std::size_t>(rows_) * static_cast<std::size_t>(parameter_count()) * sizeof(double) >
-                     kMemoJacobianBytes;
+                 large.IsLarge(static_cast<std::size_t>(rows_), static_cast<std::size_t>(parameter_count()));
   }
 
   int residual_count() const override { return rows_; }
@@ -456,7 +456,7 @@ StepFitOutput FitFrom(const std::vector<StepLog>& logs, const DriveTrainParamete
     }
   }
 
-  StepResiduals residuals(logs, start, model, ode_parameters, fit_offsets, true);
+  StepResiduals residuals(logs, start, model, ode_parameters, fit_offsets, true, options.large);
   residuals.set_integration(integration);
   const std::vector<FitChannel> channels = residuals.Channels();
   FitOptions fit_options = options;

@@ -141,9 +141,9 @@ TEST_CASE("scaled cost: one model evaluation per point, whatever Ceres asks of i
 }
 
 TEST_CASE("a long single log is simulated in pieces: any rows, any order, equal to one whole simulation") {
-  // 600 000 samples x (3 + offset) columns: a Jacobian above kMemoJacobianBytes.
+  // 600 000 samples x (3 + offset) columns: a large Jacobian (LargeProblemPolicy).
   const std::size_t n = 600000;
-  static_assert(600000 * 4 * sizeof(double) > kMemoJacobianBytes);
+  static_assert(600000 * 4 * sizeof(double) > LargeProblemPolicy{}.jacobian_bytes);
   StepLog log{"long.csv", {}, {}, {}, {}, {}};
   std::mt19937 rng(5);
   std::normal_distribution<double> noise(0.0, 0.1);
