@@ -42,22 +42,22 @@ inline const ParameterTable<CDriveControlSection, CDriveControlSettings>& CDrive
   using S = CDriveControlSection;
   using P = CDriveControlSettings;
   static const ParameterTable<S, P> table = {
-      {{"K_P", "K_P", "N m/rad", "proportional gain", 0.0, false, true, "", false, 0.0}, &S::proportional_gain,
+      {Spec("K_P", "K_P", "N m/rad", "proportional gain").Required(), &S::proportional_gain,
        &P::proportional_gain},
-      {{"K_I", "K_I", "N m/(rad s) or N m s/rad",
-        "second gain as printed: integral (PI, PID) or derivative (PD)", 0.0, false, true, "", false, 0.0},
+      {Spec("K_I", "K_I", "N m/(rad s) or N m s/rad", "second gain as printed: integral (PI, PID) or derivative (PD)")
+           .Required(),
        &S::second_gain, &P::second_gain},
-      {{"K_D", "K_D", "N m s/rad", "derivative gain, PID only", 0.0, false, false, "", false, 0.0},
+      {Spec("K_D", "K_D", "N m s/rad", "derivative gain, PID only"),
        &S::derivative_gain, &P::derivative_gain},
-      {{"dead_zone", "DZ", "rad/s", "dead zone on velocities and their difference", 0.0, false, false, "", false, 0.0},
+      {Spec("dead_zone", "DZ", "rad/s", "dead zone on velocities and their difference"),
        &S::dead_zone, &P::dead_zone},
-      {{"rate_limit", "RL", "1/s", "rate limit of each unit Coulomb term", 0.0, true, false, "", false, 0.0},
+      {Spec("rate_limit", "RL", "1/s", "rate limit of each unit Coulomb term").Above(0.0),
        &S::rate_limit, &P::rate_limit},
-      {{"velocity_window", "T_v", "s", "encoder velocity difference window", 0.0, true, false, "", false, 0.0},
+      {Spec("velocity_window", "T_v", "s", "encoder velocity difference window").Above(0.0),
        &S::velocity_window, &P::velocity_window},
-      {{"sample_time", "T_s", "s", "controller period", 0.0, true, false, "", false, 0.0}, &S::sample_time,
+      {Spec("sample_time", "T_s", "s", "controller period").Above(0.0), &S::sample_time,
        &P::sample_time},
-      {{"encoder_counts", "N_enc", "1/rev", "encoder counts per revolution", 0.0, true, false, "", false, 0.0},
+      {Spec("encoder_counts", "N_enc", "1/rev", "encoder counts per revolution").Above(0.0),
        &S::encoder_counts, &P::encoder_counts},
   };
   return table;

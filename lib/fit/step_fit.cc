@@ -18,10 +18,13 @@
 namespace driveid {
 namespace {
 
-const DriveTrainParameter kAllParameters[] = {
-    DriveTrainParameter::kViscousFriction, DriveTrainParameter::kMotorInertia,
-    DriveTrainParameter::kGearboxInertia,  DriveTrainParameter::kLinkStiffness,
-    DriveTrainParameter::kGearboxStiffness, DriveTrainParameter::kCoulombFriction};
+// The estimable parameters in enum order (sensitivity order), derived from
+// the enum; tests/models/table_indices_test.cc checks it against the table.
+std::vector<DriveTrainParameter> AllParameters() {
+  std::vector<DriveTrainParameter> all;
+  for (int e = 0; e < kDriveTrainParameterCount; ++e) all.push_back(static_cast<DriveTrainParameter>(e));
+  return all;
+}
 
 bool Contains(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -430,7 +433,7 @@ StepFitOutput FitFrom(const std::vector<StepLog>& logs, const DriveTrainParamete
                       DriveTrainIntegration integration) {
   std::vector<DriveTrainParameter> ode_parameters;
   std::vector<FitParameter> fit_parameters;
-  for (auto parameter : kAllParameters) {
+  for (auto parameter : AllParameters()) {
     const std::string key = DriveTrainParameterKey(parameter);
     if (!Contains(free, key)) continue;
     const double value = GetDriveTrainParameter(start, parameter);

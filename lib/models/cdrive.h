@@ -57,21 +57,23 @@ inline const ParameterTable<CDriveSection, CDriveParameters>& CDriveParameterTab
   using S = CDriveSection;
   using P = CDriveParameters;
   static const ParameterTable<S, P> table = {
-      {{"p", "p", "m", "screw lead", 0.0, true, true, "", false, 0.0}, &S::lead, &P::lead},
-      {{"I_h", "I_h", "kg m^2", "motor rotor + coupling + screw inertia", 0.0, false, false, "inertia", true, 1e-4},
+      {Spec("p", "p", "m", "screw lead").Above(0.0).Required(), &S::lead, &P::lead},
+      {Spec("I_h", "I_h", "kg m^2", "motor rotor + coupling + screw inertia").Fit("inertia").FreeByDefault()
+           .Typical(1e-4),
        &S::hub_inertia, &P::hub_inertia},
-      {{"I_c", "I_c", "kg m^2", "collar inertia about the screw axis", 0.0, false, false, "inertia", true, 1e-4},
+      {Spec("I_c", "I_c", "kg m^2", "collar inertia about the screw axis").Fit("inertia").FreeByDefault().Typical(1e-4),
        &S::collar_inertia, &P::collar_inertia},
-      {{"m", "m", "kg", "collar mass", 0.0, false, false, "inertia", false, 1.0}, &S::collar_mass, &P::collar_mass},
-      {{"beta", "beta", "N m s/rad", "viscous, rotor and bearings", 0.0, false, false, "friction", true, 1e-3},
+      {Spec("m", "m", "kg", "collar mass").Fit("inertia").Typical(1.0), &S::collar_mass, &P::collar_mass},
+      {Spec("beta", "beta", "N m s/rad", "viscous, rotor and bearings").Fit("friction").FreeByDefault().Typical(1e-3),
        &S::viscous_motor, &P::viscous_motor},
-      {{"gamma", "gamma", "N m s/rad", "viscous, collar on the screws", 0.0, false, false, "friction", true, 1e-3},
+      {Spec("gamma", "gamma", "N m s/rad", "viscous, collar on the screws").Fit("friction").FreeByDefault()
+           .Typical(1e-3),
        &S::viscous_collar, &P::viscous_collar},
-      {{"delta", "delta", "N m", "Coulomb, rotor and bearings", 0.0, false, false, "friction", true, 0.1},
+      {Spec("delta", "delta", "N m", "Coulomb, rotor and bearings").Fit("friction").FreeByDefault().Typical(0.1),
        &S::coulomb_motor, &P::coulomb_motor},
-      {{"eta", "eta", "N m", "Coulomb, collar on the screws", 0.0, false, false, "friction", true, 0.1},
+      {Spec("eta", "eta", "N m", "Coulomb, collar on the screws").Fit("friction").FreeByDefault().Typical(0.1),
        &S::coulomb_collar, &P::coulomb_collar},
-      {{"k_t", "k_t", "N m/A", "motor torque constant", 0.0, true, false, "", false, 0.0}, &S::torque_constant,
+      {Spec("k_t", "k_t", "N m/A", "motor torque constant").Above(0.0), &S::torque_constant,
        nullptr},
   };
   return table;

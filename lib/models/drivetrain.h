@@ -69,18 +69,20 @@ inline const ParameterTable<DriveTrainSection, DriveTrainParameters>& DriveTrain
   using S = DriveTrainSection;
   using P = DriveTrainParameters;
   static const ParameterTable<S, P> table = {
-      {{"n_g", "n_g", "-", "gear ratio", 0.0, true, true, "", false, 0.0}, &S::gear_ratio, &P::gear_ratio},
-      {{"k_Tl", "k_Tl", "N m/rad", "link bending stiffness", 0.0, true, true, "step", false, 0.0},
+      {Spec("n_g", "n_g", "-", "gear ratio").Above(0.0).Required(), &S::gear_ratio, &P::gear_ratio},
+      {Spec("k_Tl", "k_Tl", "N m/rad", "link bending stiffness").Above(0.0).Required().Fit("step"),
        &S::link_stiffness, &P::link_stiffness},
-      {{"k_Tg", "k_Tg", "N m/rad", "gearbox stiffness", 0.0, true, true, "step", false, 0.0},
+      {Spec("k_Tg", "k_Tg", "N m/rad", "gearbox stiffness").Above(0.0).Required().Fit("step"),
        &S::gearbox_stiffness, &P::gearbox_stiffness},
-      {{"Theta_motor", "Theta_motor", "kg m^2", "motor rotor inertia, motor side", 0.0, true, true, "step", true, 0.0},
+      {Spec("Theta_motor", "Theta_motor", "kg m^2", "motor rotor inertia, motor side").Above(0.0).Required()
+           .Fit("step").FreeByDefault(),
        &S::motor_inertia, &P::motor_inertia},
-      {{"Theta_g", "Theta_g", "kg m^2", "gearbox inertia, motor side", 0.0, false, false, "step", false, 0.0},
+      {Spec("Theta_g", "Theta_g", "kg m^2", "gearbox inertia, motor side").Fit("step"),
        &S::gearbox_inertia, &P::gearbox_inertia},
-      {{"d_g", "d_g", "N m s/rad", "gearbox viscous friction at the gear input", 0.0, false, true, "step", true, 0.0},
+      {Spec("d_g", "d_g", "N m s/rad", "gearbox viscous friction at the gear input").Required().Fit("step")
+           .FreeByDefault(),
        &S::viscous_friction, &P::viscous_friction},
-      {{"tau_c", "tau_c", "N m", "Coulomb friction at the gear output", 0.0, false, true, "step", true, 0.0},
+      {Spec("tau_c", "tau_c", "N m", "Coulomb friction at the gear output").Required().Fit("step").FreeByDefault(),
        &S::coulomb_friction, &P::coulomb_friction},
   };
   return table;
@@ -103,7 +105,8 @@ enum class DriveTrainParameter : int {
   kGearboxStiffness,     // k_Tg
   kCoulombFriction,      // tau_c
 };
-constexpr int kDriveTrainParameterCount = 6;
+constexpr int kDriveTrainParameterCount = static_cast<int>(DriveTrainParameter::kCoulombFriction) + 1;
+static_assert(kDriveTrainParameterCount == 6, "DriveTrainParameter: the last enumerator ends the list");
 
 /// Member of each estimable parameter (the table row is found by member).
 double DriveTrainParameters::*DriveTrainParameterMember(DriveTrainParameter parameter);

@@ -24,14 +24,13 @@ struct FrequencyResponseValues {};
 inline const ParameterTable<FrequencyResponseSection, FrequencyResponseValues>& FrequencyResponseTable() {
   using S = FrequencyResponseSection;
   static const ParameterTable<S, FrequencyResponseValues> table = {
-      {{"resonance_hz", "f_r", "Hz", "resonance sqrt(k (1/J_m + 1/J_l)) / 2 pi", 0.0, false, false, "", false, 0.0},
+      {Spec("resonance_hz", "f_r", "Hz", "resonance sqrt(k (1/J_m + 1/J_l)) / 2 pi"),
        &S::resonance_hz, nullptr},
-      {{"resonance_hz_std", "s_f_r", "Hz", "its standard error", 0.0, false, false, "", false, 0.0},
+      {Spec("resonance_hz_std", "s_f_r", "Hz", "its standard error"),
        &S::resonance_hz_std, nullptr},
-      {{"antiresonance_hz", "f_a", "Hz", "motor-side anti-resonance sqrt(k / J_l) / 2 pi", 0.0, false, false, "",
-        false, 0.0},
+      {Spec("antiresonance_hz", "f_a", "Hz", "motor-side anti-resonance sqrt(k / J_l) / 2 pi"),
        &S::antiresonance_hz, nullptr},
-      {{"antiresonance_hz_std", "s_f_a", "Hz", "its standard error", 0.0, false, false, "", false, 0.0},
+      {Spec("antiresonance_hz_std", "s_f_a", "Hz", "its standard error"),
        &S::antiresonance_hz_std, nullptr},
   };
   return table;

@@ -37,6 +37,32 @@ struct ParameterSpec {
   bool default_free = false;            ///< in that fit's default --free set
   double typical = 0.0;                 ///< typical magnitude for scaling (0 = from the start value)
 
+  // Table rows name their fields (Spec(...).Above(0).Required().Fit("step")):
+  /// Value must be > `bound`.
+  constexpr ParameterSpec Above(double bound) const { return With(bound, true, required, fit, default_free, typical); }
+  /// Value must be >= `bound` (the default bound is >= 0).
+  constexpr ParameterSpec AtLeast(double bound) const { return With(bound, false, required, fit, default_free, typical); }
+  /// Any finite value.
+  constexpr ParameterSpec Unbounded() const {
+    return With(-std::numeric_limits<double>::infinity(), false, required, fit, default_free, typical);
+  }
+  /// The section is incomplete without it.
+  constexpr ParameterSpec Required() const {
+    return With(lower_bound, lower_exclusive, true, fit, default_free, typical);
+  }
+  /// Estimated by the named fit(s) ("a b": several).
+  constexpr ParameterSpec Fit(const char* fits) const {
+    return With(lower_bound, lower_exclusive, required, fits, default_free, typical);
+  }
+  /// In that fit's default free set.
+  constexpr ParameterSpec FreeByDefault() const {
+    return With(lower_bound, lower_exclusive, required, fit, true, typical);
+  }
+  /// Typical magnitude for scaling.
+  constexpr ParameterSpec Typical(double value) const {
+    return With(lower_bound, lower_exclusive, required, fit, default_free, value);
+  }
+
   /// "description [unit]" as written beside a value in a parameter file.
   std::string Doc() const { return fmt::format("{} [{}]", description, unit); }
   /// True when `value` satisfies the bound.
@@ -46,7 +72,20 @@ struct ParameterSpec {
     const std::string fits = std::string(" ") + fit + " ";
     return !name.empty() && fits.find(" " + name + " ") != std::string::npos;
   }
+
+ private:
+  constexpr ParameterSpec With(double bound, bool exclusive, bool needed, const char* fits, bool free,
+                               double magnitude) const {
+    return {key, symbol, unit, description, bound, exclusive, needed, fits, free, magnitude};
+  }
 };
+
+/// A table row's spec: key, the paper's symbol, unit and description; then
+/// named fields (Above, AtLeast, Unbounded, Required, Fit, FreeByDefault,
+/// Typical). Default: >= 0, optional, in no fit.
+constexpr ParameterSpec Spec(const char* key, const char* symbol, const char* unit, const char* description) {
+  return {key, symbol, unit, description, 0.0, false, false, "", false, 0.0};
+}
 
 constexpr double kUnbounded = -std::numeric_limits<double>::infinity();
 

@@ -48,17 +48,18 @@ inline const ParameterTable<PlanarRobotSection, PlanarRobotParameters>& PlanarRo
   using S = PlanarRobotSection;
   using P = PlanarRobotParameters;
   static const ParameterTable<S, P> table = {
-      {{"base_distance", "a", "m", "distance of the base joints", 0.0, true, true, "", false, 0.0},
+      {Spec("base_distance", "a", "m", "distance of the base joints").Above(0.0).Required(),
        &S::base_distance, &P::base_distance},
-      {{"l", "l", "m", "link length", 0.0, true, true, "", false, 0.0}, &S::link_length, &P::link_length},
-      {{"n_g", "n_g", "-", "gear ratio", 0.0, true, true, "", false, 0.0}, &S::gear_ratio, &P::gear_ratio},
-      {{"Theta", "Theta", "kg m^2", "actuator inertia at the gear output", 0.0, false, true, "robot", true, 0.0},
+      {Spec("l", "l", "m", "link length").Above(0.0).Required(), &S::link_length, &P::link_length},
+      {Spec("n_g", "n_g", "-", "gear ratio").Above(0.0).Required(), &S::gear_ratio, &P::gear_ratio},
+      {Spec("Theta", "Theta", "kg m^2", "actuator inertia at the gear output").Required().Fit("robot").FreeByDefault(),
        &S::output_inertia, &P::output_inertia},
-      {{"m_c", "m_c", "kg", "mass of the centre joint", 0.0, false, true, "robot", true, 0.0}, &S::center_mass,
+      {Spec("m_c", "m_c", "kg", "mass of the centre joint").Required().Fit("robot").FreeByDefault(), &S::center_mass,
        &P::center_mass},
-      {{"d_g", "d_g", "N m s/rad", "gearbox viscous friction at the gear input", 0.0, false, true, "robot", true, 0.0},
+      {Spec("d_g", "d_g", "N m s/rad", "gearbox viscous friction at the gear input").Required().Fit("robot")
+           .FreeByDefault(),
        &S::viscous_friction, &P::viscous_friction},
-      {{"k_t", "k_t", "N m/A", "motor torque constant", 0.0, true, true, "", false, 0.0}, &S::torque_constant,
+      {Spec("k_t", "k_t", "N m/A", "motor torque constant").Above(0.0).Required(), &S::torque_constant,
        &P::torque_constant},
   };
   return table;

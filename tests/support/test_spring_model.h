@@ -29,9 +29,9 @@ inline const ParameterTable<SpringSection, SpringParameters>& SpringParameterTab
   using S = SpringSection;
   using P = SpringParameters;
   static const ParameterTable<S, P> table = {
-      {{"k", "k", "N/m", "spring stiffness", 0.0, false, false, "spring", true, 0.0}, &S::stiffness, &P::stiffness},
-      {{"c", "c", "N s/m", "viscous damping", 0.0, false, false, "spring", true, 0.0}, &S::damping, &P::damping},
-      {{"f0", "f_0", "N", "preload", kUnbounded, false, false, "spring", true, 0.0}, &S::preload, &P::preload},
+      {Spec("k", "k", "N/m", "spring stiffness").Fit("spring").FreeByDefault(), &S::stiffness, &P::stiffness},
+      {Spec("c", "c", "N s/m", "viscous damping").Fit("spring").FreeByDefault(), &S::damping, &P::damping},
+      {Spec("f0", "f_0", "N", "preload").Unbounded().Fit("spring").FreeByDefault(), &S::preload, &P::preload},
   };
   return table;
 }
