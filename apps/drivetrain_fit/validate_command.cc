@@ -1,20 +1,18 @@
 #include "drivetrain_fit/validate_command.h"
 
 #include <cstdio>
+#include <optional>
 
 #include <fmt/format.h>
 
 #include "common/command_registry.h"
 #include "common/validation_output.h"
 #include "core/errors.h"
-#include "fit/axis_rows.h"
-#include "fit/validation.h"
 #include "io/axis_log.h"
 #include "io/joint_log.h"
 #include "io/parameter_file.h"
 #include "io/step_log.h"
-#include "models/missing_values.h"
-#include "sim/mujoco_axis_simulator.h"
+#include "report/validation_run.h"
 
 namespace driveid::cli {
 
@@ -73,105 +71,43 @@ bool IsMjcf(const std::string& path) {
   return ends(".xml") || ends(".XML") || ends(".mjcf");
 }
 
-// An MJCF simulated in MuJoCo from the logged effort.
-void RunMujocoValidation(const ValidateOptions& options, const std::string& command_line) {
-  if (!options.model.empty() && options.model != "axis" && options.model != "joint") {
-    throw OptionError(fmt::format("--model {}: an MJCF is validated as an axis or an elastic joint", options.model));
-  }
-  if (options.simulate) throw OptionError("--simulate: an MJCF is always simulated (in MuJoCo)");
-  std::string why;
-  if (!MujocoAvailable(&why)) throw InputError(fmt::format("{}: {}", options.params, why));
-  FitProvenance provenance;
-  provenance.command = command_line;
-  if (options.model == "joint") {
-    const auto logs = LoadLogs<JointLog>(options.logs, options.input, options.output, provenance, JointLogColumns(),
-                                         [&](CsvLog csv) { return MakeJointLog(std::move(csv), 0.0); });
-    EmitValidation(options.output,
-                   {"drivetrain-fit", command_line,
-                    fmt::format("MuJoCo simulation of the elastic joint '{}' (motor '{}_motor') from the logged motor "
-                                "torque (held per sample, step <= {:g} s)",
-                                options.joint, options.joint, options.mujoco_step),
-                    "elastic joint in MuJoCo: motor and link angles simulated from the motor torque", "angle [rad]"},
-                   ValidateMujocoJoint(logs, options.params, options.joint, options.mujoco_step));
-    return;
-  }
-  const auto logs = LoadLogs<AxisLog>(options.logs, options.input, options.output, provenance, AxisLogColumns(),
-                                      [&](CsvLog csv) { return MakeAxisLog(std::move(csv), 0.0); });
-  MujocoAxisOptions mujoco;
-  mujoco.joint = options.joint;
-  mujoco.max_step = options.mujoco_step;
-  const std::vector<ValidatedLog> validated = ValidateMujocoAxis(logs, options.params, mujoco);
-  EmitValidation(options.output,
-                 {"drivetrain-fit", command_line,
-                  fmt::format("MuJoCo simulation of joint '{}' from the logged effort (held per sample, step <= {:g} s)",
-                              options.joint, options.mujoco_step),
-                  "axis validation in MuJoCo: position simulated from the logged effort", "position"},
-                 validated);
-}
-
 }  // namespace
 
 void RunValidateCommand(const ValidateOptions& options, const std::string& command_line) {
   CheckFitOutputs(options.output, LogCommandInputs(options.logs, options.params, options.input));
-  if (IsMjcf(options.params)) {
-    RunMujocoValidation(options, command_line);
-    return;
-  }
-  const ParameterFile file = ReadParameterFile(options.params);
-  const AxisSection* axis = file.Find<AxisSection>();
-  const DriveTrainSection* drivetrain = file.Find<DriveTrainSection>();
-  std::string model = options.model;
-  if (model.empty()) {
-    if (axis != nullptr && drivetrain != nullptr) {
-      throw OptionError(fmt::format("{} has an axis and a drivetrain section: give --model axis or --model step",
-                                    options.params));
-    }
-    model = axis != nullptr ? "axis" : "step";
-  }
-  if (model == "joint") {
-    throw OptionError("--model joint: an elastic joint is validated from its MJCF in MuJoCo (drivetrain-fit export "
-                      "P.yaml --to mjcf), not from a parameter file");
-  }
-  if (model == "axis" && axis == nullptr) throw InputError(fmt::format("{}: no 'axis' section", options.params));
-  if (options.simulate && model != "axis") throw OptionError("--simulate: only an axis is simulated by validate --simulate (a drive train always is)");
-  if (model == "step" && drivetrain == nullptr) {
-    throw InputError(fmt::format("{}: no 'drivetrain' section", options.params));
+  const bool mjcf = IsMjcf(options.params);
+  if (options.simulate && mjcf) throw OptionError("--simulate: an MJCF is always simulated (in MuJoCo)");
+  std::optional<ParameterFile> file;
+  if (!mjcf) file = ReadParameterFile(options.params);
+  const ValidationModel model =
+      ChooseValidationModel(file ? &*file : nullptr, mjcf, options.params, options.model);
+  if (options.simulate && model != ValidationModel::kAxis) {
+    throw OptionError("--simulate: only an axis is simulated by validate --simulate (a drive train always is)");
   }
   FitProvenance provenance;
   provenance.command = command_line;
-  std::vector<ValidatedLog> validated;
-  std::string title, unit, method;
-  if (model == "axis") {
-    RequireModelValues(AxisParameterTable(), *axis, options.params, "axis", "the prediction",
-                       AxisTermsZeroUnlessGiven(*axis));
-    const AxisParameters params = MakeModelParameters(AxisParameterTable(), *axis, AxisParameters{}, "axis");
-    const auto logs = LoadLogs<AxisLog>(options.logs, options.input, options.output, provenance, AxisLogColumns(),
-                                        [&](CsvLog csv) { return MakeAxisLog(std::move(csv), axis->torque_constant.value_or(0.0)); });
-    if (options.simulate) {
-      validated = ValidateAxisBySimulation(logs, params);
-      title = "axis validation: position simulated from the logged torque";
-      unit = axis->linear ? "position [m]" : "position [rad]";
-      method = "axis simulation from the logged torque (held per sample, Coulomb friction that sticks)";
-    } else {
-      const double cutoff =
-          options.cutoff > 0.0 ? options.cutoff : ChooseAxisValidationCutoff(logs, params, options.decimation);
-      validated = ValidateAxis(logs, params, cutoff, options.decimation);
-      title = "axis validation: inverse dynamics (filtered, decimated)";
-      unit = "force or torque";
-      method = fmt::format("axis inverse dynamics, position cutoff {:.4g} Hz ({})", cutoff,
-                           options.cutoff > 0.0 ? "given" : "the candidate that predicts best");
-    }
+  const auto load = [&](const std::vector<std::string>& columns, auto make) {
+    using Log = decltype(make(CsvLog{}));
+    return LoadLogs<Log>(options.logs, options.input, options.output, provenance, columns, make);
+  };
+  ValidationRun run;
+  if (mjcf && model == ValidationModel::kJoint) {
+    const auto logs = load(JointLogColumns(), [](CsvLog csv) { return MakeJointLog(std::move(csv), 0.0); });
+    run = RunMujocoJointValidation(logs, options.params, options.joint, options.mujoco_step);
+  } else if (mjcf) {
+    const auto logs = load(AxisLogColumns(), [](CsvLog csv) { return MakeAxisLog(std::move(csv), 0.0); });
+    run = RunMujocoValidation(logs, options.params, options.joint, options.mujoco_step);
+  } else if (model == ValidationModel::kAxis) {
+    const AxisSection& axis = *file->Find<AxisSection>();
+    const double k_t = axis.torque_constant.value_or(0.0);
+    const auto logs = load(AxisLogColumns(), [k_t](CsvLog csv) { return MakeAxisLog(std::move(csv), k_t); });
+    run = RunAxisValidation(logs, axis, options.params, {options.simulate, options.cutoff, options.decimation});
   } else {
-    const DriveTrainParameters params = MakeDriveTrainParameters(*drivetrain);
-    const auto logs = LoadLogs<StepLog>(options.logs, options.input, options.output, provenance, StepLogColumns(),
-                                        [&](CsvLog csv) { return MakeStepLog(std::move(csv)); });
-    validated = ValidateSteps(logs, params,
-                              options.step_model == "full" ? DriveTrainModel::kFull : DriveTrainModel::kReduced);
-    title = fmt::format("drive-train validation: simulation from the motor torque ({} model)", options.step_model);
-    unit = "link torque [N m]";
-    method = fmt::format("drive-train simulation ({} model) from tau_motor", options.step_model);
+    const auto logs = load(StepLogColumns(), [](CsvLog csv) { return MakeStepLog(std::move(csv)); });
+    run = RunStepValidation(logs, *file->Find<DriveTrainSection>(),
+                            options.step_model == "full" ? DriveTrainModel::kFull : DriveTrainModel::kReduced);
   }
-  EmitValidation(options.output, {"drivetrain-fit", command_line, method, title, unit}, validated);
+  EmitValidation(options.output, {"drivetrain-fit", command_line, run.method, run.title, run.unit}, run.logs);
 }
 
 namespace {

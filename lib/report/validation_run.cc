@@ -1,0 +1,87 @@
+#include "report/validation_run.h"
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "models/missing_values.h"
+#include "sim/mujoco_axis_simulator.h"
+
+namespace driveid {
+
+ValidationModel ChooseValidationModel(const ParameterFile* file, bool mjcf, const std::string& path,
+                                      const std::string& requested) {
+  if (mjcf) {
+    if (!requested.empty() && requested != "axis" && requested != "joint") {
+      throw OptionError(fmt::format("‹model› {}: an MJCF is validated as an axis or an elastic joint", requested));
+    }
+    std::string why;
+    if (!MujocoAvailable(&why)) throw InputError(fmt::format("{}: {}", path, why));
+    return requested == "joint" ? ValidationModel::kJoint : ValidationModel::kAxis;
+  }
+  const bool axis = file != nullptr && file->Find<AxisSection>() != nullptr;
+  const bool drivetrain = file != nullptr && file->Find<DriveTrainSection>() != nullptr;
+  std::string model = requested;
+  if (model.empty()) {
+    if (axis && drivetrain) {
+      throw OptionError(
+          fmt::format("{} has an axis and a drivetrain section: give ‹model› axis or ‹model› step", path));
+    }
+    model = axis ? "axis" : "step";
+  }
+  if (model == "joint") {
+    throw OptionError("‹model› joint: an elastic joint is validated from its MJCF in MuJoCo (drivetrain-fit export "
+                      "P.yaml ‹to› mjcf), not from a parameter file");
+  }
+  if (model == "axis" && !axis) throw InputError(fmt::format("{}: no 'axis' section", path));
+  if (model == "step" && !drivetrain) throw InputError(fmt::format("{}: no 'drivetrain' section", path));
+  return model == "axis" ? ValidationModel::kAxis : ValidationModel::kStep;
+}
+
+ValidationRun RunAxisValidation(const std::vector<AxisLog>& logs, const AxisSection& axis, const std::string& path,
+                                const AxisValidationOptions& options) {
+  RequireModelValues(AxisParameterTable(), axis, path, "axis", "the prediction", AxisTermsZeroUnlessGiven(axis));
+  const AxisParameters params = MakeModelParameters(AxisParameterTable(), axis, AxisParameters{}, "axis");
+  if (options.simulate) {
+    return {ValidateAxisBySimulation(logs, params),
+            "axis simulation from the logged torque (held per sample, Coulomb friction that sticks)",
+            "axis validation: position simulated from the logged torque",
+            axis.linear ? "position [m]" : "position [rad]"};
+  }
+  const double cutoff =
+      options.cutoff > 0.0 ? options.cutoff : ChooseAxisValidationCutoff(logs, params, options.decimation);
+  return {ValidateAxis(logs, params, cutoff, options.decimation),
+          fmt::format("axis inverse dynamics, position cutoff {:.4g} Hz ({})", cutoff,
+                      options.cutoff > 0.0 ? "given" : "the candidate that predicts best"),
+          "axis validation: inverse dynamics (filtered, decimated)", "force or torque"};
+}
+
+ValidationRun RunStepValidation(const std::vector<StepLog>& logs, const DriveTrainSection& section,
+                                DriveTrainModel model) {
+  const std::string name = model == DriveTrainModel::kFull ? "full" : "reduced";
+  return {ValidateSteps(logs, MakeDriveTrainParameters(section), model),
+          fmt::format("drive-train simulation ({} model) from tau_motor", name),
+          fmt::format("drive-train validation: simulation from the motor torque ({} model)", name),
+          "link torque [N m]"};
+}
+
+ValidationRun RunMujocoValidation(const std::vector<AxisLog>& logs, const std::string& mjcf, const std::string& joint,
+                                  double max_step) {
+  MujocoAxisOptions mujoco;
+  mujoco.joint = joint;
+  mujoco.max_step = max_step;
+  return {ValidateMujocoAxis(logs, mjcf, mujoco),
+          fmt::format("MuJoCo simulation of joint '{}' from the logged effort (held per sample, step <= {:g} s)",
+                      joint, max_step),
+          "axis validation in MuJoCo: position simulated from the logged effort", "position"};
+}
+
+ValidationRun RunMujocoJointValidation(const std::vector<JointLog>& logs, const std::string& mjcf,
+                                       const std::string& joint, double max_step) {
+  return {ValidateMujocoJoint(logs, mjcf, joint, max_step),
+          fmt::format("MuJoCo simulation of the elastic joint '{}' (motor '{}_motor') from the logged motor torque "
+                      "(held per sample, step <= {:g} s)",
+                      joint, joint, max_step),
+          "elastic joint in MuJoCo: motor and link angles simulated from the motor torque", "angle [rad]"};
+}
+
+}  // namespace driveid

@@ -1,0 +1,55 @@
+// What `drivetrain-fit validate` runs (docs/models.md#validation,
+// docs/export.md#validation-in-mujoco): which model a parameter file or an
+// MJCF is validated as, and each validation with the words its outputs
+// carry (method, plot title, unit). The command parses, loads the logs the
+// model reads, calls one of these, emits.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "fit/validation.h"
+#include "io/axis_log.h"
+#include "io/joint_log.h"
+#include "io/parameter_file.h"
+#include "io/step_log.h"
+#include "models/drivetrain.h"
+
+namespace driveid {
+
+enum class ValidationModel { kAxis, kStep, kJoint };
+
+/// The model a validation runs: `requested` ("axis", "step", "joint"; ""
+/// for the file's one model section); an MJCF (`mjcf`) is an axis unless
+/// "joint" is asked for. Throws OptionError for a choice the file cannot
+/// make (two sections, a joint from a parameter file, a step from an MJCF)
+/// and InputError for a section the file lacks or an MJCF without MuJoCo;
+/// `path` names the file.
+ValidationModel ChooseValidationModel(const ParameterFile* file, bool mjcf, const std::string& path,
+                                      const std::string& requested);
+
+/// The validated logs and the words of their outputs.
+struct ValidationRun {
+  std::vector<ValidatedLog> logs;
+  std::string method;  ///< how the prediction was made (the table's first line)
+  std::string title;   ///< the plot's
+  std::string unit;    ///< the plot's y label
+};
+
+struct AxisValidationOptions {
+  bool simulate = false;  ///< simulate the position from the torque (else inverse dynamics of the torque)
+  double cutoff = 0.0;    ///< inverse dynamics: position low-pass [Hz]; 0: the candidate that predicts best
+  int decimation = 10;
+};
+ValidationRun RunAxisValidation(const std::vector<AxisLog>& logs, const AxisSection& axis, const std::string& path,
+                                const AxisValidationOptions& options);
+ValidationRun RunStepValidation(const std::vector<StepLog>& logs, const DriveTrainSection& section,
+                                DriveTrainModel model);
+/// An MJCF in MuJoCo: an axis driven by the logged effort, or (joint) the
+/// elastic joint's motor by the logged motor torque.
+ValidationRun RunMujocoValidation(const std::vector<AxisLog>& logs, const std::string& mjcf, const std::string& joint,
+                                  double max_step);
+ValidationRun RunMujocoJointValidation(const std::vector<JointLog>& logs, const std::string& mjcf,
+                                       const std::string& joint, double max_step);
+
+}  // namespace driveid
