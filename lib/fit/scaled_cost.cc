@@ -23,10 +23,7 @@ bool ScaledBlockCost::Evaluate(double const* const* parameters, double* residual
   double* shared_jacobian = (jacobians != nullptr && q > 0) ? jacobians[0] : nullptr;
   double* local_jacobian = (jacobians != nullptr && l > 0) ? jacobians[q > 0 ? 1 : 0] : nullptr;
   const bool want_jacobian = shared_jacobian != nullptr || local_jacobian != nullptr;
-  // Bitwise comparison: a point that differs in the last bit is another point.
-  const bool same_point = memo_valid_ && (q == 0 || std::memcmp(memo_point_.data(), shared, q * sizeof(double)) == 0) &&
-                          (l == 0 || std::memcmp(memo_point_.data() + q, local, l * sizeof(double)) == 0);
-  if (same_point && (!want_jacobian || memo_has_jacobian_)) {
+  if (memo_.Holds(shared, q, local, l) && (!want_jacobian || memo_.with_jacobian)) {
     std::copy(memo_residuals_.begin(), memo_residuals_.end(), residuals);
     for (std::size_t i = 0; i < n && want_jacobian; ++i) {
       if (shared_jacobian != nullptr) std::copy_n(memo_jacobian_.data() + i * p, q, shared_jacobian + i * q);
@@ -39,7 +36,7 @@ bool ScaledBlockCost::Evaluate(double const* const* parameters, double* residual
   // repeated point is evaluated again unless the model remembers it, as the
   // single-log step model does).
   const bool direct = want_jacobian && l == 0 && large_.IsLarge(n, p);
-  memo_valid_ = false;
+  memo_.Forget();
   for (std::size_t j = 0; j < q; ++j) shared_[j] = shared[j] * shared_scale_[j];
   for (std::size_t j = 0; j < l; ++j) local_[j] = local[j] * local_scale_[j];
   memo_jacobian_.resize(want_jacobian && !direct ? n * p : 0);
@@ -56,10 +53,9 @@ bool ScaledBlockCost::Evaluate(double const* const* parameters, double* residual
     if (local_jacobian != nullptr) std::copy_n(memo_jacobian_.data() + i * p + q, l, local_jacobian + i * l);
   }
   memo_residuals_.assign(residuals, residuals + n);
-  memo_point_.assign(shared, shared + q);
-  memo_point_.insert(memo_point_.end(), local, local + l);
-  memo_has_jacobian_ = want_jacobian && !direct;
-  memo_valid_ = true;
+  memo_.Remember(shared, q, local, l);
+  memo_.succeeded = true;
+  memo_.with_jacobian = want_jacobian && !direct;
   return true;
 }
 

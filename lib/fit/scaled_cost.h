@@ -12,6 +12,7 @@
 
 #include <ceres/cost_function.h>
 
+#include "fit/point_memo.h"
 #include "fit/residual_model.h"
 
 namespace driveid {
@@ -34,12 +35,11 @@ class ScaledBlockCost final : public ceres::CostFunction {
   const std::vector<double> shared_scale_, local_scale_;
   const LargeProblemPolicy large_;
   mutable std::vector<double> shared_, local_;
-  // Memo of the last successful evaluation: the scaled point (shared, then
-  // own; compared bit for bit), its residuals and, if computed and not
-  // large, its scaled Jacobian (rows x (shared + own)).
-  mutable std::vector<double> memo_point_, memo_residuals_, memo_jacobian_;
-  mutable bool memo_valid_ = false;
-  mutable bool memo_has_jacobian_ = false;
+  // The last successful evaluation (fit/point_memo.h): the scaled point
+  // (shared, then own), its residuals and, if computed and not large, its
+  // scaled Jacobian (rows x (shared + own)).
+  mutable PointMemo memo_;
+  mutable std::vector<double> memo_residuals_, memo_jacobian_;
   mutable int evaluations_ = 0;
 };
 

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "fit/point_memo.h"
 #include "fit/scaled_cost.h"
 #include "io/csv_log.h"
 #include "sim/drivetrain_simulator.h"
@@ -170,14 +171,13 @@ class StepResiduals final : public ResidualModel, public BlockResidualModel {
       if (!Simulated(0, parameters, jacobian != nullptr)) return false;
       return FillRows(0, offset, first, last, residuals, jacobian, p, offset_column, response_, 0);
     }
-    if (!SimulatedAt(parameters)) {
-      simulated_valid_ = true;  // simulated_ is the point of the stream and of memo_ from now on
-      simulated_.assign(parameters, parameters + q);
-      simulated_ok_ = true;
+    if (!simulated_.Holds(parameters, q)) {
+      simulated_.Remember(parameters, q);  // the point of the stream and of memo_ from now on
+      simulated_.succeeded = true;
       memo_rows_ = 0;
       streaming_now_ = false;
     }
-    if (!simulated_ok_) return false;
+    if (!simulated_.succeeded) return false;
     if (jacobian == nullptr && last <= memo_rows_) {
       return FillRows(0, offset, first, last, residuals, nullptr, p, offset_column, memo_, 0);
     }
@@ -196,14 +196,14 @@ class StepResiduals final : public ResidualModel, public BlockResidualModel {
       Remember(first, last);
     } catch (const IdentificationError& e) {
       last_failure_ = e.what();  // integrator failure at these values: the solver backs off
-      simulated_ok_ = false;
+      simulated_.succeeded = false;
       streaming_now_ = false;
       return false;
     }
     return FillRows(0, offset, first, last, residuals, jacobian, p, offset_column, response_, first);
   }
   void Release() override {
-    simulated_valid_ = false;
+    simulated_.Forget();
     streaming_now_ = false;
     response_ = DriveTrainResponse{};
     memo_ = DriveTrainResponse{};
@@ -221,33 +221,27 @@ class StepResiduals final : public ResidualModel, public BlockResidualModel {
     memo_rows_ = std::max(memo_rows_, last);
   }
 
-  // Whether simulated_ holds these ODE parameter values.
-  bool SimulatedAt(const double* ode_values) const {
-    return simulated_valid_ && std::equal(simulated_.begin(), simulated_.end(), ode_values);
-  }
-
   // Simulates log i at the ODE parameter values unless it is the single log's
   // last simulation (with sensitivities if `sensitivities`); false (with
   // last_failure_) if the integrator fails there, remembered as well.
   bool Simulated(std::size_t i, const double* ode_values, bool sensitivities) {
     const std::size_t q = ode_parameters_.size();
-    const bool same = logs_.size() == 1 && SimulatedAt(ode_values);
-    if (same && !simulated_ok_) return false;
-    if (same && (!sensitivities || simulated_with_jacobian_)) return true;
+    const bool same = logs_.size() == 1 && simulated_.Holds(ode_values, q);
+    if (same && !simulated_.succeeded) return false;
+    if (same && (!sensitivities || simulated_.with_jacobian)) return true;
     for (std::size_t j = 0; j < q; ++j) SetDriveTrainParameter(params_, ode_parameters_[j], ode_values[j]);
-    simulated_valid_ = false;
-    simulated_.assign(ode_values, ode_values + q);
-    simulated_with_jacobian_ = sensitivities;
-    simulated_ok_ = false;
+    simulated_.Forget();
+    simulated_.with_jacobian = sensitivities;
+    simulated_.succeeded = false;
     try {
       simulator_.Simulate(params_, logs_[i].time, logs_[i].motor_torque, sensitivities, &response_);
-      simulated_ok_ = true;
+      simulated_.succeeded = true;
       last_failure_.clear();
     } catch (const IdentificationError& e) {
       last_failure_ = e.what();  // integrator failure at these values: the solver backs off
     }
-    simulated_valid_ = true;
-    return simulated_ok_;
+    simulated_.Remember(ode_values, q);
+    return simulated_.succeeded;
   }
 
   // Rows [begin, end) of log i from the last simulation: residuals[0] is row
@@ -294,7 +288,7 @@ class StepResiduals final : public ResidualModel, public BlockResidualModel {
   std::string LastFailure() const override { return last_failure_; }
 
   std::vector<double> Simulate(std::size_t i, const double* parameters) {
-    simulated_valid_ = false;
+    simulated_.Forget();
     const std::size_t q = ode_parameters_.size();
     for (std::size_t j = 0; j < q; ++j) SetDriveTrainParameter(params_, ode_parameters_[j], parameters[j]);
     simulator_.Simulate(params_, logs_[i].time, logs_[i].motor_torque, false, &response_);
@@ -340,10 +334,9 @@ class StepResiduals final : public ResidualModel, public BlockResidualModel {
   std::vector<StepChannels> channels_;
   int rows_ = 0;
   std::string last_failure_;
-  std::vector<double> simulated_;  // ODE parameter values of response_ (one log) if simulated_valid_
-  bool simulated_valid_ = false;  // simulated_ holds the values last simulated (one log)
-  bool simulated_with_jacobian_ = false;
-  bool simulated_ok_ = false;  // whether that simulation succeeded
+  // The ODE parameter values of response_ (one log), whether that simulation
+  // succeeded and has sensitivities (fit/point_memo.h).
+  PointMemo simulated_;
   // Streaming (see the constructor): the simulation under way is at
   // simulated_ (with sensitivities if stream_sensitivities_); memo_ holds
   // its torque for samples [0, memo_rows_).
