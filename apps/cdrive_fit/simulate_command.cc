@@ -71,7 +71,7 @@ void RunCDriveSimulateCommand(const CDriveSimulateOptions& options, const std::s
       fmt::format("truth: p {}, I_h {}, I_c {}, m {}, beta {}, gamma {}, delta {}, eta {}", params.lead,
                   params.hub_inertia, params.collar_inertia, params.collar_mass, params.viscous_motor,
                   params.viscous_collar, params.coulomb_motor, params.coulomb_collar)};
-  const std::string log_text = FormatCDriveLog(result.log, comments);
+  std::string log_text = FormatCDriveLog(result.log, comments);
 
   std::vector<std::pair<std::string, std::string>> files;  // written together, all or nothing
   if (!options.plot.empty()) {
@@ -92,7 +92,7 @@ void RunCDriveSimulateCommand(const CDriveSimulateOptions& options, const std::s
     }
     files.emplace_back(options.trace, std::move(trace));
   }
-  if (!options.output.empty()) files.emplace_back(options.output, ShowFlags(log_text));
+  if (!options.output.empty()) files.emplace_back(options.output, ShowFlags(std::move(log_text)));  // (not read again)
   std::string summary;
   if (options.json) {
     const Json json = {{"program", loop.program.name},

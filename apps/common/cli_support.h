@@ -36,7 +36,9 @@ void WriteStdout(const std::string& text);
 /// The library names options by their field between marks, ‹free_name›
 /// (lib/ holds no flag spelling); the tools print the flag, --free-name.
 /// Every text from the library passes through this on its way out
-/// (WriteStdout, WriteText, error messages, written parameter files).
+/// (WriteStdout, WriteText, error messages, written parameter files). Pass
+/// a large text that is not needed afterwards by std::move: it is then
+/// rewritten in place, not copied.
 std::string ShowFlags(std::string text);
 /// Writes text from the library to a stream (stderr, or stdout for summaries).
 void WriteText(std::FILE* stream, const std::string& text);

@@ -83,7 +83,7 @@ void RunSimulateRobotCommand(const SimulateRobotOptions& options, const std::str
   }
   const auto& r = options.experiment;
   const PlanarRobotParameters p = MakePlanarRobotParameters(*file.Find<PlanarRobotSection>());
-  const std::string text = FormatRobotLog(
+  std::string text = FormatRobotLog(
       log, {"synthetic robot log (docs/formats.md#logs) made by: " + command_line,
             fmt::format("triangle side {} m, {} m/s^2, {} m/s, dwell {} s, {} loops, {} Hz, 13-bit encoders behind the "
                         "gears, prestress {} N m, current noise {} A (seed {})",
@@ -93,7 +93,7 @@ void RunSimulateRobotCommand(const SimulateRobotOptions& options, const std::str
   if (options.output.empty()) {
     WriteStdout(text);
   } else {
-    WriteFileAtomically(options.output, ShowFlags(text));
+    WriteFileAtomically(options.output, ShowFlags(std::move(text)));
   }
 }
 
@@ -106,7 +106,7 @@ void RunSimulateAxisCommand(const SimulateAxisOptions& options, const std::strin
   const AxisParameters params = MakeModelParameters(AxisParameterTable(), *file.Find<AxisSection>(), AxisParameters{}, "axis");
   const AxisLog log = SimulateAxisExperiment(params, options.experiment);
   const auto& e = options.experiment;
-  const std::string text = FormatAxisLog(
+  std::string text = FormatAxisLog(
       log, {"synthetic axis log (docs/formats.md#logs) made by: " + command_line,
             fmt::format("profile {}, rate {} Hz, resolution {}, noise {} (seed {})", e.profile, e.rate, e.resolution,
                         e.noise, e.seed),
@@ -115,7 +115,7 @@ void RunSimulateAxisCommand(const SimulateAxisOptions& options, const std::strin
   if (options.output.empty()) {
     WriteStdout(text);
   } else {
-    WriteFileAtomically(options.output, ShowFlags(text));
+    WriteFileAtomically(options.output, ShowFlags(std::move(text)));
   }
 }
 
@@ -138,11 +138,11 @@ void RunSimulateStepCommand(const SimulateStepOptions& options, const std::strin
       fmt::format("truth: n_g {}, k_Tl {}, k_Tg {}, Theta_motor {}, Theta_g {}, d_g {}, tau_c {}",
                   p.gear_ratio, p.link_stiffness, p.gearbox_stiffness, p.motor_inertia, p.gearbox_inertia,
                   p.viscous_friction, p.coulomb_friction)};
-  const std::string text = FormatStepLog(log, comments);
+  std::string text = FormatStepLog(log, comments);
   if (options.output.empty()) {
     WriteStdout(text);
   } else {
-    WriteFileAtomically(options.output, ShowFlags(text));
+    WriteFileAtomically(options.output, ShowFlags(std::move(text)));
   }
 }
 
@@ -193,7 +193,7 @@ void RunSimulateJointCommand(const SimulateJointOptions& o, const std::string& c
   }
   const double n = section.gear_ratio.value_or(1.0);
   const JointExperimentLog log = SimulateJointExperiment(p, n, e);
-  const std::string text = FormatJointExperimentLog(
+  std::string text = FormatJointExperimentLog(
       log, {"synthetic joint log (docs/formats.md#logs) made by: " + command_line,
             fmt::format("{} {} .. {} Hz, period {} s, rms {} N m; PI speed loop kp {} ki {}; rate {} Hz; speed noise {} "
                         "rad/s (seed {}); r is the injected excitation",
@@ -204,7 +204,7 @@ void RunSimulateJointCommand(const SimulateJointOptions& o, const std::string& c
   if (o.output.empty()) {
     WriteStdout(text);
   } else {
-    WriteFileAtomically(o.output, ShowFlags(text));
+    WriteFileAtomically(o.output, ShowFlags(std::move(text)));
   }
 }
 
