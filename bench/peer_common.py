@@ -1,9 +1,15 @@
 """What the SciPy peers B and C of scripts/benchmark share (not part of
-driveid): reading a step log and the fit with the choices of peer B
+driveid): the drive train's known values, reading a step log and the fit with the choices of peer B
 (bounded least_squares, trust-region reflective, x_scale='jac', 2-point
 Jacobian, start as data/paper000_start.yaml), printed as one line."""
 import numpy as np
 from scipy.optimize import least_squares
+
+# The drive train's known values (data/paper000_start.yaml).
+GEAR = 80.0           # n_g
+STIFF_LINK = 15000.0  # k_Tl [N m/rad]
+STIFF_GEAR = 18375.0  # k_Tg [N m/rad]
+INERTIA_GEAR = 6.71875e-06  # Theta_g [kg m^2]
 
 
 def read_log(path):

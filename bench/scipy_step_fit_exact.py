@@ -23,12 +23,8 @@ import numpy as np
 from scipy.linalg import expm
 from scipy.optimize import brentq
 
-from peer_common import fit_and_print, read_log
+from peer_common import GEAR, INERTIA_GEAR, STIFF_GEAR, STIFF_LINK, fit_and_print, read_log
 
-GEAR = 80.0           # n_g
-STIFF_LINK = 15000.0  # k_Tl [N m/rad]
-STIFF_GEAR = 18375.0  # k_Tg [N m/rad]
-INERTIA_GEAR = 6.71875e-06  # Theta_g [kg m^2]
 MAX_SWITCHES_PER_SAMPLE = 4
 
 

@@ -2,7 +2,7 @@
 """Second peer for scripts/benchmark (not part of driveid), written apart
 from scipy_step_fit.py with the choices a SciPy user who knows the library
 
-from peer_common import fit_and_print, read_log
+from peer_common import GEAR, INERTIA_GEAR, STIFF_GEAR, STIFF_LINK, fit_and_print, read_log
 makes for this problem (issue 22 item 4):
   - LSODA (switches to BDF when the elastic mode makes the problem stiff),
     max_step one sample so that the zero-order-held torque is never stepped
@@ -19,12 +19,7 @@ import sys
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from peer_common import fit_and_print, read_log
-
-GEAR = 80.0           # n_g
-STIFF_LINK = 15000.0  # k_Tl [N m/rad]
-STIFF_GEAR = 18375.0  # k_Tg [N m/rad]
-INERTIA_GEAR = 6.71875e-06  # Theta_g [kg m^2]
+from peer_common import GEAR, INERTIA_GEAR, STIFF_GEAR, STIFF_LINK, fit_and_print, read_log
 
 
 class DriveTrain:
