@@ -99,6 +99,9 @@ CLI::App* Setup(CLI::App& app, FrfCliOptions& o) {
   c->add_flag("--json", o.out.json, "print the summary as one JSON object instead of text");
   c->add_flag("-q,--quiet", o.out.quiet, "print no summary");
   c->add_flag("-v,--verbose", o.out.verbose, "log solver iterations on stderr");
+  c->add_flag("--strict", o.out.strict,
+              "warnings (no resonance in the band, adequacy; docs/models.md#reading-the-resonance) fail the run: exit "
+              "4, nothing written");
   c->add_option("--max-log-size", o.out.max_log_gib, "largest log to read [GiB]")->capture_default_str()
       ->check(FiniteWithin(1e-6, 1024.0));
   c->footer("Examples:\n"
@@ -249,9 +252,8 @@ void Emit(const FrfCliOptions& o, const ParameterFile& start, const JointSection
   FitOutputOptions files_only = o.out;
   files_only.quiet = true;
   files_only.json = false;
-  for (const auto& w : result.warnings) {
-    if (!result.fit) WriteText(stderr, "warning: " + w + "\n");
-  }
+  // Without a fit the response's own warnings go the fit's way (stderr, or exit 4 with --strict).
+  if (!result.fit) outputs.fit.warnings = result.warnings;
   // Files (and the parameter file on stdout when no -o) first, all or nothing.
   EmitFitOutputs(files_only, outputs);
   std::FILE* summary = o.out.output.empty() ? stderr : stdout;

@@ -69,6 +69,9 @@ struct FitResult {
   /// Adequacy warnings (docs/models.md#adequacy): the fit ran, but the data
   /// say the model misses something; `--strict` turns them into exit 4.
   std::vector<std::string> warnings;
+  /// What the reader should know that is no warning (e.g. a parameter
+  /// reported at its bound with a one-sided limit).
+  std::vector<std::string> notes;
   std::vector<EstimateSet> per_log;             ///< several logs: each fitted alone
   std::vector<EstimateSet> sensitivity;         ///< the same fit with other processing (cutoffs)
   std::vector<HeterogeneityTest> heterogeneity;  ///< per parameter, over per_log

@@ -10,12 +10,24 @@
 
 namespace driveid {
 
-void RequireDetermined(const FitResult& fit, const std::vector<std::string>& nonnegative, double max_relative_std,
-                       const std::vector<std::string>& context) {
+void RequireDetermined(FitResult& fit, const std::vector<std::string>& nonnegative, double max_relative_std,
+                       const std::vector<std::string>& context, const std::map<std::string, double>& start_values) {
   std::vector<std::string> undetermined;
-  for (const auto& e : fit.estimates) {
+  for (auto& e : fit.estimates) {
     if (std::find(nonnegative.begin(), nonnegative.end(), e.name) == nonnegative.end()) continue;
     if (e.standard_error <= max_relative_std * std::abs(e.value)) continue;
+    const auto start = start_values.find(e.name);
+    if (e.value == 0.0 && start != start_values.end() && start->second > 0.0 &&
+        kOneSided95 * e.standard_error <= max_relative_std * start->second) {
+      // At its bound: the data push it below 0, and how far above 0 it may be is known.
+      e.ci95_low = 0.0;
+      e.ci95_high = kOneSided95 * e.standard_error;
+      fit.notes.push_back(fmt::format("{} sits at its bound 0 (the data push it below, and rule out its start value "
+                                      "{:.3g}): reported as 0 with the one-sided 95 % upper limit {:.3g} (1.645 std) "
+                                      "as its interval",
+                                      e.name, start->second, e.ci95_high));
+      continue;
+    }
     undetermined.push_back(e.value != 0.0 ? fmt::format("{} = {:.4g} +- {:.2g} (relative std {:.0f} %)", e.name,
                                                         e.value, e.standard_error,
                                                         100.0 * e.standard_error / std::abs(e.value))

@@ -2,7 +2,8 @@
 //  - RequireDetermined: a free parameter with a physical lower bound of 0
 //    (an inertia, a friction coefficient) whose robust standard error is
 //    more than `max_relative_std` of its value is not determined by the
-//    data: the fit refuses it by name (exit 4);
+//    data: the fit refuses it by name (exit 4); one at its bound 0 is
+//    reported there with a one-sided 95 % limit;
 //  - low fit %: a channel whose fit is below kLowFitPercent with
 //    correlated residuals;
 //  - heterogeneity: the same parameters fitted per log disagree beyond
@@ -10,6 +11,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -19,6 +21,8 @@ namespace driveid {
 
 /// Bound on the robust relative standard error of a free non-negative parameter.
 constexpr double kMaxRelativeStd = 0.5;
+/// The one-sided 95 % quantile of the normal distribution.
+constexpr double kOneSided95 = 1.6448536269514722;
 /// A channel fitted below this percentage draws a warning, when its
 /// residuals are correlated (lag-1 at least kLowFitMinAutocorrelation):
 /// white residuals at a low fit % only say the channel hardly varies.
@@ -32,8 +36,14 @@ constexpr double kNearlyConstant = 0.05;
 /// Throws IdentificationError naming every free parameter with lower bound 0
 /// (per `nonnegative`) whose standard error exceeds `max_relative_std` of
 /// its magnitude. `context` is appended to the message (e.g. the warnings).
-void RequireDetermined(const FitResult& fit, const std::vector<std::string>& nonnegative, double max_relative_std,
-                       const std::vector<std::string>& context);
+/// A parameter at its bound 0 whose one-sided 95 % upper limit 1.645 std
+/// lies within `max_relative_std` of its start value (`start_values`, > 0:
+/// the data rule out the magnitude it started from) is determined there: it
+/// is reported at the bound with that limit as its interval, and a note
+/// says so (FitResult::notes); the fit stands.
+void RequireDetermined(FitResult& fit, const std::vector<std::string>& nonnegative, double max_relative_std,
+                       const std::vector<std::string>& context,
+                       const std::map<std::string, double>& start_values = {});
 
 /// RMSE, fit % = 100 (1 - |r| / |y - mean(y)|) (NaN for a channel that
 /// does not vary or varies by less than kNearlyConstant of its RMS) and the

@@ -27,68 +27,6 @@ const std::array<double JointParameters::*, 6> kMembers = {
 double Omega(double hz) { return 2.0 * M_PI * hz; }
 
 
-// Bins of `data` in the band (given, else from the first to the last bin
-// with coherence >= min_coherence) whose coherence is at least
-// kMinBinCoherence (a notch lowers it: it stays, weighted by its std) and
-// whose std is finite.
-constexpr double kMinBinCoherence = 0.2;
-std::vector<char> UsedBins(const ResponseData& data, const TwoMassFitOptions& options) {
-  double low = options.band_low, high = options.band_high;
-  if (!(high > 0.0)) {
-    low = high = 0.0;
-    for (std::size_t b = 0; b < data.frequency.size(); ++b) {
-      if (!data.coherence.empty() && data.coherence[b] < options.min_coherence) continue;
-      if (low == 0.0) low = data.frequency[b];
-      high = data.frequency[b];
-    }
-  }
-  std::vector<char> used(data.frequency.size(), 0);
-  for (std::size_t b = 0; b < used.size(); ++b) {
-    const double f = data.frequency[b];
-    const bool in_band = f > 0.0 && f >= low && f <= high;
-    const bool coherent = data.coherence.empty() || data.coherence[b] >= std::min(kMinBinCoherence, options.min_coherence);
-    const bool finite_std = (data.log_magnitude_std.empty() || (std::isfinite(data.log_magnitude_std[b]) &&
-                                                                data.log_magnitude_std[b] > 0.0)) &&
-                            (data.phase_std.empty() || (std::isfinite(data.phase_std[b]) && data.phase_std[b] > 0.0));
-    used[b] = in_band && coherent && finite_std && std::abs(data.response[b]) > 0.0 &&
-              std::isfinite(std::abs(data.response[b]));
-  }
-  return used;
-}
-
-void Band(const ResponseData& data, const std::vector<char>& used, double& low, double& high) {
-  low = high = 0.0;
-  for (std::size_t b = 0; b < used.size(); ++b) {
-    if (!used[b]) continue;
-    if (low == 0.0) low = data.frequency[b];
-    high = data.frequency[b];
-  }
-}
-
-// Frequency of a peak or notch from the bins around it: near an
-// anti-resonance |H_acc|^2 ~ c ((w^2 - w_a^2)^2 + beta w^2), near a resonance
-// 1 / |H_acc|^2 has that form, so a quadratic A x^2 + B x + C in x = w^2
-// fitted to it (least squares, up to five bins) gives w^4 = C / A whatever
-// the damping. Falls back to the bin's own frequency.
-double QuadraticRefinement(const std::vector<double>& hz, const std::vector<double>& value) {
-  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d right = Eigen::Vector3d::Zero();
-  const double scale = std::pow(Omega(hz[hz.size() / 2]), 2);
-  double top = 0.0;
-  for (double v : value) top = std::max(top, v);
-  for (std::size_t i = 0; i < hz.size(); ++i) {
-    const double x = std::pow(Omega(hz[i]), 2) / scale;
-    const Eigen::Vector3d row(x * x, x, 1.0);
-    normal += row * row.transpose();
-    right += row * (value[i] / top);
-  }
-  const Eigen::Vector3d c = normal.ldlt().solve(right);
-  const double ratio = c[2] / c[0];
-  if (!(c[0] > 0.0) || !(ratio > 0.0) || !std::isfinite(ratio)) return hz[hz.size() / 2];
-  const double refined = std::sqrt(std::sqrt(ratio) * scale) / (2.0 * M_PI);
-  return std::clamp(refined, hz.front(), hz.back());
-}
-
 class ResponseResiduals final : public ResidualModel {
  public:
   struct Row {
@@ -264,62 +202,6 @@ std::string TwoMassAdvice(const std::vector<std::string>& involved) {
   return fmt::format("{}", fmt::join(advice, "; "));
 }
 
-}  // namespace
-
-ResponseFeatures ReadResponseFeatures(const ResponseData& motor, ResponseQuantity quantity,
-                                      const TwoMassFitOptions& options) {
-  const std::vector<char> used = UsedBins(motor, options);
-  ResponseFeatures out;
-  Band(motor, used, out.band_low, out.band_high);
-  std::vector<std::size_t> bins;
-  for (std::size_t b = 0; b < used.size(); ++b) {
-    if (used[b]) bins.push_back(b);
-  }
-  if (bins.size() < 5) return out;
-  std::vector<double> level(bins.size());
-  for (std::size_t i = 0; i < bins.size(); ++i) {
-    const double w = Omega(motor.frequency[bins[i]]);
-    level[i] = std::log(std::abs(motor.response[bins[i]] * std::pow(Complex(0.0, w), 2 - static_cast<int>(quantity))));
-  }
-  // Refined from up to five neighbouring bins, each with the other
-  // feature's factor |w^2 - w_other^2|^2 divided out; std: within the bin,
-  // uniform.
-  const auto refine = [&](std::size_t i, bool notch, double other_hz) {
-    std::vector<double> hz, value;
-    for (std::size_t j = i >= 2 ? i - 2 : 0; j <= std::min(i + 2, bins.size() - 1); ++j) {
-      const double f = motor.frequency[bins[j]];
-      const double other = std::pow(Omega(f) * Omega(f) - Omega(other_hz) * Omega(other_hz), 2);
-      hz.push_back(f);
-      value.push_back(notch ? std::exp(2.0 * level[j]) * other : std::exp(-2.0 * level[j]) * other);
-    }
-    FrequencyEstimate e;
-    e.value = QuadraticRefinement(hz, value);
-    e.standard_error = 0.5 * (motor.frequency[bins[i + 1]] - motor.frequency[bins[i - 1]]) / std::sqrt(12.0);
-    return e;
-  };
-  std::size_t peak = 0;
-  for (std::size_t i = 1; i + 1 < bins.size(); ++i) {
-    if (level[i] > level[i - 1] && level[i] >= level[i + 1] && (peak == 0 || level[i] > level[peak])) peak = i;
-  }
-  if (peak == 0) return out;
-  std::size_t notch = 0;
-  for (std::size_t i = 1; i < peak; ++i) {
-    if (level[i] < level[i - 1] && level[i] <= level[i + 1] && (notch == 0 || level[i] < level[notch])) notch = i;
-  }
-  // A peak above the top end of the band is not inside it.
-  if (level[peak] <= level.back() && peak + 1 == bins.size()) return out;
-  if (notch == 0) {
-    out.resonance = refine(peak, false, 0.0);
-    return out;
-  }
-  out.antiresonance = refine(notch, true, motor.frequency[bins[peak]]);
-  out.resonance = refine(peak, false, out.antiresonance.value);
-  out.antiresonance = refine(notch, true, out.resonance.value);
-  return out;
-}
-
-namespace {
-
 // The free terms' indices into kTerms, refused by name when unknown or twice.
 std::vector<std::size_t> FreeTerms(const std::vector<std::string>& free) {
   std::vector<std::size_t> free_terms;
@@ -441,16 +323,16 @@ TwoMassFitOutput FitTwoMassResponse(const ResponseData& motor, const ResponseDat
   if (!(n > 0.0) || !std::isfinite(n)) throw InputError("joint.gear_ratio must be a positive number");
 
   TwoMassFitOutput out;
-  out.motor_used = UsedBins(motor, options);
-  out.link_used = link != nullptr ? UsedBins(*link, options) : std::vector<char>{};
-  Band(motor, out.motor_used, out.band_low, out.band_high);
+  out.motor_used = BandBins(motor, options.Band());
+  out.link_used = link != nullptr ? BandBins(*link, options.Band()) : std::vector<char>{};
+  UsedBand(motor, out.motor_used, out.band_low, out.band_high);
   const auto used_count = std::count(out.motor_used.begin(), out.motor_used.end(), 1);
   if (used_count < 3) {
     throw InputError(fmt::format("the motor response has {} bins with coherence >= {} in the band: nothing to fit "
                                  "(more excitation, longer logs, or ‹band›)",
                                  used_count, options.min_coherence));
   }
-  out.read = ReadResponseFeatures(motor, options.motor_output, options);
+  out.read = ReadResponseFeatures(motor, options.motor_output, options.Band());
 
   JointParameters fixed, initial;
   StartValues(motor, start, free_terms, n, options, out, fixed, initial);
@@ -484,7 +366,9 @@ TwoMassFitOutput FitTwoMassResponse(const ResponseData& motor, const ResponseDat
   for (std::size_t index : free_terms) {
     if (index != kDelay) nonnegative.emplace_back(kTerms[index]);
   }
-  RequireDetermined(out.fit, nonnegative, kMaxRelativeStd, out.fit.warnings);
+  std::map<std::string, double> start_values;
+  for (const auto& p : parameters) start_values[p.name] = p.initial;
+  RequireDetermined(out.fit, nonnegative, kMaxRelativeStd, out.fit.warnings, start_values);
 
   AddFeatures(free_terms, out);
   const auto model_at = [&](const ResponseData& data, bool is_link) {

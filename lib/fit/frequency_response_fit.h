@@ -13,18 +13,10 @@
 #include <vector>
 
 #include "fit/least_squares.h"
+#include "fit/response_features.h"
 #include "models/joint.h"
 
 namespace driveid {
-
-/// A measured response: bins with their std (signal/frequency_response.h).
-struct ResponseData {
-  std::vector<double> frequency;                ///< [Hz]
-  std::vector<std::complex<double>> response;
-  std::vector<double> coherence;                ///< empty: all taken as coherent
-  std::vector<double> log_magnitude_std;        ///< std of ln|H|; empty: 1 (unweighted)
-  std::vector<double> phase_std;                ///< [rad]; empty: 1
-};
 
 struct TwoMassFitOptions {
   /// Free: any of motor_inertia, link_inertia, stiffness, damping,
@@ -39,22 +31,8 @@ struct TwoMassFitOptions {
   /// (models/joint.h SampledJointResponse). 0: the continuous response.
   double hold_rate = 0.0;
   FitOptions fit;
+  ResponseBand Band() const { return {band_low, band_high, min_coherence}; }
 };
-
-/// A frequency with its std [Hz].
-struct FrequencyEstimate {
-  double value = 0.0, standard_error = 0.0;
-};
-
-/// Resonance and anti-resonance read from a motor-side response: the
-/// largest peak of |acceleration / torque| in the band, and the deepest
-/// notch below it (refined by a parabola through log |H| of three bins).
-struct ResponseFeatures {
-  FrequencyEstimate resonance, antiresonance;  ///< 0 when not found
-  double band_low = 0.0, band_high = 0.0;      ///< [Hz], coherent band used
-};
-ResponseFeatures ReadResponseFeatures(const ResponseData& motor, ResponseQuantity quantity,
-                                      const TwoMassFitOptions& options);
 
 struct TwoMassFitOutput {
   JointParameters params;

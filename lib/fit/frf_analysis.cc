@@ -25,18 +25,43 @@ std::vector<double> Resample(const std::vector<double>& time, const std::vector<
   return out;
 }
 
+// The mean rotation frequency [Hz] of the motor output (a rate or an angle,
+// taken as radians), 0 for an acceleration: its harmonics are disturbance
+// lines (unbalance, cogging, gear meshing), not modes.
+double MeanRotation(const std::vector<FrfSignals>& logs, ResponseQuantity quantity) {
+  double turns = 0.0, span = 0.0;
+  for (const auto& log : logs) {
+    const double duration = log.time.back() - log.time.front();
+    if (!(duration > 0.0)) continue;
+    if (quantity == ResponseQuantity::kPosition) {
+      turns += std::abs(log.output.back() - log.output.front()) / (2.0 * M_PI);
+    } else if (quantity == ResponseQuantity::kRate) {
+      double mean = 0.0;
+      for (double v : log.output) mean += v / static_cast<double>(log.output.size());
+      turns += std::abs(mean) * duration / (2.0 * M_PI);
+    }
+    span += duration;
+  }
+  return span > 0.0 ? turns / span : 0.0;
+}
+
 // Features read from out.motor and, if asked, the two-mass fit.
-void FitResponse(FrfResult& out, const JointSection& start, const FrfOptions& options, double hold_rate) {
+void FitResponse(FrfResult& out, const JointSection& start, const FrfOptions& options, double hold_rate,
+                 double rotation_hz) {
   const ResponseData motor_data{out.motor.frequency, out.motor.response, out.motor.coherence,
-                                out.motor.log_magnitude_std, out.motor.phase_std};
+                                out.motor.log_magnitude_std, out.motor.phase_std, out.motor.excitation,
+                                0.5 * out.rate, rotation_hz};
   TwoMassFitOptions fit_options = options.two_mass;
   fit_options.hold_rate = hold_rate;
-  out.read = ReadResponseFeatures(motor_data, fit_options.motor_output, fit_options);
+  out.read = ReadResponseFeatures(motor_data, fit_options.motor_output, fit_options.Band());
+  out.notes.insert(out.notes.end(), out.read.notes.begin(), out.read.notes.end());
+  if (!options.fit) out.warnings.insert(out.warnings.end(), out.read.warnings.begin(), out.read.warnings.end());
   if (options.fit) {
     std::optional<ResponseData> link_data;
     if (out.link) {
       link_data = ResponseData{out.link->frequency, out.link->response, out.link->coherence,
-                               out.link->log_magnitude_std, out.link->phase_std};
+                               out.link->log_magnitude_std, out.link->phase_std, out.link->excitation,
+                               0.5 * out.rate, rotation_hz};
     }
     out.fit = FitTwoMassResponse(motor_data, link_data ? &*link_data : nullptr, start, fit_options);
     // The fit core has added its low-fit warnings already; the response's own join them.
@@ -112,16 +137,22 @@ FrfResult AnalyseFrequencyResponse(const std::vector<FrfSignals>& logs, const Jo
   if (!out.motor.closed_loop) {
     // Open-loop H1 is biased by feedback: a log whose input follows its
     // output (a loop closed around it) draws a warning.
+    // Counted where the input is excited: elsewhere a low coherence says nothing about feedback.
     const auto& f = out.motor;
-    int low_coherence = 0;
-    for (double c : f.coherence) low_coherence += c < 0.5;
-    if (low_coherence > static_cast<int>(f.coherence.size() / 2)) {
-      out.warnings.push_back(fmt::format("coherence below 0.5 in {} of {} bins: in closed loop give the injected "
-                                         "excitation with ‹reference› (S_ry/S_ru is not biased by the feedback)",
-                                         low_coherence, f.coherence.size()));
+    const std::vector<char> excited_bins = ExcitedBins(f.excitation, f.coherence.size());
+    int low_coherence = 0, excited = 0;
+    for (std::size_t b = 0; b < f.coherence.size(); ++b) {
+      if (!excited_bins[b]) continue;
+      ++excited;
+      low_coherence += f.coherence[b] < 0.5;
+    }
+    if (low_coherence > excited / 2) {
+      out.warnings.push_back(fmt::format("coherence below 0.5 in {} of the {} excited bins: in closed loop give the "
+                                         "injected excitation with ‹reference› (S_ry/S_ru is not biased by the feedback)",
+                                         low_coherence, excited));
     }
   }
-  FitResponse(out, start, options, options.hold ? out.rate : 0.0);
+  FitResponse(out, start, options, options.hold ? out.rate : 0.0, MeanRotation(logs, options.two_mass.motor_output));
   return out;
 }
 
@@ -146,7 +177,7 @@ FrfResult AnalyseMeasuredResponse(const MeasuredResponse& measured, const JointS
   r.resolution = n > 1 ? (r.frequency.back() - r.frequency.front()) / static_cast<double>(n - 1) : 0.0;
   out.notes.push_back("no std with the measured response: every bin weighs the same and the fit estimates the residual "
                       "scale; the model is continuous (the measurement's sampling is unknown)");
-  FitResponse(out, start, options, 0.0);
+  FitResponse(out, start, options, 0.0, 0.0);
   return out;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 
 #include <fmt/format.h>
 
@@ -482,7 +483,9 @@ JointOeOutput FitJointOutputError(const std::vector<JointLog>& logs, const Joint
   for (const auto& row : JointParameterTable()) {
     if (row.in_model != nullptr && row.spec.lower_bound == 0.0) nonnegative.emplace_back(row.spec.key);
   }
-  RequireDetermined(out.fit, nonnegative, kMaxRelativeStd, out.fit.warnings);
+  std::map<std::string, double> start_values;
+  for (const auto& p : d.parameters) start_values[p.name] = p.initial;
+  RequireDetermined(out.fit, nonnegative, kMaxRelativeStd, out.fit.warnings, start_values);
   return out;
 }
 

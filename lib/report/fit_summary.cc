@@ -108,6 +108,7 @@ std::string FormatFitTable(const FitResult& fit, const FitProvenance& provenance
                      fit.iterations, fit.termination, provenance.model.empty() ? "-" : provenance.model);
   out += FormatPerLogTable(fit);
   if (!fit.validation.empty()) out += FormatValidationTable(fit.validation);
+  for (const auto& note : fit.notes) out += "note: " + note + "\n";
   if (!fit.warnings.empty()) {
     out += fmt::format("adequacy (docs/models.md#adequacy): {} warning{}\n", fit.warnings.size(),
                        fit.warnings.size() > 1 ? "s" : "");
@@ -248,6 +249,7 @@ Json FitJson(const FitResult& fit, const FitProvenance& provenance) {
   out["iterations"] = fit.iterations;
   out["converged"] = fit.converged;
   out["warnings"] = fit.warnings;
+  out["notes"] = fit.notes;
   if (!fit.validation.empty()) out["validation"] = ValidationJson(fit.validation);
   if (!fit.sensitivity.empty()) out["sensitivity"] = EstimateSetsJson(fit.sensitivity);
   if (!fit.per_log.empty()) {

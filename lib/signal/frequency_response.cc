@@ -107,6 +107,53 @@ void CheckRecords(const std::vector<FrequencyRecord>& records, bool& closed_loop
   }
 }
 
+// Sums over the Hann-windowed segments of n samples (50 % overlap) of the
+// auto and cross spectra; x is the input u (open loop) or the reference r.
+struct WelchSums {
+  std::vector<double> sxx, suu, syy;
+  std::vector<Complex> sxy, sxu;
+  int averages = 0;
+};
+WelchSums SumSegments(const std::vector<FrequencyRecord>& records, std::size_t n, bool closed_loop) {
+  std::vector<double> window(n);
+  for (std::size_t k = 0; k < n; ++k) window[k] = 0.5 - 0.5 * std::cos(2.0 * M_PI * static_cast<double>(k) / static_cast<double>(n));
+  const std::size_t bins = n / 2 + 1, step = n / 2;
+  WelchSums s{std::vector<double>(bins, 0.0), std::vector<double>(bins, 0.0), std::vector<double>(bins, 0.0),
+              std::vector<Complex>(bins, 0.0), std::vector<Complex>(bins, 0.0), 0};
+  Eigen::FFT<double> fft;
+  for (const auto& r : records) {
+    for (std::size_t begin = 0; begin + n <= r.input.size(); begin += step) {
+      ++s.averages;
+      const auto u = SegmentSpectrum(fft, r.input, begin, n, window, true);
+      const auto y = SegmentSpectrum(fft, r.output, begin, n, window, true);
+      const auto x = closed_loop ? SegmentSpectrum(fft, r.reference, begin, n, window, true) : u;
+      for (std::size_t b = 0; b < bins; ++b) {
+        s.sxx[b] += std::norm(x[b]);
+        s.suu[b] += std::norm(u[b]);
+        s.syy[b] += std::norm(y[b]);
+        s.sxy[b] += std::conj(x[b]) * y[b];
+        s.sxu[b] += std::conj(x[b]) * u[b];
+      }
+    }
+  }
+  return s;
+}
+
+// The highest excited bin (DC left out).
+std::size_t TopExcitedBin(const std::vector<double>& sxx) {
+  const std::vector<double> without_dc(sxx.begin() + 1, sxx.end());
+  const std::vector<char> excited = ExcitedBins(without_dc, without_dc.size());
+  std::size_t top = 0;
+  for (std::size_t b = 0; b < excited.size(); ++b) {
+    if (excited[b]) top = b + 1;
+  }
+  return top;
+}
+
+// The default resolution resolves the excited band in at least this many
+// bins (a sweep over a few Hz in a short log), down to kMinAverages averages.
+constexpr std::size_t kMinExcitedBins = 32;
+
 FrequencyResponse EstimateWelch(const std::vector<FrequencyRecord>& records, double rate, double resolution,
                                 bool closed_loop) {
   std::size_t shortest = records.front().input.size();
@@ -135,27 +182,28 @@ FrequencyResponse EstimateWelch(const std::vector<FrequencyRecord>& records, dou
                                   rate / static_cast<double>(n), averages, n, kMinAverages,
                                   rate * (kMinAverages + 1) / (2.0 * static_cast<double>(shortest))));
   }
-  std::vector<double> window(n);
-  for (std::size_t k = 0; k < n; ++k) window[k] = 0.5 - 0.5 * std::cos(2.0 * M_PI * static_cast<double>(k) / static_cast<double>(n));
-  const std::size_t bins = n / 2 + 1;
-  // Sums of auto and cross spectra: x is the input u (open loop) or the reference r.
-  std::vector<double> sxx(bins, 0.0), suu(bins, 0.0), syy(bins, 0.0);
-  std::vector<Complex> sxy(bins, 0.0), sxu(bins, 0.0);
-  Eigen::FFT<double> fft;
-  for (const auto& r : records) {
-    for (std::size_t begin = 0; begin + n <= r.input.size(); begin += step) {
-      const auto u = SegmentSpectrum(fft, r.input, begin, n, window, true);
-      const auto y = SegmentSpectrum(fft, r.output, begin, n, window, true);
-      const auto x = closed_loop ? SegmentSpectrum(fft, r.reference, begin, n, window, true) : u;
-      for (std::size_t b = 0; b < bins; ++b) {
-        sxx[b] += std::norm(x[b]);
-        suu[b] += std::norm(u[b]);
-        syy[b] += std::norm(y[b]);
-        sxy[b] += std::conj(x[b]) * y[b];
-        sxu[b] += std::conj(x[b]) * u[b];
+  WelchSums sums = SumSegments(records, n, closed_loop);
+  std::string finer;
+  if (resolution == 0.0) {
+    // A narrow excited band (a slow sweep) gets finer bins, down to the
+    // fewest averages the estimate takes.
+    const std::size_t top = TopExcitedBin(sums.sxx);
+    const auto longest_n = static_cast<std::size_t>(2.0 * static_cast<double>(shortest) / (kMinAverages + 1));
+    if (top > 0 && top < kMinExcitedBins && longest_n > n) {
+      const std::size_t wanted = std::min(longest_n, n * kMinExcitedBins / top);
+      if (wanted > n) {
+        finer = fmt::format("; segments lengthened from {} samples to resolve the excited band (up to {:.4g} Hz) in "
+                            "finer bins",
+                            n, static_cast<double>(top) * rate / static_cast<double>(n));
+        n = wanted;
+        sums = SumSegments(records, n, closed_loop);
       }
     }
   }
+  averages = sums.averages;
+  const std::size_t bins = n / 2 + 1;
+  const std::vector<double>&sxx = sums.sxx, &suu = sums.suu, &syy = sums.syy;
+  const std::vector<Complex>&sxy = sums.sxy, &sxu = sums.sxu;
   // Hann with 50 % overlap: averages are correlated by 0.167 (Welch 1967).
   const double effective = averages / (1.0 + 2.0 * 0.167 * 0.167);
   FrequencyResponse out;
@@ -163,8 +211,9 @@ FrequencyResponse EstimateWelch(const std::vector<FrequencyRecord>& records, dou
   out.resolution = rate / static_cast<double>(n);
   out.closed_loop = closed_loop;
   out.method = FrequencyMethod::kWelch;
-  out.description = fmt::format("Welch {}, Hann window, 50 % overlap, {} averages of {} samples",
-                                closed_loop ? "S_ry/S_ru (closed loop, reference)" : "H1 = S_uy/S_uu", averages, n);
+  out.description = fmt::format("Welch {}, Hann window, 50 % overlap, {} averages of {} samples{}",
+                                closed_loop ? "S_ry/S_ru (closed loop, reference)" : "H1 = S_uy/S_uu", averages, n,
+                                finer);
   const auto relative_error2 = [&](double coherence) {
     return coherence > 0.0 ? (1.0 - coherence) / (2.0 * effective * coherence) : INFINITY;
   };
@@ -183,6 +232,7 @@ FrequencyResponse EstimateWelch(const std::vector<FrequencyRecord>& records, dou
     out.coherence.push_back(std::clamp(coherence, 0.0, 1.0));
     out.log_magnitude_std.push_back(std::sqrt(eps2));
     out.phase_std.push_back(std::sqrt(eps2));
+    out.excitation.push_back(sxx[b] / averages);
   }
   return out;
 }
@@ -261,12 +311,33 @@ FrequencyResponse EstimatePeriodic(const std::vector<FrequencyRecord>& records, 
     out.coherence.push_back(syy > 0.0 ? std::clamp(std::norm(suy) / (suu * syy), 0.0, 1.0) : 0.0);
     out.log_magnitude_std.push_back(eps);
     out.phase_std.push_back(eps);
+    out.excitation.push_back(std::pow(excitation[b] / md, 2));
   }
   if (out.frequency.empty()) throw InputError("the periodic excitation excites no frequency line");
   return out;
 }
 
 }  // namespace
+
+std::vector<char> ExcitedBins(const std::vector<double>& excitation, std::size_t bins) {
+  if (excitation.empty()) return std::vector<char>(bins, 1);
+  constexpr std::size_t kHalf = 6;
+  double level = 0.0;
+  std::vector<double> window, median(excitation.size());
+  for (std::size_t b = 0; b < excitation.size(); ++b) {
+    window.assign(excitation.begin() + static_cast<std::ptrdiff_t>(b >= kHalf ? b - kHalf : 0),
+                  excitation.begin() + static_cast<std::ptrdiff_t>(std::min(b + kHalf + 1, excitation.size())));
+    std::nth_element(window.begin(), window.begin() + static_cast<std::ptrdiff_t>(window.size() / 2), window.end());
+    median[b] = window[window.size() / 2];
+    level = std::max(level, median[b]);
+  }
+  // A bin is excited with its neighbourhood: an isolated line is not a band.
+  std::vector<char> excited(excitation.size());
+  for (std::size_t b = 0; b < excitation.size(); ++b) {
+    excited[b] = excitation[b] >= kExcitedPowerRatio * level && median[b] >= kExcitedPowerRatio * level;
+  }
+  return excited;
+}
 
 std::size_t DetectPeriod(const std::vector<double>& signal) {
   const std::size_t n = signal.size();

@@ -30,7 +30,8 @@ struct FrequencyRecord {
 enum class FrequencyMethod { kAuto, kWelch, kPeriodic };
 
 struct FrequencyResponseOptions {
-  double resolution = 0.0;  ///< Welch bin width [Hz]; 0: about 8 averages over the shortest record
+  double resolution = 0.0;  ///< Welch bin width [Hz]; 0: about 8 averages over the shortest record, finer
+                            ///< (down to 4 averages) to resolve a narrow excited band in 32 bins
   FrequencyMethod method = FrequencyMethod::kAuto;  ///< auto: periodic when the excitation repeats
   double period = 0.0;      ///< [s] periodic method; 0: detected from the excitation
 };
@@ -41,6 +42,9 @@ struct FrequencyResponse {
   std::vector<double> coherence;                 ///< gamma^2 in [0, 1]
   std::vector<double> log_magnitude_std;         ///< std of ln |H| (relative std of |H|); empty: unknown
   std::vector<double> phase_std;                 ///< [rad]; empty: unknown
+  /// Power of the excitation (the reference closed loop, else the input)
+  /// per bin, in its units squared; where it is excited.
+  std::vector<double> excitation;
   int averages = 0;     ///< segments (Welch) or periods (periodic), over all records
   double resolution = 0.0;  ///< [Hz]
   bool closed_loop = false;  ///< ratio of cross spectra with the reference
@@ -54,6 +58,16 @@ struct FrequencyResponse {
 /// without excitation.
 FrequencyResponse EstimateFrequencyResponse(const std::vector<FrequencyRecord>& records, double rate,
                                             const FrequencyResponseOptions& options);
+
+/// Excitation within this ratio of its broadband level counts as excited (30 dB).
+constexpr double kExcitedPowerRatio = 1e-3;
+
+/// Per bin, whether the excitation's power is within kExcitedPowerRatio of
+/// its broadband level: the largest running median over 13 bins, so that a
+/// single line (a disturbance in the input) does not set it; an isolated
+/// line (its running median below that) is not excited either. Empty in, all
+/// excited out (of `bins` bins).
+std::vector<char> ExcitedBins(const std::vector<double>& excitation, std::size_t bins);
 
 /// The period [samples] with which `signal` repeats (rms difference of the
 /// shifted signal below 1e-3 of its rms, at least two whole periods), or 0.

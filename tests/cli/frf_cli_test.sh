@@ -94,6 +94,12 @@ EXPECT_OUTPUT=-o expect 3 "no 'joint' section" -- simulate joint --params "$src/
 # quantity is unknown (exit 2), an unknown free name (exit 2), a missing column (exit 3).
 expect 4 "resonance" -- frf twomass.csv --params gear.yaml --fit two-mass --band 1,8
 expect 2 "--output-is" -- frf twomass.csv --output tau
+# No resonance inside the excited band (a band below it): a warning, exit 4
+# under --strict with nothing written; exit 0 without it.
+"$bin" frf twomass.csv --band 1,8 -q -o band.yaml 2> band.txt && grep -q "no resonance peak inside" band.txt && ok \
+  || fail "no resonance in the band: $(cat band.txt)"
+EXPECT_OUTPUT=-o expect 4 "--strict: 1 adequacy warning; nothing written: no resonance peak inside" -- frf twomass.csv \
+  --band 1,8 --strict
 expect 2 "'bogus' cannot be estimated" -- frf twomass.csv --fit two-mass --free bogus,stiffness
 expect 3 "missing column" -- frf twomass.csv --reference r
 expect 2 "averages" -- frf twomass.csv --method welch --resolution 0.05
