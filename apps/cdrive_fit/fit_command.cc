@@ -65,7 +65,7 @@ void RunCDriveFitCommand(const CDriveFitCommandOptions& options, const std::stri
   fit_options.min_rate = options.min_rate;
   fit_options.settle = options.settle;  // < 0: the fit's default
   fit_options.traces = !options.output.trace.empty() || !options.output.plot.empty();
-  SetProgress(fit_options.fit, options.output.verbose);
+  SetProgress(fit_options.fit, options.output.verbose, options.output.max_seconds);
   const CDriveFitOutput result = friction ? FitCDriveFriction(logs, *start.Find<CDriveSection>(), fit_options)
                                           : FitCDriveInertia(logs, *start.Find<CDriveSection>(), fit_options);
 

@@ -1,8 +1,12 @@
 #include "common/cli_support.h"
 
+#include <chrono>
+#include <memory>
+
 #include <algorithm>
 
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -315,6 +319,11 @@ void AddFitOutputOptions(CLI::App& command, FitOutputOptions& options) {
                   "largest log to read [GiB]; a fit holds about 3 times its logs' size in memory")
       ->capture_default_str()
       ->check(FiniteWithin(1e-6, 1024.0));
+  command.add_option("--max-seconds", options.max_seconds,
+                     "wall-clock limit of one solver run [s]: reached, the fit ends at its best point with a warning "
+                     "(0: none)")
+      ->capture_default_str()
+      ->check(FiniteWithin(0.0, 1e6));
   command.add_flag("--strict", options.strict,
                    "adequacy warnings (docs/models.md#adequacy) fail the run: exit 4, nothing written");
 }
@@ -347,11 +356,23 @@ void EmitFitOutputs(const FitOutputOptions& options, const FitOutputs& outputs) 
   });
 }
 
-void SetProgress(FitOptions& fit, bool verbose) {
-  if (!verbose) return;
-  fit.progress = [](const FitIteration& it) {
-    std::fprintf(stderr, "iteration %3d  cost %.9e  |gradient| %.3e  |step| %.3e\n", it.iteration, it.cost,
-                 it.gradient_norm, it.step_norm);
+void SetProgress(FitOptions& fit, bool verbose, double max_seconds) {
+  fit.max_seconds = max_seconds;
+  if (verbose) {
+    fit.progress = [](const FitIteration& it) {
+      std::fprintf(stderr, "iteration %3d  cost %.9e  |gradient| %.3e  |step| %.3e\n", it.iteration, it.cost,
+                   it.gradient_norm, it.step_norm);
+    };
+    return;
+  }
+  // A long fit says it is alive: a line every 2 s after the first 2 s.
+  const auto start = std::chrono::steady_clock::now();
+  auto next = std::make_shared<double>(2.0);
+  fit.progress = [start, next](const FitIteration& it) {
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (elapsed < *next) return;
+    *next = elapsed + 2.0;
+    std::fprintf(stderr, "fitting: %.0f s, iteration %d, cost %.6e\n", elapsed, it.iteration, it.cost);
   };
 }
 

@@ -68,6 +68,7 @@ struct FitOutputOptions {
   bool verbose = false;
   double max_log_gib = 4.0;  ///< --max-log-size: largest log read [GiB]
   bool strict = false;       ///< --strict: adequacy warnings exit 4, nothing written
+  double max_seconds = 0.0;  ///< --max-seconds: wall-clock limit of one solver run (0: none)
 };
 /// Adds -o, --trace, --plot, --json, -q, -v, --max-log-size and --strict.
 void AddFitOutputOptions(CLI::App& command, FitOutputOptions& options);
@@ -110,6 +111,8 @@ std::string FreeOptionHelp(const ParameterTable<Section, Model>& table, const st
 void AddFreeOption(CLI::App& command, std::vector<std::string>& free, const std::string& help);
 
 /// With -v, logs every solver iteration of the fit to stderr.
-void SetProgress(FitOptions& fit, bool verbose);
+/// -v: every solver iteration on stderr; otherwise a line of progress every
+/// 2 s once a fit has run for 2 s. Sets the solver's time limit.
+void SetProgress(FitOptions& fit, bool verbose, double max_seconds = 0.0);
 
 }  // namespace driveid::cli

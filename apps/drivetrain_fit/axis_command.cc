@@ -84,7 +84,7 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
   fit_options.cutoff = options.cutoff;
   fit_options.decimation = options.decimation;
   fit_options.trace = !options.output.trace.empty();
-  SetProgress(fit_options.fit, options.output.verbose);
+  SetProgress(fit_options.fit, options.output.verbose, options.output.max_seconds);
   std::vector<AxisLog> validation;
   if (!options.validate.empty()) {
     FitProvenance held_out;

@@ -37,6 +37,7 @@ CLI::App* SetupJointCommand(CLI::App& app, JointOptions& options) {
       ->check(CLI::IsMember({"auto", "id", "oe"}));
   command->add_option("--cutoff", options.cutoff, "angle low-pass cutoff [Hz] of --method id (default: rate / 40)")
       ->check(FiniteAbove(0.0));
+  options.output.max_seconds = 30.0;  // a joint output error on a long real log ends, at its best point
   AddFitOutputOptions(*command, options.output);
   command->footer("Example:\n  drivetrain-fit joint data/joint_example.csv --params data/joint_start.yaml -o joint_fit.yaml "
                   "--plot joint_fit.png");
@@ -64,7 +65,7 @@ void RunJointCommand(const JointOptions& options, const std::string& command_lin
   run_options.cutoff = options.cutoff;
   run_options.trace = !options.output.trace.empty();
   run_options.plot = !options.output.plot.empty();
-  SetProgress(run_options.fit, options.output.verbose);
+  SetProgress(run_options.fit, options.output.verbose, options.output.max_seconds);
   JointIdentification run = IdentifyJoint(logs, section, run_options);
 
   ParameterFile fitted = start;

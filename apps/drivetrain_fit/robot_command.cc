@@ -41,7 +41,7 @@ void RunRobotCommand(const RobotOptions& options, const std::string& command_lin
   RobotFitOptions fit_options;
   fit_options.free = options.free;
   fit_options.half_window = options.window;
-  SetProgress(fit_options.fit, options.output.verbose);
+  SetProgress(fit_options.fit, options.output.verbose, options.output.max_seconds);
   const RobotFitOutput result = FitRobot(logs, MakePlanarRobotParameters(*start.Find<PlanarRobotSection>()), fit_options);
   ParameterFile fitted = start;
   StoreModelParameters(PlanarRobotParameterTable(), result.params, *fitted.Find<PlanarRobotSection>());

@@ -69,7 +69,7 @@ void RunStepCommand(const StepOptions& options, const std::string& command_line)
                                                   : StepStarts::kStaged;
   fit_options.integration =
       options.integrator == "cvodes" ? DriveTrainIntegration::kCvodes : DriveTrainIntegration::kExact;
-  SetProgress(fit_options.fit, options.output.verbose);
+  SetProgress(fit_options.fit, options.output.verbose, options.output.max_seconds);
   run_options.trace = !options.output.trace.empty();
   run_options.plot = !options.output.plot.empty();
   const StepIdentification run =

@@ -7,23 +7,10 @@
 
 #include "core/errors.h"
 #include "signal/butterworth.h"
+#include "signal/resample.h"
 
 namespace driveid {
 namespace {
-
-// Linear interpolation of `values` at `rate` from the first time stamp.
-std::vector<double> Resample(const std::vector<double>& time, const std::vector<double>& values, double rate,
-                             std::size_t count) {
-  std::vector<double> out(count);
-  std::size_t j = 0;
-  for (std::size_t i = 0; i < count; ++i) {
-    const double t = time.front() + static_cast<double>(i) / rate;
-    while (j + 2 < time.size() && time[j + 1] < t) ++j;
-    const double w = (t - time[j]) / (time[j + 1] - time[j]);
-    out[i] = values[j] + std::clamp(w, 0.0, 1.0) * (values[j + 1] - values[j]);
-  }
-  return out;
-}
 
 // The mean rotation frequency [Hz] of the motor output (a rate or an angle,
 // taken as radians), 0 for an acceleration: its harmonics are disturbance
@@ -110,7 +97,7 @@ FrfResult AnalyseFrequencyResponse(const std::vector<FrfSignals>& logs, const Jo
       double jitter = 0.0;
       for (std::size_t i = 1; i < log.time.size(); ++i) jitter = std::max(jitter, std::abs((log.time[i] - log.time[i - 1]) * rate - 1.0));
       for (auto* v : {&signals.input, &signals.output, &signals.reference, &signals.link}) {
-        if (!v->empty()) *v = Resample(log.time, *v, rate, count);
+        if (!v->empty()) *v = ResampleLinear(log.time, *v, rate, count);
       }
       out.notes.push_back(fmt::format("{}: time steps vary by up to {:.3g} % of the mean: resampled at {:.6g} Hz by "
                                       "linear interpolation",

@@ -12,6 +12,7 @@
 #include "fit/linear_regression.h"
 #include "models/missing_values.h"
 #include "signal/butterworth.h"
+#include "signal/resample.h"
 
 namespace driveid {
 namespace {
@@ -32,6 +33,10 @@ std::string JointAdvice(const std::vector<std::string>& involved) {
                      "its resonance, or log a link angle that resolves the deflection");
   }
   if (has("offset")) advice.push_back("the offset and Coulomb friction separate only with motion in both directions");
+  if (has("motor_inertia") && has("link_inertia")) {
+    advice.push_back("only the total J_m + J_l is determined: fix one of them in ‹params› (a motor's data-sheet "
+                     "inertia for motor_inertia) and leave it out of ‹free›");
+  }
   return fmt::format("{}", fmt::join(advice, "; "));
 }
 
@@ -237,8 +242,40 @@ void CheckJointAdequacy(const std::vector<JointLog>& logs, const JointSection& s
 
 }  // namespace
 
-JointFitOutput FitJoint(const std::vector<JointLog>& logs, const JointSection& start, const JointFitOptions& given) {
-  if (logs.empty()) throw OptionError("no logs given");
+namespace {
+
+// Logs whose stamps are regular but for isolated glitches, resampled onto
+// their median step (the zero-phase filter needs a constant rate), each
+// with a note.
+std::vector<JointLog> RegularLogs(const std::vector<JointLog>& given, std::vector<std::string>& notes) {
+  std::vector<JointLog> logs = given;
+  for (auto& log : logs) {
+    if (ConstantRate(log.time) > 0.0) continue;
+    const double step = GlitchedStep(log.time);
+    if (!(step > 0.0)) continue;
+    const double rate = 1.0 / step;
+    const auto count = static_cast<std::size_t>(std::floor((log.time.back() - log.time.front()) * rate)) + 1;
+    for (auto* v : {&log.motor_position, &log.link_position, &log.torque, &log.link_torque, &log.motor_rate,
+                    &log.link_rate}) {
+      if (!v->empty()) *v = ResampleLinear(log.time, *v, rate, count);
+    }
+    std::vector<double> time(count);
+    for (std::size_t k = 0; k < count; ++k) time[k] = log.time.front() + static_cast<double>(k) * step;
+    log.time = std::move(time);
+    notes.push_back(fmt::format("{}: isolated time-stamp glitches (intervals within {:.0f} % of the median step "
+                                "{:.6g} s): resampled onto that step by linear interpolation",
+                                log.path, 100.0 * kMaxGlitch, step));
+  }
+  return logs;
+}
+
+}  // namespace
+
+JointFitOutput FitJoint(const std::vector<JointLog>& given_logs, const JointSection& start,
+                        const JointFitOptions& given) {
+  if (given_logs.empty()) throw OptionError("no logs given");
+  std::vector<std::string> notes;
+  const std::vector<JointLog> logs = RegularLogs(given_logs, notes);
   JointFitOptions options = given;
   if (options.free.empty()) options.free = JointDefaultFree(logs);
   CheckFreeNames(JointParameterTable(), "joint", options.free);
@@ -253,6 +290,7 @@ JointFitOutput FitJoint(const std::vector<JointLog>& logs, const JointSection& s
   FitOptions fit_options = options.fit;
   if (!fit_options.advice) fit_options.advice = JointAdvice;
   out.fit = regression.Fit(d.parameters, d.fixed, fit_options);
+  out.fit.notes.insert(out.fit.notes.end(), notes.begin(), notes.end());
   std::map<std::string, double> values = d.fixed;
   for (const auto& e : out.fit.estimates) values[e.name] = e.value;
   if (d.per_log_offset) values[d.offset_key] = values[d.offset_key + "_1"];

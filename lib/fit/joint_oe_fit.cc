@@ -220,6 +220,19 @@ std::string OeAdvice(const std::vector<std::string>& involved) {
     advice.push_back("the offset and Coulomb friction separate only with motion in both directions");
   }
   if (has("gravity_cos") || has("gravity_sin")) advice.push_back("gravity terms need the link to move through angles");
+  if (has("motor_inertia") && has("link_inertia")) {
+    advice.push_back("only the total J_m + J_l is determined: fix one of them in ‹params› (a motor's data-sheet "
+                     "inertia for motor_inertia) and leave it out of ‹free›");
+  }
+  // The initial states are internal: what the user can change is where the log starts.
+  const bool start_state = std::any_of(involved.begin(), involved.end(), [](const std::string& name) {
+    return name.find("(t0)") != std::string::npos;
+  });
+  if (start_state) {
+    advice.push_back("the log's start does not determine the joint's initial state (the simulation starts from it): "
+                     "crop the log with ‹from› to begin where the joint moves in both angles, or log qd_motor and "
+                     "qd_link");
+  }
   return fmt::format("{}", fmt::join(advice, "; "));
 }
 

@@ -58,6 +58,7 @@ ceres::Solver::Options SolverOptions(const FitOptions& options, ProgressCallback
   solver_options.parameter_tolerance = 1e-7;
   solver_options.logging_type = ceres::SILENT;
   solver_options.num_threads = 1;  // deterministic
+  if (options.max_seconds > 0.0) solver_options.max_solver_time_in_seconds = options.max_seconds;
   if (options.progress) {
     solver_options.callbacks.push_back(&callback);
     solver_options.update_state_every_iteration = false;
@@ -81,13 +82,21 @@ void RequireEnoughSamples(int n, int p) {
   if (n <= p) throw IdentificationError(fmt::format("{} samples cannot determine {} parameters", n, p));
 }
 
-// The solver's outcome into `result`; throws when it failed or stopped early.
-void TakeSummary(const ceres::Solver::Summary& summary, FitResult& result) {
+// The solver's outcome into `result`; throws when it failed or stopped early
+// (but at the time limit: the best point so far, with a warning).
+void TakeSummary(const ceres::Solver::Summary& summary, const FitOptions& options, FitResult& result) {
   result.iterations = static_cast<int>(summary.iterations.size()) - 1;
   result.termination = summary.message;
   result.converged = summary.termination_type == ceres::CONVERGENCE;
   if (summary.termination_type == ceres::FAILURE || summary.termination_type == ceres::USER_FAILURE) {
     throw IdentificationError("solver failed: " + summary.message);
+  }
+  if (!result.converged && options.max_seconds > 0.0 && summary.total_time_in_seconds >= options.max_seconds) {
+    result.warnings.push_back(fmt::format("the solver stopped at the time limit of {:.3g} s (‹max_seconds›) after {} "
+                                          "iterations, not converged: the estimates are its best point so far (crop the "
+                                          "log with ‹from›/‹to›, or allow more time)",
+                                          options.max_seconds, result.iterations));
+    return;
   }
   if (!result.converged) {
     throw IdentificationError(fmt::format("solver did not converge in {} iterations: {}", result.iterations,
@@ -327,7 +336,7 @@ FitResult SolveBlocks(BlockResidualModel& model, ResidualModel* whole, const std
     }
     ceres::Solver::Summary summary;
     ceres::Solve(solver_options, &problem, &summary);
-    TakeSummary(summary, result);
+    TakeSummary(summary, options, result);
   }
   for (int b = 0; b < block_count; ++b) {
     JacobianBlock& block = blocks[static_cast<std::size_t>(b)];

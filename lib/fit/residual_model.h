@@ -106,6 +106,9 @@ struct FitOptions {
   /// Optional advice for a non-identifiable set, given the parameters involved.
   std::function<std::string(const std::vector<std::string>&)> advice;
   std::function<void(const FitIteration&)> progress;
+  /// Wall-clock limit of one solver run [s] (0: none). Reached, the run ends
+  /// at its best point so far with a warning instead of a refusal.
+  double max_seconds = 0.0;
   LargeProblemPolicy large;
 };
 

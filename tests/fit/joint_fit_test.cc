@@ -137,3 +137,18 @@ TEST_CASE("joint: a link that never moves leaves the link terms undetermined; re
   bad.free = {"stiffness", "mass"};
   CHECK_THROWS_AS(FitJoint({MakeLog(truth, 3, 0.0, 0.0005)}, Start(), bad), OptionError);
 }
+
+TEST_CASE("joint: isolated time-stamp glitches are resampled with a note; larger ones are refused") {
+  const Truth truth;
+  JointLog log = MakeLog(truth, 1, 0.0, 0.0005);
+  // Five stamps 2.3 % of a step early (as a logger's clock glitch writes them).
+  for (std::size_t k : {3000u, 7000u, 11000u, 15000u, 18000u}) log.time[k] -= 0.023e-3;
+  const JointFitOutput out = FitJoint({log}, Start(), {});
+  REQUIRE(!out.fit.notes.empty());
+  CHECK(out.fit.notes.front().find("isolated time-stamp glitches") != std::string::npos);
+  CHECK(Estimate(out.fit, "stiffness") == Approx(truth.k).epsilon(0.02));
+  CHECK(Estimate(out.fit, "motor_inertia") == Approx(truth.jm).epsilon(0.03));
+  // One interval 10 % off is no glitch: the refusal names the log.
+  log.time[3000] -= 0.1e-3;
+  CHECK_THROWS_WITH(FitJoint({log}, Start(), {}), Catch::Contains("joint.csv: time steps"));
+}

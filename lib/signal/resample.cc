@@ -1,0 +1,39 @@
+#include "signal/resample.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace driveid {
+
+double GlitchedStep(const std::vector<double>& time) {
+  if (time.size() < 3) return 0.0;
+  std::vector<double> steps(time.size() - 1);
+  for (std::size_t k = 1; k < time.size(); ++k) steps[k - 1] = time[k] - time[k - 1];
+  std::vector<double> sorted = steps;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+  const double median = sorted[sorted.size() / 2];
+  if (!(median > 0.0)) return 0.0;
+  std::size_t off = 0;
+  for (double s : steps) {
+    const double deviation = std::abs(s / median - 1.0);
+    if (deviation > kMaxGlitch) return 0.0;
+    off += deviation > 0.01;
+  }
+  const auto allowed = std::max<std::size_t>(3, static_cast<std::size_t>(kMaxGlitchShare * static_cast<double>(steps.size())));
+  return off <= allowed ? median : 0.0;
+}
+
+std::vector<double> ResampleLinear(const std::vector<double>& time, const std::vector<double>& values, double rate,
+                                   std::size_t count) {
+  std::vector<double> out(count);
+  std::size_t j = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double t = time.front() + static_cast<double>(i) / rate;
+    while (j + 2 < time.size() && time[j + 1] < t) ++j;
+    const double w = (t - time[j]) / (time[j + 1] - time[j]);
+    out[i] = values[j] + std::clamp(w, 0.0, 1.0) * (values[j + 1] - values[j]);
+  }
+  return out;
+}
+
+}  // namespace driveid
