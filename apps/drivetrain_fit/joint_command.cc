@@ -1,6 +1,8 @@
 #include "drivetrain_fit/joint_command.h"
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <utility>
 
 #include <fmt/format.h>
@@ -31,12 +33,28 @@ CLI::App* SetupJointCommand(CLI::App& app, JointOptions& options) {
                       "id: inverse dynamics (torques from the filtered, differentiated angles); oe: output error "
                       "(simulate from the logged motor torque with sticking motor Coulomb friction, fit q_motor, q_link, "
                       "rates and tau_link where logged; docs/models.md#joint-output-error); auto: oe when the logs "
-                      "have the motor torque and the inverse-dynamics filter reaches the resonance (cutoff < 2 x "
-                      "resonance) or leaves the stiffness undetermined")
+                      "have the motor torque and the inverse-dynamics filter nears the resonance (cutoff < 4 x "
+                      "resonance) or leaves a term undetermined (relative std above 50 %)")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "id", "oe"}));
   command->add_option("--cutoff", options.cutoff, "angle low-pass cutoff [Hz] of --method id (default: rate / 40)")
       ->check(FiniteAbove(0.0));
+  command->add_option("--segment", options.segment,
+                      "output error by multiple shooting: segment length [s], each segment simulated from its own "
+                      "fitted initial state so that a measured torque's noise drifts over one segment only; auto: "
+                      "4 periods of the start values' resonance, at most 24 segments a log, doubled while the fit is "
+                      "refused; none: each log simulated whole "
+                      "(docs/models.md#joint-output-error)")
+      ->capture_default_str()
+      ->check(CLI::Validator(
+          [](const std::string& value) -> std::string {
+            if (value == "auto" || value == "none") return "";
+            char* end = nullptr;
+            const double seconds = std::strtod(value.c_str(), &end);
+            if (end != value.c_str() && *end == '\0' && std::isfinite(seconds) && seconds > 0.0) return "";
+            return "expected auto, none or a number of seconds > 0, got '" + value + "'";
+          },
+          "auto|none|SECONDS", "segment"));
   options.output.max_seconds = 30.0;  // a joint output error on a long real log ends, at its best point
   AddFitOutputOptions(*command, options.output);
   command->footer("Example:\n  drivetrain-fit joint data/joint_example.csv --params data/joint_start.yaml -o joint_fit.yaml "
@@ -63,6 +81,9 @@ void RunJointCommand(const JointOptions& options, const std::string& command_lin
                                                 : JointMethod::kAuto;
   run_options.free = options.free;
   run_options.cutoff = options.cutoff;
+  run_options.segment_seconds = options.segment == "auto"   ? 0.0
+                                : options.segment == "none" ? HUGE_VAL
+                                                            : std::strtod(options.segment.c_str(), nullptr);
   run_options.trace = !options.output.trace.empty();
   run_options.plot = !options.output.plot.empty();
   SetProgress(run_options.fit, options.output.verbose, options.output.max_seconds);

@@ -19,6 +19,7 @@ struct JointOptions {
   LogInputCli input;
   double cutoff = 0.0;
   std::string method = "auto";  ///< auto, id, oe
+  std::string segment = "auto";  ///< output error: auto, none or seconds
   FitOutputOptions output;
 };
 

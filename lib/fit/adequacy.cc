@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "fit/fit_statistics.h"
 
 namespace driveid {
 
@@ -17,15 +18,24 @@ void RequireDetermined(FitResult& fit, const std::vector<std::string>& nonnegati
     if (std::find(nonnegative.begin(), nonnegative.end(), e.name) == nonnegative.end()) continue;
     if (e.standard_error <= max_relative_std * std::abs(e.value)) continue;
     const auto start = start_values.find(e.name);
-    if (e.value == 0.0 && start != start_values.end() && start->second > 0.0 &&
-        kOneSided95 * e.standard_error <= max_relative_std * start->second) {
-      // At its bound: the data push it below 0, and how far above 0 it may be is known.
+    // At its bound: the data push it below 0, and how far above 0 it may be
+    // is known. Reported so when that limit rules out the start value, or
+    // when the start value itself is 0 (the user expects none: the limit
+    // says how much there may be).
+    const bool bounded = e.value == 0.0 && start != start_values.end() &&
+                         (start->second == 0.0 ||
+                          (start->second > 0.0 && kOneSided95 * e.standard_error <= max_relative_std * start->second));
+    if (bounded && std::isfinite(e.standard_error)) {
       e.ci95_low = 0.0;
       e.ci95_high = kOneSided95 * e.standard_error;
-      fit.notes.push_back(fmt::format("{} sits at its bound 0 (the data push it below, and rule out its start value "
-                                      "{:.3g}): reported as 0 with the one-sided 95 % upper limit {:.3g} (1.645 std) "
-                                      "as its interval",
-                                      e.name, start->second, e.ci95_high));
+      fit.notes.push_back(
+          start->second > 0.0
+              ? fmt::format("{} sits at its bound 0 (the data push it below, and rule out its start value {:.3g}): "
+                            "reported as 0 with the one-sided 95 % upper limit {:.3g} (1.645 std) as its interval",
+                            e.name, start->second, e.ci95_high)
+              : fmt::format("{} sits at its bound 0 (the data push it below; its start value is 0): reported as 0 with "
+                            "the one-sided 95 % upper limit {:.3g} (1.645 std) as its interval",
+                            e.name, e.ci95_high));
       continue;
     }
     undetermined.push_back(e.value != 0.0 ? fmt::format("{} = {:.4g} +- {:.2g} (relative std {:.0f} %)", e.name,
@@ -147,7 +157,52 @@ void AddPerLogFits(FitResult& fit, const std::vector<std::string>& labels,
     fit.per_log.push_back(std::move(estimates));
   }
   fit.heterogeneity = TestHeterogeneity(fit.per_log);
+  WidenForDisagreement(fit);
   for (auto& w : HeterogeneityWarnings(fit.heterogeneity)) fit.warnings.push_back(std::move(w));
+}
+
+void WidenForDisagreement(FitResult& fit) {
+  const std::size_t p = fit.estimates.size();
+  for (const auto& t : fit.heterogeneity) {
+    if (!(t.p_value < kWidenBelowP)) continue;
+    std::vector<double> values, variances;
+    for (const auto& log : fit.per_log) {
+      for (const auto& e : log.estimates) {
+        if (e.name == t.parameter && e.standard_error > 0.0 && std::isfinite(e.standard_error)) {
+          values.push_back(e.value);
+          variances.push_back(e.standard_error * e.standard_error);
+        }
+      }
+    }
+    double s1 = 0.0, s2 = 0.0;
+    for (double v : variances) {
+      s1 += 1.0 / v;
+      s2 += 1.0 / (v * v);
+    }
+    const double tau2 = std::max(0.0, (t.q - t.dof) / (s1 - s2 / s1));
+    double w = 0.0;
+    for (double v : variances) w += 1.0 / (v + tau2);
+    const double spread_std = 1.0 / std::sqrt(w);
+    for (std::size_t j = 0; j < p; ++j) {
+      ParameterEstimate& e = fit.estimates[j];
+      if (e.name != t.parameter || !(spread_std > e.standard_error)) continue;
+      const double factor = spread_std / e.standard_error;
+      const double quantile = StudentT975(std::max(1, t.dof));
+      e.standard_error = spread_std;
+      e.ci95_low = e.value - quantile * spread_std;
+      e.ci95_high = e.value + quantile * spread_std;
+      if (fit.covariance.size() == p * p) {
+        for (std::size_t k = 0; k < p; ++k) {
+          fit.covariance[j * p + k] *= factor;
+          fit.covariance[k * p + j] *= factor;
+        }
+      }
+      fit.notes.push_back(fmt::format(
+          "{}: the logs disagree (between-log p = {:.2g}): its std is widened {:.3g}x to the spread between the logs "
+          "(random effects, tau = {:.3g}) and its interval uses t with {} dof (docs/models.md#adequacy)",
+          e.name, t.p_value, factor, std::sqrt(tau2), t.dof));
+    }
+  }
 }
 
 std::vector<std::string> HeterogeneityWarnings(const std::vector<HeterogeneityTest>& tests) {

@@ -71,7 +71,9 @@ std::vector<std::string> ProcessingWarnings(const FitResult& fit, double cutoff,
 /// Several logs: fits each alone through `fit_one(i)` (its estimates of the
 /// shared parameters; an exception is recorded as that log's failure) into
 /// fit.per_log labelled by `labels`, tests them for agreement
-/// (fit.heterogeneity) and adds a warning where they disagree.
+/// (fit.heterogeneity), widens the joint interval of a parameter on which
+/// they disagree (p < 0.01; WidenForDisagreement) and adds a warning where
+/// they disagree strongly (p < 0.001).
 void AddPerLogFits(FitResult& fit, const std::vector<std::string>& labels,
                    const std::function<std::vector<ParameterEstimate>(std::size_t)>& fit_one);
 
@@ -82,6 +84,17 @@ std::vector<std::string> LogLabels(const std::vector<Log>& logs) {
   for (const auto& log : logs) labels.push_back(log.path);
   return labels;
 }
+
+/// Between-log test p below which a joint interval is widened.
+inline constexpr double kWidenBelowP = 0.01;
+
+/// For each test with p < kWidenBelowP: the joint estimate's std becomes at
+/// least the random-effects std of the per-log mean (DerSimonian-Laird:
+/// tau^2 = max(0, (Q - dof) / (S1 - S2 / S1)), S1 = sum 1/s_i^2,
+/// S2 = sum 1/s_i^4; std = 1 / sqrt(sum 1/(s_i^2 + tau^2))) and its
+/// interval +- t(m - 1) of it, with a note naming the parameter. The
+/// covariance's row and column scale with it (correlations kept).
+void WidenForDisagreement(FitResult& fit);
 
 /// A warning for each test with p below 0.001.
 std::vector<std::string> HeterogeneityWarnings(const std::vector<HeterogeneityTest>& tests);

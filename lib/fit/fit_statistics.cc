@@ -64,6 +64,91 @@ JacobianBlock& BlockOf(std::vector<JacobianBlock>& blocks, const FitChannel& c) 
   throw std::logic_error("fit channel '" + c.name + "' spans Jacobian blocks");
 }
 
+// A cluster's score g_s = sum over its rows of J_t' r_t and information
+// H_s = sum J_t' J_t on the normalised Jacobian.
+void ClusterTerms(const std::vector<JacobianBlock>& blocks, const Eigen::VectorXd& residuals,
+                  const std::vector<RowRange>& cluster, Eigen::VectorXd& score, Eigen::MatrixXd& information) {
+  score.setZero();
+  information.setZero();
+  for (const RowRange& range : cluster) {
+    for (const auto& b : blocks) {
+      const int begin = std::max(range.begin, b.row_begin);
+      const int end = std::min(range.begin + range.count, b.row_begin + static_cast<int>(b.values.rows()));
+      if (end <= begin) continue;
+      const auto rows = b.values.middleRows(begin - b.row_begin, end - begin);
+      const Eigen::VectorXd part = rows.transpose() * residuals.segment(begin, end - begin);
+      const Eigen::MatrixXd h = rows.transpose() * rows;
+      for (std::size_t k = 0; k < b.columns.size(); ++k) {
+        score(b.columns[k]) += part(static_cast<Eigen::Index>(k));
+      }
+      Scatter(h, b.columns, information);
+    }
+  }
+}
+
+// Cluster-robust covariance on the normalised Jacobian (information A).
+// CR1 for every parameter: A^-1 (G/(G-1) sum_s g_s g_s') A^-1. For the
+// parameters that several clusters inform, the delete-one-cluster
+// jackknife (CR3), which CR1 understates when each cluster also has
+// parameters of its own (a segment's initial state) and G is a few dozen:
+// delta_s = (A - H_s)^-1 g_s, the linearised change of the estimate without
+// cluster s (its own parameters, informed by it alone, left out), and
+// (G-1)/G sum_s (delta_s - mean)(delta_s - mean)'.
+Eigen::MatrixXd ClusterCovariance(const std::vector<JacobianBlock>& blocks, const Eigen::VectorXd& residuals,
+                                  const std::vector<std::vector<RowRange>>& clusters, const Eigen::MatrixXd& a,
+                                  const Eigen::MatrixXd& inverse) {
+  const Eigen::Index p = a.rows();
+  const double g = static_cast<double>(clusters.size());
+  std::vector<Eigen::VectorXd> deltas;
+  std::vector<std::vector<Eigen::Index>> kept;
+  Eigen::MatrixXd middle = Eigen::MatrixXd::Zero(p, p), h(p, p);
+  Eigen::VectorXd score(p);
+  std::vector<bool> own_anywhere(static_cast<std::size_t>(p), false);
+  for (const auto& cluster : clusters) {
+    ClusterTerms(blocks, residuals, cluster, score, h);
+    middle += score * score.transpose();
+    std::vector<Eigen::Index> rest;  // parameters informed by other clusters too
+    for (Eigen::Index j = 0; j < p; ++j) {
+      if (!(a(j, j) > 0.0)) continue;
+      if (h(j, j) >= (1.0 - 1e-9) * a(j, j)) own_anywhere[static_cast<std::size_t>(j)] = true;
+      else rest.push_back(j);
+    }
+    const auto m = static_cast<Eigen::Index>(rest.size());
+    Eigen::MatrixXd reduced(m, m);
+    Eigen::VectorXd rhs(m);
+    for (Eigen::Index i = 0; i < m; ++i) {
+      rhs(i) = score(rest[static_cast<std::size_t>(i)]);
+      for (Eigen::Index k = 0; k < m; ++k) {
+        reduced(i, k) = a(rest[static_cast<std::size_t>(i)], rest[static_cast<std::size_t>(k)]) -
+                        h(rest[static_cast<std::size_t>(i)], rest[static_cast<std::size_t>(k)]);
+      }
+    }
+    deltas.push_back(reduced.ldlt().solve(rhs));
+    kept.push_back(std::move(rest));
+  }
+  Eigen::MatrixXd covariance = inverse * (g > 1.0 ? middle * (g / (g - 1.0)) : middle) * inverse;
+  if (g < 2.0) return covariance;
+  // The jackknife over the parameters every cluster keeps.
+  std::vector<Eigen::Index> shared;
+  for (Eigen::Index j = 0; j < p; ++j) {
+    if (a(j, j) > 0.0 && !own_anywhere[static_cast<std::size_t>(j)]) shared.push_back(j);
+  }
+  const auto q = static_cast<Eigen::Index>(shared.size());
+  Eigen::MatrixXd d(static_cast<Eigen::Index>(deltas.size()), q);
+  for (std::size_t s = 0; s < deltas.size(); ++s) {
+    for (Eigen::Index i = 0; i < q; ++i) {
+      const auto at = std::find(kept[s].begin(), kept[s].end(), shared[static_cast<std::size_t>(i)]);
+      d(static_cast<Eigen::Index>(s), i) = deltas[s](at - kept[s].begin());
+    }
+  }
+  const Eigen::MatrixXd centred = d.rowwise() - d.colwise().mean();
+  const Eigen::MatrixXd jackknife = (g - 1.0) / g * (centred.transpose() * centred);
+  for (Eigen::Index i = 0; i < q; ++i) {
+    for (Eigen::Index k = 0; k < q; ++k) covariance(shared[static_cast<std::size_t>(i)], shared[static_cast<std::size_t>(k)]) = jackknife(i, k);
+  }
+  return covariance;
+}
+
 }  // namespace
 
 std::vector<double> RequireIdentifiable(const std::vector<JacobianBlock>& blocks,
@@ -150,7 +235,8 @@ void RequireVaryingMeasurements(const std::vector<FitChannel>& channels) {
 
 void DescribeFit(std::vector<JacobianBlock> blocks, const Eigen::VectorXd& residuals,
                  const std::vector<FitParameter>& parameters, const std::vector<double>& values,
-                 const std::vector<FitChannel>& channels, FitResult& result) {
+                 const std::vector<FitChannel>& channels, FitResult& result,
+                 const std::vector<std::vector<RowRange>>& clusters) {
   const int p = static_cast<int>(parameters.size());
   const int n = static_cast<int>(residuals.size());
   result.cost = 0.5 * residuals.squaredNorm();
@@ -170,6 +256,9 @@ void DescribeFit(std::vector<JacobianBlock> blocks, const Eigen::VectorXd& resid
   const Eigen::MatrixXd information = NormalisedInformation(blocks, column_scale, p);
   for (auto& b : blocks) Normalise(b, column_scale);
   const Eigen::MatrixXd inverse = information.ldlt().solve(Eigen::MatrixXd::Identity(p, p));
+  // Clusters: from the rows before the channels' rows are prewhitened below.
+  const Eigen::MatrixXd cluster_covariance =
+      clusters.empty() ? Eigen::MatrixXd() : ClusterCovariance(blocks, residuals, clusters, information, inverse);
   Eigen::MatrixXd middle = Eigen::MatrixXd::Zero(p, p);
   const double dof_fraction = static_cast<double>(n - p) / n;
   std::vector<FitChannel> all = channels;
@@ -194,7 +283,7 @@ void DescribeFit(std::vector<JacobianBlock> blocks, const Eigen::VectorXd& resid
     stats.inflation = white_trace > 0.0 ? std::sqrt(std::max(0.0, robust.trace() / white_trace)) : 1.0;
     result.channels.push_back(stats);
   }
-  Eigen::MatrixXd covariance = inverse * middle * inverse;
+  Eigen::MatrixXd covariance = clusters.empty() ? Eigen::MatrixXd(inverse * middle * inverse) : cluster_covariance;
   covariance = column_scale.cwiseInverse().asDiagonal() * covariance * column_scale.cwiseInverse().asDiagonal();
 
   // The interval's quantile: Student's t with the effective number of
@@ -209,7 +298,8 @@ void DescribeFit(std::vector<JacobianBlock> blocks, const Eigen::VectorXd& resid
                                   0.999);
     effective += c.samples * (1.0 - rho) / (1.0 + rho);
   }
-  const double t = StudentT975(std::max(1, static_cast<int>(std::floor(effective)) - p));
+  const double t = clusters.empty() ? StudentT975(std::max(1, static_cast<int>(std::floor(effective)) - p))
+                                    : StudentT975(std::max(1, static_cast<int>(clusters.size()) - 1));
   result.estimates.clear();
   for (int j = 0; j < p; ++j) {
     ParameterEstimate e;

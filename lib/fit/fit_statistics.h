@@ -39,10 +39,12 @@ std::vector<double> RequireIdentifiable(const std::vector<JacobianBlock>& blocks
 
 /// Fills estimates (from `values`), covariance, correlation, channel
 /// statistics, the cost and the adequacy warnings of `result`.
-/// `blocks` are taken over (normalised in place).
+/// `blocks` are taken over (normalised in place). `clusters`: see
+/// FitOptions::clusters (empty: the channels' long-run covariances).
 void DescribeFit(std::vector<JacobianBlock> blocks, const Eigen::VectorXd& residuals,
                  const std::vector<FitParameter>& parameters, const std::vector<double>& values,
-                 const std::vector<FitChannel>& channels, FitResult& result);
+                 const std::vector<FitChannel>& channels, FitResult& result,
+                 const std::vector<std::vector<RowRange>>& clusters = {});
 
 /// Root mean square deviation of `values` from their mean (0 for none): the
 /// scale by which fits weight a channel against another of other units.

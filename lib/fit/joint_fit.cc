@@ -191,6 +191,42 @@ void AddJointLogRows(const JointLog& log, std::size_t i, const JointDesign& d, c
   }
 }
 
+// What to do about a resonance near the cutoff, tried before it is said
+// (docs/models.md#elastic-joint): the fit at a cutoff 2.5 x the resonance
+// (below 0.4 x the rate) is advised only when it stands (not refused) and
+// its own resonance lies below half that cutoff; otherwise output error or
+// the frequency response, with what the trial showed.
+std::string CutoffAdvice(const std::vector<JointLog>& logs, const JointSection& start, const JointFitOptions& options,
+                         const JointFitOutput& out, double resonance) {
+  const std::string elsewhere = "use ‹method› oe (output error differentiates nothing) or measure the frequency "
+                                "response (drivetrain-fit frf)";
+  if (!options.sensitivity) return elsewhere;  // a start or trial fit: nothing is printed from it
+  const double raised = std::min(2.5 * resonance, 0.4 * out.rate);
+  if (!(raised > 1.05 * out.cutoff)) {
+    return fmt::format("the log's rate {:.4g} Hz leaves no higher cutoff to try; {}", out.rate, elsewhere);
+  }
+  JointFitOptions trial = options;
+  trial.cutoff = raised;
+  trial.per_log = trial.sensitivity = false;
+  trial.refuse_undetermined = true;
+  try {
+    const JointFitOutput tried = FitJoint(logs, start, trial);
+    const double moved = JointResonance(tried.params) / (2.0 * M_PI);
+    if (std::isfinite(moved) && moved > 0.0 && raised >= 2.0 * moved) {
+      return fmt::format("at ‹cutoff› {:.4g} the fit stands with stiffness {:.4g} and resonance {:.4g} Hz, clear of "
+                         "the filter: raise ‹cutoff› to {:.4g}, or {}",
+                         raised, tried.params.stiffness, moved, raised, elsewhere);
+    }
+    return fmt::format("a higher cutoff does not help (at {:.4g} Hz the resonance moves to {:.4g} Hz and stiffness to "
+                       "{:.4g}): {}",
+                       raised, moved, tried.params.stiffness, elsewhere);
+  } catch (const std::exception& e) {
+    std::string why = e.what();
+    if (why.size() > 120) why = why.substr(0, 117) + "...";
+    return fmt::format("a higher cutoff does not help (at {:.4g} Hz the fit is refused: {}): {}", raised, why, elsewhere);
+  }
+}
+
 // Adequacy (docs/models.md#adequacy): several logs each fitted alone and
 // whether they agree; the same fit at half and twice the cutoff; a
 // resonance near the cutoff.
@@ -234,8 +270,8 @@ void CheckJointAdequacy(const std::vector<JointLog>& logs, const JointSection& s
     if (out.cutoff < 2.0 * resonance) {
       out.fit.warnings.push_back(fmt::format("the angle cutoff {:.4g} Hz is within a factor 2 of the fitted resonance "
                                              "{:.4g} Hz: the zero-phase filter biases the damping and stiffness there; "
-                                             "raise ‹cutoff›, or measure the frequency response (drivetrain-fit frf)",
-                                             out.cutoff, resonance));
+                                             "{}",
+                                             out.cutoff, resonance, CutoffAdvice(logs, start, options, out, resonance)));
     }
   }
 }
@@ -303,7 +339,15 @@ JointFitOutput FitJoint(const std::vector<JointLog>& given_logs, const JointSect
     if (row.in_model != nullptr && row.spec.lower_bound == 0.0) nonnegative.emplace_back(row.spec.key);
   }
   CheckJointAdequacy(logs, start, options, d, out);
-  if (options.refuse_undetermined) RequireDetermined(out.fit, nonnegative, kMaxRelativeStd, out.fit.warnings);
+  std::map<std::string, double> start_values;  // the given start values, for a term at its bound
+  for (const auto& row : JointParameterTable()) {
+    if (row.in_section != nullptr && (start.*(row.in_section)).has_value()) {
+      start_values[row.spec.key] = *(start.*(row.in_section));
+    }
+  }
+  if (options.refuse_undetermined) {
+    RequireDetermined(out.fit, nonnegative, kMaxRelativeStd, out.fit.warnings, start_values);
+  }
   out.model = regression.Predict(values);
   return out;
 }

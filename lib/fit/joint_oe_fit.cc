@@ -12,6 +12,7 @@
 #include "fit/axis_rows.h"
 #include "fit/joint_fit.h"
 #include "models/missing_values.h"
+#include "fit/joint_oe_segments.h"
 #include "sim/joint_simulator.h"
 
 namespace driveid {
@@ -20,9 +21,6 @@ namespace {
 // A simulated deflection below this fit % (with correlated residuals) draws
 // a warning: the angles' own fit % stays high whatever the spring does.
 constexpr double kLowDeflectionFitPercent = 80.0;
-
-// Samples over which a start rate is taken when it is not logged.
-constexpr std::size_t kStartRateSamples = 10;
 
 enum class Channel { kMotorAngle, kLinkAngle, kMotorRate, kLinkRate, kShaftTorque };
 
@@ -35,12 +33,16 @@ struct OeChannel {
   std::string name;
 };
 
+// A segment's initial state x_i(t_s) among the fit's parameters (-1: fixed).
+struct OeShot {
+  OeSegment segment;
+  std::array<int, 4> start_parameter{-1, -1, -1, -1};
+};
+
 struct OeLog {
   const JointLog* log = nullptr;
   std::vector<double> torque;  // n tau, link side
-  std::array<double, 4> x0{};
-  std::array<int, 4> start_parameter{-1, -1, -1, -1};  // index of x_i(t_0) among the fit's parameters; -1: fixed
-  bool motor_moving = false;  // whether its motor's start rate is estimated
+  std::vector<OeShot> shots;   // one per segment (multiple shooting), else the whole log
   std::vector<OeChannel> channels;
   int offset_parameter = -1;  // index of its tau_l0 among the fit's parameters
 };
@@ -51,41 +53,6 @@ std::vector<int> SimulatedTerms(std::vector<int> terms) {
     terms.push_back(t);
   }
   return terms;
-}
-
-// A log's start rate: the logged rate, else the slope of a line through the
-// first samples; `moving` when that slope is more than 5 of its standard
-// errors from 0 (a log that starts at rest leaves a sticking motor's start
-// rate at 0: nothing in the log could determine it).
-struct StartRate {
-  double value = 0.0;
-  bool moving = false;
-};
-StartRate CalcStartRate(const std::vector<double>& time, const std::vector<double>& angle,
-                        const std::vector<double>& rate) {
-  const std::size_t m = std::min(kStartRateSamples, time.size());
-  double mean_t = 0.0, mean_q = 0.0;
-  for (std::size_t k = 0; k < m; ++k) {
-    mean_t += time[k] / static_cast<double>(m);
-    mean_q += angle[k] / static_cast<double>(m);
-  }
-  double sxx = 0.0, sxy = 0.0;
-  for (std::size_t k = 0; k < m; ++k) {
-    sxx += (time[k] - mean_t) * (time[k] - mean_t);
-    sxy += (time[k] - mean_t) * (angle[k] - mean_q);
-  }
-  StartRate out;
-  if (!(sxx > 0.0)) return out;
-  const double slope = sxy / sxx;
-  double scatter = 0.0;
-  for (std::size_t k = 0; k < m; ++k) {
-    const double r = angle[k] - mean_q - slope * (time[k] - mean_t);
-    scatter += r * r;
-  }
-  const double standard_error = std::sqrt(scatter / static_cast<double>(m - 2) / sxx);
-  out.value = rate.empty() ? slope : rate.front();
-  out.moving = std::abs(slope) > 5.0 * standard_error;
-  return out;
 }
 
 class JointOeResiduals final : public ResidualModel {
@@ -111,8 +78,11 @@ class JointOeResiduals final : public ResidualModel {
     Set(parameters);
     try {
       for (const auto& l : logs_) {
-        simulator_.Simulate(params_, l.log->time, l.torque, Start(l, parameters), jacobian != nullptr, &response_);
-        for (const auto& c : l.channels) Fill(l, c, parameters, residuals, jacobian);
+        for (const auto& shot : l.shots) {
+          simulator_.Simulate(params_, shot.segment.time, shot.segment.torque, Start(shot, parameters),
+                              jacobian != nullptr, &response_);
+          for (const auto& c : l.channels) Fill(l, shot, c, parameters, residuals, jacobian);
+        }
       }
     } catch (const IdentificationError& e) {
       last_failure_ = e.what();
@@ -129,17 +99,33 @@ class JointOeResiduals final : public ResidualModel {
   }
   std::string LastFailure() const override { return last_failure_; }
 
+  /// Log i simulated whole (log units) at `parameters`, from its first
+  /// segment's start state.
+  void SimulateWhole(const double* parameters, std::size_t i, std::vector<double>* motor, std::vector<double>* link) {
+    Set(parameters);
+    const OeLog& l = logs_[i];
+    simulator_.Simulate(params_, l.log->time, l.torque, Start(l.shots.front(), parameters), false, &response_);
+    motor->resize(l.log->time.size());
+    link->resize(l.log->time.size());
+    for (std::size_t k = 0; k < l.log->time.size(); ++k) {
+      (*motor)[k] = n_ * response_.state[4 * k];
+      (*link)[k] = response_.state[4 * k + 2];
+    }
+  }
+
   /// The simulated angles of log i (log units) at `parameters`.
   void SimulateAngles(const double* parameters, std::size_t i, std::vector<double>* motor, std::vector<double>* link) {
     Set(parameters);
     const OeLog& l = logs_[i];
-    simulator_.Simulate(params_, l.log->time, l.torque, Start(l, parameters), false, &response_);
-    const std::size_t samples = l.log->time.size();
-    motor->resize(samples);
-    link->resize(samples);
-    for (std::size_t k = 0; k < samples; ++k) {
-      (*motor)[k] = n_ * response_.state[4 * k];
-      (*link)[k] = response_.state[4 * k + 2];
+    motor->resize(l.log->time.size());
+    link->resize(l.log->time.size());
+    for (const auto& shot : l.shots) {
+      simulator_.Simulate(params_, shot.segment.time, shot.segment.torque, Start(shot, parameters), false,
+                          &response_);
+      for (std::size_t k = 0; k < shot.segment.time.size(); ++k) {
+        (*motor)[shot.segment.begin + k] = n_ * response_.state[4 * k];
+        (*link)[shot.segment.begin + k] = response_.state[4 * k + 2];
+      }
     }
   }
 
@@ -147,10 +133,10 @@ class JointOeResiduals final : public ResidualModel {
   void Set(const double* parameters) {
     for (std::size_t j = 0; j < terms_.size(); ++j) params_.*(JointParameterTable()[terms_[j]].in_model) = parameters[j];
   }
-  static std::array<double, 4> Start(const OeLog& l, const double* parameters) {
-    std::array<double, 4> x0 = l.x0;
+  static std::array<double, 4> Start(const OeShot& shot, const double* parameters) {
+    std::array<double, 4> x0 = shot.segment.x0;
     for (std::size_t i = 0; i < 4; ++i) {
-      if (l.start_parameter[i] >= 0) x0[i] = parameters[l.start_parameter[i]];
+      if (shot.start_parameter[i] >= 0) x0[i] = parameters[shot.start_parameter[i]];
     }
     return x0;
   }
@@ -169,21 +155,24 @@ class JointOeResiduals final : public ResidualModel {
     return 0.0;
   }
 
-  void Fill(const OeLog& l, const OeChannel& c, const double* parameters, double* residuals, double* jacobian) const {
-    const std::size_t samples = l.log->time.size(), p = terms_.size(), columns = static_cast<std::size_t>(columns_);
+  void Fill(const OeLog& l, const OeShot& shot, const OeChannel& c, const double* parameters, double* residuals,
+            double* jacobian) const {
+    const std::size_t samples = shot.segment.time.size(), p = terms_.size();
+    const std::size_t columns = static_cast<std::size_t>(columns_), begin = shot.segment.begin;
     const std::size_t simulated = p + 4;  // sensitivities per sample: the terms, then x(t_0)
     const double offset = l.offset_parameter >= 0 ? parameters[l.offset_parameter] : params_.link_torque_offset;
     const std::vector<double>& measured = *c.measured;
     for (std::size_t k = 0; k < samples; ++k) {
       const double* x = &response_.state[4 * k];
-      const std::size_t row = static_cast<std::size_t>(c.first_row) + k;
-      residuals[row] = c.weight * (Value(c.kind, x, offset) - measured[k]);
+      const std::size_t row = static_cast<std::size_t>(c.first_row) + begin + k;
+      residuals[row] = c.weight * (Value(c.kind, x, offset) - measured[begin + k]);
       if (jacobian == nullptr) continue;
       double* out = jacobian + row * columns;
       std::fill(out, out + columns, 0.0);
       for (std::size_t i = 0; i < 4; ++i) {
-        if (l.start_parameter[i] < 0) continue;
-        out[l.start_parameter[i]] = c.weight * Value(c.kind, &response_.sensitivity[(k * simulated + p + i) * 4], 0.0);
+        if (shot.start_parameter[i] < 0) continue;
+        out[shot.start_parameter[i]] =
+            c.weight * Value(c.kind, &response_.sensitivity[(k * simulated + p + i) * 4], 0.0);
       }
       for (std::size_t j = 0; j < p; ++j) {
         const double* s = &response_.sensitivity[(k * simulated + j) * 4];
@@ -233,6 +222,13 @@ std::string OeAdvice(const std::vector<std::string>& involved) {
                      "crop the log with ‹from› to begin where the joint moves in both angles, or log qd_motor and "
                      "qd_link");
   }
+  const bool segment_state = std::any_of(involved.begin(), involved.end(), [](const std::string& name) {
+    return name.find("(t=") != std::string::npos;
+  });
+  if (segment_state) {
+    advice.push_back("a segment's start does not determine the joint's state there (each segment is simulated from "
+                     "its own): lengthen the segments with ‹segment›, or simulate each log whole with ‹segment› none");
+  }
   return fmt::format("{}", fmt::join(advice, "; "));
 }
 
@@ -253,10 +249,6 @@ std::vector<OeLog> PrepareLogs(const std::vector<JointLog>& logs, double n) {
     OeLog& l = oe[i];
     l.log = &log;
     for (double tau : log.torque) l.torque.push_back(n * tau);
-    const StartRate motor = CalcStartRate(log.time, log.motor_position, log.motor_rate);
-    l.x0 = {log.motor_position.front() / n, motor.moving ? motor.value / n : 0.0, log.link_position.front(),
-            CalcStartRate(log.time, log.link_position, log.link_rate).value};
-    l.motor_moving = motor.moving;
     const auto add = [&](Channel kind, const std::vector<double>& measured, const char* name) {
       if (measured.empty()) return;
       const double spread = CalcRmsDeviation(measured);
@@ -381,20 +373,45 @@ JointOeDesign MakeJointOeDesign(const std::vector<JointLog>& logs, const JointSe
   return d;
 }
 
-// The logs' initial states as nuisance parameters (a sticking motor that
-// starts at rest keeps its start rate at 0).
-void AddInitialStates(std::vector<OeLog>& oe, std::size_t log_count, std::vector<FitParameter>& parameters) {
+// Each log cut into segments of `seconds` (multiple shooting) with their
+// initial states as nuisance parameters (a sticking motor that starts a
+// segment at rest keeps its start rate at 0).
+void AddShots(std::vector<OeLog>& oe, double seconds, double n, std::vector<FitParameter>& parameters) {
+  static const char* const kNames[] = {"q_motor", "qd_motor", "q_link", "qd_link"};
   for (std::size_t i = 0; i < oe.size(); ++i) {
-    static const char* const kNames[] = {"q_motor", "qd_motor", "q_link", "qd_link"};
-    const double scale = std::max(std::abs(oe[i].x0[2]), 1e-3);
-    for (std::size_t s = 0; s < 4; ++s) {
-      if (s == 1 && !oe[i].motor_moving) continue;
-      oe[i].start_parameter[s] = static_cast<int>(parameters.size());
-      const std::string suffix = log_count > 1 ? fmt::format("_{}", i + 1) : "";
-      parameters.push_back({fmt::format("{}(t0){}", kNames[s], suffix), oe[i].x0[s], -HUGE_VAL,
-                            s % 2 == 0 ? scale : std::max(std::abs(oe[i].x0[s]), 1e-3)});
+    const JointLog& log = *oe[i].log;
+    for (OeSegment& segment : SplitLog(log, oe[i].torque, n, SegmentSamples(log, seconds))) {
+      OeShot shot{std::move(segment), {-1, -1, -1, -1}};
+      const std::array<double, 4>& x0 = shot.segment.x0;
+      const std::string suffix = oe.size() > 1 ? fmt::format("_{}", i + 1) : "";
+      const std::string at = shot.segment.begin == 0 ? "t0" : fmt::format("t={:.6g} s", log.time[shot.segment.begin]);
+      for (std::size_t s = 0; s < 4; ++s) {
+        if (s == 1 && !shot.segment.motor_moving) continue;
+        shot.start_parameter[s] = static_cast<int>(parameters.size());
+        const double scale = s % 2 == 0 ? std::max(std::abs(x0[2]), 1e-3) : std::max(std::abs(x0[s]), 1e-3);
+        parameters.push_back({fmt::format("{}({}){}", kNames[s], at, suffix), x0[s], -HUGE_VAL, scale});
+      }
+      oe[i].shots.push_back(std::move(shot));
     }
   }
+}
+
+// The segments' row clusters (every channel's rows of a segment) when there
+// are several, else none.
+std::vector<std::vector<RowRange>> ShotClusters(const std::vector<OeLog>& oe) {
+  std::vector<std::vector<RowRange>> clusters;
+  for (const auto& l : oe) {
+    for (const auto& shot : l.shots) {
+      std::vector<RowRange> rows;
+      for (const auto& c : l.channels) {
+        rows.push_back({c.first_row + static_cast<int>(shot.segment.begin),
+                        static_cast<int>(shot.segment.end - shot.segment.begin)});
+      }
+      clusters.push_back(std::move(rows));
+    }
+  }
+  if (clusters.size() < 2) clusters.clear();
+  return clusters;
 }
 
 // Two passes: weighted by the channels' spread, then by the first pass's
@@ -424,13 +441,18 @@ FitResult FitTwoPasses(std::vector<OeLog>& oe, JointOeResiduals& residuals, std:
 }
 
 // The deflection q_motor / n - q_link is what the spring sees; the angles'
-// fit % hides a poor fit of it behind the motion.
-void CheckDeflections(const std::vector<JointLog>& logs, double n, JointOeOutput& out) {
+// fit % hides a poor fit of it behind the motion. Judged on each log
+// simulated whole (`motor`, `link`): segments restart from fitted states and
+// so hide a model error (link Coulomb friction) that a whole run shows, while
+// a noisy torque's drift is of the rigid-body motion, which the deflection
+// (a damped spring) does not accumulate.
+void CheckDeflections(const std::vector<JointLog>& logs, double n, const std::vector<std::vector<double>>& motor,
+                      const std::vector<std::vector<double>>& link, JointOeOutput& out) {
   for (std::size_t i = 0; i < logs.size(); ++i) {
     std::vector<double> measured, residual;
     for (std::size_t k = 0; k < logs[i].time.size(); ++k) {
       measured.push_back(logs[i].motor_position[k] / n - logs[i].link_position[k]);
-      residual.push_back(measured.back() - (out.motor_angle[i][k] / n - out.link_angle[i][k]));
+      residual.push_back(measured.back() - (motor[i][k] / n - link[i][k]));
     }
     const ChannelStatistics d = DescribeResiduals(logs[i].path + ":deflection q_motor/n - q_link", measured.data(),
                                                   residual.data(), static_cast<int>(measured.size()));
@@ -444,23 +466,43 @@ void CheckDeflections(const std::vector<JointLog>& logs, double n, JointOeOutput
   }
 }
 
+// Says how the logs were simulated: one run per log, or segments.
+void DescribeShots(const std::vector<OeLog>& oe, JointOeOutput& out) {
+  double seconds = 0.0;
+  for (const auto& l : oe) {
+    for (const auto& shot : l.shots) {
+      out.segments += 1;
+      seconds += shot.segment.time.back() - shot.segment.time.front();
+    }
+  }
+  out.segment_seconds = seconds / static_cast<double>(std::max<std::size_t>(out.segments, 1));
+  if (out.segments > oe.size()) {
+    out.fit.notes.push_back(fmt::format(
+        "output error by multiple shooting: {} segments of {:.3g} s, each simulated from its own fitted initial "
+        "state (a measured torque's noise drifts over one segment only); intervals cluster-robust over the segments "
+        "(docs/models.md#joint-output-error)",
+        out.segments, out.segment_seconds));
+  } else {
+    out.fit.notes.push_back("output error by single shooting: each log simulated whole from its initial state");
+  }
+}
+
 }  // namespace
 
-JointOeOutput FitJointOutputError(const std::vector<JointLog>& logs, const JointSection& start,
-                                  const JointParameters* initial, const JointOeOptions& given) {
-  if (logs.empty()) throw OptionError("no logs given");
-  JointOeOptions options = given;
-  if (options.free.empty()) options.free = JointOeDefaultFree(logs);
-  CheckFreeNames(JointParameterTable(), "joint", options.free);
+namespace {
+
+// One output-error fit with segments of options.segment_seconds (> 0;
+// infinite: single shooting).
+JointOeOutput FitShots(const std::vector<JointLog>& logs, const JointSection& start, const JointParameters* initial,
+                       const JointOeOptions& options) {
   const std::string offset_key = KeyOf(JointParameterTable(), &JointParameters::link_torque_offset);
-  CheckOutputErrorSimulates(start, options.free);
   std::vector<OeLog> oe;  // each log's channels, refused by name before the missing values
   if (start.gear_ratio && *start.gear_ratio > 0.0) oe = PrepareLogs(logs, *start.gear_ratio);
   JointOeDesign d = MakeJointOeDesign(logs, start, initial, options.free, oe);
   const double n = *start.gear_ratio;
   // The initial states are nuisance parameters, dropped from the result.
   const std::size_t reported = d.parameters.size();
-  AddInitialStates(oe, logs.size(), d.parameters);
+  AddShots(oe, options.segment_seconds, n, d.parameters);
   std::vector<bool> keep(d.parameters.size(), false);
   std::fill(keep.begin(), keep.begin() + static_cast<std::ptrdiff_t>(reported), true);
 
@@ -468,6 +510,8 @@ JointOeOutput FitJointOutputError(const std::vector<JointLog>& logs, const Joint
   JointOeResiduals residuals(oe, d.fixed, d.terms, static_cast<int>(d.parameters.size()), n, tolerance[0], tolerance[1]);
   FitOptions fit_options = options.fit;
   if (!fit_options.advice) fit_options.advice = OeAdvice;
+  fit_options.clusters = ShotClusters(oe);
+  fit_options.normal_equations = !fit_options.clusters.empty();
   JointOeOutput out;
   out.fit = FitTwoPasses(oe, residuals, d.parameters, fit_options);
   std::vector<double> estimate;
@@ -478,10 +522,18 @@ JointOeOutput FitJointOutputError(const std::vector<JointLog>& logs, const Joint
   if (d.offsets > 0) out.params.link_torque_offset = estimate[d.terms.size()];
   out.motor_angle.resize(oe.size());
   out.link_angle.resize(oe.size());
+  std::vector<std::vector<double>> whole_motor(oe.size()), whole_link(oe.size());
   for (std::size_t i = 0; i < oe.size(); ++i) {
     residuals.SimulateAngles(estimate.data(), i, &out.motor_angle[i], &out.link_angle[i]);
+    if (oe[i].shots.size() > 1) {
+      residuals.SimulateWhole(estimate.data(), i, &whole_motor[i], &whole_link[i]);
+    } else {
+      whole_motor[i] = out.motor_angle[i];
+      whole_link[i] = out.link_angle[i];
+    }
   }
-  CheckDeflections(logs, n, out);
+  CheckDeflections(logs, n, whole_motor, whole_link, out);
+  DescribeShots(oe, out);
   if (options.per_log && logs.size() > 1) {
     JointOeOptions alone = options;
     alone.per_log = false;
@@ -500,6 +552,55 @@ JointOeOutput FitJointOutputError(const std::vector<JointLog>& logs, const Joint
   for (const auto& p : d.parameters) start_values[p.name] = p.initial;
   RequireDetermined(out.fit, nonnegative, kMaxRelativeStd, out.fit.warnings, start_values);
   return out;
+}
+
+// The start values' joint, for the auto segment length: the
+// inverse-dynamics start where it has inertias and a stiffness, else
+// ‹params›.
+JointParameters StartJoint(const JointSection& start, const JointParameters* initial) {
+  if (initial != nullptr && initial->motor_inertia > 0.0 && initial->link_inertia > 0.0 && initial->stiffness > 0.0) {
+    return *initial;
+  }
+  JointParameters p;
+  p.motor_inertia = start.motor_inertia.value_or(0.0);
+  p.link_inertia = start.link_inertia.value_or(0.0);
+  p.stiffness = start.stiffness.value_or(0.0);
+  return p;
+}
+
+}  // namespace
+
+JointOeOutput FitJointOutputError(const std::vector<JointLog>& logs, const JointSection& start,
+                                  const JointParameters* initial, const JointOeOptions& given) {
+  if (logs.empty()) throw OptionError("no logs given");
+  JointOeOptions options = given;
+  if (options.free.empty()) options.free = JointOeDefaultFree(logs);
+  CheckFreeNames(JointParameterTable(), "joint", options.free);
+  CheckOutputErrorSimulates(start, options.free);
+  if (options.segment_seconds != 0.0) return FitShots(logs, start, initial, options);
+  // Auto: the shortest segments (least drift) that determine every term —
+  // from AutoSegmentSeconds, doubled while the fit is refused, up to the
+  // whole log.
+  double longest = 0.0;
+  for (const auto& log : logs) longest = std::max(longest, log.time.empty() ? 0.0 : log.time.back() - log.time.front());
+  options.segment_seconds = AutoSegmentSeconds(logs, StartJoint(start, initial));
+  std::vector<std::string> tried;
+  for (;;) {
+    try {
+      JointOeOutput out = FitShots(logs, start, initial, options);
+      for (const auto& t : tried) out.fit.notes.push_back(t);
+      return out;
+    } catch (const IdentificationError& e) {
+      if (!(options.segment_seconds < longest / 2.0)) throw;  // the longest already: its refusal stands
+      std::string why = e.what();
+      if (why.size() > 160) why = why.substr(0, 157) + "...";
+      const double next = 2.0 * options.segment_seconds < longest / 2.0 ? 2.0 * options.segment_seconds : HUGE_VAL;
+      tried.push_back(fmt::format("segments of {:.3g} s were refused ({}); {}", options.segment_seconds, why,
+                                  std::isinf(next) ? std::string("each log simulated whole instead")
+                                                   : fmt::format("lengthened to {:.3g} s", next)));
+      options.segment_seconds = next;
+    }
+  }
 }
 
 }  // namespace driveid

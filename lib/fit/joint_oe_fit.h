@@ -10,11 +10,16 @@
 // first weighted by 1 / RMS of their measured deviation from the mean, then
 // by 1 / RMS of that fit's residuals (each channel counts by its noise).
 // The link's Coulomb friction is not simulated: it must be 0.
+// Multiple shooting (fit/joint_oe_segments.h): each log is cut into
+// segments simulated from their own fitted initial states, so that the noise
+// of a measured torque drifts only over one segment; the intervals are then
+// cluster-robust over the segments.
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "fit/joint_oe_segments.h"
 #include "fit/least_squares.h"
 #include "io/joint_log.h"
 #include "models/joint.h"
@@ -25,6 +30,9 @@ struct JointOeOptions {
   /// Empty: JointOeDefaultFree.
   std::vector<std::string> free;
   bool per_log = true;  ///< several logs: each fitted alone too, and tested for agreement
+  /// Segment length [s]: 0 auto (kSegmentResonancePeriods periods of the
+  /// start values' resonance), infinite: the whole log (single shooting).
+  double segment_seconds = 0.0;
   FitOptions fit;
 };
 
@@ -36,9 +44,13 @@ struct JointOeOutput {
   FitResult fit;
   /// Simulated q_motor and q_link per log, at the log's samples (log units).
   std::vector<std::vector<double>> motor_angle, link_angle;
-  /// Per log: fit % of the simulated deflection q_motor / n - q_link (a
-  /// warning below 80 % with correlated residuals).
+  /// Per log: fit % of the deflection q_motor / n - q_link of the log
+  /// simulated whole from its first segment's state (a warning below 80 %
+  /// with correlated residuals).
   std::vector<double> deflection_fit_percent;
+  /// Segments simulated (all logs) and their mean length [s].
+  std::size_t segments = 0;
+  double segment_seconds = 0.0;
 };
 
 /// Throws OptionError when link_coulomb is in `free` or nonzero in `start`.

@@ -216,7 +216,7 @@ FitResult FitLinearLeastSquares(JacobianBlock design, const Eigen::VectorXd& y,
   Eigen::VectorXd residuals = x * estimate;
   residuals -= y;
   if (!residuals.allFinite()) ThrowEvaluationFailure(parameters, values, "");
-  DescribeFit(std::move(blocks), residuals, parameters, values, channels, result);
+  DescribeFit(std::move(blocks), residuals, parameters, values, channels, result, options.clusters);
   return result;
 }
 
@@ -328,7 +328,7 @@ FitResult SolveBlocks(BlockResidualModel& model, ResidualModel* whole, const std
     SetLowerBounds(problem, z.data(), 0, q, parameters, scale);
     ProgressCallback callback(options.progress);
     ceres::Solver::Options solver_options = SolverOptions(options, callback);
-    if (large) {
+    if (large || options.normal_equations) {
       solver_options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
     } else if (ordering->NumGroups() == 2) {
       solver_options.linear_solver_type = ceres::DENSE_SCHUR;
@@ -346,7 +346,7 @@ FitResult SolveBlocks(BlockResidualModel& model, ResidualModel* whole, const std
   evaluate_at(z);
   if (whole != nullptr) whole->Release();
   result.singular_values = RequireIdentifiable(blocks, parameters, options, "at the optimum");
-  DescribeFit(std::move(blocks), residuals, parameters, physical, channels, result);
+  DescribeFit(std::move(blocks), residuals, parameters, physical, channels, result, options.clusters);
   return result;
 }
 

@@ -98,6 +98,12 @@ struct LargeProblemPolicy {
   }
 };
 
+/// Rows [begin, begin + count) of a problem's residuals.
+struct RowRange {
+  int begin = 0;
+  int count = 0;
+};
+
 struct FitOptions {
   int max_iterations = 100;
   /// Smallest singular value of the column-normalised Jacobian below which
@@ -110,6 +116,18 @@ struct FitOptions {
   /// at its best point so far with a warning instead of a refusal.
   double max_seconds = 0.0;
   LargeProblemPolicy large;
+  /// Groups of rows whose errors may be correlated in any way among
+  /// themselves (across channels too) and are independent between groups,
+  /// e.g. a multiple-shooting segment's rows in every channel. Given, the
+  /// covariance is cluster-robust over them and the interval's quantile is
+  /// Student's t with G - 1 degrees of freedom (docs/models.md#identification).
+  std::vector<std::vector<RowRange>> clusters;
+  /// Solve each step on the normal equations (P x P) rather than a QR of
+  /// the N x P Jacobian: for wide problems (a multiple-shooting fit's
+  /// segment states), where the QR's Householder updates dominate; the
+  /// parameters are scaled and identifiable, so squaring the condition
+  /// number costs no accuracy that matters (as for large problems).
+  bool normal_equations = false;
 };
 
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;

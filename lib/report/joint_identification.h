@@ -22,6 +22,7 @@ struct JointIdentificationOptions {
   JointMethod method = JointMethod::kAuto;
   std::vector<std::string> free;  ///< empty: the default for the logs
   double cutoff = 0.0;            ///< inverse dynamics: angle low-pass [Hz], 0: rate / 40
+  double segment_seconds = 0.0;   ///< output error: JointOeOptions::segment_seconds
   FitOptions fit;                 ///< progress callback
   bool trace = false;             ///< build the trace CSV
   bool plot = false;              ///< build the plot panels
@@ -40,9 +41,11 @@ struct JointIdentification {
 /// Fits the joint to `logs` from `section`. `auto` takes output error when
 /// every log has the motor torque, the link's Coulomb friction is neither
 /// free nor given, and the inverse-dynamics fit (output error's start) shows
-/// its filter reaching the resonance (cutoff < 2 x resonance) or leaves the
-/// stiffness undetermined; the summary says why. Throws as FitJoint and
-/// FitJointOutputError; OptionError for a cutoff with output error.
+/// its filter near the resonance (cutoff < 4 x resonance) or leaves a
+/// term undetermined (relative std above 50 %, not at its bound 0); the
+/// summary says why. Throws as FitJoint and FitJointOutputError;
+/// OptionError for a cutoff with output error, a segment with inverse
+/// dynamics.
 JointIdentification IdentifyJoint(const std::vector<JointLog>& logs, const JointSection& section,
                                   const JointIdentificationOptions& options);
 

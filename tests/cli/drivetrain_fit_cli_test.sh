@@ -344,28 +344,45 @@ printf 'joint:\n  gear_ratio: 50\n' > stiff_start.yaml
 "$bin" simulate joint --params stiff_truth.yaml --kp 0.0004 --ki 0.002 --duration 10 --band 1,60 --amplitude 0.5 \
   --noise 0.5 -o stiff.csv && ok || fail "simulate joint (stiff)"
 "$bin" joint stiff.csv --params stiff_start.yaml -o stiff_fit.yaml --trace stiff_trace.csv --plot stiff_fit.svg > stiff.txt 2>&1 \
-  && grep -q "^method: output error (auto: the inverse-dynamics cutoff 25 Hz is below twice the resonance" stiff.txt \
+  && grep -q "^method: output error (auto: the inverse-dynamics cutoff 25 Hz is below 4 x the resonance" stiff.txt \
   && grep -q "^  stiffness: \(39[2-9]\|40[0-8]\)" stiff_fit.yaml && grep -q "output error (exact ZOH" stiff_fit.yaml \
   && head -2 stiff_trace.csv | grep -q "^log,t,q_motor_measured,q_motor_model,q_link_measured,q_link_model" \
   && [ -s stiff_fit.svg ] && ok || fail "joint auto -> output error: $(cat stiff.txt)"
 "$bin" joint stiff.csv --params stiff_start.yaml --method id -q -o /dev/null 2> stiff_id.txt
 grep -q "not identifiable.*link_viscous\|within a factor 2 of the fitted resonance" stiff_id.txt && ok \
   || fail "joint --method id on the stiff joint: $(cat stiff_id.txt)"
+# The cutoff advice is tried before it is given (issue 35 item 5): at 2.5 x
+# the resonance this fit is refused, so the warning points to output error.
+printf 'joint:\n  gear_ratio: 50\n  link_viscous: 0.05\n  link_coulomb: 0\n' > stiff_fixed_link.yaml
+"$bin" joint stiff.csv --params stiff_fixed_link.yaml --method id -o /dev/null \
+  --free motor_inertia,link_inertia,stiffness,damping,motor_viscous,motor_coulomb,offset > stiff_cutoff.txt 2>&1
+grep -q "^warning: the angle cutoff 25 Hz is within a factor 2 of the fitted resonance .*a higher cutoff does not help (at 66.* Hz the fit is refused: .*use --method oe" stiff_cutoff.txt \
+  && ! grep -q "raise --cutoff" stiff_cutoff.txt && ok || fail "joint --method id, cutoff advice: $(cat stiff_cutoff.txt)"
 expect 2 "--method oe does not simulate the link's Coulomb friction" -- joint stiff.csv --params stiff_start.yaml \
   --method oe --free stiffness,link_coulomb
 expect 2 "--cutoff applies to --method id only" -- joint stiff.csv --params stiff_start.yaml --method oe --cutoff 30
+expect 2 "--segment applies to --method oe \\(or auto\\) only" -- joint stiff.csv --params stiff_start.yaml --method id \
+  --segment 0.5
+expect 2 "--segment.*expected auto, none or a number of seconds > 0, got '-1'" -- joint stiff.csv \
+  --params stiff_start.yaml --segment -1
+expect 2 "--segment.*got 'nan'" -- joint stiff.csv --params stiff_start.yaml --segment nan
+grep -q "^note: output error by multiple shooting: [0-9]* segments of" stiff.txt && ok \
+  || fail "joint auto -> output error names its segments: $(cat stiff.txt)"
+"$bin" joint stiff.csv --params stiff_start.yaml --method oe --segment none -o /dev/null > stiff_single.txt 2>&1 \
+  && grep -q "^note: output error by single shooting" stiff_single.txt && ok \
+  || fail "joint --segment none: $(cat stiff_single.txt)"
 cut -d, -f1,3,5 stiff.csv > stiff_notau.csv
 awk -F, '/^#/ { next } !header { print $0 ",tau_link"; header = 1; next } { print $0 "," 400 * ($2 / 50 - $3) }' \
   stiff_notau.csv > stiff_shaft.csv
 expect 3 "stiff_shaft.csv: --method oe simulates the joint from the motor torque" -- joint stiff_shaft.csv \
   --params stiff_start.yaml --method oe
 # The shipped example has link Coulomb friction: auto keeps inverse dynamics
-# and says why; forced output error warns that the deflection fits poorly.
+# and says why; forced output error warns that inverse dynamics finds it.
 "$bin" joint "$src/data/joint_example.csv" --params "$src/data/joint_start.yaml" -o /dev/null > example_auto.txt 2>&1
 grep -q "^method: inverse dynamics (auto: inverse dynamics finds link Coulomb friction" example_auto.txt && ok \
   || fail "joint auto on the example: $(cat example_auto.txt)"
 "$bin" joint "$src/data/joint_example.csv" --params "$src/data/joint_start.yaml" --method oe -o /dev/null > example_oe.txt 2>&1
-grep -q "low fit: .*deflection q_motor/n - q_link: the simulated deflection fits" example_oe.txt && ok \
+grep -q "model: inverse dynamics finds link Coulomb friction .* which output error does not simulate" example_oe.txt && ok \
   || fail "joint --method oe on the example: $(cat example_oe.txt)"
 
 # robot (docs/models.md#planar-robot).

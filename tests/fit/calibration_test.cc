@@ -22,7 +22,7 @@
 #include "fit/step_fit.h"
 #include "support/paper000.h"
 #include "support/reference_drivetrain.h"
-#include "support/reference_joint_friction.h"
+#include "support/friction_joint_cases.h"
 
 using namespace driveid;
 
@@ -265,25 +265,14 @@ JointSamples JointOutputErrorSeeds(unsigned first, unsigned count) {
                {"motor_viscous", truth.motor_viscous}, {"motor_coulomb", truth.motor_coulomb},
                {"link_viscous", truth.link_viscous},   {"offset", truth.offset}};
   out.samples.resize(out.truth.size());
-  JointSection start;
-  start.gear_ratio = truth.gear_ratio;
-  start.motor_inertia = 0.6;
-  start.link_inertia = 1.0;
-  start.stiffness = 3000.0;
-  start.damping = start.motor_viscous = start.motor_coulomb = 1.0;
-  start.link_viscous = start.link_coulomb = start.offset = 0.0;
+  const JointSection start = driveid::testing::FarJointStart(truth);
   JointFitOptions id_options;
   id_options.per_log = id_options.sensitivity = id_options.refuse_undetermined = false;
   for (unsigned seed = first; seed < first + count; ++seed) {
     driveid::testing::FrictionJointExperiment experiment;
     experiment.seed = seed;
-    const auto g = driveid::testing::SimulateFrictionJoint(truth, experiment);
-    JointLog log;
-    log.path = "joint_mc.csv";
-    log.time = g.t;
-    log.motor_position = g.q_motor;
-    log.link_position = g.q_link;
-    log.torque = g.tau;
+    const JointLog log =
+        driveid::testing::ToJointLog(driveid::testing::SimulateFrictionJoint(truth, experiment), "joint_mc.csv");
     const JointFitOutput id = FitJoint({log}, start, id_options);
     const FitResult fit = FitJointOutputError({log}, start, &id.params, {}).fit;
     for (std::size_t j = 0; j < out.truth.size(); ++j) out.samples[j].Add(Find(fit, out.truth[j].first), out.truth[j].second);
@@ -293,12 +282,15 @@ JointSamples JointOutputErrorSeeds(unsigned first, unsigned count) {
 
 }  // namespace
 
-TEST_CASE("joint output error, closed loop, sticking motor, quantised AR(1) encoders: intervals cover over 100 seeds") {
-  const JointSamples s = JointOutputErrorSeeds(500, 100);
+TEST_CASE("joint output error, closed loop, sticking motor, quantised AR(1) encoders: intervals cover over 50 seeds") {
+  // 50 seeds (multiple shooting, the default, costs ~3 s a seed; a noisy
+  // measured torque's coverage: tests/fit/joint_oe_coverage_test.cc).
+  const JointSamples s = JointOutputErrorSeeds(500, 50);
   for (std::size_t j = 0; j < s.truth.size(); ++j) {
     INFO("joint OE, " << s.truth[j].first << ": empirical / reported std = " << s.samples[j].Ratio()
                       << ", 95 % coverage " << s.samples[j].Coverage());
     CHECK(s.samples[j].Coverage() >= 0.88);
-    CHECK(s.samples[j].Coverage() <= 0.99);
+    // Not far too wide (all 50 covered happens 8 % of the time at 95 %).
+    CHECK(s.samples[j].Ratio() > 0.7);
   }
 }

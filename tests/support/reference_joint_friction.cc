@@ -62,7 +62,8 @@ FrictionJointLog SimulateFrictionJoint(const FrictionJointTruth& truth, const Fr
   FrictionJointLog log;
   Plant plant{truth};
   State x{0.0, 0.0, 0.0, 0.0};
-  double noise_m = 0.0, noise_l = 0.0, integral = 0.0, previous = 0.0;
+  const double torque_innovation = std::sqrt(1.0 - e.torque_noise_ar * e.torque_noise_ar);
+  double noise_m = 0.0, noise_l = 0.0, noise_tau = 0.0, integral = 0.0, previous = 0.0;
   for (std::size_t i = 0; i < samples; ++i) {
     noise_m = e.noise_ar * noise_m + e.noise * innovation * normal(rng);
     noise_l = e.noise_ar * noise_l + e.noise / truth.gear_ratio * innovation * normal(rng);
@@ -75,7 +76,10 @@ FrictionJointLog SimulateFrictionJoint(const FrictionJointTruth& truth, const Fr
     integral += error * dt;
     const double tau = e.kp * error + e.ki * integral + one[i % period];
     log.t.push_back(t);
-    log.tau.push_back(tau);
+    if (e.torque_noise > 0.0) {
+      noise_tau = e.torque_noise_ar * noise_tau + e.torque_noise * torque_innovation * normal(rng);
+    }
+    log.tau.push_back(tau + noise_tau);
     log.q_motor.push_back(q_motor);
     log.q_link.push_back(q_link);
     plant.u = truth.gear_ratio * tau;

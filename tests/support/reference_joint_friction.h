@@ -8,8 +8,10 @@
 // - c_m sgn(th_m') - tau_0, J_l th_l'' = k D + d D' - b_l th_l', D = th_m - th_l.
 // A discrete PI speed loop on the measured motor speed follows a slow
 // reversing speed reference; a Schroeder multisine torque is injected after
-// it. Logged: t, tau (motor shaft, the command as applied), q_motor = n th_m
-// and q_link = th_l through quantising encoders plus AR(1) noise.
+// it. Logged: t, tau (motor shaft: the command as applied, plus AR(1)
+// measurement noise when torque_noise > 0, as a current-based torque
+// reads), q_motor = n th_m and q_link = th_l through quantising encoders
+// plus AR(1) noise.
 #pragma once
 
 #include <cstdint>
@@ -38,6 +40,8 @@ struct FrictionJointExperiment {
   double motor_counts = 1 << 18, link_counts = 1 << 20;  // encoder counts per revolution
   double noise = 2e-5;            // std of the AR(1) angle noise [rad] (link noise: noise / n)
   double noise_ar = 0.7;
+  double torque_noise = 0.0;      // std of the AR(1) noise on the logged torque [N m, motor shaft]
+  double torque_noise_ar = 0.0;   // its lag-1 correlation (0: white)
   int substeps = 50;
   std::uint64_t seed = 1;
 };
