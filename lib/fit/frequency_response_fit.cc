@@ -313,6 +313,41 @@ void AddFeatures(const std::vector<std::size_t>& free_terms, TwoMassFitOutput& o
   }
 }
 
+// A measured phase that falls away from the model linearly with frequency
+// is a lag the model lacks (sampling, filters, a bus): the phase of
+// measured / model over the fitted motor bins, fitted as -omega tau through
+// 0 (weighted by the bins' phase std where known); a tau more than 3 std
+// from 0 that turns the phase by more than 10 degrees at the band's top draws
+// a warning that says to free `delay`.
+void CheckLinearPhase(const ResponseData& motor, const TwoMassFitOutput& out, std::vector<std::string>& warnings) {
+  double sww = 0.0, swr = 0.0, swrr = 0.0;
+  int bins = 0;
+  for (std::size_t b = 0; b < motor.frequency.size(); ++b) {
+    if (!out.motor_used[b] || !(std::abs(out.motor_model[b]) > 0.0)) continue;
+    const double omega = Omega(motor.frequency[b]);
+    const double r = std::arg(motor.response[b] / out.motor_model[b]);
+    const double s = motor.phase_std.empty() ? 1.0 : motor.phase_std[b];
+    if (!(s > 0.0) || !std::isfinite(s) || !std::isfinite(r)) continue;
+    const double w = 1.0 / (s * s);
+    sww += w * omega * omega;
+    swr += w * omega * r;
+    swrr += w * r * r;
+    ++bins;
+  }
+  if (bins < 3 || !(sww > 0.0)) return;
+  const double tau = -swr / sww;
+  // The std from the bins' own phase std, or from the scatter when unknown.
+  const double scatter = motor.phase_std.empty() ? std::max(0.0, swrr - tau * tau * sww) / (bins - 1) : 1.0;
+  const double tau_std = std::sqrt(scatter / sww);
+  const double turn = Omega(out.band_high) * std::abs(tau);
+  if (std::abs(tau) > 3.0 * tau_std && turn > 10.0 * M_PI / 180.0) {
+    warnings.push_back(fmt::format(
+        "phase: the measured phase falls away from the model linearly with frequency, as a delay of {:.3g} +- {:.2g} ms "
+        "({:.0f} degrees at {:.4g} Hz) would: a lag the model lacks (sampling, a filter, a bus); free delay in ‹free›",
+        1e3 * tau, 1e3 * tau_std, turn * 180.0 / M_PI, out.band_high));
+  }
+}
+
 }  // namespace
 
 TwoMassFitOutput FitTwoMassResponse(const ResponseData& motor, const ResponseData* link, const JointSection& start,
@@ -366,11 +401,6 @@ TwoMassFitOutput FitTwoMassResponse(const ResponseData& motor, const ResponseDat
   for (std::size_t index : free_terms) {
     if (index != kDelay) nonnegative.emplace_back(kTerms[index]);
   }
-  std::map<std::string, double> start_values;
-  for (const auto& p : parameters) start_values[p.name] = p.initial;
-  RequireDetermined(out.fit, nonnegative, kMaxRelativeStd, out.fit.warnings, start_values);
-
-  AddFeatures(free_terms, out);
   const auto model_at = [&](const ResponseData& data, bool is_link) {
     std::vector<ResponseResiduals::Row> all;
     for (std::size_t b = 0; b < data.frequency.size(); ++b) all.push_back({&data, b, is_link, false});
@@ -378,6 +408,14 @@ TwoMassFitOutput FitTwoMassResponse(const ResponseData& motor, const ResponseDat
   };
   out.motor_model = model_at(motor, false);
   if (link != nullptr) out.link_model = model_at(*link, true);
+  // Before the refusals, which carry the warnings as their context.
+  if (std::find(free_terms.begin(), free_terms.end(), kDelay) == free_terms.end()) {
+    CheckLinearPhase(motor, out, out.fit.warnings);
+  }
+  std::map<std::string, double> start_values;
+  for (const auto& p : parameters) start_values[p.name] = p.initial;
+  RequireDetermined(out.fit, nonnegative, kMaxRelativeStd, out.fit.warnings, start_values);
+  AddFeatures(free_terms, out);
   return out;
 }
 

@@ -333,3 +333,38 @@ TEST_CASE("a disturbance line in the input and a peak beyond the excited band ar
   REQUIRE(!none.warnings.empty());
   CHECK(none.warnings.front().find("no resonance") != std::string::npos);
 }
+
+TEST_CASE("a measured phase that lags linearly: the two-mass fit says to free the delay, and then fits it") {
+  const TwoMassTruth truth;
+  TwoMassExperiment e;
+  const auto log = SimulateTwoMassClosedLoop(truth, e);
+  FrequencyResponse frf = Measure(log, e.rate, true);
+  TwoMassFitOptions options;
+  options.hold_rate = e.rate;
+  JointSection start;
+  start.gear_ratio = truth.gear_ratio;
+  const auto phase_warned = [](const TwoMassFitOutput& fit) {
+    for (const auto& w : fit.fit.warnings) {
+      if (w.find("phase: the measured phase falls away from the model linearly") == 0) return true;
+    }
+    return false;
+  };
+  CHECK_FALSE(phase_warned(FitTwoMassResponse(ToData(frf), nullptr, start, options)));
+  // A 2 ms lag (a bus, a filter) on the measured response.
+  constexpr double kLag = 0.002;
+  for (std::size_t b = 0; b < frf.frequency.size(); ++b) {
+    frf.response[b] *= std::exp(std::complex<double>(0.0, -2.0 * M_PI * frf.frequency[b] * kLag));
+  }
+  // Warned, or refused (the lag leaves damping undetermined) with the warning.
+  try {
+    const TwoMassFitOutput lagged = FitTwoMassResponse(ToData(frf), nullptr, start, options);
+    CHECK(phase_warned(lagged));
+  } catch (const IdentificationError& refused) {
+    CHECK_THAT(refused.what(), Catch::Contains("phase: the measured phase falls away from the model linearly"));
+  }
+  options.free.push_back("delay");
+  const TwoMassFitOutput with_delay = FitTwoMassResponse(ToData(frf), nullptr, start, options);
+  CHECK_FALSE(phase_warned(with_delay));
+  INFO("delay " << with_delay.delay);
+  CHECK(std::abs(with_delay.delay - kLag) < 1e-4);
+}
