@@ -113,17 +113,8 @@ Eigen::MatrixXd ClusterCovariance(const std::vector<JacobianBlock>& blocks, cons
       if (h(j, j) >= (1.0 - 1e-9) * a(j, j)) own_anywhere[static_cast<std::size_t>(j)] = true;
       else rest.push_back(j);
     }
-    const auto m = static_cast<Eigen::Index>(rest.size());
-    Eigen::MatrixXd reduced(m, m);
-    Eigen::VectorXd rhs(m);
-    for (Eigen::Index i = 0; i < m; ++i) {
-      rhs(i) = score(rest[static_cast<std::size_t>(i)]);
-      for (Eigen::Index k = 0; k < m; ++k) {
-        reduced(i, k) = a(rest[static_cast<std::size_t>(i)], rest[static_cast<std::size_t>(k)]) -
-                        h(rest[static_cast<std::size_t>(i)], rest[static_cast<std::size_t>(k)]);
-      }
-    }
-    deltas.push_back(reduced.ldlt().solve(rhs));
+    const Eigen::MatrixXd reduced = a(rest, rest) - h(rest, rest);
+    deltas.push_back(reduced.ldlt().solve(Eigen::VectorXd(score(rest))));
     kept.push_back(std::move(rest));
   }
   Eigen::MatrixXd covariance = inverse * (g > 1.0 ? middle * (g / (g - 1.0)) : middle) * inverse;

@@ -107,10 +107,7 @@ class JointOeResiduals final : public ResidualModel {
     simulator_.Simulate(params_, l.log->time, l.torque, Start(l.shots.front(), parameters), false, &response_);
     motor->resize(l.log->time.size());
     link->resize(l.log->time.size());
-    for (std::size_t k = 0; k < l.log->time.size(); ++k) {
-      (*motor)[k] = n_ * response_.state[4 * k];
-      (*link)[k] = response_.state[4 * k + 2];
-    }
+    StoreAngles(0, l.log->time.size(), motor, link);
   }
 
   /// The simulated angles of log i (log units) at `parameters`.
@@ -122,14 +119,19 @@ class JointOeResiduals final : public ResidualModel {
     for (const auto& shot : l.shots) {
       simulator_.Simulate(params_, shot.segment.time, shot.segment.torque, Start(shot, parameters), false,
                           &response_);
-      for (std::size_t k = 0; k < shot.segment.time.size(); ++k) {
-        (*motor)[shot.segment.begin + k] = n_ * response_.state[4 * k];
-        (*link)[shot.segment.begin + k] = response_.state[4 * k + 2];
-      }
+      StoreAngles(shot.segment.begin, shot.segment.time.size(), motor, link);
     }
   }
 
  private:
+  // The last simulation's `count` angles (log units) into samples from `begin`.
+  void StoreAngles(std::size_t begin, std::size_t count, std::vector<double>* motor, std::vector<double>* link) const {
+    for (std::size_t k = 0; k < count; ++k) {
+      (*motor)[begin + k] = n_ * response_.state[4 * k];
+      (*link)[begin + k] = response_.state[4 * k + 2];
+    }
+  }
+
   void Set(const double* parameters) {
     for (std::size_t j = 0; j < terms_.size(); ++j) params_.*(JointParameterTable()[terms_[j]].in_model) = parameters[j];
   }
@@ -581,8 +583,7 @@ JointOeOutput FitJointOutputError(const std::vector<JointLog>& logs, const Joint
   // Auto: the shortest segments (least drift) that determine every term —
   // from AutoSegmentSeconds, doubled while the fit is refused, up to the
   // whole log.
-  double longest = 0.0;
-  for (const auto& log : logs) longest = std::max(longest, log.time.empty() ? 0.0 : log.time.back() - log.time.front());
+  const double longest = LongestDuration(logs);
   options.segment_seconds = AutoSegmentSeconds(logs, StartJoint(start, initial));
   std::vector<std::string> tried;
   for (;;) {

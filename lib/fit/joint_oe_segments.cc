@@ -46,14 +46,19 @@ StartRate CalcStartRate(const std::vector<double>& time, const std::vector<doubl
 
 }  // namespace
 
-double AutoSegmentSeconds(const std::vector<JointLog>& logs, const JointParameters& p) {
-  const double omega_squared = p.stiffness * (1.0 / p.motor_inertia + 1.0 / p.link_inertia);
-  if (!(omega_squared > 0.0) || !std::isfinite(omega_squared)) return HUGE_VAL;
+double LongestDuration(const std::vector<JointLog>& logs) {
   double longest = 0.0;
   for (const auto& log : logs) {
     if (log.time.size() > 1) longest = std::max(longest, log.time.back() - log.time.front());
   }
-  return std::max(kSegmentResonancePeriods * 2.0 * M_PI / std::sqrt(omega_squared), longest / kMaxAutoSegments);
+  return longest;
+}
+
+double AutoSegmentSeconds(const std::vector<JointLog>& logs, const JointParameters& p) {
+  const double omega_squared = p.stiffness * (1.0 / p.motor_inertia + 1.0 / p.link_inertia);
+  if (!(omega_squared > 0.0) || !std::isfinite(omega_squared)) return HUGE_VAL;
+  return std::max(kSegmentResonancePeriods * 2.0 * M_PI / std::sqrt(omega_squared),
+                  LongestDuration(logs) / kMaxAutoSegments);
 }
 
 std::size_t SegmentSamples(const JointLog& log, double seconds) {

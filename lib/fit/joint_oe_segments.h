@@ -30,6 +30,9 @@ struct OeSegment {
   bool motor_moving = false;       ///< its motor's start rate is estimated (else it starts at rest)
 };
 
+/// The longest log's duration [s] (0 for none).
+double LongestDuration(const std::vector<JointLog>& logs);
+
 /// The auto segment length [s]: kSegmentResonancePeriods periods of the
 /// resonance sqrt(k (1/J_m + 1/J_l)) of `p`, at least the longest log's
 /// duration / kMaxAutoSegments; infinite (single shooting) when `p` has no

@@ -135,14 +135,12 @@ int SolveBoundedQuadratic(const Eigen::MatrixXd& a, const Eigen::VectorXd& b, co
       else open.push_back(j);
     }
     const auto k = static_cast<Eigen::Index>(open.size());
-    Eigen::MatrixXd a_open(k, k);
-    Eigen::VectorXd b_open(k);
+    const Eigen::MatrixXd a_open = a(open, open);
+    Eigen::VectorXd b_open = b(open);
     for (Eigen::Index i = 0; i < k; ++i) {
-      b_open(i) = b(open[static_cast<std::size_t>(i)]);
       for (Eigen::Index j = 0; j < p; ++j) {
         if (bound[static_cast<std::size_t>(j)]) b_open(i) -= a(open[static_cast<std::size_t>(i)], j) * z(j);
       }
-      for (Eigen::Index j = 0; j < k; ++j) a_open(i, j) = a(open[static_cast<std::size_t>(i)], open[static_cast<std::size_t>(j)]);
     }
     const Eigen::VectorXd z_open = a_open.ldlt().solve(b_open);
     for (Eigen::Index i = 0; i < k; ++i) z(open[static_cast<std::size_t>(i)]) = z_open(i);

@@ -222,7 +222,7 @@ TEST_CASE("joint OE by multiple shooting recovers a closed-loop joint from a noi
   CHECK(said);
   // The 95 % interval: the coverage test (joint_oe_coverage_test.cc) runs 40 seeds.
   const auto check = [&](const char* name, double value, double tolerance) {
-    CheckRecovered(oe.fit, name, value, tolerance, StudentT975(oe.segments - 1));
+    CheckRecovered(oe.fit, name, value, tolerance, StudentT975(static_cast<int>(oe.segments) - 1));
   };
   check("motor_inertia", truth.motor_inertia, 0.02);
   check("link_inertia", truth.link_inertia, 0.02);
