@@ -57,7 +57,7 @@ void RunInspect(const InspectOptions& options) {
     const std::string join_path = JoinFor(options.input, i, options.logs.size());
     if (!join_path.empty()) {
       join_text = ReadFileToString(join_path, limits);
-      joins.push_back({join_path, &join_text});
+      joins.push_back({join_path, &join_text, JoinTimingFor(options.input, i, options.logs.size())});
     }
     for (const auto& source : OpenLogSources(options.logs[i], text, joins, input)) {
       const InspectedLog inspected = InspectLog(*source, input, options.columns);

@@ -27,6 +27,17 @@ void AddLogInputOptions(CLI::App& command, LogInputCli& options, const std::stri
                      "add the columns of this file row by row (positions #k count on); once, or once per log")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
       ->allow_extra_args(false);
+  command.add_option("--join-time", options.join_time,
+                     "join by time: the joined file's time column [s] (a column expression, e.g. t or stamp_ms/1000); "
+                     "its columns are interpolated onto the log's time (docs/formats.md#joining-by-time)");
+  command.add_option("--join-shift", options.join_shift,
+                     "with --join-time: log time = joined time + SECONDS; once, or once per log")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->allow_extra_args(false)
+      ->check(FiniteAtLeast(-1e300));
+  command.add_option("--join-align", options.join_align,
+                     "with --join-time: find the shift (and a clock-rate difference) by cross-correlating a channel "
+                     "both files record, LOG_COLUMN=JOINED_COLUMN (e.g. speed=#2)");
   command.add_option("--side", options.side, "SysId Drivetrain files: left, right or both (two logs per test)")
       ->check(CLI::IsMember({"left", "right", "both"}));
 }
@@ -43,6 +54,9 @@ LogInputOptions MakeLogInputOptions(const LogInputCli& options) {
     if (!out.columns.emplace(name, entry.substr(eq + 1)).second) {
       throw OptionError(fmt::format("--col {}: '{}' is mapped twice", entry, name));
     }
+  }
+  if (options.join.empty() && (!options.join_time.empty() || !options.join_shift.empty() || !options.join_align.empty())) {
+    throw OptionError("--join-time, --join-shift and --join-align apply to a file given with --join");
   }
   out.csv.no_header = options.no_header;
   const std::string& d = options.delimiter;
@@ -62,6 +76,21 @@ std::string JoinFor(const LogInputCli& options, std::size_t k, std::size_t count
   if (options.join.empty()) return {};
   if (options.join.size() == count) return options.join[k];
   throw OptionError(fmt::format("--join given {} times for {} logs: give it once per log", options.join.size(), count));
+}
+
+JoinTiming JoinTimingFor(const LogInputCli& options, std::size_t k, std::size_t count) {
+  JoinTiming timing;
+  timing.time = options.join_time;
+  timing.align = options.join_align;
+  if (options.join_shift.size() == 1) {
+    timing.shift = options.join_shift.front();
+  } else if (options.join_shift.size() == count) {
+    timing.shift = options.join_shift[k];
+  } else if (!options.join_shift.empty()) {
+    throw OptionError(fmt::format("--join-shift given {} times for {} logs: give it once, or once per log",
+                                  options.join_shift.size(), count));
+  }
+  return timing;
 }
 
 }  // namespace driveid::cli

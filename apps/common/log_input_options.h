@@ -1,6 +1,6 @@
 // The options of every subcommand that reads logs (docs/formats.md#logs):
-// --col NAME=EXPR, --no-header, --delimiter, --rate, --from, --to, --join,
-// --side, and reading the logs with their provenance.
+// --col NAME=EXPR, --no-header, --delimiter, --rate, --from, --to, --join
+// (row by row or by time: --join-time, --join-shift, --join-align), --side, and reading the logs with their provenance.
 #pragma once
 
 #include <cmath>
@@ -25,6 +25,9 @@ struct LogInputCli {
   double rate = 0.0;
   double from = -INFINITY, to = INFINITY;
   std::vector<std::string> join;
+  std::string join_time;                ///< --join-time EXPR: join by time
+  std::vector<double> join_shift;       ///< --join-shift S: once, or once per log
+  std::string join_align;               ///< --join-align A=B
   std::string side;
 };
 
@@ -42,6 +45,10 @@ LogInputOptions MakeLogInputOptions(const LogInputCli& options);
 /// The --join file for the k-th of `count` logs ("" for none): one --join
 /// for one log, or one per log; OptionError otherwise.
 std::string JoinFor(const LogInputCli& options, std::size_t k, std::size_t count);
+
+/// How the k-th of `count` logs meets its joined file (--join-time,
+/// --join-shift once or once per log, --join-align); OptionError otherwise.
+JoinTiming JoinTimingFor(const LogInputCli& options, std::size_t k, std::size_t count);
 
 /// Reads each log once (at most --max-log-size bytes; joined files too),
 /// makes its logs with `make(CsvLog)` (a SysId file gives several) and
@@ -81,7 +88,7 @@ std::vector<Log> LoadLogs(const std::vector<std::string>& paths, const LogInputC
     const std::string join_path = JoinFor(input, i, paths.size());
     if (!join_path.empty()) {
       join_text = ReadFileToString(join_path, limits);
-      joins.push_back({join_path, &join_text});
+      joins.push_back({join_path, &join_text, JoinTimingFor(input, i, paths.size())});
       join_notes.push_back(fmt::format("joined with {} (sha256 {})", join_path, Sha256Hex(join_text)));
     }
     for (CsvLog& csv : ReadLogs(path, text, joins, columns, options)) {

@@ -337,6 +337,15 @@ std::vector<std::unique_ptr<TableSource>> OpenLogSources(const std::string& path
     if (joined.size() != 1 || sources.size() != 1) {
       throw OptionError(fmt::format("‹join› {}: only single-table files (CSV, MAT) can be joined", join.path));
     }
+    if (!join.timing.time.empty()) {
+      sources.front() = JoinSourcesByTime(std::move(sources.front()), std::move(joined.front()), join.timing, options);
+      continue;
+    }
+    if (join.timing.shift || !join.timing.align.empty()) {
+      throw OptionError(fmt::format("‹join› {}: a shift or an alignment joins by time: give the joined file's time "
+                                    "column with ‹join-time›",
+                                    join.path));
+    }
     sources.front() = JoinSources(std::move(sources.front()), std::move(joined.front()));
   }
   return sources;

@@ -14,6 +14,7 @@
 
 #include "io/csv_log.h"
 #include "io/table_source.h"
+#include "io/time_join.h"
 
 namespace driveid {
 
@@ -32,10 +33,11 @@ struct LogInputOptions {
   std::string time_column = "t";   ///< strictly increasing
 };
 
-/// A file joined row by row (`--join`): its name and contents.
+/// A file joined (`--join`): its name and contents, row by row or by time.
 struct JoinedFile {
   std::string path;
   const std::string* text = nullptr;
+  JoinTiming timing;
 };
 
 /// Reads the logs of one file. `required` lists logical names; "a|b" takes

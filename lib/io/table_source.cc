@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "io/paired_source.h"
 
 namespace driveid {
 namespace {
@@ -247,9 +248,9 @@ class CsvSource : public TableSource {
   int header_line_ = 0;
 };
 
-class JoinedSource : public TableSource {
+class JoinedSource : public PairedSource {
  public:
-  JoinedSource(std::unique_ptr<TableSource> a, std::unique_ptr<TableSource> b) : a_(std::move(a)), b_(std::move(b)) {
+  JoinedSource(std::unique_ptr<TableSource> a, std::unique_ptr<TableSource> b) : PairedSource(std::move(a), std::move(b)) {
     const auto la = a_->column_lengths(), lb = b_->column_lengths();
     const std::size_t rows_a = la.empty() ? 0 : la.front(), rows_b = lb.empty() ? 0 : lb.front();
     if (rows_a != rows_b) {
@@ -258,30 +259,11 @@ class JoinedSource : public TableSource {
                                    a_->path(), rows_a, b_->path(), rows_b));
     }
   }
-  std::string path() const override { return a_->path(); }
-  std::string segment() const override { return a_->segment(); }
-  std::string format() const override { return a_->format(); }
-  int header_line() const override { return a_->header_line(); }
-  std::vector<std::string> column_names() const override {
-    auto names = a_->column_names();
-    for (const auto& n : b_->column_names()) names.push_back(n);
-    return names;
-  }
   std::vector<std::size_t> column_lengths() const override {
     auto lengths = a_->column_lengths();
     for (auto n : b_->column_lengths()) lengths.push_back(n);
     return lengths;
   }
-  std::optional<double> scalar(const std::string& name) const override {
-    auto v = a_->scalar(name);
-    return v ? v : b_->scalar(name);
-  }
-  std::vector<SourceVariable> variables() const override {
-    auto variables = a_->variables();
-    for (auto& v : b_->variables()) variables.push_back(std::move(v));
-    return variables;
-  }
-  std::vector<std::string> comments() const override { return a_->comments(); }
   std::vector<std::string> notes() const override {
     auto notes = a_->notes();
     notes.push_back("joined row by row with " + b_->path());
@@ -289,19 +271,15 @@ class JoinedSource : public TableSource {
     return notes;
   }
   TableData Read(const std::vector<std::size_t>& columns) const override {
-    const std::size_t split = a_->column_names().size();
     std::vector<std::size_t> in_a, in_b;
-    for (auto c : columns) (c < split ? in_a : in_b).push_back(c < split ? c : c - split);
+    Split(columns, in_a, in_b);
     TableData da = a_->Read(in_a), db = b_->Read(in_b);
     TableData out;
     out.line_numbers = !da.line_numbers.empty() ? std::move(da.line_numbers) : std::move(db.line_numbers);
     std::size_t ia = 0, ib = 0;
-    for (auto c : columns) out.columns.push_back(c < split ? std::move(da.columns[ia++]) : std::move(db.columns[ib++]));
+    for (auto c : columns) out.columns.push_back(InA(c) ? std::move(da.columns[ia++]) : std::move(db.columns[ib++]));
     return out;
   }
-
- private:
-  std::unique_ptr<TableSource> a_, b_;
 };
 
 bool LooksLikeMat(const std::string& text) {

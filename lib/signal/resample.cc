@@ -5,13 +5,19 @@
 
 namespace driveid {
 
-double GlitchedStep(const std::vector<double>& time) {
-  if (time.size() < 3) return 0.0;
+double MedianStep(const std::vector<double>& time) {
   std::vector<double> steps(time.size() - 1);
   for (std::size_t k = 1; k < time.size(); ++k) steps[k - 1] = time[k] - time[k - 1];
-  std::vector<double> sorted = steps;
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
-  const double median = sorted[sorted.size() / 2];
+  const auto middle = steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2);
+  std::nth_element(steps.begin(), middle, steps.end());
+  return *middle;
+}
+
+double GlitchedStep(const std::vector<double>& time) {
+  if (time.size() < 3) return 0.0;
+  const double median = MedianStep(time);
+  std::vector<double> steps(time.size() - 1);
+  for (std::size_t k = 1; k < time.size(); ++k) steps[k - 1] = time[k] - time[k - 1];
   if (!(median > 0.0)) return 0.0;
   std::size_t off = 0;
   for (double s : steps) {

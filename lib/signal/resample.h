@@ -14,6 +14,9 @@ namespace driveid {
 constexpr double kMaxGlitch = 0.05;
 constexpr double kMaxGlitchShare = 0.01;
 
+/// The median of the intervals of `time` (at least 2 samples).
+double MedianStep(const std::vector<double>& time);
+
 /// The median step [s] when the stamps are regular but for isolated
 /// glitches as above, else 0.
 double GlitchedStep(const std::vector<double>& time);

@@ -9,8 +9,8 @@ declare -A allowed=(
   [models]="core models"
   [signal]="core signal"
   [control]="core models control"
-  [io]="core models control io"
-  [sim]="core models control io sim"
+  [io]="core models control signal io"
+  [sim]="core models control signal io sim"
   [fit]="core models signal io sim fit"
   [report]="core models control io signal sim fit report"
 )

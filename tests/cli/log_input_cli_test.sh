@@ -51,6 +51,29 @@ grep -q "joined with torques.csv (sha256 " joined.yaml && ok || fail "join not i
 head -5 torques.csv > short.csv
 expect 3 "positions.csv: [0-9]+ rows, but short.csv \(joined with --join\) has 5" -- \
   axis positions.csv --join short.csv --col t=#1 --col q=#2 --col tau=#3
+# A torque logged by another device: 500 Hz, stamped in ms on a clock that
+# starts at 1000 s and runs 200 ppm fast, from t = 0.3 s; it records the
+# encoder too. Joined by time and aligned by that channel, the clock-rate
+# difference is found and the inertia stays within 0.5 % of the one-file fit.
+grep -v '^#' axis.csv | awk -F, 'NR == 1 { print "t,q" > "p.csv"; print "stamp_ms,torque,enc" > "u.csv"; next }
+  { print $1 "," $2 > "p.csv"; if (NR % 2 == 0 && $1 >= 0.3) printf "%.4f,%s,%s\n", (1000 + ($1 - 0.3) * 1.0002) * 1e3, $3, $2 > "u.csv" }'
+"$bin" axis p.csv --join u.csv --join-time stamp_ms/1000 --join-align q=enc --col tau=torque -q -o clocks.yaml &&
+  awk -v a="$(inertia clocks.yaml)" -v b="$(inertia reference.yaml)" 'BEGIN { exit !(a > 0.995 * b && a < 1.005 * b) }' &&
+  grep -q "u.csv: aligned by cross-correlation: shift -999.7" clocks.yaml &&
+  grep -Eq "u.csv: the clocks run at different rates: .* \(-(19[5-9]|20[0-5])\.[0-9] ppm\), corrected linearly" clocks.yaml &&
+  grep -q "9700 of 10001 samples kept (0.3 .. 9.999 s), where u.csv has data" clocks.yaml && ok ||
+  fail "joined by time: inertia $(inertia clocks.yaml) vs $(inertia reference.yaml); $(grep -o 'joined by time[^]]*' clocks.yaml)"
+# The same with the shift given (a clock without the rate error).
+awk -F, 'NR == 1 { print; next } { printf "%.4f,%s,%s\n", 1e6 + ($1 - 1e6) / 1.0002, $2, $3 }' u.csv > v.csv
+"$bin" axis p.csv --join v.csv --join-time stamp_ms/1000 --join-shift -999.7 --col tau=torque -q -o shifted.yaml &&
+  awk -v a="$(inertia shifted.yaml)" -v b="$(inertia reference.yaml)" 'BEGIN { exit !(a > 0.995 * b && a < 1.005 * b) }' &&
+  grep -q "v.csv: shifted by -999.7 s (--join-shift)" shifted.yaml && ok || fail "joined by time with --join-shift"
+expect 2 "--join-time, --join-shift and --join-align apply to a file given with --join" -- \
+  axis p.csv --join-time stamp_ms/1000
+expect 2 "--join v.csv: a shift or an alignment joins by time: give the joined file's time column with --join-time" -- \
+  axis p.csv --join v.csv --join-shift 3 --col tau=torque
+expect 3 "p.csv: the log spans 0 .. 10 s, v.csv spans 1300 .. 1309.7 s on its clock: they do not overlap" -- \
+  axis p.csv --join v.csv --join-time stamp_ms/1000 --join-shift 300 --col tau=torque
 # No time column: --rate (the simulated log is 1 kHz).
 cut -d, -f2,3 bare.csv > untimed.csv
 "$bin" axis untimed.csv --rate 1000 --col 'q=pi/180*#1' --col tau=#2 -q -o untimed.yaml && same untimed.yaml && ok ||

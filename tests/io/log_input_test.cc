@@ -124,12 +124,64 @@ TEST_CASE("--join: a second file's columns row by row, positions count on") {
   const std::string positions = "t,q\n0,1\n1,2\n2,3\n";
   const std::string currents = "0.5\n0.6\n0.7\n";
   const std::string short_file = "0.5\n0.6\n";
-  const auto log = ReadOne("p.csv", positions, Columns({{"tau", "#3"}}), {{"c.csv", &currents}});
+  const auto log = ReadOne("p.csv", positions, Columns({{"tau", "#3"}}), {{"c.csv", &currents, {}}});
   CHECK(log.columns[2] == std::vector<double>{0.5, 0.6, 0.7});
   CHECK(std::find(log.notes.begin(), log.notes.end(), "joined row by row with c.csv") != log.notes.end());
-  CHECK_THROWS_WITH(ReadOne("p.csv", positions, Columns({{"tau", "#3"}}), {{"c.csv", &short_file}}),
+  CHECK_THROWS_WITH(ReadOne("p.csv", positions, Columns({{"tau", "#3"}}), {{"c.csv", &short_file, {}}}),
                     "p.csv: 3 rows, but c.csv (joined with ‹join›) has 2: a joined file must have one row per row "
                     "of the log");
+}
+
+TEST_CASE("--join-time: a second file on its own clock, interpolated onto the log's time") {
+  // The log: t, q at 100 Hz over 2 s. The joined file: milliseconds on a clock 5 s ahead, at 40 Hz from
+  // t = 0.5 s, a current c = 3 + 2 t (linear: interpolation is exact) and the speed the log's q is made of.
+  const auto motion = [](double t) { return std::sin(3.0 * t) + 0.5 * std::tanh((t - 1.2) / 0.05); };
+  std::string log = "t,q\n", joined = "stamp_ms,c,q2\n";
+  for (int k = 0; k <= 200; ++k) log += fmt::format("{},{}\n", 0.01 * k, motion(0.01 * k));
+  for (int k = 0; k <= 48; ++k) {
+    const double t = 0.5 + 0.025 * k;
+    joined += fmt::format("{},{},{}\n", 1000.0 * (t + 5.0), 3.0 + 2.0 * t, motion(t));
+  }
+  JoinTiming shift;
+  shift.time = "stamp_ms/1000";
+  shift.shift = -5.0;
+  const auto a = ReadOne("p.csv", log, Columns({{"tau", "c"}}), {{"c.csv", &joined, shift}});
+  REQUIRE(a.columns[0].size() == 121);  // 0.5 .. 1.7 s
+  CHECK(a.columns[0].front() == Approx(0.5));
+  CHECK(a.line_numbers.front() == 52);  // rows kept with their lines
+  for (std::size_t i = 0; i < a.columns[0].size(); ++i) CHECK(a.columns[2][i] == Approx(3.0 + 2.0 * a.columns[0][i]));
+  const auto has = [](const CsvLog& l, const std::string& text) {
+    return std::any_of(l.notes.begin(), l.notes.end(), [&](const std::string& n) { return n.find(text) != n.npos; });
+  };
+  CHECK(has(a, "joined by time with c.csv"));
+  CHECK(has(a, "121 of 201 samples kept (0.5 .. 1.7 s)"));
+  CHECK(has(a, "c.csv is sampled at 40 Hz, the log at 100 Hz"));
+  // The same shift found from the motion both files record.
+  JoinTiming align;
+  align.time = "stamp_ms/1000";
+  align.align = "q=q2";
+  const auto b = ReadOne("p.csv", log, Columns({{"tau", "c"}}), {{"c.csv", &joined, align}});
+  INFO(fmt::format("{}", fmt::join(b.notes, " / ")));
+  REQUIRE(b.columns[0].size() == 121);
+  for (std::size_t i = 0; i < b.columns[0].size(); ++i) {
+    CHECK(b.columns[2][i] == Approx(3.0 + 2.0 * b.columns[0][i]).margin(2e-3));
+  }
+  CHECK(has(b, "aligned by cross-correlation: shift -5"));
+  // Refusals: no overlap; shift and align together; a shift without a time column; a time that goes back.
+  shift.shift = 100.0;
+  CHECK_THROWS_WITH(ReadOne("p.csv", log, Columns({{"tau", "c"}}), {{"c.csv", &joined, shift}}),
+                    Catch::Contains("p.csv: the log spans 0 .. 2 s, c.csv spans 105.5 .. 106.7 s on its clock: they do "
+                                    "not overlap"));
+  shift.align = "q=q2";
+  CHECK_THROWS_AS(ReadOne("p.csv", log, Columns({{"tau", "c"}}), {{"c.csv", &joined, shift}}), OptionError);
+  JoinTiming untimed;
+  untimed.shift = 1.0;
+  CHECK_THROWS_WITH(ReadOne("p.csv", log, Columns({{"tau", "c"}}), {{"c.csv", &joined, untimed}}),
+                    Catch::Contains("give the joined file's time column with ‹join-time›"));
+  std::string backwards = joined;
+  backwards.replace(backwards.find("\n5525,"), 6, "\n5000,");
+  CHECK_THROWS_WITH(ReadOne("p.csv", log, Columns({{"tau", "c"}}), {{"c.csv", &backwards, align}}),
+                    Catch::StartsWith("c.csv:3: the joined time ‹join-time› stamp_ms/1000 not strictly increasing"));
 }
 
 TEST_CASE("MAT v5 and v7.3: vectors, matrix columns and rows, struct fields, scalars in expressions") {
