@@ -109,6 +109,22 @@ std::vector<std::string> CheckFitPercent(const FitResult& fit) {
   return warnings;
 }
 
+std::vector<std::string> CheckResidualColour(const FitResult& fit) {
+  std::vector<std::string> warnings;
+  std::vector<std::string> names;
+  for (const auto& e : fit.estimates) names.push_back(e.name);
+  for (const auto& c : fit.channels) {
+    if (!(c.autocorrelation > kColouredResiduals) || c.samples < 20) continue;
+    const double rho = std::min(c.autocorrelation, 0.9999);
+    warnings.push_back(fmt::format(
+        "coloured residuals: {}: residual lag-1 {:.4f} over {} samples (about {:.0f} independent): what the model "
+        "leaves is a slow error (a drift, a mode or a torque it does not have), not noise; the intervals of {} "
+        "assume it stationary and may be too narrow (compare logs, or plot the residuals)",
+        c.name, c.autocorrelation, c.samples, c.samples * (1.0 - rho) / (1.0 + rho), fmt::join(names, ", ")));
+  }
+  return warnings;
+}
+
 std::vector<HeterogeneityTest> TestHeterogeneity(const std::vector<EstimateSet>& logs) {
   std::vector<HeterogeneityTest> tests;
   std::vector<std::string> names;

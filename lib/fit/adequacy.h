@@ -59,6 +59,16 @@ ChannelStatistics DescribeResiduals(const std::string& name, const double* measu
 /// One warning per channel fitted below kLowFitPercent.
 std::vector<std::string> CheckFitPercent(const FitResult& fit);
 
+/// Residual lag-1 autocorrelation above which a channel's residuals are
+/// model error rather than noise: the long-run covariance's AR(1)
+/// prewhitening stops at 0.99, and beyond it the intervals rest on a
+/// handful of effective samples.
+inline constexpr double kColouredResiduals = 0.99;
+
+/// One warning per channel whose residual lag-1 exceeds kColouredResiduals,
+/// naming the fit's parameters.
+std::vector<std::string> CheckResidualColour(const FitResult& fit);
+
 /// Tests each parameter of `logs` (where at least two logs estimated it).
 std::vector<HeterogeneityTest> TestHeterogeneity(const std::vector<EstimateSet>& logs);
 

@@ -312,6 +312,10 @@ void DescribeFit(std::vector<JacobianBlock> blocks, const Eigen::VectorXd& resid
   }
   RequireFiniteStatistics(all, result);
   result.warnings = CheckFitPercent(result);  // adequacy.h; fits add their own checks
+  // Cluster-robust intervals (segments) do not assume stationary residuals.
+  if (clusters.empty()) {
+    for (auto& w : CheckResidualColour(result)) result.warnings.push_back(std::move(w));
+  }
 }
 
 double CalcRmsDeviation(const std::vector<double>& values) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -10,6 +11,7 @@
 #include "fit/adequacy.h"
 #include "fit/axis_rows.h"
 #include "fit/linear_regression.h"
+#include "fit/omitted_terms.h"
 #include "models/missing_values.h"
 #include "signal/butterworth.h"
 #include "signal/resample.h"
@@ -73,7 +75,21 @@ struct JointDesign {
   std::string offset_key = KeyOf(JointParameterTable(), &JointParameters::link_torque_offset);
   std::size_t offset_column = 0;
   bool per_log_offset = false;
+  /// Shaft-torque rows only: the motor and link accelerations, held at 0 in
+  /// the fit and tested against its residuals (ShaftTorqueLocation).
+  std::size_t sensor_motor_column = 0, sensor_link_column = 0;
+  bool sensor_columns = false;
+  /// Shaft-torque rows only: an offset per block of kSensorDriftBlocks-th of
+  /// each log, so that angles integrated from speeds (a random-walk
+  /// deflection error) do not pass for a misplaced sensor; also held at 0.
+  std::vector<std::size_t> drift_first;  ///< per log: its first block column
+  std::vector<std::string> drift_columns;
 };
+
+constexpr int kSensorDriftBlocks = 20;
+
+constexpr const char* kSensorMotorAcceleration = "shaft torque: motor acceleration";
+constexpr const char* kSensorLinkAcceleration = "shaft torque: link acceleration";
 
 JointDesign MakeJointDesign(const std::vector<JointLog>& logs, const JointSection& start,
                             const std::vector<std::string>& free) {
@@ -112,6 +128,24 @@ JointDesign MakeJointDesign(const std::vector<JointLog>& logs, const JointSectio
       own.name = fmt::format("{}_{}", d.offset_key, i + 1);
       d.parameters.push_back(own);
       d.columns.push_back(own.name);
+    }
+  }
+  const bool link_torque =
+      std::any_of(logs.begin(), logs.end(), [](const JointLog& log) { return !log.link_torque.empty(); });
+  if (link_torque) {
+    d.sensor_columns = true;
+    d.sensor_motor_column = d.columns.size();
+    d.columns.push_back(kSensorMotorAcceleration);
+    d.sensor_link_column = d.columns.size();
+    d.columns.push_back(kSensorLinkAcceleration);
+    d.fixed[kSensorMotorAcceleration] = d.fixed[kSensorLinkAcceleration] = 0.0;
+    for (std::size_t i = 0; i < logs.size(); ++i) {
+      d.drift_first.push_back(d.columns.size());
+      for (int b = 0; b < kSensorDriftBlocks; ++b) {
+        d.drift_columns.push_back(fmt::format("shaft torque: log {} block {}", i + 1, b + 1));
+        d.columns.push_back(d.drift_columns.back());
+        d.fixed[d.drift_columns.back()] = 0.0;
+      }
     }
   }
   return d;
@@ -182,6 +216,12 @@ void AddJointLogRows(const JointLog& log, std::size_t i, const JointDesign& d, c
       std::vector<double> regressor(row.begin(), row.end());
       regressor.resize(d.columns.size(), 0.0);
       if (d.per_log_offset) std::swap(regressor[d.offset_column], regressor[kJointTerms + i]);
+      if (equation == 2) {
+        regressor[d.sensor_motor_column] = dm.acceleration[k];
+        regressor[d.sensor_link_column] = dl.acceleration[k];
+        const auto block = std::min<std::size_t>(kSensorDriftBlocks - 1, k * kSensorDriftBlocks / log.time.size());
+        regressor[d.drift_first[i] + block] = 1.0;
+      }
       regression.AddRow(regressor, target);
       out.time.push_back(log.time[k]);
       out.measured.push_back(target);
@@ -276,6 +316,32 @@ void CheckJointAdequacy(const std::vector<JointLog>& logs, const JointSection& s
   }
 }
 
+// A shaft torque measured elsewhere than between the encoders
+// (docs/models.md#elastic-joint): with an inertia J_s between the sensor and
+// the spring on the motor side it reads k D + d D' + J_s theta_m'', on the
+// link side k D + d D' - J_s theta_l''. Residuals of the shaft-torque rows
+// that the accelerations explain (omitted-term test, share >= 5 %, beside
+// an offset per block of each log: a slowly drifting deflection error, as
+// from angles integrated from speeds, is not the sensor's place) say so,
+// with the inertia each side implies.
+std::optional<std::string> ShaftTorqueLocation(const LinearRegression& regression, const JointDesign& d,
+                                               const std::map<std::string, double>& values, const FitResult& fit) {
+  if (!d.sensor_columns) return std::nullopt;
+  std::vector<std::string> free;
+  for (const auto& e : fit.estimates) free.push_back(e.name);
+  free.insert(free.end(), d.drift_columns.begin(), d.drift_columns.end());
+  const OmittedTermTest t = TestOmittedTerm(regression, free, values, "shaft torque location",
+                                            {kSensorMotorAcceleration, kSensorLinkAcceleration}, 0.05);
+  if (!t.missing) return std::nullopt;
+  return fmt::format(
+      "model: the shaft torque's residual follows the accelerations ({:.0f} % of it; robust Wald {:.3g} > {:.3g}): "
+      "it reads {:.3g} kg m^2 x the motor's and {:.3g} x the link's acceleration beyond the spring torque, so the "
+      "sensor does not sit between the encoders (one on the motor side reads +J_s theta_m'', on the link side "
+      "-J_s theta_l'', J_s the inertia between it and the spring); stiffness and damping fitted to it absorb that: "
+      "fit from the motor torque, or log the torque where the encoders are",
+      100.0 * t.share, t.wald, t.critical, t.coefficients[0], t.coefficients[1]);
+}
+
 }  // namespace
 
 namespace {
@@ -339,6 +405,7 @@ JointFitOutput FitJoint(const std::vector<JointLog>& given_logs, const JointSect
     if (row.in_model != nullptr && row.spec.lower_bound == 0.0) nonnegative.emplace_back(row.spec.key);
   }
   CheckJointAdequacy(logs, start, options, d, out);
+  if (auto warning = ShaftTorqueLocation(regression, d, values, out.fit)) out.fit.warnings.push_back(std::move(*warning));
   std::map<std::string, double> start_values;  // the given start values, for a term at its bound
   for (const auto& row : JointParameterTable()) {
     if (row.in_section != nullptr && (start.*(row.in_section)).has_value()) {

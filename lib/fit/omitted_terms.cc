@@ -15,6 +15,7 @@ OmittedTermTest TestOmittedTerm(const LinearRegression& regression, const std::v
                                 const std::vector<std::string>& columns, double min_share) {
   OmittedTermTest out;
   out.term = term;
+  out.coefficients.assign(columns.size(), 0.0);
   const auto n = static_cast<Eigen::Index>(regression.rows());
   const auto p = static_cast<Eigen::Index>(free.size());
   const auto k = static_cast<Eigen::Index>(columns.size());
@@ -53,6 +54,7 @@ OmittedTermTest TestOmittedTerm(const LinearRegression& regression, const std::v
   const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr_z(zk);
   if (qr_z.rank() < zk.cols()) return out;
   const Eigen::VectorXd g = qr_z.solve(e);
+  for (std::size_t c = 0; c < kept.size(); ++c) out.coefficients[static_cast<std::size_t>(kept[c])] = g(static_cast<Eigen::Index>(c));
   const Eigen::VectorXd u = e - zk * g;
   const Eigen::MatrixXd zz = zk.transpose() * zk;
   const Eigen::MatrixXd zz_inverse = zz.inverse();

@@ -26,6 +26,8 @@ struct OmittedTermTest {
   int dof = 0;           ///< columns tested (after dropping ones the fit already spans)
   double critical = 0.0; ///< chi^2(dof) 0.999 quantile
   bool missing = false;  ///< wald > critical and share >= min_share
+  /// The residual's coefficient on each candidate column (0 for one the fit already spans).
+  std::vector<double> coefficients;
 };
 
 /// Tests candidate `columns` (names of regression columns that the fit held

@@ -18,17 +18,19 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work" || exit 1
 
-# bench K AMPLITUDE SEED: columns time, motor speed, load speed, shaft torque (no header).
+# bench K AMPLITUDE SEED [JS]: columns time, motor speed, load speed, shaft
+# torque (no header); JS: the transducer sits on the motor side with an
+# inertia JS between it and the shaft (it reads shaft + JS x motor acceleration).
 bench() {
-  awk -v k="$1" -v amp="$2" -v seed="$3" 'BEGIN {
+  awk -v k="$1" -v amp="$2" -v seed="$3" -v js="${4:-0}" 'BEGIN {
     jm = 0.01; jl = 0.05; d = 0.02; bm = 0.005; bl = 0.02; rate = 2000; ns = 10; h = 1 / (rate * ns);
     pi = atan2(0, -1); srand(seed);
     for (i = 0; i < 20000; ++i) {
       t = i / rate; u = 0;
       for (l = 1; l <= 40; ++l) u += amp * sin(2 * pi * l * t + pi * l * l / 40);
-      shaft = k * (xm - xl) + d * (vm - vl);
+      shaft = k * (xm - xl) + d * (vm - vl); am = (u - shaft - bm * vm) / jm;
       printf "%.5f %.7g %.7g %.7g\n", t, vm + 0.002 * (rand() - 0.5), vl + 0.002 * (rand() - 0.5),
-             shaft + 0.3 + 0.01 * (rand() - 0.5);
+             shaft + js * am + 0.3 + 0.01 * (rand() - 0.5);
       for (s = 0; s < ns; ++s) {
         f = k * (xm - xl) + d * (vm - vl);
         vm += h * (u - f - bm * vm) / jm; vl += h * (f - bl * vl) / jl;
@@ -52,6 +54,13 @@ awk '/^  stiffness:/ { exit !($2 > 91 && $2 < 97) }' fit.yaml && ok || fail "sti
 awk '/^  link_torque_offset:/ { exit !($2 > 0.2 && $2 < 0.4) }' fit.yaml && ok \
   || fail "offset: $(grep link_torque_offset fit.yaml)"
 grep -q "q_motor = integral(#2)" fit.yaml && ok || fail "provenance lacks the expression: $(grep -A3 'data:' fit.yaml)"
+! grep -q "residual follows the accelerations" summary.txt && ok || fail "a sensor between the encoders taken for a misplaced one"
+# The transducer on the motor side behind half the motor's inertia: the
+# stiffness halves (47 for 94), and the warning says why with that inertia.
+bench 94 0.05 1 0.005 > misplaced.txt
+"$bin" joint misplaced.txt "${flags[@]}" -o misplaced.yaml > misplaced_summary.txt 2>&1 &&
+  grep -Eq "^warning: model: the shaft torque's residual follows the accelerations .* it reads 0.00(49|50|51)[0-9]* kg m\^2 x the motor's" misplaced_summary.txt &&
+  ok || fail "misplaced shaft-torque sensor not named: $(grep warning misplaced_summary.txt)"
 # Two repeats agree; a softer shaft among them is named.
 "$bin" joint bench1.txt bench2.txt "${flags[@]}" -o fit2.yaml > two.txt 2>&1 && ! grep -q "disagree" two.txt && ok \
   || fail "two repeats: $(cat two.txt)"

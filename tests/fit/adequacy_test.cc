@@ -51,3 +51,23 @@ TEST_CASE("logs that agree within their std leave the interval alone") {
   CHECK(fit.estimates[0].standard_error == 0.07);
   CHECK(fit.notes.empty());
 }
+
+TEST_CASE("residuals beyond lag-1 0.99 are named as model error, with the parameters whose intervals rest on them") {
+  FitResult fit;
+  fit.estimates = {{"stiffness", 94.0, 0.002, 93.99, 94.01}, {"damping", 0.02, 1e-5, 0.01998, 0.02002}};
+  ChannelStatistics white, slow, short_one;
+  white.name = "a.csv:shaft torque";
+  white.samples = 20000;
+  white.autocorrelation = 0.98;
+  slow = white;
+  slow.name = "b.csv:shaft torque";
+  slow.autocorrelation = 0.9998;
+  short_one = slow;
+  short_one.samples = 10;  // too short to say
+  fit.channels = {white, slow, short_one};
+  const auto warnings = CheckResidualColour(fit);
+  REQUIRE(warnings.size() == 1);
+  CHECK_THAT(warnings[0], Catch::StartsWith("coloured residuals: b.csv:shaft torque: residual lag-1 0.9998 over 20000 "
+                                            "samples (about 2 independent)"));
+  CHECK_THAT(warnings[0], Catch::Contains("the intervals of stiffness, damping assume it stationary"));
+}
