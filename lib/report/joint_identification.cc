@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <tuple>
 #include <utility>
 
 #include <fmt/format.h>
@@ -117,7 +116,24 @@ JointRun RunOutputError(const std::vector<JointLog>& logs, const JointSection& s
 // log has the motor torque, the link's Coulomb friction is not asked for, and
 // the inverse-dynamics start shows its filter reaching the resonance or leaves
 // a term undetermined (which inverse dynamics would refuse). Returns the method and why.
-std::pair<JointMethod, std::string> ChooseMethod(const std::vector<JointLog>& logs, const JointSection& section,
+// The link Coulomb friction an inverse-dynamics fit finds (more than 3 std).
+std::optional<ParameterEstimate> FoundLinkCoulomb(const JointFitOutput& fit) {
+  const std::string link_coulomb = KeyOf(JointParameterTable(), &JointParameters::link_coulomb);
+  for (const auto& e : fit.fit.estimates) {
+    if (e.name == link_coulomb && e.value > 3.0 * e.standard_error) return e;
+  }
+  return std::nullopt;
+}
+
+// The method auto takes, why, and whether the inverse-dynamics start had
+// its filter near the resonance (what it finds is then suspect).
+struct MethodChoice {
+  JointMethod method;
+  std::string why;
+  bool filter_near_resonance = false;
+};
+
+MethodChoice ChooseMethod(const std::vector<JointLog>& logs, const JointSection& section,
                                                  const JointIdentificationOptions& options,
                                                  const std::optional<JointFitOutput>& start) {
   const bool torque = std::all_of(logs.begin(), logs.end(), [](const JointLog& l) { return !l.torque.empty(); });
@@ -129,19 +145,23 @@ std::pair<JointMethod, std::string> ChooseMethod(const std::vector<JointLog>& lo
   }
   if (!start) return {JointMethod::kInverseDynamics, "auto: inverse dynamics, which output error starts from, refused the logs"};
   const JointParameters& p = start->params;
-  for (const auto& e : start->fit.estimates) {
-    if (e.name == link_coulomb && e.value > 3.0 * e.standard_error) {
-      return {JointMethod::kInverseDynamics, fmt::format("auto: inverse dynamics finds link Coulomb friction {:.4g} +- {:.2g}, which output "
-                                "error does not simulate",
-                                e.value, e.standard_error)};
-    }
-  }
+  // With its filter near the resonance inverse dynamics is biased (the
+  // damping most), and a link Coulomb friction it finds there may be the
+  // filter's doing (a 4 kHz scope trace without any: 0.035 +- 0.006):
+  // output error, warned of that friction.
   if (p.motor_inertia > 0.0 && p.link_inertia > 0.0 && p.stiffness > 0.0) {
     const double resonance = JointResonance(p) / (2.0 * M_PI);
     if (start->cutoff < kAutoCutoffPerResonance * resonance) {
-      return {JointMethod::kOutputError, fmt::format("auto: the inverse-dynamics cutoff {:.4g} Hz is below 4 x the resonance {:.4g} Hz",
-                                start->cutoff, resonance)};
+      return {JointMethod::kOutputError,
+              fmt::format("auto: the inverse-dynamics cutoff {:.4g} Hz is below 4 x the resonance {:.4g} Hz",
+                          start->cutoff, resonance),
+              true};
     }
+  }
+  if (const auto found = FoundLinkCoulomb(*start)) {
+    return {JointMethod::kInverseDynamics, fmt::format("auto: inverse dynamics finds link Coulomb friction {:.4g} +- "
+                                                       "{:.2g}, which output error does not simulate",
+                                                       found->value, found->standard_error)};
   }
   // A term inverse dynamics would refuse as undetermined (relative std above
   // 50 %, not at its bound 0): output error, which differentiates nothing.
@@ -170,15 +190,14 @@ std::pair<JointMethod, std::string> ChooseMethod(const std::vector<JointLog>& lo
 // terms and inertias absorb it (the shipped example: b_m 16 %, c_m 50 %,
 // b_l 30 % off, each outside its interval), and neither segments nor the
 // deflection's fit show it.
-void WarnLinkCoulomb(const JointFitOutput& start, FitResult& fit) {
-  const std::string link_coulomb = KeyOf(JointParameterTable(), &JointParameters::link_coulomb);
-  for (const auto& e : start.fit.estimates) {
-    if (e.name == link_coulomb && e.value > 3.0 * e.standard_error) {
-      fit.warnings.push_back(fmt::format(
-          "model: inverse dynamics finds link Coulomb friction {:.4g} +- {:.2g}, which output error does not simulate: "
-          "the fitted friction terms and inertias absorb it; use ‹method› id (docs/models.md#joint-output-error)",
-          e.value, e.standard_error));
-    }
+void WarnLinkCoulomb(const JointFitOutput& start, bool filter_near_resonance, FitResult& fit) {
+  if (const auto e = FoundLinkCoulomb(start)) {
+    fit.warnings.push_back(fmt::format(
+        "model: inverse dynamics finds link Coulomb friction {:.4g} +- {:.2g}{}, which output error does not simulate: "
+        "{}the fitted friction terms and inertias absorb it; {} (docs/models.md#joint-output-error)",
+        e->value, e->standard_error, filter_near_resonance ? " with its filter near the resonance" : "",
+        filter_near_resonance ? "the filter's bias may have made it; if it is real, " : "",
+        filter_near_resonance ? "check with ‹method› id at a ‹cutoff› of 4 x the resonance" : "use ‹method› id"));
   }
 }
 
@@ -210,11 +229,17 @@ JointIdentification IdentifyJoint(const std::vector<JointLog>& logs, const Joint
       // Inverse dynamics refused these logs: output error starts from the parameter file.
     }
   }
-  if (method == JointMethod::kAuto) std::tie(method, why) = ChooseMethod(logs, section, options, id_start);
+  bool filter_near_resonance = false;
+  if (method == JointMethod::kAuto) {
+    const MethodChoice choice = ChooseMethod(logs, section, options, id_start);
+    method = choice.method;
+    why = choice.why;
+    filter_near_resonance = choice.filter_near_resonance;
+  }
   const bool oe = method == JointMethod::kOutputError;
   JointRun run = oe ? RunOutputError(logs, section, options, id_start ? &id_start->params : nullptr)
                     : RunInverseDynamics(logs, section, options);
-  if (oe && id_start) WarnLinkCoulomb(*id_start, run.fit);
+  if (oe && id_start) WarnLinkCoulomb(*id_start, filter_near_resonance, run.fit);
   JointIdentification out;
   out.method = method;
   out.model = oe ? "elastic joint (docs/models.md#joint-output-error), output error (exact ZOH, sticking motor Coulomb)"

@@ -41,9 +41,10 @@ struct JointIdentification {
 /// Fits the joint to `logs` from `section`. `auto` takes output error when
 /// every log has the motor torque, the link's Coulomb friction is neither
 /// free nor given, and the inverse-dynamics fit (output error's start) shows
-/// its filter near the resonance (cutoff < 4 x resonance) or leaves a
-/// term undetermined (relative std above 50 %, not at its bound 0); the
-/// summary says why. Throws as FitJoint and FitJointOutputError;
+/// its filter near the resonance (cutoff < 4 x resonance; a link Coulomb
+/// friction it finds is then warned of, not trusted) or, finding no link
+/// Coulomb friction, leaves a term undetermined (relative std above 50 %,
+/// not at its bound 0); the summary says why. Throws as FitJoint and FitJointOutputError;
 /// OptionError for a cutoff with output error, a segment with inverse
 /// dynamics.
 JointIdentification IdentifyJoint(const std::vector<JointLog>& logs, const JointSection& section,
