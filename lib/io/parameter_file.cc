@@ -354,6 +354,11 @@ Feedforward ParseFeedforward(const std::string& path, const YAML::Node& node) {
         throw InputError(fmt::format("{}: {}: {} bytes: at most {}", Where(path, item.second), name, value.size(),
                                      kMaxUnitBytes));
       }
+      if (key != "law" && !value.empty() && !UnitTextProblem(value).empty()) {
+        throw InputError(fmt::format("{}: {}: not a unit name: {} (units hold letters, digits, blanks and "
+                                     "/ ^ * . _ ( ) % + -)",
+                                     Where(path, item.second), name, UnitTextProblem(value)));
+      }
       if (key == "law" && value != kAxisFeedforwardLaw && value != kCDriveCompensationLaw) {
         throw InputError(fmt::format("{}: {}: \"{}\": expected {} or {}", Where(path, item.second), name, value,
                                      kAxisFeedforwardLaw, kCDriveCompensationLaw));
@@ -382,6 +387,9 @@ std::string FormatFeedforward(const Feedforward& f) {
     if (unit->size() > kMaxUnitBytes) {
       throw OutputError(fmt::format("feedforward.{}: {} bytes, a parameter file holds at most {}; nothing written", name,
                                     unit->size(), kMaxUnitBytes));
+    }
+    if (!unit->empty() && !UnitTextProblem(*unit).empty()) {
+      throw OutputError(fmt::format("feedforward.{}: not a unit name: {}; nothing written", name, UnitTextProblem(*unit)));
     }
   }
   std::string out =

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/errors.h"
+#include "models/feedforward.h"
 #include "io/log_input.h"
 #include "io/table_source.h"
 
@@ -87,6 +88,11 @@ class SysIdHandler : public nlohmann::json_sax<nlohmann::json> {
   bool binary(binary_t&) override { return Scalar("binary data"); }
   bool string(string_t& v) override {
     if (depth_ == 1 && (key_ == "test" || key_ == "units")) {
+      if (key_ == "units" && !UnitTextProblem(v).empty()) {
+        throw InputError(fmt::format("{}: 'units': not a unit name: {} (units hold letters, digits, blanks and "
+                                     "/ ^ * . _ ( ) % + -)",
+                                     path_, UnitTextProblem(v)));
+      }
       (key_ == "test" ? doc_.layout : doc_.units) = v;
       return true;
     }

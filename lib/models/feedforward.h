@@ -36,6 +36,36 @@ inline bool IsLengthUnit(const std::string& unit) {
   return false;
 }
 
+/// Why `unit` cannot name a unit, or "" when it can: at most 64 bytes of
+/// letters, digits, blanks and `/ ^ * . _ ( ) % + -`, without "--", "/*"
+/// or "*/". A unit goes into comments and identifiers of every export
+/// target (XML, C, C++, Java, JSON): nothing there may close a comment or
+/// start an escape (Java decodes \u everywhere).
+inline std::string UnitTextProblem(const std::string& unit) {
+  if (unit.size() > 64) return "longer than 64 bytes";
+  for (char c : unit) {
+    const bool letter = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+    if (!letter && std::string(" /^*._()%+-").find(c) == std::string::npos) {
+      const auto byte = static_cast<unsigned char>(c);
+      return byte >= 0x20 && byte < 0x7f ? std::string("the character '") + c + "'" : "a byte that is not printable ASCII";
+    }
+  }
+  for (const char* sequence : {"--", "/*", "*/"}) {
+    if (unit.find(sequence) != std::string::npos) return std::string("\"") + sequence + "\"";
+  }
+  return "";
+}
+
+/// True for a position unit of angle ("rad", SysId's "Radians",
+/// "Rotations", "Degrees"): the mechanism turns.
+inline bool IsAngleUnit(const std::string& unit) {
+  for (const char* angle : {"rad", "Radians", "radians", "Radian", "rot", "Rotations", "rotations", "Rotation", "rev",
+                            "turns", "deg", "Degrees", "degrees", "Degree"}) {
+    if (unit == angle) return true;
+  }
+  return false;
+}
+
 /// The gain keys a feed-forward section may hold, in the order written.
 /// Axis: Ks ... offset; C-drive eq. (31) (law "cdrive"): beta, gamma_half,
 /// delta, eta, dead_zone, rate_limit.

@@ -169,6 +169,11 @@ AxisIdentification IdentifyAxis(const std::vector<AxisLog>& logs, const AxisSect
   run.section = section;
   // SysId logs in a length unit are of a linear mechanism (an elevator, a drivetrain).
   if (IsLengthUnit(options.sysid_unit)) run.section.linear = true;
+  if (run.section.linear && IsAngleUnit(options.sysid_unit)) {
+    throw OptionError(fmt::format("‹linear›: the log's position unit is '{}', an angle: a linear axis moves in a "
+                                  "length (m); fit it as a rotary axis, or log the position in a length",
+                                  options.sysid_unit));
+  }
   std::string reason = "asked for";
   run.method = ChooseAxisMethod(logs, options.method, &reason);
   if (run.method == AxisMethod::kOutputError) {

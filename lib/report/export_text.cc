@@ -1,5 +1,6 @@
 #include "report/export_text.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 
@@ -13,17 +14,33 @@ std::string CommentText(const std::string& text) {
   std::string out;
   for (char c : text) {
     const bool printable = c >= 0x20 && c < 0x7f;
-    char kept = printable ? c : '?';
+    // A backslash could start an escape javac decodes even in comments
+    // (\u002a/ closes one) or splice a // comment's line in C.
+    char kept = printable && c != '\\' ? c : '?';
     if ((kept == '-' && !out.empty() && out.back() == '-') || (kept == '/' && !out.empty() && out.back() == '*')) {
       out += ' ';
     }
     out += kept;
   }
   if (out.size() > 300) out = out.substr(0, 297) + "...";
+  if (!out.empty() && out.back() == '-') out += ' ';  // before an XML comment's "-->"
   return out;
 }
 
 std::string Number(double value) { return fmt::format("{:.17g}", value); }
+
+double OwnBodyInertia(double inertia) { return std::max(1e-9 * inertia, kMinBodyInertia); }
+
+void RequireExportInertia(const std::string& key, double inertia) {
+  if (!(inertia > 0.0)) {
+    throw InputError(fmt::format("{} = {:g}: a simulator model needs an inertia > 0 (fit it, or give it)", key, inertia));
+  }
+  if (inertia < kMinExportInertia) {
+    throw InputError(fmt::format("{} = {:g}: below {:g}, too small to carry beside the {:g} body a simulator needs "
+                                 "(check its unit: kg m^2, link side)",
+                                 key, inertia, kMinExportInertia, kMinBodyInertia));
+  }
+}
 
 std::string WithStd(const ParameterFile& file, const std::string& name, double value, const std::string& unit) {
   for (const ParameterEstimate& e : file.fit_estimates) {

@@ -17,7 +17,9 @@ constexpr double kGravityBodyShare = 0.01;  // of J carried by the gravity point
 constexpr double kMjcfTimestep = 0.001;     // s, the MJCF's <option timestep>
 
 /// Text from a file or the command line inside an XML, C or Java comment:
-/// printable ASCII only, and neither "--" nor "*/" can close the comment.
+/// printable ASCII only, no backslash (Java decodes \\u escapes in comments,
+/// C splices a line after one), and neither "--" nor "*/" can close the
+/// comment, nor a trailing "-" an XML comment.
 std::string CommentText(const std::string& text);
 
 /// All 17 significant digits.
@@ -43,6 +45,16 @@ std::string UpperCase(const std::string& name);
 /// in C, inline constexpr double in C++17). CHeaderClose ends the guard.
 std::string CHeaderOpen(const ExportOptions& o, const std::string& upper, const std::string& description);
 std::string CHeaderClose(const std::string& upper);
+
+/// A simulator body's own inertia [kg m^2] (or mass) under an axis of
+/// inertia J: 1e-9 J, but at least kMinBodyInertia — MuJoCo refuses a
+/// moving body lighter than mjMINVAL (1e-15), which 1e-9 J falls under for a
+/// small motor's 1e-7 kg m^2. Inertias below kMinExportInertia cannot be
+/// carried next to such a body (RequireExportInertia: InputError naming `key`).
+constexpr double kMinBodyInertia = 1e-12;
+constexpr double kMinExportInertia = 1e-9;
+double OwnBodyInertia(double inertia);
+void RequireExportInertia(const std::string& key, double inertia);
 
 /// The MJCF's solver lines: the time step and why the friction time constant.
 std::string MjcfOptionLines();

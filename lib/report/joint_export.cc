@@ -37,6 +37,8 @@ JointView ViewJoint(const JointSection& s) {
     throw InputError(fmt::format("{}: a simulator model of the elastic joint needs these > 0 (fit them, or give them)",
                                  names));
   }
+  RequireExportInertia("joint.motor_inertia", v.p.motor_inertia);
+  RequireExportInertia("joint.link_inertia", v.p.link_inertia);
   return v;
 }
 
@@ -55,7 +57,7 @@ std::string ValueComments(const ParameterFile& file, const JointView& v, const s
 
 std::string Mjcf(const ParameterFile& file, const JointView& v, const ExportOptions& o) {
   const GravityBody g = MakeGravityBody(v.p.link_inertia, v.p.gravity_cos, v.p.gravity_sin);
-  const double motor_own = 1e-9 * v.p.motor_inertia, link_own = 1e-9 * v.p.link_inertia;
+  const double motor_own = OwnBodyInertia(v.p.motor_inertia), link_own = OwnBodyInertia(v.p.link_inertia);
   const double link_body = link_own + g.mass * g.radius * g.radius;
   std::string out = "<mujoco model=\"driveid_" + o.joint + "\">\n";
   out += Provenance(o, "  <!--", " -->");
@@ -102,7 +104,7 @@ std::string Urdf(const ParameterFile& file, const JointView& v, const ExportOpti
          "them) -->\n";
   out += ValueComments(file, v, "<!--", " -->");
   out += fmt::format("<robot name=\"driveid_{0}\">\n  <link name=\"base\"/>\n  <link name=\"{0}_link\">\n", o.joint);
-  const double mass = g.mass > 0.0 ? g.mass : 1e-9 * v.p.link_inertia;
+  const double mass = g.mass > 0.0 ? g.mass : OwnBodyInertia(v.p.link_inertia);
   out += fmt::format("    <inertial>\n      <origin xyz=\"{} 0 {}\"/>\n      <mass value=\"{}\"/>\n", Number(g.x),
                      Number(g.z), Number(mass));
   out += fmt::format("      <inertia ixx=\"{0}\" ixy=\"0\" ixz=\"0\" iyy=\"{0}\" iyz=\"0\" izz=\"{0}\"/>\n    </inertial>\n"
@@ -134,16 +136,16 @@ std::string CHeader(const ParameterFile& file, const JointView& v, const ExportO
 
 std::string ExportJoint(const JointSection& joint, const ParameterFile& file, ExportTarget target,
                         const ExportOptions& options) {
-  if (target == ExportTarget::kWpilibJava || target == ExportTarget::kJson) {
-    throw InputError("the elastic joint has no feed-forward section: export it to mjcf, urdf or c-header "
-                     "(docs/export.md#elastic-joint)");
-  }
-  const JointView v = ViewJoint(joint);
   switch (target) {
-    case ExportTarget::kMjcf: return Mjcf(file, v, options);
-    case ExportTarget::kUrdf: return Urdf(file, v, options);
-    default: return CHeader(file, v, options);
+    case ExportTarget::kMjcf: return Mjcf(file, ViewJoint(joint), options);
+    case ExportTarget::kUrdf: return Urdf(file, ViewJoint(joint), options);
+    case ExportTarget::kCHeader: return CHeader(file, ViewJoint(joint), options);
+    case ExportTarget::kWpilibJava:
+    case ExportTarget::kWpilibCpp:
+    case ExportTarget::kJson: break;
   }
+  throw InputError("the elastic joint has no feed-forward section: export it to mjcf, urdf or c-header "
+                   "(docs/export.md#elastic-joint)");
 }
 
 }  // namespace driveid

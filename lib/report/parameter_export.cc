@@ -53,12 +53,7 @@ AxisView ViewAxis(const ParameterFile& file) {
   return v;
 }
 
-void RequireInertia(const AxisView& v) {
-  if (!(v.p.inertia > 0.0)) {
-    throw InputError(fmt::format("axis.inertia = {:g}: a simulator model needs an inertia > 0 (fit it, or give it)",
-                                 v.p.inertia));
-  }
-}
+void RequireInertia(const AxisView& v) { RequireExportInertia("axis.inertia", v.p.inertia); }
 
 // What a simulator joint cannot hold, one comment line each.
 std::vector<std::string> NotRepresented(const AxisView& v, bool has_offset_channel) {
@@ -87,7 +82,7 @@ std::string ExportMjcf(const ParameterFile& file, const ExportOptions& o) {
   const std::string rate = log_units ? FeedforwardUnit("Kv", ff.effort_unit, ff.position_unit)
                                      : v.linear ? "N s/m" : "N m s/rad";
   // The body's own inertia about the axis: tiny, plus the gravity mass's m r^2.
-  const double own = 1e-9 * v.p.inertia;
+  const double own = OwnBodyInertia(v.p.inertia);
   const double body_inertia = v.linear ? 0.0 : own + g.mass * g.radius * g.radius;
   const double body_mass = v.linear ? own : (g.mass > 0.0 ? g.mass : own);
   const double armature = v.p.inertia - body_inertia - (v.linear ? body_mass : 0.0);
@@ -98,7 +93,7 @@ std::string ExportMjcf(const ParameterFile& file, const ExportOptions& o) {
                      CommentText(WithStd(file, "coulomb", v.p.coulomb, force)));
   if (g.mass > 0.0) {
     out += fmt::format("  <!-- gravity Kg = {:.6g} {} at Kg_angle = {:.6g} rad: a point mass carrying {:g} % of the "
-                       "inertia -->\n", v.gravity, force, v.gravity_angle, 100.0 * kGravityBodyShare);
+                       "inertia -->\n", v.gravity, CommentText(force), v.gravity_angle, 100.0 * kGravityBodyShare);
   }
   for (const std::string& note : NotRepresented(v, true)) out += "  <!-- " + CommentText(note) + " -->\n";
   out += MjcfOptionLines();
@@ -132,9 +127,9 @@ std::string ExportUrdf(const ParameterFile& file, const ExportOptions& o) {
   double mass = 0.0, inertia = 0.0;
   if (v.linear) {
     mass = v.p.inertia;
-    inertia = 1e-9 * v.p.inertia;
+    inertia = OwnBodyInertia(v.p.inertia);
   } else {
-    mass = g.mass > 0.0 ? g.mass : 1e-9 * v.p.inertia;
+    mass = g.mass > 0.0 ? g.mass : OwnBodyInertia(v.p.inertia);
     inertia = v.p.inertia - g.mass * g.radius * g.radius;  // about the axis through the centre of mass
   }
   out += fmt::format("    <inertial>\n      <origin xyz=\"{} 0 {}\"/>\n      <mass value=\"{}\"/>\n", Number(g.x),

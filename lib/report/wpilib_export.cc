@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "models/feedforward.h"
 #include "report/export_text.h"
 
 namespace driveid {
@@ -123,6 +124,12 @@ std::string ExportWpilibCpp(const WpilibAxis& axis, const ExportOptions& o) {
                                  "degrees, meters, millimeters, feet, inches)", CommentText(ff.position_unit)));
   }
   const Plan p = MakePlan(axis);
+  // The units library checks a class's distance at compile time.
+  const bool angle = IsAngleUnit(ff.position_unit);
+  if ((axis.linear || p.elevator) == angle) {
+    throw InputError(fmt::format("wpilib-cpp: a {} axis with its position in '{}': {} takes a {}", axis.linear ? "linear" : "rotary",
+                                 ff.position_unit, p.type, angle ? "length (check axis.linear)" : "angle (check axis.linear)"));
+  }
   std::string out = Provenance(o, "//", "");
   out += "// " + Law(p, ff) + "\n";
   for (const std::string& note : p.notes) out += "// " + note + "\n";

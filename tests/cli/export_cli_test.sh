@@ -51,7 +51,47 @@ else
 fi
 c++ -std=c++17 -Wall -Werror use.cc -o use_cc 2> cxx.txt && ./use_cc > /dev/null && ok || fail "C header from C++: $(cat cxx.txt)"
 
+# Every target's values read back and compared with the parameter file (a
+# gain written 5 % off fails here): the file's gains, then each target's.
+gain() { awk -v k="$1" '$1 == k":" && /value:/ { gsub(/[{},]/, " "); print $3 }' axis.yaml; }
+same_value() {  # same_value WHAT GOT WANT: equal to 1e-12 relative
+  awk -v a="$2" -v b="$3" 'BEGIN { d = a - b; if (d < 0) d = -d; s = b < 0 ? -b : b; exit !(a != "" && b != "" && d <= 1e-12 * s) }' ||
+    { fail "$1: $2 read back, the parameter file has $3"; return 1; }
+}
+ks=$(gain Ks); kv=$(gain Kv); ka=$(gain Ka); koff=$(gain offset)
+for key in Ks Kv Ka offset; do
+  got=$(sed -n "s/.*\"$key\":{\"value\":\([-0-9.e+]*\).*/\1/p" out.json)
+  same_value "json $key" "$got" "$(gain "$key")" && ok
+done
+same_value "urdf damping" "$(sed -n 's/.*damping="\([^"]*\)".*/\1/p' out.urdf)" "$kv" && ok
+same_value "urdf friction" "$(sed -n 's/.*friction="\([^"]*\)".*/\1/p' out.urdf)" "$ks" && ok
+same_value "urdf izz" "$(sed -n 's/.*izz="\([^"]*\)".*/\1/p' out.urdf)" "$ka" && ok
+printf '#include <stdio.h>\n#include "out.c-header"\nint main(void) { printf("%%.17g %%.17g %%.17g %%.17g\\n", SHOULDER_Ks, SHOULDER_Kv, SHOULDER_Ka, SHOULDER_offset); return 0; }\n' > all.c
+if command -v cc > /dev/null && cc -std=c99 -Wall -Werror all.c -o all_c 2> cc.txt; then
+  read -r c_ks c_kv c_ka c_off < <(./all_c)
+  same_value "C Ks" "$c_ks" "$ks" && same_value "C Kv" "$c_kv" "$kv" && same_value "C Ka" "$c_ka" "$ka" &&
+    same_value "C offset" "$c_off" "$koff" && ok
+else
+  fail "C header read back: $(cat cc.txt)"
+fi
+
 if command -v javac > /dev/null; then
+  # Stubs that keep their constructor's arguments: the factory's order is read back too.
+  mkdir -p argstubs/edu/wpi/first/math/controller
+  printf 'package edu.wpi.first.math.controller;\npublic class SimpleMotorFeedforward { public final double[] args; public SimpleMotorFeedforward(double a, double b, double c) { args = new double[] {a, b, c}; } }\n' \
+    > argstubs/edu/wpi/first/math/controller/SimpleMotorFeedforward.java
+  cp out.wpilib-java ShoulderFeedforwardGains.java
+  printf 'public class ReadBack { public static void main(String[] x) { System.out.println(ShoulderFeedforwardGains.kS + " " + ShoulderFeedforwardGains.kV + " " + ShoulderFeedforwardGains.kA + " " + ShoulderFeedforwardGains.kOffset); double[] a = ShoulderFeedforwardGains.create().args; System.out.println(a[0] + " " + a[1] + " " + a[2]); } }\n' > ReadBack.java
+  if javac -d readback argstubs/edu/wpi/first/math/controller/*.java ShoulderFeedforwardGains.java ReadBack.java 2> javac.txt &&
+    java -cp readback ReadBack > java.txt 2>> javac.txt; then
+    read -r j_ks j_kv j_ka j_off < <(sed -n 1p java.txt)
+    read -r c_ks c_kv c_ka < <(sed -n 2p java.txt)
+    same_value "Java kS" "$j_ks" "$ks" && same_value "Java kV" "$j_kv" "$kv" && same_value "Java kA" "$j_ka" "$ka" &&
+      same_value "Java kOffset" "$j_off" "$koff" && same_value "Java create() kS" "$c_ks" "$ks" &&
+      same_value "Java create() kV" "$c_kv" "$kv" && same_value "Java create() kA" "$c_ka" "$ka" && ok
+  else
+    fail "Java read back: $(cat javac.txt)"
+  fi
   mkdir -p stubs/edu/wpi/first/math/controller
   for class in SimpleMotorFeedforward:3 ArmFeedforward:4 ElevatorFeedforward:4; do
     name=${class%%:*}

@@ -111,13 +111,18 @@ cp sysid.yaml sysid_first.yaml
 "$bin" axis sysid.json -q -o sysid.yaml 2> /dev/null && cmp -s sysid.yaml sysid_first.yaml && ok || fail "SysId rerun differs"
 sed 's/"Simple"/"Drivetrain"/' sysid.json > drive.json
 expect 2 "drive.json: a SysId Drivetrain file: give --side left, right or both" -- axis drive.json
-# Hostile text and numbers (issue 21): units with a line break and a key are
-# escaped and read back; a unitsPerRotation that overflows is named; columns
-# beyond what a fit can square are refused naming the column and its range.
+# Hostile text and numbers (issues 21, 36): units with a line break and a
+# key, or with Java's \u escapes that would close a comment in the exported
+# class (\u002a/static{System.exit(7);}/\u002a), are refused naming 'units';
+# a unitsPerRotation that overflows is named; columns beyond what a fit can
+# square are refused naming the column and its range.
 sed 's/"units": "Radians"/"units": "Rad\\n  Kg: {value: 99, std: 0}"/' sysid.json > units.json
-"$bin" axis units.json -q -o units.yaml 2> /dev/null && "$bin" report units.yaml > units_report.txt 2>&1 &&
-  ! grep -q "^  Kg:" units.yaml && [ "$(grep -c '^  Kv: ' units.yaml)" -eq 1 ] && ok ||
-  fail "units with a line break: $(grep -A8 'feedforward:' units.yaml) $(cat units_report.txt)"
+expect 3 "units.json: 'units': not a unit name: a byte that is not printable ASCII" -- axis units.json
+sed 's|"units": "Radians"|"units": "\\\\u002a/static{System.exit(7);}/\\\\u002a"|' sysid.json > java_units.json
+grep -q '"units": "\\\\u002a/static' java_units.json && ok || fail "java_units.json not made: $(head -c 120 java_units.json)"
+expect 3 "java_units.json: 'units': not a unit name: the character '.'" -- axis java_units.json
+# A log in radians is not a linear axis (WPILib's units library would reject the export).
+expect 2 "--linear: the log's position unit is 'Radians', an angle" -- axis sysid.json --linear
 sed 's/"unitsPerRotation": 6.283185307179586/"unitsPerRotation": 1e308/' sysid.json > per_rotation.json
 expect 3 "per_rotation.json: unitsPerRotation = 1e\+308: slow-forward\[[0-9]+\] (position|velocity) x unitsPerRotation overflows" -- \
   axis per_rotation.json

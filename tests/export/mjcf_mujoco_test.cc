@@ -136,3 +136,28 @@ TEST_CASE("MJCF export of the elastic joint: motor and link joints, the spring a
     }
   }
 }
+
+TEST_CASE("MJCF export: a unit that would close the XML comment leaves gravity alone; a small motor's inertia loads") {
+  // Issue 36: feedforward.effort_unit written into the gravity comment. The
+  // readers refuse such a unit; a file built in code still exports safely.
+  ParameterFile file = Axis("  inertia: 0.05\n  viscous: 0.2\n  coulomb: 1\n  gravity_cos: 4\n  gravity_sin: -3\n");
+  for (const char* unit : {"--><option gravity=\"0 0 98.1\"/><!--", "--><include file=\"x.xml\"/><!--", "a--b-",
+                           "bad\xff\xfe utf8", "nul\0byte"}) {
+    file.feedforward.effort_unit = unit;
+    INFO(unit);
+    Loaded m;
+    Load(ExportParameters(file, ExportTarget::kMjcf, ExportOptions{}), m);
+    CHECK(m.model->opt.gravity[2] == Approx(-9.81));
+    m.data->qpos[0] = 0.4;
+    mj_forward(m.model, m.data);
+    CHECK(m.data->qfrc_bias[0] == Approx(4.0 * std::cos(0.4) - 3.0 * std::sin(0.4)).margin(1e-9));
+  }
+  // 1e-7 kg m^2, a small motor's rotor: the body under the joint stays above MuJoCo's mjMINVAL.
+  const ParameterFile small = Axis("  inertia: 1e-7\n  viscous: 1e-6\n  coulomb: 1e-5\n");
+  Loaded m;
+  Load(ExportParameters(small, ExportTarget::kMjcf, ExportOptions{}), m);
+  mj_forward(m.model, m.data);
+  double mass[1];
+  mj_fullM(m.model, mass, m.data->qM);
+  CHECK(mass[0] == Approx(1e-7).epsilon(1e-9));
+}
