@@ -40,7 +40,23 @@ void FitResponse(FrfResult& out, const JointSection& start, const FrfOptions& op
                                 0.5 * out.rate, rotation_hz};
   TwoMassFitOptions fit_options = options.two_mass;
   fit_options.hold_rate = hold_rate;
-  out.read = ReadResponseFeatures(motor_data, fit_options.motor_output, fit_options.Band());
+  const ResponseBand band = fit_options.Band();
+  if (out.rate > 0.0 && band.high > 0.0 && !(band.low < 0.5 * out.rate)) {
+    throw OptionError(fmt::format("‹band› {:g},{:g}: at or above the logs' Nyquist frequency {:g} Hz (half the {:g} Hz "
+                                  "rate): nothing was measured there",
+                                  band.low, band.high, 0.5 * out.rate, out.rate));
+  }
+  out.read = ReadResponseFeatures(motor_data, fit_options.motor_output, band);
+  if (out.read.bins < kMinResponseBins) {
+    // An empty frf section with exit 0 would pass for a measurement.
+    throw IdentificationError(fmt::format(
+        "no frequency response to read: {} usable bin{} (at least {}) {}, at {:.4g} Hz resolution: {}",
+        out.read.bins, out.read.bins == 1 ? "" : "s", kMinResponseBins,
+        band.high > 0.0 ? fmt::format("in ‹band› {:g},{:g}", band.low, band.high) : "where the excitation is coherent",
+        out.motor.resolution,
+        band.high > 0.0 ? "widen the band, or check it lies where the excitation is"
+                        : "the output does not follow the input (a zero or constant channel?), or the excitation is too weak"));
+  }
   out.notes.insert(out.notes.end(), out.read.notes.begin(), out.read.notes.end());
   if (!options.fit) out.warnings.insert(out.warnings.end(), out.read.warnings.begin(), out.read.warnings.end());
   if (options.fit) {
@@ -154,12 +170,16 @@ FrfResult AnalyseMeasuredResponse(const MeasuredResponse& measured, const JointS
     const double f = measured.frequency[b], m = measured.magnitude[b];
     if (!(f > 0.0) || !(m > 0.0) || !std::isfinite(m) || !std::isfinite(measured.phase[b])) {
       throw InputError(fmt::format("measured response, bin {} ({} Hz): frequency and magnitude must be positive and "
-                                   "finite (magnitude {}, phase {})",
+                                   "finite (magnitude {}, phase {} rad)",
                                    b + 1, f, m, measured.phase[b]));
+    }
+    if (!measured.coherence.empty() && !(measured.coherence[b] >= 0.0 && measured.coherence[b] <= 1.0)) {
+      throw InputError(fmt::format("measured response, bin {} ({} Hz): coherence {}: a coherence lies in 0 .. 1", b + 1,
+                                   f, measured.coherence[b]));
     }
     r.frequency.push_back(f);
     r.response.push_back(std::polar(m, measured.phase[b]));
-    r.coherence.push_back(measured.coherence.empty() ? 1.0 : std::clamp(measured.coherence[b], 0.0, 1.0));
+    r.coherence.push_back(measured.coherence.empty() ? 1.0 : measured.coherence[b]);
   }
   r.resolution = n > 1 ? (r.frequency.back() - r.frequency.front()) / static_cast<double>(n - 1) : 0.0;
   out.notes.push_back("no std with the measured response: every bin weighs the same and the fit estimates the residual "

@@ -140,8 +140,9 @@ ResponseFeatures ReadResponseFeatures(const ResponseData& motor, ResponseQuantit
     if (used[b]) bins.push_back(b);
   }
   const std::size_t m = bins.size();
+  out.bins = m;
   const std::string band_text = fmt::format("{:.4g} .. {:.4g} Hz", out.band_low, out.band_high);
-  if (m < 5) {
+  if (m < kMinResponseBins) {
     out.warnings.push_back(fmt::format("{} usable bins in the excited, coherent band {}: no resonance can be read", m,
                                        band_text));
     return out;

@@ -62,7 +62,11 @@ struct ResponseFeatures {
   double band_low = 0.0, band_high = 0.0;      ///< [Hz], band used
   std::vector<std::string> notes;              ///< lines skipped as disturbances, band limits
   std::vector<std::string> warnings;           ///< no resonance in the band
+  std::size_t bins = 0;                        ///< usable bins in the band
 };
+
+/// Fewest usable bins from which a response is read (or fitted).
+inline constexpr std::size_t kMinResponseBins = 5;
 
 /// Reads the largest peak of |acceleration / torque| inside the band and the
 /// deepest notch below it (see the file comment).

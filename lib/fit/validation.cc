@@ -64,6 +64,14 @@ void RequireValidated(const std::vector<ValidatedLog>& logs) {
       throw IdentificationError(fmt::format("{}: no usable samples to compare (check ‹min_rate›, ‹window›, ‹from›/‹to›)",
                                             log.stats.name));
     }
+    // A simulation starts at the log's first state: fewer samples compare
+    // nothing it predicted (rmse 0 from one sample).
+    if (log.stats.samples < kMinValidatedSamples) {
+      throw IdentificationError(fmt::format("{}: {} sample{} to compare, at least {} are needed (a simulation starts "
+                                            "at the first)",
+                                            log.stats.name, log.stats.samples, log.stats.samples == 1 ? "" : "s",
+                                            kMinValidatedSamples));
+    }
     if (!std::isfinite(log.stats.rmse) || !std::isfinite(log.stats.autocorrelation)) {
       const auto [low, high] = std::minmax_element(log.measured.begin(), log.measured.end());
       const auto [model_low, model_high] = std::minmax_element(log.model.begin(), log.model.end());

@@ -31,8 +31,12 @@ struct ValidatedLog {
   std::vector<double> time, measured, model;
 };
 
-/// Refuses what is not a validation: a log without usable samples
-/// (IdentificationError, exit 4, naming it) or statistics that are not finite
+/// Fewest samples a validated log compares.
+inline constexpr int kMinValidatedSamples = 3;
+
+/// Refuses what is not a validation: a log without usable samples or with
+/// fewer than kMinValidatedSamples (IdentificationError, exit 4, naming
+/// it) or statistics that are not finite
 /// (IdentificationError naming the log and the measured range). A fit % of a
 /// channel that does not vary is NaN by design (ChannelStatistics) and passes.
 void RequireValidated(const std::vector<ValidatedLog>& logs);

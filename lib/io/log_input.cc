@@ -128,7 +128,7 @@ ColumnPlan PlanColumns(const TableSource& source, const std::vector<std::string>
       continue;
     }
     if (!found) {
-      const bool time = alternatives.front() == options.time_column;
+      const bool time = alternatives.front() == options.time_column && options.time_column == "t";
       // A variable the reader skipped says why (complex, text, a cell ...).
       for (const auto& note : source.notes()) {
         for (const auto& name : alternatives) {
@@ -244,11 +244,17 @@ void ApplyTimeBase(const std::vector<std::string>& required, const LogInputOptio
   };
   for (std::size_t k = 0; k < required.size(); ++k) {
     if (log.names[k] != options.time_column) continue;
+    if (!generated_time[k] && !absent[k] && !expressions[k].operations.empty()) {
+      throw OptionError(fmt::format("‹col› {}={}: the time base cannot be derived (it is what derived signals are "
+                                    "taken over); map a time column, or give ‹rate› HZ",
+                                    log.names[k], expressions[k].text));
+    }
     const auto& time = log.columns[k];
     for (std::size_t i = 1; i < time.size(); ++i) {
       if (!(time[i] > time[i - 1])) {
-        throw InputError(fmt::format("{}: column '{}': time not strictly increasing ({} after {})", label(i),
-                                     options.time_column, time[i], time[i - 1]));
+        throw InputError(fmt::format("{}: column '{}': {}not strictly increasing ({} after {})", label(i),
+                                     options.time_column, options.time_column == "t" ? "time " : "", time[i],
+                                     time[i - 1]));
       }
     }
     // Crop.
@@ -275,7 +281,7 @@ void ApplyTimeBase(const std::vector<std::string>& required, const LogInputOptio
     // Derived signals (integral, derivative, detrend) over the cropped time base.
     for (std::size_t j = 0; j < required.size(); ++j) {
       if (absent[j] || generated_time[j] || expressions[j].operations.empty()) continue;
-      if (j == k) throw OptionError(fmt::format("‹col› {}={}: the time base cannot be derived", log.names[j], expressions[j].text));
+      if (j == k) continue;  // refused above
       for (const auto& operation : expressions[j].operations) {
         ApplyColumnOperation(operation, log.columns[k], log.columns[j]);
       }

@@ -46,8 +46,8 @@ std::vector<Complex> Dft(Eigen::FFT<double>& fft, const std::vector<double>& x) 
   while (m < 2 * n - 1) m *= 2;
   std::vector<Complex> chirp(n);
   for (std::size_t j = 0; j < n; ++j) {
-    // j^2 mod 2n keeps the angle exact for large j.
-    const auto square = static_cast<double>((static_cast<unsigned __int128>(j) * j) % (2 * n));
+    // j^2 mod 2n keeps the angle exact for large j (j < n < 2^32: j^2 fits in 64 bits).
+    const auto square = static_cast<double>((static_cast<std::uint64_t>(j) * j) % (2 * static_cast<std::uint64_t>(n)));
     chirp[j] = std::polar(1.0, M_PI * square / static_cast<double>(n));
   }
   std::vector<Complex> a(m, 0.0), b(m, 0.0), fa, fb, conv;
@@ -408,6 +408,12 @@ FrequencyResponse EstimateFrequencyResponse(const std::vector<FrequencyRecord>& 
     if (common > 0 && periods >= static_cast<std::size_t>(kMinAverages)) period = common;
   }
   if (period > 0 && options.method != FrequencyMethod::kWelch) {
+    if (options.resolution > 0.0) {
+      throw OptionError(fmt::format("‹resolution› {:g} Hz: the excitation repeats every {:g} s, so the periodic method "
+                                    "reads its lines, {:g} Hz apart; give ‹method› welch to choose the resolution",
+                                    options.resolution, static_cast<double>(period) / rate,
+                                    rate / static_cast<double>(period)));
+    }
     return EstimatePeriodic(records, rate, period, closed_loop);
   }
   return EstimateWelch(records, rate, options.resolution, closed_loop);

@@ -164,6 +164,11 @@ if [ "$have_mujoco" = ON ]; then
   EXPECT_OUTPUT=--trace expect 2 "--model joint: an elastic joint is validated from its MJCF" \
     -- validate "$src/data/joint_example_truth.yaml" jsim.csv --model joint
   EXPECT_OUTPUT=--trace expect 3 "no hinge or slide joint 'axis_motor'" -- validate elbow.xml jsim.csv --model joint
+  # One sample compares nothing a simulation predicted (issue 36: rmse 0, exit 0).
+  grep -v '^#' "$steps" | head -2 > one_sample.csv
+  EXPECT_OUTPUT=--trace expect 4 "one_sample.csv:.*: 1 sample to compare, at least 3 are needed" -- validate axis.xml one_sample.csv
+  EXPECT_OUTPUT=--trace expect 4 "one_sample.csv:.*: 1 sample to compare, at least 3 are needed" -- \
+    validate axis.yaml one_sample.csv --simulate
   EXPECT_OUTPUT=--trace expect 2 "--simulate: an MJCF is always simulated" -- validate axis.xml "$steps" --simulate
   EXPECT_OUTPUT=--trace expect 2 "--mujoco-step" -- validate axis.xml "$steps" --mujoco-step 0
 else

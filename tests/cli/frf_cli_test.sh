@@ -92,6 +92,22 @@ done
   fail "two-mass Bode table: $(grep -E 'warning|^stiffness' bode_plain.txt)"
 grep -q "^warning: model: motor phase: fitted 8[0-9].[0-9] % (below 90 %) with residuals in long waves across frequency" \
   bode_mode.txt && ok || fail "second mode not named: $(grep warning bode_mode.txt)"
+# Nothing measured is not a measurement (issue 36: exit 0 with an empty frf section).
+expect 2 "--band 600,700: at or above the logs' Nyquist frequency 500 Hz" -- frf twomass.csv --params gear.yaml --band 600,700
+expect 4 "no frequency response to read: 1 usable bin \(at least 5\) in --band 5,5" -- \
+  frf twomass.csv --params gear.yaml --band 5,5.0000001
+awk -F, 'NR == 1 { print; next } { print $1 "," $2 ",0,0," $5 }' twomass.csv > zero_output.csv
+expect 4 "no frequency response to read: 0 usable bins" -- frf zero_output.csv --params gear.yaml --method welch
+expect 2 "--resolution 0.1 Hz: the excitation repeats every 2 s" -- frf twomass.csv --params gear.yaml --resolution 0.1
+# A measured table: coherence beyond 1 refused; the frequency column named as such.
+awk -F, 'NR == 1 { print $0 ",coh"; next } { print $0 "," (NR == 2 ? 5 : 1) }' bode_db.csv > bode_coh.csv
+expect 3 "measured response, bin 1 \([0-9.]+ Hz\): coherence 5: a coherence lies in 0 .. 1" -- \
+  frf --measured bode_coh.csv --col frequency=f_hz --col magnitude=mag_db --col phase=phase_deg --col coherence=coh \
+  --magnitude-unit db --output-is rate --params gear.yaml
+awk -F, 'NR == 3 { print; print; next } { print }' bode_db.csv > bode_dup.csv
+expect 3 "bode_dup.csv:4: column 'frequency': not strictly increasing" -- \
+  frf --measured bode_dup.csv --col frequency=f_hz --col magnitude=mag_db --col phase=phase_deg --magnitude-unit db \
+  --output-is rate --params gear.yaml
 expect 2 "give logs, or --measured FILE" -- frf twomass.csv --measured bode_db.csv
 # The same table stored one signal per row (--transpose), names first; a
 # ragged row is refused naming its line.

@@ -74,6 +74,9 @@ expect 2 "--join v.csv: a shift or an alignment joins by time: give the joined f
   axis p.csv --join v.csv --join-shift 3 --col tau=torque
 expect 3 "p.csv: the log spans 0 .. 10 s, v.csv spans 1300 .. 1309.7 s on its clock: they do not overlap" -- \
   axis p.csv --join v.csv --join-time stamp_ms/1000 --join-shift 300 --col tau=torque
+# A derived time base is refused as such (issue 36: it said "time not strictly increasing").
+printf 't,q,tau,one\n0,0,1,1\n0.001,0.1,1,1\n0.002,0.2,1,1\n' > derived_time.csv
+expect 2 "--col t=integral\(one\): the time base cannot be derived" -- axis derived_time.csv --col 't=integral(one)'
 # No time column: --rate (the simulated log is 1 kHz).
 cut -d, -f2,3 bare.csv > untimed.csv
 "$bin" axis untimed.csv --rate 1000 --col 'q=pi/180*#1' --col tau=#2 -q -o untimed.yaml && same untimed.yaml && ok ||
