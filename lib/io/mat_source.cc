@@ -17,6 +17,8 @@
 #include <map>
 
 #include <unistd.h>
+#include <sys/stat.h>
+#include <csignal>
 
 #include <fmt/format.h>
 
@@ -51,6 +53,31 @@ std::string MatReaderPath() {
   return DRIVEID_MAT_READER_BUILT;
 }
 
+constexpr const char* kMatCopyPrefix = "driveid-mat.";
+
+// Removes the MAT copies (driveid-mat.PID.XXXXXX, regular files of this
+// user) in the temporary folder whose process no longer runs.
+void RemoveStaleMatCopies() {
+  std::error_code error;
+  const auto dir = std::filesystem::temp_directory_path(error);
+  if (error) return;
+  std::filesystem::directory_iterator it(dir, error), end;
+  for (int seen = 0; !error && it != end && seen < 100000; it.increment(error), ++seen) {
+    const std::string file = it->path().filename().string();
+    if (file.rfind(kMatCopyPrefix, 0) != 0) continue;
+    const std::size_t dot = file.find('.', std::strlen(kMatCopyPrefix));
+    if (dot == std::string::npos) continue;
+    long pid = 0;
+    const char* first = file.data() + std::strlen(kMatCopyPrefix);
+    const auto parsed = std::from_chars(first, file.data() + dot, pid);
+    if (parsed.ec != std::errc() || parsed.ptr != file.data() + dot || pid <= 0) continue;
+    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;  // running, or not ours to judge
+    struct stat info {};
+    if (::lstat(it->path().c_str(), &info) != 0 || !S_ISREG(info.st_mode) || info.st_uid != ::geteuid()) continue;
+    ::unlink(it->path().c_str());
+  }
+}
+
 struct ColumnRef {
   std::string name;
   std::size_t variable = 0;
@@ -60,8 +87,13 @@ struct ColumnRef {
 class MatSource : public TableSource {
  public:
   MatSource(std::string path, const std::string& text) : path_(std::move(path)) {
-    // The bytes go to a temporary file for matio.
-    std::string name = (std::filesystem::temp_directory_path() / "driveid-mat.tmp.XXXXXX").string();
+    // The bytes go to a temporary file for matio (which opens files by name;
+    // HDF5 cannot open an unlinked file's /proc/self/fd link on every kernel).
+    // Its name holds this process's id: copies of processes that were killed
+    // (SIGKILL leaves them) are removed by the next read.
+    RemoveStaleMatCopies();
+    std::string name =
+        (std::filesystem::temp_directory_path() / fmt::format("{}{}.XXXXXX", kMatCopyPrefix, ::getpid())).string();
     const int fd = CreateTemporaryFile(name);
     if (fd < 0) throw InputError(fmt::format("{}: cannot create a temporary copy for the MAT reader", path_));
     std::size_t written = 0;

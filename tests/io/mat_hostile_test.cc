@@ -4,9 +4,13 @@
 // Prefixes that hold the superblock are refused before a
 // reader process starts; the first ~520 start one each.
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
+
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <catch2/catch.hpp>
 #include <hdf5.h>
@@ -71,8 +75,9 @@ void AddMatlabDouble(hid_t file, hid_t plist) {
 std::string WithForeignData(const std::string& how) {
   const std::string bytes = driveid::testing::WriteMat(MAT_FT_MAT73);
   const auto dir = std::filesystem::temp_directory_path();
-  const std::string path = (dir / "driveid_test73_foreign.mat").string();
-  const std::string secret = (dir / "driveid_test73_secret.bin").string();
+  const std::string tag = std::to_string(::getpid());
+  const std::string path = (dir / ("driveid_test73_foreign." + tag + ".mat")).string();
+  const std::string secret = (dir / ("driveid_test73_secret." + tag + ".bin")).string();
   const double values[5] = {7, 7, 7, 7, 7};
   {
     std::ofstream out(path, std::ios::binary);
@@ -89,7 +94,7 @@ std::string WithForeignData(const std::string& how) {
     AddMatlabDouble(file, plist);
   } else if (how == "virtual") {
     // A virtual dataset mapped from a dataset of another HDF5 file.
-    const std::string source = (dir / "driveid_test73_secret.h5").string();
+    const std::string source = (dir / ("driveid_test73_secret." + tag + ".h5")).string();
     const hsize_t dims[2] = {1, 5};
     const hid_t space = H5Screate_simple(2, dims, nullptr);
     const hid_t other = H5Fcreate(source.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
@@ -106,7 +111,9 @@ std::string WithForeignData(const std::string& how) {
     REQUIRE(H5Lcreate_external(secret.c_str(), "/time", file, "stolen", H5P_DEFAULT, H5P_DEFAULT) >= 0);
   }
   H5Fclose(file);
-  return driveid::testing::Slurp(path);
+  std::string out = driveid::testing::Slurp(path);
+  for (const auto& f : {path, secret, (dir / ("driveid_test73_secret." + tag + ".h5")).string()}) std::remove(f.c_str());
+  return out;
 }
 
 }  // namespace
@@ -134,7 +141,8 @@ namespace {
 
 // A MAT v5 file with `extra` scalars besides t, q, tau (5 samples).
 std::string WithManyVariables(std::size_t extra) {
-  const std::string path = (std::filesystem::temp_directory_path() / "driveid_test5_many.mat").string();
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("driveid_test5_many." + std::to_string(::getpid()) + ".mat")).string();
   std::remove(path.c_str());
   mat_t* mat = Mat_CreateVer(path.c_str(), nullptr, MAT_FT_MAT5);
   REQUIRE(mat != nullptr);
@@ -149,7 +157,9 @@ std::string WithManyVariables(std::size_t extra) {
   driveid::testing::Put(mat, Mat_VarCreate("q", MAT_C_DOUBLE, MAT_T_DOUBLE, 2, column_dims, q, 0));
   driveid::testing::Put(mat, Mat_VarCreate("tau", MAT_C_DOUBLE, MAT_T_DOUBLE, 2, column_dims, tau, 0));
   Mat_Close(mat);
-  return driveid::testing::Slurp(path);
+  std::string out = driveid::testing::Slurp(path);
+  std::remove(path.c_str());
+  return out;
 }
 
 // The same, written byte by byte (matio's writer is quadratic in the number
@@ -194,4 +204,34 @@ TEST_CASE("MAT with many variables: read in one pass (20 000 scalars), refused b
   } catch (const InputError& e) {
     CHECK(std::string(e.what()) == "too_many.mat: more than 100000 variables: a log file holds at most 100000");
   }
+}
+
+TEST_CASE("a MAT copy left by a killed process is removed by the next read; others are left alone") {
+  // A process that has exited: its id no longer runs.
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  REQUIRE(child > 0);
+  ::waitpid(child, nullptr, 0);
+  const auto dir = std::filesystem::temp_directory_path();
+  const auto stale = dir / ("driveid-mat." + std::to_string(child) + ".Ab12Cd");
+  const auto live = dir / ("driveid-mat." + std::to_string(::getpid()) + ".Ef34Gh");
+  const auto folder = dir / ("driveid-mat." + std::to_string(child) + ".folder");
+  std::ofstream(stale) << "stale";
+  std::ofstream(live) << "live";
+  std::filesystem::create_directory(folder);
+  LogInputOptions options;
+  options.columns = {{"t", "time"}, {"q", "data(:,2)"}, {"tau", "data(:,3)"}};
+  ReadLogs("m.mat", driveid::testing::WriteMat(MAT_FT_MAT5), {}, {"t", "q", "tau|i"}, options);
+  CHECK_FALSE(std::filesystem::exists(stale));
+  CHECK(std::filesystem::exists(live));
+  CHECK(std::filesystem::is_directory(folder));
+  // The read's own copy is gone too.
+  int own = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    own += name.rfind("driveid-mat." + std::to_string(::getpid()) + ".", 0) == 0 && entry.path() != live;
+  }
+  CHECK(own == 0);
+  std::filesystem::remove(live);
+  std::filesystem::remove(folder);
 }

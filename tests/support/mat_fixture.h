@@ -11,6 +11,7 @@
 #include <string>
 
 #include <matio.h>
+#include <unistd.h>
 
 namespace driveid::testing {
 
@@ -30,9 +31,11 @@ inline void Put(mat_t* mat, matvar_t* var, matio_compression compression = MAT_C
 }
 
 inline std::string WriteMat(mat_ft version) {
-  const std::string path =
-      (std::filesystem::temp_directory_path() / (version == MAT_FT_MAT73 ? "driveid_test73.mat" : "driveid_test5.mat"))
-          .string();
+  // One name per process: test programs run in parallel.
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ((version == MAT_FT_MAT73 ? "driveid_test73." : "driveid_test5.") +
+                             std::to_string(::getpid()) + ".mat"))
+                               .string();
   std::remove(path.c_str());
   mat_t* mat = Mat_CreateVer(path.c_str(), nullptr, version);
   if (mat == nullptr) throw std::runtime_error("Mat_CreateVer failed");
