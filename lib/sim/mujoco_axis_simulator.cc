@@ -1,6 +1,7 @@
 #include "sim/mujoco_axis_simulator.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -9,6 +10,7 @@
 
 #include "core/errors.h"
 #include "io/child_process.h"
+#include "sim/mjcf_files.h"
 
 #if defined(DRIVEID_HAVE_MUJOCO)
 #include <dlfcn.h>
@@ -135,6 +137,12 @@ int FindJoint(const Api& api, const mjModel* m, const std::string& name) {
   }
   api.forward(m, d);
   const std::size_t n = time.size(), joints = run.record.size();
+  // What this model costs: the first steps timed, the whole run projected.
+  double total_steps = 0.0;
+  for (std::size_t k = 0; k + 1 < n; ++k) total_steps += std::ceil((time[k + 1] - time[k]) / run.max_step);
+  const auto started = std::chrono::steady_clock::now();
+  double taken = 0.0;
+  bool projected = false;
   std::vector<double> out(2 * n * joints);
   for (std::size_t k = 0; k < n; ++k) {
     for (std::size_t j = 0; j < joints; ++j) {
@@ -146,7 +154,22 @@ int FindJoint(const Api& api, const mjModel* m, const std::string& name) {
     const double steps = std::ceil(interval / run.max_step);
     m->opt.timestep = interval / steps;
     d->ctrl[actuator] = effort[k];
-    for (double s = 0; s < steps; ++s) api.step(m, d);
+    for (double s = 0; s < steps; ++s) {
+      api.step(m, d);
+      taken += 1.0;
+      if (!projected) {
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+        if (seconds < 0.5 && taken < total_steps) continue;
+        projected = true;
+        const double whole = seconds / taken * total_steps;
+        if (whole > run.max_seconds) {
+          ReplyError(fmt::format("this model would take about {:.3g} s in MuJoCo ({:.3g} steps at {:.3g} us each, timed "
+                                 "over the first {:.0f}), more than {:g} s: a larger ‹mujoco_step›, a shorter log, or a "
+                                 "lighter model",
+                                 whole, total_steps, 1e6 * seconds / taken, taken, run.max_seconds));
+        }
+      }
+    }
     bool finite = true;
     for (std::size_t j = 0; j < joints; ++j) finite = finite && std::isfinite(d->qpos[qadr[j]]) && std::isfinite(d->qvel[vadr[j]]);
     if (first_warning[0] != '\0' || d->warning[mjWARN_BADQACC].number > 0 || !finite) {
@@ -176,6 +199,7 @@ MujocoRunResponse SimulateMujoco(const std::string& path, const MujocoRun& run, 
   }
   const std::size_t n = time.size(), joints = run.record.size();
   if (n == 0 || effort.size() != n) throw InputError(fmt::format("{}: no samples to simulate", path));
+  CheckMjcfFiles(path);  // before MuJoCo opens anything
   double steps = 0.0;
   for (std::size_t k = 0; k + 1 < n; ++k) steps += std::ceil((time[k + 1] - time[k]) / run.max_step);
   if (steps > 1e9) {
@@ -184,7 +208,8 @@ MujocoRunResponse SimulateMujoco(const std::string& path, const MujocoRun& run, 
   }
   ChildLimits limits;
   // About a microsecond per step of a one-joint model; a generous margin.
-  limits.seconds = std::min<long>(3600, 10 + static_cast<long>(steps * 2e-5 * static_cast<double>(std::max<std::size_t>(joints, 1))));
+  // The child refuses a run its first steps project beyond max_seconds; this is the backstop.
+  limits.seconds = static_cast<long>(std::min(3600.0, run.max_seconds + 30.0));
   limits.address_space_bytes = 4.0 * (1 << 30) + 32.0 * static_cast<double>(n * std::max<std::size_t>(joints, 1));
   const std::size_t payload = 2 * n * joints * sizeof(double) + sizeof(double);
   limits.max_output_bytes = payload + 4096;

@@ -44,6 +44,9 @@ struct MujocoRun {
   std::string drive;
   std::vector<MujocoJointStart> record;
   double max_step = 1e-3;  ///< largest MuJoCo time step [s], > 0
+  /// Wall-clock budget [s]: the child times its first steps on this model
+  /// and refuses (naming the projected time) a run that would exceed it.
+  double max_seconds = 600.0;
 };
 
 struct MujocoRunResponse {

@@ -164,6 +164,25 @@ if [ "$have_mujoco" = ON ]; then
   EXPECT_OUTPUT=--trace expect 2 "--model joint: an elastic joint is validated from its MJCF" \
     -- validate "$src/data/joint_example_truth.yaml" jsim.csv --model joint
   EXPECT_OUTPUT=--trace expect 3 "no hinge or slide joint 'axis_motor'" -- validate elbow.xml jsim.csv --model joint
+  # MuJoCo reads only files in the model's folder (issue 36: includes and
+  # textures reached /etc and /dev): absolute paths, "..", character
+  # references, links out and nested includes are refused before it starts.
+  mkdir -p model
+  cp axis.xml model/axis.xml
+  printf '<mujoco><include file="../../etc/passwd"/></mujoco>\n' > model/sub.xml
+  ln -sf /etc/hostname model/link.png
+  hostile() { sed "s|<worldbody>|$1<worldbody>|" axis.xml > "model/$2.xml"; }
+  hostile '<include file="../../etc/passwd"/>' dotdot
+  hostile '<asset><texture name="t" type="2d" file="/dev/urandom"/></asset>' absolute
+  hostile '<include file="\&#46;\&#46;/x.xml"/>' entity
+  hostile '<include file="sub.xml"/>' nested
+  hostile '<asset><texture name="t" type="2d" file="link.png"/></asset>' link
+  hostile '<compiler meshdir="/etc"/>' meshdir
+  for case in dotdot:"a '..'" absolute:"an absolute path" entity:"a character reference or entity" nested:"a '..'" \
+              link:"a link that leads outside the model's folder" meshdir:"an absolute path"; do
+    EXPECT_OUTPUT=--trace expect 3 "${case#*:}; MuJoCo may read only files in the model's folder" -- \
+      validate "model/${case%%:*}.xml" "$steps"
+  done
   # One sample compares nothing a simulation predicted (issue 36: rmse 0, exit 0).
   grep -v '^#' "$steps" | head -2 > one_sample.csv
   EXPECT_OUTPUT=--trace expect 4 "one_sample.csv:.*: 1 sample to compare, at least 3 are needed" -- validate axis.xml one_sample.csv

@@ -3,13 +3,19 @@
 // the actuator's offset are what the axis model says (docs/export.md).
 // Built only where CMake finds MuJoCo.
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
 #include <string>
 
 #include <catch2/catch.hpp>
 #include <mujoco/mujoco.h>
 
+#include "core/errors.h"
 #include "io/parameter_file.h"
 #include "report/parameter_export.h"
+#include "sim/mujoco_axis_simulator.h"
 
 using namespace driveid;
 
@@ -160,4 +166,25 @@ TEST_CASE("MJCF export: a unit that would close the XML comment leaves gravity a
   double mass[1];
   mj_fullM(m.model, mass, m.data->qM);
   CHECK(mass[0] == Approx(1e-7).epsilon(1e-9));
+}
+
+TEST_CASE("a MuJoCo run its first steps project beyond the budget is refused with the projection") {
+  const ParameterFile file = Axis("  inertia: 0.05\n  viscous: 0.2\n  coulomb: 1\n");
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("driveid_budget." + std::to_string(::getpid()) + ".xml")).string();
+  std::ofstream(path) << ExportParameters(file, ExportTarget::kMjcf, ExportOptions{});
+  MujocoRun run;
+  run.drive = "axis";
+  run.record = {{"axis", 0.0, 0.0, false}};
+  run.max_step = 1e-6;     // 1e8 steps over the 100 s below
+  run.max_seconds = 0.5;
+  const std::vector<double> time = {0.0, 50.0, 100.0}, effort = {0.0, 0.5, 0.0};
+  std::string message;
+  try {
+    SimulateMujoco(path, run, time, effort);
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+  std::remove(path.c_str());
+  CHECK_THAT(message, Catch::Contains("this model would take about") && Catch::Contains("more than 0.5 s"));
 }
