@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <sys/resource.h>
+#include <cstdio>
 #include <map>
 
 #include <fmt/format.h>
@@ -572,6 +574,55 @@ JointParameters StartJoint(const JointSection& start, const JointParameters* ini
 
 }  // namespace
 
+namespace {
+
+// Memory this machine can give (MemAvailable, or the address-space limit if
+// lower) [bytes]; 0 when unknown.
+double AvailableMemory() {
+  double available = 0.0;
+  if (std::FILE* f = std::fopen("/proc/meminfo", "r")) {
+    char line[256];
+    while (std::fgets(line, sizeof line, f)) {
+      unsigned long long kib = 0;
+      if (std::sscanf(line, "MemAvailable: %llu kB", &kib) == 1) available = 1024.0 * static_cast<double>(kib);
+    }
+    std::fclose(f);
+  }
+  struct rlimit limit {};
+  if (::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {
+    const double cap = static_cast<double>(limit.rlim_cur);
+    available = available > 0.0 ? std::min(available, cap) : cap;
+  }
+  return available;
+}
+
+// What the fit will hold, refused up front when the machine lacks it (a
+// 10 M-sample log once ended in bad_alloc after 8 GB): the Jacobian, rows
+// (samples x channels) by columns (free terms + 4 states per segment), in
+// doubles, with the residuals, the simulation's sensitivities and the
+// normal equations' copies about 3 times that.
+void RequireMemory(const std::vector<JointLog>& logs, const JointOeOptions& options, const JointParameters& p) {
+  double rows = 0.0, segments = 0.0;
+  const double seconds = options.segment_seconds != 0.0 ? options.segment_seconds : AutoSegmentSeconds(logs, p);
+  for (const auto& log : logs) {
+    const double channels = 2.0 + !log.motor_rate.empty() + !log.link_rate.empty();
+    rows += channels * static_cast<double>(log.time.size());
+    const double samples = static_cast<double>(SegmentSamples(log, seconds));
+    segments += std::ceil(static_cast<double>(log.time.size()) / std::max(1.0, samples));
+  }
+  const double columns = static_cast<double>(options.free.size()) + 4.0 * segments;
+  const double bytes = 3.0 * 8.0 * rows * (columns + 4.0);
+  const double available = AvailableMemory();
+  if (available > 0.0 && bytes > 0.8 * available) {
+    throw IdentificationError(fmt::format(
+        "output error on these logs would hold about {:.3g} GiB ({:.3g} residual rows by {:.0f} columns, 3 copies), "
+        "and {:.3g} GiB are available: crop the logs (‹from›/‹to›), fit fewer or shorter logs, or use ‹method› id",
+        bytes / 1073741824.0, rows, columns, available / 1073741824.0));
+  }
+}
+
+}  // namespace
+
 JointOeOutput FitJointOutputError(const std::vector<JointLog>& logs, const JointSection& start,
                                   const JointParameters* initial, const JointOeOptions& given) {
   if (logs.empty()) throw OptionError("no logs given");
@@ -579,6 +630,7 @@ JointOeOutput FitJointOutputError(const std::vector<JointLog>& logs, const Joint
   if (options.free.empty()) options.free = JointOeDefaultFree(logs);
   CheckFreeNames(JointParameterTable(), "joint", options.free);
   CheckOutputErrorSimulates(start, options.free);
+  RequireMemory(logs, options, StartJoint(start, initial));
   if (options.segment_seconds != 0.0) return FitShots(logs, start, initial, options);
   // Auto: the shortest segments (least drift) that determine every term —
   // from AutoSegmentSeconds, doubled while the fit is refused, up to the
