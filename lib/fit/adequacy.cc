@@ -112,7 +112,9 @@ std::vector<std::string> CheckFitPercent(const FitResult& fit) {
 std::vector<std::string> CheckResidualColour(const FitResult& fit) {
   std::vector<std::string> warnings;
   std::vector<std::string> names;
-  for (const auto& e : fit.estimates) names.push_back(e.name);
+  for (const auto& e : fit.estimates) {
+    if (e.name.find('(') == std::string::npos) names.push_back(e.name);  // not a simulation's initial state
+  }
   for (const auto& c : fit.channels) {
     if (!(c.autocorrelation > kColouredResiduals) || c.samples < 20) continue;
     const double rho = std::min(c.autocorrelation, 0.9999);

@@ -99,8 +99,10 @@ void TakeSummary(const ceres::Solver::Summary& summary, const FitOptions& option
     return;
   }
   if (!result.converged) {
-    throw IdentificationError(fmt::format("solver did not converge in {} iterations: {}", result.iterations,
-                                          summary.message));
+    throw IdentificationError(fmt::format("solver did not converge in {} iterations ({}): start it closer (values in "
+                                          "‹params›), crop a long rest or a settling at the log's start (‹from›), "
+                                          "or free fewer terms",
+                                          result.iterations, summary.message));
   }
 }
 
