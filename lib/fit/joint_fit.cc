@@ -75,13 +75,14 @@ struct JointDesign {
   std::string offset_key = KeyOf(JointParameterTable(), &JointParameters::link_torque_offset);
   std::size_t offset_column = 0;
   bool per_log_offset = false;
-  /// Shaft-torque rows only: the motor and link accelerations, held at 0 in
-  /// the fit and tested against its residuals (ShaftTorqueLocation).
-  std::size_t sensor_motor_column = 0, sensor_link_column = 0;
-  bool sensor_columns = false;
-  /// Shaft-torque rows only: an offset per block of kSensorDriftBlocks-th of
-  /// each log, so that angles integrated from speeds (a random-walk
+  /// Shaft-torque rows only, for the fit whose warnings are shown (the
+  /// printed one, not its per-log, sensitivity or trial variants): the motor
+  /// and link accelerations, held at 0 in the fit and tested against its
+  /// residuals (ShaftTorqueLocation), and an offset per kSensorDriftBlocks-th
+  /// of each log, so that angles integrated from speeds (a random-walk
   /// deflection error) do not pass for a misplaced sensor; also held at 0.
+  /// None (drift_columns empty) when no log has a shaft torque.
+  std::size_t sensor_motor_column = 0, sensor_link_column = 0;
   std::vector<std::size_t> drift_first;  ///< per log: its first block column
   std::vector<std::string> drift_columns;
 };
@@ -92,7 +93,7 @@ constexpr const char* kSensorMotorAcceleration = "shaft torque: motor accelerati
 constexpr const char* kSensorLinkAcceleration = "shaft torque: link acceleration";
 
 JointDesign MakeJointDesign(const std::vector<JointLog>& logs, const JointSection& start,
-                            const std::vector<std::string>& free) {
+                            const std::vector<std::string>& free, bool sensor_test) {
   JointDesign d;
   bool has_torque = false;
   for (const auto& log : logs) has_torque = has_torque || !log.torque.empty();
@@ -132,8 +133,7 @@ JointDesign MakeJointDesign(const std::vector<JointLog>& logs, const JointSectio
   }
   const bool link_torque =
       std::any_of(logs.begin(), logs.end(), [](const JointLog& log) { return !log.link_torque.empty(); });
-  if (link_torque) {
-    d.sensor_columns = true;
+  if (link_torque && sensor_test) {
     d.sensor_motor_column = d.columns.size();
     d.columns.push_back(kSensorMotorAcceleration);
     d.sensor_link_column = d.columns.size();
@@ -216,7 +216,7 @@ void AddJointLogRows(const JointLog& log, std::size_t i, const JointDesign& d, c
       std::vector<double> regressor(row.begin(), row.end());
       regressor.resize(d.columns.size(), 0.0);
       if (d.per_log_offset) std::swap(regressor[d.offset_column], regressor[kJointTerms + i]);
-      if (equation == 2) {
+      if (equation == 2 && !d.drift_columns.empty()) {
         regressor[d.sensor_motor_column] = dm.acceleration[k];
         regressor[d.sensor_link_column] = dl.acceleration[k];
         const auto block = std::min<std::size_t>(kSensorDriftBlocks - 1, k * kSensorDriftBlocks / log.time.size());
@@ -326,7 +326,7 @@ void CheckJointAdequacy(const std::vector<JointLog>& logs, const JointSection& s
 // with the inertia each side implies.
 std::optional<std::string> ShaftTorqueLocation(const LinearRegression& regression, const JointDesign& d,
                                                const std::map<std::string, double>& values, const FitResult& fit) {
-  if (!d.sensor_columns) return std::nullopt;
+  if (d.drift_columns.empty()) return std::nullopt;
   std::vector<std::string> free;
   for (const auto& e : fit.estimates) free.push_back(e.name);
   free.insert(free.end(), d.drift_columns.begin(), d.drift_columns.end());
@@ -381,7 +381,7 @@ JointFitOutput FitJoint(const std::vector<JointLog>& given_logs, const JointSect
   JointFitOptions options = given;
   if (options.free.empty()) options.free = JointDefaultFree(logs);
   CheckFreeNames(JointParameterTable(), "joint", options.free);
-  const JointDesign d = MakeJointDesign(logs, start, options.free);
+  const JointDesign d = MakeJointDesign(logs, start, options.free, options.sensitivity);
   JointFitOutput out;
   LinearRegression regression(d.columns);
   for (std::size_t i = 0; i < logs.size(); ++i) AddJointLogRows(logs[i], i, d, options, regression, out);

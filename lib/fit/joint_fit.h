@@ -27,7 +27,10 @@ struct JointFitOptions {
   double cutoff = 0.0;              ///< [Hz]; 0 = rate / 40
   double min_rate_fraction = 0.01;
   bool per_log = true;  ///< several logs: each fitted alone too, and tested for agreement
-  bool sensitivity = true;  ///< the same fit at half and twice the cutoff (adequacy.h ProcessingWarnings)
+  /// The fit whose warnings are shown: also the same fit at half and twice the
+  /// cutoff (adequacy.h ProcessingWarnings), the cutoff advice tried, and the
+  /// shaft-torque location test (false: a per-log, trial or start fit).
+  bool sensitivity = true;
   /// false: estimates however uncertain (start values of an output-error fit).
   bool refuse_undetermined = true;
   FitOptions fit;

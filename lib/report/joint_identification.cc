@@ -112,10 +112,6 @@ JointRun RunOutputError(const std::vector<JointLog>& logs, const JointSection& s
   return run;
 }
 
-// auto (docs/models.md#joint-output-error): output error when every
-// log has the motor torque, the link's Coulomb friction is not asked for, and
-// the inverse-dynamics start shows its filter reaching the resonance or leaves
-// a term undetermined (which inverse dynamics would refuse). Returns the method and why.
 // The link Coulomb friction an inverse-dynamics fit finds (more than 3 std).
 std::optional<ParameterEstimate> FoundLinkCoulomb(const JointFitOutput& fit) {
   const std::string link_coulomb = KeyOf(JointParameterTable(), &JointParameters::link_coulomb);
@@ -133,9 +129,13 @@ struct MethodChoice {
   bool filter_near_resonance = false;
 };
 
+// auto (docs/models.md#joint-output-error): output error when every log has
+// the motor torque, the link's Coulomb friction is not asked for, and the
+// inverse-dynamics start shows its filter near the resonance or — finding
+// no link Coulomb friction — leaves a term undetermined (which inverse
+// dynamics would refuse).
 MethodChoice ChooseMethod(const std::vector<JointLog>& logs, const JointSection& section,
-                                                 const JointIdentificationOptions& options,
-                                                 const std::optional<JointFitOutput>& start) {
+                          const JointIdentificationOptions& options, const std::optional<JointFitOutput>& start) {
   const bool torque = std::all_of(logs.begin(), logs.end(), [](const JointLog& l) { return !l.torque.empty(); });
   const std::string link_coulomb = KeyOf(JointParameterTable(), &JointParameters::link_coulomb);
   if (!torque) return {JointMethod::kInverseDynamics, "auto: a log has no motor torque to simulate from"};
@@ -145,18 +145,17 @@ MethodChoice ChooseMethod(const std::vector<JointLog>& logs, const JointSection&
   }
   if (!start) return {JointMethod::kInverseDynamics, "auto: inverse dynamics, which output error starts from, refused the logs"};
   const JointParameters& p = start->params;
+  const bool has_resonance = p.motor_inertia > 0.0 && p.link_inertia > 0.0 && p.stiffness > 0.0;
+  const double resonance = has_resonance ? JointResonance(p) / (2.0 * M_PI) : 0.0;
   // With its filter near the resonance inverse dynamics is biased (the
   // damping most), and a link Coulomb friction it finds there may be the
   // filter's doing (a 4 kHz scope trace without any: 0.035 +- 0.006):
   // output error, warned of that friction.
-  if (p.motor_inertia > 0.0 && p.link_inertia > 0.0 && p.stiffness > 0.0) {
-    const double resonance = JointResonance(p) / (2.0 * M_PI);
-    if (start->cutoff < kAutoCutoffPerResonance * resonance) {
-      return {JointMethod::kOutputError,
-              fmt::format("auto: the inverse-dynamics cutoff {:.4g} Hz is below 4 x the resonance {:.4g} Hz",
-                          start->cutoff, resonance),
-              true};
-    }
+  if (has_resonance && start->cutoff < kAutoCutoffPerResonance * resonance) {
+    return {JointMethod::kOutputError,
+            fmt::format("auto: the inverse-dynamics cutoff {:.4g} Hz is below 4 x the resonance {:.4g} Hz",
+                        start->cutoff, resonance),
+            true};
   }
   if (const auto found = FoundLinkCoulomb(*start)) {
     return {JointMethod::kInverseDynamics, fmt::format("auto: inverse dynamics finds link Coulomb friction {:.4g} +- "
@@ -166,10 +165,11 @@ MethodChoice ChooseMethod(const std::vector<JointLog>& logs, const JointSection&
   // A term inverse dynamics would refuse as undetermined (relative std above
   // 50 %, not at its bound 0): output error, which differentiates nothing.
   std::vector<std::string> undetermined;
+  const std::string stiffness = KeyOf(JointParameterTable(), &JointParameters::stiffness);
   for (const auto& e : start->fit.estimates) {
     const bool at_bound = e.value == 0.0;
     if (!at_bound && !(e.standard_error < kMaxRelativeStd * std::abs(e.value))) undetermined.push_back(e.name);
-    if (e.name == KeyOf(JointParameterTable(), &JointParameters::stiffness) && !(e.value > 0.0)) {
+    if (e.name == stiffness && !(e.value > 0.0)) {
       undetermined.push_back(e.name);
     }
   }
@@ -177,10 +177,10 @@ MethodChoice ChooseMethod(const std::vector<JointLog>& logs, const JointSection&
     return {JointMethod::kOutputError,
             fmt::format("auto: inverse dynamics leaves {} undetermined", fmt::join(undetermined, ", "))};
   }
-  if (p.motor_inertia > 0.0 && p.link_inertia > 0.0 && p.stiffness > 0.0) {
+  if (has_resonance) {
     return {JointMethod::kInverseDynamics,
             fmt::format("auto: the inverse-dynamics cutoff {:.4g} Hz is above 4 x the resonance {:.4g} Hz",
-                        start->cutoff, JointResonance(p) / (2.0 * M_PI))};
+                        start->cutoff, resonance)};
   }
   return {JointMethod::kOutputError, "auto: inverse dynamics gave no resonance"};
 }
