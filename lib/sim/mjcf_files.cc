@@ -16,8 +16,20 @@ constexpr int kMaxDepth = 8;
 constexpr std::size_t kMaxFiles = 64;
 
 struct Reference {
-  std::string attribute, value;
+  std::string element, attribute, value;  ///< element: the tag the attribute stands in
 };
+
+// The name of the element whose start tag holds position `at`.
+std::string ElementAt(const std::string& text, std::size_t at) {
+  const std::size_t open = text.rfind('<', at);
+  if (open == std::string::npos) return "";
+  std::size_t end = open + 1;
+  while (end < text.size() && !std::isspace(static_cast<unsigned char>(text[end])) && text[end] != '>' &&
+         text[end] != '/') {
+    ++end;
+  }
+  return text.substr(open + 1, end - open - 1);
+}
 
 // Values of the attributes `file`, `meshdir`, `texturedir`, `assetdir`
 // (a whole attribute name: preceded by a blank), single or double quoted.
@@ -35,7 +47,7 @@ std::vector<Reference> FileReferences(const std::string& text) {
       if (i >= text.size() || (text[i] != '"' && text[i] != '\'')) continue;
       const std::size_t end = text.find(text[i], i + 1);
       if (end == std::string::npos) continue;  // MuJoCo refuses the XML itself
-      out.push_back({key, text.substr(i + 1, end - i - 1)});
+      out.push_back({ElementAt(text, at), key, text.substr(i + 1, end - i - 1)});
     }
   }
   return out;
@@ -79,12 +91,10 @@ void Check(const std::filesystem::path& file, const std::filesystem::path& folde
                                    file.string(), r.attribute, r.value.substr(0, 200), why, folder.string()));
     }
     // An included model is checked too (MuJoCo reads it relative to the top model's folder).
-    if (r.attribute == "file" && text.rfind("<include", text.find(r.value)) != std::string::npos) {
+    if (r.element == "include") {
       const auto included = folder / r.value;
       std::error_code error;
-      if (std::filesystem::path(r.value).extension() == ".xml" && std::filesystem::is_regular_file(included, error)) {
-        Check(included, folder, depth + 1, files);
-      }
+      if (std::filesystem::is_regular_file(included, error)) Check(included, folder, depth + 1, files);
     }
   }
 }

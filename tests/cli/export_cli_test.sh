@@ -176,9 +176,13 @@ if [ "$have_mujoco" = ON ]; then
   hostile '<asset><texture name="t" type="2d" file="/dev/urandom"/></asset>' absolute
   hostile '<include file="\&#46;\&#46;/x.xml"/>' entity
   hostile '<include file="sub.xml"/>' nested
+  cp model/sub.xml model/sub.inc
+  hostile '<include file="sub.inc"/>' nested_inc
+  sed 's|<mujoco model="driveid_axis">|<!-- parts: sub.xml --><mujoco model="driveid_axis"><include file="sub.xml"/>|' axis.xml \
+    > model/nested_comment.xml
   hostile '<asset><texture name="t" type="2d" file="link.png"/></asset>' link
   hostile '<compiler meshdir="/etc"/>' meshdir
-  for case in dotdot:"a '..'" absolute:"an absolute path" entity:"a character reference or entity" nested:"a '..'" \
+  for case in dotdot:"a '..'" absolute:"an absolute path" entity:"a character reference or entity" nested:"a '..'" nested_inc:"a '..'" nested_comment:"a '..'" \
               link:"a link that leads outside the model's folder" meshdir:"an absolute path"; do
     EXPECT_OUTPUT=--trace expect 3 "${case#*:}; MuJoCo may read only files in the model's folder" -- \
       validate "model/${case%%:*}.xml" "$steps"
