@@ -12,6 +12,7 @@
 #include "io/parameter_file.h"
 #include "report/axis_feedforward.h"
 #include "report/drivetrain_report.h"
+#include "report/feedback_design.h"
 #include "report/planar_robot_report.h"
 
 namespace driveid::cli {
@@ -35,9 +36,10 @@ CLI::App* SetupReportCommand(CLI::App& app, ReportOptions& options) {
 
 void RunReportCommand(const ReportOptions& options) {
   const ParameterFile file = ReadParameterFile(options.params);
-  if (!file.Find<DriveTrainSection>() && !file.Find<PlanarRobotSection>() && file.feedforward.gains.empty()) {
-    throw InputError(fmt::format("{}: no 'drivetrain', 'planar_robot' or 'feedforward' section (an axis fit writes "
-                                 "the feed-forward section)", options.params));
+  if (!file.Find<DriveTrainSection>() && !file.Find<PlanarRobotSection>() && file.feedforward.gains.empty() &&
+      file.feedback.empty()) {
+    throw InputError(fmt::format("{}: no 'drivetrain', 'planar_robot', 'feedforward' or 'feedback' section (an axis "
+                                 "fit writes the feed-forward section, gains the feedback section)", options.params));
   }
   // Text: one block per section. JSON: one document with a member per section.
   std::string text;
@@ -74,6 +76,10 @@ void RunReportCommand(const ReportOptions& options) {
   if (!file.feedforward.gains.empty()) {
     if (options.json) json["feedforward"] = FeedforwardReportJson(file.feedforward);
     else text += FormatFeedforwardReport(file.feedforward);
+  }
+  if (!file.feedback.empty()) {
+    if (options.json) json["feedback"] = FeedbackReportJson(file.feedback);
+    else text += FormatFeedbackReport(file.feedback);
   }
   WriteStdout(options.json ? DumpJson(json) : text);
 }

@@ -14,6 +14,7 @@
 
 #include "core/errors.h"
 #include "io/csv_log.h"
+#include "io/feedback_section.h"
 #include "io/parameter_sections.h"
 
 namespace driveid {
@@ -411,6 +412,44 @@ std::string FormatFeedforward(const Feedforward& f) {
 
 }  // namespace
 
+namespace {
+
+// fit.correlation as written (FormatCorrelation): a row per estimate, or a
+// list of [name, name, r] for many parameters. Read for propagating a
+// derived value's std (e.g. feedback gains from Kv and Ka).
+void ParseFitCorrelation(const std::string& path, const YAML::Node& node, ParameterFile& file) {
+  if (!node) return;
+  const auto value = [&](const YAML::Node& n) {
+    const double r = ParseNumber(path, "fit.correlation", n);
+    if (std::abs(r) > 1.0 + 1e-9) throw InputError(fmt::format("{}: fit.correlation: {} is outside [-1, 1]", Where(path, n), r));
+    return r;
+  };
+  if (node.IsMap()) {
+    std::vector<std::string> names;
+    for (const auto& row : node) names.push_back(row.first.Scalar());
+    for (const auto& row : node) {
+      if (!row.second.IsSequence() || row.second.size() != names.size()) {
+        throw InputError(fmt::format("{}: fit.correlation.{}: expected {} numbers", Where(path, row.second),
+                                     row.first.Scalar(), names.size()));
+      }
+      for (std::size_t j = 0; j < names.size(); ++j) {
+        file.fit_correlations.push_back({{row.first.Scalar(), names[j]}, value(row.second[j])});
+      }
+    }
+  } else if (node.IsSequence()) {
+    for (const auto& pair : node) {
+      if (!pair.IsSequence() || pair.size() != 3 || !pair[0].IsScalar() || !pair[1].IsScalar()) {
+        throw InputError(fmt::format("{}: fit.correlation: expected [name, name, r]", Where(path, pair)));
+      }
+      file.fit_correlations.push_back({{pair[0].Scalar(), pair[1].Scalar()}, value(pair[2])});
+    }
+  } else {
+    throw InputError(fmt::format("{}: fit.correlation: expected rows or pairs", Where(path, node)));
+  }
+}
+
+}  // namespace
+
 ParameterFile ParseParameterFile(const std::string& path, const std::string& text) {
   CheckNesting(path, text);
   // YAML::Load reads the first document only: refuse a second one, marked by
@@ -454,6 +493,8 @@ ParameterFile ParseParameterFile(const std::string& path, const std::string& tex
       handler->parse(path, item.second, file);
     } else if (section == "feedforward") {
       file.feedforward = ParseFeedforward(path, item.second);
+    } else if (section == "feedback") {
+      file.feedback = ParseFeedbackSection(path, item.second);
     } else if (section == "fit") {
       // Provenance of an earlier fit: accepted so that a fit's output is a
       // valid input, and replaced when a new file is written.
@@ -498,14 +539,15 @@ ParameterFile ParseParameterFile(const std::string& path, const std::string& tex
           file.fit_estimates.push_back(estimate);
         }
       }
+      ParseFitCorrelation(path, item.second["correlation"], file);
     } else {
-      throw InputError(fmt::format("{}: {}: unknown section (known: {}, feedforward, fit)", Where(path, item.first), section,
+      throw InputError(fmt::format("{}: {}: unknown section (known: {}, feedforward, feedback, fit)", Where(path, item.first), section,
                                    SectionNames()));
     }
   }
   bool any_model = false;
   for (const auto& section : Sections()) any_model = any_model || section.present(file);
-  if (!any_model) throw InputError(fmt::format("{}: no model section ({})", path, SectionNames()));
+  if (!any_model && file.feedback.empty()) throw InputError(fmt::format("{}: no model section ({})", path, SectionNames()));
   return file;
 }
 
@@ -592,6 +634,7 @@ std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit,
     if (section.present(file)) out += section.format(file);
   }
   if (!file.feedforward.gains.empty()) out += FormatFeedforward(file.feedforward);
+  if (!file.feedback.empty()) out += FormatFeedbackSection(file.feedback);
   if (fit != nullptr && provenance != nullptr) {
     out += FormatProvenance(provenance);
     out += "  estimates:\n";

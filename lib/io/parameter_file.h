@@ -19,6 +19,7 @@
 #include "models/axis.h"
 #include "models/cdrive.h"
 #include "models/drivetrain.h"
+#include "models/feedback.h"
 #include "models/feedforward.h"
 #include "models/frequency_response.h"
 #include "models/joint.h"
@@ -58,6 +59,12 @@ class ParameterFile {
   /// Feed-forward gains (docs/models.md#feed-forward), written by the axis
   /// fit; none when `gains` is empty.
   Feedforward feedforward;
+  /// Feedback controller (docs/models.md#feedback-gains), written by
+  /// `gains`; none when its loop is empty.
+  FeedbackController feedback;
+  /// fit.correlation of a previous fit: pairs of estimate names and their
+  /// correlation (the full matrix or the strongest pairs, as written).
+  std::vector<std::pair<std::pair<std::string, std::string>, double>> fit_correlations;
 
  private:
   std::map<std::string, std::any> sections_;

@@ -108,7 +108,7 @@ TEST_CASE("bad parameter files name file, line, column and key") {
   CHECK_THAT(ErrorOf("drivetrain: [1, 2\n"), Catch::Contains("invalid YAML"));
   CHECK(ErrorOf("") == "p.yaml: empty parameter file");
   CHECK(ErrorOf("drivetrian:\n  n_g: 80\n") ==
-        "p.yaml:1:1: drivetrian: unknown section (known: drivetrain, planar_robot, axis, cdrive, joint, frf, feedforward, fit)");
+        "p.yaml:1:1: drivetrian: unknown section (known: drivetrain, planar_robot, axis, cdrive, joint, frf, feedforward, feedback, fit)");
   CHECK(ErrorOf("drivetrain:\n  n_g: 80\n  n_g: 81\n") == "p.yaml:3:3: drivetrain.n_g: key appears twice");
   CHECK(ErrorOf("- 1\n- 2\n") == "p.yaml:1:1: parameter file: expected a mapping of keys");
   CHECK_THAT(ErrorOf(std::string(kValid) + "  tau_c2: [1]\n"), Catch::Contains("unknown key"));

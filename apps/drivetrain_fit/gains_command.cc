@@ -1,0 +1,107 @@
+// drivetrain-fit gains: feedback gains for the controller that loads the
+// parameter file (docs/models.md#feedback-gains). Parsing and output only;
+// the design is report/feedback_design.h.
+#include <optional>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "common/cli_support.h"
+#include "common/command_registry.h"
+#include "control/feedback_gains.h"
+#include "io/atomic_file.h"
+#include "io/parameter_file.h"
+#include "report/feedback_design.h"
+
+namespace driveid::cli {
+namespace {
+
+struct GainsOptions {
+  std::string params;
+  AxisGainsOptions axis;
+  double period = 0.0, delay = -1.0, kv = -1.0, ka = -1.0;
+  std::string output;
+  bool json = false;
+};
+
+std::string PresetHelp() {
+  std::string help = "controller conventions (units, period, velocity filter delay):";
+  for (const auto& p : ControllerPresets()) help += fmt::format("\n  {}: {}", p.name, p.description);
+  return help;
+}
+
+CLI::App* Setup(CLI::App& app, GainsOptions& o) {
+  CLI::App* command = app.add_subcommand(
+      "gains", "Feedback gains for a fitted axis by LQR as WPILib SysId computes them, with std from the fit "
+      "(docs/models.md#feedback-gains)");
+  command->add_option("params", o.params, "parameter file with a feedforward or axis section (an axis fit's output)");
+  command->add_option("--loop", o.axis.loop, "velocity: kp on the rate error; position: kp and kd")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"velocity", "position"}));
+  command->add_option("--preset", o.axis.preset, PresetHelp())->capture_default_str();
+  command->add_option("--period", o.period, "controller period [s] (default: the preset's)")->check(FiniteAbove(0.0));
+  command->add_option("--delay", o.delay, "velocity measurement delay [s] (default: the preset's)")
+      ->check(FiniteAtLeast(0.0));
+  command->add_option("--max-position-error", o.axis.max_position_error, "LQR state cost: position error tolerated")
+      ->capture_default_str()
+      ->check(FiniteAbove(0.0));
+  command->add_option("--max-velocity-error", o.axis.max_velocity_error, "LQR state cost: velocity error tolerated")
+      ->capture_default_str()
+      ->check(FiniteAbove(0.0));
+  command->add_option("--max-effort", o.axis.max_effort, "LQR effort cost: effort at those errors (V for SysId)")
+      ->capture_default_str()
+      ->check(FiniteAbove(0.0));
+  command->add_option("--conversion", o.axis.conversion,
+                      "controller position units per parameter-file position unit (e.g. encoder counts per rotation)")
+      ->capture_default_str()
+      ->check(FiniteAbove(0.0));
+  command->add_option("--kv", o.kv, "Kv [effort s/position] instead of the file's")->check(FiniteAtLeast(0.0));
+  command->add_option("--ka", o.ka, "Ka [effort s^2/position] instead of the file's")->check(FiniteAtLeast(0.0));
+  command->add_option("--kv-std", o.axis.kv_std, "std of a given Kv")->check(FiniteAtLeast(0.0));
+  command->add_option("--ka-std", o.axis.ka_std, "std of a given Ka")->check(FiniteAtLeast(0.0));
+  command->add_option("-o,--output", o.output,
+                      "parameter file to write: the input's sections and the feedback section (written atomically)");
+  command->add_flag("--json", o.json, "print one JSON object instead of the text");
+  command->footer(
+      "Example:\n  drivetrain-fit axis sysid.json -o arm.yaml\n"
+      "  drivetrain-fit gains arm.yaml --loop position --preset rev-neo -o arm_gains.yaml\n"
+      "  drivetrain-fit gains --kv 3.060 --ka 0.327   (SysId's test: kp 2.11)");
+  return command;
+}
+
+void Run(GainsOptions o) {
+  CheckDistinctFiles({o.params}, {{"-o", o.output}});
+  std::optional<ParameterFile> file;
+  if (!o.params.empty()) file = ReadParameterFile(o.params);
+  if (o.period > 0.0) o.axis.period = o.period;
+  if (o.delay >= 0.0) o.axis.delay = o.delay;
+  if (o.kv >= 0.0) o.axis.kv = o.kv;
+  if (o.ka >= 0.0) o.axis.ka = o.ka;
+  const AxisGainsDesign design = DesignAxisGains(file ? &*file : nullptr, o.params, o.axis);
+  if (!o.output.empty()) {
+    ParameterFile out = file ? *file : ParameterFile{};
+    out.feedback = design.controller;
+    WriteFileAtomically(o.output, FormatParameterFile(out));
+  }
+  if (o.json) {
+    Json json = FeedbackReportJson(design.controller);
+    json["plant"] = {{"source", design.kv_source}, {"kv", {{"value", design.kv}, {"std", design.kv_std}}},
+                     {"ka", {{"value", design.ka}, {"std", design.ka_std}}}, {"correlation", design.correlation}};
+    json["notes"] = design.notes;
+    WriteStdout(DumpJson(json));
+    return;
+  }
+  std::string text = FormatFeedbackReport(design.controller);
+  text += fmt::format("plant: Kv {:.6g} +- {:.3g}, Ka {:.6g} +- {:.3g} (correlation {:.3f}) from {}\n", design.kv,
+                      design.kv_std, design.ka, design.ka_std, design.correlation, design.kv_source);
+  for (const auto& note : design.notes) text += "note: " + note + "\n";
+  WriteStdout(text);
+}
+
+GainsOptions gains_options;
+const bool kRegistered = RegisterCommand({"drivetrain-fit", "", 45,
+                                          [](CLI::App& parent) { return Setup(parent, gains_options); },
+                                          [](const std::string&) { Run(gains_options); }});
+}  // namespace
+
+}  // namespace driveid::cli

@@ -1,0 +1,144 @@
+#include "io/feedback_section.h"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "io/parameter_sections.h"
+#include "models/feedforward.h"
+
+namespace driveid {
+namespace {
+
+using namespace section_io;
+
+constexpr std::size_t kMaxCoefficients = 16;
+
+const FeedbackKey* FindKey(const std::string& key) {
+  for (const auto& k : kFeedbackKeys) {
+    if (key == k.key) return &k;
+  }
+  return nullptr;
+}
+
+std::string KnownKeys() {
+  std::string known = "loop, preset, effort_unit, position_unit, numerator, denominator";
+  for (const auto& k : kFeedbackKeys) known += std::string(", ") + k.key;
+  return known;
+}
+
+std::string ParseName(const std::string& path, const std::string& key, const YAML::Node& node) {
+  const std::string name = "feedback." + key;
+  if (!node.IsScalar()) throw InputError(fmt::format("{}: {}: expected a name", Where(path, node), name));
+  const std::string value = node.Scalar();
+  if (key == "loop" && std::find_if(kFeedbackLoops.begin(), kFeedbackLoops.end(),
+                                    [&](const char* loop) { return value == loop; }) == kFeedbackLoops.end()) {
+    throw InputError(fmt::format("{}: {}: \"{}\": expected velocity, position or speed", Where(path, node), name,
+                                 UnitTextProblem(value).empty() ? value : "?"));
+  }
+  if (!value.empty() && !UnitTextProblem(value).empty()) {
+    throw InputError(fmt::format("{}: {}: not a name: {} (letters, digits, blanks and / ^ * . _ ( ) % + -)",
+                                 Where(path, node), name, UnitTextProblem(value)));
+  }
+  return value;
+}
+
+std::vector<double> ParseCoefficients(const std::string& path, const std::string& key, const YAML::Node& node) {
+  const std::string name = "feedback." + key;
+  if (!node.IsSequence() || node.size() == 0 || node.size() > kMaxCoefficients) {
+    throw InputError(fmt::format("{}: {}: expected a list of 1 to {} numbers", Where(path, node), name, kMaxCoefficients));
+  }
+  std::vector<double> out;
+  for (const auto& c : node) out.push_back(ParseNumber(path, name, c));
+  return out;
+}
+
+FeedbackValue ParseValue(const std::string& path, const std::string& key, const YAML::Node& node) {
+  const std::string name = "feedback." + key;
+  FeedbackValue value;
+  value.key = key;
+  if (node.IsMap()) {
+    for (const auto& entry : node) {
+      const std::string sub = entry.first.Scalar();
+      if (sub != "value" && sub != "std") {
+        throw InputError(fmt::format("{}: {}.{}: unknown key (known: value, std)", Where(path, entry.first), name, sub));
+      }
+    }
+    if (!node["value"]) throw InputError(fmt::format("{}: {}: needs a value", Where(path, node), name));
+    value.value = ParseNumber(path, name + ".value", node["value"]);
+    if (node["std"]) value.standard_error = ParseNumber(path, name + ".std", node["std"]);
+  } else {
+    value.value = ParseNumber(path, name, node);
+  }
+  return value;
+}
+
+std::string UnitOf(const FeedbackKey& key, const FeedbackController& f) {
+  std::string unit = key.unit;
+  if (unit == "position") return f.position_unit;
+  if (unit == "position/s") return f.position_unit + "/s";
+  if (unit == "effort") return f.effort_unit;
+  return unit;
+}
+
+}  // namespace
+
+FeedbackController ParseFeedbackSection(const std::string& path, const YAML::Node& node) {
+  CheckMapping(path, "feedback", node);
+  FeedbackController out;
+  for (const auto& item : node) {
+    const std::string key = item.first.Scalar();
+    if (key == "loop" || key == "preset" || key == "effort_unit" || key == "position_unit") {
+      const std::string value = ParseName(path, key, item.second);
+      (key == "loop" ? out.loop : key == "preset" ? out.preset : key == "effort_unit" ? out.effort_unit
+                                                                                      : out.position_unit) = value;
+    } else if (key == "numerator" || key == "denominator") {
+      (key == "numerator" ? out.numerator : out.denominator) = ParseCoefficients(path, key, item.second);
+    } else if (FindKey(key)) {
+      out.values.push_back(ParseValue(path, key, item.second));
+    } else {
+      throw InputError(fmt::format("{}: feedback.{}: unknown key (known: {})", Where(path, item.first), key, KnownKeys()));
+    }
+  }
+  if (out.loop.empty()) throw InputError(fmt::format("{}: feedback.loop: missing (velocity, position or speed)", Where(path, node)));
+  // Written in the order of kFeedbackKeys whatever order was read.
+  std::stable_sort(out.values.begin(), out.values.end(), [](const FeedbackValue& a, const FeedbackValue& b) {
+    return FindKey(a.key) < FindKey(b.key);
+  });
+  return out;
+}
+
+std::string FormatFeedbackSection(const FeedbackController& f) {
+  for (const auto* name : {&f.loop, &f.preset, &f.effort_unit, &f.position_unit}) {
+    if (!UnitTextProblem(*name).empty()) {
+      throw OutputError(fmt::format("feedback: '{}' is not a name: {}; nothing written", "?", UnitTextProblem(*name)));
+    }
+  }
+  std::string out = "feedback:  # the controller `gains` designed: docs/models.md#feedback-gains\n";
+  out += fmt::format("  loop: {}\n", f.loop);
+  if (!f.preset.empty()) out += fmt::format("  preset: {}\n", f.preset);
+  out += fmt::format("  effort_unit: \"{}\"\n  position_unit: \"{}\"\n", f.effort_unit, f.position_unit);
+  for (const auto& v : f.values) {
+    const FeedbackKey* key = FindKey(v.key);
+    if (!key) throw OutputError(fmt::format("feedback.{}: unknown key; nothing written", v.key));
+    const std::string name = "feedback." + v.key;
+    const std::string unit = UnitOf(*key, f);
+    const std::string comment = unit.empty() ? key->description : fmt::format("{} [{}]", key->description, unit);
+    if (key->gain) {
+      out += fmt::format("  {}: {{value: {}, std: {}}}  # {}\n", v.key, Number(Writable(name, v.value)),
+                         fmt::format("{:.6g}", Writable(name + ".std", v.standard_error)), comment);
+    } else {
+      out += fmt::format("  {}: {}  # {}\n", v.key, Number(Writable(name, v.value)), comment);
+    }
+  }
+  for (const auto& [key, coefficients] : {std::pair{"numerator", &f.numerator}, std::pair{"denominator", &f.denominator}}) {
+    if (coefficients->empty()) continue;
+    std::string list;
+    for (double c : *coefficients) list += (list.empty() ? "" : ", ") + Number(Writable(std::string("feedback.") + key, c));
+    out += fmt::format("  {}: [{}]  # C(s), highest power of s first\n", key, list);
+  }
+  return out;
+}
+
+}  // namespace driveid

@@ -1,0 +1,75 @@
+// The feedback controller section of a parameter file (docs/models.md#feedback-gains),
+// written by `drivetrain-fit gains`:
+//   velocity loop  u = kp (v_ref - v)
+//   position loop  u = kp (q_ref - q) + kd (v_ref - v)
+//   speed loop     C(s) = numerator(s) / denominator(s) on the motor-shaft
+//                  speed error (a PI with a notch at the resonance),
+// in the controller's units (the preset's, docs/models.md#feedback-gains),
+// each gain with the standard error propagated from the parameter file's
+// covariance; the design's settings and margins beside them.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace driveid {
+
+/// The loops `gains` designs.
+inline constexpr std::array<const char*, 3> kFeedbackLoops = {"velocity", "position", "speed"};
+
+/// The keys a feedback section may hold besides loop, preset, units and
+/// the speed loop's polynomials, in the order written, with their units
+/// ("effort", "position" stand for the section's units).
+struct FeedbackKey {
+  const char* key;
+  const char* unit;
+  const char* description;
+  bool gain;  ///< written as {value, std}
+};
+inline constexpr std::array<FeedbackKey, 18> kFeedbackKeys = {{
+    {"kp", "", "proportional gain (controller units: docs/models.md#feedback-gains)", true},
+    {"kd", "", "derivative gain on the rate error", true},
+    {"ki", "", "integral gain of the speed loop [effort/position]", true},
+    {"period", "s", "controller period", false},
+    {"delay", "s", "measurement delay compensated", false},
+    {"max_position_error", "position", "LQR: tolerated position error", false},
+    {"max_velocity_error", "position/s", "LQR: tolerated velocity error", false},
+    {"max_effort", "effort", "LQR: effort at those errors", false},
+    {"conversion", "", "controller units per position unit", false},
+    {"notch_hz", "Hz", "notch centre (the fitted resonance)", false},
+    {"notch_width_hz", "Hz", "notch -3 dB width", false},
+    {"crossover_hz", "Hz", "open-loop gain crossover", false},
+    {"phase_margin_deg", "deg", "phase margin", false},
+    {"gain_margin_db", "dB", "gain margin", false},
+    {"modulus_margin", "", "min |1 + L(jw)|", false},
+    {"worst_phase_margin_deg", "deg", "phase margin at the worst point of the 95 % region", false},
+    {"worst_gain_margin_db", "dB", "gain margin at the worst point of the 95 % region", false},
+    {"worst_modulus_margin", "", "modulus margin at the worst point of the 95 % region", false},
+}};
+
+struct FeedbackValue {
+  std::string key;
+  double value = 0.0;
+  double standard_error = 0.0;
+};
+
+struct FeedbackController {
+  std::string loop;    ///< kFeedbackLoops
+  std::string preset;  ///< a controller preset's name, or "custom"
+  std::string effort_unit;
+  std::string position_unit;
+  std::vector<FeedbackValue> values;  ///< kFeedbackKeys, in that order
+  std::vector<double> numerator;      ///< speed loop: C(s), highest power of s first
+  std::vector<double> denominator;
+
+  const FeedbackValue* Find(const std::string& key) const {
+    for (const auto& v : values) {
+      if (v.key == key) return &v;
+    }
+    return nullptr;
+  }
+  bool empty() const { return loop.empty(); }
+};
+
+}  // namespace driveid

@@ -1,0 +1,200 @@
+#include "report/feedback_design.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "control/feedback_gains.h"
+#include "core/errors.h"
+
+namespace driveid {
+namespace {
+
+const FeedforwardGain* FindGain(const Feedforward& ff, const std::string& key) {
+  for (const auto& g : ff.gains) {
+    if (g.key == key) return &g;
+  }
+  return nullptr;
+}
+
+double Correlation(const ParameterFile& file, const std::string& a, const std::string& b) {
+  for (const auto& [names, r] : file.fit_correlations) {
+    if ((names.first == a && names.second == b) || (names.first == b && names.second == a)) return r;
+  }
+  return 0.0;
+}
+
+// Kv and Ka from the file: the feed-forward section (with stds and the
+// fit's correlation of viscous and inertia), else the axis section.
+void TakeFromFile(const ParameterFile& file, const std::string& path, AxisGainsDesign& d) {
+  const Feedforward& ff = file.feedforward;
+  if (!ff.gains.empty() && ff.law == kAxisFeedforwardLaw) {
+    const FeedforwardGain* kv = FindGain(ff, "Kv");
+    const FeedforwardGain* ka = FindGain(ff, "Ka");
+    if (!kv || !ka) {
+      throw InputError(fmt::format("{}: the feed-forward section has no {}{}: give ‹kv› and ‹ka›", path,
+                                   kv ? "" : "Kv", ka ? "" : kv ? "Ka" : " and Ka"));
+    }
+    d.kv = kv->value;
+    d.kv_std = kv->standard_error;
+    d.ka = ka->value;
+    d.ka_std = ka->standard_error;
+    // Kv = b and Ka = J (models/feedforward.h): their correlation is the fit's.
+    d.correlation = Correlation(file, "viscous", "inertia");
+    d.controller.effort_unit = ff.effort_unit;
+    d.controller.position_unit = ff.position_unit;
+    d.kv_source = fmt::format("{} feed-forward (Kv, Ka with std{})", path,
+                              file.fit_correlations.empty() ? "; no fit correlation: taken as 0" : " and correlation");
+    if (FindGain(ff, "Kv_forward") || FindGain(ff, "Kv_backward")) {
+      d.notes.push_back("the axis has direction-dependent Kv: the gains use the common Kv");
+    }
+    return;
+  }
+  const AxisSection* axis = file.Find<AxisSection>();
+  if (!axis) {
+    throw InputError(fmt::format("{}: no 'feedforward' or 'axis' section to take Kv and Ka from (an axis fit writes "
+                                 "both; or give ‹kv› and ‹ka›)", path));
+  }
+  d.kv = axis->viscous.value_or(0.0);
+  d.ka = axis->inertia.value_or(0.0);
+  d.controller.effort_unit = axis->linear ? "N" : "N m";
+  d.controller.position_unit = axis->linear ? "m" : "rad";
+  d.kv_source = fmt::format("{} axis section (Kv = viscous, Ka = inertia; no std: the section carries none)", path);
+}
+
+LqrSettings Settings(const AxisGainsOptions& o, const ControllerPreset& preset) {
+  LqrSettings s;
+  s.period = o.period.value_or(preset.period);
+  s.delay = o.delay.value_or(preset.delay);
+  s.max_position_error = o.max_position_error;
+  s.max_velocity_error = o.max_velocity_error;
+  s.max_effort = o.max_effort;
+  if (!(s.period > 0.0) || !(s.delay >= 0.0) || !(s.max_position_error > 0.0) || !(s.max_velocity_error > 0.0) ||
+      !(s.max_effort > 0.0) || !(o.conversion > 0.0)) {
+    throw OptionError("‹period›, ‹max_position_error›, ‹max_velocity_error›, ‹max_effort› and ‹conversion› must be "
+                      "positive, ‹delay› not negative");
+  }
+  if (s.delay > 1000.0 * s.period) {
+    throw OptionError(fmt::format("‹delay› {} s is more than 1000 periods of {} s", s.delay, s.period));
+  }
+  return s;
+}
+
+}  // namespace
+
+AxisGainsDesign DesignAxisGains(const ParameterFile* file, const std::string& path, const AxisGainsOptions& o) {
+  const ControllerPreset* preset = FindControllerPreset(o.preset);
+  if (!preset) {
+    std::string names;
+    for (const auto& p : ControllerPresets()) names += (names.empty() ? "" : ", ") + std::string(p.name);
+    throw OptionError(fmt::format("‹preset› '{}': one of {}", UnitTextProblem(o.preset).empty() ? o.preset : "?", names));
+  }
+  if (o.loop != "velocity" && o.loop != "position") {
+    throw OptionError("‹loop›: velocity or position for an axis (speed: an elastic joint's section)");
+  }
+  AxisGainsDesign d;
+  if (file) TakeFromFile(*file, path, d);
+  if (o.kv) d.kv = *o.kv, d.kv_std = o.kv_std, d.kv_source = "given";
+  if (o.ka) d.ka = *o.ka, d.ka_std = o.ka_std, d.kv_source = o.kv ? "given" : d.kv_source + "; Ka given";
+  if (o.kv || o.ka) d.correlation = (o.kv && o.ka) ? 0.0 : d.correlation;
+  if (!file && !(o.kv && o.ka)) throw OptionError("gains needs a parameter file or both ‹kv› and ‹ka›");
+  if (!(d.kv >= 0.0) || !(d.ka > 0.0) || !std::isfinite(d.kv) || !std::isfinite(d.ka)) {
+    throw IdentificationError(fmt::format("Kv = {} and Ka = {}: LQR gains need Kv >= 0 and Ka > 0 (refit the axis with "
+                                          "motion that determines them)", d.kv, d.ka));
+  }
+  const bool volts = d.controller.effort_unit.empty() || d.controller.effort_unit == "V";
+  if (!volts && preset->output_factor != 1.0) {
+    throw OptionError(fmt::format("‹preset› {} converts volts to its output, but the effort is in {}",
+                                  preset->name, d.controller.effort_unit));
+  }
+  GainRequest request;
+  request.loop = o.loop == "velocity" ? FeedbackLoop::kVelocity : FeedbackLoop::kPosition;
+  request.lqr = Settings(o, *preset);
+  request.output_factor = preset->output_factor;
+  request.velocity_time_factor = preset->velocity_time_factor;
+  request.normalized = preset->normalized;
+  request.conversion = o.conversion;
+  const GainUncertainty g = PropagateGains(d.kv, d.kv_std, d.ka, d.ka_std, d.correlation, request);
+
+  FeedbackController& c = d.controller;
+  c.loop = o.loop;
+  c.preset = preset->name;
+  if (c.effort_unit.empty()) c.effort_unit = "V";
+  if (c.position_unit.empty()) c.position_unit = "unit";
+  c.values.push_back({"kp", g.value.kp, g.standard_error.kp});
+  if (request.loop == FeedbackLoop::kPosition) c.values.push_back({"kd", g.value.kd, g.standard_error.kd});
+  c.values.push_back({"period", request.lqr.period, 0.0});
+  c.values.push_back({"delay", request.lqr.delay, 0.0});
+  if (request.loop == FeedbackLoop::kPosition) c.values.push_back({"max_position_error", o.max_position_error, 0.0});
+  c.values.push_back({"max_velocity_error", o.max_velocity_error, 0.0});
+  c.values.push_back({"max_effort", o.max_effort, 0.0});
+  c.values.push_back({"conversion", o.conversion, 0.0});
+  if (d.ka < 1e-7 && request.loop == FeedbackLoop::kVelocity) {
+    d.notes.push_back("Ka below 1e-7: the velocity follows the effort at once; no velocity feedback is needed (kp 0)");
+  }
+  return d;
+}
+
+std::string FeedbackGainUnit(const FeedbackController& f, const std::string& key) {
+  const ControllerPreset* preset = FindControllerPreset(f.preset);
+  const bool own_units = !preset || (preset->output_factor == 1.0 && preset->velocity_time_factor == 1.0);
+  const std::string effort = own_units ? f.effort_unit : std::string("output (") + f.preset + ")";
+  const std::string position = f.position_unit;
+  if (f.loop == "velocity" && key == "kp") return fmt::format("{} s/{}", effort, position);
+  if (f.loop == "position" && key == "kp") return fmt::format("{}/{}", effort, position);
+  if (f.loop == "position" && key == "kd") {
+    return preset && !preset->normalized ? fmt::format("{} period/{}", effort, position)
+                                         : fmt::format("{} s/{}", effort, position);
+  }
+  if (f.loop == "speed" && key == "kp") return fmt::format("{} s/{}", f.effort_unit, position);
+  if (f.loop == "speed" && key == "ki") return fmt::format("{}/{}", f.effort_unit, position);
+  return "";
+}
+
+std::string FormatFeedbackReport(const FeedbackController& f) {
+  std::string out = fmt::format("feedback ({} loop, preset {}; docs/models.md#feedback-gains):\n", f.loop, f.preset);
+  for (const auto& v : f.values) {
+    bool gain = false;
+    const char* unit = "";
+    const char* description = "";
+    for (const auto& k : kFeedbackKeys) {
+      if (v.key == k.key) gain = k.gain, unit = k.unit, description = k.description;
+    }
+    if (gain) {
+      out += fmt::format("  {:<24} {:>12.6g} +- {:<10.3g} {}\n", v.key, v.value, v.standard_error,
+                         FeedbackGainUnit(f, v.key));
+    } else {
+      const std::string u = std::string(unit) == "position" ? f.position_unit
+                            : std::string(unit) == "position/s" ? f.position_unit + "/s"
+                            : std::string(unit) == "effort" ? f.effort_unit : unit;
+      out += fmt::format("  {:<24} {:>12.6g}    {:<10} {}\n", v.key, v.value, u, description);
+    }
+  }
+  if (!f.numerator.empty()) {
+    out += fmt::format("  C(s) numerator   [{:.6g}]\n  C(s) denominator [{:.6g}]\n", fmt::join(f.numerator, ", "),
+                       fmt::join(f.denominator, ", "));
+  }
+  return out;
+}
+
+Json FeedbackReportJson(const FeedbackController& f) {
+  Json out = Json::object();
+  out["loop"] = f.loop;
+  out["preset"] = f.preset;
+  out["effort_unit"] = f.effort_unit;
+  out["position_unit"] = f.position_unit;
+  Json gains = Json::object(), settings = Json::object();
+  for (const auto& v : f.values) {
+    bool gain = false;
+    for (const auto& k : kFeedbackKeys) gain = gain || (v.key == k.key && k.gain);
+    if (gain) gains[v.key] = {{"value", v.value}, {"std", v.standard_error}, {"unit", FeedbackGainUnit(f, v.key)}};
+    else settings[v.key] = v.value;
+  }
+  out["feedback"] = gains;
+  out["settings"] = settings;
+  if (!f.numerator.empty()) out["controller"] = {{"numerator", f.numerator}, {"denominator", f.denominator}};
+  return out;
+}
+
+}  // namespace driveid

@@ -1,0 +1,50 @@
+// `drivetrain-fit gains` for a rigid axis: LQR feedback gains from the
+// feed-forward model Kv, Ka (control/feedback_gains.h) with the conventions
+// of a controller preset, their standard errors from the parameter file's
+// covariance (docs/models.md#feedback-gains).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/parameter_file.h"
+#include "models/feedback.h"
+#include "report/json.h"
+
+namespace driveid {
+
+struct AxisGainsOptions {
+  std::string loop = "velocity";  ///< velocity | position
+  std::string preset = "wpilib";  ///< control/feedback_gains.h ControllerPresets()
+  std::optional<double> period;   ///< [s], else the preset's
+  std::optional<double> delay;    ///< [s], else the preset's (velocity measurement delay)
+  double max_position_error = 1.0;
+  double max_velocity_error = 1.5;
+  double max_effort = 7.0;
+  double conversion = 1.0;        ///< controller units per position unit
+  std::optional<double> kv, ka;   ///< given values (no file, or overriding it)
+  double kv_std = 0.0, ka_std = 0.0;
+};
+
+struct AxisGainsDesign {
+  FeedbackController controller;
+  std::string kv_source;          ///< where Kv and Ka came from, for the report
+  double kv = 0.0, kv_std = 0.0, ka = 0.0, ka_std = 0.0, correlation = 0.0;
+  std::vector<std::string> notes;
+};
+
+/// `file` may be null when Kv and Ka are given. InputError for a file with
+/// neither a feed-forward nor an axis section, IdentificationError (exit 4)
+/// for Ka <= 0 or Kv < 0 estimates, OptionError for bad settings.
+AxisGainsDesign DesignAxisGains(const ParameterFile* file, const std::string& path, const AxisGainsOptions& options);
+
+/// The text `gains` prints: the gains with their std and units, the plant
+/// and the settings they came from.
+std::string FormatFeedbackReport(const FeedbackController& feedback);
+/// {loop, preset, effort_unit, position_unit, feedback: {kp: {value, std}, ...}, settings..., controller...}.
+Json FeedbackReportJson(const FeedbackController& feedback);
+/// The unit of a gain in a section (e.g. "V s/Radians"), or "controller units".
+std::string FeedbackGainUnit(const FeedbackController& feedback, const std::string& key);
+
+}  // namespace driveid
