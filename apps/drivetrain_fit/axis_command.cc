@@ -60,16 +60,21 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
   outputs.provenance.command = command_line;
   outputs.provenance.version = DRIVEID_VERSION;
   std::vector<std::string> sysid_units;  // per log: the SysId file's units, "" for other logs
+  std::vector<std::string> mechanisms;   // per log: the SysId file's test
   const auto make = [&](CsvLog csv) { return MakeAxisLog(std::move(csv), section.torque_constant.value_or(0.0)); };
   const auto logs = LoadLogs<AxisLog>(options.logs, options.input, options.output, outputs.provenance, AxisLogColumns(),
                                         [&](CsvLog csv) {
                                           sysid_units.push_back(csv.format == "sysid" ? csv.units : "");
+                                          mechanisms.push_back(csv.mechanism);
                                           return make(std::move(csv));
                                         });
   AxisIdentificationOptions fit_options;
   const bool sysid = std::all_of(sysid_units.begin(), sysid_units.end(),
                                  [&](const std::string& u) { return !u.empty() && u == sysid_units.front(); });
   if (sysid) fit_options.sysid_unit = sysid_units.front();
+  if (sysid && std::all_of(mechanisms.begin(), mechanisms.end(), [&](const auto& m) { return m == mechanisms.front(); })) {
+    fit_options.sysid_mechanism = mechanisms.front();
+  }
   fit_options.method = options.method == "oe"     ? AxisMethod::kOutputError
                        : options.method == "idim" ? AxisMethod::kInverseDynamics
                                                   : AxisMethod::kAuto;

@@ -17,6 +17,7 @@ struct CsvLog {
   std::string segment;                     ///< part of the file ("slow-forward/left"), "" for all of it
   std::string format = "csv";              ///< "csv", "mat" or "sysid"
   std::string units;                       ///< position unit the file declares (SysId `units`), "" if none
+  std::string mechanism;                   ///< mechanism the file declares (SysId `test`), "" if none
   std::vector<std::string> names;          ///< logical column names, as requested
   std::vector<std::vector<double>> columns;  ///< columns[k][row], SI units
   std::vector<int> line_numbers;           ///< 1-based file line of each row (empty for MAT and JSON)

@@ -322,6 +322,7 @@ CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>&
   log.segment = source.segment();
   log.format = source.format();
   log.units = source.units();
+  log.mechanism = source.mechanism();
   log.names = required;
   ColumnPlan plan = PlanColumns(source, required, options, where, log);
   const std::size_t rows = ReadPlannedColumns(source, required, options, where, plan, log);

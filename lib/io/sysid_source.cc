@@ -27,11 +27,12 @@ const char* const kTests[] = {"slow-forward", "slow-backward", "fast-forward", "
 
 class SysIdSource : public TableSource {
  public:
-  SysIdSource(std::string path, std::string segment, std::string units, std::vector<std::string> names,
-              std::vector<std::vector<double>> columns, std::vector<std::string> notes)
-      : path_(std::move(path)), segment_(std::move(segment)), units_(std::move(units)), names_(std::move(names)),
-        columns_(std::move(columns)), notes_(std::move(notes)) {}
+  SysIdSource(std::string path, std::string segment, std::string units, std::string mechanism,
+              std::vector<std::string> names, std::vector<std::vector<double>> columns, std::vector<std::string> notes)
+      : path_(std::move(path)), segment_(std::move(segment)), units_(std::move(units)), mechanism_(std::move(mechanism)),
+        names_(std::move(names)), columns_(std::move(columns)), notes_(std::move(notes)) {}
   std::string units() const override { return units_; }
+  std::string mechanism() const override { return mechanism_; }
   std::string path() const override { return path_; }
   std::string segment() const override { return segment_; }
   std::string format() const override { return "sysid"; }
@@ -53,7 +54,7 @@ class SysIdSource : public TableSource {
   }
 
  private:
-  std::string path_, segment_, units_;
+  std::string path_, segment_, units_, mechanism_;
   std::vector<std::string> names_;
   std::vector<std::vector<double>> columns_;
   std::vector<std::string> notes_;
@@ -270,7 +271,7 @@ std::vector<std::unique_ptr<TableSource>> OpenSysIdSources(const std::string& pa
       std::vector<std::string> notes = {
           fmt::format("SysId {} test, units {}: position and velocity x unitsPerRotation = {}", layout, units,
                       per_rotation)};
-      out.push_back(std::make_unique<SysIdSource>(path, side.empty() ? test : std::string(test) + "/" + side, units,
+      out.push_back(std::make_unique<SysIdSource>(path, side.empty() ? test : std::string(test) + "/" + side, units, layout,
                                                   std::move(names), std::move(columns), std::move(notes)));
     }
   }

@@ -38,6 +38,8 @@ class TableSource {
   virtual std::string format() const = 0;
   /// The position unit the file declares (SysId `units`), "" if none.
   virtual std::string units() const { return {}; }
+  /// The mechanism the file declares (SysId `test`: Simple, Elevator, Arm, Drivetrain), "" if none.
+  virtual std::string mechanism() const { return {}; }
   /// The line of a CSV header row (0: none).
   virtual int header_line() const { return 0; }
   /// Addressable columns in position order (`#k` is the k-th); "" for a

@@ -65,18 +65,6 @@ Series LogTime(const TableSource& log, const LogInputOptions& options) {
 }
 
 // Linear interpolation of (t, v) at the increasing times `at`, all inside t's span.
-std::vector<double> Interpolate(const std::vector<double>& t, const std::vector<double>& v,
-                                const std::vector<double>& at) {
-  std::vector<double> out(at.size());
-  std::size_t j = 0;
-  for (std::size_t i = 0; i < at.size(); ++i) {
-    while (j + 2 < t.size() && t[j + 1] < at[i]) ++j;
-    const double w = std::clamp((at[i] - t[j]) / (t[j + 1] - t[j]), 0.0, 1.0);
-    out[i] = v[j] + w * (v[j + 1] - v[j]);
-  }
-  return out;
-}
-
 class TimeJoinedSource : public PairedSource {
  public:
   TimeJoinedSource(std::unique_ptr<TableSource> a, std::unique_ptr<TableSource> b, const JoinTiming& timing,
@@ -199,7 +187,7 @@ TableData TimeJoinedSource::Read(const std::vector<std::size_t>& columns) const 
       out.columns.push_back(std::move(v));
     } else {
       const std::vector<double>& v = db.columns[ib++];
-      out.columns.push_back(v.size() == b_rows_ ? Interpolate(b_time_, v, at_) : v);
+      out.columns.push_back(v.size() == b_rows_ ? InterpolateLinear(b_time_, v, at_) : v);
     }
   }
   return out;

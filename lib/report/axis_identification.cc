@@ -151,6 +151,26 @@ void Interpret(const AxisIdentificationOptions& options, AxisIdentification& run
                                         sysid ? options.sysid_unit : (linear ? "m" : "rad"), with_inertia);
 }
 
+// SysId's test type says which gravity the mechanism carries: an Arm's
+// Kg cos(q - angle) is fitted with the default free set (q in radians); an
+// Elevator's constant Kg is the offset, free by default. Returns the note.
+std::string MechanismFreeSet(const AxisIdentificationOptions& options, const AxisSection& section,
+                             std::vector<std::string>& free) {
+  if (options.sysid_mechanism == "Elevator") {
+    return "SysId Elevator test: the constant gravity Kg is the offset (docs/models.md#feed-forward)";
+  }
+  if (options.sysid_mechanism != "Arm" || free != FitParameterKeys(AxisParameterTable(), "axis", true)) return "";
+  if (section.linear || options.sysid_unit != "Radians") {
+    throw OptionError(fmt::format("a SysId Arm test in '{}': the gravity term cos q needs the angle in Radians; "
+                                  "record it so, or give ‹free› without gravity_cos, gravity_sin",
+                                  options.sysid_unit));
+  }
+  for (const std::string key : {Key(&AxisParameters::gravity_cos), Key(&AxisParameters::gravity_sin)}) {
+    if (!Contains(free, key)) free.push_back(key);
+  }
+  return "SysId Arm test: gravity Kg cos(q - Kg_angle) fitted (gravity_cos, gravity_sin added to the default free set)";
+}
+
 }  // namespace
 
 AxisMethod ChooseAxisMethod(const std::vector<AxisLog>& logs, AxisMethod requested, std::string* reason) {
@@ -164,9 +184,10 @@ AxisMethod ChooseAxisMethod(const std::vector<AxisLog>& logs, AxisMethod request
 }
 
 AxisIdentification IdentifyAxis(const std::vector<AxisLog>& logs, const AxisSection& section,
-                                const AxisIdentificationOptions& options, const std::vector<AxisLog>& validation) {
+                                const AxisIdentificationOptions& requested, const std::vector<AxisLog>& validation) {
   AxisIdentification run;
   run.section = section;
+  AxisIdentificationOptions options = requested;
   // SysId logs in a length unit are of a linear mechanism (an elevator, a drivetrain).
   if (IsLengthUnit(options.sysid_unit)) run.section.linear = true;
   if (run.section.linear && IsAngleUnit(options.sysid_unit)) {
@@ -174,6 +195,7 @@ AxisIdentification IdentifyAxis(const std::vector<AxisLog>& logs, const AxisSect
                                   "length (m); fit it as a rotary axis, or log the position in a length",
                                   options.sysid_unit));
   }
+  const std::string mechanism = MechanismFreeSet(requested, run.section, options.free);
   std::string reason = "asked for";
   run.method = ChooseAxisMethod(logs, options.method, &reason);
   if (run.method == AxisMethod::kOutputError) {
@@ -185,6 +207,7 @@ AxisIdentification IdentifyAxis(const std::vector<AxisLog>& logs, const AxisSect
   run.summary.insert(run.summary.begin(), fmt::format("method: {} ({})",
                                                       run.method == AxisMethod::kOutputError ? "output error" : "IDIM-LS",
                                                       reason));
+  if (!mechanism.empty()) run.summary.push_back(mechanism);
   Interpret(options, run);
   StoreModelParameters(AxisParameterTable(), run.params, run.section);
   return run;

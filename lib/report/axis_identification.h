@@ -35,6 +35,9 @@ struct AxisIdentificationOptions {
   /// The SysId files' position unit when every log is a SysId file in one
   /// unit (estimates, feed-forward in volts and that unit), else "".
   std::string sysid_unit;
+  /// The SysId test every log declares ("Simple", "Elevator", "Arm"), else
+  /// "": an Arm adds the gravity terms to the default free set.
+  std::string sysid_mechanism;
 };
 
 struct AxisIdentification {

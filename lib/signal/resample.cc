@@ -29,17 +29,23 @@ double GlitchedStep(const std::vector<double>& time) {
   return off <= allowed ? median : 0.0;
 }
 
-std::vector<double> ResampleLinear(const std::vector<double>& time, const std::vector<double>& values, double rate,
-                                   std::size_t count) {
-  std::vector<double> out(count);
+std::vector<double> InterpolateLinear(const std::vector<double>& time, const std::vector<double>& values,
+                                      const std::vector<double>& at) {
+  std::vector<double> out(at.size());
   std::size_t j = 0;
-  for (std::size_t i = 0; i < count; ++i) {
-    const double t = time.front() + static_cast<double>(i) / rate;
-    while (j + 2 < time.size() && time[j + 1] < t) ++j;
-    const double w = (t - time[j]) / (time[j + 1] - time[j]);
-    out[i] = values[j] + std::clamp(w, 0.0, 1.0) * (values[j + 1] - values[j]);
+  for (std::size_t i = 0; i < at.size(); ++i) {
+    while (j + 2 < time.size() && time[j + 1] < at[i]) ++j;
+    const double w = std::clamp((at[i] - time[j]) / (time[j + 1] - time[j]), 0.0, 1.0);
+    out[i] = values[j] + w * (values[j + 1] - values[j]);
   }
   return out;
+}
+
+std::vector<double> ResampleLinear(const std::vector<double>& time, const std::vector<double>& values, double rate,
+                                   std::size_t count) {
+  std::vector<double> at(count);
+  for (std::size_t i = 0; i < count; ++i) at[i] = time.front() + static_cast<double>(i) / rate;
+  return InterpolateLinear(time, values, at);
 }
 
 }  // namespace driveid

@@ -21,6 +21,11 @@ double MedianStep(const std::vector<double>& time);
 /// glitches as above, else 0.
 double GlitchedStep(const std::vector<double>& time);
 
+/// `values` sampled at `time` (increasing, 2 or more samples), linearly
+/// interpolated at the increasing times `at` (held beyond the ends).
+std::vector<double> InterpolateLinear(const std::vector<double>& time, const std::vector<double>& values,
+                                      const std::vector<double>& at);
+
 /// `values` sampled at `time` (increasing), linearly interpolated at
 /// t0 + k / rate for k = 0 .. count - 1 (held beyond the ends).
 std::vector<double> ResampleLinear(const std::vector<double>& time, const std::vector<double>& values, double rate,

@@ -112,6 +112,15 @@ grep -q '^  effort_unit: "V"' sysid.yaml && grep -q "^  Ks: {value: 0\.9[0-9]*, 
 [ "$(grep -c 'segment: "' sysid.yaml)" -eq 4 ] && ok || fail "SysId provenance: one entry per test expected"
 cp sysid.yaml sysid_first.yaml
 "$bin" axis sysid.json -q -o sysid.yaml 2> /dev/null && cmp -s sysid.yaml sysid_first.yaml && ok || fail "SysId rerun differs"
+# An Arm test fits gravity by default (issue 37); an Elevator's Kg is the offset.
+sed 's/"Simple"/"Arm"/' sysid.json > arm.json
+"$bin" axis arm.json -o arm.yaml > arm.txt 2>&1 && grep -q "^    gravity_cos: {value: " arm.yaml && grep -q "^  Kg: {value: " arm.yaml &&
+  grep -q "SysId Arm test: gravity Kg cos(q - Kg_angle) fitted" arm.txt && ok || fail "SysId Arm: $(cat arm.txt)"
+sed 's/"Simple"/"Arm"/; s/"units": "Radians"/"units": "Rotations"/' sysid.json > arm_rotations.json
+expect 2 "a SysId Arm test in 'Rotations': the gravity term cos q needs the angle in Radians" -- axis arm_rotations.json
+sed 's/"Simple"/"Elevator"/' sysid.json > elevator.json
+"$bin" axis elevator.json -o elevator.yaml > elevator.txt 2>&1 && grep -q "SysId Elevator test: the constant gravity Kg is the offset" elevator.txt &&
+  ! grep -q "gravity_cos: {value" elevator.yaml && ok || fail "SysId Elevator: $(cat elevator.txt)"
 sed 's/"Simple"/"Drivetrain"/' sysid.json > drive.json
 expect 2 "drive.json: a SysId Drivetrain file: give --side left, right or both" -- axis drive.json
 # Hostile text and numbers (issues 21, 36): units with a line break and a
