@@ -8,6 +8,7 @@
 
 #include "common/cli_support.h"
 #include "common/command_registry.h"
+#include "core/errors.h"
 #include "control/feedback_gains.h"
 #include "io/atomic_file.h"
 #include "io/parameter_file.h"
@@ -19,6 +20,7 @@ namespace {
 struct GainsOptions {
   std::string params;
   AxisGainsOptions axis;
+  JointGainsOptions joint;
   double period = 0.0, delay = -1.0, kv = -1.0, ka = -1.0;
   std::string output;
   bool json = false;
@@ -35,11 +37,19 @@ CLI::App* Setup(CLI::App& app, GainsOptions& o) {
       "gains", "Feedback gains for a fitted axis by LQR as WPILib SysId computes them, with std from the fit "
       "(docs/models.md#feedback-gains)");
   command->add_option("params", o.params, "parameter file with a feedforward or axis section (an axis fit's output)");
-  command->add_option("--loop", o.axis.loop, "velocity: kp on the rate error; position: kp and kd")
+  command->add_option("--loop", o.axis.loop,
+                      "velocity: kp on the rate error; position: kp and kd (an axis); speed: a PI speed loop with a "
+                      "notch at the resonance for an elastic joint (a joint section, docs/models.md#speed-loop)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"velocity", "position"}));
+      ->check(CLI::IsMember({"velocity", "position", "speed"}));
+  command->add_option("--phase-margin", o.joint.phase_margin_deg, "speed loop: phase margin designed for [deg]")
+      ->capture_default_str()
+      ->check(FiniteWithin(1.0, 89.0));
+  command->add_option("--notch-width", o.joint.notch_width_hz,
+                      "speed loop: notch -3 dB width [Hz] (default: 30 % of the resonance or 4 std of it)")
+      ->check(FiniteAbove(0.0));
   command->add_option("--preset", o.axis.preset, PresetHelp())->capture_default_str();
-  command->add_option("--period", o.period, "controller period [s] (default: the preset's)")->check(FiniteAbove(0.0));
+  command->add_option("--period", o.period, "controller period [s] (default: the preset's; speed loop 0.001)")->check(FiniteAbove(0.0));
   command->add_option("--delay", o.delay, "velocity measurement delay [s] (default: the preset's)")
       ->check(FiniteAtLeast(0.0));
   command->add_option("--max-position-error", o.axis.max_position_error, "LQR state cost: position error tolerated")
@@ -69,6 +79,27 @@ CLI::App* Setup(CLI::App& app, GainsOptions& o) {
   return command;
 }
 
+void RunSpeedLoop(const GainsOptions& o, const std::optional<ParameterFile>& file) {
+  if (!file) throw OptionError("--loop speed needs a parameter file with a joint section");
+  JointGainsOptions options = o.joint;
+  if (o.period > 0.0) options.period = o.period;
+  const JointGainsDesign design = DesignJointGains(*file, o.params, options);
+  if (!o.output.empty()) {
+    ParameterFile out = *file;
+    out.feedback = design.controller;
+    WriteFileAtomically(o.output, FormatParameterFile(out));
+  }
+  if (o.json) {
+    Json json = FeedbackReportJson(design.controller);
+    json["notes"] = design.notes;
+    WriteStdout(DumpJson(json));
+    return;
+  }
+  std::string text = FormatFeedbackReport(design.controller);
+  for (const auto& note : design.notes) text += "note: " + note + "\n";
+  WriteStdout(text);
+}
+
 void Run(GainsOptions o) {
   CheckDistinctFiles({o.params}, {{"-o", o.output}});
   std::optional<ParameterFile> file;
@@ -77,6 +108,7 @@ void Run(GainsOptions o) {
   if (o.delay >= 0.0) o.axis.delay = o.delay;
   if (o.kv >= 0.0) o.axis.kv = o.kv;
   if (o.ka >= 0.0) o.axis.ka = o.ka;
+  if (o.axis.loop == "speed") return RunSpeedLoop(o, file);
   const AxisGainsDesign design = DesignAxisGains(file ? &*file : nullptr, o.params, o.axis);
   if (!o.output.empty()) {
     ParameterFile out = file ? *file : ParameterFile{};

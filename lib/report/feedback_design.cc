@@ -184,16 +184,21 @@ Json FeedbackReportJson(const FeedbackController& f) {
   out["preset"] = f.preset;
   out["effort_unit"] = f.effort_unit;
   out["position_unit"] = f.position_unit;
-  Json gains = Json::object(), settings = Json::object();
+  Json gains = Json::object(), settings = Json::object(), controller = Json::object();
+  if (!f.numerator.empty()) controller = {{"numerator", f.numerator}, {"denominator", f.denominator}};
   for (const auto& v : f.values) {
     bool gain = false;
     for (const auto& k : kFeedbackKeys) gain = gain || (v.key == k.key && k.gain);
+    // The speed loop's notch and margins describe its controller C(s).
+    const bool design = v.key.rfind("notch", 0) == 0 || v.key == "crossover_hz" ||
+                        v.key.find("margin") != std::string::npos;
     if (gain) gains[v.key] = {{"value", v.value}, {"std", v.standard_error}, {"unit", FeedbackGainUnit(f, v.key)}};
+    else if (design) controller[v.key] = v.value;
     else settings[v.key] = v.value;
   }
   out["feedback"] = gains;
   out["settings"] = settings;
-  if (!f.numerator.empty()) out["controller"] = {{"numerator", f.numerator}, {"denominator", f.denominator}};
+  if (!controller.empty()) out["controller"] = controller;
   return out;
 }
 

@@ -48,3 +48,26 @@ Json FeedbackReportJson(const FeedbackController& feedback);
 std::string FeedbackGainUnit(const FeedbackController& feedback, const std::string& key);
 
 }  // namespace driveid
+
+namespace driveid {
+
+struct JointGainsOptions {
+  double period = 0.001;           ///< [s]; the loop's delay is 1.5 periods
+  double phase_margin_deg = 50.0;
+  double notch_width_hz = 0.0;     ///< 0: from the resonance's uncertainty
+};
+
+struct JointGainsDesign {
+  FeedbackController controller;
+  std::size_t region_points = 0;   ///< plants at the edge of the 95 % region checked
+  std::vector<std::string> notes;
+  bool met = false;
+};
+
+/// A PI speed loop with a notch for the file's joint section
+/// (control/speed_loop.h); the 95 % region from the fit's estimates and
+/// correlation when the file has them. InputError without a joint section,
+/// IdentificationError (exit 4) when no crossover meets the margins.
+JointGainsDesign DesignJointGains(const ParameterFile& file, const std::string& path, const JointGainsOptions& options);
+
+}  // namespace driveid

@@ -1,0 +1,77 @@
+// A PI speed loop with a notch for an elastic joint (docs/models.md#speed-loop):
+// the motor-shaft speed fed back, the plant the two-mass model from the logged
+// torque to the motor speed in log units (models/joint.h CalcJointResponse,
+// rate output), P(s) = n^2 s A_l(s) / Delta(s), whose Delta holds a factor s:
+//   P(s) = n^2 (J_l s^2 + (d + b_l) s + k) / (J_m J_l s^3 + (J_m (d + b_l) + J_l (d + b_m)) s^2
+//          + (k (J_m + J_l) + (d + b_m)(d + b_l) - d^2) s + k (b_m + b_l)),
+// the controller
+//   C(s) = kp (1 + w_i / s) (s^2 + 2 z_z w_n s + w_n^2) / (s^2 + 2 z_p w_n s + w_n^2)
+// with the notch at the resonance w_n, its -3 dB width 2 z_p w_n and its
+// depth z_z / z_p, and the loop's delay e^(-s tau), tau = 1.5 T (the
+// computation's period and the zero-order hold's half period).
+// Margins are read on the exact delay's frequency response; closed-loop
+// stability is checked on the poles with the delay as a 4th-order Pade
+// approximant.
+#pragma once
+
+#include <complex>
+#include <functional>
+#include <vector>
+
+#include "models/joint.h"
+
+namespace driveid {
+
+struct PiNotch {
+  double kp = 0.0;              ///< [log torque / (log position unit/s)]
+  double integral_corner = 0.0; ///< w_i [rad/s]: ki = kp w_i
+  double notch_hz = 0.0;
+  double notch_width_hz = 0.0;  ///< -3 dB width
+  double notch_depth_db = 20.0;
+  /// C(s), highest power first: numerator of degree 3, denominator s (s^2 + ...).
+  std::vector<double> Numerator() const;
+  std::vector<double> Denominator() const;
+  std::complex<double> Evaluate(double omega) const;
+};
+
+struct LoopMargins {
+  bool stable = false;
+  double crossover_hz = 0.0;      ///< first gain crossover
+  double phase_margin_deg = 0.0;  ///< smallest over all gain crossovers
+  double gain_margin_db = 0.0;    ///< smallest over all phase crossovers below Nyquist (inf: none)
+  double modulus_margin = 0.0;    ///< min |1 + L(jw)| below Nyquist
+};
+
+struct SpeedLoopPlant {
+  JointParameters joint;
+  double gear_ratio = 1.0;
+};
+
+struct SpeedLoopSettings {
+  double period = 0.001;           ///< T [s]; the loop's delay is 1.5 T
+  double phase_margin_deg = 50.0;  ///< designed for
+  double min_gain_margin_db = 6.0;
+  double min_modulus_margin = 0.5;
+  double notch_width_hz = 0.0;     ///< 0: from the resonance's uncertainty (at least 30 % of it)
+  double resonance_std_hz = 0.0;   ///< the fitted resonance's std
+};
+
+/// Margins of C P e^(-1.5 T s) on a log grid up to the Nyquist frequency.
+LoopMargins EvaluateSpeedLoop(const SpeedLoopPlant& plant, const PiNotch& controller, double period);
+
+struct SpeedLoopDesign {
+  PiNotch controller;
+  LoopMargins nominal;
+  LoopMargins worst;  ///< over `region` (the nominal when it is empty)
+  bool met = false;   ///< every requirement met at the nominal plant
+};
+
+/// The largest crossover (PI corner a quarter of it) whose loop meets the
+/// phase margin, gain margin and modulus margin at the nominal plant and,
+/// over `region` (plants at the edge of the parameters' 95 % region), stays
+/// stable with the gain and modulus margins and the phase margin less 10 deg. Throws std::invalid_argument for a
+/// plant that is not a two-mass system (non-positive inertias or stiffness).
+SpeedLoopDesign DesignSpeedLoop(const SpeedLoopPlant& plant, const std::vector<SpeedLoopPlant>& region,
+                                const SpeedLoopSettings& settings);
+
+}  // namespace driveid

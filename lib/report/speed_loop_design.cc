@@ -1,0 +1,141 @@
+// `gains --loop speed` (report/feedback_design.h): the joint section and the
+// 95 % region of its fitted parameters, handed to control/speed_loop.h.
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+
+#include "control/speed_loop.h"
+#include "core/errors.h"
+#include "report/feedback_design.h"
+
+namespace driveid {
+namespace {
+
+// chi^2 quantiles at 95 % for 1 .. 6 degrees of freedom.
+constexpr double kChiSquare95[] = {3.841, 5.991, 7.815, 9.488, 11.070, 12.592};
+
+struct Member {
+  const char* key;
+  double JointParameters::*field;
+};
+constexpr Member kDynamic[] = {{"motor_inertia", &JointParameters::motor_inertia},
+                               {"link_inertia", &JointParameters::link_inertia},
+                               {"stiffness", &JointParameters::stiffness},
+                               {"damping", &JointParameters::damping},
+                               {"motor_viscous", &JointParameters::motor_viscous},
+                               {"link_viscous", &JointParameters::link_viscous}};
+
+double Correlation(const ParameterFile& file, const std::string& a, const std::string& b) {
+  if (a == b) return 1.0;
+  for (const auto& [names, r] : file.fit_correlations) {
+    if ((names.first == a && names.second == b) || (names.first == b && names.second == a)) return r;
+  }
+  return 0.0;
+}
+
+// The plants at the ends of the principal axes of the 95 % region of the
+// fitted dynamic parameters (those the fit estimated), each kept physical.
+std::vector<SpeedLoopPlant> Region(const ParameterFile& file, const SpeedLoopPlant& nominal) {
+  std::vector<const Member*> members;
+  std::vector<double> stds;
+  for (const auto& m : kDynamic) {
+    for (const auto& e : file.fit_estimates) {
+      if (e.name == m.key && e.standard_error > 0.0) members.push_back(&m), stds.push_back(e.standard_error);
+    }
+  }
+  const std::size_t p = members.size();
+  if (p == 0) return {};
+  Eigen::MatrixXd covariance(p, p);
+  for (std::size_t i = 0; i < p; ++i) {
+    for (std::size_t j = 0; j < p; ++j) {
+      covariance(i, j) = Correlation(file, members[i]->key, members[j]->key) * stds[i] * stds[j];
+    }
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(covariance);
+  const double radius = std::sqrt(kChiSquare95[p - 1]);
+  std::vector<SpeedLoopPlant> out;
+  for (std::size_t k = 0; k < p; ++k) {
+    const double length = std::sqrt(std::max(0.0, eigen.eigenvalues()[k]));
+    for (double sign : {-1.0, 1.0}) {
+      SpeedLoopPlant edge = nominal;
+      for (std::size_t i = 0; i < p; ++i) {
+        double& value = edge.joint.*(members[i]->field);
+        value = std::max(value + sign * radius * length * eigen.eigenvectors()(i, k), 1e-3 * std::abs(value));
+      }
+      out.push_back(edge);
+    }
+  }
+  return out;
+}
+
+void AddMargins(const char* prefix, const LoopMargins& m, FeedbackController& c) {
+  const std::string p = prefix;
+  if (p.empty()) c.values.push_back({"crossover_hz", m.crossover_hz, 0.0});
+  c.values.push_back({p + "phase_margin_deg", m.phase_margin_deg, 0.0});
+  if (std::isfinite(m.gain_margin_db)) c.values.push_back({p + "gain_margin_db", m.gain_margin_db, 0.0});
+  c.values.push_back({p + "modulus_margin", m.modulus_margin, 0.0});
+}
+
+}  // namespace
+
+JointGainsDesign DesignJointGains(const ParameterFile& file, const std::string& path, const JointGainsOptions& o) {
+  const JointSection* section = file.Find<JointSection>();
+  if (!section) {
+    throw InputError(fmt::format("{}: no 'joint' section for a speed loop (a two-mass fit of frf, or joint, writes it)", path));
+  }
+  SpeedLoopPlant plant;
+  plant.joint = MakeModelParameters(JointParameterTable(), *section, JointParameters{}, "joint");
+  plant.gear_ratio = section->gear_ratio.value_or(1.0);
+  if (!(plant.joint.motor_inertia > 0.0) || !(plant.joint.link_inertia > 0.0) || !(plant.joint.stiffness > 0.0)) {
+    throw InputError(fmt::format("{}: joint: a speed loop needs motor_inertia, link_inertia and stiffness > 0", path));
+  }
+  SpeedLoopSettings settings;
+  settings.period = o.period;
+  settings.phase_margin_deg = o.phase_margin_deg;
+  settings.notch_width_hz = o.notch_width_hz;
+  if (const auto* frf = file.Find<FrequencyResponseSection>()) settings.resonance_std_hz = frf->resonance_hz_std.value_or(0.0);
+  JointGainsDesign d;
+  const std::vector<SpeedLoopPlant> region = Region(file, plant);
+  d.region_points = region.size();
+  SpeedLoopDesign design;
+  try {
+    design = DesignSpeedLoop(plant, region, settings);
+  } catch (const std::invalid_argument& e) {
+    throw OptionError(e.what());
+  }
+  if (!design.met) {
+    throw IdentificationError(fmt::format(
+        "no PI speed loop with a notch at {:.4g} Hz meets a phase margin of {} deg, 6 dB gain margin and 0.5 modulus "
+        "margin with a delay of 1.5 x {} s{}: try a shorter ‹period›, a smaller ‹phase_margin›, or a fit with "
+        "narrower intervals",
+        JointResonance(plant.joint) / (2.0 * M_PI), o.phase_margin_deg, o.period,
+        region.empty() ? "" : " (and over the 95 % region, the phase margin less 10 deg)"));
+  }
+  d.met = true;
+  FeedbackController& c = d.controller;
+  c.loop = "speed";
+  c.preset = "custom";
+  c.effort_unit = "N m";
+  c.position_unit = "rad (motor)";
+  const PiNotch& pi = design.controller;
+  c.values.push_back({"kp", pi.kp, 0.0});
+  c.values.push_back({"ki", pi.kp * pi.integral_corner, 0.0});
+  c.values.push_back({"period", o.period, 0.0});
+  c.values.push_back({"delay", 1.5 * o.period, 0.0});
+  c.values.push_back({"notch_hz", pi.notch_hz, 0.0});
+  c.values.push_back({"notch_width_hz", pi.notch_width_hz, 0.0});
+  AddMargins("", design.nominal, c);
+  if (!region.empty()) AddMargins("worst_", design.worst, c);
+  c.numerator = pi.Numerator();
+  c.denominator = pi.Denominator();
+  d.notes.push_back(region.empty()
+                        ? "the file has no fit estimates with std: margins at the nominal plant only"
+                        : fmt::format("worst margins over {} plants at the ends of the principal axes of the "
+                                      "parameters' 95 % region", region.size()));
+  return d;
+}
+
+}  // namespace driveid

@@ -1,0 +1,96 @@
+// The speed loop's pieces against closed forms (control/speed_loop.h): the
+// controller's polynomials against its factored form, the notch's depth and
+// width, and the margins and stability of a nearly rigid joint, where the
+// loop is an integrator with a delay: L = K e^(-s tau) / s with
+// K = kp n^2 / (J_m + J_l) has its crossover at K, phase margin
+// 90 deg - K tau, and is unstable above K = pi / (2 tau).
+#include "control/speed_loop.h"
+
+#include <cmath>
+#include <complex>
+
+#include <catch2/catch.hpp>
+
+using namespace driveid;
+
+namespace {
+
+SpeedLoopPlant NearlyRigid() {
+  SpeedLoopPlant p;
+  p.gear_ratio = 10.0;
+  p.joint.motor_inertia = 0.5;
+  p.joint.link_inertia = 1.5;
+  p.joint.stiffness = 1e8;  // anti-resonance 1.3 kHz, far above the loop
+  p.joint.damping = 2000.0;  // the resonance well damped (zeta about 0.16)
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("the PI-notch polynomials are its factored form") {
+  PiNotch c;
+  c.kp = 2.0;
+  c.integral_corner = 5.0;
+  c.notch_hz = 12.0;
+  c.notch_width_hz = 4.0;
+  c.notch_depth_db = 20.0;
+  const double wn = 2.0 * M_PI * 12.0, zp = M_PI * 4.0 / wn, zz = zp / 10.0;
+  for (double w : {0.3, 7.0, wn, 400.0}) {
+    const std::complex<double> s(0.0, w);
+    const std::complex<double> expected =
+        c.kp * (1.0 + c.integral_corner / s) * (s * s + 2.0 * zz * wn * s + wn * wn) / (s * s + 2.0 * zp * wn * s + wn * wn);
+    CHECK(std::abs(c.Evaluate(w) - expected) <= 1e-9 * std::abs(expected));
+  }
+  // Depth at the centre; about -3 dB at half the width either side.
+  PiNotch notch = c;
+  const auto gain = [&](double w) {
+    return std::abs(notch.Evaluate(w)) / std::abs(notch.kp * (1.0 + notch.integral_corner / std::complex<double>(0.0, w)));
+  };
+  CHECK(20.0 * std::log10(gain(wn)) == Approx(-20.0).margin(0.01));
+  const double half = 2.0 * M_PI * 2.0;
+  CHECK(20.0 * std::log10(gain(std::sqrt(wn * wn + half * half) + half)) > -3.6);
+  CHECK(20.0 * std::log10(gain(wn + 0.2 * half)) < -8.0);
+}
+
+TEST_CASE("margins of a nearly rigid joint match the integrator with delay") {
+  const SpeedLoopPlant plant = NearlyRigid();
+  const double period = 0.001, tau = 1.5 * period, inertia = 2.0;
+  PiNotch c;
+  c.notch_hz = 2000.0;  // out of the way: no depth
+  c.notch_width_hz = 100.0;
+  c.notch_depth_db = 0.0;
+  for (double k : {50.0, 300.0}) {
+    c.kp = k * inertia / 100.0;
+    c.integral_corner = k / 50.0;  // costs atan(1/50) of phase, raises |L| by sqrt(1 + 1/2500)
+    const LoopMargins m = EvaluateSpeedLoop(plant, c, period);
+    INFO("K " << k);
+    CHECK(m.stable);
+    CHECK(m.crossover_hz == Approx(k / (2.0 * M_PI)).epsilon(0.01));
+    CHECK(m.phase_margin_deg == Approx(90.0 - k * tau * 180.0 / M_PI - std::atan(1.0 / 50.0) * 180.0 / M_PI).margin(0.5));
+    // Gain margin: the phase reaches -180 deg at pi / (2 tau), |L| = K / w there.
+    CHECK(m.gain_margin_db == Approx(-20.0 * std::log10(k / (M_PI / (2.0 * tau)))).margin(0.2));
+  }
+  c.kp = 1.1 * (M_PI / (2.0 * tau)) * inertia / 100.0;
+  c.integral_corner = 1.0;
+  CHECK_FALSE(EvaluateSpeedLoop(plant, c, period).stable);
+}
+
+TEST_CASE("a designed speed loop meets its margins; a bad plant is refused") {
+  SpeedLoopPlant plant;
+  plant.gear_ratio = 10.0;
+  plant.joint.motor_inertia = 0.5;
+  plant.joint.link_inertia = 1.5;
+  plant.joint.stiffness = 2000.0;
+  plant.joint.damping = 2.0;
+  plant.joint.motor_viscous = 6.0;
+  SpeedLoopSettings s;
+  const SpeedLoopDesign d = DesignSpeedLoop(plant, {}, s);
+  REQUIRE(d.met);
+  CHECK(d.nominal.stable);
+  CHECK(d.nominal.phase_margin_deg >= 50.0);
+  CHECK(d.nominal.gain_margin_db >= 6.0);
+  CHECK(d.nominal.modulus_margin >= 0.5);
+  CHECK(d.controller.notch_hz == Approx(std::sqrt(2000.0 * (1 / 0.5 + 1 / 1.5)) / (2.0 * M_PI)));
+  plant.joint.stiffness = 0.0;
+  CHECK_THROWS_AS(DesignSpeedLoop(plant, {}, s), std::invalid_argument);
+}
