@@ -13,6 +13,7 @@
 #include "report/axis_feedforward.h"
 #include "report/drivetrain_report.h"
 #include "report/feedback_design.h"
+#include "report/joint_report.h"
 #include "report/planar_robot_report.h"
 
 namespace driveid::cli {
@@ -37,9 +38,10 @@ CLI::App* SetupReportCommand(CLI::App& app, ReportOptions& options) {
 void RunReportCommand(const ReportOptions& options) {
   const ParameterFile file = ReadParameterFile(options.params);
   if (!file.Find<DriveTrainSection>() && !file.Find<PlanarRobotSection>() && file.feedforward.gains.empty() &&
-      file.feedback.empty()) {
-    throw InputError(fmt::format("{}: no 'drivetrain', 'planar_robot', 'feedforward' or 'feedback' section (an axis "
-                                 "fit writes the feed-forward section, gains the feedback section)", options.params));
+      file.feedback.empty() && !file.Find<JointSection>() && !file.Find<FrequencyResponseSection>()) {
+    throw InputError(fmt::format("{}: no 'drivetrain', 'planar_robot', 'feedforward', 'feedback', 'joint' or 'frf' "
+                                 "section (an axis fit writes the feed-forward section, gains the feedback section)",
+                                 options.params));
   }
   // Text: one block per section. JSON: one document with a member per section.
   std::string text;
@@ -76,6 +78,10 @@ void RunReportCommand(const ReportOptions& options) {
   if (!file.feedforward.gains.empty()) {
     if (options.json) json["feedforward"] = FeedforwardReportJson(file.feedforward);
     else text += FormatFeedforwardReport(file.feedforward);
+  }
+  if (file.Find<JointSection>() || file.Find<FrequencyResponseSection>()) {
+    if (options.json) json.update(JointReportJson(file));
+    else text += FormatJointReport(file);
   }
   if (!file.feedback.empty()) {
     if (options.json) json["feedback"] = FeedbackReportJson(file.feedback);

@@ -9,6 +9,7 @@
 #include "core/errors.h"
 #include "models/joint.h"
 #include "report/export_text.h"
+#include "report/feedback_export.h"
 
 namespace driveid {
 namespace {
@@ -128,6 +129,7 @@ std::string CHeader(const ParameterFile& file, const JointView& v, const ExportO
       if (e.name == row.spec.key) out += fmt::format("DRIVEID_CONSTANT {}_{}_STD = {:.6g};\n", upper, row.spec.key, e.standard_error);
     }
   }
+  out += FeedbackCHeaderLines(file.feedback, upper);
   out += CHeaderClose(upper);
   return out;
 }

@@ -11,6 +11,7 @@
 #include "models/axis.h"
 #include "models/feedforward.h"
 #include "report/export_text.h"
+#include "report/feedback_export.h"
 #include "report/joint_export.h"
 #include "report/wpilib_export.h"
 #include "report/json.h"
@@ -151,7 +152,7 @@ std::string ExportUrdf(const ParameterFile& file, const ExportOptions& o) {
 
 WpilibAxis WpilibOf(const ParameterFile& file) {
   const AxisView v = ViewAxis(file);
-  return {RequireFeedforward(file), v.linear, v.p.stribeck != 0.0};
+  return {RequireFeedforward(file), v.linear, v.p.stribeck != 0.0, &file.feedback};
 }
 
 // The axis feed-forward section, or the C-drive's compensation law (31).
@@ -174,6 +175,7 @@ std::string ExportCHeader(const ParameterFile& file, const ExportOptions& o) {
     out += fmt::format("DRIVEID_CONSTANT {}_{} = {};  /* {} */\n", upper, g.key, Number(g.value), CommentText(g.unit));
     out += fmt::format("DRIVEID_CONSTANT {}_{}_STD = {:.6g};\n", upper, g.key, g.standard_error);
   }
+  out += FeedbackCHeaderLines(file.feedback, upper);
   out += CHeaderClose(upper);
   return out;
 }

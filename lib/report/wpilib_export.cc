@@ -10,6 +10,7 @@
 #include "core/errors.h"
 #include "models/feedforward.h"
 #include "report/export_text.h"
+#include "report/feedback_export.h"
 
 namespace driveid {
 namespace {
@@ -96,7 +97,9 @@ std::string ExportWpilibJava(const WpilibAxis& axis, const ExportOptions& o) {
   std::string out = Provenance(o, "//", "");
   out += "// " + Law(p, ff) + "\n";
   for (const std::string& note : p.notes) out += "// " + note + "\n";
-  out += "import edu.wpi.first.math.controller." + std::string(p.type) + ";\n\n";
+  out += "import edu.wpi.first.math.controller." + std::string(p.type) + ";\n";
+  if (axis.feedback) out += FeedbackJavaImport(*axis.feedback);
+  out += "\n";
   out += "public final class " + cls + " {\n  private " + cls + "() {}\n\n";
   for (const auto& [key, java] : GainNames(p)) {
     const FeedforwardGain* g = Gain(ff, key);
@@ -108,6 +111,7 @@ std::string ExportWpilibJava(const WpilibAxis& axis, const ExportOptions& o) {
     out += fmt::format("\n  public static {} {}() {{\n    return new {}({});\n  }}\n", p.type, name, p.type,
                        Arguments(p, ks, kv));
   }
+  if (axis.feedback) out += FeedbackJavaMembers(*axis.feedback);
   out += "}\n";
   return out;
 }
@@ -135,8 +139,8 @@ std::string ExportWpilibCpp(const WpilibAxis& axis, const ExportOptions& o) {
   for (const std::string& note : p.notes) out += "// " + note + "\n";
   out += "// Gains typed in the log's units; WPILib's units library converts them where the class fixes its own.\n";
   out += fmt::format("#pragma once\n\n#include <frc/controller/{}.h>\n#include <units/angle.h>\n#include <units/length.h>\n"
-                     "#include <units/time.h>\n#include <units/voltage.h>\n\n",
-                     p.type);
+                     "#include <units/time.h>\n#include <units/voltage.h>\n{}\n",
+                     p.type, axis.feedback ? FeedbackCppInclude(*axis.feedback) : "");
   out += fmt::format("namespace {}_feedforward {{\n\n", o.joint);
   out += fmt::format("using Distance = {};  // {}\n", distance, CommentText(ff.position_unit));
   out += "using Velocity = units::compound_unit<Distance, units::inverse<units::seconds>>;\n";
@@ -155,6 +159,7 @@ std::string ExportWpilibCpp(const WpilibAxis& axis, const ExportOptions& o) {
   for (const auto& [factory, ks, kv] : Factories(ff, "Create")) {
     out += fmt::format("\ninline Feedforward {}() {{ return Feedforward{{{}}}; }}\n", factory, Arguments(p, ks, kv));
   }
+  if (axis.feedback) out += FeedbackCppMembers(*axis.feedback);
   out += fmt::format("\n}}  // namespace {}_feedforward\n", o.joint);
   return out;
 }

@@ -21,6 +21,7 @@ struct WpilibAxis {
   const Feedforward& feedforward;
   bool linear = false;
   bool stribeck = false;  ///< a Stribeck term was fitted (not representable)
+  const FeedbackController* feedback = nullptr;  ///< gains' section, if any: PIDController constants
 };
 
 std::string ExportWpilibJava(const WpilibAxis& axis, const ExportOptions& options);

@@ -289,6 +289,49 @@ expect 3 "wpilib-cpp: WPILib's feed-forward classes take volts, and this fit's e
 sed 's/position_unit: "Rotations"/position_unit: "furlongs"/' flywheel.yaml > furlong.yaml
 expect 3 "position unit 'furlongs'" -- export furlong.yaml --to wpilib-cpp
 
+# Feedback gains (drivetrain-fit gains, docs/export.md#feedback): the
+# PIDController constants and factory in C++ (stub with WPILib's constructor
+# PIDController(double, double, double, units::second_t)), Java (stub
+# PIDController(double, double, double, double)) and the C header, each read
+# back equal to the feedback section.
+"$bin" gains flywheel.yaml --loop position --preset ctre-phoenix6 -o flywheel_pid.yaml > /dev/null 2>&1 || fail "gains for export"
+kp=$(sed -n 's/^  kp: {value: \([^,]*\),.*/\1/p' flywheel_pid.yaml); kd=$(sed -n 's/^  kd: {value: \([^,]*\),.*/\1/p' flywheel_pid.yaml)
+cat > cppstubs/frc/controller/PIDController.h << 'STUB'
+#pragma once
+#include <units/base.h>
+namespace units { using second_t = unit_t<seconds>; }
+namespace frc {
+class PIDController {
+ public:
+  PIDController(double kp, double ki, double kd, units::second_t period) : kp(kp), ki(ki), kd(kd), period(period) {}
+  double kp, ki, kd; units::second_t period;
+};
+}  // namespace frc
+STUB
+sed -i 's|^struct volts {}; struct seconds {};|struct volts {}; struct seconds {};|' cppstubs/units/base.h
+"$bin" export flywheel_pid.yaml --to wpilib-cpp --joint flywheel -o flywheel_pid.h &&
+  printf '#include <cstdio>\n#include "flywheel_pid.h"\nint main() { auto p = flywheel_feedforward::MakePIDController(); std::printf("%%.17g %%.17g %%.17g\\n", p.kp, p.kd, p.period.value()); }\n' > pid_use.cc &&
+  c++ -std=c++20 -Wall -Werror -I cppstubs pid_use.cc -o pid_use 2> cxx.txt && read -r c_kp c_kd c_period < <(./pid_use) &&
+  same_value "C++ kP" "$c_kp" "$kp" && same_value "C++ kD" "$c_kd" "$kd" && [ "$c_period" = "0.001" ] && ok ||
+  fail "wpilib-cpp feedback: $(cat cxx.txt)"
+grep -q "CTRE Phoenix 6: new Slot0Configs().withKP(kP).withKD(kD)" flywheel_pid.h && ok || fail "vendor slot note"
+"$bin" export flywheel_pid.yaml --to c-header --joint flywheel -o flywheel_pid_c.h &&
+  printf '#include <stdio.h>\n#include "flywheel_pid_c.h"\nint main(void) { printf("%%.17g %%.17g\\n", FLYWHEEL_FEEDBACK_KP, FLYWHEEL_FEEDBACK_KD); return 0; }\n' > pid_c.c &&
+  cc -std=c99 -Wall -Werror pid_c.c -o pid_c 2> cc.txt && read -r h_kp h_kd < <(./pid_c) &&
+  same_value "C kP" "$h_kp" "$kp" && same_value "C kD" "$h_kd" "$kd" && ok || fail "c-header feedback: $(cat cc.txt)"
+if command -v javac > /dev/null; then
+  mkdir -p pidstubs/edu/wpi/first/math/controller
+  printf 'package edu.wpi.first.math.controller;\npublic class SimpleMotorFeedforward { public SimpleMotorFeedforward(double a, double b, double c) {} }\n' \
+    > pidstubs/edu/wpi/first/math/controller/SimpleMotorFeedforward.java
+  printf 'package edu.wpi.first.math.controller;\npublic class PIDController { public final double kp, kd, period; public PIDController(double p, double i, double d, double t) { kp = p; kd = d; period = t; } }\n' \
+    > pidstubs/edu/wpi/first/math/controller/PIDController.java
+  "$bin" export flywheel_pid.yaml --to wpilib-java --joint flywheel -o FlywheelFeedforwardGains.java &&
+    printf 'public class PidBack { public static void main(String[] x) { var p = FlywheelFeedforwardGains.pidController(); System.out.println(p.kp + " " + p.kd + " " + p.period); } }\n' > PidBack.java &&
+    javac -d pidclasses pidstubs/edu/wpi/first/math/controller/*.java FlywheelFeedforwardGains.java PidBack.java 2> javac.txt &&
+    read -r j_kp j_kd j_period < <(java -cp pidclasses PidBack) &&
+    same_value "Java kP" "$j_kp" "$kp" && same_value "Java kD" "$j_kd" "$kd" && ok || fail "wpilib-java feedback: $(cat javac.txt)"
+fi
+
 # The elastic joint (docs/export.md#elastic-joint): MJCF (loaded and checked
 # in tests/export/mjcf_mujoco_test.cc), URDF through check_urdf, the C header
 # compiled; no feed-forward targets; missing values named together.

@@ -138,6 +138,12 @@ grep -q '"controller":{"numerator":\[' speed.json && grep -q '"notch_hz":11\.6' 
   grep -q '"gain_margin_db":' speed.json && ok || fail "speed loop JSON: $(head -c 600 speed.json)"
 grep -q "^  loop: speed" speed.yaml && grep -q "^  numerator: \[" speed.yaml && ok || fail "speed loop section: $(grep -A20 '^feedback' speed.yaml)"
 "$bin" report speed.yaml > speed_report.txt && grep -q "feedback (speed loop" speed_report.txt && ok || fail "report of the speed loop"
+# report reads what frf writes: the joint with its derived values, the measured resonances.
+"$bin" report joint_fit.yaml > frf_report.txt && grep -q "^  resonance_hz  *11\.6" frf_report.txt &&
+  grep -q "^  damping_ratio  *0\.03" frf_report.txt && grep -q "^  resonance  *11\.6[0-9]* +- " frf_report.txt && ok ||
+  fail "report of the frf output: $(cat frf_report.txt)"
+"$bin" report joint_fit.yaml --json > frf_report.json && grep -q '"derived":{"resonance_hz":11\.6' frf_report.json && ok ||
+  fail "report --json of the frf output: $(head -c 400 frf_report.json)"
 if "$py" -c "import numpy" 2> /dev/null; then
   "$py" - speed.json <<'PY' && ok || fail "the speed loop does not hold its margins on the true plant"
 import json, sys

@@ -1,0 +1,98 @@
+#include "report/feedback_export.h"
+
+#include <cctype>
+
+#include <fmt/format.h>
+
+#include "report/export_text.h"
+#include "report/feedback_design.h"
+
+namespace driveid {
+namespace {
+
+using namespace export_text;
+
+double Value(const FeedbackController& f, const char* key) {
+  const FeedbackValue* v = f.Find(key);
+  return v ? v->value : 0.0;
+}
+
+bool Pid(const FeedbackController& f) { return !f.empty() && (f.loop == "velocity" || f.loop == "position"); }
+
+}  // namespace
+
+std::string FeedbackCHeaderLines(const FeedbackController& f, const std::string& upper) {
+  if (f.empty()) return "";
+  std::string out = fmt::format("\n/* feedback ({} loop, preset {}; docs/models.md#feedback-gains) */\n",
+                                CommentText(f.loop), CommentText(f.preset));
+  for (const auto& v : f.values) {
+    std::string key = v.key;
+    for (char& c : key) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    const std::string unit = FeedbackGainUnit(f, v.key);
+    out += fmt::format("DRIVEID_CONSTANT {}_FEEDBACK_{} = {};{}\n", upper, key, Number(v.value),
+                       unit.empty() ? "" : "  /* " + CommentText(unit) + " */");
+    if (v.standard_error > 0.0) out += fmt::format("DRIVEID_CONSTANT {}_FEEDBACK_{}_STD = {:.6g};\n", upper, key, v.standard_error);
+  }
+  for (const auto& [name, coefficients] : {std::pair{"NUM", &f.numerator}, std::pair{"DEN", &f.denominator}}) {
+    for (std::size_t i = 0; i < coefficients->size(); ++i) {
+      out += fmt::format("DRIVEID_CONSTANT {}_FEEDBACK_C_{}{} = {};  /* s^{} */\n", upper, name, i,
+                         Number((*coefficients)[i]), coefficients->size() - 1 - i);
+    }
+  }
+  return out;
+}
+
+std::string FeedbackJavaImport(const FeedbackController& f) {
+  return Pid(f) ? "import edu.wpi.first.math.controller.PIDController;\n" : "";
+}
+
+std::string FeedbackJavaMembers(const FeedbackController& f) {
+  if (!Pid(f)) return "";
+  std::string out = fmt::format("\n  // Feedback: {} loop, preset {} (docs/models.md#feedback-gains).\n", CommentText(f.loop),
+                                CommentText(f.preset));
+  out += FeedbackVendorNote(f, "  //");
+  for (const char* key : {"kp", "kd"}) {
+    const FeedbackValue* v = f.Find(key);
+    out += fmt::format("  /** {} +- {:.3g} {} */\n  public static final double {} = {};\n", key,
+                       v ? v->standard_error : 0.0, CommentText(FeedbackGainUnit(f, key)),
+                       key[1] == 'p' ? "kP" : "kD", Number(v ? v->value : 0.0));
+  }
+  out += fmt::format("  public static final double kControllerPeriodSeconds = {};\n", Number(Value(f, "period")));
+  out += "\n  public static PIDController pidController() {\n"
+         "    return new PIDController(kP, 0.0, kD, kControllerPeriodSeconds);\n  }\n";
+  return out;
+}
+
+std::string FeedbackCppInclude(const FeedbackController& f) {
+  return Pid(f) ? "#include <frc/controller/PIDController.h>\n" : "";
+}
+
+std::string FeedbackCppMembers(const FeedbackController& f) {
+  if (!Pid(f)) return "";
+  std::string out = fmt::format("\n// Feedback: {} loop, preset {} (docs/models.md#feedback-gains).\n", CommentText(f.loop),
+                                CommentText(f.preset));
+  out += FeedbackVendorNote(f, "//");
+  for (const char* key : {"kp", "kd"}) {
+    const FeedbackValue* v = f.Find(key);
+    out += fmt::format("/// {} +- {:.3g} {}\ninline constexpr double {} = {};\n", key, v ? v->standard_error : 0.0,
+                       CommentText(FeedbackGainUnit(f, key)), key[1] == 'p' ? "kP" : "kD", Number(v ? v->value : 0.0));
+  }
+  out += fmt::format("inline constexpr units::second_t kControllerPeriod{{{}}};\n", Number(Value(f, "period")));
+  out += "\ninline frc::PIDController MakePIDController() { return frc::PIDController{kP, 0.0, kD, kControllerPeriod}; }\n";
+  return out;
+}
+
+std::string FeedbackVendorNote(const FeedbackController& f, const char* c) {
+  if (f.preset == "ctre-phoenix6") {
+    return fmt::format("{} CTRE Phoenix 6: new Slot0Configs().withKP(kP).withKD(kD) (volts per rotation, per rotation/s)\n", c);
+  }
+  if (f.preset == "ctre-phoenix5") {
+    return fmt::format("{} CTRE Phoenix 5: talon.config_kP(0, kP); talon.config_kD(0, kD); (1023/12 per volt, rate per 100 ms)\n", c);
+  }
+  if (f.preset == "rev-neo" || f.preset == "rev-external") {
+    return fmt::format("{} REV Spark MAX: closedLoop.pid(kP, 0.0, kD) in the slot's config (duty cycle, rate per minute)\n", c);
+  }
+  return "";
+}
+
+}  // namespace driveid
