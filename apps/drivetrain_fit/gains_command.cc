@@ -22,7 +22,7 @@ struct GainsOptions {
   AxisGainsOptions axis;
   JointGainsOptions joint;
   double period = 0.0, delay = -1.0, kv = -1.0, ka = -1.0;
-  std::string output;
+  std::string output, plot;
   bool json = false;
 };
 
@@ -72,6 +72,12 @@ CLI::App* Setup(CLI::App& app, GainsOptions& o) {
   command->add_option("-o,--output", o.output,
                       "parameter file to write: the input's sections and the feedback section (written atomically)");
   command->add_flag("--json", o.json, "print one JSON object instead of the text");
+  command->add_option("--plot", o.plot,
+                      "speed loop: the open loop's Bode plot with its margins and the closed loop's step response "
+                      "(.png or .svg)")
+      ->check([](const std::string& path) {
+        return IsSupportedPlotPath(path) ? std::string() : std::string("--plot needs a .png or .svg file name");
+      });
   command->footer(
       "Example:\n  drivetrain-fit axis sysid.json -o arm.yaml\n"
       "  drivetrain-fit gains arm.yaml --loop position --preset rev-neo -o arm_gains.yaml\n"
@@ -84,11 +90,14 @@ void RunSpeedLoop(const GainsOptions& o, const std::optional<ParameterFile>& fil
   JointGainsOptions options = o.joint;
   if (o.period > 0.0) options.period = o.period;
   const JointGainsDesign design = DesignJointGains(*file, o.params, options);
+  std::vector<std::pair<std::string, std::string>> files;
   if (!o.output.empty()) {
     ParameterFile out = *file;
     out.feedback = design.controller;
-    WriteFileAtomically(o.output, FormatParameterFile(out));
+    files.emplace_back(o.output, FormatParameterFile(out));
   }
+  if (!o.plot.empty()) files.emplace_back(o.plot, RenderPanels(o.plot, SpeedLoopPanels(design), "frequency [Hz]", true));
+  WriteFilesAtomically(files);
   if (o.json) {
     Json json = FeedbackReportJson(design.controller);
     json["notes"] = design.notes;
@@ -101,7 +110,8 @@ void RunSpeedLoop(const GainsOptions& o, const std::optional<ParameterFile>& fil
 }
 
 void Run(GainsOptions o) {
-  CheckDistinctFiles({o.params}, {{"-o", o.output}});
+  CheckDistinctFiles({o.params}, {{"-o", o.output}, {"--plot", o.plot}});
+  if (!o.plot.empty() && o.axis.loop != "speed") throw OptionError("--plot applies to --loop speed");
   std::optional<ParameterFile> file;
   if (!o.params.empty()) file = ReadParameterFile(o.params);
   if (o.period > 0.0) o.axis.period = o.period;

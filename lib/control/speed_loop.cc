@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include <Eigen/Dense>
+#include <unsupported/Eigen/MatrixFunctions>
 
 namespace driveid {
 namespace {
@@ -200,6 +201,65 @@ SpeedLoopDesign DesignSpeedLoop(const SpeedLoopPlant& plant, const std::vector<S
     if (!best.met || nominal.crossover_hz > best.nominal.crossover_hz) best = {c, nominal, worst, true};
   }
   return best;
+}
+
+std::vector<std::complex<double>> OpenLoopResponse(const SpeedLoopPlant& plant, const PiNotch& controller, double period,
+                                                   const std::vector<double>& frequencies_hz) {
+  std::vector<std::complex<double>> out;
+  for (double f : frequencies_hz) out.push_back(Loop(plant, controller, 1.5 * period, 2.0 * M_PI * f));
+  return out;
+}
+
+StepResponse SimulateSpeedStep(const SpeedLoopPlant& plant, const PiNotch& c, double period, double duration) {
+  CheckPlant(plant);
+  const JointParameters& p = plant.joint;
+  const double n = plant.gear_ratio;
+  // x = (theta_m, theta_m', theta_l, theta_l'), link side; input the log torque (tau_m = n tau).
+  Eigen::Matrix<double, 5, 5> augmented = Eigen::Matrix<double, 5, 5>::Zero();
+  augmented.block<4, 4>(0, 0) << 0, 1, 0, 0,  //
+      -p.stiffness / p.motor_inertia, -(p.damping + p.motor_viscous) / p.motor_inertia, p.stiffness / p.motor_inertia,
+      p.damping / p.motor_inertia,  //
+      0, 0, 0, 1,                   //
+      p.stiffness / p.link_inertia, p.damping / p.link_inertia, -p.stiffness / p.link_inertia,
+      -(p.damping + p.link_viscous) / p.link_inertia;
+  augmented(1, 4) = n / p.motor_inertia;
+  const Eigen::Matrix<double, 5, 5> e = (augmented * period).exp();
+  const Eigen::Matrix4d phi = e.block<4, 4>(0, 0);
+  const Eigen::Vector4d gamma = e.block<4, 1>(0, 4);
+  // C(s) in controllable canonical form, then Tustin: (I - A h/2)^-1.
+  const std::vector<double> num = c.Numerator(), den = c.Denominator();
+  const Eigen::Index m = static_cast<Eigen::Index>(den.size()) - 1;
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(m, m);
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(m), cc(m);
+  for (Eigen::Index j = 0; j < m; ++j) a(0, j) = -den[j + 1] / den[0];
+  for (Eigen::Index i = 1; i < m; ++i) a(i, i - 1) = 1.0;
+  b(0) = 1.0;
+  const double direct = num.size() == den.size() ? num[0] / den[0] : 0.0;
+  for (Eigen::Index j = 0; j < m; ++j) {
+    const std::size_t k = num.size() - static_cast<std::size_t>(m) + static_cast<std::size_t>(j);
+    cc(j) = (k < num.size() ? num[k] / den[0] : 0.0) - direct * den[j + 1] / den[0];
+  }
+  const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(m, m);
+  const Eigen::MatrixXd inverse = (identity - a * period / 2.0).inverse();
+  const Eigen::MatrixXd ad = inverse * (identity + a * period / 2.0);
+  const Eigen::VectorXd bd = inverse * b * period;
+  // Output of the Tustin form: y = cc (x + bd e / 2) + direct e (the trapezoid's half step).
+  StepResponse out;
+  Eigen::Vector4d x = Eigen::Vector4d::Zero();
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(m);
+  double applied = 0.0;
+  const auto steps = static_cast<std::size_t>(std::ceil(duration / period));
+  for (std::size_t k = 0; k <= steps; ++k) {
+    const double speed = n * x(1);
+    out.time.push_back(static_cast<double>(k) * period);
+    out.speed.push_back(speed);
+    const double error = 1.0 - speed;
+    const double command = cc.dot(z + bd * error / 2.0) + direct * error;
+    z = ad * z + bd * error;
+    x = phi * x + gamma * applied;
+    applied = command;  // one period late
+  }
+  return out;
 }
 
 }  // namespace driveid

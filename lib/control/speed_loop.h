@@ -74,4 +74,17 @@ struct SpeedLoopDesign {
 SpeedLoopDesign DesignSpeedLoop(const SpeedLoopPlant& plant, const std::vector<SpeedLoopPlant>& region,
                                 const SpeedLoopSettings& settings);
 
+/// The closed loop's response to a unit step of the speed reference: the
+/// plant exactly discretised at `period` (zero-order hold), the controller
+/// by Tustin's rule, its torque applied one period late. Motor speed at
+/// t = k period for `duration` seconds.
+struct StepResponse {
+  std::vector<double> time, speed;
+};
+StepResponse SimulateSpeedStep(const SpeedLoopPlant& plant, const PiNotch& controller, double period, double duration);
+
+/// Open-loop response L(jw) = C P e^(-1.5 T s) on `frequencies_hz`.
+std::vector<std::complex<double>> OpenLoopResponse(const SpeedLoopPlant& plant, const PiNotch& controller, double period,
+                                                   const std::vector<double>& frequencies_hz);
+
 }  // namespace driveid

@@ -165,7 +165,7 @@ std::string MechanismFreeSet(const AxisIdentificationOptions& options, const Axi
                                   "record it so, or give ‹free› without gravity_cos, gravity_sin",
                                   options.sysid_unit));
   }
-  for (const std::string key : {Key(&AxisParameters::gravity_cos), Key(&AxisParameters::gravity_sin)}) {
+  for (const std::string& key : {Key(&AxisParameters::gravity_cos), Key(&AxisParameters::gravity_sin)}) {
     if (!Contains(free, key)) free.push_back(key);
   }
   return "SysId Arm test: gravity Kg cos(q - Kg_angle) fitted (gravity_cos, gravity_sin added to the default free set)";

@@ -9,8 +9,10 @@
 #include <vector>
 
 #include "io/parameter_file.h"
+#include "control/speed_loop.h"
 #include "models/feedback.h"
 #include "report/json.h"
+#include "report/plot.h"
 
 namespace driveid {
 
@@ -62,7 +64,14 @@ struct JointGainsDesign {
   std::size_t region_points = 0;   ///< plants at the edge of the 95 % region checked
   std::vector<std::string> notes;
   bool met = false;
+  SpeedLoopPlant plant;            ///< the identified model
+  SpeedLoopDesign design;
+  double period = 0.0;
 };
+
+/// The speed loop's plot: |L| [dB] and its phase with the margins, and the
+/// closed loop's response to a unit speed step on the identified model.
+std::vector<PlotPanel> SpeedLoopPanels(const JointGainsDesign& design);
 
 /// A PI speed loop with a notch for the file's joint section
 /// (control/speed_loop.h); the 95 % region from the fit's estimates and

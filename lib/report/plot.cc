@@ -111,7 +111,13 @@ std::string GnuplotScript(const std::vector<PlotPanel>& panels, const std::strin
     script += fmt::format("set title {}\nset ylabel {}\n", GnuplotString(panel.title), GnuplotString(panel.y_label));
     script += panel.y_max > panel.y_min ? fmt::format("set yrange [{}:{}]\n", panel.y_min, panel.y_max)
                                         : std::string("set autoscale y\n");
-    script += p + 1 == panels.size() ? fmt::format("set xlabel {}\n", GnuplotString(x_label)) : "unset xlabel\n";
+    if (!panel.own_x_label.empty()) {
+      script += fmt::format("set xlabel {}\n{}", GnuplotString(panel.own_x_label),
+                            panel.own_log_x ? "set logscale x\n" : "unset logscale x\n");
+    } else {
+      script += p + 1 == panels.size() ? fmt::format("set xlabel {}\n", GnuplotString(x_label)) : "unset xlabel\n";
+      script += log_x ? "set logscale x\n" : "unset logscale x\n";
+    }
     std::string plot = "plot ";
     const std::vector<std::string> styles = LineStyles(panel.lines);
     for (std::size_t l = 0; l < panel.lines.size(); ++l) {

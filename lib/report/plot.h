@@ -36,6 +36,10 @@ struct PlotPanel {
   std::string y_label;
   std::vector<PlotLine> lines;
   double y_min = 0.0, y_max = 0.0;  ///< fixed y range when y_max > y_min (e.g. a coherence's [0, 1])
+  /// A panel with its own x axis (e.g. a step response under a Bode plot):
+  /// its label and scale instead of the shared ones.
+  std::string own_x_label{};
+  bool own_log_x = false;
 };
 
 /// Renders stacked panels as the image `path` will hold (PNG or SVG by its

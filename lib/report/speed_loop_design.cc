@@ -115,6 +115,9 @@ JointGainsDesign DesignJointGains(const ParameterFile& file, const std::string& 
         region.empty() ? "" : " (and over the 95 % region, the phase margin less 10 deg)"));
   }
   d.met = true;
+  d.plant = plant;
+  d.design = design;
+  d.period = o.period;
   FeedbackController& c = d.controller;
   c.loop = "speed";
   c.preset = "custom";
@@ -136,6 +139,40 @@ JointGainsDesign DesignJointGains(const ParameterFile& file, const std::string& 
                         : fmt::format("worst margins over {} plants at the ends of the principal axes of the "
                                       "parameters' 95 % region", region.size()));
   return d;
+}
+
+std::vector<PlotPanel> SpeedLoopPanels(const JointGainsDesign& d) {
+  const LoopMargins& m = d.design.nominal;
+  std::vector<double> f, magnitude, phase, zero, minus180;
+  const double nyquist = 0.5 / d.period;
+  for (int i = 0; i < 600; ++i) f.push_back(0.01 * std::pow(nyquist / 0.01, i / 599.0));
+  const auto l = OpenLoopResponse(d.plant, d.design.controller, d.period, f);
+  double offset = 0.0;
+  for (std::size_t i = 0; i < l.size(); ++i) {
+    magnitude.push_back(20.0 * std::log10(std::abs(l[i])));
+    double p = std::arg(l[i]) * 180.0 / M_PI + offset;
+    if (i > 0) {
+      while (p - phase.back() > 180.0) p -= 360.0, offset -= 360.0;
+      while (p - phase.back() < -180.0) p += 360.0, offset += 360.0;
+    }
+    phase.push_back(p);
+    zero.push_back(0.0);
+    minus180.push_back(-180.0);
+  }
+  PlotPanel gain{fmt::format("open loop C P e^(-1.5 T s): crossover {:.3g} Hz, gain margin {:.3g} dB, modulus margin {:.3g}",
+                             m.crossover_hz, m.gain_margin_db, m.modulus_margin),
+                 "|L| [dB]", {{"|L(jw)|", f, magnitude}, {"0 dB", f, zero}}};
+  PlotPanel angle{fmt::format("phase: margin {:.3g} deg; notch at {:.4g} Hz", m.phase_margin_deg,
+                              d.design.controller.notch_hz),
+                  "phase [deg]", {{"arg L(jw)", f, phase}, {"-180 deg", f, minus180}}};
+  angle.own_x_label = "frequency [Hz]";
+  angle.own_log_x = true;
+  const double settle = std::max(20.0 / (2.0 * M_PI * std::max(m.crossover_hz, 1e-3)), 20.0 * d.period);
+  const StepResponse step = SimulateSpeedStep(d.plant, d.design.controller, d.period, settle);
+  PlotPanel response{"closed loop: unit step of the speed reference, identified model (torque one period late)",
+                     "motor speed / reference", {{"motor speed", step.time, step.speed}}};
+  response.own_x_label = "time [s]";
+  return {gain, angle, response};
 }
 
 }  // namespace driveid

@@ -137,6 +137,9 @@ printf 'joint:\n  gear_ratio: 10\n' > gear.yaml
 grep -q '"controller":{"numerator":\[' speed.json && grep -q '"notch_hz":11\.6' speed.json && grep -q '"phase_margin_deg":' speed.json &&
   grep -q '"gain_margin_db":' speed.json && ok || fail "speed loop JSON: $(head -c 600 speed.json)"
 grep -q "^  loop: speed" speed.yaml && grep -q "^  numerator: \[" speed.yaml && ok || fail "speed loop section: $(grep -A20 '^feedback' speed.yaml)"
+"$bin" gains joint_fit.yaml --loop speed --plot speed.svg > /dev/null && grep -q "closed loop: unit step" speed.svg &&
+  grep -q "phase: margin" speed.svg && ok || fail "speed loop plot"
+expect 2 "--plot applies to --loop speed" -- gains fitted.yaml --plot gains.svg
 "$bin" report speed.yaml > speed_report.txt && grep -q "feedback (speed loop" speed_report.txt && ok || fail "report of the speed loop"
 # report reads what frf writes: the joint with its derived values, the measured resonances.
 "$bin" report joint_fit.yaml > frf_report.txt && grep -q "^  resonance_hz  *11\.6" frf_report.txt &&

@@ -91,6 +91,13 @@ TEST_CASE("a designed speed loop meets its margins; a bad plant is refused") {
   CHECK(d.nominal.gain_margin_db >= 6.0);
   CHECK(d.nominal.modulus_margin >= 0.5);
   CHECK(d.controller.notch_hz == Approx(std::sqrt(2000.0 * (1 / 0.5 + 1 / 1.5)) / (2.0 * M_PI)));
+  // Its closed loop settles on the reference (integral action), and a gain
+  // above the delay's limit diverges: the step simulation is a real loop.
+  const StepResponse step = SimulateSpeedStep(plant, d.controller, s.period, 4.0);
+  CHECK(std::abs(step.speed.back() - 1.0) < 0.01);
+  PiNotch loud = d.controller;
+  loud.kp *= 50.0;
+  CHECK_FALSE(std::abs(SimulateSpeedStep(plant, loud, s.period, 1.0).speed.back()) < 10.0);  // diverged (or overflowed)
   plant.joint.stiffness = 0.0;
   CHECK_THROWS_AS(DesignSpeedLoop(plant, {}, s), std::invalid_argument);
 }
