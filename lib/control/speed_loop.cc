@@ -49,7 +49,7 @@ bool StableRoots(Polynomial p) {
   if (degree == 0) return true;
   // s = w0 z with w0 the geometric mean of the roots' magnitudes: the
   // coefficients of a loop with a stiff spring span many decades otherwise.
-  const double w0 = std::abs(p.back()) > 0.0 ? std::pow(std::abs(p.back() / p.front()), 1.0 / degree) : 1.0;
+  const double w0 = std::abs(p.back()) > 0.0 ? std::pow(std::abs(p.back() / p.front()), 1.0 / static_cast<double>(degree)) : 1.0;
   const double lead = p[0];
   for (std::size_t j = 0; j <= degree; ++j) p[j] /= lead * std::pow(w0, static_cast<double>(j));
   Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(degree, degree);

@@ -12,6 +12,7 @@
 #include "fit/validation.h"
 #include "models/feedforward.h"
 #include "report/axis_feedforward.h"
+#include "signal/held_samples.h"
 
 namespace driveid {
 namespace {
@@ -171,6 +172,26 @@ std::string MechanismFreeSet(const AxisIdentificationOptions& options, const Axi
   return "SysId Arm test: gravity Kg cos(q - Kg_angle) fitted (gravity_cos, gravity_sin added to the default free set)";
 }
 
+// A log whose position repeats between a device's status frames
+// (signal/held_samples.h) was measured at the frames, not at its rows: the
+// fit takes the rows' times, so the rates lag the effort by up to a frame.
+// Not yet modelled: said as a warning.
+void WarnStatusFrames(const std::vector<AxisLog>& logs, FitResult& fit) {
+  std::size_t held = 0;
+  double period = 0.0;
+  for (const auto& log : logs) {
+    const HeldChannel q = DetectHeldChannel(log.time, log.position);
+    if (q.held) ++held, period = std::max(period, q.frame_period);
+  }
+  if (held == 0) return;
+  fit.warnings.push_back(fmt::format(
+      "status frames: the position of {} of {} logs repeats for {:.3g} ms between a device's frames, so each value "
+      "was measured up to a frame before the rows that repeat it; the rates lag the effort, which biases Ka and Ks "
+      "by more than their std (docs/models.md#status-frames); log the position at the device's rate, or take these "
+      "as approximate",
+      held, logs.size(), 1e3 * period));
+}
+
 }  // namespace
 
 AxisMethod ChooseAxisMethod(const std::vector<AxisLog>& logs, AxisMethod requested, std::string* reason) {
@@ -208,6 +229,7 @@ AxisIdentification IdentifyAxis(const std::vector<AxisLog>& logs, const AxisSect
                                                       run.method == AxisMethod::kOutputError ? "output error" : "IDIM-LS",
                                                       reason));
   if (!mechanism.empty()) run.summary.push_back(mechanism);
+  WarnStatusFrames(logs, run.fit);
   Interpret(options, run);
   StoreModelParameters(AxisParameterTable(), run.params, run.section);
   return run;

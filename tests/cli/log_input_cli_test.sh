@@ -121,6 +121,18 @@ expect 2 "a SysId Arm test in 'Rotations': the gravity term cos q needs the angl
 sed 's/"Simple"/"Elevator"/' sysid.json > elevator.json
 "$bin" axis elevator.json -o elevator.yaml > elevator.txt 2>&1 && grep -q "SysId Elevator test: the constant gravity Kg is the offset" elevator.txt &&
   ! grep -q "gravity_cos: {value" elevator.yaml && ok || fail "SysId Elevator: $(cat elevator.txt)"
+# Position and velocity held for 4 rows (a status frame read by a faster
+# logger): the fit warns that they lag the effort (docs/models.md#status-frames).
+awk -F, 'NR > 1 && !/^#/ { n++; t[n] = $1; q[n] = $2; u[n] = $3 }
+  END { r = 6.283185307179586
+        for (k = 1; k <= n; k++) { h = k - (k - 1) % 4; a = h > 1 ? h - 1 : h; b = h < n ? h + 1 : h
+          s = s (k > 1 ? ", " : "") sprintf("[%s, %s, %.12g, %.12g]", t[k], u[k], q[h] / r, (q[b] - q[a]) / (t[b] - t[a]) / r) }
+        printf "{\"test\": \"Simple\", \"units\": \"Radians\", \"unitsPerRotation\": 6.283185307179586, \"slow-forward\": [%s], \"slow-backward\": [%s], \"fast-forward\": [%s], \"fast-backward\": [%s]}\n", s, s, s, s }' \
+  <(grep -v '^#' axis.csv) > held.json
+"$bin" axis held.json -o held.yaml > held.txt 2>&1; grep -q "warning: status frames: the position of 4 of 4 logs repeats for" held.txt && ok ||
+  fail "status frames not warned of: $(grep -i warning held.txt | head -3)"
+"$bin" axis sysid.json -o own_rate.yaml > own_rate.txt 2>&1 && grep -q "^adequacy" own_rate.txt && ! grep -q "status frames" own_rate.txt &&
+  ok || fail "a log at its own rate warned of status frames: $(grep -i warning own_rate.txt | head -3)"
 sed 's/"Simple"/"Drivetrain"/' sysid.json > drive.json
 expect 2 "drive.json: a SysId Drivetrain file: give --side left, right or both" -- axis drive.json
 # Hostile text and numbers (issues 21, 36): units with a line break and a

@@ -1,0 +1,36 @@
+// Channels a logger samples faster than the device sends them: a motor
+// controller's status frame (e.g. every 20 ms) read by a 200 Hz logger
+// repeats each value for several rows, and each value was measured when its
+// frame was sent, not at the rows that repeat it (docs/models.md#status-frames).
+// Such a log is re-timed: each value is kept once, at the row where it first
+// appears (the frame's arrival, a fraction of a logger period after it was
+// measured), and a value held for longer than a frame stays in once per frame
+// period (the mechanism at rest sends the same value).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+namespace driveid {
+
+struct HeldChannel {
+  bool held = false;
+  double frame_period = 0.0;     ///< median interval between changes [s]
+  double repeat_fraction = 0.0;  ///< share of rows that repeat the previous value
+  double step = 0.0;             ///< median time step of the rows [s]
+};
+
+/// Held between frames when more than half the rows repeat the previous
+/// value, the changes come at a median interval of at least 2.5 median
+/// time steps, and at least 60 % of the intervals between changes lie
+/// within 35 % of that median or of twice it (a fixed frame period; slow
+/// motion seen through a coarse encoder repeats values at irregular
+/// intervals and is not held). Needs 50 or more changes.
+HeldChannel DetectHeldChannel(const std::vector<double>& time, const std::vector<double>& values);
+
+/// The rows to keep: where any of `channels` changes, plus one row per
+/// frame period within longer runs; always the first row.
+std::vector<std::size_t> FrameRows(const std::vector<double>& time, const std::vector<const std::vector<double>*>& channels,
+                                   double frame_period);
+
+}  // namespace driveid

@@ -1,0 +1,58 @@
+// Status-frame detection (signal/held_samples.h): a 200 Hz logger reading a
+// 20 ms frame is held; the same motion logged at the device's rate, and a
+// slow motion through a coarse encoder (repeats at irregular intervals), are
+// not. Stamps jittered as roboRIO loggers write them.
+#include "signal/held_samples.h"
+
+#include <cmath>
+
+#include <catch2/catch.hpp>
+
+using namespace driveid;
+
+namespace {
+
+struct Log {
+  std::vector<double> time, value;
+};
+
+// A sine position sampled at the frame times, logged at `step` with jitter.
+Log Logged(double frame, double step, double resolution, double amplitude, double frequency) {
+  Log log;
+  unsigned state = 7;
+  double t = 0.0;
+  for (int k = 0; k < 2000; ++k) {
+    state = state * 1103515245u + 12345u;
+    const double jitter = (static_cast<double>(state >> 8 & 0xffff) / 65535.0 - 0.5) * 0.2 * step;
+    const double measured_at = frame > 0.0 ? std::floor(t / frame) * frame : t;
+    double q = amplitude * std::sin(2.0 * M_PI * frequency * measured_at);
+    if (resolution > 0.0) q = std::round(q / resolution) * resolution;
+    log.time.push_back(t);
+    log.value.push_back(q);
+    t += step + jitter;
+  }
+  return log;
+}
+
+}  // namespace
+
+TEST_CASE("a 20 ms status frame read at 200 Hz is held; the frame period and the kept rows follow") {
+  const Log framed = Logged(0.02, 0.005, 0.0, 1.0, 0.7);
+  const HeldChannel h = DetectHeldChannel(framed.time, framed.value);
+  CHECK(h.held);
+  CHECK(h.frame_period == Approx(0.02).margin(0.003));
+  CHECK(h.repeat_fraction > 0.6);
+  const auto rows = FrameRows(framed.time, {&framed.value}, h.frame_period);
+  CHECK(static_cast<double>(rows.size()) == Approx(static_cast<double>(framed.time.size()) / 4.0).epsilon(0.1));
+}
+
+TEST_CASE("a position logged at its own rate, or a slow one through a coarse encoder, is not held") {
+  const Log direct = Logged(0.0, 0.005, 0.0, 1.0, 0.7);
+  CHECK_FALSE(DetectHeldChannel(direct.time, direct.value).held);
+  // 0.05 rad/s through 1/512 rev: repeats at irregular intervals.
+  const Log coarse = Logged(0.0, 0.005, 2.0 * M_PI / 512.0, 0.4, 0.02);
+  const HeldChannel h = DetectHeldChannel(coarse.time, coarse.value);
+  INFO("repeat " << h.repeat_fraction << ", period " << h.frame_period);
+  CHECK(h.repeat_fraction > 0.5);  // it does repeat, at irregular intervals
+  CHECK_FALSE(h.held);
+}
