@@ -172,6 +172,54 @@ std::string MechanismFreeSet(const AxisIdentificationOptions& options, const Axi
   return "SysId Arm test: gravity Kg cos(q - Kg_angle) fitted (gravity_cos, gravity_sin added to the default free set)";
 }
 
+// Where inverse dynamics warns that an estimate moves with the cutoff and
+// advises output error (which does not differentiate), the advice is tried
+// first: the warning says what output error gives for that parameter, and
+// whether the two methods agree within 2 combined std (docs/models.md#adequacy).
+void TryOutputErrorAdvice(const std::vector<AxisLog>& logs, const AxisIdentificationOptions& options,
+                          AxisIdentification& run) {
+  constexpr const char* kAdvice = "‹method› oe, which does not differentiate";
+  constexpr std::size_t kMaxTriedSamples = 200000;
+  std::size_t samples = 0;
+  for (const auto& log : logs) samples += log.time.size();
+  std::optional<AxisIdentification> oe;
+  std::string failure;
+  for (auto& warning : run.fit.warnings) {
+    const std::size_t at = warning.find(kAdvice);
+    if (warning.rfind("processing: ", 0) != 0 || at == std::string::npos) continue;
+    if (samples > kMaxTriedSamples) {
+      warning.insert(at + std::string(kAdvice).size(), fmt::format(" (not tried here: {} samples)", samples));
+      continue;
+    }
+    if (!oe && failure.empty()) {
+      try {
+        AxisIdentification trial;
+        trial.section = run.section;
+        FitByOutputError(logs, options, trial);
+        oe = std::move(trial);
+      } catch (const std::exception& e) {
+        failure = std::string(e.what()).substr(0, 160);
+      }
+    }
+    const std::string name = warning.substr(12, warning.find(' ', 12) - 12);
+    std::string tried;
+    if (!oe) {
+      tried = fmt::format("; tried: output error fails on these logs ({})", failure);
+    } else {
+      const ParameterEstimate *a = nullptr, *b = nullptr;
+      for (const auto& e : run.fit.estimates) a = e.name == name ? &e : a;
+      for (const auto& e : oe->fit.estimates) b = e.name == name ? &e : b;
+      if (!a || !b) continue;
+      const double z = std::abs(a->value - b->value) / std::hypot(a->standard_error, b->standard_error);
+      tried = fmt::format("; tried: output error gives {} = {:.4g} +- {:.2g}{}", name, b->value, b->standard_error,
+                          z <= 2.0 ? ", which agrees within 2 std"
+                                   : fmt::format(", {:.3g} std away: the two methods disagree, trust neither on these "
+                                                 "logs", z));
+    }
+    warning.insert(at + std::string(kAdvice).size(), tried);
+  }
+}
+
 // A log whose position repeats between a device's status frames
 // (signal/held_samples.h) was measured at the frames, not at its rows: the
 // fit takes the rows' times, so the rates lag the effort by up to a frame.
@@ -224,6 +272,7 @@ AxisIdentification IdentifyAxis(const std::vector<AxisLog>& logs, const AxisSect
     FitByOutputError(logs, options, run);
   } else {
     FitByInverseDynamics(logs, options, validation, run);
+    TryOutputErrorAdvice(logs, options, run);
   }
   run.summary.insert(run.summary.begin(), fmt::format("method: {} ({})",
                                                       run.method == AxisMethod::kOutputError ? "output error" : "IDIM-LS",

@@ -19,7 +19,7 @@ HeldChannel DetectHeldChannel(const std::vector<double>& time, const std::vector
   HeldChannel out;
   const std::size_t n = std::min(time.size(), values.size());
   if (n < 100) return out;
-  std::vector<double> steps, intervals;
+  std::vector<double> steps, intervals, jumps;
   std::size_t repeats = 0;
   double last_change = time[0];
   for (std::size_t k = 1; k < n; ++k) {
@@ -28,6 +28,7 @@ HeldChannel DetectHeldChannel(const std::vector<double>& time, const std::vector
       ++repeats;
     } else {
       intervals.push_back(time[k] - last_change);
+      jumps.push_back(std::abs(values[k] - values[k - 1]));
       last_change = time[k];
     }
   }
@@ -45,8 +46,15 @@ HeldChannel DetectHeldChannel(const std::vector<double>& time, const std::vector
       }
     }
   }
+  // A coarse encoder at a steady speed also changes at a regular interval,
+  // but always by one count: frames change by what moved in a frame.
+  const double quantum = *std::min_element(jumps.begin(), jumps.end());
+  const auto counts = static_cast<std::size_t>(std::count_if(jumps.begin(), jumps.end(), [&](double jump) {
+    return std::abs(jump - quantum) <= 1e-6 * quantum;
+  }));
   out.held = out.repeat_fraction > 0.5 && out.frame_period >= 2.5 * out.step &&
-             static_cast<double>(regular) >= 0.6 * static_cast<double>(intervals.size());
+             static_cast<double>(regular) >= 0.6 * static_cast<double>(intervals.size()) &&
+             static_cast<double>(counts) < 0.8 * static_cast<double>(jumps.size());
   return out;
 }
 

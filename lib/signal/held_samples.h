@@ -25,7 +25,9 @@ struct HeldChannel {
 /// time steps, and at least 60 % of the intervals between changes lie
 /// within 35 % of that median or of twice it (a fixed frame period; slow
 /// motion seen through a coarse encoder repeats values at irregular
-/// intervals and is not held). Needs 50 or more changes.
+/// intervals and is not held), and fewer than 80 % of the changes are of
+/// the smallest size (a coarse encoder at a steady speed changes regularly,
+/// but by one count each time). Needs 50 or more changes.
 HeldChannel DetectHeldChannel(const std::vector<double>& time, const std::vector<double>& values);
 
 /// The rows to keep: where any of `channels` changes, plus one row per

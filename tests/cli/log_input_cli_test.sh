@@ -131,6 +131,9 @@ awk -F, 'NR > 1 && !/^#/ { n++; t[n] = $1; q[n] = $2; u[n] = $3 }
   <(grep -v '^#' axis.csv) > held.json
 "$bin" axis held.json -o held.yaml > held.txt 2>&1; grep -q "warning: status frames: the position of 4 of 4 logs repeats for" held.txt && ok ||
   fail "status frames not warned of: $(grep -i warning held.txt | head -3)"
+# The advice of the processing warning (output error) is tried before it is printed.
+grep -q "or --method oe, which does not differentiate; tried: output error gives inertia = [0-9.e-]* +- [0-9.e-]*, " held.txt && ok ||
+  fail "output-error advice not tried: $(grep 'warning: processing' held.txt)"
 "$bin" axis sysid.json -o own_rate.yaml > own_rate.txt 2>&1 && grep -q "^adequacy" own_rate.txt && ! grep -q "status frames" own_rate.txt &&
   ok || fail "a log at its own rate warned of status frames: $(grep -i warning own_rate.txt | head -3)"
 sed 's/"Simple"/"Drivetrain"/' sysid.json > drive.json

@@ -55,4 +55,16 @@ TEST_CASE("a position logged at its own rate, or a slow one through a coarse enc
   INFO("repeat " << h.repeat_fraction << ", period " << h.frame_period);
   CHECK(h.repeat_fraction > 0.5);  // it does repeat, at irregular intervals
   CHECK_FALSE(h.held);
+  // A steady 0.5 rad/s through 1/4096 rev: one count every 3.07 ms... every
+  // 0.6 rows at 200 Hz; at 0.1 rad/s one count per 15 ms, as regular as a frame.
+  Log steady;
+  for (int k = 0; k < 2000; ++k) {
+    const double t = 0.005 * k;
+    steady.time.push_back(t);
+    steady.value.push_back(std::round(0.1 * t / (2.0 * M_PI / 4096.0)) * (2.0 * M_PI / 4096.0));
+  }
+  const HeldChannel s = DetectHeldChannel(steady.time, steady.value);
+  INFO("steady: repeat " << s.repeat_fraction << ", period " << s.frame_period);
+  CHECK(s.repeat_fraction > 0.5);
+  CHECK_FALSE(s.held);
 }
