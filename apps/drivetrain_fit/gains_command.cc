@@ -1,6 +1,7 @@
 // drivetrain-fit gains: feedback gains for the controller that loads the
 // parameter file (docs/models.md#feedback-gains). Parsing and output only;
 // the design is report/feedback_design.h.
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -85,28 +86,43 @@ CLI::App* Setup(CLI::App& app, GainsOptions& o) {
   return command;
 }
 
+// -o (the input's sections and the feedback section) and --plot, all or
+// nothing; then the design on standard output.
+struct Emitted {
+  const FeedbackController& controller;
+  const std::vector<std::string>& notes;
+  std::function<std::vector<PlotPanel>()> panels;  // only with --plot
+  Json json_extra = Json::object();
+  std::string text_extra{};
+};
+
+void Emit(const GainsOptions& o, const std::optional<ParameterFile>& file, const Emitted& e) {
+  std::vector<std::pair<std::string, std::string>> files;
+  if (!o.output.empty()) {
+    ParameterFile out = file ? *file : ParameterFile{};
+    out.feedback = e.controller;
+    files.emplace_back(o.output, FormatParameterFile(out));
+  }
+  if (!o.plot.empty()) files.emplace_back(o.plot, RenderPanels(o.plot, e.panels(), "frequency [Hz]", true));
+  WriteFilesAtomically(files);
+  if (o.json) {
+    Json json = FeedbackReportJson(e.controller);
+    json.update(e.json_extra);
+    json["notes"] = e.notes;
+    WriteStdout(DumpJson(json));
+    return;
+  }
+  std::string text = FormatFeedbackReport(e.controller) + e.text_extra;
+  for (const auto& note : e.notes) text += "note: " + note + "\n";
+  WriteStdout(text);
+}
+
 void RunSpeedLoop(const GainsOptions& o, const std::optional<ParameterFile>& file) {
   if (!file) throw OptionError("--loop speed needs a parameter file with a joint section");
   JointGainsOptions options = o.joint;
   if (o.period > 0.0) options.period = o.period;
   const JointGainsDesign design = DesignJointGains(*file, o.params, options);
-  std::vector<std::pair<std::string, std::string>> files;
-  if (!o.output.empty()) {
-    ParameterFile out = *file;
-    out.feedback = design.controller;
-    files.emplace_back(o.output, FormatParameterFile(out));
-  }
-  if (!o.plot.empty()) files.emplace_back(o.plot, RenderPanels(o.plot, SpeedLoopPanels(design), "frequency [Hz]", true));
-  WriteFilesAtomically(files);
-  if (o.json) {
-    Json json = FeedbackReportJson(design.controller);
-    json["notes"] = design.notes;
-    WriteStdout(DumpJson(json));
-    return;
-  }
-  std::string text = FormatFeedbackReport(design.controller);
-  for (const auto& note : design.notes) text += "note: " + note + "\n";
-  WriteStdout(text);
+  Emit(o, file, {design.controller, design.notes, [&] { return SpeedLoopPanels(design); }});
 }
 
 void Run(GainsOptions o) {
@@ -119,25 +135,13 @@ void Run(GainsOptions o) {
   if (o.kv >= 0.0) o.axis.kv = o.kv;
   if (o.ka >= 0.0) o.axis.ka = o.ka;
   if (o.axis.loop == "speed") return RunSpeedLoop(o, file);
-  const AxisGainsDesign design = DesignAxisGains(file ? &*file : nullptr, o.params, o.axis);
-  if (!o.output.empty()) {
-    ParameterFile out = file ? *file : ParameterFile{};
-    out.feedback = design.controller;
-    WriteFileAtomically(o.output, FormatParameterFile(out));
-  }
-  if (o.json) {
-    Json json = FeedbackReportJson(design.controller);
-    json["plant"] = {{"source", design.kv_source}, {"kv", {{"value", design.kv}, {"std", design.kv_std}}},
-                     {"ka", {{"value", design.ka}, {"std", design.ka_std}}}, {"correlation", design.correlation}};
-    json["notes"] = design.notes;
-    WriteStdout(DumpJson(json));
-    return;
-  }
-  std::string text = FormatFeedbackReport(design.controller);
-  text += fmt::format("plant: Kv {:.6g} +- {:.3g}, Ka {:.6g} +- {:.3g} (correlation {:.3f}) from {}\n", design.kv,
-                      design.kv_std, design.ka, design.ka_std, design.correlation, design.kv_source);
-  for (const auto& note : design.notes) text += "note: " + note + "\n";
-  WriteStdout(text);
+  const AxisGainsDesign d = DesignAxisGains(file ? &*file : nullptr, o.params, o.axis);
+  Json plant = {{"source", d.kv_source}, {"kv", {{"value", d.kv}, {"std", d.kv_std}}},
+                {"ka", {{"value", d.ka}, {"std", d.ka_std}}}, {"correlation", d.correlation}};
+  Emit(o, file,
+       {d.controller, d.notes, {}, {{"plant", plant}},
+        fmt::format("plant: Kv {:.6g} +- {:.3g}, Ka {:.6g} +- {:.3g} (correlation {:.3f}) from {}\n", d.kv, d.kv_std,
+                    d.ka, d.ka_std, d.correlation, d.kv_source)});
 }
 
 GainsOptions gains_options;

@@ -15,13 +15,6 @@ using namespace section_io;
 
 constexpr std::size_t kMaxCoefficients = 16;
 
-const FeedbackKey* FindKey(const std::string& key) {
-  for (const auto& k : kFeedbackKeys) {
-    if (key == k.key) return &k;
-  }
-  return nullptr;
-}
-
 std::string KnownKeys() {
   std::string known = "loop, preset, effort_unit, position_unit, numerator, denominator";
   for (const auto& k : kFeedbackKeys) known += std::string(", ") + k.key;
@@ -74,13 +67,6 @@ FeedbackValue ParseValue(const std::string& path, const std::string& key, const 
   return value;
 }
 
-std::string UnitOf(const FeedbackKey& key, const FeedbackController& f) {
-  std::string unit = key.unit;
-  if (unit == "position") return f.position_unit;
-  if (unit == "position/s") return f.position_unit + "/s";
-  if (unit == "effort") return f.effort_unit;
-  return unit;
-}
 
 }  // namespace
 
@@ -95,7 +81,7 @@ FeedbackController ParseFeedbackSection(const std::string& path, const YAML::Nod
                                                                                       : out.position_unit) = value;
     } else if (key == "numerator" || key == "denominator") {
       (key == "numerator" ? out.numerator : out.denominator) = ParseCoefficients(path, key, item.second);
-    } else if (FindKey(key)) {
+    } else if (FindFeedbackKey(key)) {
       out.values.push_back(ParseValue(path, key, item.second));
     } else {
       throw InputError(fmt::format("{}: feedback.{}: unknown key (known: {})", Where(path, item.first), key, KnownKeys()));
@@ -104,15 +90,17 @@ FeedbackController ParseFeedbackSection(const std::string& path, const YAML::Nod
   if (out.loop.empty()) throw InputError(fmt::format("{}: feedback.loop: missing (velocity, position or speed)", Where(path, node)));
   // Written in the order of kFeedbackKeys whatever order was read.
   std::stable_sort(out.values.begin(), out.values.end(), [](const FeedbackValue& a, const FeedbackValue& b) {
-    return FindKey(a.key) < FindKey(b.key);
+    return FindFeedbackKey(a.key) < FindFeedbackKey(b.key);
   });
   return out;
 }
 
 std::string FormatFeedbackSection(const FeedbackController& f) {
-  for (const auto* name : {&f.loop, &f.preset, &f.effort_unit, &f.position_unit}) {
+  for (const auto& [field, name] : {std::pair{"loop", &f.loop}, std::pair{"preset", &f.preset},
+                                     std::pair{"effort_unit", &f.effort_unit},
+                                     std::pair{"position_unit", &f.position_unit}}) {
     if (!UnitTextProblem(*name).empty()) {
-      throw OutputError(fmt::format("feedback: '{}' is not a name: {}; nothing written", "?", UnitTextProblem(*name)));
+      throw OutputError(fmt::format("feedback.{}: not a name: {}; nothing written", field, UnitTextProblem(*name)));
     }
   }
   std::string out = "feedback:  # the controller `gains` designed: docs/models.md#feedback-gains\n";
@@ -120,10 +108,10 @@ std::string FormatFeedbackSection(const FeedbackController& f) {
   if (!f.preset.empty()) out += fmt::format("  preset: {}\n", f.preset);
   out += fmt::format("  effort_unit: \"{}\"\n  position_unit: \"{}\"\n", f.effort_unit, f.position_unit);
   for (const auto& v : f.values) {
-    const FeedbackKey* key = FindKey(v.key);
+    const FeedbackKey* key = FindFeedbackKey(v.key);
     if (!key) throw OutputError(fmt::format("feedback.{}: unknown key; nothing written", v.key));
     const std::string name = "feedback." + v.key;
-    const std::string unit = UnitOf(*key, f);
+    const std::string unit = FeedbackKeyUnit(*key, f);
     const std::string comment = unit.empty() ? key->description : fmt::format("{} [{}]", key->description, unit);
     if (key->gain) {
       out += fmt::format("  {}: {{value: {}, std: {}}}  # {}\n", v.key, Number(Writable(name, v.value)),

@@ -65,6 +65,15 @@ class ParameterFile {
   /// fit.correlation of a previous fit: pairs of estimate names and their
   /// correlation (the full matrix or the strongest pairs, as written).
   std::vector<std::pair<std::pair<std::string, std::string>, double>> fit_correlations;
+  /// The correlation of estimates a and b in fit_correlations (1 for a == b,
+  /// 0 where the file holds none).
+  double FitCorrelation(const std::string& a, const std::string& b) const {
+    if (a == b) return 1.0;
+    for (const auto& [names, r] : fit_correlations) {
+      if ((names.first == a && names.second == b) || (names.first == b && names.second == a)) return r;
+    }
+    return 0.0;
+  }
 
  private:
   std::map<std::string, std::any> sections_;

@@ -48,6 +48,14 @@ inline constexpr std::array<FeedbackKey, 18> kFeedbackKeys = {{
     {"worst_modulus_margin", "", "modulus margin at the worst point of the 95 % region", false},
 }};
 
+/// The declaration of `key`, or nullptr.
+inline const FeedbackKey* FindFeedbackKey(const std::string& key) {
+  for (const auto& k : kFeedbackKeys) {
+    if (key == k.key) return &k;
+  }
+  return nullptr;
+}
+
 struct FeedbackValue {
   std::string key;
   double value = 0.0;
@@ -71,5 +79,15 @@ struct FeedbackController {
   }
   bool empty() const { return loop.empty(); }
 };
+
+/// A key's unit in a section: "position", "position/s" and "effort" stand
+/// for the section's own units.
+inline std::string FeedbackKeyUnit(const FeedbackKey& key, const FeedbackController& f) {
+  const std::string unit = key.unit;
+  if (unit == "position") return f.position_unit;
+  if (unit == "position/s") return f.position_unit + "/s";
+  if (unit == "effort") return f.effort_unit;
+  return unit;
+}
 
 }  // namespace driveid

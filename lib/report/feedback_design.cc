@@ -7,31 +7,18 @@
 
 #include "control/feedback_gains.h"
 #include "core/errors.h"
+#include "report/export_text.h"
 
 namespace driveid {
 namespace {
-
-const FeedforwardGain* FindGain(const Feedforward& ff, const std::string& key) {
-  for (const auto& g : ff.gains) {
-    if (g.key == key) return &g;
-  }
-  return nullptr;
-}
-
-double Correlation(const ParameterFile& file, const std::string& a, const std::string& b) {
-  for (const auto& [names, r] : file.fit_correlations) {
-    if ((names.first == a && names.second == b) || (names.first == b && names.second == a)) return r;
-  }
-  return 0.0;
-}
 
 // Kv and Ka from the file: the feed-forward section (with stds and the
 // fit's correlation of viscous and inertia), else the axis section.
 void TakeFromFile(const ParameterFile& file, const std::string& path, AxisGainsDesign& d) {
   const Feedforward& ff = file.feedforward;
   if (!ff.gains.empty() && ff.law == kAxisFeedforwardLaw) {
-    const FeedforwardGain* kv = FindGain(ff, "Kv");
-    const FeedforwardGain* ka = FindGain(ff, "Ka");
+    const FeedforwardGain* kv = export_text::Gain(ff, "Kv");
+    const FeedforwardGain* ka = export_text::Gain(ff, "Ka");
     if (!kv || !ka) {
       throw InputError(fmt::format("{}: the feed-forward section has no {}{}: give ‹kv› and ‹ka›", path,
                                    kv ? "" : "Kv", ka ? "" : kv ? "Ka" : " and Ka"));
@@ -41,12 +28,12 @@ void TakeFromFile(const ParameterFile& file, const std::string& path, AxisGainsD
     d.ka = ka->value;
     d.ka_std = ka->standard_error;
     // Kv = b and Ka = J (models/feedforward.h): their correlation is the fit's.
-    d.correlation = Correlation(file, "viscous", "inertia");
+    d.correlation = file.FitCorrelation("viscous", "inertia");
     d.controller.effort_unit = ff.effort_unit;
     d.controller.position_unit = ff.position_unit;
     d.kv_source = fmt::format("{} feed-forward (Kv, Ka with std{})", path,
                               file.fit_correlations.empty() ? "; no fit correlation: taken as 0" : " and correlation");
-    if (FindGain(ff, "Kv_forward") || FindGain(ff, "Kv_backward")) {
+    if (export_text::Gain(ff, "Kv_forward") || export_text::Gain(ff, "Kv_backward")) {
       d.notes.push_back("the axis has direction-dependent Kv: the gains use the common Kv");
     }
     return;
@@ -155,20 +142,13 @@ std::string FeedbackGainUnit(const FeedbackController& f, const std::string& key
 std::string FormatFeedbackReport(const FeedbackController& f) {
   std::string out = fmt::format("feedback ({} loop, preset {}; docs/models.md#feedback-gains):\n", f.loop, f.preset);
   for (const auto& v : f.values) {
-    bool gain = false;
-    const char* unit = "";
-    const char* description = "";
-    for (const auto& k : kFeedbackKeys) {
-      if (v.key == k.key) gain = k.gain, unit = k.unit, description = k.description;
-    }
-    if (gain) {
+    const FeedbackKey* key = FindFeedbackKey(v.key);
+    if (key && key->gain) {
       out += fmt::format("  {:<24} {:>12.6g} +- {:<10.3g} {}\n", v.key, v.value, v.standard_error,
                          FeedbackGainUnit(f, v.key));
     } else {
-      const std::string u = std::string(unit) == "position" ? f.position_unit
-                            : std::string(unit) == "position/s" ? f.position_unit + "/s"
-                            : std::string(unit) == "effort" ? f.effort_unit : unit;
-      out += fmt::format("  {:<24} {:>12.6g}    {:<10} {}\n", v.key, v.value, u, description);
+      out += fmt::format("  {:<24} {:>12.6g}    {:<10} {}\n", v.key, v.value, key ? FeedbackKeyUnit(*key, f) : "",
+                         key ? key->description : "");
     }
   }
   if (!f.numerator.empty()) {
@@ -187,8 +167,8 @@ Json FeedbackReportJson(const FeedbackController& f) {
   Json gains = Json::object(), settings = Json::object(), controller = Json::object();
   if (!f.numerator.empty()) controller = {{"numerator", f.numerator}, {"denominator", f.denominator}};
   for (const auto& v : f.values) {
-    bool gain = false;
-    for (const auto& k : kFeedbackKeys) gain = gain || (v.key == k.key && k.gain);
+    const FeedbackKey* key = FindFeedbackKey(v.key);
+    const bool gain = key && key->gain;
     // The speed loop's notch and margins describe its controller C(s).
     const bool design = v.key.rfind("notch", 0) == 0 || v.key == "crossover_hz" ||
                         v.key.find("margin") != std::string::npos;

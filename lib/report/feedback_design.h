@@ -61,11 +61,9 @@ struct JointGainsOptions {
 
 struct JointGainsDesign {
   FeedbackController controller;
-  std::size_t region_points = 0;   ///< plants at the edge of the 95 % region checked
   std::vector<std::string> notes;
-  bool met = false;
   SpeedLoopPlant plant;            ///< the identified model
-  SpeedLoopDesign design;
+  SpeedLoopDesign design;          ///< its controller C(s) and margins (met: otherwise refused)
   double period = 0.0;
 };
 

@@ -28,14 +28,6 @@ constexpr Member kDynamic[] = {{"motor_inertia", &JointParameters::motor_inertia
                                {"motor_viscous", &JointParameters::motor_viscous},
                                {"link_viscous", &JointParameters::link_viscous}};
 
-double Correlation(const ParameterFile& file, const std::string& a, const std::string& b) {
-  if (a == b) return 1.0;
-  for (const auto& [names, r] : file.fit_correlations) {
-    if ((names.first == a && names.second == b) || (names.first == b && names.second == a)) return r;
-  }
-  return 0.0;
-}
-
 // The plants at the ends of the principal axes of the 95 % region of the
 // fitted dynamic parameters (those the fit estimated), each kept physical.
 std::vector<SpeedLoopPlant> Region(const ParameterFile& file, const SpeedLoopPlant& nominal) {
@@ -51,7 +43,7 @@ std::vector<SpeedLoopPlant> Region(const ParameterFile& file, const SpeedLoopPla
   Eigen::MatrixXd covariance(p, p);
   for (std::size_t i = 0; i < p; ++i) {
     for (std::size_t j = 0; j < p; ++j) {
-      covariance(i, j) = Correlation(file, members[i]->key, members[j]->key) * stds[i] * stds[j];
+      covariance(i, j) = file.FitCorrelation(members[i]->key, members[j]->key) * stds[i] * stds[j];
     }
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(covariance);
@@ -99,7 +91,6 @@ JointGainsDesign DesignJointGains(const ParameterFile& file, const std::string& 
   if (const auto* frf = file.Find<FrequencyResponseSection>()) settings.resonance_std_hz = frf->resonance_hz_std.value_or(0.0);
   JointGainsDesign d;
   const std::vector<SpeedLoopPlant> region = Region(file, plant);
-  d.region_points = region.size();
   SpeedLoopDesign design;
   try {
     design = DesignSpeedLoop(plant, region, settings);
@@ -114,7 +105,6 @@ JointGainsDesign DesignJointGains(const ParameterFile& file, const std::string& 
         JointResonance(plant.joint) / (2.0 * M_PI), o.phase_margin_deg, o.period,
         region.empty() ? "" : " (and over the 95 % region, the phase margin less 10 deg)"));
   }
-  d.met = true;
   d.plant = plant;
   d.design = design;
   d.period = o.period;
