@@ -268,9 +268,9 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
   // With a measured rate already used, only the acceleration (differentiated
   // qd) depends on the cutoff: do not suggest what was given.
   const bool rate_measured = std::all_of(logs.begin(), logs.end(), [](const AxisLog& l) { return !l.rate.empty(); });
-  const char* advice = rate_measured ? "the measured rate qd is used and differentiated once; check the cutoff with "
-                                       "‹cutoff›, or ‹method› oe, which does not differentiate"
-                                     : "try a measured rate qd, or check the cutoff with ‹cutoff›";
+  const std::string advice = rate_measured ? std::string("the measured rate qd is used and differentiated once; check "
+                                                         "the cutoff with ‹cutoff›, or ") + kAxisOutputErrorAdvice
+                                           : std::string("try a measured rate qd, or check the cutoff with ‹cutoff›");
   for (auto& w : ProcessingWarnings(out.fit, out.cutoff, advice)) {
     out.fit.warnings.push_back(std::move(w));
   }

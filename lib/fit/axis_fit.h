@@ -35,6 +35,11 @@ namespace driveid {
 
 
 
+/// The end of the processing warning's advice where the rate was measured
+/// (output error does not differentiate); the identification run tries it
+/// and says what it gives right after it (report/axis_identification.cc).
+inline constexpr const char* kAxisOutputErrorAdvice = "‹method› oe, which does not differentiate";
+
 struct AxisFitOptions {
   std::vector<std::string> free = FitParameterKeys(AxisParameterTable(), "axis", true);
   double cutoff = 0.0;                ///< position low-pass [Hz]; 0 = ChooseAxisCutoff

@@ -178,17 +178,17 @@ std::string MechanismFreeSet(const AxisIdentificationOptions& options, const Axi
 // whether the two methods agree within 2 combined std (docs/models.md#adequacy).
 void TryOutputErrorAdvice(const std::vector<AxisLog>& logs, const AxisIdentificationOptions& options,
                           AxisIdentification& run) {
-  constexpr const char* kAdvice = "‹method› oe, which does not differentiate";
+  const std::string advice = kAxisOutputErrorAdvice;
   constexpr std::size_t kMaxTriedSamples = 200000;
   std::size_t samples = 0;
   for (const auto& log : logs) samples += log.time.size();
   std::optional<AxisIdentification> oe;
   std::string failure;
   for (auto& warning : run.fit.warnings) {
-    const std::size_t at = warning.find(kAdvice);
+    const std::size_t at = warning.find(advice);
     if (warning.rfind("processing: ", 0) != 0 || at == std::string::npos) continue;
     if (samples > kMaxTriedSamples) {
-      warning.insert(at + std::string(kAdvice).size(), fmt::format(" (not tried here: {} samples)", samples));
+      warning.insert(at + advice.size(), fmt::format(" (not tried here: {} samples)", samples));
       continue;
     }
     if (!oe && failure.empty()) {
@@ -216,7 +216,7 @@ void TryOutputErrorAdvice(const std::vector<AxisLog>& logs, const AxisIdentifica
                                    : fmt::format(", {:.3g} std away: the two methods disagree, trust neither on these "
                                                  "logs", z));
     }
-    warning.insert(at + std::string(kAdvice).size(), tried);
+    warning.insert(at + advice.size(), tried);
   }
 }
 
