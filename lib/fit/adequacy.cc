@@ -258,4 +258,28 @@ std::vector<std::string> ProcessingWarnings(const FitResult& fit, double cutoff,
   return warnings;
 }
 
+
+void AddSystematicCovariance(FitResult& fit, const std::vector<double>& gradient, double sigma) {
+  const std::size_t p = fit.estimates.size();
+  if (gradient.size() != p || fit.covariance.size() != p * p || !(sigma > 0.0)) return;
+  for (std::size_t j = 0; j < p; ++j) {
+    for (std::size_t k = 0; k < p; ++k) fit.covariance[j * p + k] += sigma * sigma * gradient[j] * gradient[k];
+  }
+  fit.correlation.assign(p * p, 0.0);
+  for (std::size_t j = 0; j < p; ++j) {
+    ParameterEstimate& e = fit.estimates[j];
+    const double std_new = std::sqrt(fit.covariance[j * p + j]);
+    const double quantile = e.standard_error > 0.0 ? (e.ci95_high - e.value) / e.standard_error : 1.96;
+    e.standard_error = std_new;
+    e.ci95_low = e.value - quantile * std_new;
+    e.ci95_high = e.value + quantile * std_new;
+  }
+  for (std::size_t j = 0; j < p; ++j) {
+    for (std::size_t k = 0; k < p; ++k) {
+      const double s = fit.estimates[j].standard_error * fit.estimates[k].standard_error;
+      fit.correlation[j * p + k] = s > 0.0 ? fit.covariance[j * p + k] / s : (j == k ? 1.0 : 0.0);
+    }
+  }
+}
+
 }  // namespace driveid

@@ -109,4 +109,12 @@ void WidenForDisagreement(FitResult& fit);
 /// A warning for each test with p below 0.001.
 std::vector<std::string> HeterogeneityWarnings(const std::vector<HeterogeneityTest>& tests);
 
+
+/// A systematic error of the data that the residuals cannot show (e.g. a
+/// log's timing, known only to within a logger step): with g = d(estimate)/
+/// d(error) (one entry per estimate) and the error's std sigma, the
+/// covariance gains sigma^2 g g'; each std, interval (its quantile kept) and
+/// the correlations follow (docs/models.md#status-frames).
+void AddSystematicCovariance(FitResult& fit, const std::vector<double>& gradient, double sigma);
+
 }  // namespace driveid

@@ -23,6 +23,7 @@ struct OeLog {
   double q0 = 0.0, v0 = 0.0;
   double position_weight = 1.0, rate_weight = 0.0;  // rate_weight 0: no rate channel
   int first_row = 0;
+  std::vector<std::size_t> rows;                         // the measured rows (AxisLog::measured)
   std::vector<double> weighted_position, weighted_rate;  // measured x weight, for fit %
 };
 
@@ -33,7 +34,7 @@ class AxisOeResiduals final : public ResidualModel {
       : logs_(logs), params_(fixed), terms_(terms), simulator_(std::move(terms), position_tolerance, rate_tolerance) {
     for (auto& l : logs_) {
       l.first_row = rows_;
-      rows_ += static_cast<int>(l.log->time.size()) * (l.rate_weight > 0.0 ? 2 : 1);
+      rows_ += static_cast<int>(l.rows.size()) * (l.rate_weight > 0.0 ? 2 : 1);
     }
   }
   int residual_count() const override { return rows_; }
@@ -45,15 +46,16 @@ class AxisOeResiduals final : public ResidualModel {
       for (const auto& l : logs_) {
         const AxisLog& log = *l.log;
         simulator_.Simulate(params_, log.time, log.force, l.q0, l.v0, jacobian != nullptr, &response_);
-        const std::size_t n = log.time.size(), base = static_cast<std::size_t>(l.first_row);
-        for (std::size_t k = 0; k < n; ++k) {
-          residuals[base + k] = l.position_weight * (response_.position[k] - log.position[k]);
-          if (l.rate_weight > 0.0) residuals[base + n + k] = l.rate_weight * (response_.rate[k] - log.rate[k]);
+        const std::size_t n = l.rows.size(), base = static_cast<std::size_t>(l.first_row);
+        for (std::size_t i = 0; i < n; ++i) {
+          const std::size_t k = l.rows[i];
+          residuals[base + i] = l.position_weight * (response_.position[k] - log.position[k]);
+          if (l.rate_weight > 0.0) residuals[base + n + i] = l.rate_weight * (response_.rate[k] - log.rate[k]);
           if (jacobian == nullptr) continue;
           for (std::size_t j = 0; j < p; ++j) {
-            jacobian[(base + k) * p + j] = l.position_weight * response_.position_sensitivity[k * p + j];
+            jacobian[(base + i) * p + j] = l.position_weight * response_.position_sensitivity[k * p + j];
             if (l.rate_weight > 0.0) {
-              jacobian[(base + n + k) * p + j] = l.rate_weight * response_.rate_sensitivity[k * p + j];
+              jacobian[(base + n + i) * p + j] = l.rate_weight * response_.rate_sensitivity[k * p + j];
             }
           }
         }
@@ -127,6 +129,7 @@ double CalcLoggedStartRate(const std::vector<double>& time, const std::vector<do
 }
 
 AxisStart AxisLogStart(const AxisLog& log) {
+  if (std::isfinite(log.start_rate)) return {log.position.front(), log.start_rate};
   return {log.position.front(), CalcLoggedStartRate(log.time, log.position, log.rate)};
 }
 
@@ -212,8 +215,12 @@ OeLogs PrepareOeLogs(const std::vector<AxisLog>& logs) {
       if (v_scale > 0.0) l.rate_weight = 1.0 / v_scale;
       out.rate_range = std::max(out.rate_range, v_scale);
     }
-    for (double q : log.position) l.weighted_position.push_back(q * l.position_weight);
-    for (double v : log.rate) l.weighted_rate.push_back(v * l.rate_weight);
+    for (std::size_t k = 0; k < log.time.size(); ++k) {
+      if (!log.measured.empty() && !log.measured[k]) continue;
+      l.rows.push_back(k);
+      l.weighted_position.push_back(log.position[k] * l.position_weight);
+      if (!log.rate.empty()) l.weighted_rate.push_back(log.rate[k] * l.rate_weight);
+    }
     const double duration = log.time.back() - log.time.front();
     out.rate_range = std::max(out.rate_range, q_scale / std::max(duration, 1e-9));
   }
@@ -279,7 +286,7 @@ AxisOeOutput FitAxisOutputError(const std::vector<AxisLog>& logs, const AxisSect
   AxisOeResiduals residuals(oe, d.fixed, d.terms, 1e-8 * prepared.position_range, 1e-8 * prepared.rate_range);
   std::vector<FitChannel> channels;
   for (const auto& l : oe) {
-    const int n = static_cast<int>(l.log->time.size());
+    const int n = static_cast<int>(l.rows.size());
     channels.push_back({l.log->path + ":q", l.first_row, n, l.weighted_position.data()});
     if (l.rate_weight > 0.0) channels.push_back({l.log->path + ":qd", l.first_row + n, n, l.weighted_rate.data()});
   }

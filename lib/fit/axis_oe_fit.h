@@ -35,7 +35,8 @@ struct AxisOeOutput {
 };
 
 /// Where a simulation of a log starts: the logged position, and the logged
-/// rate qd if there is one, else the slope of the first 10 samples.
+/// rate qd if there is one (or AxisLog::start_rate), else the slope of the
+/// first 10 samples.
 struct AxisStart {
   double position = 0.0, rate = 0.0;
 };

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -20,6 +21,14 @@ struct AxisLog {
   std::vector<double> position;  ///< q [rad or m]
   std::vector<double> force;     ///< tau [N m or N] (from i x k_t if given as current) minus tau_known if logged
   std::vector<double> rate;      ///< qd [rad/s or m/s], a measured rate (empty: q is differentiated)
+  /// Rows where q and qd were measured (empty: every row). Rows in between
+  /// carry the effort only (e.g. a logger's rows between a device's status
+  /// frames, signal/held_samples.h); output error compares the measured rows.
+  std::vector<char> measured{};
+  /// The logged rate's first value when the rate channel was left out (a
+  /// rate held between status frames), for where a simulation starts; NaN:
+  /// none (the start rate then comes from `rate` or the position).
+  double start_rate = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The logical columns of the log (an entry "a|b": a, or else b).

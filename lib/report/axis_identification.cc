@@ -12,7 +12,7 @@
 #include "fit/validation.h"
 #include "models/feedforward.h"
 #include "report/axis_feedforward.h"
-#include "signal/held_samples.h"
+#include "report/status_frame_logs.h"
 
 namespace driveid {
 namespace {
@@ -82,6 +82,7 @@ std::optional<AxisParameters> OutputErrorStart(const std::vector<AxisLog>& logs,
     }
     idim.sensitivity = false;
     idim.per_log = false;
+    idim.max_relative_std = 1e6;  // start values only: output error judges what the logs determine
     AxisSection linear = section;
     linear.stribeck.reset();
     linear.stribeck_velocity.reset();
@@ -95,9 +96,9 @@ std::optional<AxisParameters> OutputErrorStart(const std::vector<AxisLog>& logs,
   return initial;
 }
 
-void FitByOutputError(const std::vector<AxisLog>& logs, const AxisIdentificationOptions& options,
-                      AxisIdentification& run) {
-  const std::optional<AxisParameters> initial = OutputErrorStart(logs, run.section, options.free);
+void FitByOutputError(const std::vector<AxisLog>& logs, const std::vector<AxisLog>& measured,
+                      const AxisIdentificationOptions& options, AxisIdentification& run) {
+  const std::optional<AxisParameters> initial = OutputErrorStart(measured, run.section, options.free);
   AxisOeOptions oe_options;
   oe_options.free = options.free;
   oe_options.fit = options.fit;
@@ -176,8 +177,8 @@ std::string MechanismFreeSet(const AxisIdentificationOptions& options, const Axi
 // advises output error (which does not differentiate), the advice is tried
 // first: the warning says what output error gives for that parameter, and
 // whether the two methods agree within 2 combined std (docs/models.md#adequacy).
-void TryOutputErrorAdvice(const std::vector<AxisLog>& logs, const AxisIdentificationOptions& options,
-                          AxisIdentification& run) {
+void TryOutputErrorAdvice(const std::vector<AxisLog>& logs, const std::vector<AxisLog>& measured,
+                          const AxisIdentificationOptions& options, AxisIdentification& run) {
   const std::string advice = kAxisOutputErrorAdvice;
   constexpr std::size_t kMaxTriedSamples = 200000;
   std::size_t samples = 0;
@@ -195,7 +196,7 @@ void TryOutputErrorAdvice(const std::vector<AxisLog>& logs, const AxisIdentifica
       try {
         AxisIdentification trial;
         trial.section = run.section;
-        FitByOutputError(logs, options, trial);
+        FitByOutputError(logs, measured, options, trial);
         oe = std::move(trial);
       } catch (const std::exception& e) {
         failure = std::string(e.what()).substr(0, 160);
@@ -220,26 +221,6 @@ void TryOutputErrorAdvice(const std::vector<AxisLog>& logs, const AxisIdentifica
   }
 }
 
-// A log whose position repeats between a device's status frames
-// (signal/held_samples.h) was measured at the frames, not at its rows: the
-// fit takes the rows' times, so the rates lag the effort by up to a frame.
-// Not yet modelled: said as a warning.
-void WarnStatusFrames(const std::vector<AxisLog>& logs, FitResult& fit) {
-  std::size_t held = 0;
-  double period = 0.0;
-  for (const auto& log : logs) {
-    const HeldChannel q = DetectHeldChannel(log.time, log.position);
-    if (q.held) ++held, period = std::max(period, q.frame_period);
-  }
-  if (held == 0) return;
-  fit.warnings.push_back(fmt::format(
-      "status frames: the position of {} of {} logs repeats for {:.3g} ms between a device's frames, so each value "
-      "was measured up to a frame before the rows that repeat it; the rates lag the effort, which biases Ka and Ks "
-      "by more than their std (docs/models.md#status-frames); log the position at the device's rate, or take these "
-      "as approximate",
-      held, logs.size(), 1e3 * period));
-}
-
 }  // namespace
 
 AxisMethod ChooseAxisMethod(const std::vector<AxisLog>& logs, AxisMethod requested, std::string* reason) {
@@ -252,9 +233,15 @@ AxisMethod ChooseAxisMethod(const std::vector<AxisLog>& logs, AxisMethod request
   return steps ? AxisMethod::kOutputError : AxisMethod::kInverseDynamics;
 }
 
-AxisIdentification IdentifyAxis(const std::vector<AxisLog>& logs, const AxisSection& section,
-                                const AxisIdentificationOptions& requested, const std::vector<AxisLog>& validation) {
+namespace {
+
+// The fit of `logs` (as logged, or re-timed at their status frames as
+// `frames` says), `validation` likewise.
+AxisIdentification IdentifyOn(const std::vector<AxisLog>& logged, const std::vector<AxisLog>& logs,
+                              const StatusFrameRetiming& frames, const AxisSection& section,
+                              const AxisIdentificationOptions& requested, const std::vector<AxisLog>& validation) {
   AxisIdentification run;
+  const std::vector<AxisLog> measured = MeasuredRows(logs);
   run.section = section;
   AxisIdentificationOptions options = requested;
   // SysId logs in a length unit are of a linear mechanism (an elevator, a drivetrain).
@@ -266,22 +253,76 @@ AxisIdentification IdentifyAxis(const std::vector<AxisLog>& logs, const AxisSect
   }
   const std::string mechanism = MechanismFreeSet(requested, run.section, options.free);
   std::string reason = "asked for";
-  run.method = ChooseAxisMethod(logs, options.method, &reason);
+  run.method = ChooseAxisMethod(measured, options.method, &reason);
+  if (options.method == AxisMethod::kAuto && frames.held_logs + frames.held_rates > 0) {
+    run.method = AxisMethod::kOutputError;
+    reason = "auto: status frames (output error compares the frames; inverse dynamics would differentiate them)";
+  }
   if (run.method == AxisMethod::kOutputError) {
     if (!validation.empty()) throw OptionError("held-out logs are predicted by inverse dynamics: use the idim method");
-    FitByOutputError(logs, options, run);
+    FitByOutputError(logs, measured, options, run);
+    if (frames.held_logs + frames.held_rates > 0) {
+      AxisOeOptions oe_options;
+      oe_options.free = options.free;
+      oe_options.fit = options.fit;
+      const std::string budget = AddStatusFrameBudget(logged, run.section, run.params, oe_options, run.fit);
+      if (!budget.empty()) run.summary.push_back(budget);
+    }
   } else {
-    FitByInverseDynamics(logs, options, validation, run);
-    TryOutputErrorAdvice(logs, options, run);
+    FitByInverseDynamics(measured, options, MeasuredRows(validation), run);
+    TryOutputErrorAdvice(logs, measured, options, run);
   }
   run.summary.insert(run.summary.begin(), fmt::format("method: {} ({})",
                                                       run.method == AxisMethod::kOutputError ? "output error" : "IDIM-LS",
                                                       reason));
   if (!mechanism.empty()) run.summary.push_back(mechanism);
-  WarnStatusFrames(logs, run.fit);
+  if (frames.held_rates > 0) {
+    run.summary.push_back(fmt::format(
+        "status frames: the logged velocity of {} of {} logs repeats between frames every {:.4g} ms while the "
+        "position changes at every row: the velocity is left out and the position fitted (velocity from the "
+        "position; docs/models.md#status-frames)",
+        frames.held_rates, logs.size(), 1e3 * frames.frame_period));
+  }
+  if (frames.held_logs > 0) {
+    run.summary.push_back(fmt::format(
+        "status frames: the position of {} of {} logs repeats between frames every {:.4g} ms; each frame is measured "
+        "once, half a logger step before its first row; the fit compares the {} frames, with the effort of all {} "
+        "rows (docs/models.md#status-frames)",
+        frames.held_logs, logs.size(), 1e3 * frames.frame_period, frames.frames, frames.rows));
+  }
   Interpret(options, run);
   StoreModelParameters(AxisParameterTable(), run.params, run.section);
   return run;
+}
+
+// Logs as logged whose position repeats between status frames: the rates lag
+// the effort (docs/models.md#status-frames).
+std::string StatusFrameWarning(const StatusFrameRetiming& frames, std::size_t logs, const std::string& why) {
+  return fmt::format(
+      "status frames: the position or velocity of {} of {} logs repeats for {:.3g} ms between a device's frames; "
+      "output error at the frames failed ({}), so the rows were fitted as logged: each value was measured up to a "
+      "frame before the rows that repeat it, the rates lag the effort, which biases Ka and Ks by more than their std "
+      "(docs/models.md#status-frames); log the position at the device's rate, or take these as approximate",
+      frames.held_logs + frames.held_rates, logs, 1e3 * frames.frame_period, why.substr(0, 200));
+}
+
+}  // namespace
+
+AxisIdentification IdentifyAxis(const std::vector<AxisLog>& logged, const AxisSection& section,
+                                const AxisIdentificationOptions& requested, const std::vector<AxisLog>& held_out) {
+  std::vector<AxisLog> logs = logged, validation = held_out;
+  const StatusFrameRetiming frames = RetimeStatusFrames(logs);
+  RetimeStatusFrames(validation);
+  if (frames.held_logs + frames.held_rates == 0 || requested.method != AxisMethod::kAuto) {
+    return IdentifyOn(logged, logs, frames, section, requested, validation);
+  }
+  try {
+    return IdentifyOn(logged, logs, frames, section, requested, validation);
+  } catch (const IdentificationError& e) {
+    AxisIdentification run = IdentifyOn(logged, logged, {}, section, requested, held_out);
+    run.fit.warnings.push_back(StatusFrameWarning(frames, logged.size(), e.what()));
+    return run;
+  }
 }
 
 }  // namespace driveid

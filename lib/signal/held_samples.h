@@ -30,6 +30,14 @@ struct HeldChannel {
 /// but by one count each time). Needs 50 or more changes.
 HeldChannel DetectHeldChannel(const std::vector<double>& time, const std::vector<double>& values);
 
+/// The same for several logs of one device: each tested alone, then a log
+/// too short for that (fewer than 100 rows or 50 changes) is held too when
+/// others are, more than half its rows repeat, and its own changes (10 or
+/// more) come at a median interval within 35 % of the held logs' median
+/// frame period (e.g. a 1 s step test next to a long ramp).
+std::vector<HeldChannel> DetectHeldChannels(const std::vector<const std::vector<double>*>& times,
+                                            const std::vector<const std::vector<double>*>& values);
+
 /// The rows to keep: where any of `channels` changes, plus one row per
 /// frame period within longer runs; always the first row.
 std::vector<std::size_t> FrameRows(const std::vector<double>& time, const std::vector<const std::vector<double>*>& channels,

@@ -122,18 +122,21 @@ sed 's/"Simple"/"Elevator"/' sysid.json > elevator.json
 "$bin" axis elevator.json -o elevator.yaml > elevator.txt 2>&1 && grep -q "SysId Elevator test: the constant gravity Kg is the offset" elevator.txt &&
   ! grep -q "gravity_cos: {value" elevator.yaml && ok || fail "SysId Elevator: $(cat elevator.txt)"
 # Position and velocity held for 4 rows (a status frame read by a faster
-# logger): the fit warns that they lag the effort (docs/models.md#status-frames).
+# logger): fitted by output error at the frames, the frames' timing in the
+# intervals (docs/models.md#status-frames).
 awk -F, 'NR > 1 && !/^#/ { n++; t[n] = $1; q[n] = $2; u[n] = $3 }
   END { r = 6.283185307179586
         for (k = 1; k <= n; k++) { h = k - (k - 1) % 4; a = h > 1 ? h - 1 : h; b = h < n ? h + 1 : h
           s = s (k > 1 ? ", " : "") sprintf("[%s, %s, %.12g, %.12g]", t[k], u[k], q[h] / r, (q[b] - q[a]) / (t[b] - t[a]) / r) }
         printf "{\"test\": \"Simple\", \"units\": \"Radians\", \"unitsPerRotation\": 6.283185307179586, \"slow-forward\": [%s], \"slow-backward\": [%s], \"fast-forward\": [%s], \"fast-backward\": [%s]}\n", s, s, s, s }' \
   <(grep -v '^#' axis.csv) > held.json
-"$bin" axis held.json -o held.yaml > held.txt 2>&1; grep -q "warning: status frames: the position of 4 of 4 logs repeats for" held.txt && ok ||
-  fail "status frames not warned of: $(grep -i warning held.txt | head -3)"
+"$bin" axis held.json -o held.yaml > held.txt 2>&1 && grep -q "^status frames: the position of 4 of 4 logs repeats between frames every 4 ms" held.txt &&
+  grep -q "^method: output error (auto: status frames" held.txt && grep -q "^systematic errors in the intervals" held.txt && ok ||
+  fail "status frames not fitted at the frames: $(grep -i 'status\|method' held.txt | head -3)"
 # The advice of the processing warning (output error) is tried before it is printed.
-grep -q "or --method oe, which does not differentiate; tried: output error gives inertia = [0-9.e-]* +- [0-9.e-]*, " held.txt && ok ||
-  fail "output-error advice not tried: $(grep 'warning: processing' held.txt)"
+"$bin" axis held.json --method idim -o held_idim.yaml > held_idim.txt 2>&1
+grep -q "or --method oe, which does not differentiate; tried: output error gives inertia = [0-9.e-]* +- [0-9.e-]*, " held_idim.txt && ok ||
+  fail "output-error advice not tried: $(grep 'warning: processing' held_idim.txt)"
 "$bin" axis sysid.json -o own_rate.yaml > own_rate.txt 2>&1 && grep -q "^adequacy" own_rate.txt && ! grep -q "status frames" own_rate.txt &&
   ok || fail "a log at its own rate warned of status frames: $(grep -i warning own_rate.txt | head -3)"
 sed 's/"Simple"/"Drivetrain"/' sysid.json > drive.json
