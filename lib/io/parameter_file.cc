@@ -450,6 +450,76 @@ void ParseFitCorrelation(const std::string& path, const YAML::Node& node, Parame
 
 }  // namespace
 
+namespace {
+
+// The lines of top-level key `key` in block style: from the line "key:" to
+// the next line that starts with neither a blank nor '#' ("" when absent).
+std::string TopLevelBlock(const std::string& text, const std::string& key) {
+  std::string block;
+  bool inside = false;
+  for (std::size_t begin = 0; begin < text.size();) {
+    const std::size_t end = std::min(text.find('\n', begin), text.size());
+    const std::string_view row(text.data() + begin, end - begin);
+    const bool top = !row.empty() && row[0] != ' ' && row[0] != '#' && row[0] != '\r';
+    if (top) inside = row.rfind(key + ":", 0) == 0;
+    if (inside) block.append(row).push_back('\n');
+    begin = end + 1;
+  }
+  return block;
+}
+
+// The fit section of an earlier fit: its keys checked, its estimates and
+// correlations read, its text kept.
+void ParseFitSection(const std::string& path, const YAML::Node& node, const std::string& text, ParameterFile& file) {
+  // Provenance of an earlier fit: accepted so that a fit's output is a
+  // valid input; replaced by a new fit, kept by a writer that fits nothing.
+  CheckMapping(path, "fit", node);
+  static const char* const kFitKeys[] = {"command", "version", "model", "data", "estimates", "derived",
+                                         "correlation", "rmse", "fit_percent", "autocorrelation", "inflation", "singular_values",
+                                         "iterations", "converged"};
+  for (const auto& entry : node) {
+    const std::string key = entry.first.Scalar();
+    if (std::find(std::begin(kFitKeys), std::end(kFitKeys), key) == std::end(kFitKeys)) {
+      throw InputError(fmt::format("{}: fit.{}: unknown key (the fit section is written by the tools; known: {})",
+                                   Where(path, entry.first), key, fmt::join(kFitKeys, ", ")));
+    }
+  }
+  file.had_fit_section = true;
+  file.fit_text = TopLevelBlock(text, "fit");
+  const YAML::Node data = node["data"];
+  if (data && data.IsSequence()) {
+    for (const auto& record : data) CheckKeys(path, "fit.data", record, {"file", "sha256", "samples", "segment", "notes"});
+  }
+  const YAML::Node derived = node["derived"];
+  if (derived && derived.IsMap()) {
+    for (const auto& entry : derived) CheckKeys(path, "fit.derived." + entry.first.Scalar(), entry.second, {"value", "std"});
+  }
+  const YAML::Node estimates = node["estimates"];
+  if (estimates && estimates.IsMap()) {
+    for (const auto& entry : estimates) {
+      const YAML::Node& e = entry.second;
+      const std::string name = "fit.estimates." + entry.first.Scalar();
+      CheckKeys(path, name, e, {"value", "std", "ci95"});
+      if (!e["value"] || !e["std"]) {
+        throw InputError(fmt::format("{}: {}: needs a value and a std", Where(path, e), name));
+      }
+      ParameterEstimate estimate;
+      estimate.name = entry.first.Scalar();
+      estimate.value = ParseNumber(path, name + ".value", e["value"]);
+      estimate.standard_error = ParseNumber(path, name + ".std", e["std"]);
+      const YAML::Node interval = e["ci95"];
+      if (interval && interval.IsSequence() && interval.size() == 2) {
+        estimate.ci95_low = ParseNumber(path, name + ".ci95", interval[0]);
+        estimate.ci95_high = ParseNumber(path, name + ".ci95", interval[1]);
+      }
+      file.fit_estimates.push_back(estimate);
+    }
+  }
+  ParseFitCorrelation(path, node["correlation"], file);
+}
+
+}  // namespace
+
 ParameterFile ParseParameterFile(const std::string& path, const std::string& text) {
   CheckNesting(path, text);
   // YAML::Load reads the first document only: refuse a second one, marked by
@@ -496,50 +566,7 @@ ParameterFile ParseParameterFile(const std::string& path, const std::string& tex
     } else if (section == "feedback") {
       file.feedback = ParseFeedbackSection(path, item.second);
     } else if (section == "fit") {
-      // Provenance of an earlier fit: accepted so that a fit's output is a
-      // valid input, and replaced when a new file is written.
-      CheckMapping(path, "fit", item.second);
-      static const char* const kFitKeys[] = {"command", "version", "model", "data", "estimates", "derived",
-                                             "correlation", "rmse", "fit_percent", "autocorrelation", "inflation", "singular_values",
-                                             "iterations", "converged"};
-      for (const auto& entry : item.second) {
-        const std::string key = entry.first.Scalar();
-        if (std::find(std::begin(kFitKeys), std::end(kFitKeys), key) == std::end(kFitKeys)) {
-          throw InputError(fmt::format("{}: fit.{}: unknown key (the fit section is written by the tools; known: {})",
-                                       Where(path, entry.first), key, fmt::join(kFitKeys, ", ")));
-        }
-      }
-      file.had_fit_section = true;
-      const YAML::Node data = item.second["data"];
-      if (data && data.IsSequence()) {
-        for (const auto& record : data) CheckKeys(path, "fit.data", record, {"file", "sha256", "samples", "segment", "notes"});
-      }
-      const YAML::Node derived = item.second["derived"];
-      if (derived && derived.IsMap()) {
-        for (const auto& entry : derived) CheckKeys(path, "fit.derived." + entry.first.Scalar(), entry.second, {"value", "std"});
-      }
-      const YAML::Node estimates = item.second["estimates"];
-      if (estimates && estimates.IsMap()) {
-        for (const auto& entry : estimates) {
-          const YAML::Node& e = entry.second;
-          const std::string name = "fit.estimates." + entry.first.Scalar();
-          CheckKeys(path, name, e, {"value", "std", "ci95"});
-          if (!e["value"] || !e["std"]) {
-            throw InputError(fmt::format("{}: {}: needs a value and a std", Where(path, e), name));
-          }
-          ParameterEstimate estimate;
-          estimate.name = entry.first.Scalar();
-          estimate.value = ParseNumber(path, name + ".value", e["value"]);
-          estimate.standard_error = ParseNumber(path, name + ".std", e["std"]);
-          const YAML::Node interval = e["ci95"];
-          if (interval && interval.IsSequence() && interval.size() == 2) {
-            estimate.ci95_low = ParseNumber(path, name + ".ci95", interval[0]);
-            estimate.ci95_high = ParseNumber(path, name + ".ci95", interval[1]);
-          }
-          file.fit_estimates.push_back(estimate);
-        }
-      }
-      ParseFitCorrelation(path, item.second["correlation"], file);
+      ParseFitSection(path, item.second, text, file);
     } else {
       throw InputError(fmt::format("{}: {}: unknown section (known: {}, feedforward, feedback, fit)", Where(path, item.first), section,
                                    SectionNames()));
@@ -635,6 +662,7 @@ std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit,
   }
   if (!file.feedforward.gains.empty()) out += FormatFeedforward(file.feedforward);
   if (!file.feedback.empty()) out += FormatFeedbackSection(file.feedback);
+  if (fit == nullptr && provenance == nullptr) out += file.fit_text;
   if (fit != nullptr && provenance != nullptr) {
     out += FormatProvenance(provenance);
     out += "  estimates:\n";

@@ -54,6 +54,9 @@ class ParameterFile {
   }
 
   bool had_fit_section = false;  ///< input carried a previous fit (replaced on output)
+  /// That fit section as written (from its line "fit:" to the next top-level
+  /// key), kept by a writer that makes no fit of its own (e.g. `gains`).
+  std::string fit_text;
   /// fit.estimates of a previous fit (value, std, ci95), for reports.
   std::vector<ParameterEstimate> fit_estimates;
   /// Feed-forward gains (docs/models.md#feed-forward), written by the axis
@@ -85,7 +88,8 @@ ParameterFile ParseParameterFile(const std::string& path, const std::string& tex
 ParameterFile ReadParameterFile(const std::string& path);
 
 /// Formats a parameter file; with `fit`/`provenance` non-null a `fit`
-/// section is added. Output is deterministic and reads back unchanged.
+/// section is added; with both null, the read file's own (`fit_text`) is
+/// kept as it was. Output is deterministic and reads back unchanged.
 std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit = nullptr,
                                 const FitProvenance* provenance = nullptr,
                                 const std::vector<DerivedQuantity>& derived = {});

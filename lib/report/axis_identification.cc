@@ -96,9 +96,19 @@ std::optional<AxisParameters> OutputErrorStart(const std::vector<AxisLog>& logs,
   return initial;
 }
 
+// `measured`: the logs' measured rows for the start values; `logged`: the
+// rows as logged, a second try for them (status frames too far apart for
+// inverse dynamics to see the inertia still start it, lagged, above 0).
 void FitByOutputError(const std::vector<AxisLog>& logs, const std::vector<AxisLog>& measured,
-                      const AxisIdentificationOptions& options, AxisIdentification& run) {
-  const std::optional<AxisParameters> initial = OutputErrorStart(measured, run.section, options.free);
+                      const std::vector<AxisLog>& logged, const AxisIdentificationOptions& options,
+                      AxisIdentification& run) {
+  std::optional<AxisParameters> initial;
+  try {
+    initial = OutputErrorStart(measured, run.section, options.free);
+  } catch (const IdentificationError&) {
+    if (&logged == &measured) throw;
+  }
+  if (!initial && &logged != &measured) initial = OutputErrorStart(logged, run.section, options.free);
   AxisOeOptions oe_options;
   oe_options.free = options.free;
   oe_options.fit = options.fit;
@@ -196,7 +206,7 @@ void TryOutputErrorAdvice(const std::vector<AxisLog>& logs, const std::vector<Ax
       try {
         AxisIdentification trial;
         trial.section = run.section;
-        FitByOutputError(logs, measured, options, trial);
+        FitByOutputError(logs, measured, measured, options, trial);
         oe = std::move(trial);
       } catch (const std::exception& e) {
         failure = std::string(e.what()).substr(0, 160);
@@ -260,7 +270,7 @@ AxisIdentification IdentifyOn(const std::vector<AxisLog>& logged, const std::vec
   }
   if (run.method == AxisMethod::kOutputError) {
     if (!validation.empty()) throw OptionError("held-out logs are predicted by inverse dynamics: use the idim method");
-    FitByOutputError(logs, measured, options, run);
+    FitByOutputError(logs, measured, logged, options, run);
     if (frames.held_logs + frames.held_rates > 0) {
       AxisOeOptions oe_options;
       oe_options.free = options.free;
@@ -286,9 +296,17 @@ AxisIdentification IdentifyOn(const std::vector<AxisLog>& logged, const std::vec
   if (frames.held_logs > 0) {
     run.summary.push_back(fmt::format(
         "status frames: the position of {} of {} logs repeats between frames every {:.4g} ms; each frame is measured "
-        "once, half a logger step before its first row; the fit compares the {} frames, with the effort of all {} "
-        "rows (docs/models.md#status-frames)",
-        frames.held_logs, logs.size(), 1e3 * frames.frame_period, frames.frames, frames.rows));
+        "once, half a logger step before its first row; the fit compares the {} frames ({}), with the effort of "
+        "all {} rows{} (docs/models.md#status-frames)",
+        frames.held_logs, logs.size(), 1e3 * frames.frame_period, frames.frames,
+        std::any_of(logs.begin(), logs.end(), [](const AxisLog& l) { return !l.rate.empty(); })
+            ? "position and the logged velocity"
+            : "position; velocity not logged",
+        frames.rows,
+        frames.effort_framed > 0 ? fmt::format("; the effort of {} logs comes in {:.3g} ms frames too, each value "
+                                               "taken to apply about its frame",
+                                               frames.effort_framed, 1e3 * frames.effort_frame_period)
+                                 : ""));
   }
   Interpret(options, run);
   StoreModelParameters(AxisParameterTable(), run.params, run.section);
@@ -300,7 +318,7 @@ AxisIdentification IdentifyOn(const std::vector<AxisLog>& logged, const std::vec
 std::string StatusFrameWarning(const StatusFrameRetiming& frames, std::size_t logs, const std::string& why) {
   return fmt::format(
       "status frames: the position or velocity of {} of {} logs repeats for {:.3g} ms between a device's frames; "
-      "output error at the frames failed ({}), so the rows were fitted as logged: each value was measured up to a "
+      "output error at the frames was not used ({}), so the rows were fitted as logged: each value was measured up to a "
       "frame before the rows that repeat it, the rates lag the effort, which biases Ka and Ks by more than their std "
       "(docs/models.md#status-frames); log the position at the device's rate, or take these as approximate",
       frames.held_logs + frames.held_rates, logs, 1e3 * frames.frame_period, why.substr(0, 200));
@@ -316,13 +334,17 @@ AxisIdentification IdentifyAxis(const std::vector<AxisLog>& logged, const AxisSe
   if (frames.held_logs + frames.held_rates == 0 || requested.method != AxisMethod::kAuto) {
     return IdentifyOn(logged, logs, frames, section, requested, validation);
   }
-  try {
-    return IdentifyOn(logged, logs, frames, section, requested, validation);
-  } catch (const IdentificationError& e) {
-    AxisIdentification run = IdentifyOn(logged, logged, {}, section, requested, held_out);
-    run.fit.warnings.push_back(StatusFrameWarning(frames, logged.size(), e.what()));
-    return run;
+  std::string why = "held-out logs are predicted by inverse dynamics";
+  if (held_out.empty()) {
+    try {
+      return IdentifyOn(logged, logs, frames, section, requested, validation);
+    } catch (const IdentificationError& e) {
+      why = e.what();
+    }
   }
+  AxisIdentification run = IdentifyOn(logged, logged, {}, section, requested, held_out);
+  run.fit.warnings.push_back(StatusFrameWarning(frames, logged.size(), why));
+  return run;
 }
 
 }  // namespace driveid

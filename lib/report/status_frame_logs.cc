@@ -103,47 +103,104 @@ double StepScatter(const std::vector<double>& time, double step) {
   return 1.4826 * *middle;
 }
 
-std::vector<HeldChannel> HeldChannels(const std::vector<AxisLog>& logs, std::vector<double> AxisLog::*channel) {
+std::vector<HeldChannel> HeldChannels(const std::vector<AxisLog>& logs, std::vector<double> AxisLog::*channel,
+                                      const HeldRule& rule) {
   std::vector<const std::vector<double>*> times, values;
   for (const auto& log : logs) {
     times.push_back(&log.time);
     values.push_back(&(log.*channel));
   }
-  return DetectHeldChannels(times, values);
+  return DetectHeldChannels(times, values, rule);
+}
+
+// A log whose first row already carries its effort's level (more than half
+// its largest effort): it began with its step, at its first row, and its
+// effort's timing does not matter after that.
+bool OpensAtLevel(const AxisLog& log) {
+  if (log.force.empty()) return false;
+  double largest = 0.0;
+  for (double u : log.force) largest = std::max(largest, std::abs(u));
+  return std::abs(log.force.front()) > 0.5 * largest;
+}
+
+// What is known of each log's timing when any log of the run is held
+// (empty otherwise): which channels come in frames, where the measurements
+// sit relative to the rows' effort, and how uncertain that is.
+struct LogTiming {
+  HeldChannel position, rate;
+  double step = 0.0;          // median logger step h [s]
+  double effort_frame = 0.0;  // the effort's frame period P [s], 0: at every row
+  double shift = 0.0;         // the measurements' time relative to their rows [s]
+  double variance = 0.0;      // of that shift's error [s^2]
+};
+
+std::vector<LogTiming> Timings(const std::vector<AxisLog>& logs) {
+  const std::vector<HeldChannel> position = HeldChannels(logs, &AxisLog::position, {});
+  const std::vector<HeldChannel> rate = HeldChannels(logs, &AxisLog::rate, {});
+  const auto any = [](const std::vector<HeldChannel>& c) {
+    return std::any_of(c.begin(), c.end(), [](const HeldChannel& h) { return h.held; });
+  };
+  if (!any(position) && !any(rate)) return {};
+  const std::vector<HeldChannel> effort = HeldChannels(logs, &AxisLog::force, {1.5, 0.4});
+  std::vector<LogTiming> out(logs.size());
+  for (std::size_t i = 0; i < logs.size(); ++i) {
+    LogTiming& t = out[i];
+    t.position = position[i];
+    t.rate = rate[i];
+    t.step = MedianStep(logs[i].time);
+    const double h2 = t.step * t.step;
+    // A frame was sent between the row before and the row that shows it.
+    if (t.position.held) t.shift -= 0.5 * t.step, t.variance += h2 / 12.0;
+    if (OpensAtLevel(logs[i])) {
+      // Its step began at its first row.
+    } else if (effort[i].held) {
+      // An effort in frames: each value sent before its row (as above) and
+      // applied about its frame, or a step begun up to a frame before the
+      // first row that shows it: centred, +-P/2.
+      t.effort_frame = effort[i].frame_period;
+      t.shift += 0.5 * t.step + 0.5 * t.effort_frame;
+      t.variance += (h2 + t.effort_frame * t.effort_frame) / 12.0;
+    } else if (!IsTorqueStepLog(logs[i])) {
+      // A varying effort sampled at its rows from a command between them
+      // (or held from them): centred on its row, +-h/2.
+      t.shift += 0.5 * t.step;
+      t.variance += h2 / 12.0;
+    }
+    // When each row's values were sampled, as uncertain as its stamp
+    // scatters about a regular clock.
+    const double jitter = StepScatter(logs[i].time, t.step);
+    t.variance += jitter * jitter;
+  }
+  return out;
 }
 
 }  // namespace
 
 StatusFrameRetiming RetimeStatusFrames(std::vector<AxisLog>& logs, const std::vector<double>& shifts) {
   StatusFrameRetiming out;
-  const std::vector<HeldChannel> held = HeldChannels(logs, &AxisLog::position);
-  const std::vector<HeldChannel> held_rate = HeldChannels(logs, &AxisLog::rate);
-  const auto any = [](const std::vector<HeldChannel>& c) {
-    return std::any_of(c.begin(), c.end(), [](const HeldChannel& h) { return h.held; });
-  };
-  if (!any(held) && !any(held_rate)) return out;
+  const std::vector<LogTiming> timing = Timings(logs);
+  if (timing.empty()) return out;
   for (std::size_t i = 0; i < logs.size(); ++i) {
     AxisLog& log = logs[i];
-    const double step = MedianStep(log.time);
-    // A varying effort was sampled at its rows from a command between them
-    // (or held from them): centred on its row, +-half a step either way.
-    double shift = (i < shifts.size() ? shifts[i] : 0.0) + (IsTorqueStepLog(log) ? 0.0 : 0.5 * step);
+    const LogTiming& t = timing[i];
+    const double shift = (i < shifts.size() ? shifts[i] : 0.0) + t.shift;
+    out.effort_framed += t.effort_frame > 0.0 ? 1 : 0;
+    out.effort_frame_period = std::max(out.effort_frame_period, t.effort_frame);
     std::vector<std::size_t> rows;
-    if (held[i].held) {
-      rows = FrameRows(log.time, {&log.position, &log.rate}, held[i].frame_period);
-      shift -= 0.5 * held[i].step;  // sent between the row before and the row that shows it
+    if (t.position.held) {
+      rows = FrameRows(log.time, {&log.position, &log.rate}, t.position.frame_period);
       out.frames += rows.size();
-      out.frame_period = std::max(out.frame_period, held[i].frame_period);
+      out.frame_period = std::max(out.frame_period, t.position.frame_period);
       ++out.held_logs;
     } else {
-      if (held_rate[i].held) {
+      if (t.rate.held) {
         // The position is measured at every row, the rate only at frames:
         // the rate is left out (output error fits the position, inverse
         // dynamics differentiates it).
         log.start_rate = log.rate.front();
         log.rate.clear();
         ++out.held_rates;
-        out.frame_period = std::max(out.frame_period, held_rate[i].frame_period);
+        out.frame_period = std::max(out.frame_period, t.rate.frame_period);
       }
       if (shift == 0.0) continue;
       rows.resize(log.time.size());
@@ -151,14 +208,14 @@ StatusFrameRetiming RetimeStatusFrames(std::vector<AxisLog>& logs, const std::ve
     }
     std::vector<double> frame_time, frame_q, frame_v;
     for (std::size_t k : rows) {
-      const double t = std::max(log.time.front(), log.time[k] + shift);
-      if (!frame_time.empty() && t <= frame_time.back()) continue;
-      frame_time.push_back(t);
+      const double time = std::max(log.time.front(), log.time[k] + shift);
+      if (!frame_time.empty() && time <= frame_time.back()) continue;
+      frame_time.push_back(time);
       frame_q.push_back(log.position[k]);
       if (!log.rate.empty()) frame_v.push_back(log.rate[k]);
     }
     out.rows += log.time.size();
-    out.logger_step = std::max(out.logger_step, step);
+    out.logger_step = std::max(out.logger_step, t.step);
     log = Merge(log, frame_time, frame_q, frame_v);
   }
   return out;
@@ -197,17 +254,9 @@ std::string AddStatusFrameBudget(const std::vector<AxisLog>& logged, const AxisS
     AddSystematicCovariance(fit, gradient, sigma);
     ++count;
   };
-  const std::vector<HeldChannel> held = HeldChannels(logged, &AxisLog::position);
-  for (std::size_t i = 0; i < logged.size(); ++i) {
-    // The frame's time within the step before the row that shows it, and a
-    // varying effort's within its row: each uniform over one step h; and
-    // when each row's values were sampled, as uncertain as its stamp
-    // scatters about a regular clock (the steps' robust std).
-    const double step = MedianStep(logged[i].time);
-    const double jitter = StepScatter(logged[i].time, step);
-    const double variance = ((held[i].held ? 1.0 : 0.0) + (IsTorqueStepLog(logged[i]) ? 0.0 : 1.0)) * step * step / 12.0 +
-                            jitter * jitter;
-    if (variance > 0.0) {
+  const std::vector<LogTiming> timings = Timings(logged);
+  for (std::size_t i = 0; i < timings.size(); ++i) {
+    if (timings[i].variance > 0.0) {
       const auto shifted = [&](double shift) {
         std::vector<AxisLog> logs = logged;
         std::vector<double> shifts(logs.size(), 0.0);
@@ -215,7 +264,7 @@ std::string AddStatusFrameBudget(const std::vector<AxisLog>& logged, const AxisS
         RetimeStatusFrames(logs, shifts);
         return logs;
       };
-      add(Gradient(shifted, 0.5 * step, section, fitted, quiet), std::sqrt(variance), timing);
+      add(Gradient(shifted, 0.5 * timings[i].step, section, fitted, quiet), std::sqrt(timings[i].variance), timing);
     }
     if (quantum > 0.0 && IsTorqueStepLog(logged[i])) {
       const auto moved = [&](double delta) {
@@ -235,8 +284,8 @@ std::string AddStatusFrameBudget(const std::vector<AxisLog>& logged, const AxisS
   }
   if (timing + effort == 0) return "";
   return fmt::format("systematic errors in the intervals (docs/models.md#status-frames): the timing of {} logs "
-                     "(a frame within its logger step, a varying effort within its row, each row's sample as its stamp "
-                     "scatters){}",
+                     "(a frame within its logger step, a varying or framed effort within its row or frame, each row's "
+                     "sample as its stamp scatters){}",
                      timing,
                      effort > 0 ? fmt::format(", the effort level of {} step logs (quantum {:.4g})", effort, quantum)
                                 : "");

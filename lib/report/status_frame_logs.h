@@ -20,15 +20,24 @@ struct StatusFrameRetiming {
   std::size_t rows = 0;         ///< rows of the held logs as logged
   double frame_period = 0.0;    ///< the longest median frame period [s]
   double logger_step = 0.0;     ///< the longest median logger step [s]
+  std::size_t effort_framed = 0;     ///< logs whose effort comes in frames too
+  double effort_frame_period = 0.0;  ///< their longest frame period [s]
 };
 
-/// Re-times the held logs in place: a frame first seen at row k was sent
-/// between rows k-1 and k, and is placed half a logger step before row k,
-/// shifted by `shifts[i]` [s] for log i (later when positive; none when
-/// `shifts` is empty); rows between frames keep their effort with
-/// `AxisLog::measured` false. A log whose logged rate is held but whose
-/// position is not loses its rate (the position, measured at every row, is
-/// fitted). Logs that are not held are left as they are.
+/// Re-times the logs in place when any of them is held (position or rate
+/// in frames, signal/held_samples.h; pooled over the logs), else leaves
+/// them alone. Each log's measurements move relative to its rows' effort:
+/// - a held position: each frame once, sent between the row before and the
+///   row that shows it (-h/2, h the median logger step);
+/// - an effort in frames too (period P >= 1.5 h): each value sent before
+///   its row and applied about its frame (+h/2 + P/2); else a varying
+///   effort centred on its row (+h/2); a step held from its row, or a log
+///   that opens at its effort's level (it began with its step), not at all;
+/// - `shifts[i]` more for log i (later when positive).
+/// Rows between frames keep their effort with `AxisLog::measured` false. A
+/// log whose logged rate is held but whose position is not loses its rate
+/// (the position, measured at every row, is fitted; `start_rate` keeps its
+/// first value).
 StatusFrameRetiming RetimeStatusFrames(std::vector<AxisLog>& logs, const std::vector<double>& shifts = {});
 
 /// The measured rows of each log (every row of a log without a mask).
@@ -36,16 +45,16 @@ std::vector<AxisLog> MeasuredRows(const std::vector<AxisLog>& logs);
 
 /// The systematic errors of status-frame logs that their residuals cannot
 /// show, added to an output-error fit's covariance (AddSystematicCovariance):
-/// - each held log's timing: a frame is placed half a logger step h before
-///   the row that shows it, and the effort's hold within its row is as
-///   uncertain, two uniform errors of width h (std h / sqrt(6)); the
-///   gradient from fits of `logged` with that log's frames shifted +-h/2;
+/// - each log's timing, with the variance of the moves above (a frame
+///   within its step h^2/12; a framed effort (h^2 + P^2)/12; a varying
+///   effort h^2/12) and of its stamps' scatter (the steps' robust std,
+///   squared); the gradient from fits with that log moved +-h/2;
 /// - a quantised effort (its levels multiples of one quantum q) held in
 ///   steps (fit/axis_oe_fit.h IsTorqueStepLog): the step's level is known to
 ///   +-q/2 (std q / sqrt(12)); the gradient from fits with that log's effort
 ///   moved +-q/2 (a ramp crosses many levels: its errors average out).
 /// The fits start from `fitted`, without per-log fits. Returns what was
-/// added, one line ("" when nothing was).
+/// added, one line ("" when nothing was); a warning when a fit failed.
 std::string AddStatusFrameBudget(const std::vector<AxisLog>& logged, const AxisSection& section,
                                  const AxisParameters& fitted, const AxisOeOptions& options, FitResult& fit);
 

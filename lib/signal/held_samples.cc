@@ -50,7 +50,7 @@ Changes CountChanges(const std::vector<double>& time, const std::vector<double>&
 
 }  // namespace
 
-HeldChannel DetectHeldChannel(const std::vector<double>& time, const std::vector<double>& values) {
+HeldChannel DetectHeldChannel(const std::vector<double>& time, const std::vector<double>& values, const HeldRule& rule) {
   HeldChannel out;
   if (std::min(time.size(), values.size()) < 100) return out;
   const Changes c = CountChanges(time, values);
@@ -73,18 +73,18 @@ HeldChannel DetectHeldChannel(const std::vector<double>& time, const std::vector
   const auto counts = static_cast<std::size_t>(std::count_if(c.jumps.begin(), c.jumps.end(), [&](double jump) {
     return std::abs(jump - quantum) <= 1e-6 * quantum;
   }));
-  out.held = out.repeat_fraction > 0.5 && out.frame_period >= 2.5 * out.step &&
+  out.held = out.repeat_fraction > rule.min_repeat_fraction && out.frame_period >= rule.min_frame_steps * out.step &&
              static_cast<double>(regular) >= 0.6 * static_cast<double>(c.intervals.size()) &&
              static_cast<double>(counts) < 0.8 * static_cast<double>(c.jumps.size());
   return out;
 }
 
 std::vector<HeldChannel> DetectHeldChannels(const std::vector<const std::vector<double>*>& times,
-                                            const std::vector<const std::vector<double>*>& values) {
+                                            const std::vector<const std::vector<double>*>& values, const HeldRule& rule) {
   std::vector<HeldChannel> out;
   std::vector<double> periods;
   for (std::size_t i = 0; i < times.size() && i < values.size(); ++i) {
-    out.push_back(DetectHeldChannel(*times[i], *values[i]));
+    out.push_back(DetectHeldChannel(*times[i], *values[i], rule));
     if (out.back().held) periods.push_back(out.back().frame_period);
   }
   if (periods.empty()) return out;
@@ -94,7 +94,8 @@ std::vector<HeldChannel> DetectHeldChannels(const std::vector<const std::vector<
     const Changes c = CountChanges(*times[i], *values[i]);
     if (c.intervals.size() < 10) continue;
     const double own = Median(c.intervals);
-    if (c.repeat_fraction > 0.5 && std::abs(own - period) <= 0.35 * period && period >= 2.5 * c.step) {
+    if (c.repeat_fraction > rule.min_repeat_fraction && std::abs(own - period) <= 0.35 * period &&
+        period >= rule.min_frame_steps * c.step) {
       out[i] = {true, own, c.repeat_fraction, c.step};
     }
   }

@@ -13,6 +13,14 @@
 
 namespace driveid {
 
+/// The thresholds of the test below (defaults: a position or velocity frame).
+/// An effort frame as short as two rows (10 ms at 200 Hz) repeats only every
+/// other row: {1.5, 0.4}.
+struct HeldRule {
+  double min_frame_steps = 2.5;      ///< frame period at least this many median steps
+  double min_repeat_fraction = 0.5;  ///< more than this share of rows repeat
+};
+
 struct HeldChannel {
   bool held = false;
   double frame_period = 0.0;     ///< median interval between changes [s]
@@ -28,7 +36,8 @@ struct HeldChannel {
 /// intervals and is not held), and fewer than 80 % of the changes are of
 /// the smallest size (a coarse encoder at a steady speed changes regularly,
 /// but by one count each time). Needs 50 or more changes.
-HeldChannel DetectHeldChannel(const std::vector<double>& time, const std::vector<double>& values);
+HeldChannel DetectHeldChannel(const std::vector<double>& time, const std::vector<double>& values,
+                              const HeldRule& rule = {});
 
 /// The same for several logs of one device: each tested alone, then a log
 /// too short for that (fewer than 100 rows or 50 changes) is held too when
@@ -36,7 +45,8 @@ HeldChannel DetectHeldChannel(const std::vector<double>& time, const std::vector
 /// more) come at a median interval within 35 % of the held logs' median
 /// frame period (e.g. a 1 s step test next to a long ramp).
 std::vector<HeldChannel> DetectHeldChannels(const std::vector<const std::vector<double>*>& times,
-                                            const std::vector<const std::vector<double>*>& values);
+                                            const std::vector<const std::vector<double>*>& values,
+                                            const HeldRule& rule = {});
 
 /// The rows to keep: where any of `channels` changes, plus one row per
 /// frame period within longer runs; always the first row.

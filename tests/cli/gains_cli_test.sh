@@ -90,6 +90,9 @@ grep -q "correlation -0.500" gains.txt && ok || fail "the fit's correlation is n
 "$bin" report gains.yaml > report.txt 2>&1 && grep -q "feedback (position loop, preset wpilib" report.txt && ok ||
   fail "report of the feedback section: $(cat report.txt)"
 "$bin" gains fitted.yaml --loop position -o again.yaml > /dev/null && cmp -s gains.yaml again.yaml && ok || fail "gains output differs between runs"
+# The written file keeps the fit it was designed from, as it was.
+diff <(sed -n '/^fit:/,$p' fitted.yaml) <(sed -n '/^fit:/,$p' gains.yaml) > /dev/null && grep -q "^fit:" gains.yaml && ok ||
+  fail "the fit section is not kept: $(grep -n '^[a-z]' gains.yaml)"
 "$bin" gains gains.yaml --loop position --json > reread.json && grep -q '"loop":"position"' reread.json && ok ||
   fail "the gains output does not read back as gains input"
 
@@ -101,7 +104,7 @@ expect 4 "LQR gains need Kv >= 0 and Ka > 0" -- gains negative.yaml
 sed 's/"V"/"N m"/' fitted.yaml > torque.yaml
 expect 2 "--preset rev-neo converts volts to its output, but the effort is in N m" -- gains torque.yaml --preset rev-neo
 expect 2 "gains needs a parameter file or both --kv and --ka" -- gains --kv 1
-{ cat gains.yaml; echo "  kq: 3"; } > hostile.yaml
+sed "/^feedback:/a\\  kq: 3" gains.yaml > hostile.yaml
 expect 3 "hostile.yaml:[0-9]+:[0-9]+: feedback.kq: unknown key" -- gains hostile.yaml
 sed 's/^  loop: position/  loop: "x\\u002a\/"/' gains.yaml > loop.yaml
 expect 3 "loop.yaml:[0-9]+:[0-9]+: feedback.loop" -- gains loop.yaml

@@ -71,3 +71,26 @@ TEST_CASE("residuals beyond lag-1 0.99 are named as model error, with the parame
                                             "samples (about 2 independent)"));
   CHECK_THAT(warnings[0], Catch::Contains("the intervals of stiffness, damping assume it stationary"));
 }
+
+TEST_CASE("a systematic error adds sigma^2 g g' to the covariance; stds, intervals and correlations follow") {
+  FitResult fit;
+  // std 0.07 and 0.01, correlation 0.5; intervals +-2 std (quantile 2).
+  fit.estimates = {{"stiffness", 1.5, 0.07, 1.36, 1.64}, {"damping", 0.3, 0.01, 0.28, 0.32}};
+  fit.covariance = {0.0049, 0.00035, 0.00035, 0.0001};
+  fit.correlation = {1.0, 0.5, 0.5, 1.0};
+  // g = (0.3, -0.02) per ms, sigma 0.2 ms: + (0.0036, -0.00024; -0.00024, 0.000016).
+  AddSystematicCovariance(fit, {0.3, -0.02}, 0.2);
+  const double s0 = std::sqrt(0.0049 + 0.0036), s1 = std::sqrt(0.0001 + 0.000016);
+  CHECK(fit.estimates[0].standard_error == Approx(s0).epsilon(1e-12));
+  CHECK(fit.estimates[1].standard_error == Approx(s1).epsilon(1e-12));
+  CHECK(fit.estimates[0].ci95_high == Approx(1.5 + 2.0 * s0).epsilon(1e-12));
+  CHECK(fit.estimates[1].ci95_low == Approx(0.3 - 2.0 * s1).epsilon(1e-12));
+  CHECK(fit.correlation[1] == Approx((0.00035 - 0.00024) / (s0 * s1)).epsilon(1e-12));
+  CHECK(fit.correlation[2] == fit.correlation[1]);
+  CHECK(fit.correlation[3] == Approx(1.0));
+  // A gradient of the wrong length or no sigma changes nothing.
+  const FitResult before = fit;
+  AddSystematicCovariance(fit, {1.0}, 1.0);
+  AddSystematicCovariance(fit, {1.0, 1.0}, 0.0);
+  CHECK(fit.covariance == before.covariance);
+}

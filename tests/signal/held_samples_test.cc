@@ -68,3 +68,19 @@ TEST_CASE("a position logged at its own rate, or a slow one through a coarse enc
   CHECK(s.repeat_fraction > 0.5);
   CHECK_FALSE(s.held);
 }
+
+TEST_CASE("a short log is held beside held logs of one device when its changes come at their period") {
+  const Log ramp = Logged(0.02, 0.005, 0.0, 1.0, 0.7);
+  Log step = Logged(0.02, 0.005, 0.0, 1.0, 2.0), direct = Logged(0.0, 0.005, 0.0, 1.0, 2.0);
+  step.time.resize(150), step.value.resize(150);  // 0.75 s: fewer than 50 changes
+  direct.time.resize(150), direct.value.resize(150);
+  CHECK_FALSE(DetectHeldChannel(step.time, step.value).held);
+  const auto held = DetectHeldChannels({&ramp.time, &step.time, &direct.time}, {&ramp.value, &step.value, &direct.value});
+  REQUIRE(held.size() == 3);
+  CHECK(held[0].held);
+  CHECK(held[1].held);
+  CHECK(held[1].frame_period == Approx(0.02).margin(0.003));
+  CHECK_FALSE(held[2].held);  // logged at its own rate: no repeats
+  // Alone, nothing vouches for the short log's frames.
+  CHECK_FALSE(DetectHeldChannels({&step.time}, {&step.value})[0].held);
+}
