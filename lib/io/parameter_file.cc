@@ -452,25 +452,42 @@ void ParseFitCorrelation(const std::string& path, const YAML::Node& node, Parame
 
 namespace {
 
-// The lines of top-level key `key` in block style: from the line "key:" to
-// the next line that starts with neither a blank nor '#' ("" when absent).
-std::string TopLevelBlock(const std::string& text, const std::string& key) {
+// The text of the top-level section `fit` as written: from the line of its
+// key (at column 0) to the line of the next top-level key (the parser's
+// marks, so that flow content at column 0 stays in), or to the end. "" when
+// that text does not read back alone as the one section `fit` (e.g. a flow
+// style document), and the section is then written anew or not at all.
+std::string FitSectionText(const std::string& text, const YAML::Node& root) {
+  int first = -1, next = -1;
+  for (const auto& item : root) {
+    const YAML::Mark mark = item.first.Mark();
+    if (item.first.Scalar() == "fit") first = mark.column == 0 ? mark.line : -2;
+  }
+  if (first < 0) return "";
+  for (const auto& item : root) {
+    const int line = item.first.Mark().line;
+    if (line > first && (next < 0 || line < next)) next = line;
+    if (line == first && item.first.Scalar() != "fit") return "";
+  }
   std::string block;
-  bool inside = false;
-  for (std::size_t begin = 0; begin < text.size();) {
+  int line = 0;
+  for (std::size_t begin = 0; begin < text.size(); ++line) {
     const std::size_t end = std::min(text.find('\n', begin), text.size());
-    const std::string_view row(text.data() + begin, end - begin);
-    const bool top = !row.empty() && row[0] != ' ' && row[0] != '#' && row[0] != '\r';
-    if (top) inside = row.rfind(key + ":", 0) == 0;
-    if (inside) block.append(row).push_back('\n');
+    if (line >= first && (next < 0 || line < next)) block.append(text, begin, end - begin).push_back('\n');
     begin = end + 1;
+  }
+  try {
+    const YAML::Node alone = YAML::Load(block);
+    if (!alone.IsMap() || alone.size() != 1 || !alone["fit"]) return "";
+  } catch (const YAML::Exception&) {
+    return "";
   }
   return block;
 }
 
 // The fit section of an earlier fit: its keys checked, its estimates and
 // correlations read, its text kept.
-void ParseFitSection(const std::string& path, const YAML::Node& node, const std::string& text, ParameterFile& file) {
+void ParseFitSection(const std::string& path, const YAML::Node& node, ParameterFile& file) {
   // Provenance of an earlier fit: accepted so that a fit's output is a
   // valid input; replaced by a new fit, kept by a writer that fits nothing.
   CheckMapping(path, "fit", node);
@@ -485,7 +502,6 @@ void ParseFitSection(const std::string& path, const YAML::Node& node, const std:
     }
   }
   file.had_fit_section = true;
-  file.fit_text = TopLevelBlock(text, "fit");
   const YAML::Node data = node["data"];
   if (data && data.IsSequence()) {
     for (const auto& record : data) CheckKeys(path, "fit.data", record, {"file", "sha256", "samples", "segment", "notes"});
@@ -566,12 +582,13 @@ ParameterFile ParseParameterFile(const std::string& path, const std::string& tex
     } else if (section == "feedback") {
       file.feedback = ParseFeedbackSection(path, item.second);
     } else if (section == "fit") {
-      ParseFitSection(path, item.second, text, file);
+      ParseFitSection(path, item.second, file);
     } else {
       throw InputError(fmt::format("{}: {}: unknown section (known: {}, feedforward, feedback, fit)", Where(path, item.first), section,
                                    SectionNames()));
     }
   }
+  if (file.had_fit_section) file.fit_text = FitSectionText(text, root);
   bool any_model = false;
   for (const auto& section : Sections()) any_model = any_model || section.present(file);
   if (!any_model && file.feedback.empty()) throw InputError(fmt::format("{}: no model section ({})", path, SectionNames()));

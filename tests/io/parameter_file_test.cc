@@ -1,6 +1,9 @@
 #include "io/parameter_file.h"
 #include "models/axis.h"
 
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include <catch2/catch.hpp>
@@ -180,6 +183,39 @@ TEST_CASE("fuzzer regression: an axis section with every value empty reads back 
   const auto again = ParseParameterFile("q.yaml", formatted);
   CHECK(again.Find<AxisSection>());
   CHECK(FormatParameterFile(again) == formatted);
+}
+
+TEST_CASE("fuzzer regression: a kept fit section whose flow sequence closes at column 0 reads back whole") {
+  // Found by tests/fuzz/parameter_file_fuzzer (tests/fuzz/regressions/parameter_file_fit_flow_column0.yaml):
+  // the fit section written back as it was read must end where the parser
+  // says the next key begins, not at the first line without indentation.
+  const std::string text = "axis:\n  inertia: 1\nfit:\n  correlation:\n    a: [1.0,\n \n]\n  converged: true\n";
+  const auto file = ParseParameterFile("p.yaml", text);
+  CHECK(file.fit_text == "fit:\n  correlation:\n    a: [1.0,\n \n]\n  converged: true\n");
+  const std::string formatted = FormatParameterFile(file);
+  const auto again = ParseParameterFile("q.yaml", formatted);
+  CHECK(again.had_fit_section);
+  CHECK(FormatParameterFile(again) == formatted);
+  // A section that does not read back alone (a flow-style document) is not kept.
+  CHECK(ParseParameterFile("f.yaml", "{axis: {inertia: 1}, fit: {converged: true}}").fit_text.empty());
+}
+
+TEST_CASE("fuzzer regression: the fuzzer's own check on its input (a fit section cut at a column-0 bracket)") {
+  const char* source_dir = std::getenv("DRIVEID_SOURCE_DIR");
+  REQUIRE(source_dir != nullptr);
+  std::ifstream in(std::string(source_dir) + "/tests/fuzz/regressions/parameter_file_fit_flow_column0.yaml",
+                   std::ios::binary);
+  REQUIRE(in);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  try {
+    const auto file = ParseParameterFile("fuzz.yaml", bytes.str());
+    const std::string formatted = FormatParameterFile(file);
+    const auto again = ParseParameterFile("formatted.yaml", formatted);
+    CHECK(FormatParameterFile(again) == formatted);
+  } catch (const InputError&) {
+    SUCCEED("refused: fine");
+  }
 }
 
 TEST_CASE("one YAML document only; the fit section's keys are checked") {
