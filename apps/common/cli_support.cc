@@ -67,11 +67,23 @@ void InstallSignalCleanup() {
   }
 }
 
+// Every option of `app` and of its subcommands that collects a list takes
+// one value per flag (the flag is repeated for more), so that `--col a=b
+// log.csv` leaves log.csv to the positional arguments.
+void OneValuePerFlag(CLI::App& app) {
+  for (CLI::Option* option :
+       app.get_options([](CLI::Option* o) { return o->nonpositional() && o->get_items_expected_max() > 1; })) {
+    option->allow_extra_args(false);
+  }
+  for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) OneValuePerFlag(*command);
+}
+
 }  // namespace
 
 int RunMain(CLI::App& app, int argc, char** argv, const std::function<void()>& dispatch) {
   const std::string program = app.get_name();
   InstallSignalCleanup();
+  OneValuePerFlag(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -90,6 +102,9 @@ int RunMain(CLI::App& app, int argc, char** argv, const std::function<void()>& d
   try {
     dispatch();
     return kSuccess;
+  } catch (const GateFailed& e) {
+    if (!e.message.empty()) Fail(program, e.message);
+    return kGateFailed;
   } catch (const InputError& e) {
     Fail(program, e.what());
     return kInvalidInput;

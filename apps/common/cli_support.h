@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,13 @@
 namespace driveid::cli {
 
 enum ExitCode { kSuccess = 0, kInternal = 1, kUsage = 2, kInvalidInput = 3, kIdentificationFailed = 4 };
+/// A gate that failed (`compare` found drift, `validate --fail-below` a low
+/// fit): exit 1, like diff, after the command's outputs are complete; the
+/// message ("" for none) goes to stderr (docs/formats.md#exit-codes).
+constexpr int kGateFailed = 1;
+struct GateFailed {
+  std::string message;
+};
 
 /// Parses the command line and runs `dispatch`, mapping exceptions to exit
 /// codes with a one-line message "program: ..." on stderr.
@@ -69,6 +77,7 @@ struct FitOutputOptions {
   double max_log_gib = 4.0;  ///< --max-log-size: largest log read [GiB]
   bool strict = false;       ///< --strict: adequacy warnings exit 4, nothing written
   double max_seconds = 0.0;  ///< --max-seconds: wall-clock limit of one solver run (0: none)
+  std::optional<double> fail_below{};  ///< validate --fail-below: exit 1 when a log's fit % is below this
 };
 /// Adds -o, --trace, --plot, --json, -q, -v, --max-log-size and --strict.
 void AddFitOutputOptions(CLI::App& command, FitOutputOptions& options);

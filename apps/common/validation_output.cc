@@ -19,6 +19,11 @@ void AddValidationOutputOptions(CLI::App& command, FitOutputOptions& options) {
   command.add_option("--max-log-size", options.max_log_gib, "largest log to read [GiB]")
       ->capture_default_str()
       ->check(FiniteWithin(1e-6, 1024.0));
+  command.add_option("--fail-below", options.fail_below,
+                     "a quality gate: exit 1 (after the report) when a log's fit % is below PCT, or has none "
+                     "(docs/formats.md#exit-codes)")
+      ->type_name("PCT")
+      ->check(FiniteWithin(-1e6, 100.0));
 }
 
 void EmitValidation(const FitOutputOptions& options, const ValidationReport& report,
@@ -53,6 +58,15 @@ void EmitValidation(const FitOutputOptions& options, const ValidationReport& rep
       WriteStdout(fmt::format("{}\n{}", report.method, FormatValidationTable(stats)));
     }
   });
+  if (options.fail_below) {
+    std::vector<std::string> below;
+    for (const auto& s : stats) {
+      if (!(s.fit_percent >= *options.fail_below)) below.push_back(fmt::format("{} ({:.3g} %)", s.name, s.fit_percent));
+    }
+    if (!below.empty()) {
+      throw GateFailed{fmt::format("fit below {:g} %: {}", *options.fail_below, fmt::join(below, ", "))};
+    }
+  }
 }
 
 }  // namespace driveid::cli

@@ -13,6 +13,7 @@
 #include "report/axis_feedforward.h"
 #include "report/drivetrain_report.h"
 #include "report/feedback_design.h"
+#include "report/parameter_comparison.h"
 #include "report/joint_report.h"
 #include "report/planar_robot_report.h"
 
@@ -23,7 +24,9 @@ CLI::App* SetupReportCommand(CLI::App& app, ReportOptions& options) {
       "report", "Transfer function (eq. 16), omega_n, zeta, gain; the paper's eq. (17) beside the recomputed values; "
       "a fitted axis' feed-forward gains (docs/models.md#feed-forward)");
   command->add_option("params", options.params, "parameter file")->required();
-  command->add_option("--fitted", options.fitted, "a fitted parameter file to show in a further column");
+  command->add_option("--fitted", options.fitted,
+                      "a fitted parameter file: beside a drivetrain section its values in a further column, "
+                      "else its fit.estimates compared with the file's (both must be fits)");
   command->add_option("--pose", options.pose, "robot: centre joint x,y [m] (default: the workspace centre)")
       ->delimiter(',')
       ->expected(2);
@@ -86,6 +89,21 @@ void RunReportCommand(const ReportOptions& options) {
   if (!file.feedback.empty()) {
     if (options.json) json["feedback"] = FeedbackReportJson(file.feedback);
     else text += FormatFeedbackReport(file.feedback);
+  }
+  // --fitted beside a section other than the drive train: the two fits'
+  // estimates compared (docs/guide.md#fleets-and-drift), or a refusal.
+  if (!options.fitted.empty() && !file.Find<DriveTrainSection>()) {
+    const ParameterFile fitted = ReadParameterFile(options.fitted);
+    const std::string& without = file.fit_estimates.empty() ? options.params : options.fitted;
+    if (file.fit_estimates.empty() || fitted.fit_estimates.empty()) {
+      throw InputError(fmt::format("--fitted: {} has no fit.estimates: beside a 'drivetrain' section --fitted shows "
+                                   "the fitted values in a column; for the other sections both files must be fits "
+                                   "(drivetrain-fit compare)",
+                                   without));
+    }
+    const FileComparison comparison = CompareEstimates(options.fitted, file.fit_estimates, fitted.fit_estimates, {});
+    if (options.json) json["fitted"] = ComparisonsJson(options.params, {comparison}, {});
+    else text += FormatComparisons(options.params, {comparison}, {});
   }
   WriteStdout(options.json ? DumpJson(json) : text);
 }

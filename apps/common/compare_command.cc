@@ -1,0 +1,102 @@
+// drivetrain-fit compare / cdrive-fit compare: parameter files against a
+// base, with a drift gate for CI (docs/guide.md#fleets-and-drift). The
+// comparison is lib/report/parameter_comparison.h.
+#include <algorithm>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "common/cli_support.h"
+#include "common/command_registry.h"
+#include "core/errors.h"
+#include "io/atomic_file.h"
+#include "io/parameter_file.h"
+#include "report/parameter_comparison.h"
+
+namespace driveid::cli {
+namespace {
+
+struct CompareOptions {
+  std::string base;
+  std::vector<std::string> files;
+  std::optional<double> fail_above;
+  std::optional<double> z;
+  std::vector<std::string> parameters;
+  bool json = false;
+  std::string plot;
+};
+
+CLI::App* SetupCompare(CLI::App& parent, CompareOptions& o) {
+  CLI::App* command = parent.add_subcommand(
+      "compare",
+      "Compare parameter files with a base: per estimate of the base's fit the relative change and z = change / "
+      "sqrt(std^2 + std_base^2); exit 1 when a parameter drifts past --fail-above and/or --z (docs/guide.md#fleets-"
+      "and-drift)");
+  command->add_option("base", o.base, "the base parameter file (a fit's output: its fit.estimates)")->required();
+  command->add_option("files", o.files, "parameter files to compare with it, in time order for --plot")->required();
+  command->add_option("--fail-above", o.fail_above, "drift: |relative change| above PCT percent")
+      ->type_name("PCT")
+      ->check(FiniteAbove(0.0));
+  command->add_option("--z", o.z, "drift: |z| above Z (with --fail-above: both)")->type_name("Z")->check(FiniteAbove(0.0));
+  command->add_option_function<std::vector<std::string>>(
+             "--parameters",
+             [&o](const std::vector<std::string>& texts) {
+               for (const auto& text : texts) {
+                 std::size_t begin = 0;
+                 while (begin <= text.size()) {
+                   const std::size_t end = std::min(text.find(',', begin), text.size());
+                   if (end > begin) o.parameters.push_back(text.substr(begin, end - begin));
+                   begin = end + 1;
+                 }
+               }
+             },
+             "compare these estimates only (comma-separated; default: all of the base's)")
+      ->type_name("NAMES");
+  command->add_flag("--json", o.json, "print one JSON object (files[].file, .drift, .parameters.NAME.relative_change, .z)");
+  command->add_option("--plot", o.plot, "plot each parameter's change across the files (.png or .svg)")
+      ->check([](const std::string& path) {
+        return IsSupportedPlotPath(path) ? std::string() : std::string("--plot needs a .png or .svg file name");
+      });
+  command->footer(
+      "Exit: 0 no drift, 1 a parameter drifted (after the report is printed), 2 usage, 3 an unreadable file.\n"
+      "Example:\n  drivetrain-fit compare base.yaml fits/*.yaml --fail-above 10 --z 3 --json");
+  return command;
+}
+
+void RunCompare(const CompareOptions& o) {
+  DriftGate gate;
+  gate.max_percent = o.fail_above;
+  gate.max_z = o.z;
+  gate.parameters = o.parameters;
+  const ParameterFile base = ReadParameterFile(o.base);
+  if (base.fit_estimates.empty()) {
+    throw InputError(fmt::format("{}: no fit.estimates: compare reads a fit's estimates and their std (a file that a "
+                                 "fitting command wrote)",
+                                 o.base));
+  }
+  std::vector<FileComparison> files;
+  for (const auto& path : o.files) {
+    const ParameterFile file = ReadParameterFile(path);
+    if (file.fit_estimates.empty()) throw InputError(fmt::format("{}: no fit.estimates to compare", path));
+    files.push_back(CompareEstimates(path, base.fit_estimates, file.fit_estimates, gate));
+  }
+  if (!o.plot.empty()) {
+    WriteFilesAtomically({{o.plot, RenderPanels(o.plot, ComparisonPanels(files, gate), "file (in the order given)")}});
+  }
+  WriteStdout(o.json ? DumpJson(ComparisonsJson(o.base, files, gate)) : FormatComparisons(o.base, files, gate));
+  const auto drifted = std::count_if(files.begin(), files.end(), [](const FileComparison& f) { return f.drift; });
+  if (drifted > 0) throw GateFailed{fmt::format("{} of {} files drifted from {}", drifted, files.size(), o.base)};
+}
+
+CompareOptions compare_options;
+const bool kDrivetrain = RegisterCommand({"drivetrain-fit", "", 55,
+                                          [](CLI::App& parent) { return SetupCompare(parent, compare_options); },
+                                          [](const std::string&) { RunCompare(compare_options); }});
+const bool kCDrive = RegisterCommand({"cdrive-fit", "", 55,
+                                      [](CLI::App& parent) { return SetupCompare(parent, compare_options); },
+                                      [](const std::string&) { RunCompare(compare_options); }});
+
+}  // namespace
+}  // namespace driveid::cli

@@ -1,0 +1,58 @@
+// Parameter files compared with a base (docs/guide.md#fleets-and-drift):
+// for each estimate of the base's fit (fit.estimates, value and std) that a
+// file also holds, the relative change (v - v0) / |v0| and
+// z = (v - v0) / sqrt(s^2 + s0^2); a drift gate flags the parameters whose
+// change exceeds a percentage and/or a z (both, when both are given).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/fit_result.h"
+#include "report/json.h"
+#include "report/plot.h"
+
+namespace driveid {
+
+struct DriftGate {
+  std::optional<double> max_percent;  ///< |relative change| above this [%] drifts
+  std::optional<double> max_z;        ///< |z| above this drifts
+  std::vector<std::string> parameters;  ///< compared (empty: all of the base's)
+};
+
+struct ParameterChange {
+  std::string name;
+  double base = 0.0, base_std = 0.0, value = 0.0, value_std = 0.0;
+  double relative_change = 0.0;  ///< (value - base) / |base|; NaN when base is 0
+  double z = 0.0;                ///< NaN when both stds are 0
+  bool drift = false;
+};
+
+struct FileComparison {
+  std::string file;
+  bool drift = false;                     ///< any parameter drifted
+  std::vector<ParameterChange> parameters;  ///< in the base's order
+  std::vector<std::string> missing;       ///< compared parameters the file has no estimate of
+};
+
+/// Compares `other` with `base` (estimates by name). Parameters asked for
+/// in `gate.parameters` that the base lacks are refused (InputError naming
+/// them).
+FileComparison CompareEstimates(const std::string& file, const std::vector<ParameterEstimate>& base,
+                                const std::vector<ParameterEstimate>& other, const DriftGate& gate);
+
+/// One block per file: each parameter's base, value, change and z, drift
+/// marked; a closing line with how many files drifted.
+std::string FormatComparisons(const std::string& base_file, const std::vector<FileComparison>& files,
+                              const DriftGate& gate);
+/// {"base", "gate", "files": [{"file", "drift", "missing", "parameters":
+/// {NAME: {"base", "base_std", "value", "std", "relative_change", "z",
+/// "drift"}}}], "drifted"}; NaN as null.
+Json ComparisonsJson(const std::string& base_file, const std::vector<FileComparison>& files, const DriftGate& gate);
+/// A panel per parameter: the relative change [%] of each file in the order
+/// given (the x axis: file 1, 2, ...), with +-2 combined std as a band and
+/// the gate's percentage as lines.
+std::vector<PlotPanel> ComparisonPanels(const std::vector<FileComparison>& files, const DriftGate& gate);
+
+}  // namespace driveid
