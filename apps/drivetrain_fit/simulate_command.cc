@@ -40,6 +40,9 @@ CLI::App* SetupSimulateAxisCommand(CLI::App& simulate, SimulateAxisOptions& axis
   axis->add_option("--params", axis_options.params, "parameter file with an axis section")->required();
   axis->add_option("-o,--output", axis_options.output, "log file to write (default: stdout)");
   axis->add_option("--profile", e.profile, "multisine or constant")->capture_default_str();
+  axis->add_option("--reference", axis_options.reference,
+                   "follow this reference CSV (t,q[,qd,qdd], docs/formats.md#references; `design axis` writes one) "
+                   "at its own times instead of a profile");
   axis->add_option("--rate", e.rate, "sampling rate [Hz]")->capture_default_str();
   axis->add_option("--duration", e.duration, "log length [s]")->capture_default_str();
   axis->add_option("--amplitude", e.amplitude, "multisine amplitude [rad or m]")->capture_default_str();
@@ -98,14 +101,20 @@ void RunSimulateRobotCommand(const SimulateRobotOptions& options, const std::str
 }
 
 void RunSimulateAxisCommand(const SimulateAxisOptions& options, const std::string& command_line) {
-  CheckDistinctFiles({options.params}, {{"-o", options.output}});
+  std::vector<std::string> inputs = {options.params};
+  if (!options.reference.empty()) inputs.push_back(options.reference);
+  CheckDistinctFiles(inputs, {{"-o", options.output}});
   const ParameterFile file = ReadParameterFile(options.params);
   if (!file.Find<AxisSection>()) throw InputError(fmt::format("{}: no 'axis' section", options.params));
   RequireModelValues(AxisParameterTable(), *file.Find<AxisSection>(), options.params, "axis", "the simulation",
                      AxisTermsZeroUnlessGiven(*file.Find<AxisSection>()));
   const AxisParameters params = MakeModelParameters(AxisParameterTable(), *file.Find<AxisSection>(), AxisParameters{}, "axis");
-  const AxisLog log = SimulateAxisExperiment(params, options.experiment);
-  const auto& e = options.experiment;
+  AxisExperiment e = options.experiment;
+  if (!options.reference.empty()) {
+    e.profile = "reference";
+    e.reference = ReadAxisReference(options.reference);
+  }
+  const AxisLog log = SimulateAxisExperiment(params, e);
   std::string text = FormatAxisLog(
       log, {"synthetic axis log (docs/formats.md#logs) made by: " + command_line,
             fmt::format("profile {}, rate {} Hz, resolution {}, noise {} (seed {})", e.profile, e.rate, e.resolution,

@@ -23,6 +23,7 @@ struct SimulateStepOptions {
 struct SimulateAxisOptions {
   std::string params;
   std::string output;
+  std::string reference;  ///< --reference: follow this file instead of a profile
   AxisExperiment experiment;
 };
 

@@ -532,6 +532,18 @@ void ParseFitSection(const std::string& path, const YAML::Node& node, ParameterF
     }
   }
   ParseFitCorrelation(path, node["correlation"], file);
+  for (auto [key, into] : {std::pair{"rmse", &file.fit_rmse}, std::pair{"inflation", &file.fit_inflation}}) {
+    const YAML::Node channels = node[key];
+    if (!channels || !channels.IsMap()) continue;
+    for (const auto& entry : channels) {
+      // Read for a design's noise only: a value that is no number is left out.
+      if (!entry.first.IsScalar() || !entry.second.IsScalar()) continue;
+      try {
+        into->emplace_back(entry.first.Scalar(), ParseNumber(path, "fit." + std::string(key), entry.second));
+      } catch (const InputError&) {
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -59,6 +59,9 @@ class ParameterFile {
   std::string fit_text;
   /// fit.estimates of a previous fit (value, std, ci95), for reports.
   std::vector<ParameterEstimate> fit_estimates;
+  /// fit.rmse and fit.inflation of a previous fit, per channel ("log:tau"),
+  /// for a design that predicts from the noise the fit met.
+  std::vector<std::pair<std::string, double>> fit_rmse, fit_inflation;
   /// Feed-forward gains (docs/models.md#feed-forward), written by the axis
   /// fit; none when `gains` is empty.
   Feedforward feedforward;

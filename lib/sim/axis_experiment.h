@@ -3,12 +3,15 @@
 // noise; positions are quantised like an encoder.
 //   multisine: q = A (0.6 sin(2 pi 0.3 t) + 0.3 sin(2 pi 1.1 t + 1) + 0.1 sin(2 pi 2.3 t + 2))
 //   constant:  q = speed t (constant rate: friction only)
+//   reference: q, q', q'' of a reference file (io/axis_reference.h) at its
+//              own times (`design axis` writes one); rate and duration unused
 #pragma once
 
 #include <cstdint>
 #include <string>
 
 #include "io/axis_log.h"
+#include "io/axis_reference.h"
 #include "models/axis.h"
 
 namespace driveid {
@@ -22,6 +25,7 @@ struct AxisExperiment {
   double resolution = 2.0 * 3.14159265358979323846 / 8192.0;  ///< position quantum (0 = none)
   double noise = 0.0;          ///< std of force noise
   std::uint64_t seed = 1;
+  AxisReference reference{};   ///< the "reference" profile's samples
 };
 
 /// Throws OptionError naming a bad option.

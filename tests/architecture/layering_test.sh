@@ -11,8 +11,9 @@ declare -A allowed=(
   [control]="core models control"
   [io]="core models control signal io"
   [sim]="core models control signal io sim"
+  [design]="core models design"
   [fit]="core models signal io sim fit"
-  [report]="core models control io signal sim fit report"
+  [report]="core models control io signal sim fit design report"
 )
 bad=0
 checked=0

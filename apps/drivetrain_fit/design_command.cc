@@ -1,0 +1,117 @@
+// drivetrain-fit design axis: the reference whose log the next fit needs
+// (docs/models.md#excitation-design). Parsing and output only; the design
+// is design/axis_excitation.h, its rendering report/design_report.h.
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "common/cli_support.h"
+#include "common/command_registry.h"
+#include "core/errors.h"
+#include "io/atomic_file.h"
+#include "io/parameter_file.h"
+#include "models/missing_values.h"
+#include "report/design_report.h"
+
+namespace driveid::cli {
+namespace {
+
+struct DesignAxisOptions {
+  std::string params, output, plot;
+  std::vector<double> band;
+  std::vector<std::string> targets;
+  AxisDesignOptions design;
+  bool json = false;
+};
+
+CLI::App* Setup(CLI::App& design, DesignAxisOptions& o) {
+  CLI::App* c = design.add_subcommand(
+      "axis", "A periodic position reference for the axis's position loop that minimises the next fit's std within "
+              "the limits (docs/models.md#excitation-design)");
+  AxisDesignOptions& d = o.design;
+  c->add_option("--params", o.params, "prior: parameter file with an axis section (an axis fit's output)")->required();
+  AddFreeOption(*c, d.free, "parameters the next fit estimates (default: inertia,viscous,coulomb,offset)");
+  c->add_option("--duration", d.duration, "log length [s]")->required()->check(FiniteAbove(0.0));
+  c->add_option("--rate", d.rate, "logging rate [Hz]")->capture_default_str()->check(FiniteAbove(0.0));
+  c->add_option("--period", d.period, "reference period [s] (default: the duration in periods of at most 10 s)")
+      ->check(FiniteAbove(0.0));
+  c->add_option("--max-position", d.max_position, "|q| limit about the start [rad or m]")->required()->check(FiniteAbove(0.0));
+  c->add_option("--max-speed", d.max_rate, "|qd| limit [rad/s or m/s]")->required()->check(FiniteAbove(0.0));
+  c->add_option("--max-acceleration", d.max_acceleration, "|qdd| limit [rad/s^2 or m/s^2] (default: the torque's)")
+      ->check(FiniteAbove(0.0));
+  c->add_option("--max-torque", d.max_torque, "|tau| limit of the prior model [N m or N] (met to 95 %)")
+      ->required()
+      ->check(FiniteAbove(0.0));
+  c->add_option("--band", o.band, "LO,HI: lines between [Hz] (default: the fundamental up to what the limits make "
+                                  "worth exciting, below rate / 150)")
+      ->delimiter(',')
+      ->expected(2)
+      ->check(FiniteAtLeast(0.0));
+  c->add_option("--lines", d.lines, "at most this many lines in the band")->capture_default_str()->check(CLI::Range(2, 40));
+  c->add_option("--criterion", d.criterion, "d: the geometric-mean std of the free parameters; a: the sum of the "
+                                            "relative variances of --target")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"d", "a"}));
+  c->add_option("--target", o.targets, "a: the parameters that count (default: all free)")->delimiter(',');
+  c->add_option("--noise", d.noise, "torque noise std per logged sample [N m or N] (default: from the prior's fit: "
+                                    "its residual rmse x inflation x sqrt(10 / 0.8))")
+      ->check(FiniteAbove(0.0));
+  c->add_option("-o,--output", o.output, "reference CSV to write: t,q,qd,qdd (docs/formats.md#references; atomic)");
+  c->add_flag("--json", o.json, "print one JSON object instead of the text");
+  c->add_option("--plot", o.plot, "the reference over one period, the prior's torque and the lines (.png or .svg)")
+      ->check([](const std::string& path) {
+        return IsSupportedPlotPath(path) ? std::string() : std::string("--plot needs a .png or .svg file name");
+      });
+  c->footer("Example:\n  drivetrain-fit axis first.csv -o prior.yaml\n"
+            "  drivetrain-fit design axis --params prior.yaml --duration 20 --max-position 1 --max-speed 2 "
+            "--max-torque 3 -o next.csv\n"
+            "  drivetrain-fit simulate axis --params prior.yaml --reference next.csv -o try.csv");
+  return c;
+}
+
+void Run(DesignAxisOptions o, const std::string& command_line) {
+  CheckDistinctFiles({o.params}, {{"-o", o.output}, {"--plot", o.plot}});
+  const ParameterFile file = ReadParameterFile(o.params);
+  const AxisSection* section = file.Find<AxisSection>();
+  if (!section) throw InputError(fmt::format("{}: no 'axis' section", o.params));
+  RequireModelValues(AxisParameterTable(), *section, o.params, "axis", "the design", AxisTermsZeroUnlessGiven(*section));
+  const AxisParameters prior = MakeModelParameters(AxisParameterTable(), *section, AxisParameters{}, "axis");
+  if (o.band.size() == 2) {
+    o.design.band_low = o.band[0];
+    o.design.band_high = o.band[1];
+  }
+  o.design.targets = o.targets;
+  if (!(o.design.noise > 0.0)) o.design.noise = NoiseFromIdimResiduals(file.fit_rmse, file.fit_inflation);
+  if (!(o.design.noise > 0.0)) {
+    throw OptionError(fmt::format("--noise: {} has no inverse-dynamics fit residual to take the torque noise from; "
+                                  "give --noise", o.params));
+  }
+  const AxisDesign design = DesignAxisExcitation(prior, o.design);
+  std::vector<std::pair<std::string, std::string>> files;
+  if (!o.output.empty()) {
+    std::vector<std::string> comments = {"axis reference (docs/formats.md#references) designed by: " + command_line};
+    for (std::size_t j = 0; j < design.free.size(); ++j) {
+      comments.push_back(fmt::format("predicted std {}: {:.6g}", design.free[j], design.designed.predicted_std[j]));
+    }
+    std::string lines;
+    for (double f : design.designed.reference.LineFrequencies()) lines += fmt::format(" {:.6g}", f);
+    comments.push_back(fmt::format("excited lines [Hz]:{}", lines));
+    files.emplace_back(o.output, FormatAxisReference(DesignedReference(design, prior, o.design.rate, o.design.duration),
+                                                     comments));
+  }
+  if (!o.plot.empty()) {
+    files.emplace_back(o.plot, RenderPanels(o.plot, AxisDesignPanels(design, prior, o.design.rate), "time [s]"));
+  }
+  WriteFilesAtomically(files);
+  WriteStdout(o.json ? DumpJson(AxisDesignJson(design)) : FormatAxisDesign(design, section->linear));
+}
+
+DesignAxisOptions options;
+const bool kGroup = RegisterGroup("drivetrain-fit", "design", 42,
+                                  "Design the next experiment: excitation that minimises the fit's std within limits");
+const bool kAxis = RegisterCommand({"drivetrain-fit", "design", 1, [](CLI::App& parent) { return Setup(parent, options); },
+                                    [](const std::string& line) { Run(options, line); }});
+
+}  // namespace
+}  // namespace driveid::cli

@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# The loop identify -> design -> log -> identify (docs/guide.md#designing-the-next-experiment)
+# on an axis under a stiff position loop (tests/cli/axis_tracking.awk,
+# written apart from driveid: quantised encoder, noisy logged torque, the
+# command held over each logger step): a first log tracking four equal sines
+# (0.2-2 Hz) gives the prior; `design axis` writes a reference that keeps
+# every limit; the fit of its tracking log has each std within 2x of the
+# prediction and a smaller inertia std than four sines' at the same limits.
+# Refusals name the option (exit 2) or the file and line (exit 3).
+# Usage: design_cli_test.sh DRIVETRAIN_FIT SRC
+set -u
+bin="$1"
+src="$2"
+program=drivetrain-fit
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work" || exit 1
+# shellcheck source=cli_test_lib.sh
+. "$src/tests/cli/cli_test_lib.sh"
+
+truth="-v J=0.05 -v b=0.2 -v tc=1 -v t0=0.3 -v bw=20 -v bits=16 -v noise=0.05"
+track() { awk $truth -v seed="$1" -f "$src/tests/cli/axis_tracking.awk" "$2" > "$3"; }
+# Four equal sines 0.2-2 Hz within |qd| <= 2 (the hand-made test).
+awk 'BEGIN { pi = 3.141592653589793; split("0.2 0.430887 0.928318 2.0", f, " "); print "t,q,qd,qdd"
+  for (k = 0; k <= 20000; k++) { t = k / 1000; q = 0; v = 0; a = 0
+    for (i = 1; i <= 4; i++) { w = 2 * pi * f[i]; q += 0.0875 * sin(w * t); v += 0.0875 * w * cos(w * t); a -= 0.0875 * w * w * sin(w * t) }
+    printf "%.6f,%.10g,%.10g,%.10g\n", t, q, v, a } }' > four.csv
+track 1 four.csv first.csv && "$bin" axis first.csv -q -o prior.yaml || fail "prior fit"
+
+limits="--duration 20 --max-position 1 --max-speed 2 --max-torque 3"
+"$bin" design axis --params prior.yaml $limits -o next.csv --json > design.json 2> design.err && ok ||
+  fail "design: $(cat design.err)"
+# Every limit on the written reference, the torque from the truth.
+awk -F, '/^#/ || /^t,/ { next } { q = $2 < 0 ? -$2 : $2; v = $3 < 0 ? -$3 : $3
+  tau = 0.05 * $4 + 0.2 * $3 + ($3 > 0 ? 1 : ($3 < 0 ? -1 : 0)) + 0.3; if (tau < 0) tau = -tau
+  if (q > mq) mq = q; if (v > mv) mv = v; if (tau > mt) mt = tau; n++ }
+  END { printf "%d %g %g %g\n", n, mq, mv, mt; exit !(n == 20001 && mq <= 1 && mv <= 2 && mt <= 3 && mt > 2.5) }' next.csv > peaks.txt &&
+  ok || fail "limits: rows, |q|, |qd|, |tau| = $(cat peaks.txt)"
+
+track 2 next.csv designed.csv && "$bin" axis designed.csv -q -o designed.yaml || fail "fit of the designed log"
+track 3 four.csv again.csv && "$bin" axis again.csv -q -o again.yaml || fail "fit of four sines"
+std_of() { awk -v name="$2" '/^  estimates:/ { f = 1; next } f && $1 == name ":" { gsub(/[{},]/, " "); print $5; exit }' "$1"; }
+for p in inertia viscous coulomb offset; do
+  predicted=$(grep -o "\"predicted_std\":{[^}]*}" design.json | head -1 | grep -o "\"$p\":[0-9.e+-]*" | cut -d: -f2)
+  achieved=$(std_of designed.yaml "$p")
+  awk -v a="$achieved" -v p="$predicted" 'BEGIN { exit !(a > 0 && p > 0 && a < 2 * p && p < 2 * a) }' && ok ||
+    fail "$p: achieved std $achieved, predicted $predicted (not within 2x)"
+done
+designed=$(std_of designed.yaml inertia)
+four=$(std_of again.yaml inertia)
+awk -v d="$designed" -v f="$four" 'BEGIN { exit !(d > 0 && f / d > 1.3) }' && ok ||
+  fail "inertia std: designed $designed, four sines $four (expected at least 1.3x smaller)"
+
+# simulate --reference: the prior's axis following the design exactly.
+"$bin" simulate axis --params prior.yaml --reference next.csv --noise 0.05 -o tried.csv > /dev/null &&
+  [ "$(grep -vc '^#' tried.csv)" -eq 20002 ] && ok || fail "simulate --reference"
+
+# Refusals.
+"$bin" design axis --params prior.yaml $limits --free inertia,stribeck > /dev/null 2> err.txt
+code=$?
+[ "$code" -eq 2 ] && grep -q -- "--free stribeck" err.txt && ok || fail "--free stribeck: exit $code, $(cat err.txt)"
+printf 'axis:\n  inertia: 0.05\n  viscous: 0.2\n  coulomb: 1\n  offset: 0.3\n' > nofit.yaml
+"$bin" design axis --params nofit.yaml $limits > /dev/null 2> err.txt
+code=$?
+[ "$code" -eq 2 ] && grep -q -- "--noise" err.txt && ok || fail "prior without a fit: exit $code, $(cat err.txt)"
+"$bin" design axis --params nofit.yaml --noise 0.05 --duration 20 --max-position 1 --max-speed 2 --max-torque 1.2 \
+  > /dev/null 2> err.txt
+code=$?
+[ "$code" -eq 2 ] && grep -q -- "--max-torque" err.txt && ok || fail "torque below the friction: exit $code, $(cat err.txt)"
+printf 't,q\n0,0\n0.001,x\n' > bad.csv
+"$bin" simulate axis --params nofit.yaml --reference bad.csv > /dev/null 2> err.txt
+code=$?
+[ "$code" -eq 3 ] && grep -q "bad.csv:3" err.txt && ok || fail "bad reference: exit $code, $(cat err.txt)"
+finish
