@@ -191,6 +191,22 @@ std::optional<double> ParseDouble(const std::string& text) {
 
 }  // namespace
 
+std::vector<std::string> SplitNames(const std::string& text, EmptyNames empty) {
+  std::vector<std::string> names;
+  std::size_t begin = 0;
+  while (true) {
+    const std::size_t end = text.find(',', begin);
+    const std::string name = text.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+    if (!name.empty()) {
+      names.push_back(name);
+    } else if (empty == EmptyNames::kRefuse) {
+      throw CLI::ValidationError(fmt::format("'{}' holds an empty parameter name", text));
+    }
+    if (end == std::string::npos) return names;
+    begin = end + 1;
+  }
+}
+
 void AddFreeOption(CLI::App& command, std::vector<std::string>& free, const std::string& help) {
   command
       .add_option_function<std::vector<std::string>>(
@@ -198,16 +214,10 @@ void AddFreeOption(CLI::App& command, std::vector<std::string>& free, const std:
           [&free](const std::vector<std::string>& texts) {
             free.clear();  // given: replaces the default set
             for (const std::string& text : texts) {
-              std::size_t begin = 0;
-              while (true) {
-                const std::size_t end = text.find(',', begin);
-                const std::string name = text.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
-                if (name.empty()) {
-                  throw CLI::ValidationError("--free", fmt::format("'{}' holds an empty parameter name", text));
-                }
-                free.push_back(name);
-                if (end == std::string::npos) break;
-                begin = end + 1;
+              try {
+                for (auto& name : SplitNames(text, EmptyNames::kRefuse)) free.push_back(std::move(name));
+              } catch (const CLI::ValidationError& e) {
+                throw CLI::ValidationError("--free", e.what());
               }
             }
           },

@@ -117,6 +117,12 @@ std::string FreeOptionHelp(const ParameterTable<Section, Model>& table, const st
 /// Adds --free NAMES (comma-separated, repeatable) collecting into `free`
 /// (which holds the default set until the first --free replaces it);
 /// an empty name (`--free ,`, `--free a,,b`) is a CLI::ValidationError (exit 2).
+/// How SplitNames treats an empty name ("a,,b", a trailing comma).
+enum class EmptyNames { kSkip, kRefuse };
+/// The comma-separated names in `text`; kRefuse throws CLI::ValidationError
+/// naming `text` for an empty one.
+std::vector<std::string> SplitNames(const std::string& text, EmptyNames empty);
+
 void AddFreeOption(CLI::App& command, std::vector<std::string>& free, const std::string& help);
 
 /// With -v, logs every solver iteration of the fit to stderr.

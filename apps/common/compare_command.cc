@@ -44,12 +44,7 @@ CLI::App* SetupCompare(CLI::App& parent, CompareOptions& o) {
              "--parameters",
              [&o](const std::vector<std::string>& texts) {
                for (const auto& text : texts) {
-                 std::size_t begin = 0;
-                 while (begin <= text.size()) {
-                   const std::size_t end = std::min(text.find(',', begin), text.size());
-                   if (end > begin) o.parameters.push_back(text.substr(begin, end - begin));
-                   begin = end + 1;
-                 }
+                 for (auto& name : SplitNames(text, EmptyNames::kSkip)) o.parameters.push_back(std::move(name));
                }
              },
              "compare these estimates only (comma-separated; default: all of the base's)")

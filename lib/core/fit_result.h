@@ -20,6 +20,10 @@ struct ParameterEstimate {
   std::string unit{};           ///< as the command knows it ("": not stated)
 };
 
+/// The suffix of an inverse-dynamics fit's torque channel, named after its
+/// log ("log.csv:tau"; fit/axis_rows.h, the design's noise).
+inline constexpr char kTorqueChannelSuffix[] = ":tau";
+
 /// Goodness of fit of one measured channel (e.g. tau_link of one log).
 struct ChannelStatistics {
   std::string name;

@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
 
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/fit_result.h"
 #include "core/option_check.h"
+#include "core/order_statistics.h"
 #include "design/nelder_mead.h"
 
 namespace driveid {
@@ -242,7 +245,7 @@ AxisDesignCandidate Finish(std::string name, const FourierReference& shape, cons
 double NoiseFromIdimResiduals(const std::vector<std::pair<std::string, double>>& rmse,
                               const std::vector<std::pair<std::string, double>>& inflation) {
   std::vector<double> noise;
-  const std::string suffix = ":tau";
+  const std::string suffix = kTorqueChannelSuffix;
   for (const auto& [channel, value] : rmse) {
     if (channel.size() < suffix.size() || channel.compare(channel.size() - suffix.size(), suffix.size(), suffix) != 0) continue;
     if (!(std::isfinite(value) && value > 0.0)) continue;
@@ -252,9 +255,7 @@ double NoiseFromIdimResiduals(const std::vector<std::pair<std::string, double>>&
     }
     noise.push_back(value * factor * std::sqrt(kDesignDecimation / kDesignDecimationBand));
   }
-  if (noise.empty()) return 0.0;
-  std::sort(noise.begin(), noise.end());
-  return noise[noise.size() / 2];
+  return Median(std::move(noise));
 }
 
 SampledReference SampleReference(const FourierReference& reference, const AxisParameters& prior, double rate,

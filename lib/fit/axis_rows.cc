@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/fit_result.h"
 #include "models/axis.h"
 #include "signal/butterworth.h"
 #include "signal/local_polynomial.h"
@@ -200,7 +201,7 @@ AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int deci
     }
     column = log.force;
     if (filtered) ZeroPhaseLowPassInPlace(column, band, d.rate_hz);
-    regression.BeginChannel(log.path + ":tau");
+    regression.BeginChannel(log.path + kTorqueChannelSuffix);
     std::vector<double> row(width);
     for (std::size_t r = 0; r < kept.size(); ++r) {
       std::copy_n(rows.begin() + static_cast<std::ptrdiff_t>(r * width), width, row.begin());

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <utility>
 
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/order_statistics.h"
 #include "fit/adequacy.h"
 #include "models/missing_values.h"
 
@@ -151,18 +153,14 @@ JointParameters StartFromFeatures(const ResponseData& motor, const std::vector<c
     }
     if (w < 0.5 * wa) viscous.push_back(std::real(n * n * Complex(0.0, w) / h_acc));  // n^2 / H_rate
   }
-  const auto median = [](std::vector<double> v) {
-    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-    return v[v.size() / 2];
-  };
   JointParameters p;
-  p.motor_inertia = inertia.empty() ? 1.0 : median(inertia);
+  p.motor_inertia = inertia.empty() ? 1.0 : Median(inertia);
   p.link_inertia = p.motor_inertia * std::max(wr * wr / (wa * wa) - 1.0, 1e-3);
   p.stiffness = p.link_inertia * wa * wa;
   p.damping = 2.0 * 0.05 * std::sqrt(p.stiffness * p.link_inertia);
   const double total = p.motor_inertia + p.link_inertia;
   const double floor = 0.05 * total * Omega(read.band_low > 0.0 ? read.band_low : 0.1 * read.antiresonance.value);
-  p.motor_viscous = std::max(viscous.empty() ? 0.0 : median(viscous), floor);
+  p.motor_viscous = std::max(viscous.empty() ? 0.0 : Median(viscous), floor);
   p.link_viscous = 0.1 * p.motor_viscous;
   return p;
 }

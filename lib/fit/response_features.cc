@@ -6,6 +6,8 @@
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
+#include "core/order_statistics.h"
+
 namespace driveid {
 namespace {
 
@@ -65,12 +67,6 @@ Refined Quadratic(const std::vector<double>& hz, const std::vector<double>& valu
   const double var_log = (cov(2, 2) / (c[2] * c[2]) + cov(0, 0) / (c[0] * c[0]) - 2.0 * cov(0, 2) / (c[0] * c[2])) / 16.0;
   out.std_hz = refined * std::sqrt(std::max(var_log, 0.0));
   return out;
-}
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-  return v[v.size() / 2];
 }
 
 // Whether bin b of the excitation stands as a line above its neighbours.

@@ -9,6 +9,7 @@
 
 #include "core/errors.h"
 #include "core/option_check.h"
+#include "core/order_statistics.h"
 #include "fit/linear_regression.h"
 #include "io/csv_log.h"
 #include "signal/local_polynomial.h"
@@ -119,9 +120,7 @@ std::vector<char> NearCurrentJumps(const RobotLog& log, const std::array<std::ve
   for (std::size_t i = 0; i < 3; ++i) {
     std::vector<double> deviation(log.time.size());
     for (std::size_t k = 0; k < deviation.size(); ++k) deviation[k] = std::abs(log.current[i][k] - current[i][k]);
-    std::vector<double> sorted = deviation;
-    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
-    const double sigma = 1.4826 * sorted[sorted.size() / 2];
+    const double sigma = RobustStd(deviation);
     for (std::size_t k = 0; k < deviation.size(); ++k) {
       if (!(deviation[k] > 4.0 * sigma) || sigma <= 0.0) continue;
       // Mark the window around k (time is increasing: scan outwards).

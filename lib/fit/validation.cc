@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/fit_result.h"
 #include "fit/adequacy.h"
 #include "fit/axis_oe_fit.h"
 #include "fit/axis_rows.h"
@@ -51,7 +52,7 @@ std::vector<ValidatedLog> ValidateAxis(const std::vector<AxisLog>& logs, const A
   for (std::size_t i = 0; i < logs.size(); ++i) {
     std::vector<double> residuals(out[i].measured.size());
     for (std::size_t k = 0; k < residuals.size(); ++k) residuals[k] = out[i].measured[k] - out[i].model[k];
-    out[i].stats = DescribeResiduals(logs[i].path + ":tau", out[i].measured.data(), residuals.data(),
+    out[i].stats = DescribeResiduals(logs[i].path + kTorqueChannelSuffix, out[i].measured.data(), residuals.data(),
                                      static_cast<int>(residuals.size()));
   }
   return out;

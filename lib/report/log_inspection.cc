@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/order_statistics.h"
 
 namespace driveid {
 namespace {
@@ -70,9 +72,7 @@ InspectedLog InspectLog(const TableSource& source, const LogInputOptions& option
     if (time.size() >= 2) {
       std::vector<double> steps(time.size() - 1);
       for (std::size_t k = 1; k < time.size(); ++k) steps[k - 1] = time[k] - time[k - 1];
-      std::vector<double> sorted = steps;
-      std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
-      const double median = sorted[sorted.size() / 2];
+      const double median = Median(steps);
       const auto [lo, hi] = std::minmax_element(steps.begin(), steps.end());
       out.rate = 1.0 / median;
       out.jitter = (*hi - *lo) / median;

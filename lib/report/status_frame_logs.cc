@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/order_statistics.h"
 #include "fit/adequacy.h"
 #include "signal/held_samples.h"
 #include "signal/resample.h"
@@ -97,10 +99,7 @@ std::vector<double> Gradient(const Perturb& perturb, double half, const AxisSect
 double StepScatter(const std::vector<double>& time, double step) {
   std::vector<double> deviation;
   for (std::size_t k = 1; k < time.size(); ++k) deviation.push_back(std::abs(time[k] - time[k - 1] - step));
-  if (deviation.empty()) return 0.0;
-  const auto middle = deviation.begin() + static_cast<std::ptrdiff_t>(deviation.size() / 2);
-  std::nth_element(deviation.begin(), middle, deviation.end());
-  return 1.4826 * *middle;
+  return RobustStd(std::move(deviation));
 }
 
 std::vector<HeldChannel> HeldChannels(const std::vector<AxisLog>& logs, std::vector<double> AxisLog::*channel,

@@ -8,6 +8,7 @@
 #include <unsupported/Eigen/FFT>
 
 #include "core/errors.h"
+#include "core/order_statistics.h"
 
 namespace driveid {
 namespace {
@@ -327,8 +328,7 @@ std::vector<char> ExcitedBins(const std::vector<double>& excitation, std::size_t
   for (std::size_t b = 0; b < excitation.size(); ++b) {
     window.assign(excitation.begin() + static_cast<std::ptrdiff_t>(b >= kHalf ? b - kHalf : 0),
                   excitation.begin() + static_cast<std::ptrdiff_t>(std::min(b + kHalf + 1, excitation.size())));
-    std::nth_element(window.begin(), window.begin() + static_cast<std::ptrdiff_t>(window.size() / 2), window.end());
-    median[b] = window[window.size() / 2];
+    median[b] = Median(window);
     level = std::max(level, median[b]);
   }
   // A bin is excited with its neighbourhood: an isolated line is not a band.

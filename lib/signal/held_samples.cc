@@ -3,15 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/order_statistics.h"
+
 namespace driveid {
 namespace {
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const auto middle = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), middle, v.end());
-  return *middle;
-}
 
 }  // namespace
 

@@ -2,15 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+
+#include "core/order_statistics.h"
 
 namespace driveid {
 
 double MedianStep(const std::vector<double>& time) {
   std::vector<double> steps(time.size() - 1);
   for (std::size_t k = 1; k < time.size(); ++k) steps[k - 1] = time[k] - time[k - 1];
-  const auto middle = steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2);
-  std::nth_element(steps.begin(), middle, steps.end());
-  return *middle;
+  return Median(std::move(steps));
 }
 
 double GlitchedStep(const std::vector<double>& time) {
