@@ -34,9 +34,7 @@ CLI::App* SetupCDriveSimulateCommand(CLI::App& app, CDriveSimulateOptions& optio
       ->check(CLI::IsMember({"PI", "PD", "PID"}));
   command->add_option("--trace", options.trace, "CSV of the tracking errors in u [m] and theta [rad]");
   command->add_option("--plot", options.plot, "plot of the tracking errors (.png or .svg)")
-      ->check([](const std::string& path) {
-        return IsSupportedPlotPath(path) ? std::string() : std::string("--plot needs a .png or .svg file name");
-      });
+      ->check(PlotPath());
   command->add_flag("--json", options.json, "print the summary as one JSON object");
   command->footer(
       "Example:\n  cdrive-fit simulate --program helical --params data/cdrive_table1.yaml --cycles 1 \\\n"

@@ -325,6 +325,14 @@ void CheckDistinctFiles(const std::vector<std::string>& inputs,
   }
 }
 
+CLI::Validator PlotPath() {
+  return CLI::Validator(
+      [](std::string& path) {
+        return IsSupportedPlotPath(path) ? std::string() : std::string("--plot needs a .png or .svg file name");
+      },
+      "", "PlotPath");
+}
+
 void CheckFitOutputs(const FitOutputOptions& options, std::vector<std::string> inputs) {
   CheckDistinctFiles(inputs, {{"-o", options.output}, {"--trace", options.trace}, {"--plot", options.plot}});
 }
@@ -333,9 +341,7 @@ void AddFitOutputOptions(CLI::App& command, FitOutputOptions& options) {
   command.add_option("-o,--output", options.output, "write the fitted parameter file here (default: stdout)");
   command.add_option("--trace", options.trace, "write a CSV of time, measured, model and residual per channel");
   command.add_option("--plot", options.plot, "render fit vs measurement and residuals (.png or .svg)")
-      ->check([](const std::string& path) {
-        return IsSupportedPlotPath(path) ? std::string() : std::string("--plot needs a .png or .svg file name");
-      });
+      ->check(PlotPath());
   command.add_flag("--json", options.json, "print the summary as one JSON object instead of the table");
   command.add_flag("-q,--quiet", options.quiet, "print no summary table");
   command.add_flag("-v,--verbose", options.verbose, "log solver iterations on stderr");

@@ -58,6 +58,8 @@ CLI::Validator FiniteAbove(double minimum);
 CLI::Validator FiniteWithin(double minimum, double maximum);
 CLI::Validator FiniteAtLeast(double minimum);
 CLI::Validator Seed();
+/// A --plot file name: .png or .svg (report/plot.h, IsSupportedPlotPath).
+CLI::Validator PlotPath();
 
 /// Refuses (OptionError, exit 2) an output that is one of the inputs or
 /// another output: compared by device and inode where the file exists, by

@@ -51,9 +51,7 @@ CLI::App* SetupCompare(CLI::App& parent, CompareOptions& o) {
       ->type_name("NAMES");
   command->add_flag("--json", o.json, "print one JSON object (files[].file, .drift, .parameters.NAME.relative_change, .z)");
   command->add_option("--plot", o.plot, "plot each parameter's change across the files (.png or .svg)")
-      ->check([](const std::string& path) {
-        return IsSupportedPlotPath(path) ? std::string() : std::string("--plot needs a .png or .svg file name");
-      });
+      ->check(PlotPath());
   command->footer(
       "Exit: 0 no drift, 1 a parameter drifted (after the report is printed), 2 usage, 3 an unreadable file.\n"
       "Example:\n  drivetrain-fit compare base.yaml fits/*.yaml --fail-above 10 --z 3 --json");

@@ -11,9 +11,7 @@ namespace driveid::cli {
 void AddValidationOutputOptions(CLI::App& command, FitOutputOptions& options) {
   command.add_option("--trace", options.trace, "write a CSV of time, measured, predicted and residual per log");
   command.add_option("--plot", options.plot, "render measured vs predicted and residuals (.png or .svg)")
-      ->check([](const std::string& path) {
-        return IsSupportedPlotPath(path) ? std::string() : std::string("--plot needs a .png or .svg file name");
-      });
+      ->check(PlotPath());
   command.add_flag("--json", options.json, "print the result as one JSON object instead of the table");
   command.add_flag("-q,--quiet", options.quiet, "print no table");
   command.add_option("--max-log-size", options.max_log_gib, "largest log to read [GiB]")

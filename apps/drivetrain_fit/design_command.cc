@@ -60,9 +60,7 @@ CLI::App* Setup(CLI::App& design, DesignAxisOptions& o) {
   c->add_option("-o,--output", o.output, "reference CSV to write: t,q,qd,qdd (docs/formats.md#references; atomic)");
   c->add_flag("--json", o.json, "print one JSON object instead of the text");
   c->add_option("--plot", o.plot, "the reference over one period, the prior's torque and the lines (.png or .svg)")
-      ->check([](const std::string& path) {
-        return IsSupportedPlotPath(path) ? std::string() : std::string("--plot needs a .png or .svg file name");
-      });
+      ->check(PlotPath());
   c->footer("Example:\n  drivetrain-fit axis first.csv -o prior.yaml\n"
             "  drivetrain-fit design axis --params prior.yaml --duration 20 --max-position 1 --max-speed 2 "
             "--max-torque 3 -o next.csv\n"

@@ -93,9 +93,7 @@ CLI::App* Setup(CLI::App& app, FrfCliOptions& o) {
   AddLogInputOptions(*c, o.log_input, "tau=#4");
   c->add_option("-o,--output-file", o.out.output, "write the parameter file (joint and frf sections) here");
   c->add_option("--csv", o.out.trace, "write the response as CSV (docs/formats.md#frequency-response-csv)");
-  c->add_option("--plot", o.out.plot, "render the Bode plot (.png or .svg)")->check([](const std::string& path) {
-    return IsSupportedPlotPath(path) ? std::string() : std::string("--plot needs a .png or .svg file name");
-  });
+  c->add_option("--plot", o.out.plot, "render the Bode plot (.png or .svg)")->check(PlotPath());
   c->add_flag("--json", o.out.json, "print the summary as one JSON object instead of text");
   c->add_flag("-q,--quiet", o.out.quiet, "print no summary");
   c->add_flag("-v,--verbose", o.out.verbose, "log solver iterations on stderr");

@@ -76,9 +76,7 @@ CLI::App* Setup(CLI::App& app, GainsOptions& o) {
   command->add_option("--plot", o.plot,
                       "speed loop: the open loop's Bode plot with its margins and the closed loop's step response "
                       "(.png or .svg)")
-      ->check([](const std::string& path) {
-        return IsSupportedPlotPath(path) ? std::string() : std::string("--plot needs a .png or .svg file name");
-      });
+      ->check(PlotPath());
   command->footer(
       "Example:\n  drivetrain-fit axis sysid.json -o arm.yaml\n"
       "  drivetrain-fit gains arm.yaml --loop position --preset rev-neo -o arm_gains.yaml\n"

@@ -9,6 +9,7 @@
 #include "core/errors.h"
 #include "io/atomic_file.h"
 #include "io/parameter_file.h"
+#include "io/torque_reference.h"
 #include "models/missing_values.h"
 
 namespace driveid::cli {
@@ -172,7 +173,13 @@ CLI::App* SetupSimulateJointCommand(CLI::App& simulate, SimulateJointOptions& o)
   joint->add_option("--period", e.period, "multisine period, chirp sweep or PRBS sequence [s]")->capture_default_str()
       ->check(FiniteAbove(0.0));
   joint->add_option("--rate", e.rate, "sampling rate [Hz]")->capture_default_str()->check(FiniteWithin(1.0, 1e6));
-  joint->add_option("--duration", e.duration, "log length [s]")->capture_default_str()->check(FiniteAbove(0.0));
+  joint->add_option("--duration", e.duration, "log length [s] (with --reference: its length)")
+      ->capture_default_str()
+      ->check(FiniteAbove(0.0))
+      ->each([&o](const std::string&) { o.duration_given = true; });
+  joint->add_option("--reference", o.reference,
+                    "inject this excitation CSV (t,tau at the logging rate, repeated; docs/formats.md#references; "
+                    "`design joint` writes one) instead of --excitation, --band, --amplitude, --period, --rate");
   joint->add_option("--kp", e.kp, "PI speed loop: proportional gain [N m s/rad] (0: open loop)")->capture_default_str()
       ->check(FiniteWithin(-1e12, 1e12));
   joint->add_option("--ki", e.ki, "PI speed loop: integral gain [N m/rad]")->capture_default_str()
@@ -187,7 +194,9 @@ CLI::App* SetupSimulateJointCommand(CLI::App& simulate, SimulateJointOptions& o)
 }
 
 void RunSimulateJointCommand(const SimulateJointOptions& o, const std::string& command_line) {
-  CheckDistinctFiles({o.params}, {{"-o", o.output}});
+  std::vector<std::string> inputs{o.params};
+  if (!o.reference.empty()) inputs.push_back(o.reference);
+  CheckDistinctFiles(inputs, {{"-o", o.output}});
   const ParameterFile file = ReadParameterFile(o.params);
   if (!file.Find<JointSection>()) throw InputError(fmt::format("{}: no 'joint' section", o.params));
   const JointSection& section = *file.Find<JointSection>();
@@ -199,6 +208,13 @@ void RunSimulateJointCommand(const SimulateJointOptions& o, const std::string& c
   if (o.band.size() == 2) {
     e.f_low = o.band[0];
     e.f_high = o.band[1];
+  }
+  if (!o.reference.empty()) {
+    const TorqueReference reference = ReadTorqueReference(o.reference);
+    e.excitation = "reference";
+    e.reference = reference.torque;
+    e.rate = TorqueReferenceRate(reference);
+    if (!o.duration_given) e.duration = static_cast<double>(reference.torque.size()) / e.rate;
   }
   const double n = section.gear_ratio.value_or(1.0);
   const JointExperimentLog log = SimulateJointExperiment(p, n, e);

@@ -37,6 +37,8 @@ struct SimulateJointOptions {
   std::string params;
   std::string output;
   std::vector<double> band;
+  std::string reference;          ///< --reference: an injected excitation (t,tau)
+  bool duration_given = false;    ///< --duration given (else the reference's length)
   JointExperiment experiment;
 };
 

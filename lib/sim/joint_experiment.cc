@@ -1,5 +1,6 @@
 #include "sim/joint_experiment.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <random>
@@ -22,6 +23,11 @@ State Smooth(const JointParameters& p, const State& x, double tau_m, double coul
 }
 
 std::vector<double> Excitation(const JointExperiment& e, std::size_t samples) {
+  if (e.excitation == "reference") {
+    std::vector<double> r(samples);
+    for (std::size_t i = 0; i < samples; ++i) r[i] = e.reference[i % e.reference.size()];
+    return r;
+  }
   const auto period = static_cast<std::size_t>(std::llround(e.period * e.rate));
   std::vector<double> one(period, 0.0);
   if (e.excitation == "multisine") {
@@ -61,17 +67,22 @@ std::vector<double> Excitation(const JointExperiment& e, std::size_t samples) {
 
 JointExperimentLog SimulateJointExperiment(const JointParameters& p, double n, const JointExperiment& e) {
   const auto finite_above = [](double v, double lo) { return std::isfinite(v) && v > lo; };
-  if (e.excitation != "multisine" && e.excitation != "chirp" && e.excitation != "prbs") {
+  const bool given = e.excitation == "reference";
+  if (e.excitation != "multisine" && e.excitation != "chirp" && e.excitation != "prbs" && !given) {
     throw OptionError(fmt::format("‹excitation› {}: multisine, chirp or prbs", e.excitation));
+  }
+  if (given && (e.reference.empty() || !std::all_of(e.reference.begin(), e.reference.end(),
+                                                    [](double v) { return std::isfinite(v); }))) {
+    throw InputError("‹reference›: an excitation needs finite torque samples");
   }
   if (!finite_above(e.rate, 0.0) || e.rate > 1e6) throw OptionError(fmt::format("‹rate› {}: (0, 1e6] Hz", e.rate));
   if (!finite_above(e.duration, 0.0) || e.duration * e.rate > 5e6) {
     throw OptionError(fmt::format("‹duration› {} s: positive, at most 5e6 samples at ‹rate›", e.duration));
   }
-  if (!finite_above(e.period, 0.0) || e.period * e.rate < 16 || e.period > e.duration) {
+  if (!given && (!finite_above(e.period, 0.0) || e.period * e.rate < 16 || e.period > e.duration)) {
     throw OptionError(fmt::format("‹period› {} s: at least 16 samples and at most ‹duration›", e.period));
   }
-  if (!(e.f_low >= 0.0) || !(e.f_high > e.f_low) || !(e.f_high <= 0.5 * e.rate)) {
+  if (!given && (!(e.f_low >= 0.0) || !(e.f_high > e.f_low) || !(e.f_high <= 0.5 * e.rate))) {
     throw OptionError(fmt::format("‹band› {},{}: 0 <= LO < HI <= rate/2", e.f_low, e.f_high));
   }
   if (!std::isfinite(e.amplitude) || !std::isfinite(e.kp) || !std::isfinite(e.ki) || !(e.noise >= 0.0) ||

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "io/joint_log.h"
 #include "models/joint.h"
@@ -16,7 +17,7 @@
 namespace driveid {
 
 struct JointExperiment {
-  std::string excitation = "multisine";  ///< multisine, chirp or prbs
+  std::string excitation = "multisine";  ///< multisine, chirp, prbs, or reference (the samples below)
   double rate = 1000.0;       ///< [Hz]
   double duration = 30.0;     ///< [s]
   double period = 2.0;        ///< [s] multisine period, chirp sweep, PRBS sequence (rounded to whole samples)
@@ -26,6 +27,9 @@ struct JointExperiment {
   double noise = 0.0;         ///< std of the motor-speed measurement noise [rad/s]
   std::uint64_t seed = 1;
   int substeps = 10;
+  /// The "reference" excitation: torque samples at `rate`, repeated over
+  /// the duration (`design joint` writes them; io/torque_reference.h).
+  std::vector<double> reference;
 };
 
 /// Throws OptionError naming a bad option.

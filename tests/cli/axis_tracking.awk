@@ -9,13 +9,7 @@
 # Variables: J, b, tc, t0 (the axis), bw (loop bandwidth [Hz]), bits (encoder
 # counts per turn as 2^bits), noise (std of the logged torque), seed, steps
 # (integration substeps per logger step).
-function gauss() {
-  if (spare_ok) { spare_ok = 0; return spare }
-  do { u1 = rand() } while (u1 <= 1e-300)
-  u2 = rand()
-  rad = sqrt(-2 * log(u1)); spare = rad * sin(6.283185307179586 * u2); spare_ok = 1
-  return rad * cos(6.283185307179586 * u2)
-}
+# Run as awk -f gauss.awk -f axis_tracking.awk (gauss(): a normal deviate).
 function sgn(x) { return x > 0 ? 1 : (x < 0 ? -1 : 0) }
 BEGIN {
   FS = ","; srand(seed + 0)

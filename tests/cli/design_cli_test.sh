@@ -19,7 +19,7 @@ cd "$work" || exit 1
 . "$src/tests/cli/cli_test_lib.sh"
 
 truth="-v J=0.05 -v b=0.2 -v tc=1 -v t0=0.3 -v bw=20 -v bits=16 -v noise=0.05"
-track() { awk $truth -v seed="$1" -f "$src/tests/cli/axis_tracking.awk" "$2" > "$3"; }
+track() { awk $truth -v seed="$1" -f "$src/tests/cli/gauss.awk" -f "$src/tests/cli/axis_tracking.awk" "$2" > "$3"; }
 # Four equal sines 0.2-2 Hz within |qd| <= 2 (the hand-made test).
 awk 'BEGIN { pi = 3.141592653589793; split("0.2 0.430887 0.928318 2.0", f, " "); print "t,q,qd,qdd"
   for (k = 0; k <= 20000; k++) { t = k / 1000; q = 0; v = 0; a = 0

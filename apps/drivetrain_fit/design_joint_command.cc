@@ -1,0 +1,118 @@
+// drivetrain-fit design joint: the injected torque multisine whose log the
+// next frequency-response fit needs (docs/models.md#joint-excitation-design).
+// Parsing and output only; the design is design/joint_excitation.h, its
+// rendering report/joint_design_report.h.
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "common/cli_support.h"
+#include "common/command_registry.h"
+#include "core/errors.h"
+#include "io/atomic_file.h"
+#include "io/parameter_file.h"
+#include "report/joint_design_report.h"
+
+namespace driveid::cli {
+namespace {
+
+struct DesignJointOptions {
+  std::string params, output, plot;
+  std::vector<double> band;
+  std::vector<std::string> targets;
+  JointDesignOptions design;
+  bool json = false;
+};
+
+CLI::App* Setup(CLI::App& design, DesignJointOptions& o) {
+  CLI::App* c = design.add_subcommand(
+      "joint", "An injected torque multisine whose line powers minimise the next frf two-mass fit's std within the "
+               "torque and motor-speed limits (docs/models.md#joint-excitation-design)");
+  JointDesignOptions& d = o.design;
+  c->add_option("--params", o.params, "prior: parameter file with a joint section (gear_ratio, inertias, stiffness, "
+                                      "damping; an frf fit's output)")
+      ->required();
+  AddFreeOption(*c, d.free, "parameters the next fit estimates (default: motor_inertia,link_inertia,stiffness,"
+                            "damping,motor_viscous)");
+  c->add_option("--duration", d.duration, "log length [s] (at least 5 periods)")->required()->check(FiniteAbove(0.0));
+  c->add_option("--rate", d.rate, "logging rate [Hz]")->capture_default_str()->check(FiniteAbove(0.0));
+  c->add_option("--period", d.period, "multisine period [s] (lines every 1/period Hz)")
+      ->capture_default_str()
+      ->check(FiniteAbove(0.0));
+  c->add_option("--band", o.band, "LO,HI: lines between [Hz] (default: 0.5,50, as simulate joint's multisine)")
+      ->delimiter(',')
+      ->expected(2)
+      ->check(FiniteAtLeast(0.0));
+  c->add_option("--max-torque", d.max_torque, "|tau| limit of the injected torque [N m, log units]")
+      ->required()
+      ->check(FiniteAbove(0.0));
+  c->add_option("--max-speed", d.max_speed, "|qd_motor| limit, the prior's steady response [rad/s, log units]")
+      ->required()
+      ->check(FiniteAbove(0.0));
+  c->add_option("--noise", d.noise, "motor-speed noise std per sample [rad/s, log units]")
+      ->required()
+      ->check(FiniteAbove(0.0));
+  c->add_option("--torque-noise", d.torque_noise, "noise std of the logged torque per sample [N m, log units]")
+      ->capture_default_str()
+      ->check(FiniteAtLeast(0.0));
+  c->add_option("--criterion", d.criterion, "d: the geometric-mean std of the free parameters; a: the sum of the "
+                                            "relative variances of --target")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"d", "a"}));
+  c->add_option("--target", o.targets, "the parameters that count (d: D_s-optimal, the other free ones nuisance; "
+                                       "default: all free)")
+      ->delimiter(',');
+  c->add_option("--spread", d.spread, "share of the power spread evenly over the band (robustness to the prior)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 0.99));
+  c->add_option("-o,--output", o.output, "excitation CSV to write: t,tau (docs/formats.md#references; atomic)");
+  c->add_flag("--json", o.json, "print one JSON object instead of the text");
+  c->add_option("--plot", o.plot, "both excitations over one period and their line amplitudes (.png or .svg)")
+      ->check(PlotPath());
+  c->footer("Example:\n  drivetrain-fit frf first.csv --params gear.yaml --fit two-mass -o prior.yaml\n"
+            "  drivetrain-fit design joint --params prior.yaml --duration 20 --max-torque 2 --max-speed 5 "
+            "--noise 0.02 -o next.csv\n"
+            "  drivetrain-fit simulate joint --params prior.yaml --reference next.csv -o try.csv");
+  return c;
+}
+
+void Run(DesignJointOptions o, const std::string& command_line) {
+  CheckDistinctFiles({o.params}, {{"-o", o.output}, {"--plot", o.plot}});
+  const ParameterFile file = ReadParameterFile(o.params);
+  const JointSection* section = file.Find<JointSection>();
+  if (!section) throw InputError(fmt::format("{}: no 'joint' section", o.params));
+  if (!section->gear_ratio) throw InputError(fmt::format("{}: joint.gear_ratio is needed", o.params));
+  JointParameters prior;
+  for (const auto& row : JointParameterTable()) {
+    if (row.in_model != nullptr) prior.*(row.in_model) = (section->*(row.in_section)).value_or(0.0);
+  }
+  if (o.band.size() == 2) {
+    o.design.band_low = o.band[0];
+    o.design.band_high = o.band[1];
+  }
+  o.design.targets = o.targets;
+  const JointDesign design = DesignJointExcitation(prior, *section->gear_ratio, o.design);
+  std::vector<std::pair<std::string, std::string>> files;
+  if (!o.output.empty()) {
+    std::vector<std::string> comments = {"joint excitation (docs/formats.md#references) designed by: " + command_line};
+    for (std::size_t j = 0; j < design.free.size(); ++j) {
+      comments.push_back(fmt::format("predicted std {}: {:.6g}", design.free[j], design.designed.predicted_std[j]));
+    }
+    comments.push_back(fmt::format("rms torque {:.6g} N m, period {:.6g} s", design.designed.rms, design.period));
+    files.emplace_back(o.output, FormatTorqueReference(DesignedExcitation(design, o.design.rate, o.design.duration),
+                                                       comments));
+  }
+  if (!o.plot.empty()) {
+    files.emplace_back(o.plot, RenderPanels(o.plot, JointDesignPanels(design, o.design.rate), "time [s]"));
+  }
+  WriteFilesAtomically(files);
+  WriteStdout(o.json ? DumpJson(JointDesignJson(design)) : FormatJointDesign(design));
+}
+
+DesignJointOptions options;
+const bool kJoint = RegisterCommand({"drivetrain-fit", "design", 2, [](CLI::App& parent) { return Setup(parent, options); },
+                                     [](const std::string& line) { Run(options, line); }});
+
+}  // namespace
+}  // namespace driveid::cli
