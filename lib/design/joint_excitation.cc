@@ -134,21 +134,40 @@ std::vector<double> SchroederPhases(const std::vector<double>& share) {
   return phase;
 }
 
-// The largest |sum_l a_l cos(w_l t_i + phi_l)| over one period's samples.
-double Peak(const std::vector<double>& amplitude, const std::vector<double>& phase, const std::vector<double>& omega,
-            std::size_t samples, double rate, std::vector<double>* waveform) {
-  double peak = 0.0;
-  waveform->assign(samples, 0.0);
+// sum_l a_l cos(w_l t_i + phi_l) at one period's samples t_i = i / rate.
+std::vector<double> OnePeriod(const std::vector<double>& amplitude, const std::vector<double>& phase,
+                              const std::vector<double>& omega, std::size_t samples, double rate) {
+  std::vector<double> waveform(samples, 0.0);
   for (std::size_t i = 0; i < samples; ++i) {
     const double t = static_cast<double>(i) / rate;
-    double x = 0.0;
     for (std::size_t l = 0; l < amplitude.size(); ++l) {
-      if (amplitude[l] > 0.0) x += amplitude[l] * std::cos(omega[l] * t + phase[l]);
+      if (amplitude[l] > 0.0) waveform[i] += amplitude[l] * std::cos(omega[l] * t + phase[l]);
     }
-    (*waveform)[i] = x;
-    peak = std::max(peak, std::abs(x));
   }
+  return waveform;
+}
+
+double PeakOf(const std::vector<double>& waveform) {
+  double peak = 0.0;
+  for (const double x : waveform) peak = std::max(peak, std::abs(x));
   return peak;
+}
+
+std::vector<double> Omega(const std::vector<double>& frequency) {
+  std::vector<double> omega(frequency.size());
+  for (std::size_t l = 0; l < frequency.size(); ++l) omega[l] = 2.0 * M_PI * frequency[l];
+  return omega;
+}
+
+// The largest rms with the injected torque within kJointTorqueMargin of its
+// limit and the prior's motor speed within kJointSpeedMargin of its own, for
+// the unit-rms waveform's peaks; `binding` names the limit that sets it.
+double RmsWithinLimits(double unit_torque_peak, double unit_speed_peak, const JointDesignOptions& options,
+                       std::string* binding) {
+  const double by_torque = kJointTorqueMargin * options.max_torque / unit_torque_peak;
+  const double by_speed = kJointSpeedMargin * options.max_speed / unit_speed_peak;
+  if (binding) *binding = by_torque <= by_speed ? "torque" : "speed";
+  return std::min(by_torque, by_speed);
 }
 
 // Phases of a lower crest factor (clipping and re-phasing: the waveform is
@@ -157,16 +176,15 @@ double Peak(const std::vector<double>& amplitude, const std::vector<double>& pha
 // kCrestIterations, starting from Schroeder's.
 std::vector<double> ReducedCrestPhases(const std::vector<double>& amplitude, std::vector<double> phase,
                                        const std::vector<double>& frequency, std::size_t samples, double rate) {
-  std::vector<double> omega(frequency.size()), waveform;
-  for (std::size_t l = 0; l < frequency.size(); ++l) omega[l] = 2.0 * M_PI * frequency[l];
+  const std::vector<double> omega = Omega(frequency);
   std::size_t active = 0;
   for (const double a : amplitude) active += a > 0.0 ? 1 : 0;
   const double work = 2.0 * static_cast<double>(samples) * static_cast<double>(std::max<std::size_t>(active, 1));
   const int iterations = static_cast<int>(std::min(kCrestIterations, kMaxCrestWork / work));
-  std::vector<double> best = phase;
-  double best_peak = Peak(amplitude, phase, omega, samples, rate, &waveform);
+  std::vector<double> best = phase, waveform = OnePeriod(amplitude, phase, omega, samples, rate);
+  double peak = PeakOf(waveform), best_peak = peak;
   for (int k = 0; k < iterations; ++k) {
-    const double level = 0.9 * Peak(amplitude, phase, omega, samples, rate, &waveform);
+    const double level = 0.9 * peak;
     for (double& x : waveform) x = std::clamp(x, -level, level);
     for (std::size_t l = 0; l < amplitude.size(); ++l) {
       if (!(amplitude[l] > 0.0)) continue;
@@ -178,7 +196,8 @@ std::vector<double> ReducedCrestPhases(const std::vector<double>& amplitude, std
       }
       phase[l] = std::atan2(im, re);
     }
-    const double peak = Peak(amplitude, phase, omega, samples, rate, &waveform);
+    waveform = OnePeriod(amplitude, phase, omega, samples, rate);
+    peak = PeakOf(waveform);
     if (peak < best_peak) {
       best_peak = peak;
       best = phase;
@@ -196,25 +215,17 @@ JointDesignCandidate MakeCandidate(const std::string& name, const std::vector<do
   for (const double w : share) c.amplitude.push_back(std::sqrt(2.0 * w));
   const auto samples = static_cast<std::size_t>(std::llround(design.period * options.rate));
   if (reduce_crest) c.phase = ReducedCrestPhases(c.amplitude, c.phase, design.frequency, samples, options.rate);
-  // Peaks of the unit-rms waveform and of the prior's steady motor speed.
-  double peak_torque = 0.0, peak_speed = 0.0;
-  for (std::size_t i = 0; i < samples; ++i) {
-    const double t = static_cast<double>(i) / options.rate;
-    double torque = 0.0, speed = 0.0;
-    for (std::size_t l = 0; l < share.size(); ++l) {
-      const double angle = 2.0 * M_PI * design.frequency[l] * t + c.phase[l];
-      torque += c.amplitude[l] * std::cos(angle);
-      speed += c.amplitude[l] * std::abs(info.response[l]) * std::cos(angle + std::arg(info.response[l]));
-    }
-    peak_torque = std::max(peak_torque, std::abs(torque));
-    peak_speed = std::max(peak_speed, std::abs(speed));
+  // Peaks of the unit-rms waveform and of the prior's steady motor speed
+  // (each line through H_l).
+  const std::vector<double> omega = Omega(design.frequency);
+  std::vector<double> speed_amplitude(share.size()), speed_phase(share.size());
+  for (std::size_t l = 0; l < share.size(); ++l) {
+    speed_amplitude[l] = c.amplitude[l] * std::abs(info.response[l]);
+    speed_phase[l] = c.phase[l] + std::arg(info.response[l]);
   }
-  if (!(rms > 0.0)) {
-    const double by_torque = kJointTorqueMargin * options.max_torque / peak_torque;
-    const double by_speed = kJointSpeedMargin * options.max_speed / peak_speed;
-    rms = std::min(by_torque, by_speed);
-    c.binding = by_torque <= by_speed ? "torque" : "speed";
-  }
+  const double peak_torque = PeakOf(OnePeriod(c.amplitude, c.phase, omega, samples, options.rate));
+  const double peak_speed = PeakOf(OnePeriod(speed_amplitude, speed_phase, omega, samples, options.rate));
+  if (!(rms > 0.0)) rms = RmsWithinLimits(peak_torque, peak_speed, options, &c.binding);
   c.rms = rms;
   for (double& a : c.amplitude) a *= rms;
   c.peak_torque = peak_torque * rms;
@@ -332,7 +343,8 @@ JointDesign DesignJointExcitation(const JointParameters& prior, double gear_rati
   for (double& w : share) w = (1.0 - options.spread) * w + options.spread / static_cast<double>(lines);
   design.designed = MakeCandidate("designed", share, info, design, options, 0.0, true);
   design.naive = MakeCandidate("default multisine", uniform, info, design, options, design.designed.rms, false);
-  design.naive_rms_at_limits = MakeCandidate("default multisine", uniform, info, design, options, 0.0, false).rms;
+  design.naive_rms_at_limits = RmsWithinLimits(design.naive.peak_torque / design.naive.rms,
+                                               design.naive.peak_speed / design.naive.rms, options, nullptr);
   return design;
 }
 
@@ -340,13 +352,8 @@ std::vector<double> SampleJointExcitation(const JointDesign& design, const Joint
                                           double rate, double duration) {
   const auto samples = static_cast<std::size_t>(std::llround(duration * rate));
   const auto per_period = static_cast<std::size_t>(std::llround(design.period * rate));
-  std::vector<double> one(per_period, 0.0), out(samples);
-  for (std::size_t i = 0; i < per_period; ++i) {
-    const double t = static_cast<double>(i) / rate;
-    for (std::size_t l = 0; l < candidate.amplitude.size(); ++l) {
-      one[i] += candidate.amplitude[l] * std::cos(2.0 * M_PI * design.frequency[l] * t + candidate.phase[l]);
-    }
-  }
+  const std::vector<double> one = OnePeriod(candidate.amplitude, candidate.phase, Omega(design.frequency), per_period, rate);
+  std::vector<double> out(samples);
   for (std::size_t i = 0; i < samples; ++i) out[i] = one[i % per_period];
   return out;
 }
