@@ -41,6 +41,12 @@ CLI::App* SetupAxisCommand(CLI::App& app, AxisOptions& options) {
   command->add_option("--decimation", options.decimation, "parallel decimation factor")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
+  command->add_option("--torque-timing", options.torque_timing,
+                      "idim: when the logged torque acts. sampled: at its sample's instant (a measured current); "
+                      "held: the command the drive holds until the next sample, as output error simulates it "
+                      "(docs/models.md#torque-timing)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"sampled", "held"}));
   AddFitOutputOptions(*command, options.output);
   command->footer(
       "Example:\n  drivetrain-fit simulate axis --params data/axis_example.yaml --noise 0.05 -o axis.csv\n"
@@ -88,6 +94,7 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
   fit_options.free = options.free;
   fit_options.cutoff = options.cutoff;
   fit_options.decimation = options.decimation;
+  fit_options.torque_timing = options.torque_timing == "held" ? AxisTorqueTiming::kHeld : AxisTorqueTiming::kSampled;
   fit_options.trace = !options.output.trace.empty();
   SetProgress(fit_options.fit, options.output.verbose, options.output.max_seconds);
   std::vector<AxisLog> validation;

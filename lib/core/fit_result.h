@@ -47,6 +47,7 @@ struct EstimateSet {
   std::string label;
   std::vector<ParameterEstimate> estimates;
   std::string failure;
+  double cutoff = 0.0;  ///< the filter cutoff [Hz] of a processing-sensitivity fit (0: other sets)
 };
 
 /// Cochran's Q for one parameter over the logs that estimated it:

@@ -166,7 +166,7 @@ std::vector<HeterogeneityTest> TestHeterogeneity(const std::vector<EstimateSet>&
 void AddPerLogFits(FitResult& fit, const std::vector<std::string>& labels,
                    const std::function<std::vector<ParameterEstimate>(std::size_t)>& fit_one) {
   for (std::size_t i = 0; i < labels.size(); ++i) {
-    EstimateSet estimates{labels[i], {}, ""};
+    EstimateSet estimates{labels[i], {}, "", 0.0};
     try {
       estimates.estimates = fit_one(i);
     } catch (const std::exception& e) {
@@ -239,20 +239,31 @@ std::vector<std::string> HeterogeneityWarnings(const std::vector<HeterogeneityTe
 std::vector<std::string> ProcessingWarnings(const FitResult& fit, double cutoff, const std::string& advice) {
   std::vector<std::string> warnings;
   for (const auto& e : fit.estimates) {
+    if (!(e.standard_error > 0.0)) continue;
     std::vector<std::string> moves;
-    double largest = 0.0;
+    double largest = 0.0, largest_up_in_std = 0.0;
     for (const auto& other : fit.sensitivity) {
       for (const auto& o : other.estimates) {
         if (o.name != e.name) continue;
-        largest = std::max(largest, std::abs(o.value - e.value));
+        const double move = std::abs(o.value - e.value);
+        largest = std::max(largest, move);
+        if (other.cutoff > cutoff) {
+          largest_up_in_std = std::max(largest_up_in_std, move / std::max(e.standard_error, o.standard_error));
+        }
         moves.push_back(fmt::format("{:.4g} at the {}", o.value, other.label));
       }
     }
-    if (e.standard_error > 0.0 && largest > 2.0 * e.standard_error && largest > 0.05 * std::abs(e.value)) {
+    if (largest > 2.0 * e.standard_error && largest > 0.01 * kProcessingPercent * std::abs(e.value)) {
       warnings.push_back(fmt::format(
           "processing: {} = {:.4g} +- {:.2g} at the cutoff {:.3g} Hz moves to {} (more than 2 std): the estimate "
           "depends on the differentiation filter by more than 5 %; its std does not include that ({})",
           e.name, e.value, e.standard_error, cutoff, fmt::join(moves, ", "), advice));
+    } else if (largest_up_in_std > kProcessingStds) {
+      warnings.push_back(fmt::format(
+          "processing: {} = {:.4g} +- {:.2g} at the cutoff {:.3g} Hz moves to {}: {:.1f} std at a higher cutoff, "
+          "which keeps more of the motion; the interval leaves out an error of that size, and other estimates "
+          "of the fit may carry one as well ({})",
+          e.name, e.value, e.standard_error, cutoff, fmt::join(moves, ", "), largest_up_in_std, advice));
     }
   }
   return warnings;

@@ -72,10 +72,24 @@ std::vector<std::string> CheckResidualColour(const FitResult& fit);
 /// Tests each parameter of `logs` (where at least two logs estimated it).
 std::vector<HeterogeneityTest> TestHeterogeneity(const std::vector<EstimateSet>& logs);
 
+/// A processing move larger than this [%] of the estimate (and 2 std) is
+/// warned of however well the estimate is determined.
+inline constexpr double kProcessingPercent = 5.0;
+/// A move to a higher cutoff (one that keeps more of the motion) of more
+/// than this many std (the larger of the two fits') is warned of however
+/// small in percent: the interval (1.96 std) cannot hold an error of that
+/// size. Moves to lower cutoffs do not count here: there the filter
+/// distorts the motion, which is why the cutoff search passed them over.
+/// (A tracking log under a stiff position loop moved inertia by 7.6 std,
+/// 0.5 %, at twice the cutoff while its estimate was 0.75 % = 11 std off,
+/// with no warning under the 5 % rule alone; docs/models.md#adequacy.)
+inline constexpr double kProcessingStds = 4.0;
+
 /// Warnings for estimates that the same fit with other processing
 /// (`fit.sensitivity`, e.g. half and twice the filter cutoff) moves by more
-/// than 2 of their std and more than 5 %; `cutoff` [Hz] the fit's own,
-/// `advice` what to try.
+/// than 2 of their std and more than kProcessingPercent, or, at a higher
+/// cutoff (EstimateSet::cutoff > `cutoff`), by more than kProcessingStds;
+/// `cutoff` [Hz] the fit's own, `advice` what to try.
 std::vector<std::string> ProcessingWarnings(const FitResult& fit, double cutoff, const std::string& advice);
 
 /// Several logs: fits each alone through `fit_one(i)` (its estimates of the

@@ -255,7 +255,7 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
     other.cutoff = factor * central.cutoff;
     other.per_log = false;
     if (!(other.cutoff < 0.4 * rate)) continue;
-    EstimateSet entry{fmt::format("cutoff {:.3g} Hz", other.cutoff), {}, ""};
+    EstimateSet entry{fmt::format("cutoff {:.3g} Hz", other.cutoff), {}, "", other.cutoff};
     try {
       entry.estimates = FitAtCutoff(logs, start, other, &cache, AtCutoff::kScore).fit.estimates;
     } catch (const std::exception& e) {
@@ -373,7 +373,8 @@ std::shared_ptr<const AxisRows> RowsAtCutoff(const std::vector<AxisLog>& logs, c
   if (!built) {
     const std::vector<std::string> column_names = AxisRowColumnNames();
     built = std::make_shared<const AxisRows>(
-        BuildAxisRows(logs, options.cutoff, options.decimation, options.min_rate_fraction, column_names));
+        BuildAxisRows(logs, options.cutoff, options.decimation, options.min_rate_fraction, column_names,
+                      options.torque_timing));
     if (cache != nullptr && built->regression.rows() * column_names.size() * sizeof(double) <= kCachedRowBytes) {
       (*cache)[options.cutoff] = built;
     }

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "fit/adequacy.h"
+#include "fit/axis_rows.h"
 #include "fit/least_squares.h"
 #include "io/axis_log.h"
 #include "models/axis.h"
@@ -45,6 +46,7 @@ struct AxisFitOptions {
   double cutoff = 0.0;                ///< position low-pass [Hz]; 0 = ChooseAxisCutoff
   bool sensitivity = true;            ///< also fit at half and twice the cutoff
   int decimation = 10;                ///< keep every n-th sample after parallel filtering
+  AxisTorqueTiming torque_timing = AxisTorqueTiming::kSampled;  ///< fit/axis_rows.h
   double min_rate_fraction = 0.01;    ///< exclude |q'| below this fraction of max |q'|
   double max_relative_std = kMaxRelativeStd;  ///< refuse a free J, b or tau_c less certain than this
   bool per_log = true;                ///< with several logs, also fit each alone and compare

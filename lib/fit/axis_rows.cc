@@ -132,8 +132,16 @@ std::vector<std::string> AxisRowColumnNames() {
   return names;
 }
 
+std::vector<double> TimedAxisTorque(const std::vector<double>& torque, AxisTorqueTiming timing) {
+  std::vector<double> out = torque;
+  if (timing == AxisTorqueTiming::kHeld) {
+    for (std::size_t k = 1; k < torque.size(); ++k) out[k] = 0.5 * (torque[k - 1] + torque[k]);
+  }
+  return out;
+}
+
 AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int decimation, double min_rate_fraction,
-                       const std::vector<std::string>& column_names) {
+                       const std::vector<std::string>& column_names, AxisTorqueTiming timing) {
   AxisRows out{LinearRegression(column_names), {}, {}, {}, ""};
   LinearRegression& regression = out.regression;
   for (std::size_t i = 0; i < logs.size(); ++i) {
@@ -143,6 +151,7 @@ AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int deci
     out.method = d.rate_hz > 0.0 ? "IDIM-LS: Butterworth zero-phase, central differences, parallel decimation"
                                  : "IDIM-LS on irregular samples: local-polynomial rates, subsampling";
     if (!log.rate.empty()) out.method += "; measured rate qd (q'' from it)";
+    if (timing == AxisTorqueTiming::kHeld) out.method += "; torque held per sample (rows average u_(k-1), u_k)";
     const std::size_t n = log.time.size();
     double max_rate = 0.0;
     for (std::size_t k = 0; k < n; ++k) {
@@ -199,7 +208,7 @@ AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int deci
       if (filtered) ZeroPhaseLowPassInPlace(column, band, d.rate_hz);
       for (std::size_t r = 0; r < kept.size(); ++r) rows[r * width + c] = column[kept[r]];
     }
-    column = log.force;
+    column = TimedAxisTorque(log.force, timing);
     if (filtered) ZeroPhaseLowPassInPlace(column, band, d.rate_hz);
     regression.BeginChannel(log.path + kTorqueChannelSuffix);
     std::vector<double> row(width);

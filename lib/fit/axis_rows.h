@@ -56,9 +56,21 @@ struct AxisRows {
   std::string method;           ///< how rates were obtained
 };
 
+/// When the logged torque acts (docs/models.md#torque-timing). kSampled: the
+/// value at the sample's instant (a measured current). kHeld: the command a
+/// drive holds from its sample to the next (zero-order hold); the central
+/// second difference of q at sample k integrates u_(k-1) and u_k for half
+/// each, (q_(k+1) - 2 q_k + q_(k-1)) / h^2 = (u_(k-1) + u_k) / (2 J) for an
+/// inertia, so row k takes (u_(k-1) + u_k) / 2.
+enum class AxisTorqueTiming { kSampled, kHeld };
+
+/// The torque as row k sees it under `timing` (the first sample kept).
+std::vector<double> TimedAxisTorque(const std::vector<double>& torque, AxisTorqueTiming timing);
+
 /// Builds the rows over all logs; `column_names` names the columns in the
 /// order above (AxisRowColumnNames). InputError for a log shorter than kMinAxisLogSamples.
 AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int decimation, double min_rate_fraction,
-                       const std::vector<std::string>& column_names);
+                       const std::vector<std::string>& column_names,
+                       AxisTorqueTiming timing = AxisTorqueTiming::kSampled);
 
 }  // namespace driveid

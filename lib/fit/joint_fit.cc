@@ -291,7 +291,7 @@ void CheckJointAdequacy(const std::vector<JointLog>& logs, const JointSection& s
       other.cutoff = factor * out.cutoff;
       other.per_log = other.sensitivity = false;
       if (!(other.cutoff < 0.4 * out.rate)) continue;
-      EstimateSet entry{fmt::format("cutoff {:.3g} Hz", other.cutoff), {}, ""};
+      EstimateSet entry{fmt::format("cutoff {:.3g} Hz", other.cutoff), {}, "", other.cutoff};
       try {
         entry.estimates = FitJoint(logs, start, other).fit.estimates;
       } catch (const std::exception& e) {

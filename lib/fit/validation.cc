@@ -35,12 +35,12 @@ constexpr double kMinRateFraction = 0.01;
 }  // namespace
 
 std::vector<ValidatedLog> ValidateAxis(const std::vector<AxisLog>& logs, const AxisParameters& params, double cutoff,
-                                       int decimation) {
+                                       int decimation, AxisTorqueTiming timing) {
   if (params.stribeck != 0.0) {
     throw InputError("axis.stribeck is not 0: the inverse-dynamics prediction has no Stribeck term (an output-error "
                      "validation is not built)");
   }
-  const AxisRows rows = BuildAxisRows(logs, cutoff, decimation, kMinRateFraction, AxisRowColumnNames());
+  const AxisRows rows = BuildAxisRows(logs, cutoff, decimation, kMinRateFraction, AxisRowColumnNames(), timing);
   const std::vector<double> model = rows.regression.Predict(AxisColumnValues(params));
   std::vector<ValidatedLog> out(logs.size());
   for (std::size_t r = 0; r < model.size(); ++r) {

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/fit_result.h"
+#include "fit/axis_rows.h"
 #include "fit/cdrive_fit.h"
 #include "io/axis_log.h"
 #include "io/joint_log.h"
@@ -42,9 +43,10 @@ inline constexpr int kMinValidatedSamples = 3;
 void RequireValidated(const std::vector<ValidatedLog>& logs);
 
 /// The axis logs predicted by `params` at the position cutoff `cutoff` [Hz]
-/// (> 0; the fit's, or ChooseAxisValidationCutoff) and `decimation`.
+/// (> 0; the fit's, or ChooseAxisValidationCutoff), `decimation` and the
+/// torque's `timing` (fit/axis_rows.h).
 std::vector<ValidatedLog> ValidateAxis(const std::vector<AxisLog>& logs, const AxisParameters& params, double cutoff,
-                                       int decimation);
+                                       int decimation, AxisTorqueTiming timing = AxisTorqueTiming::kSampled);
 
 /// The cutoff for validating without a fit: of the candidates of the fit's
 /// rule (ChooseAxisCutoff), the one whose prediction leaves the smallest

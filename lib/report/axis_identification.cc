@@ -29,6 +29,7 @@ void FitByInverseDynamics(const std::vector<AxisLog>& logs, const AxisIdentifica
   fit_options.free = options.free;
   fit_options.cutoff = options.cutoff;
   fit_options.decimation = options.decimation;
+  fit_options.torque_timing = options.torque_timing;
   fit_options.fit = options.fit;
   const AxisFitOutput result = FitAxis(logs, run.section, fit_options);
   run.params = result.params;
@@ -52,7 +53,7 @@ void FitByInverseDynamics(const std::vector<AxisLog>& logs, const AxisIdentifica
     s.measured.push_back(result.measured[k]);
     s.model.push_back(result.model[k]);
   }
-  for (const auto& v : ValidateAxis(validation, result.params, result.cutoff, options.decimation)) {
+  for (const auto& v : ValidateAxis(validation, result.params, result.cutoff, options.decimation, options.torque_timing)) {
     run.fit.validation.push_back(v.stats);
   }
   run.summary.push_back(fmt::format("processing: {}", result.method));

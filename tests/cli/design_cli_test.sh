@@ -37,7 +37,19 @@ awk -F, '/^#/ || /^t,/ { next } { q = $2 < 0 ? -$2 : $2; v = $3 < 0 ? -$3 : $3
   END { printf "%d %g %g %g\n", n, mq, mv, mt; exit !(n == 20001 && mq <= 1 && mv <= 2 && mt <= 3 && mt > 2.5) }' next.csv > peaks.txt &&
   ok || fail "limits: rows, |q|, |qd|, |tau| = $(cat peaks.txt)"
 
-track 2 next.csv designed.csv && "$bin" axis designed.csv -q -o designed.yaml || fail "fit of the designed log"
+track 2 next.csv designed.csv && "$bin" axis designed.csv -q -o designed.yaml 2> designed.err ||
+  fail "fit of the designed log"
+# Not yet right with defaults (docs/models.md#torque-timing, #adequacy):
+# inertia 0.7 % = 11 std low, which the fit must say (a processing warning),
+# and Coulomb 1.4 % = 9 std low from the held command read as sampled;
+# --torque-timing held puts Coulomb back within 3 std.
+grep -q "warning: processing: inertia" designed.err && ok || fail "no processing warning on the designed log"
+z_of() { awk -v name="$2" -v truth="$3" '/^  estimates:/ { f = 1; next }
+  f && $1 == name ":" { gsub(/[{},]/, " "); printf "%.2f\n", ($3 - truth) / $5; exit }' "$1"; }
+"$bin" axis designed.csv --torque-timing held -q -o held.yaml 2> /dev/null || fail "held fit"
+z_sampled=$(z_of designed.yaml coulomb 1) z_held=$(z_of held.yaml coulomb 1)
+awk -v s="$z_sampled" -v h="$z_held" 'BEGIN { exit !(s < -5 && h > -3 && h < 3) }' && ok ||
+  fail "coulomb z: sampled $z_sampled (expected < -5), held $z_held (expected within 3)"
 track 3 four.csv again.csv && "$bin" axis again.csv -q -o again.yaml || fail "fit of four sines"
 std_of() { awk -v name="$2" '/^  estimates:/ { f = 1; next } f && $1 == name ":" { gsub(/[{},]/, " "); print $5; exit }' "$1"; }
 for p in inertia viscous coulomb offset; do

@@ -94,3 +94,35 @@ TEST_CASE("a systematic error adds sigma^2 g g' to the covariance; stds, interva
   AddSystematicCovariance(fit, {1.0, 1.0}, 0.0);
   CHECK(fit.covariance == before.covariance);
 }
+
+TEST_CASE("processing: a move past 2 std and 5 %, or past 4 std at a higher cutoff, is named; others are not") {
+  // Estimates with std 1 % (inertia) and 0.05 % (viscous) of their value,
+  // moved by a fit at another cutoff whose std is `other_std` x theirs.
+  const auto warnings = [](double move_in_std, double other_cutoff, double other_std = 1.0) {
+    FitResult fit;
+    fit.estimates = {{"inertia", 1.0, 0.01, 0.98, 1.02, ""}, {"viscous", 2.0, 0.001, 1.998, 2.002, ""}};
+    fit.sensitivity = {{"cutoff", {{"inertia", 1.0 + move_in_std * 0.01, other_std * 0.01, 0, 0, ""},
+                                   {"viscous", 2.0 + move_in_std * 0.001, other_std * 0.001, 0, 0, ""}}, "",
+                        other_cutoff}};
+    return ProcessingWarnings(fit, 10.0, "advice");
+  };
+  // 3 std (inertia 3 %, viscous 0.15 %): neither rule, at either cutoff.
+  CHECK(warnings(3.0, 20.0).empty());
+  CHECK(warnings(3.0, 5.0).empty());
+  // 4.5 std at twice the cutoff: both named, though under 5 %.
+  const auto up = warnings(4.5, 20.0);
+  REQUIRE(up.size() == 2);
+  CHECK(up[0].find("processing: inertia") == 0);
+  CHECK(up[0].find("4.5 std at a higher cutoff") != std::string::npos);
+  CHECK(up[1].find("processing: viscous") == 0);
+  CHECK(warnings(-4.5, 20.0).size() == 2);  // either direction
+  // The same move at half the cutoff: the filter distorts there; not named.
+  CHECK(warnings(4.5, 5.0).empty());
+  // Counted in the larger std of the two fits: 4.5 of the fit's std is 3 of the other's.
+  CHECK(warnings(4.5, 20.0, 1.5).empty());
+  // The 5 % rule at any cutoff: inertia moved 6 % (6 std) at half the cutoff.
+  const auto large = warnings(6.0, 5.0);
+  REQUIRE(large.size() == 1);
+  CHECK(large[0].find("processing: inertia") == 0);
+  CHECK(large[0].find("by more than 5 %") != std::string::npos);
+}

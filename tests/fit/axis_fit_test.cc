@@ -436,3 +436,32 @@ TEST_CASE("axis advice: gravity terms collinear with the offset over a short str
   linear.gravity_sin = 2.0;
   CHECK_THROWS_WITH(FitAxis({log}, linear, {}), Catch::Contains("axis.gravity_sin = 2 on a linear axis"));
 }
+
+TEST_CASE("torque timing: the second difference of q sees a held command as (u_(k-1) + u_k) / 2") {
+  // J q'' = u - tau_0 with u held over each 1 ms step, integrated exactly.
+  const double inertia = 0.05, offset = 0.3, h = 1e-3;
+  std::vector<double> position, command;
+  double q = 0.0, v = 0.0;
+  for (int k = 0; k <= 2000; ++k) {
+    const double t = k * h;
+    // A command that jumps every 37 ms about a multisine (a position loop's output).
+    const double u = 0.6 * std::sin(2 * M_PI * 0.7 * t) + 0.3 * std::sin(2 * M_PI * 3.1 * t + 1.0) +
+                     0.2 * ((k / 37) % 3 == 0 ? 1.0 : -0.5) + offset;
+    position.push_back(q);
+    command.push_back(u);
+    const double a = (u - offset) / inertia;
+    q += v * h + 0.5 * a * h * h;
+    v += a * h;
+  }
+  const auto held = TimedAxisTorque(command, AxisTorqueTiming::kHeld);
+  CHECK(TimedAxisTorque(command, AxisTorqueTiming::kSampled) == command);
+  CHECK(held[0] == command[0]);
+  double held_error = 0.0, sampled_error = 0.0;
+  for (std::size_t k = 1; k + 1 < position.size(); ++k) {
+    const double second_difference = (position[k + 1] - 2.0 * position[k] + position[k - 1]) / (h * h);
+    held_error = std::max(held_error, std::abs(inertia * second_difference - (held[k] - offset)));
+    sampled_error = std::max(sampled_error, std::abs(inertia * second_difference - (command[k] - offset)));
+  }
+  CHECK(held_error < 1e-9);      // exact to rounding
+  CHECK(sampled_error > 0.1);    // half of each jump of the command (0.75 / 2)
+}
