@@ -44,9 +44,9 @@ CLI::App* SetupAxisCommand(CLI::App& app, AxisOptions& options) {
   command->add_option("--torque-timing", options.torque_timing,
                       "idim: when the logged torque acts. sampled: at its sample's instant (a measured current); "
                       "held: the command the drive holds until the next sample, as output error simulates it "
-                      "(docs/models.md#torque-timing)")
+                      "(docs/models.md#torque-timing); auto: the one whose fit leaves the smaller residual")
       ->capture_default_str()
-      ->check(CLI::IsMember({"sampled", "held"}));
+      ->check(CLI::IsMember({"auto", "sampled", "held"}));
   AddFitOutputOptions(*command, options.output);
   command->footer(
       "Example:\n  drivetrain-fit simulate axis --params data/axis_example.yaml --noise 0.05 -o axis.csv\n"
@@ -94,7 +94,9 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
   fit_options.free = options.free;
   fit_options.cutoff = options.cutoff;
   fit_options.decimation = options.decimation;
-  fit_options.torque_timing = options.torque_timing == "held" ? AxisTorqueTiming::kHeld : AxisTorqueTiming::kSampled;
+  fit_options.torque_timing = options.torque_timing == "held"      ? AxisTorqueTiming::kHeld
+                             : options.torque_timing == "sampled" ? AxisTorqueTiming::kSampled
+                                                                  : AxisTorqueTiming::kFromData;
   fit_options.trace = !options.output.trace.empty();
   SetProgress(fit_options.fit, options.output.verbose, options.output.max_seconds);
   std::vector<AxisLog> validation;

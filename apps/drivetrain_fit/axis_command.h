@@ -20,7 +20,7 @@ struct AxisOptions {
   std::string method = "auto";  ///< auto, idim, oe
   double cutoff = 0.0;
   int decimation = 10;
-  std::string torque_timing = "sampled";
+  std::string torque_timing = "auto";
   std::vector<std::string> validate;  ///< held-out logs predicted by the fit
   bool linear = false;                ///< q in m, forces in N (or axis.linear in --params)
   FitOutputOptions output;

@@ -34,7 +34,9 @@ CLI::App* Setup(CLI::App& design, DesignAxisOptions& o) {
   AddFreeOption(*c, d.free, "parameters the next fit estimates (default: inertia,viscous,coulomb,offset)");
   c->add_option("--duration", d.duration, "log length [s]")->required()->check(FiniteAbove(0.0));
   c->add_option("--rate", d.rate, "logging rate [Hz]")->capture_default_str()->check(FiniteAbove(0.0));
-  c->add_option("--period", d.period, "reference period [s] (default: the duration in periods of at most 10 s)")
+  c->add_option("--period", d.period,
+                "reference period [s] (default: the best of the duration in 1, 2 and 4 x as many periods as "
+                "periods of at most 10 s take)")
       ->check(FiniteAbove(0.0));
   c->add_option("--max-position", d.max_position, "|q| limit about the start [rad or m]")->required()->check(FiniteAbove(0.0));
   c->add_option("--max-speed", d.max_rate, "|qd| limit [rad/s or m/s]")->required()->check(FiniteAbove(0.0));

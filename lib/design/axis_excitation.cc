@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
+#include <optional>
 #include <random>
 #include <utility>
 
@@ -51,6 +53,8 @@ struct DesignProblem {
   std::vector<int> terms;       // indices of CalcAxisRegressors
   std::vector<double> scales;   // |prior| (1 where the prior is 0): relative stds
   std::vector<double> grid;     // times over one period
+  double period = 0.0;          // [s]
+  std::size_t exclusion_reach = 0;  // the fit's, in logged samples
   std::vector<bool> target;     // A: counted
   const AxisDesignOptions* options = nullptr;
   double information_scale = 0.0;  // T f_s / (M sigma^2 0.8) per grid sum, sigma = 1
@@ -160,9 +164,25 @@ double LargestScale(const Kinematics& k, const DesignProblem& p, std::string* bi
 Eigen::MatrixXd Information(const Kinematics& k, double s, const DesignProblem& p) {
   const std::size_t n = p.terms.size();
   std::vector<double> sum(n * n, 0.0), phi(n);
+  // The fit leaves out the samples within its filter's reach of a slow one
+  // (fit/axis_rows.cc BuildAxisRows): the same on the periodic grid.
+  const std::size_t m = k.q.size();
   const double min_rate = 0.01 * s * MaxAbs(k.qd);
-  for (std::size_t i = 0; i < k.q.size(); ++i) {
-    if (std::abs(s * k.qd[i]) < min_rate) continue;
+  std::vector<char> left_out(m, 0);
+  const double reach_time = static_cast<double>(p.exclusion_reach) / p.options->rate;
+  const auto reach = static_cast<std::ptrdiff_t>(std::ceil(reach_time * static_cast<double>(m) / p.period));
+  for (std::size_t i = 0; i < m; ++i) {
+    // Slow on the grid, or a reversal between two grid points (the grid can
+    // step over the short slow stretch of a fast reversal).
+    const double next = k.qd[(i + 1) % m];
+    if (!(std::abs(s * k.qd[i]) < min_rate) && !(k.qd[i] * next < 0.0)) continue;
+    for (std::ptrdiff_t j = -reach; j <= reach; ++j) {
+      const std::ptrdiff_t at = (static_cast<std::ptrdiff_t>(i) + j) % static_cast<std::ptrdiff_t>(m);
+      left_out[static_cast<std::size_t>(at < 0 ? at + static_cast<std::ptrdiff_t>(m) : at)] = 1;
+    }
+  }
+  for (std::size_t i = 0; i < m; ++i) {
+    if (left_out[i]) continue;
     const auto all = CalcAxisRegressors(s * k.q[i], s * k.qd[i], s * k.qdd[i]);
     for (std::size_t j = 0; j < n; ++j) phi[j] = all[static_cast<std::size_t>(p.terms[j])];
     for (std::size_t a = 0; a < n; ++a) {
@@ -307,6 +327,9 @@ DesignProblem MakeProblem(const AxisParameters& prior, const AxisDesignOptions& 
   // 16000 (the logging grid checks the limits between).
   const int m = std::min(16000, std::max(400, 40 * top));
   for (int i = 0; i < m; ++i) p.grid.push_back(period * i / m);
+  p.period = period;
+  const int decimation = static_cast<int>(kDesignDecimation);
+  p.exclusion_reach = static_cast<std::size_t>(kDesignExclusionDecimations * decimation);
   for (int n : harmonics) {
     const double w = 2.0 * M_PI * n / period;
     p.omega.push_back(w);
@@ -359,16 +382,12 @@ std::vector<double> StartShape(const std::vector<int>& h, int kind, std::mt19937
   return x;
 }
 
-}  // namespace
-
-AxisDesign DesignAxisExcitation(const AxisParameters& prior, const AxisDesignOptions& o) {
-  RequireValid(o);
-  RequireSampleCount(std::round(o.duration * o.rate) + 1, 100, fmt::format("‹duration› {} at ‹rate› {}", o.duration, o.rate));
-  if (!(o.noise > 0.0)) throw OptionError("‹noise›: the torque noise is needed to predict stds (none in the prior's fit)");
+// The design with one period; `criterion`: its value (smaller is better).
+AxisDesign DesignAtPeriod(const AxisParameters& prior, const AxisDesignOptions& o, double period, double* criterion) {
   AxisDesign d;
   d.free = o.free;
   d.noise = o.noise;
-  d.period = o.period > 0.0 ? o.period : o.duration / std::ceil(o.duration / 10.0 - 1e-9);
+  d.period = period;
   const double f0 = 1.0 / d.period;
   d.band_high = o.band_high > 0.0 ? o.band_high : DefaultBandHigh(prior, o);
   d.band_low = o.band_low > 0.0 ? o.band_low : f0;
@@ -409,6 +428,7 @@ AxisDesign DesignAxisExcitation(const AxisParameters& prior, const AxisDesignOpt
   if (!std::isfinite(best.value)) {
     throw OptionError("the limits leave no reference that determines every ‹free› parameter");
   }
+  *criterion = best.value;
   d.designed = Finish("designed", MakeRestingReference(f0, h, best.x), p, o.free);
   // The hand-made reference it replaces: four equal sines from 0.2 to 2 Hz.
   std::vector<int> four_lines;
@@ -421,6 +441,41 @@ AxisDesign DesignAxisExcitation(const AxisParameters& prior, const AxisDesignOpt
   four.sine.assign(four.harmonics.size(), 1.0);
   d.naive = Finish("four sines", four, p, o.free);
   return d;
+}
+
+}  // namespace
+
+AxisDesign DesignAxisExcitation(const AxisParameters& prior, const AxisDesignOptions& o) {
+  RequireValid(o);
+  RequireSampleCount(std::round(o.duration * o.rate) + 1, 100, fmt::format("‹duration› {} at ‹rate› {}", o.duration, o.rate));
+  if (!(o.noise > 0.0)) throw OptionError("‹noise›: the torque noise is needed to predict stds (none in the prior's fit)");
+  double criterion = HUGE_VAL;
+  if (o.period > 0.0) return DesignAtPeriod(prior, o, o.period, &criterion);
+  // Without a given period: the duration in 1, 2 and 4 x as many periods
+  // as it takes periods of at most 10 s (a shorter period repeats more often
+  // and puts its lowest line higher), the one whose design is best.
+  const double periods = std::ceil(o.duration / 10.0 - 1e-9);
+  // The four sines it is compared with keep the longest period (their
+  // lines 0.2 to 2 Hz rounded to its harmonics).
+  std::optional<AxisDesign> best;
+  std::optional<AxisDesignCandidate> naive;
+  double best_criterion = HUGE_VAL;
+  std::exception_ptr first_error;
+  for (const double factor : {1.0, 2.0, 4.0}) {
+    try {
+      AxisDesign d = DesignAtPeriod(prior, o, o.duration / (periods * factor), &criterion);
+      if (!naive) naive = d.naive;
+      if (!best || criterion < best_criterion) {
+        best = std::move(d);
+        best_criterion = criterion;
+      }
+    } catch (const OptionError&) {
+      if (!first_error) first_error = std::current_exception();
+    }
+  }
+  if (!best) std::rethrow_exception(first_error);
+  best->naive = *naive;
+  return *best;
 }
 
 }  // namespace driveid

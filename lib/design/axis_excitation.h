@@ -44,12 +44,15 @@ inline constexpr double kTorqueMargin = 0.95;
 /// The fit's decimation and its filter's share of the decimated band.
 inline constexpr double kDesignDecimation = 10.0;
 inline constexpr double kDesignDecimationBand = 0.8;
+/// The fit leaves out this many decimations' samples on each side of a
+/// sample slower than 1 % of the largest rate (fit/axis_rows.cc).
+inline constexpr int kDesignExclusionDecimations = 2;
 
 struct AxisDesignOptions {
   std::vector<std::string> free = FitParameterKeys(AxisParameterTable(), "axis", true);
   double duration = 0.0;     ///< log length [s]
   double rate = 1000.0;      ///< logging rate [Hz]
-  double period = 0.0;       ///< reference period [s]; 0: duration / ceil(duration / 10 s)
+  double period = 0.0;       ///< reference period [s]; 0: the best of duration / (m ceil(duration / 10 s)), m = 1, 2, 4
   double band_low = 0.0;     ///< lowest line [Hz]; 0: the fundamental
   double band_high = 0.0;    ///< highest line [Hz]; 0: from the limits (below rate / 150)
   int lines = 10;            ///< at most this many lines in the band

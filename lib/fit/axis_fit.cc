@@ -189,7 +189,7 @@ namespace {
 // half/twice sensitivity fits take them from here (the candidates double,
 // so half and twice the chosen one are usually among them). Rows larger
 // than kCachedRowBytes are not kept.
-using AxisRowCache = std::map<double, std::shared_ptr<const AxisRows>>;
+using AxisRowCache = std::map<std::pair<double, AxisTorqueTiming>, std::shared_ptr<const AxisRows>>;
 constexpr std::size_t kCachedRowBytes = std::size_t{64} << 20;
 
 // What a fit at one cutoff does beyond the estimates: the adequacy checks
@@ -228,6 +228,100 @@ double ChooseCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, 
   return best;
 }
 
+// (axis_rows.h kFromData) At options.cutoff, the reading of the torque's
+// timing whose fit leaves the smaller cost. Both fit the same dependent
+// column, the two-sample mean of the torque: the held reading against the
+// regressors at the sample, the sampled one against the regressors through
+// the same mean (kSampledSmoothed), so neither gains from the mean's
+// smoothing of the torque's noise. `rule` says what decided.
+constexpr double kTimingClip = 4.0;
+// Below this evidence the fit names the estimates the other reading moves.
+constexpr double kTimingEvidence = 10.0;
+
+AxisTorqueTiming ChooseTiming(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options,
+                              AxisRowCache* cache, std::string* rule, double* evidence) {
+  AxisFitOptions trial = options;
+  trial.per_log = false;
+  trial.sensitivity = false;
+  double cost[2] = {HUGE_VAL, HUGE_VAL};
+  const AxisTorqueTiming readings[2] = {AxisTorqueTiming::kSampledSmoothed, AxisTorqueTiming::kHeld};
+  std::vector<double> residual[2];
+  double inflation[2] = {1.0, 1.0};
+  for (int i = 0; i < 2; ++i) {
+    trial.torque_timing = readings[i];
+    try {
+      const AxisFitOutput fit = FitAtCutoff(logs, start, trial, cache, AtCutoff::kScore);
+      for (std::size_t r = 0; r < fit.measured.size(); ++r) residual[i].push_back(fit.measured[r] - fit.model[r]);
+      for (const auto& channel : fit.fit.channels) inflation[i] = std::max(inflation[i], channel.inflation);
+    } catch (const std::exception&) {
+      // A reading the data refuse does not win; the fit reports the chosen one's errors.
+    }
+  }
+  if (!residual[0].empty() && residual[0].size() == residual[1].size()) {
+    std::vector<double> magnitude;
+    for (const auto& r : residual) for (double x : r) magnitude.push_back(std::abs(x));
+    std::nth_element(magnitude.begin(), magnitude.begin() + magnitude.size() / 2, magnitude.end());
+    const double clip = kTimingClip * 1.4826 * magnitude[magnitude.size() / 2];
+    for (int i = 0; i < 2; ++i) {
+      cost[i] = 0.0;
+      for (double x : residual[i]) cost[i] += 0.5 * std::min(x * x, clip * clip);
+    }
+  } else if (!residual[1].empty()) {
+    cost[1] = 0.0;
+  } else if (!residual[0].empty()) {
+    cost[0] = 0.0;
+  }
+  const bool held = cost[1] < cost[0];
+  // The evidence: the difference of the costs in units of the residual
+  // variance of the better reading (a log-likelihood ratio for white
+  // residuals), divided by the square of the std inflation the residuals'
+  // correlation causes (fewer independent rows).
+  const int b = cost[1] < cost[0] ? 1 : 0;
+  const std::size_t rows = residual[0].size();
+  *evidence = std::isfinite(cost[0]) && std::isfinite(cost[1]) && cost[b] > 0.0
+                  ? std::abs(cost[1] - cost[0]) * static_cast<double>(rows) / cost[b] /
+                        (inflation[b] * inflation[b])
+                  : HUGE_VAL;
+  *rule = std::isfinite(cost[0]) && std::isfinite(cost[1])
+              ? fmt::format("from the data at the cutoff {:.4g} Hz: the clipped residual sum of squares of the "
+                            "two-sample mean of the torque is {:.6g} held, {:.6g} sampled (evidence {:.3g} "
+                            "residual variances)",
+                            options.cutoff, 2.0 * cost[1], 2.0 * cost[0], *evidence)
+              : "from the data: the other reading was refused";
+  return held ? AxisTorqueTiming::kHeld : AxisTorqueTiming::kSampled;
+}
+
+// The warning for a timing chosen on weak evidence: the estimates that
+// the other reading moves by more than 2 std (none: no warning).
+void AddTimingWarning(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& central,
+                      double evidence, AxisRowCache* cache, FitResult& fit) {
+  AxisFitOptions other = central;
+  other.per_log = false;
+  other.torque_timing =
+      central.torque_timing == AxisTorqueTiming::kHeld ? AxisTorqueTiming::kSampled : AxisTorqueTiming::kHeld;
+  FitResult alternative;
+  try {
+    alternative = FitAtCutoff(logs, start, other, cache, AtCutoff::kScore).fit;
+  } catch (const std::exception&) {
+    return;  // the other reading refused: nothing to compare
+  }
+  std::vector<std::string> moves;
+  for (const auto& e : fit.estimates) {
+    for (const auto& o : alternative.estimates) {
+      if (o.name != e.name || !(e.standard_error > 0.0)) continue;
+      const double in_std = std::abs(o.value - e.value) / std::max(e.standard_error, o.standard_error);
+      if (!(in_std > 2.0)) continue;
+      moves.push_back(fmt::format("{} {:.4g} -> {:.4g} ({:.1f} std)", e.name, e.value, o.value, in_std));
+    }
+  }
+  if (moves.empty()) return;
+  fit.warnings.push_back(fmt::format(
+      "torque timing: the residuals barely tell the readings apart (evidence {:.3g} < {:g} residual variances) and "
+      "read {} the estimates move: {}; the intervals leave that out: state when the logged torque acts with "
+      "‹torque-timing›",
+      evidence, kTimingEvidence, AxisTorqueTimingName(other.torque_timing), fmt::join(moves, ", ")));
+}
+
 }  // namespace
 
 double ChooseAxisCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options) {
@@ -241,8 +335,30 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
   central.sensitivity = false;
   CheckFreeNames(AxisParameterTable(), "axis", options.free);
   AxisRowCache cache;
-  central.cutoff = options.cutoff > 0.0 ? options.cutoff : ChooseCutoff(logs, start, central, &cache);
+  std::string timing_rule = "given (‹torque-timing›)";
+  double timing_evidence = HUGE_VAL;
+  if (options.torque_timing == AxisTorqueTiming::kFromData) {
+    // The cutoff as the sampled reading chooses it, the timing at that
+    // cutoff, and the cutoff again if the timing changed.
+    central.torque_timing = AxisTorqueTiming::kSampled;
+    central.cutoff = options.cutoff > 0.0 ? options.cutoff : ChooseCutoff(logs, start, central, &cache);
+    // Judged at twice the decimated band (below 0.4 x rate), where the
+    // position filter no longer shapes the band the rows keep: at or below
+    // it, its attenuation of q'' next to the unfiltered torque favours the
+    // held reading on sampled logs.
+    AxisFitOptions judged = central;
+    const double rate = AxisSamplingRate(logs);
+    judged.cutoff = std::max(central.cutoff, std::min(2.0 * 0.8 * rate / (2.0 * options.decimation), 0.4 * rate));
+    central.torque_timing = ChooseTiming(logs, start, judged, &cache, &timing_rule, &timing_evidence);
+    if (central.torque_timing != AxisTorqueTiming::kSampled && !(options.cutoff > 0.0)) {
+      central.cutoff = ChooseCutoff(logs, start, central, &cache);
+    }
+  } else {
+    central.cutoff = options.cutoff > 0.0 ? options.cutoff : ChooseCutoff(logs, start, central, &cache);
+  }
   AxisFitOutput out = FitAtCutoff(logs, start, central, &cache, AtCutoff::kFull);
+  out.torque_timing = central.torque_timing;
+  out.timing_rule = timing_rule;
   out.cutoff_rule = options.cutoff > 0.0
                         ? "given (‹cutoff›)"
                         : "from the data: of 5, 10, 20, ... x the motion frequency RMS(q')/(2 pi RMS(q)) up to the "
@@ -274,6 +390,8 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
   for (auto& w : ProcessingWarnings(out.fit, out.cutoff, advice)) {
     out.fit.warnings.push_back(std::move(w));
   }
+  // A timing the residuals barely chose: the estimates under the other one.
+  if (timing_evidence < kTimingEvidence) AddTimingWarning(logs, start, central, timing_evidence, &cache, out.fit);
   return out;
 }
 
@@ -367,7 +485,7 @@ std::shared_ptr<const AxisRows> RowsAtCutoff(const std::vector<AxisLog>& logs, c
                                              AxisRowCache* cache) {
   std::shared_ptr<const AxisRows> built;
   if (cache != nullptr) {
-    const auto found = cache->find(options.cutoff);
+    const auto found = cache->find({options.cutoff, options.torque_timing});
     if (found != cache->end()) built = found->second;
   }
   if (!built) {
@@ -376,7 +494,7 @@ std::shared_ptr<const AxisRows> RowsAtCutoff(const std::vector<AxisLog>& logs, c
         BuildAxisRows(logs, options.cutoff, options.decimation, options.min_rate_fraction, column_names,
                       options.torque_timing));
     if (cache != nullptr && built->regression.rows() * column_names.size() * sizeof(double) <= kCachedRowBytes) {
-      (*cache)[options.cutoff] = built;
+      (*cache)[{options.cutoff, options.torque_timing}] = built;
     }
   }
   return built;
@@ -410,6 +528,7 @@ AxisFitOutput FitAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& s
   const LinearRegression& regression = rows.regression;
   out.method = rows.method;
   out.cutoff = options.cutoff;
+  out.torque_timing = options.torque_timing;
   out.time = rows.time;
   out.measured = rows.measured;
   out.log_index = rows.log_index;

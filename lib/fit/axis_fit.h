@@ -12,6 +12,9 @@
 //      identifiability), relative error of the fit |tau - X p| / |tau|.
 // Samples near a velocity reversal (|q'| below min_rate_fraction of the
 // largest rate, anywhere within the decimation filter's reach) are left out.
+// The torque's timing (held command or sampled value, fit/axis_rows.h) is
+// given or chosen from the data (kFromData: the smaller residual at twice
+// the decimated band; a warning names the estimates an unclear choice moves).
 // Irregularly sampled logs are differentiated with the local-polynomial
 // differentiator instead of the Butterworth path (no constant rate assumed).
 // Identifiability comes from the data: the Jacobian's near-null directions
@@ -46,7 +49,7 @@ struct AxisFitOptions {
   double cutoff = 0.0;                ///< position low-pass [Hz]; 0 = ChooseAxisCutoff
   bool sensitivity = true;            ///< also fit at half and twice the cutoff
   int decimation = 10;                ///< keep every n-th sample after parallel filtering
-  AxisTorqueTiming torque_timing = AxisTorqueTiming::kSampled;  ///< fit/axis_rows.h
+  AxisTorqueTiming torque_timing = AxisTorqueTiming::kSampled;  ///< fit/axis_rows.h; kFromData: FitAxis chooses
   double min_rate_fraction = 0.01;    ///< exclude |q'| below this fraction of max |q'|
   double max_relative_std = kMaxRelativeStd;  ///< refuse a free J, b or tau_c less certain than this
   bool per_log = true;                ///< with several logs, also fit each alone and compare
@@ -63,6 +66,8 @@ struct AxisFitOutput {
   std::string method;                   ///< how rates were obtained
   double cutoff = 0.0;
   std::string cutoff_rule;                        ///< how the cutoff was chosen
+  AxisTorqueTiming torque_timing = AxisTorqueTiming::kSampled;  ///< the reading used (never kFromData)
+  std::string timing_rule;                        ///< how it was chosen
   int samples_used = 0;
   std::vector<double> time, measured, model;  ///< decimated samples used, for traces and plots
   std::vector<int> log_index;

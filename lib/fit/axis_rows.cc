@@ -132,13 +132,60 @@ std::vector<std::string> AxisRowColumnNames() {
   return names;
 }
 
+const char* AxisTorqueTimingName(AxisTorqueTiming timing) {
+  switch (timing) {
+    case AxisTorqueTiming::kHeld: return "held";
+    case AxisTorqueTiming::kFromData: return "auto";
+    case AxisTorqueTiming::kSampledSmoothed: return "sampled (smoothed)";
+    case AxisTorqueTiming::kSampled: break;
+  }
+  return "sampled";
+}
+
 std::vector<double> TimedAxisTorque(const std::vector<double>& torque, AxisTorqueTiming timing) {
+  if (timing == AxisTorqueTiming::kFromData) {
+    throw OptionError("‹torque-timing› auto: the fit chooses the timing before it builds rows");
+  }
   std::vector<double> out = torque;
-  if (timing == AxisTorqueTiming::kHeld) {
+  if (timing == AxisTorqueTiming::kHeld || timing == AxisTorqueTiming::kSampledSmoothed) {
     for (std::size_t k = 1; k < torque.size(); ++k) out[k] = 0.5 * (torque[k - 1] + torque[k]);
   }
   return out;
 }
+
+namespace {
+
+// Every `decimation`-th sample more than `reach` samples from any slow one
+// and more than reach + 2 from the ends (the filters' start-up).
+std::vector<std::size_t> ClearSamples(const std::vector<char>& slow, std::size_t reach, int decimation) {
+  const std::size_t n = slow.size();
+  std::vector<char> clear(n, 1);
+  std::size_t last_slow = 0;
+  bool seen = false;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (slow[k]) {
+      seen = true;
+      last_slow = k;
+    }
+    if (seen && k - last_slow <= reach) clear[k] = 0;
+  }
+  seen = false;
+  for (std::size_t k = n; k-- > 0;) {
+    if (slow[k]) {
+      seen = true;
+      last_slow = k;
+    }
+    if (seen && last_slow - k <= reach) clear[k] = 0;
+  }
+  const std::size_t margin = reach + 2;
+  std::vector<std::size_t> kept;
+  for (std::size_t k = margin; k + margin < n; k += static_cast<std::size_t>(decimation)) {
+    if (clear[k]) kept.push_back(k);
+  }
+  return kept;
+}
+
+}  // namespace
 
 AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int decimation, double min_rate_fraction,
                        const std::vector<std::string>& column_names, AxisTorqueTiming timing) {
@@ -152,6 +199,7 @@ AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int deci
                                  : "IDIM-LS on irregular samples: local-polynomial rates, subsampling";
     if (!log.rate.empty()) out.method += "; measured rate qd (q'' from it)";
     if (timing == AxisTorqueTiming::kHeld) out.method += "; torque held per sample (rows average u_(k-1), u_k)";
+    const bool smoothed = timing == AxisTorqueTiming::kSampledSmoothed;
     const std::size_t n = log.time.size();
     double max_rate = 0.0;
     for (std::size_t k = 0; k < n; ++k) {
@@ -163,30 +211,8 @@ AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int deci
     std::vector<char> slow(n, 0);
     for (std::size_t k = 0; k < n; ++k) slow[k] = std::abs(d.rate[derived(k)]) < min_rate;
     // A kept sample must be clear of slow samples by the filter's reach.
-    const std::size_t reach = static_cast<std::size_t>(std::max(1, 2 * decimation));
-    std::vector<char> clear(n, 1);
-    std::size_t last_slow = 0;
-    bool seen = false;
-    for (std::size_t k = 0; k < n; ++k) {
-      if (slow[k]) {
-        seen = true;
-        last_slow = k;
-      }
-      if (seen && k - last_slow <= reach) clear[k] = 0;
-    }
-    seen = false;
-    for (std::size_t k = n; k-- > 0;) {
-      if (slow[k]) {
-        seen = true;
-        last_slow = k;
-      }
-      if (seen && last_slow - k <= reach) clear[k] = 0;
-    }
-    const std::size_t margin = reach + 2;  // filter start-up at the ends
-    std::vector<std::size_t> kept;
-    for (std::size_t k = margin; k + margin < n; k += static_cast<std::size_t>(decimation)) {
-      if (clear[k]) kept.push_back(k);
-    }
+    const std::vector<std::size_t> kept = ClearSamples(slow, static_cast<std::size_t>(std::max(1, 2 * decimation)),
+                                                       decimation);
     // Full-rate columns, one at a time (memory: one column besides the log):
     // the model's regressors (CalcAxisRegressors), then |q'| and t - t_mid.
     // Low-passed before decimation.
@@ -204,6 +230,9 @@ AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int deci
         column[k] = c < kAxisTerms   ? CalcAxisRegressors(position, d.rate[m], d.acceleration[m])[c]
                     : c == kAxisTerms ? std::abs(d.rate[m])
                                       : log.time[k] - middle_time;
+      }
+      if (smoothed) {
+        for (std::size_t k = n; k-- > 1;) column[k] = 0.5 * (column[k - 1] + column[k]);
       }
       if (filtered) ZeroPhaseLowPassInPlace(column, band, d.rate_hz);
       for (std::size_t r = 0; r < kept.size(); ++r) rows[r * width + c] = column[kept[r]];

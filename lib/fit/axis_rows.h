@@ -61,8 +61,15 @@ struct AxisRows {
 /// drive holds from its sample to the next (zero-order hold); the central
 /// second difference of q at sample k integrates u_(k-1) and u_k for half
 /// each, (q_(k+1) - 2 q_k + q_(k-1)) / h^2 = (u_(k-1) + u_k) / (2 J) for an
-/// inertia, so row k takes (u_(k-1) + u_k) / 2.
-enum class AxisTorqueTiming { kSampled, kHeld };
+/// inertia, so row k takes (u_(k-1) + u_k) / 2. kFromData: whichever of
+/// the two leaves the smaller residual (FitAxis; docs/models.md#torque-timing).
+/// kSampledSmoothed: the sampled reading with the torque and every regressor
+/// column through the held reading's two-sample mean, so that both readings
+/// fit the same dependent column (the from-data choice compares their costs).
+enum class AxisTorqueTiming { kSampled, kHeld, kFromData, kSampledSmoothed };
+
+/// The timing's name as the options and outputs spell it: sampled, held, auto.
+const char* AxisTorqueTimingName(AxisTorqueTiming timing);
 
 /// The torque as row k sees it under `timing` (the first sample kept).
 std::vector<double> TimedAxisTorque(const std::vector<double>& torque, AxisTorqueTiming timing);

@@ -53,7 +53,8 @@ void FitByInverseDynamics(const std::vector<AxisLog>& logs, const AxisIdentifica
     s.measured.push_back(result.measured[k]);
     s.model.push_back(result.model[k]);
   }
-  for (const auto& v : ValidateAxis(validation, result.params, result.cutoff, options.decimation, options.torque_timing)) {
+  for (const auto& v :
+       ValidateAxis(validation, result.params, result.cutoff, options.decimation, result.torque_timing)) {
     run.fit.validation.push_back(v.stats);
   }
   run.summary.push_back(fmt::format("processing: {}", result.method));
@@ -61,6 +62,8 @@ void FitByInverseDynamics(const std::vector<AxisLog>& logs, const AxisIdentifica
                                     "{:.3g} 1/s",
                                     result.relative_error_percent, result.samples_used, result.acceleration_content));
   run.summary.push_back(fmt::format("position cutoff {:.4g} Hz ({})", result.cutoff, result.cutoff_rule));
+  run.summary.push_back(fmt::format("torque timing {} ({})", AxisTorqueTimingName(result.torque_timing),
+                                    result.timing_rule));
   run.derived.push_back({"relative_error_percent", result.relative_error_percent, 0.0, "% |tau - model| / |tau|"});
   run.model = "axis (docs/models.md#axis), IDIM-LS";
 }

@@ -31,7 +31,7 @@ struct AxisIdentificationOptions {
   std::vector<std::string> free = FitParameterKeys(AxisParameterTable(), "axis", true);
   double cutoff = 0.0;  ///< inverse dynamics: position low-pass [Hz], 0: from the data
   int decimation = 10;  ///< inverse dynamics: parallel decimation factor
-  AxisTorqueTiming torque_timing = AxisTorqueTiming::kSampled;  ///< inverse dynamics (fit/axis_rows.h)
+  AxisTorqueTiming torque_timing = AxisTorqueTiming::kFromData;  ///< inverse dynamics (fit/axis_rows.h)
   FitOptions fit;       ///< progress callback
   bool trace = false;   ///< build the trace CSV
   /// The SysId files' position unit when every log is a SysId file in one

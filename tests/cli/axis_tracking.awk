@@ -4,11 +4,15 @@
 # each logger step; the axis sees u held over the step (zero-order hold,
 # as a drive applies its last command) with viscous, sticking Coulomb and
 # offset torques; the logged torque is u plus Gaussian noise (a measured
-# current).
+# current). With loop=continuous the loop is analog instead: u is
+# recomputed at every integration substep from the true state and the
+# linearly interpolated reference, and the logged torque is u at the
+# sample's instant (a current sampled with the position; the log's encoder
+# is still quantised).
 # Input: a reference CSV with header t,q,qd,qdd. Output: t,q,tau.
 # Variables: J, b, tc, t0 (the axis), bw (loop bandwidth [Hz]), bits (encoder
 # counts per turn as 2^bits), noise (std of the logged torque), seed, steps
-# (integration substeps per logger step).
+# (integration substeps per logger step), loop (continuous or empty).
 # Run as awk -f gauss.awk -f axis_tracking.awk (gauss(): a normal deviate).
 function sgn(x) { return x > 0 ? 1 : (x < 0 ? -1 : 0) }
 BEGIN {
@@ -31,9 +35,15 @@ END {
     vm = k > 0 ? (qm - qm_prev) / dt : 0
     qm_prev = qm
     u = kp * (r[k] - qm) + kd * (rd[k] - vm) + J * rdd[k]
+    if (loop == "continuous") u = kp * (r[k] - q) + kd * (rd[k] - v) + J * rdd[k]
     printf "%.6f,%.10g,%.7g\n", t[k], qm, u + noise * gauss()
     h = dt / steps
     for (s = 0; s < steps; s++) {
+      if (loop == "continuous" && s > 0 && k + 1 < n) {
+        x = s / steps
+        u = kp * (r[k] + x * (r[k + 1] - r[k]) - q) + kd * (rd[k] + x * (rd[k + 1] - rd[k]) - v) + \
+            J * (rdd[k] + x * (rdd[k + 1] - rdd[k]))
+      }
       f = u - b * v - t0
       if (v == 0 && (f > -tc && f < tc)) a = 0
       else a = (f - tc * sgn(v != 0 ? v : f)) / J

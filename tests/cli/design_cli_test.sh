@@ -4,8 +4,11 @@
 # written apart from driveid: quantised encoder, noisy logged torque, the
 # command held over each logger step): a first log tracking four equal sines
 # (0.2-2 Hz) gives the prior; `design axis` writes a reference that keeps
-# every limit; the fit of its tracking log has each std within 2x of the
-# prediction and a smaller inertia std than four sines' at the same limits.
+# every limit; the fit of its tracking log, with defaults, warns of nothing,
+# holds the truth in every interval, has each std within 2x of the
+# prediction and a geometric-mean std at least 1.5x smaller than four
+# sines' at the same limits; the same loop run continuously (a measured
+# current) is read as sampled and holds the truth as well.
 # Refusals name the option (exit 2) or the file and line (exit 3).
 # Usage: design_cli_test.sh DRIVETRAIN_FIT SRC
 set -u
@@ -37,31 +40,49 @@ awk -F, '/^#/ || /^t,/ { next } { q = $2 < 0 ? -$2 : $2; v = $3 < 0 ? -$3 : $3
   END { printf "%d %g %g %g\n", n, mq, mv, mt; exit !(n == 20001 && mq <= 1 && mv <= 2 && mt <= 3 && mt > 2.5) }' next.csv > peaks.txt &&
   ok || fail "limits: rows, |q|, |qd|, |tau| = $(cat peaks.txt)"
 
-track 2 next.csv designed.csv && "$bin" axis designed.csv -q -o designed.yaml 2> designed.err ||
+track 2 next.csv designed.csv && "$bin" axis designed.csv -o designed.yaml > designed.txt 2> designed.err ||
   fail "fit of the designed log"
-# Not yet right with defaults (docs/models.md#torque-timing, #adequacy):
-# inertia 0.7 % = 11 std low, which the fit must say (a processing warning),
-# and Coulomb 1.4 % = 9 std low from the held command read as sampled;
-# --torque-timing held puts Coulomb back within 3 std.
-grep -q "warning: processing: inertia" designed.err && ok || fail "no processing warning on the designed log"
+# Right with defaults (docs/models.md#axis-exclusion, #torque-timing): no
+# warning, the held command read as held, the truth inside every 95 %
+# interval; read as sampled instead, viscous and Coulomb are far off.
+[ ! -s designed.err ] && ok || fail "warnings on the designed log: $(cat designed.err)"
+grep -q "^torque timing held" designed.txt && ok || fail "torque timing not held: $(grep timing designed.txt)"
+inside() { awk -v name="$2" -v truth="$3" '/^  estimates:/ { f = 1; next }
+  f && $1 == name ":" { gsub(/[][{},]/, " "); exit !($7 <= truth && truth <= $8) }' "$1"; }
+for pair in inertia=0.05 viscous=0.2 coulomb=1 offset=0.3; do
+  inside designed.yaml "${pair%=*}" "${pair#*=}" && ok || fail "${pair%=*}: truth ${pair#*=} outside $(grep "  ${pair%=*}:" designed.yaml)"
+done
 z_of() { awk -v name="$2" -v truth="$3" '/^  estimates:/ { f = 1; next }
   f && $1 == name ":" { gsub(/[{},]/, " "); printf "%.2f\n", ($3 - truth) / $5; exit }' "$1"; }
-"$bin" axis designed.csv --torque-timing held -q -o held.yaml 2> /dev/null || fail "held fit"
-z_sampled=$(z_of designed.yaml coulomb 1) z_held=$(z_of held.yaml coulomb 1)
-awk -v s="$z_sampled" -v h="$z_held" 'BEGIN { exit !(s < -5 && h > -3 && h < 3) }' && ok ||
-  fail "coulomb z: sampled $z_sampled (expected < -5), held $z_held (expected within 3)"
+"$bin" axis designed.csv --torque-timing sampled -q -o sampled.yaml 2> /dev/null || fail "sampled fit"
+z_sampled=$(z_of sampled.yaml coulomb 1)
+awk -v s="$z_sampled" 'BEGIN { exit !(s > 5 || s < -5) }' && ok || fail "coulomb z read as sampled: $z_sampled (expected beyond 5)"
+# The same loop run continuously (the torque a measured current): read as sampled.
+awk $truth -v seed=5 -v loop=continuous -v steps=100 -f "$src/tests/cli/gauss.awk" -f "$src/tests/cli/axis_tracking.awk" \
+  next.csv > current.csv && "$bin" axis current.csv -o current.yaml > current.txt 2> current.err ||
+  fail "fit of the current log"
+grep -q "^torque timing sampled" current.txt && ok || fail "torque timing not sampled: $(grep timing current.txt)"
+# Friction within 3 std (viscous keeps a bias of about 1 std here); the
+# inertia is 0.15-0.3 % low on such a log, 3-5 std, the friction steps at
+# the reversals leaking through the position filter (docs/models.md, known
+# limits of the excitation design): not checked.
+for pair in viscous=0.2 coulomb=1 offset=0.3; do
+  z=$(z_of current.yaml "${pair%=*}" "${pair#*=}")
+  awk -v z="$z" 'BEGIN { exit !(z > -3 && z < 3) }' && ok || fail "current log: ${pair%=*}: z $z (expected within 3)"
+done
 track 3 four.csv again.csv && "$bin" axis again.csv -q -o again.yaml || fail "fit of four sines"
 std_of() { awk -v name="$2" '/^  estimates:/ { f = 1; next } f && $1 == name ":" { gsub(/[{},]/, " "); print $5; exit }' "$1"; }
+ratio_product=1
 for p in inertia viscous coulomb offset; do
   predicted=$(grep -o "\"predicted_std\":{[^}]*}" design.json | head -1 | grep -o "\"$p\":[0-9.e+-]*" | cut -d: -f2)
   achieved=$(std_of designed.yaml "$p")
   awk -v a="$achieved" -v p="$predicted" 'BEGIN { exit !(a > 0 && p > 0 && a < 2 * p && p < 2 * a) }' && ok ||
     fail "$p: achieved std $achieved, predicted $predicted (not within 2x)"
+  ratio_product=$(awk -v r="$ratio_product" -v d="$achieved" -v f="$(std_of again.yaml "$p")" 'BEGIN { printf "%.10g", r * f / d }')
 done
-designed=$(std_of designed.yaml inertia)
-four=$(std_of again.yaml inertia)
-awk -v d="$designed" -v f="$four" 'BEGIN { exit !(d > 0 && f / d > 1.3) }' && ok ||
-  fail "inertia std: designed $designed, four sines $four (expected at least 1.3x smaller)"
+# The geometric mean of the four stds at least 1.5x smaller than four sines'.
+awk -v r="$ratio_product" 'BEGIN { exit !(r ^ 0.25 >= 1.5) }' && ok ||
+  fail "geometric-mean std ratio $(awk -v r="$ratio_product" 'BEGIN { print r ^ 0.25 }') (expected >= 1.5)"
 
 # simulate --reference: the prior's axis following the design exactly.
 "$bin" simulate axis --params prior.yaml --reference next.csv --noise 0.05 -o tried.csv > /dev/null &&

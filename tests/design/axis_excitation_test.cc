@@ -3,6 +3,7 @@
 // minimum; the designed reference keeps every limit on a finer grid than
 // the design's; the predicted covariance is the inverse information computed
 // here by quadrature over the whole log; the design beats four equal sines.
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -57,16 +58,29 @@ TEST_CASE("the designed reference keeps the limits, and its predicted covariance
   const AxisDesign d = DesignAxisExcitation(prior, o);
   REQUIRE(d.free.size() == 4);
   // Limits on a 10 kHz grid, the torque computed here.
+  const int n = 200000;
+  std::vector<ReferenceSample3> samples;
+  std::vector<char> slow(n, 0);
+  for (int k = 0; k < n; ++k) {
+    samples.push_back(d.designed.reference.At(k * 1e-4));
+    slow[static_cast<std::size_t>(k)] = std::abs(samples.back().rate) < 0.01 * d.designed.peaks.rate;
+  }
+  // The fit leaves out 2 decimations (20 ms at 1 kHz) on each side of a
+  // slow sample; the reference repeats over the 20 s.
+  std::vector<char> left_out(n, 0);
+  for (int k = 0; k < n; ++k) {
+    if (!slow[static_cast<std::size_t>(k)]) continue;
+    for (int j = -200; j <= 200; ++j) left_out[static_cast<std::size_t>((k + j + n) % n)] = 1;
+  }
   Eigen::Matrix4d info = Eigen::Matrix4d::Zero();
   double max_q = 0, max_v = 0, max_tau = 0;
-  for (int k = 0; k <= 200000; ++k) {
-    const double t = k * 1e-4;
-    const ReferenceSample3 s = d.designed.reference.At(t);
+  for (int k = 0; k < n; ++k) {
+    const ReferenceSample3& s = samples[static_cast<std::size_t>(k)];
     const double sign = (s.rate > 0) - (s.rate < 0);
     max_q = std::max(max_q, std::abs(s.position));
     max_v = std::max(max_v, std::abs(s.rate));
     max_tau = std::max(max_tau, std::abs(0.05 * s.acceleration + 0.2 * s.rate + 1.0 * sign + 0.3));
-    if (k % 100 == 0 && std::abs(s.rate) >= 0.01 * d.designed.peaks.rate) {
+    if (k % 100 == 0 && !left_out[static_cast<std::size_t>(k)]) {
       const Eigen::Vector4d phi(s.acceleration, s.rate, sign, 1.0);
       info += phi * phi.transpose();
     }
@@ -74,7 +88,7 @@ TEST_CASE("the designed reference keeps the limits, and its predicted covariance
   CHECK(max_q <= 1.0);
   CHECK(max_v <= 2.0);
   CHECK(max_tau <= 3.0);
-  CHECK(max_tau > 0.9 * 3.0);  // a limit binds
+  CHECK(std::max({max_q / 1.0, max_v / 2.0, max_tau / 3.0}) > 0.9);  // a limit binds
   // sigma^2 0.8 / d per decimated sample (every 10th logged one, 100 Hz):
   // Cov = sigma^2 0.08 (sum over the decimated samples)^-1.
   const Eigen::Matrix4d cov = (info / (0.05 * 0.05 * 0.08)).inverse();
