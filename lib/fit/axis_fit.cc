@@ -287,7 +287,8 @@ AxisTorqueTiming ChooseTiming(const std::vector<AxisLog>& logs, const AxisSectio
                             "two-sample mean of the torque is {:.6g} held, {:.6g} sampled (evidence {:.3g} "
                             "residual variances)",
                             options.cutoff, 2.0 * cost[1], 2.0 * cost[0], *evidence)
-              : "from the data: the other reading was refused";
+          : std::isfinite(cost[0]) || std::isfinite(cost[1]) ? "from the data: the other reading was refused"
+                                                              : "neither reading could be fitted to judge: sampled kept";
   return held ? AxisTorqueTiming::kHeld : AxisTorqueTiming::kSampled;
 }
 
@@ -338,24 +339,17 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
   std::string timing_rule = "given (‹torque-timing›)";
   double timing_evidence = HUGE_VAL;
   if (options.torque_timing == AxisTorqueTiming::kFromData) {
-    // The cutoff as the sampled reading chooses it, the timing at that
-    // cutoff, and the cutoff again if the timing changed.
-    central.torque_timing = AxisTorqueTiming::kSampled;
-    central.cutoff = options.cutoff > 0.0 ? options.cutoff : ChooseCutoff(logs, start, central, &cache);
-    // Judged at twice the decimated band (below 0.4 x rate), where the
-    // position filter no longer shapes the band the rows keep: at or below
-    // it, its attenuation of q'' next to the unfiltered torque favours the
-    // held reading on sampled logs.
+    // The timing first, judged at twice the decimated band (below 0.4 x
+    // rate; the given cutoff if higher), where the position filter no
+    // longer shapes the band the rows keep: at or below it, its attenuation
+    // of q'' next to the unfiltered torque favours the held reading on
+    // sampled logs. Then the cutoff with that timing.
     AxisFitOptions judged = central;
     const double rate = AxisSamplingRate(logs);
-    judged.cutoff = std::max(central.cutoff, std::min(2.0 * 0.8 * rate / (2.0 * options.decimation), 0.4 * rate));
+    judged.cutoff = std::max(options.cutoff, std::min(2.0 * 0.8 * rate / (2.0 * options.decimation), 0.4 * rate));
     central.torque_timing = ChooseTiming(logs, start, judged, &cache, &timing_rule, &timing_evidence);
-    if (central.torque_timing != AxisTorqueTiming::kSampled && !(options.cutoff > 0.0)) {
-      central.cutoff = ChooseCutoff(logs, start, central, &cache);
-    }
-  } else {
-    central.cutoff = options.cutoff > 0.0 ? options.cutoff : ChooseCutoff(logs, start, central, &cache);
   }
+  central.cutoff = options.cutoff > 0.0 ? options.cutoff : ChooseCutoff(logs, start, central, &cache);
   AxisFitOutput out = FitAtCutoff(logs, start, central, &cache, AtCutoff::kFull);
   out.torque_timing = central.torque_timing;
   out.timing_rule = timing_rule;
