@@ -42,6 +42,11 @@ CLI::App* SetupValidateCommand(CLI::App& app, ValidateOptions& options) {
   command->add_option("--decimation", options.decimation, "axis: parallel decimation factor")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
+  command->add_option("--torque-timing", options.torque_timing,
+                      "axis: when the logged torque acts, as the fit read it (its text output says): sampled or held "
+                      "(docs/models.md#torque-timing)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"sampled", "held"}));
   command->add_flag("--simulate", options.simulate,
                     "axis: simulate the position from the logged torque, Coulomb friction that sticks "
                     "(docs/models.md#axis-output-error), instead of the torque by inverse dynamics");
@@ -101,7 +106,9 @@ void RunValidateCommand(const ValidateOptions& options, const std::string& comma
     const AxisSection& axis = *file->Find<AxisSection>();
     const double k_t = axis.torque_constant.value_or(0.0);
     const auto logs = load(AxisLogColumns(), [k_t](CsvLog csv) { return MakeAxisLog(std::move(csv), k_t); });
-    run = RunAxisValidation(logs, axis, options.params, {options.simulate, options.cutoff, options.decimation});
+    run = RunAxisValidation(logs, axis, options.params,
+                            {options.simulate, options.cutoff, options.decimation,
+                             options.torque_timing == "held" ? AxisTorqueTiming::kHeld : AxisTorqueTiming::kSampled});
   } else {
     const auto logs = load(StepLogColumns(), [](CsvLog csv) { return MakeStepLog(std::move(csv)); });
     run = RunStepValidation(logs, *file->Find<DriveTrainSection>(),

@@ -83,13 +83,14 @@ void RequireValidated(const std::vector<ValidatedLog>& logs) {
   }
 }
 
-double ChooseAxisValidationCutoff(const std::vector<AxisLog>& logs, const AxisParameters& params, int decimation) {
+double ChooseAxisValidationCutoff(const std::vector<AxisLog>& logs, const AxisParameters& params, int decimation,
+                                  AxisTorqueTiming timing) {
   const std::vector<double> candidates = AxisCutoffCandidates(logs, decimation);
   double best = candidates.empty() ? 0.0 : candidates.front(), best_residual = HUGE_VAL;
   for (const double c : candidates) {
     double ssr = 0.0;
     int count = 0;
-    for (const auto& log : ValidateAxis(logs, params, c, decimation)) {
+    for (const auto& log : ValidateAxis(logs, params, c, decimation, timing)) {
       ssr += log.stats.rmse * log.stats.rmse * log.stats.samples;
       count += log.stats.samples;
     }

@@ -51,7 +51,8 @@ std::vector<ValidatedLog> ValidateAxis(const std::vector<AxisLog>& logs, const A
 /// The cutoff for validating without a fit: of the candidates of the fit's
 /// rule (ChooseAxisCutoff), the one whose prediction leaves the smallest
 /// mean squared residual.
-double ChooseAxisValidationCutoff(const std::vector<AxisLog>& logs, const AxisParameters& params, int decimation);
+double ChooseAxisValidationCutoff(const std::vector<AxisLog>& logs, const AxisParameters& params, int decimation,
+                                  AxisTorqueTiming timing = AxisTorqueTiming::kSampled);
 
 /// The axis logs' positions simulated from their logged effort with `params`
 /// (sim/axis_simulator.h), each from its start (fit/axis_oe_fit.h's

@@ -47,11 +47,13 @@ ValidationRun RunAxisValidation(const std::vector<AxisLog>& logs, const AxisSect
             "axis validation: position simulated from the logged torque",
             axis.linear ? "position [m]" : "position [rad]"};
   }
-  const double cutoff =
-      options.cutoff > 0.0 ? options.cutoff : ChooseAxisValidationCutoff(logs, params, options.decimation);
-  return {ValidateAxis(logs, params, cutoff, options.decimation),
-          fmt::format("axis inverse dynamics, position cutoff {:.4g} Hz ({})", cutoff,
-                      options.cutoff > 0.0 ? "given" : "the candidate that predicts best"),
+  const double cutoff = options.cutoff > 0.0
+                            ? options.cutoff
+                            : ChooseAxisValidationCutoff(logs, params, options.decimation, options.torque_timing);
+  return {ValidateAxis(logs, params, cutoff, options.decimation, options.torque_timing),
+          fmt::format("axis inverse dynamics, position cutoff {:.4g} Hz ({}), torque {}", cutoff,
+                      options.cutoff > 0.0 ? "given" : "the candidate that predicts best",
+                      AxisTorqueTimingName(options.torque_timing)),
           "axis validation: inverse dynamics (filtered, decimated)", "force or torque"};
 }
 

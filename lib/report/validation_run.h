@@ -40,6 +40,7 @@ struct AxisValidationOptions {
   bool simulate = false;  ///< simulate the position from the torque (else inverse dynamics of the torque)
   double cutoff = 0.0;    ///< inverse dynamics: position low-pass [Hz]; 0: the candidate that predicts best
   int decimation = 10;
+  AxisTorqueTiming torque_timing = AxisTorqueTiming::kSampled;  ///< inverse dynamics (fit/axis_rows.h; not kFromData)
 };
 ValidationRun RunAxisValidation(const std::vector<AxisLog>& logs, const AxisSection& axis, const std::string& path,
                                 const AxisValidationOptions& options);

@@ -57,6 +57,15 @@ z_of() { awk -v name="$2" -v truth="$3" '/^  estimates:/ { f = 1; next }
 "$bin" axis designed.csv --torque-timing sampled -q -o sampled.yaml 2> /dev/null || fail "sampled fit"
 z_sampled=$(z_of sampled.yaml coulomb 1)
 awk -v s="$z_sampled" 'BEGIN { exit !(s > 5 || s < -5) }' && ok || fail "coulomb z read as sampled: $z_sampled (expected beyond 5)"
+# validate reads a held log as the fit did with --torque-timing held: a
+# smaller rmse on another seed's log than read as sampled.
+track 6 next.csv other.csv || fail "other seed"
+rmse_of() { awk '/:tau / { print $3; exit }' "$1"; }
+"$bin" validate designed.yaml other.csv --torque-timing held > v_held.txt 2>&1 &&
+  "$bin" validate designed.yaml other.csv > v_sampled.txt 2>&1 &&
+  grep -q "torque held" v_held.txt &&
+  awk -v h="$(rmse_of v_held.txt)" -v s="$(rmse_of v_sampled.txt)" 'BEGIN { exit !(h > 0 && h < 0.95 * s) }' && ok ||
+  fail "validate --torque-timing held: $(cat v_held.txt v_sampled.txt)"
 # The same loop run continuously (the torque a measured current): read as sampled.
 awk $truth -v seed=5 -v loop=continuous -v steps=100 -f "$src/tests/cli/gauss.awk" -f "$src/tests/cli/axis_tracking.awk" \
   next.csv > current.csv && "$bin" axis current.csv -o current.yaml > current.txt 2> current.err ||
