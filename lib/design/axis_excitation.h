@@ -45,8 +45,10 @@ inline constexpr double kTorqueMargin = 0.95;
 inline constexpr double kDesignDecimation = 10.0;
 inline constexpr double kDesignDecimationBand = 0.8;
 /// The fit leaves out this many decimations' samples on each side of a
-/// sample slower than 1 % of the largest rate (fit/axis_rows.cc).
-inline constexpr int kDesignExclusionDecimations = 2;
+/// sample slower than 1 % of the largest rate (fit/axis_rows.h
+/// kAxisExclusionDecimations; tests/design/axis_excitation_test.cc checks
+/// they agree).
+inline constexpr int kDesignExclusionDecimations = 3;
 
 struct AxisDesignOptions {
   std::vector<std::string> free = FitParameterKeys(AxisParameterTable(), "axis", true);

@@ -211,8 +211,8 @@ AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int deci
     std::vector<char> slow(n, 0);
     for (std::size_t k = 0; k < n; ++k) slow[k] = std::abs(d.rate[derived(k)]) < min_rate;
     // A kept sample must be clear of slow samples by the filter's reach.
-    const std::vector<std::size_t> kept = ClearSamples(slow, static_cast<std::size_t>(std::max(1, 2 * decimation)),
-                                                       decimation);
+    const int reach = (d.rate_hz > 0.0 ? kAxisExclusionDecimations : kAxisExclusionDecimationsIrregular) * decimation;
+    const std::vector<std::size_t> kept = ClearSamples(slow, static_cast<std::size_t>(std::max(1, reach)), decimation);
     // Full-rate columns, one at a time (memory: one column besides the log):
     // the model's regressors (CalcAxisRegressors), then |q'| and t - t_mid.
     // Low-passed before decimation.

@@ -49,6 +49,23 @@ constexpr const char* kAxisTimeColumn = "t - t_mid";
 /// diagnostic ones.
 std::vector<std::string> AxisRowColumnNames();
 
+/// Rows are left out within this many decimations of a sample slower than
+/// the rate threshold (a reversal, where Coulomb friction steps and may
+/// stick). The step the friction puts into q'' passes the position filter
+/// and the decimation filter; at the highest cutoff candidate (the
+/// decimated band, both filters a zero-phase second-order Butterworth at
+/// 0.8 x rate / (2 x decimation)) the pair leaves 2.8 % of the step at 2
+/// decimations, 0.13 % at 3 (under 0.3 % beyond 2.6): 2 biased the inertia
+/// of a noise-free designed tracking log by -0.07 %, 3 by -0.01 %
+/// (docs/models.md#axis-exclusion). A lower cutoff spreads the step
+/// further: the processing-sensitivity check (axis_fit.h) names what moves.
+constexpr int kAxisExclusionDecimations = 3;
+/// The same for irregular sampling, whose local-polynomial rates have a
+/// kernel of their own (no Butterworth pair): the reach of 2 decimations it
+/// has always had (3 moved UR10e J2's inertia from 11.3 +- 2.6 to
+/// 9.7 +- 3.3 against 18.2, and took its processing warning away).
+constexpr int kAxisExclusionDecimationsIrregular = 2;
+
 struct AxisRows {
   LinearRegression regression;  ///< one channel per log ("path:tau")
   std::vector<double> time, measured;

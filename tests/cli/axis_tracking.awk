@@ -6,15 +6,33 @@
 # offset torques; the logged torque is u plus Gaussian noise (a measured
 # current). With loop=continuous the loop is analog instead: u is
 # recomputed at every integration substep from the true state and the
-# linearly interpolated reference, and the logged torque is u at the
-# sample's instant (a current sampled with the position; the log's encoder
-# is still quantised).
+# reference between samples (the quintic through each end's q, qd and qdd,
+# so that r, r' and r'' agree: interpolating the three linearly leaves a
+# ripple at the logging rate, kp x(1-x) h^2 r''/2, that a sampled torque
+# aliases to -(w h)^2/12 of J r'', -0.13 % at 20 Hz and 1 kHz), and the
+# logged torque is u at the sample's instant (a current sampled with the
+# position; the log's encoder is still quantised).
 # Input: a reference CSV with header t,q,qd,qdd. Output: t,q,tau.
 # Variables: J, b, tc, t0 (the axis), bw (loop bandwidth [Hz]), bits (encoder
 # counts per turn as 2^bits), noise (std of the logged torque), seed, steps
 # (integration substeps per logger step), loop (continuous or empty).
 # Run as awk -f gauss.awk -f axis_tracking.awk (gauss(): a normal deviate).
 function sgn(x) { return x > 0 ? 1 : (x < 0 ? -1 : 0) }
+# The quintic Hermite reference at x in [0, 1] of step k (length dt):
+# sets rx, rdx, rddx.
+function quintic(k, x, dt,    x2, x3, x4, x5, v0, a0, v1, a1) {
+  x2 = x * x; x3 = x2 * x; x4 = x3 * x; x5 = x4 * x
+  v0 = rd[k] * dt; a0 = rdd[k] * dt * dt; v1 = rd[k + 1] * dt; a1 = rdd[k + 1] * dt * dt
+  rx = r[k] * (1 - 10 * x3 + 15 * x4 - 6 * x5) + v0 * (x - 6 * x3 + 8 * x4 - 3 * x5) + \
+       a0 * (x2 - 3 * x3 + 3 * x4 - x5) / 2 + r[k + 1] * (10 * x3 - 15 * x4 + 6 * x5) + \
+       v1 * (-4 * x3 + 7 * x4 - 3 * x5) + a1 * (x3 - 2 * x4 + x5) / 2
+  rdx = (r[k] * (-30 * x2 + 60 * x3 - 30 * x4) + v0 * (1 - 18 * x2 + 32 * x3 - 15 * x4) + \
+         a0 * (2 * x - 9 * x2 + 12 * x3 - 5 * x4) / 2 + r[k + 1] * (30 * x2 - 60 * x3 + 30 * x4) + \
+         v1 * (-12 * x2 + 28 * x3 - 15 * x4) + a1 * (3 * x2 - 8 * x3 + 5 * x4) / 2) / dt
+  rddx = (r[k] * (-60 * x + 180 * x2 - 120 * x3) + v0 * (-36 * x + 96 * x2 - 60 * x3) + \
+          a0 * (2 - 18 * x + 36 * x2 - 20 * x3) / 2 + r[k + 1] * (60 * x - 180 * x2 + 120 * x3) + \
+          v1 * (-24 * x + 84 * x2 - 60 * x3) + a1 * (6 * x - 24 * x2 + 20 * x3) / 2) / (dt * dt)
+}
 BEGIN {
   FS = ","; srand(seed + 0)
   if (steps == "") steps = 20
@@ -40,9 +58,8 @@ END {
     h = dt / steps
     for (s = 0; s < steps; s++) {
       if (loop == "continuous" && s > 0 && k + 1 < n) {
-        x = s / steps
-        u = kp * (r[k] + x * (r[k + 1] - r[k]) - q) + kd * (rd[k] + x * (rd[k + 1] - rd[k]) - v) + \
-            J * (rdd[k] + x * (rdd[k + 1] - rdd[k]))
+        quintic(k, s / steps, dt)
+        u = kp * (rx - q) + kd * (rdx - v) + J * rddx
       }
       f = u - b * v - t0
       if (v == 0 && (f > -tc && f < tc)) a = 0

@@ -8,7 +8,7 @@
 # holds the truth in every interval, has each std within 2x of the
 # prediction and a geometric-mean std at least 1.5x smaller than four
 # sines' at the same limits; the same loop run continuously (a measured
-# current) is read as sampled and holds the truth as well.
+# current) is read as sampled, with every estimate within 3 std.
 # Refusals name the option (exit 2) or the file and line (exit 3).
 # Usage: design_cli_test.sh DRIVETRAIN_FIT SRC
 set -u
@@ -71,11 +71,11 @@ awk $truth -v seed=5 -v loop=continuous -v steps=100 -f "$src/tests/cli/gauss.aw
   next.csv > current.csv && "$bin" axis current.csv -o current.yaml > current.txt 2> current.err ||
   fail "fit of the current log"
 grep -q "^torque timing sampled" current.txt && ok || fail "torque timing not sampled: $(grep timing current.txt)"
-# Friction within 3 std (viscous keeps a bias of about 1 std here); the
-# inertia is 0.15-0.3 % low on such a log, 3-5 std, the friction steps at
-# the reversals leaking through the position filter (docs/models.md, known
-# limits of the excitation design): not checked.
-for pair in viscous=0.2 coulomb=1 offset=0.3; do
+# Within 3 std: where the residual rule picks half the band (half the
+# seeds), Coulomb keeps a bias of about 2 std, the friction step spread
+# further than the fit leaves out (docs/models.md, known limits of the
+# excitation design).
+for pair in inertia=0.05 viscous=0.2 coulomb=1 offset=0.3; do
   z=$(z_of current.yaml "${pair%=*}" "${pair#*=}")
   awk -v z="$z" 'BEGIN { exit !(z > -3 && z < 3) }' && ok || fail "current log: ${pair%=*}: z $z (expected within 3)"
 done
