@@ -94,9 +94,7 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
   fit_options.free = options.free;
   fit_options.cutoff = options.cutoff;
   fit_options.decimation = options.decimation;
-  fit_options.torque_timing = options.torque_timing == "held"      ? AxisTorqueTiming::kHeld
-                             : options.torque_timing == "sampled" ? AxisTorqueTiming::kSampled
-                                                                  : AxisTorqueTiming::kFromData;
+  fit_options.torque_timing = AxisTorqueTimingFromName(options.torque_timing);
   fit_options.trace = !options.output.trace.empty();
   SetProgress(fit_options.fit, options.output.verbose, options.output.max_seconds);
   std::vector<AxisLog> validation;

@@ -108,7 +108,7 @@ void RunValidateCommand(const ValidateOptions& options, const std::string& comma
     const auto logs = load(AxisLogColumns(), [k_t](CsvLog csv) { return MakeAxisLog(std::move(csv), k_t); });
     run = RunAxisValidation(logs, axis, options.params,
                             {options.simulate, options.cutoff, options.decimation,
-                             options.torque_timing == "held" ? AxisTorqueTiming::kHeld : AxisTorqueTiming::kSampled});
+                             AxisTorqueTimingFromName(options.torque_timing)});
   } else {
     const auto logs = load(StepLogColumns(), [](CsvLog csv) { return MakeStepLog(std::move(csv)); });
     run = RunStepValidation(logs, *file->Find<DriveTrainSection>(),

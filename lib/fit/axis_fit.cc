@@ -10,6 +10,7 @@
 
 #include "core/errors.h"
 #include "core/option_check.h"
+#include "core/order_statistics.h"
 #include "fit/adequacy.h"
 #include "fit/axis_rows.h"
 #include "fit/linear_regression.h"
@@ -260,8 +261,7 @@ AxisTorqueTiming ChooseTiming(const std::vector<AxisLog>& logs, const AxisSectio
   if (!residual[0].empty() && residual[0].size() == residual[1].size()) {
     std::vector<double> magnitude;
     for (const auto& r : residual) for (double x : r) magnitude.push_back(std::abs(x));
-    std::nth_element(magnitude.begin(), magnitude.begin() + magnitude.size() / 2, magnitude.end());
-    const double clip = kTimingClip * 1.4826 * magnitude[magnitude.size() / 2];
+    const double clip = kTimingClip * RobustStd(std::move(magnitude));
     for (int i = 0; i < 2; ++i) {
       cost[i] = 0.0;
       for (double x : residual[i]) cost[i] += 0.5 * std::min(x * x, clip * clip);
@@ -271,7 +271,6 @@ AxisTorqueTiming ChooseTiming(const std::vector<AxisLog>& logs, const AxisSectio
   } else if (!residual[0].empty()) {
     cost[0] = 0.0;
   }
-  const bool held = cost[1] < cost[0];
   // The evidence: the difference of the costs in units of the residual
   // variance of the better reading (a log-likelihood ratio for white
   // residuals), divided by the square of the std inflation the residuals'
@@ -289,7 +288,7 @@ AxisTorqueTiming ChooseTiming(const std::vector<AxisLog>& logs, const AxisSectio
                             options.cutoff, 2.0 * cost[1], 2.0 * cost[0], *evidence)
           : std::isfinite(cost[0]) || std::isfinite(cost[1]) ? "from the data: the other reading was refused"
                                                               : "neither reading could be fitted to judge: sampled kept";
-  return held ? AxisTorqueTiming::kHeld : AxisTorqueTiming::kSampled;
+  return b == 1 ? AxisTorqueTiming::kHeld : AxisTorqueTiming::kSampled;
 }
 
 // The warning for a timing chosen on weak evidence: the estimates that
@@ -346,7 +345,7 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
     // sampled logs. Then the cutoff with that timing.
     AxisFitOptions judged = central;
     const double rate = AxisSamplingRate(logs);
-    judged.cutoff = std::max(options.cutoff, std::min(2.0 * 0.8 * rate / (2.0 * options.decimation), 0.4 * rate));
+    judged.cutoff = std::max(options.cutoff, std::min(2.0 * AxisDecimatedBand(rate, options.decimation), 0.4 * rate));
     central.torque_timing = ChooseTiming(logs, start, judged, &cache, &timing_rule, &timing_evidence);
   }
   central.cutoff = options.cutoff > 0.0 ? options.cutoff : ChooseCutoff(logs, start, central, &cache);

@@ -108,6 +108,8 @@ double AxisSamplingRate(const std::vector<AxisLog>& logs) {
   return lowest;
 }
 
+double AxisDecimatedBand(double rate, int decimation) { return 0.8 * rate / (2.0 * std::max(1, decimation)); }
+
 std::vector<double> AxisCutoffCandidates(const std::vector<AxisLog>& logs, int decimation) {
   const double rate = AxisSamplingRate(logs);
   if (!std::isfinite(rate) || !(rate > 0.0)) return {};
@@ -115,7 +117,7 @@ std::vector<double> AxisCutoffCandidates(const std::vector<AxisLog>& logs, int d
   if (!(motion > 0.0) || !std::isfinite(motion)) return {rate / 40.0};
   // No higher than the band the decimated samples keep (the parallel
   // decimation filter's cutoff): above it only noise would change.
-  const double top = 0.8 * rate / (2.0 * std::max(1, decimation));
+  const double top = AxisDecimatedBand(rate, decimation);
   std::vector<double> candidates;
   for (double c = kCutoffPerMotionFrequency * motion; c < top && candidates.size() < 12; c *= 2.0) {
     candidates.push_back(c);
@@ -140,6 +142,13 @@ const char* AxisTorqueTimingName(AxisTorqueTiming timing) {
     case AxisTorqueTiming::kSampled: break;
   }
   return "sampled";
+}
+
+AxisTorqueTiming AxisTorqueTimingFromName(const std::string& name) {
+  for (const AxisTorqueTiming timing : {AxisTorqueTiming::kSampled, AxisTorqueTiming::kHeld, AxisTorqueTiming::kFromData}) {
+    if (name == AxisTorqueTimingName(timing)) return timing;
+  }
+  throw OptionError(fmt::format("‹torque-timing› {}: not one of sampled, held, auto", name));
 }
 
 std::vector<double> TimedAxisTorque(const std::vector<double>& torque, AxisTorqueTiming timing) {
@@ -217,7 +226,7 @@ AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int deci
     // the model's regressors (CalcAxisRegressors), then |q'| and t - t_mid.
     // Low-passed before decimation.
     const bool filtered = d.rate_hz > 0.0 && decimation > 1;
-    const double band = 0.8 * d.rate_hz / (2.0 * decimation);
+    const double band = AxisDecimatedBand(d.rate_hz, decimation);
     const std::size_t width = kAxisTerms + 2;
     std::vector<double> rows(kept.size() * width), column(n);
     const double middle_time = 0.5 * (log.time.front() + log.time.back());

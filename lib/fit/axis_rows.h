@@ -33,6 +33,10 @@ double AxisMotionFrequency(const std::vector<AxisLog>& logs);
 /// The lowest sampling rate of the logs [Hz] (the mean rate where irregular).
 double AxisSamplingRate(const std::vector<AxisLog>& logs);
 
+/// The band the decimated samples keep [Hz]: the parallel decimation
+/// filter's cutoff, 0.8 x rate / (2 x decimation) (decimation below 1 counts as 1).
+double AxisDecimatedBand(double rate, int decimation);
+
 /// Position cutoffs a fit or validation chooses from [Hz]:
 /// kCutoffPerMotionFrequency x f_m x 2^k below the decimated band
 /// 0.8 x rate / (2 x decimation), then that band; {rate / 40} for logs
@@ -87,6 +91,9 @@ enum class AxisTorqueTiming { kSampled, kHeld, kFromData, kSampledSmoothed };
 
 /// The timing's name as the options and outputs spell it: sampled, held, auto.
 const char* AxisTorqueTimingName(AxisTorqueTiming timing);
+/// The timing a name spells (AxisTorqueTimingName's inverse for sampled,
+/// held, auto); OptionError naming ‹torque-timing› for any other.
+AxisTorqueTiming AxisTorqueTimingFromName(const std::string& name);
 
 /// The torque as row k sees it under `timing` (the first sample kept).
 std::vector<double> TimedAxisTorque(const std::vector<double>& torque, AxisTorqueTiming timing);
