@@ -4,6 +4,7 @@
 // or JSON (docs/export.md).
 // Parse, call the library, write: the formats live in report/parameter_export.
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -34,9 +35,7 @@ CLI::App* SetupExportCommand(CLI::App& parent, ExportCommandOptions& options) {
                       "parameter file with an axis and a feedforward section (drivetrain-fit axis -o), or a joint "
                       "section (drivetrain-fit joint -o)")
       ->required();
-  command->add_option("--to", options.target, "mjcf, urdf, wpilib-java, wpilib-cpp, c-header or json")
-      ->required()
-      ->check(CLI::IsMember({"mjcf", "urdf", "wpilib-java", "wpilib-cpp", "c-header", "json"}));
+  command->add_option("--to", options.target, ListExportTargets())->required()->check(CLI::IsMember(ExportTargetNames()));
   command->add_option("--joint", options.joint,
                       "joint name in MJCF/URDF, class prefix in Java, namespace prefix in C++, macro prefix in C (letters, digits, _)")
       ->capture_default_str();
@@ -54,7 +53,10 @@ CLI::App* SetupCDriveExportCommand(CLI::App& parent, ExportCommandOptions& optio
                 "(docs/export.md#c-drive); MJCF, URDF and WPILib have no form for it");
   command->add_option("params", options.params, "parameter file with a cdrive feedforward section (cdrive-fit friction -o)")
       ->required();
-  command->add_option("--to", options.target, "c-header or json")->required()->check(CLI::IsMember({"c-header", "json"}));
+  const std::vector<ExportTarget> cdrive_targets{ExportTarget::kCHeader, ExportTarget::kJson};
+  command->add_option("--to", options.target, ListExportTargets(cdrive_targets))
+      ->required()
+      ->check(CLI::IsMember(ExportTargetNames(cdrive_targets)));
   command->add_option("--joint", options.joint, "macro prefix in C, name in JSON (letters, digits, _)")
       ->capture_default_str();
   command->add_option("-o,--output", options.output, "file to write (default: stdout); written atomically");

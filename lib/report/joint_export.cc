@@ -146,8 +146,9 @@ std::string ExportJoint(const JointSection& joint, const ParameterFile& file, Ex
     case ExportTarget::kWpilibCpp:
     case ExportTarget::kJson: break;
   }
-  throw InputError("the elastic joint has no feed-forward section: export it to mjcf, urdf or c-header "
-                   "(docs/export.md#elastic-joint)");
+  throw InputError(fmt::format("the elastic joint has no feed-forward section: export it to {} "
+                               "(docs/export.md#elastic-joint)",
+                               ListExportTargets({ExportTarget::kMjcf, ExportTarget::kUrdf, ExportTarget::kCHeader})));
 }
 
 }  // namespace driveid

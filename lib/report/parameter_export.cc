@@ -197,13 +197,9 @@ std::string ExportJson(const ParameterFile& file, const ExportOptions& o) {
 }  // namespace
 
 ExportTarget ParseExportTarget(const std::string& name) {
-  if (name == "mjcf") return ExportTarget::kMjcf;
-  if (name == "urdf") return ExportTarget::kUrdf;
-  if (name == "wpilib-java") return ExportTarget::kWpilibJava;
-  if (name == "wpilib-cpp") return ExportTarget::kWpilibCpp;
-  if (name == "c-header") return ExportTarget::kCHeader;
-  if (name == "json") return ExportTarget::kJson;
-  throw InputError(fmt::format("export target '{}': one of mjcf, urdf, wpilib-java, wpilib-cpp, c-header, json", CommentText(name)));
+  ExportTarget target{};
+  if (FindExportTarget(name, &target)) return target;
+  throw InputError(fmt::format("export target '{}': one of {}", CommentText(name), fmt::join(ExportTargetNames(), ", ")));
 }
 
 void ExportOptions::Validate() const {
@@ -220,9 +216,10 @@ std::string ExportParameters(const ParameterFile& file, ExportTarget target, con
   options.Validate();
   if (file.feedforward.law == kCDriveCompensationLaw && target != ExportTarget::kCHeader &&
       target != ExportTarget::kJson) {
-    throw InputError("the C-drive's compensation law (31) couples the two motors through their rate difference: "
-                     "MJCF and URDF joints hold friction per joint and WPILib has no such class; export it to "
-                     "c-header or json (docs/export.md#c-drive)");
+    throw InputError(fmt::format("the C-drive's compensation law (31) couples the two motors through their rate "
+                                 "difference: MJCF and URDF joints hold friction per joint and WPILib has no such class; "
+                                 "export it to {} (docs/export.md#c-drive)",
+                                 ListExportTargets({ExportTarget::kCHeader, ExportTarget::kJson})));
   }
   const JointSection* joint = file.Find<JointSection>();
   if (joint != nullptr && file.Find<AxisSection>() == nullptr) return ExportJoint(*joint, file, target, options);

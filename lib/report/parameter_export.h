@@ -21,12 +21,11 @@
 #include <string>
 
 #include "io/parameter_file.h"
+#include "report/export_target.h"
 
 namespace driveid {
 
-enum class ExportTarget { kMjcf, kUrdf, kWpilibJava, kWpilibCpp, kCHeader, kJson };
-
-/// Parses "mjcf", "urdf", "wpilib-java", "wpilib-cpp", "c-header", "json".
+/// The target a name spells (report/export_target.h); InputError listing the names for any other.
 ExportTarget ParseExportTarget(const std::string& name);
 
 struct ExportOptions {

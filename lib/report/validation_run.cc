@@ -4,6 +4,7 @@
 
 #include "core/errors.h"
 #include "models/missing_values.h"
+#include "report/export_target.h"
 #include "sim/mujoco_axis_simulator.h"
 
 namespace driveid {
@@ -29,8 +30,9 @@ ValidationModel ChooseValidationModel(const ParameterFile* file, bool mjcf, cons
     model = axis ? "axis" : "step";
   }
   if (model == "joint") {
-    throw OptionError("‹model› joint: an elastic joint is validated from its MJCF in MuJoCo (drivetrain-fit export "
-                      "P.yaml ‹to› mjcf), not from a parameter file");
+    throw OptionError(fmt::format("‹model› joint: an elastic joint is validated from its MJCF in MuJoCo "
+                                  "(drivetrain-fit export P.yaml ‹to› {}), not from a parameter file",
+                                  ExportTargetName(ExportTarget::kMjcf)));
   }
   if (model == "axis" && !axis) throw InputError(fmt::format("{}: no 'axis' section", path));
   if (model == "step" && !drivetrain) throw InputError(fmt::format("{}: no 'drivetrain' section", path));

@@ -9,6 +9,7 @@
 
 #include "core/errors.h"
 #include "models/feedforward.h"
+#include "report/export_target.h"
 #include "report/export_text.h"
 #include "report/feedback_export.h"
 
@@ -118,20 +119,22 @@ std::string ExportWpilibJava(const WpilibAxis& axis, const ExportOptions& o) {
 
 std::string ExportWpilibCpp(const WpilibAxis& axis, const ExportOptions& o) {
   const Feedforward& ff = axis.feedforward;
+  const char* const target = ExportTargetName(ExportTarget::kWpilibCpp);
   if (ff.effort_unit != "V" && ff.effort_unit != "Volts" && ff.effort_unit != "volts") {
-    throw InputError(fmt::format("wpilib-cpp: WPILib's feed-forward classes take volts, and this fit's effort is in "
-                                 "'{}' (export it to c-header or json)", CommentText(ff.effort_unit)));
+    throw InputError(fmt::format("{}: WPILib's feed-forward classes take volts, and this fit's effort is in "
+                                 "'{}' (export it to {})", target, CommentText(ff.effort_unit),
+                                 ListExportTargets({ExportTarget::kCHeader, ExportTarget::kJson})));
   }
   const std::string distance = DistanceType(ff.position_unit);
   if (distance.empty()) {
-    throw InputError(fmt::format("wpilib-cpp: position unit '{}' has no units-library type here (radians, rotations, "
-                                 "degrees, meters, millimeters, feet, inches)", CommentText(ff.position_unit)));
+    throw InputError(fmt::format("{}: position unit '{}' has no units-library type here (radians, rotations, "
+                                 "degrees, meters, millimeters, feet, inches)", target, CommentText(ff.position_unit)));
   }
   const Plan p = MakePlan(axis);
   // The units library checks a class's distance at compile time.
   const bool angle = IsAngleUnit(ff.position_unit);
   if ((axis.linear || p.elevator) == angle) {
-    throw InputError(fmt::format("wpilib-cpp: a {} axis with its position in '{}': {} takes a {}", axis.linear ? "linear" : "rotary",
+    throw InputError(fmt::format("{}: a {} axis with its position in '{}': {} takes a {}", target, axis.linear ? "linear" : "rotary",
                                  ff.position_unit, p.type, angle ? "length (check axis.linear)" : "angle (check axis.linear)"));
   }
   std::string out = Provenance(o, "//", "");

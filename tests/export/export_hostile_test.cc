@@ -3,6 +3,7 @@
 // units the parameter file reader refuses by file and line, inertias a
 // simulator cannot hold, and targets a file cannot be exported to.
 #include <string>
+#include <vector>
 
 #include <catch2/catch.hpp>
 
@@ -123,4 +124,22 @@ TEST_CASE("wpilib-cpp: a linear axis in radians and a rotary axis in meters are 
                     Catch::Contains("a rotary axis with its position in 'Meters'"));
   arm.feedforward.position_unit = "Radians";
   CHECK_NOTHROW(ExportParameters(arm, ExportTarget::kWpilibCpp, ExportOptions{}));
+}
+
+TEST_CASE("export targets: one table spells each name; parsing inverts it, and refuses with every name listed") {
+  const ExportTarget all[] = {ExportTarget::kMjcf,      ExportTarget::kUrdf,    ExportTarget::kWpilibJava,
+                              ExportTarget::kWpilibCpp, ExportTarget::kCHeader, ExportTarget::kJson};
+  const std::vector<std::string> names = ExportTargetNames();
+  REQUIRE(names.size() == 6);
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    CHECK(ExportTargetName(all[i]) == names[i]);
+    CHECK(ParseExportTarget(names[i]) == all[i]);
+    for (std::size_t j = 0; j < i; ++j) CHECK(names[j] != names[i]);
+  }
+  CHECK(ListExportTargets() == "mjcf, urdf, wpilib-java, wpilib-cpp, c-header or json");
+  CHECK(ListExportTargets({ExportTarget::kCHeader, ExportTarget::kJson}) == "c-header or json");
+  CHECK(ListExportTargets({ExportTarget::kUrdf}) == "urdf");
+  CHECK_THROWS_WITH(ParseExportTarget("MJCF"),
+                    Catch::Contains("'MJCF': one of mjcf, urdf, wpilib-java, wpilib-cpp, c-header, json"));
+  CHECK_THROWS_AS(ParseExportTarget(""), InputError);
 }
