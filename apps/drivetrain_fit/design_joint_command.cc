@@ -83,10 +83,7 @@ void Run(DesignJointOptions o, const std::string& command_line) {
   const JointSection* section = file.Find<JointSection>();
   if (!section) throw InputError(fmt::format("{}: no 'joint' section", o.params));
   if (!section->gear_ratio) throw InputError(fmt::format("{}: joint.gear_ratio is needed", o.params));
-  JointParameters prior;
-  for (const auto& row : JointParameterTable()) {
-    if (row.in_model != nullptr) prior.*(row.in_model) = (section->*(row.in_section)).value_or(0.0);
-  }
+  const JointParameters prior = ModelValuesOr(JointParameterTable(), *section, 0.0);
   if (o.band.size() == 2) {
     o.design.band_low = o.band[0];
     o.design.band_high = o.band[1];

@@ -200,10 +200,7 @@ void RunSimulateJointCommand(const SimulateJointOptions& o, const std::string& c
   const ParameterFile file = ReadParameterFile(o.params);
   if (!file.Find<JointSection>()) throw InputError(fmt::format("{}: no 'joint' section", o.params));
   const JointSection& section = *file.Find<JointSection>();
-  JointParameters p;
-  for (const auto& row : JointParameterTable()) {
-    if (row.in_model != nullptr) p.*(row.in_model) = (section.*(row.in_section)).value_or(0.0);
-  }
+  const JointParameters p = ModelValuesOr(JointParameterTable(), section, 0.0);
   JointExperiment e = o.experiment;
   if (o.band.size() == 2) {
     e.f_low = o.band[0];

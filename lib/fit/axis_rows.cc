@@ -145,10 +145,12 @@ const char* AxisTorqueTimingName(AxisTorqueTiming timing) {
 }
 
 AxisTorqueTiming AxisTorqueTimingFromName(const std::string& name) {
+  std::vector<std::string> names;
   for (const AxisTorqueTiming timing : {AxisTorqueTiming::kSampled, AxisTorqueTiming::kHeld, AxisTorqueTiming::kFromData}) {
     if (name == AxisTorqueTimingName(timing)) return timing;
+    names.emplace_back(AxisTorqueTimingName(timing));
   }
-  throw OptionError(fmt::format("‹torque-timing› {}: not one of sampled, held, auto", name));
+  throw OptionError(fmt::format("‹torque-timing› {}: not one of {}", name, fmt::join(names, ", ")));
 }
 
 std::vector<double> TimedAxisTorque(const std::vector<double>& torque, AxisTorqueTiming timing) {

@@ -176,17 +176,22 @@ Model MakeModelParameters(const ParameterTable<Section, Model>& table, const Sec
   return defaults;
 }
 
+/// The model parameters of a section with `fill` where a value is not given
+/// (no bounds checked: a prior or a simulation takes the file as it is).
+template <class Section, class Model>
+Model ModelValuesOr(const ParameterTable<Section, Model>& table, const Section& section, double fill) {
+  Model model{};
+  for (const auto& row : table) {
+    if (row.in_model != nullptr) model.*(row.in_model) = (section.*(row.in_section)).value_or(fill);
+  }
+  return model;
+}
+
 /// The model parameters of a section with NaN where a value is not given
 /// (for reports that show "-" and fits that tell given from missing).
 template <class Section, class Model>
 Model ModelValuesOrNaN(const ParameterTable<Section, Model>& table, const Section& section) {
-  Model model{};
-  for (const auto& row : table) {
-    if (row.in_model != nullptr) {
-      model.*(row.in_model) = (section.*(row.in_section)).value_or(std::numeric_limits<double>::quiet_NaN());
-    }
-  }
-  return model;
+  return ModelValuesOr(table, section, std::numeric_limits<double>::quiet_NaN());
 }
 
 /// Writes every model parameter of `model` into `section` (settings stay).

@@ -465,3 +465,11 @@ TEST_CASE("torque timing: the second difference of q sees a held command as (u_(
   CHECK(held_error < 1e-9);      // exact to rounding
   CHECK(sampled_error > 0.1);    // half of each jump of the command (0.75 / 2)
 }
+
+TEST_CASE("torque timing names: AxisTorqueTimingFromName inverts AxisTorqueTimingName and refuses others by name") {
+  for (const AxisTorqueTiming t : {AxisTorqueTiming::kSampled, AxisTorqueTiming::kHeld, AxisTorqueTiming::kFromData}) {
+    CHECK(AxisTorqueTimingFromName(AxisTorqueTimingName(t)) == t);
+  }
+  CHECK_THROWS_WITH(AxisTorqueTimingFromName("Held"), Catch::Contains("‹torque-timing› Held: not one of sampled, held, auto"));
+  CHECK_THROWS_AS(AxisTorqueTimingFromName("sampled (smoothed)"), OptionError);
+}

@@ -75,3 +75,19 @@ TEST_CASE("the joint's simulated terms are the joint table's rows in order") {
     CHECK(table[static_cast<std::size_t>(index)].in_model == member);
   }
 }
+
+TEST_CASE("ModelValuesOr: given values where the section has them, the fill elsewhere; settings untouched") {
+  JointSection section;
+  section.stiffness = 1200.0;
+  section.motor_inertia = 0.02;
+  section.torque_constant = 0.5;  // a setting, not a model parameter
+  const JointParameters zero = ModelValuesOr(JointParameterTable(), section, 0.0);
+  CHECK(zero.stiffness == 1200.0);
+  CHECK(zero.motor_inertia == 0.02);
+  CHECK(zero.damping == 0.0);
+  CHECK(zero.link_inertia == 0.0);
+  const JointParameters missing = ModelValuesOrNaN(JointParameterTable(), section);
+  CHECK(missing.stiffness == 1200.0);
+  CHECK(std::isnan(missing.damping));
+  CHECK(std::isnan(missing.link_torque_offset));
+}
