@@ -45,9 +45,8 @@ inline constexpr double kTorqueMargin = 0.95;
 inline constexpr double kDesignDecimation = 10.0;
 inline constexpr double kDesignDecimationBand = 0.8;
 /// The fit leaves out this many decimations' samples on each side of a
-/// sample slower than 1 % of the largest rate (fit/axis_rows.h
-/// kAxisExclusionDecimations; tests/design/axis_excitation_test.cc checks
-/// they agree).
+/// sample slower than 1 % of the largest rate at the band cutoff (fit/axis_rows.h
+/// AxisExclusionReach; tests/design/axis_excitation_test.cc checks they agree).
 inline constexpr int kDesignExclusionDecimations = 3;
 
 struct AxisDesignOptions {

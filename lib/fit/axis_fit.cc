@@ -5,6 +5,7 @@
 #include <map>
 #include <memory>
 #include <stdexcept>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -190,7 +191,7 @@ namespace {
 // half/twice sensitivity fits take them from here (the candidates double,
 // so half and twice the chosen one are usually among them). Rows larger
 // than kCachedRowBytes are not kept.
-using AxisRowCache = std::map<std::pair<double, AxisTorqueTiming>, std::shared_ptr<const AxisRows>>;
+using AxisRowCache = std::map<std::tuple<double, AxisTorqueTiming, AxisReach>, std::shared_ptr<const AxisRows>>;
 constexpr std::size_t kCachedRowBytes = std::size_t{64} << 20;
 
 // What a fit at one cutoff does beyond the estimates: the adequacy checks
@@ -198,29 +199,36 @@ constexpr std::size_t kCachedRowBytes = std::size_t{64} << 20;
 enum class AtCutoff { kFull, kScore };
 
 AxisFitOutput FitAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options,
-                          AxisRowCache* cache, AtCutoff extent);
+                          AxisRowCache* cache, AtCutoff extent, AxisReach reach = AxisReach::kAtCutoff);
 
 double ChooseCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options,
                     AxisRowCache* cache) {
-  // Of the candidates (axis_rows.h), the one whose fit leaves the smallest
-  // mean squared residual of the (identically filtered) torque: lower
-  // cutoffs distort the motion, higher ones let the encoder's noise into q''.
+  // Of the candidates (axis_rows.h), the highest unless a lower one's fit
+  // leaves a mean squared residual of the (identically filtered) torque
+  // smaller by more than kAxisLowerCutoffGain: lower cutoffs take the encoder's
+  // noise out of q'', but distort the motion and leave out more around each
+  // reversal (AxisExclusionReach), so they must clearly win (candidates
+  // that nearly tie would otherwise trade places from log to log, and the
+  // rows with them). Every candidate is scored on the rows clear of
+  // reversals by the reach at the band (AxisReach::kAtBand): with its own,
+  // longer reach a lower cutoff would leave out its own worst rows and win
+  // for that alone.
   const std::vector<double> candidates = AxisCutoffCandidates(logs, options.decimation);
   if (candidates.size() < 2) return candidates.empty() ? 0.0 : candidates.front();
   AxisFitOptions trial = options;
   trial.per_log = false;
   trial.sensitivity = false;
   double best = candidates.front(), best_residual = HUGE_VAL;
-  for (const double c : candidates) {
-    trial.cutoff = c;
+  for (std::size_t i = candidates.size(); i-- > 0;) {
+    trial.cutoff = candidates[i];
     try {
-      const FitResult fit = FitAtCutoff(logs, start, trial, cache, AtCutoff::kScore).fit;
+      const FitResult fit = FitAtCutoff(logs, start, trial, cache, AtCutoff::kScore, AxisReach::kAtBand).fit;
       int rows = 0;
       for (const auto& channel : fit.channels) rows += channel.samples;
       const double mean_square = rows > 0 ? 2.0 * fit.cost / rows : HUGE_VAL;
-      if (mean_square < best_residual) {
+      if (mean_square < (1.0 - kAxisLowerCutoffGain) * best_residual) {
         best_residual = mean_square;
-        best = c;
+        best = candidates[i];
       }
     } catch (const std::exception&) {
       // A candidate the data refuse does not win; FitAxis reports the chosen one's errors.
@@ -355,7 +363,8 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
   out.cutoff_rule = options.cutoff > 0.0
                         ? "given (‹cutoff›)"
                         : "from the data: of 5, 10, 20, ... x the motion frequency RMS(q')/(2 pi RMS(q)) up to the "
-                          "decimated band 0.8 x rate / (2 x decimation), the one with the smallest residual";
+                          "decimated band 0.8 x rate / (2 x decimation), the highest unless a lower one leaves a residual 5 % "
+                          "smaller";
   if (!options.sensitivity) return out;
   // The same fit at half and at twice the cutoff (twice: if below Nyquist).
   const double rate = AxisSamplingRate(logs);
@@ -475,19 +484,19 @@ void AxisDesign(const AxisSection& start, const std::vector<std::string>& free, 
 // The rows at the options' cutoff: from the cache, or built (and cached
 // when small enough).
 std::shared_ptr<const AxisRows> RowsAtCutoff(const std::vector<AxisLog>& logs, const AxisFitOptions& options,
-                                             AxisRowCache* cache) {
+                                             AxisReach reach, AxisRowCache* cache) {
   std::shared_ptr<const AxisRows> built;
   if (cache != nullptr) {
-    const auto found = cache->find({options.cutoff, options.torque_timing});
+    const auto found = cache->find({options.cutoff, options.torque_timing, reach});
     if (found != cache->end()) built = found->second;
   }
   if (!built) {
     const std::vector<std::string> column_names = AxisRowColumnNames();
     built = std::make_shared<const AxisRows>(
         BuildAxisRows(logs, options.cutoff, options.decimation, options.min_rate_fraction, column_names,
-                      options.torque_timing));
+                      options.torque_timing, reach));
     if (cache != nullptr && built->regression.rows() * column_names.size() * sizeof(double) <= kCachedRowBytes) {
-      (*cache)[{options.cutoff, options.torque_timing}] = built;
+      (*cache)[{options.cutoff, options.torque_timing, reach}] = built;
     }
   }
   return built;
@@ -506,7 +515,7 @@ double AccelerationContent(const LinearRegression& regression) {
 }
 
 AxisFitOutput FitAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options,
-                          AxisRowCache* cache, AtCutoff extent) {
+                          AxisRowCache* cache, AtCutoff extent, AxisReach reach) {
   if (logs.empty()) throw OptionError("no logs given");
   CheckFreeNames(AxisParameterTable(), "axis", options.free);
   RequireValid(options);
@@ -516,7 +525,7 @@ AxisFitOutput FitAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& s
   const int p = static_cast<int>(parameters.size());
 
   AxisFitOutput out;
-  const std::shared_ptr<const AxisRows> built = RowsAtCutoff(logs, options, cache);
+  const std::shared_ptr<const AxisRows> built = RowsAtCutoff(logs, options, reach, cache);
   const AxisRows& rows = *built;
   const LinearRegression& regression = rows.regression;
   out.method = rows.method;

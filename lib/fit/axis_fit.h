@@ -1,7 +1,9 @@
 // Inverse-dynamics identification of a rigid axis (docs/models.md#axis) by IDIM-LS:
-//   1. zero-phase low-pass of the position (Butterworth, forward-backward),
-//      cutoff `cutoff` (default from the data: the smallest residual over
-//      multiples of the motion frequency, ChooseAxisCutoff), and the same fit at half and twice the cutoff: an
+//   1. zero-phase low-pass of the position (the sharpened Butterworth
+//      3 H^2 - 2 H^3, flat in its pass band, signal/butterworth.h), cutoff
+//      `cutoff` (default from the data: of multiples of the motion
+//      frequency, the highest unless a lower one's residual is 5 % smaller,
+//      ChooseAxisCutoff), and the same fit at half and twice the cutoff: an
 //      estimate that moves by more than 2 std draws a warning;
 //   2. central-difference velocity and acceleration;
 //   3. parallel decimation: the regressor columns [q'', q', sgn(q'), 1] and
@@ -11,7 +13,7 @@
 //   4. bounded least squares through the shared fit core (standard errors,
 //      identifiability), relative error of the fit |tau - X p| / |tau|.
 // Samples near a velocity reversal (|q'| below min_rate_fraction of the
-// largest rate, anywhere within the decimation filter's reach) are left out.
+// largest rate, anywhere within the filters' reach, AxisExclusionReach) are left out.
 // The torque's timing (held command or sampled value, fit/axis_rows.h) is
 // given or chosen from the data (kFromData: the smaller residual at twice
 // the decimated band; a warning names the estimates an unclear choice moves).
@@ -76,9 +78,10 @@ struct AxisFitOutput {
 /// The default position cutoff [Hz], from the data: candidates
 /// kCutoffPerMotionFrequency x 2^k x the logs' motion frequency
 /// f_m = RMS(q') / (2 pi RMS(q - trend)), up to the decimated band
-/// 0.8 x rate / (2 x decimation); the fit at each, and the cutoff whose fit
-/// leaves the smallest mean squared torque residual (rate / 40 for logs
-/// that do not move).
+/// 0.8 x rate / (2 x decimation); the fit at each, scored on the rows the
+/// band's reach keeps, and the highest cutoff unless a lower one's fit leaves
+/// a mean squared torque residual 5 % smaller (rate / 40 for logs that do
+/// not move; docs/models.md#axis-cutoff-from-the-data).
 double ChooseAxisCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options);
 
 /// One model term of a fit: free (with its start value) or fixed.

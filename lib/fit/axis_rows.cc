@@ -13,7 +13,7 @@
 
 namespace driveid {
 
-AxisDerivatives DifferentiateAxisLog(const AxisLog& log, double cutoff_request) {
+AxisDerivatives DifferentiateAxisLog(const AxisLog& log, double cutoff_request, AxisPositionFilter filter) {
   AxisDerivatives d;
   const std::size_t n = log.time.size();
   d.rate_hz = ConstantRate(log.time);
@@ -27,9 +27,13 @@ AxisDerivatives DifferentiateAxisLog(const AxisLog& log, double cutoff_request) 
                                     d.rate_hz));
     }
     const double dt = 1.0 / d.rate_hz;
+    const auto low_pass = [&](const std::vector<double>& x) {
+      return filter == AxisPositionFilter::kFlat ? FlatZeroPhaseLowPass(x, cutoff, d.rate_hz)
+                                                 : ZeroPhaseLowPass(x, cutoff, d.rate_hz);
+    };
     if (!log.rate.empty()) {
       // A measured rate: filtered, and differentiated once for q''.
-      const std::vector<double> v = ZeroPhaseLowPass(log.rate, cutoff, d.rate_hz);
+      const std::vector<double> v = low_pass(log.rate);
       for (std::size_t k = 1; k + 1 < n; ++k) {
         d.rate[k] = v[k];
         d.acceleration[k] = (v[k + 1] - v[k - 1]) / (2.0 * dt);
@@ -37,7 +41,7 @@ AxisDerivatives DifferentiateAxisLog(const AxisLog& log, double cutoff_request) 
       }
       return d;
     }
-    const std::vector<double> q = ZeroPhaseLowPass(log.position, cutoff, d.rate_hz);
+    const std::vector<double> q = low_pass(log.position);
     for (std::size_t k = 1; k + 1 < n; ++k) {
       d.rate[k] = (q[k + 1] - q[k - 1]) / (2.0 * dt);
       d.acceleration[k] = (q[k + 1] - 2.0 * q[k] + q[k - 1]) / (dt * dt);
@@ -70,7 +74,7 @@ double AxisMotionFrequency(const std::vector<AxisLog>& logs) {
   double largest = 0.0;
   for (const auto& log : logs) {
     if (log.time.size() < kMinAxisLogSamples) continue;
-    const AxisDerivatives d = DifferentiateAxisLog(log, 0.0);
+    const AxisDerivatives d = DifferentiateAxisLog(log, 0.0, AxisPositionFilter::kButterworth);
     const std::size_t n = log.time.size();
     // Least-squares line through q(t).
     double st = 0.0, sq = 0.0, stt = 0.0, stq = 0.0;
@@ -124,6 +128,29 @@ std::vector<double> AxisCutoffCandidates(const std::vector<AxisLog>& logs, int d
   }
   if (candidates.empty() || candidates.back() < top) candidates.push_back(top);
   return candidates;
+}
+
+int AxisExclusionReach(double rate, double cutoff, int decimation) {
+  const int step = std::max(1, decimation);
+  if (!(rate > 0.0)) return kAxisExclusionDecimationsIrregular * step;
+  const double band = AxisDecimatedBand(rate, step);
+  const double position_cutoff = std::max(cutoff > 0.0 ? cutoff : rate / 40.0, kAxisExclusionLowestCutoff * band);
+  // A unit step in the middle of a record long enough for both filters to
+  // settle (their time constants are ~ 1 / (2 pi cutoff)).
+  const double slowest = step > 1 ? std::min(position_cutoff, band) : position_cutoff;
+  const std::size_t half =
+      static_cast<std::size_t>(std::ceil(8.0 * rate / slowest)) + 4 * static_cast<std::size_t>(step);
+  std::vector<double> x(2 * half + 1, 0.0);
+  std::fill(x.begin() + static_cast<std::ptrdiff_t>(half), x.end(), 1.0);
+  FlatZeroPhaseLowPassInPlace(x, position_cutoff, rate);
+  if (step > 1) ZeroPhaseLowPassInPlace(x, band, rate);
+  std::size_t distance = 0;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    const double ideal = k >= half ? 1.0 : 0.0;
+    if (std::abs(x[k] - ideal) > kAxisExclusionSettled) distance = std::max(distance, k >= half ? k - half : half - k);
+  }
+  const std::size_t whole = (distance + static_cast<std::size_t>(step) - 1) / static_cast<std::size_t>(step);
+  return std::max(kAxisExclusionDecimations, static_cast<int>(whole)) * step;
 }
 
 std::vector<std::string> AxisRowColumnNames() {
@@ -196,17 +223,36 @@ std::vector<std::size_t> ClearSamples(const std::vector<char>& slow, std::size_t
   return kept;
 }
 
+// The median length [samples] of the stretches of motion between two slow
+// stretches (0 with fewer than two slow stretches).
+std::size_t MedianMotionStretch(const std::vector<char>& slow) {
+  std::vector<std::size_t> stretches;
+  std::size_t k = 0;
+  const std::size_t n = slow.size();
+  while (k < n && !slow[k]) ++k;  // motion before the first slow stretch is not between two
+  while (k < n) {
+    while (k < n && slow[k]) ++k;
+    const std::size_t from = k;
+    while (k < n && !slow[k]) ++k;
+    if (k < n) stretches.push_back(k - from);
+  }
+  if (stretches.empty()) return 0;
+  std::nth_element(stretches.begin(), stretches.begin() + static_cast<std::ptrdiff_t>(stretches.size() / 2),
+                   stretches.end());
+  return stretches[stretches.size() / 2];
+}
+
 }  // namespace
 
 AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int decimation, double min_rate_fraction,
-                       const std::vector<std::string>& column_names, AxisTorqueTiming timing) {
+                       const std::vector<std::string>& column_names, AxisTorqueTiming timing, AxisReach reach_at) {
   AxisRows out{LinearRegression(column_names), {}, {}, {}, ""};
   LinearRegression& regression = out.regression;
   for (std::size_t i = 0; i < logs.size(); ++i) {
     const AxisLog& log = logs[i];
     if (log.time.size() < kMinAxisLogSamples) throw InputError(fmt::format("{}: {} samples: too few for IDIM-LS", log.path, log.time.size()));
     const AxisDerivatives d = DifferentiateAxisLog(log, cutoff);
-    out.method = d.rate_hz > 0.0 ? "IDIM-LS: Butterworth zero-phase, central differences, parallel decimation"
+    out.method = d.rate_hz > 0.0 ? "IDIM-LS: sharpened Butterworth zero-phase, central differences, parallel decimation"
                                  : "IDIM-LS on irregular samples: local-polynomial rates, subsampling";
     if (!log.rate.empty()) out.method += "; measured rate qd (q'' from it)";
     if (timing == AxisTorqueTiming::kHeld) out.method += "; torque held per sample (rows average u_(k-1), u_k)";
@@ -221,8 +267,18 @@ AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int deci
     const auto derived = [&](std::size_t k) { return d.valid[k] ? k : (k == 0 ? 1 : n - 2); };
     std::vector<char> slow(n, 0);
     for (std::size_t k = 0; k < n; ++k) slow[k] = std::abs(d.rate[derived(k)]) < min_rate;
-    // A kept sample must be clear of slow samples by the filter's reach.
-    const int reach = (d.rate_hz > 0.0 ? kAxisExclusionDecimations : kAxisExclusionDecimationsIrregular) * decimation;
+    // A kept sample must be clear of slow samples by the filters' reach,
+    // but the reach takes at most kAxisExclusionShareOfMotion of a typical
+    // stretch of motion from each end (no less than the shortest reach).
+    int reach = AxisExclusionReach(
+        d.rate_hz, reach_at == AxisReach::kAtBand ? AxisDecimatedBand(d.rate_hz, decimation) : cutoff, decimation);
+    const std::size_t stretch = MedianMotionStretch(slow);
+    if (stretch > 0) {
+      const int step = std::max(1, decimation);
+      const int share = static_cast<int>(kAxisExclusionShareOfMotion * static_cast<double>(stretch)) / step * step;
+      const int shortest = (d.rate_hz > 0.0 ? kAxisExclusionDecimations : kAxisExclusionDecimationsIrregular) * step;
+      reach = std::min(reach, std::max(shortest, share));
+    }
     const std::vector<std::size_t> kept = ClearSamples(slow, static_cast<std::size_t>(std::max(1, reach)), decimation);
     // Full-rate columns, one at a time (memory: one column besides the log):
     // the model's regressors (CalcAxisRegressors), then |q'| and t - t_mid.

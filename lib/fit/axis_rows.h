@@ -22,9 +22,19 @@ struct AxisDerivatives {
   double rate_hz = 0.0;  // 0 for irregular sampling
 };
 
+/// The position low-pass of constant-rate logs (signal/butterworth.h):
+/// kFlat, the sharpened Butterworth 3 H^2 - 2 H^3, for the axis rows, whose
+/// torque only the decimation filter shapes (the plain filter's pass band
+/// loses (f/fc)^4 of q'' at f: +0.56 % of J with the cutoff 4 x the
+/// highest line, 7e-5 sharpened; docs/models.md#axis); kButterworth, the
+/// plain one, where the fit passes the torque through the same filter
+/// (the joint's IDIM, fit/joint_fit.h).
+enum class AxisPositionFilter { kFlat, kButterworth };
+
 /// Differentiates the position (or the measured rate) with the position
 /// low-pass `cutoff_request` [Hz] (0: rate / 40). OptionError above Nyquist.
-AxisDerivatives DifferentiateAxisLog(const AxisLog& log, double cutoff_request);
+AxisDerivatives DifferentiateAxisLog(const AxisLog& log, double cutoff_request,
+                                     AxisPositionFilter filter = AxisPositionFilter::kFlat);
 
 /// The logs' motion frequency f_m = RMS(q') / (2 pi RMS(q - linear trend))
 /// [Hz], the largest over the logs (exactly f for q = A sin(2 pi f t)).
@@ -42,6 +52,10 @@ double AxisDecimatedBand(double rate, int decimation);
 /// 0.8 x rate / (2 x decimation), then that band; {rate / 40} for logs
 /// that do not move; {} without a usable rate.
 constexpr double kCutoffPerMotionFrequency = 5.0;
+/// Of the candidates the fit (ChooseAxisCutoff) and the validation keep the
+/// highest unless a lower one's mean squared residual is smaller by more
+/// than this fraction (docs/models.md#axis-cutoff-from-the-data).
+constexpr double kAxisLowerCutoffGain = 0.05;
 std::vector<double> AxisCutoffCandidates(const std::vector<AxisLog>& logs, int decimation);
 
 /// The diagnostic columns' names (never fitted: the adequacy checks'
@@ -55,20 +69,42 @@ std::vector<std::string> AxisRowColumnNames();
 
 /// Rows are left out within this many decimations of a sample slower than
 /// the rate threshold (a reversal, where Coulomb friction steps and may
-/// stick). The step the friction puts into q'' passes the position filter
-/// and the decimation filter; at the highest cutoff candidate (the
-/// decimated band, both filters a zero-phase second-order Butterworth at
-/// 0.8 x rate / (2 x decimation)) the pair leaves 2.8 % of the step at 2
-/// decimations, 0.13 % at 3 (under 0.3 % beyond 2.6): 2 biased the inertia
-/// of a noise-free designed tracking log by -0.07 %, 3 by -0.01 %
-/// (docs/models.md#axis-exclusion). A lower cutoff spreads the step
-/// further: the processing-sensitivity check (axis_fit.h) names what moves.
+/// stick), at least. The step the friction puts into q'' passes the
+/// position filter and the decimation filter; at the highest cutoff
+/// candidate (the decimated band, both filters a zero-phase second-order
+/// Butterworth at 0.8 x rate / (2 x decimation)) the pair leaves 2.8 % of
+/// the step at 2 decimations, 0.13 % at 3 (under kAxisExclusionSettled
+/// beyond 2.6): 2 biased the inertia of a noise-free designed tracking log
+/// by -0.07 %, 3 by -0.01 % (docs/models.md#axis-exclusion). A lower cutoff
+/// spreads the step further: AxisExclusionReach follows it.
 constexpr int kAxisExclusionDecimations = 3;
+/// What of the friction step the filter pair may leave at the reach.
+constexpr double kAxisExclusionSettled = 0.01;
 /// The same for irregular sampling, whose local-polynomial rates have a
 /// kernel of their own (no Butterworth pair): the reach of 2 decimations it
 /// has always had (3 moved UR10e J2's inertia from 11.3 +- 2.6 to
 /// 9.7 +- 3.3 against 18.2, and took its processing warning away).
 constexpr int kAxisExclusionDecimationsIrregular = 2;
+
+/// The reach [samples] rows keep from a slow sample at `cutoff` [Hz] (0:
+/// rate / 40): on a constant-rate log (rate > 0) the last distance from a
+/// unit step at which the position filter, then (decimation > 1) the
+/// decimation filter, leave more than kAxisExclusionSettled of it, rounded
+/// up to whole decimations and at least kAxisExclusionDecimations of them;
+/// kAxisExclusionDecimationsIrregular decimations on irregular logs (rate 0).
+int AxisExclusionReach(double rate, double cutoff, int decimation);
+/// BuildAxisRows shortens the reach to this share of the median stretch of
+/// motion between slow stretches (whole decimations, no less than
+/// kAxisExclusionDecimations of them): a log that reverses every 0.2 s at a
+/// cutoff of 5 Hz keeps rows (the settled reach there is over 100 ms).
+constexpr double kAxisExclusionShareOfMotion = 0.25;
+/// The reach follows the cutoff down to this fraction of the decimated band.
+constexpr double kAxisExclusionLowestCutoff = 0.5;
+
+/// Which cutoff sets the reach: the rows' own (kAtCutoff: the fit), or
+/// the decimated band's, kAxisExclusionDecimations (kAtBand: the same rows,
+/// near enough, at every cutoff candidate, so that their residuals compare).
+enum class AxisReach { kAtCutoff, kAtBand };
 
 struct AxisRows {
   LinearRegression regression;  ///< one channel per log ("path:tau")
@@ -102,6 +138,6 @@ std::vector<double> TimedAxisTorque(const std::vector<double>& torque, AxisTorqu
 /// order above (AxisRowColumnNames). InputError for a log shorter than kMinAxisLogSamples.
 AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int decimation, double min_rate_fraction,
                        const std::vector<std::string>& column_names,
-                       AxisTorqueTiming timing = AxisTorqueTiming::kSampled);
+                       AxisTorqueTiming timing = AxisTorqueTiming::kSampled, AxisReach reach = AxisReach::kAtCutoff);
 
 }  // namespace driveid

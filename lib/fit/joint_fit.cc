@@ -178,8 +178,8 @@ void AddJointLogRows(const JointLog& log, std::size_t i, const JointDesign& d, c
   }
   AxisLog motor{log.path, log.time, log.motor_position, {}, {}}, link{log.path, log.time, log.link_position, {}, {}};
   for (double& q : motor.position) q /= d.gear;
-  const AxisDerivatives dm = DifferentiateAxisLog(motor, options.cutoff);
-  const AxisDerivatives dl = DifferentiateAxisLog(link, options.cutoff);
+  const AxisDerivatives dm = DifferentiateAxisLog(motor, options.cutoff, AxisPositionFilter::kButterworth);
+  const AxisDerivatives dl = DifferentiateAxisLog(link, options.cutoff, AxisPositionFilter::kButterworth);
   if (dm.rate_hz == 0.0) RefuseIrregularTime(log);
   out.rate = dm.rate_hz;
   // The same zero-phase filter on the angles and the torque as on the rates.

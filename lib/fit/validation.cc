@@ -35,12 +35,13 @@ constexpr double kMinRateFraction = 0.01;
 }  // namespace
 
 std::vector<ValidatedLog> ValidateAxis(const std::vector<AxisLog>& logs, const AxisParameters& params, double cutoff,
-                                       int decimation, AxisTorqueTiming timing) {
+                                       int decimation, AxisTorqueTiming timing, AxisReach reach) {
   if (params.stribeck != 0.0) {
     throw InputError("axis.stribeck is not 0: the inverse-dynamics prediction has no Stribeck term (an output-error "
                      "validation is not built)");
   }
-  const AxisRows rows = BuildAxisRows(logs, cutoff, decimation, kMinRateFraction, AxisRowColumnNames(), timing);
+  const AxisRows rows =
+      BuildAxisRows(logs, cutoff, decimation, kMinRateFraction, AxisRowColumnNames(), timing, reach);
   const std::vector<double> model = rows.regression.Predict(AxisColumnValues(params));
   std::vector<ValidatedLog> out(logs.size());
   for (std::size_t r = 0; r < model.size(); ++r) {
@@ -86,17 +87,17 @@ void RequireValidated(const std::vector<ValidatedLog>& logs) {
 double ChooseAxisValidationCutoff(const std::vector<AxisLog>& logs, const AxisParameters& params, int decimation,
                                   AxisTorqueTiming timing) {
   const std::vector<double> candidates = AxisCutoffCandidates(logs, decimation);
-  double best = candidates.empty() ? 0.0 : candidates.front(), best_residual = HUGE_VAL;
-  for (const double c : candidates) {
+  double best = candidates.empty() ? 0.0 : candidates.back(), best_residual = HUGE_VAL;
+  for (std::size_t i = candidates.size(); i-- > 0;) {
     double ssr = 0.0;
     int count = 0;
-    for (const auto& log : ValidateAxis(logs, params, c, decimation, timing)) {
+    for (const auto& log : ValidateAxis(logs, params, candidates[i], decimation, timing, AxisReach::kAtBand)) {
       ssr += log.stats.rmse * log.stats.rmse * log.stats.samples;
       count += log.stats.samples;
     }
-    if (count > 0 && ssr / count < best_residual) {
+    if (count > 0 && ssr / count < (1.0 - kAxisLowerCutoffGain) * best_residual) {
       best_residual = ssr / count;
-      best = c;
+      best = candidates[i];
     }
   }
   return best;

@@ -44,13 +44,16 @@ void RequireValidated(const std::vector<ValidatedLog>& logs);
 
 /// The axis logs predicted by `params` at the position cutoff `cutoff` [Hz]
 /// (> 0; the fit's, or ChooseAxisValidationCutoff), `decimation` and the
-/// torque's `timing` (fit/axis_rows.h).
+/// torque's `timing` (fit/axis_rows.h), on the rows clear of reversals by
+/// `reach` (fit/axis_rows.h AxisReach).
 std::vector<ValidatedLog> ValidateAxis(const std::vector<AxisLog>& logs, const AxisParameters& params, double cutoff,
-                                       int decimation, AxisTorqueTiming timing = AxisTorqueTiming::kSampled);
+                                       int decimation, AxisTorqueTiming timing = AxisTorqueTiming::kSampled,
+                                       AxisReach reach = AxisReach::kAtCutoff);
 
-/// The cutoff for validating without a fit: of the candidates of the fit's
-/// rule (ChooseAxisCutoff), the one whose prediction leaves the smallest
-/// mean squared residual.
+/// The cutoff for validating without a fit: the fit's rule
+/// (ChooseAxisCutoff) on the prediction's residuals: of its candidates, the
+/// highest unless a lower one's mean squared residual is kAxisLowerCutoffGain
+/// smaller, each scored on the rows the band's reach keeps.
 double ChooseAxisValidationCutoff(const std::vector<AxisLog>& logs, const AxisParameters& params, int decimation,
                                   AxisTorqueTiming timing = AxisTorqueTiming::kSampled);
 

@@ -70,6 +70,20 @@ std::vector<double> ZeroPhaseLowPass(const std::vector<double>& signal, double c
   return x;
 }
 
+void FlatZeroPhaseLowPassInPlace(std::vector<double>& x, double cutoff, double rate) {
+  ZeroPhaseLowPassInPlace(x, cutoff, rate);
+  ZeroPhaseLowPassInPlace(x, cutoff, rate);
+  std::vector<double> twice = x;
+  ZeroPhaseLowPassInPlace(x, cutoff, rate);
+  for (std::size_t k = 0; k < x.size(); ++k) x[k] = 3.0 * twice[k] - 2.0 * x[k];
+}
+
+std::vector<double> FlatZeroPhaseLowPass(const std::vector<double>& signal, double cutoff, double rate) {
+  std::vector<double> x = signal;
+  FlatZeroPhaseLowPassInPlace(x, cutoff, rate);
+  return x;
+}
+
 double ConstantRate(const std::vector<double>& time, double tolerance) {
   if (time.size() < 2) return 0.0;
   const double mean = (time.back() - time.front()) / static_cast<double>(time.size() - 1);
