@@ -47,7 +47,7 @@ inline constexpr double kDesignDecimationBand = 0.8;
 /// The fit leaves out this many decimations' samples on each side of a
 /// sample slower than 1 % of the largest rate at the band cutoff (fit/axis_rows.h
 /// AxisExclusionReach; tests/design/axis_excitation_test.cc checks they agree).
-inline constexpr int kDesignExclusionDecimations = 3;
+inline constexpr int kDesignExclusionDecimations = 4;
 
 struct AxisDesignOptions {
   std::vector<std::string> free = FitParameterKeys(AxisParameterTable(), "axis", true);

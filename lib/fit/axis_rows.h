@@ -25,8 +25,8 @@ struct AxisDerivatives {
 /// The position low-pass of constant-rate logs (signal/butterworth.h):
 /// kFlat, the sharpened Butterworth 3 H^2 - 2 H^3, for the axis rows, whose
 /// torque only the decimation filter shapes (the plain filter's pass band
-/// loses (f/fc)^4 of q'' at f: +0.56 % of J with the cutoff 4 x the
-/// highest line, 7e-5 sharpened; docs/models.md#axis); kButterworth, the
+/// loses (f/fc)^4 of q'' at f: +0.56 % of J with the cutoff 3.6 x the
+/// highest line, +0.007 % sharpened; docs/models.md#axis-cutoff-from-the-data); kButterworth, the
 /// plain one, where the fit passes the torque through the same filter
 /// (the joint's IDIM, fit/joint_fit.h).
 enum class AxisPositionFilter { kFlat, kButterworth };
@@ -67,19 +67,19 @@ constexpr const char* kAxisTimeColumn = "t - t_mid";
 /// diagnostic ones.
 std::vector<std::string> AxisRowColumnNames();
 
-/// Rows are left out within this many decimations of a sample slower than
-/// the rate threshold (a reversal, where Coulomb friction steps and may
-/// stick), at least. The step the friction puts into q'' passes the
-/// position filter and the decimation filter; at the highest cutoff
-/// candidate (the decimated band, both filters a zero-phase second-order
-/// Butterworth at 0.8 x rate / (2 x decimation)) the pair leaves 2.8 % of
-/// the step at 2 decimations, 0.13 % at 3 (under kAxisExclusionSettled
-/// beyond 2.6): 2 biased the inertia of a noise-free designed tracking log
-/// by -0.07 %, 3 by -0.01 % (docs/models.md#axis-exclusion). A lower cutoff
-/// spreads the step further: AxisExclusionReach follows it.
+/// Rows are left out within at least this many decimations of a sample
+/// slower than the rate threshold (a reversal, where Coulomb friction steps
+/// and may stick). The step the friction puts into q'' passes the position
+/// filter and the decimation filter: AxisExclusionReach finds how far it
+/// spreads. At the highest cutoff candidate, the decimated band
+/// 0.8 x rate / (2 x decimation), the sharpened position filter and the
+/// decimation filter leave 2.7 % of the step at 2 decimations, 0.81 % at 3
+/// and 0.12 % at 4 (the plain filter 2.8 % and 0.13 % at 2 and 3); noise-free,
+/// four sines under a position loop gave viscous +0.42 % with 3, -0.17 %
+/// with 4 (docs/models.md#axis-exclusion).
 constexpr int kAxisExclusionDecimations = 3;
 /// What of the friction step the filter pair may leave at the reach.
-constexpr double kAxisExclusionSettled = 0.01;
+constexpr double kAxisExclusionSettled = 0.003;
 /// The same for irregular sampling, whose local-polynomial rates have a
 /// kernel of their own (no Butterworth pair): the reach of 2 decimations it
 /// has always had (3 moved UR10e J2's inertia from 11.3 +- 2.6 to
@@ -87,8 +87,9 @@ constexpr double kAxisExclusionSettled = 0.01;
 constexpr int kAxisExclusionDecimationsIrregular = 2;
 
 /// The reach [samples] rows keep from a slow sample at `cutoff` [Hz] (0:
-/// rate / 40): on a constant-rate log (rate > 0) the last distance from a
-/// unit step at which the position filter, then (decimation > 1) the
+/// rate / 40, no lower than kAxisExclusionLowestCutoff of the decimated
+/// band): on a constant-rate log (rate > 0) the last distance from a unit
+/// step at which the sharpened position filter, then (decimation > 1) the
 /// decimation filter, leave more than kAxisExclusionSettled of it, rounded
 /// up to whole decimations and at least kAxisExclusionDecimations of them;
 /// kAxisExclusionDecimationsIrregular decimations on irregular logs (rate 0).
@@ -102,7 +103,7 @@ constexpr double kAxisExclusionShareOfMotion = 0.25;
 constexpr double kAxisExclusionLowestCutoff = 0.5;
 
 /// Which cutoff sets the reach: the rows' own (kAtCutoff: the fit), or
-/// the decimated band's, kAxisExclusionDecimations (kAtBand: the same rows,
+/// the decimated band's (kAtBand: the same rows,
 /// near enough, at every cutoff candidate, so that their residuals compare).
 enum class AxisReach { kAtCutoff, kAtBand };
 
