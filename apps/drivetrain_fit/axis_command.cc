@@ -46,7 +46,8 @@ CLI::App* SetupAxisCommand(CLI::App& app, AxisOptions& options) {
                       "held: the command the drive holds until the next sample, as output error simulates it "
                       "(docs/models.md#torque-timing); auto: the one whose fit leaves the smaller residual")
       ->capture_default_str()
-      ->check(CLI::IsMember({"auto", "sampled", "held"}));
+      ->check(CLI::IsMember(AxisTorqueTimingNames(
+          {AxisTorqueTiming::kFromData, AxisTorqueTiming::kSampled, AxisTorqueTiming::kHeld})));
   AddFitOutputOptions(*command, options.output);
   command->footer(
       "Example:\n  drivetrain-fit simulate axis --params data/axis_example.yaml --noise 0.05 -o axis.csv\n"

@@ -46,7 +46,7 @@ CLI::App* SetupValidateCommand(CLI::App& app, ValidateOptions& options) {
                       "axis: when the logged torque acts, as the fit read it (its text output says): sampled or held "
                       "(docs/models.md#torque-timing)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"sampled", "held"}));
+      ->check(CLI::IsMember(AxisTorqueTimingNames({AxisTorqueTiming::kSampled, AxisTorqueTiming::kHeld})));
   command->add_flag("--simulate", options.simulate,
                     "axis: simulate the position from the logged torque, Coulomb friction that sticks "
                     "(docs/models.md#axis-output-error), instead of the torque by inverse dynamics");

@@ -171,13 +171,20 @@ const char* AxisTorqueTimingName(AxisTorqueTiming timing) {
   return "sampled";
 }
 
-AxisTorqueTiming AxisTorqueTimingFromName(const std::string& name) {
+std::vector<std::string> AxisTorqueTimingNames(const std::vector<AxisTorqueTiming>& timings) {
   std::vector<std::string> names;
-  for (const AxisTorqueTiming timing : {AxisTorqueTiming::kSampled, AxisTorqueTiming::kHeld, AxisTorqueTiming::kFromData}) {
+  for (const AxisTorqueTiming timing : timings) names.emplace_back(AxisTorqueTimingName(timing));
+  return names;
+}
+
+AxisTorqueTiming AxisTorqueTimingFromName(const std::string& name) {
+  const std::vector<AxisTorqueTiming> named = {AxisTorqueTiming::kSampled, AxisTorqueTiming::kHeld,
+                                               AxisTorqueTiming::kFromData};
+  for (const AxisTorqueTiming timing : named) {
     if (name == AxisTorqueTimingName(timing)) return timing;
-    names.emplace_back(AxisTorqueTimingName(timing));
   }
-  throw OptionError(fmt::format("‹torque-timing› {}: not one of {}", name, fmt::join(names, ", ")));
+  throw OptionError(
+      fmt::format("‹torque-timing› {}: not one of {}", name, fmt::join(AxisTorqueTimingNames(named), ", ")));
 }
 
 std::vector<double> TimedAxisTorque(const std::vector<double>& torque, AxisTorqueTiming timing) {

@@ -128,6 +128,8 @@ enum class AxisTorqueTiming { kSampled, kHeld, kFromData, kSampledSmoothed };
 
 /// The timing's name as the options and outputs spell it: sampled, held, auto.
 const char* AxisTorqueTimingName(AxisTorqueTiming timing);
+/// The names of `timings`, in their order (the choices an option offers).
+std::vector<std::string> AxisTorqueTimingNames(const std::vector<AxisTorqueTiming>& timings);
 /// The timing a name spells (AxisTorqueTimingName's inverse for sampled,
 /// held, auto); OptionError naming ‹torque-timing› for any other.
 AxisTorqueTiming AxisTorqueTimingFromName(const std::string& name);

@@ -25,18 +25,22 @@ const char* ExportTargetName(ExportTarget target) {
   return "";
 }
 
-std::vector<std::string> ExportTargetNames(const std::vector<ExportTarget>& targets) {
+std::vector<std::string> ExportTargetNames() {
   std::vector<std::string> names;
-  if (targets.empty()) {
-    for (const auto& entry : kExportTargets) names.emplace_back(entry.second);
-  } else {
-    for (const ExportTarget t : targets) names.emplace_back(ExportTargetName(t));
-  }
+  for (const auto& entry : kExportTargets) names.emplace_back(entry.second);
   return names;
 }
 
-std::string ListExportTargets(const std::vector<ExportTarget>& targets) {
-  const std::vector<std::string> names = ExportTargetNames(targets);
+std::vector<std::string> ExportTargetNames(const std::vector<ExportTarget>& targets) {
+  std::vector<std::string> names;
+  for (const ExportTarget t : targets) names.emplace_back(ExportTargetName(t));
+  return names;
+}
+
+namespace {
+
+// "a, b or c".
+std::string ListNames(const std::vector<std::string>& names) {
   std::string out;
   for (std::size_t i = 0; i < names.size(); ++i) {
     if (i > 0) out += i + 1 == names.size() ? " or " : ", ";
@@ -44,6 +48,12 @@ std::string ListExportTargets(const std::vector<ExportTarget>& targets) {
   }
   return out;
 }
+
+}  // namespace
+
+std::string ListExportTargets() { return ListNames(ExportTargetNames()); }
+
+std::string ListExportTargets(const std::vector<ExportTarget>& targets) { return ListNames(ExportTargetNames(targets)); }
 
 bool FindExportTarget(const std::string& name, ExportTarget* target) {
   for (const auto& [t, spelled] : kExportTargets) {

@@ -13,11 +13,15 @@ enum class ExportTarget { kMjcf, kUrdf, kWpilibJava, kWpilibCpp, kCHeader, kJson
 /// The target's name: mjcf, urdf, wpilib-java, wpilib-cpp, c-header, json.
 const char* ExportTargetName(ExportTarget target);
 
-/// The names of `targets` (all, in table order, by default).
-std::vector<std::string> ExportTargetNames(const std::vector<ExportTarget>& targets = {});
+/// Every target's name, in table order.
+std::vector<std::string> ExportTargetNames();
+/// The names of `targets`, in their order.
+std::vector<std::string> ExportTargetNames(const std::vector<ExportTarget>& targets);
 
-/// "a, b or c" of the targets' names (all by default).
-std::string ListExportTargets(const std::vector<ExportTarget>& targets = {});
+/// "a, b or c" of every target's name.
+std::string ListExportTargets();
+/// "a, b or c" of the names of `targets`.
+std::string ListExportTargets(const std::vector<ExportTarget>& targets);
 
 /// The target a name spells, if one does (parameter_export.h
 /// ParseExportTarget refuses the others).

@@ -477,6 +477,9 @@ TEST_CASE("torque timing names: AxisTorqueTimingFromName inverts AxisTorqueTimin
   }
   CHECK_THROWS_WITH(AxisTorqueTimingFromName("Held"), Catch::Contains("‹torque-timing› Held: not one of sampled, held, auto"));
   CHECK_THROWS_AS(AxisTorqueTimingFromName("sampled (smoothed)"), OptionError);
+  // The choices the options offer, in the order given.
+  CHECK(AxisTorqueTimingNames({AxisTorqueTiming::kFromData, AxisTorqueTiming::kSampled, AxisTorqueTiming::kHeld}) ==
+        std::vector<std::string>{"auto", "sampled", "held"});
 }
 
 TEST_CASE("exclusion reach: 4 decimations at the decimated band, longer below it, the pair settled beyond it") {
