@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/option_check.h"
 #include "fit/adequacy.h"
 #include "fit/axis_rows.h"
 #include "fit/linear_regression.h"
@@ -373,8 +374,20 @@ std::vector<JointLog> RegularLogs(const std::vector<JointLog>& given, std::vecto
 
 }  // namespace
 
+bool JointFitOptions::IsValid(std::string* error) const {
+  if (!(cutoff >= 0.0) || !std::isfinite(cutoff)) {
+    *error = ViolatedConstraint("‹cutoff›", cutoff, "cutoff > 0 Hz (0: rate / 40)");
+  } else if (!(min_rate_fraction >= 0.0 && min_rate_fraction < 1.0)) {
+    *error = ViolatedConstraint("min_rate_fraction", min_rate_fraction, "0 <= fraction < 1");
+  } else {
+    return true;
+  }
+  return false;
+}
+
 JointFitOutput FitJoint(const std::vector<JointLog>& given_logs, const JointSection& start,
                         const JointFitOptions& given) {
+  RequireValid(given);
   if (given_logs.empty()) throw OptionError("no logs given");
   std::vector<std::string> notes;
   const std::vector<JointLog> logs = RegularLogs(given_logs, notes);

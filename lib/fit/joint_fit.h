@@ -34,6 +34,9 @@ struct JointFitOptions {
   /// false: estimates however uncertain (start values of an output-error fit).
   bool refuse_undetermined = true;
   FitOptions fit;
+  /// Whether the values can be used (as AxisFitOptions': a negative cutoff
+  /// is refused, not read as rate / 40); else `error` names the field and the constraint.
+  bool IsValid(std::string* error) const;
 };
 
 /// The default free set: the table's (inertias, spring, friction, offset)

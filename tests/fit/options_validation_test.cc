@@ -7,6 +7,7 @@
 #include "core/errors.h"
 #include "fit/axis_fit.h"
 #include "fit/cdrive_fit.h"
+#include "fit/joint_fit.h"
 #include "fit/robot_fit.h"
 
 using namespace driveid;
@@ -32,6 +33,16 @@ TEST_CASE("options structs validate themselves, naming the field and the constra
   CHECK_FALSE(cdrive.IsValid(&error));
   CHECK(error == "‹window› = 0: violated constraint: window > 0 s");
 
+  JointFitOptions joint;
+  CHECK(joint.IsValid(&error));
+  joint.cutoff = -2.0;  // was read as rate / 40
+  CHECK_FALSE(joint.IsValid(&error));
+  CHECK(error == "‹cutoff› = -2: violated constraint: cutoff > 0 Hz (0: rate / 40)");
+  joint.cutoff = 0.0;
+  joint.min_rate_fraction = 1.0;
+  CHECK_FALSE(joint.IsValid(&error));
+  CHECK(error == "min_rate_fraction = 1: violated constraint: 0 <= fraction < 1");
+
   RobotFitOptions robot;
   CHECK(robot.IsValid(&error));
   robot.half_window = -0.001;
@@ -50,4 +61,7 @@ TEST_CASE("a fit refuses invalid options with their own message") {
   cdrive.half_window = -1.0;
   CDriveLog c{"c.csv", {0.0, 0.1}, {0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
   CHECK_THROWS_WITH(FitCDriveFriction({c}, CDriveSection{}, cdrive), "‹window› = -1: violated constraint: window > 0 s");
+  JointFitOptions joint;
+  joint.cutoff = -1.0;
+  CHECK_THROWS_WITH(FitJoint({}, JointSection{}, joint), "‹cutoff› = -1: violated constraint: cutoff > 0 Hz (0: rate / 40)");
 }
