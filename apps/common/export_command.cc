@@ -10,6 +10,7 @@
 
 #include "common/cli_support.h"
 #include "common/command_registry.h"
+#include "core/option_check.h"
 #include "io/atomic_file.h"
 #include "io/parameter_file.h"
 #include "report/parameter_export.h"
@@ -70,11 +71,7 @@ void RunExportCommand(const ExportCommandOptions& options, const std::string& co
   export_opts.joint = options.joint;
   export_opts.source = options.params;
   export_opts.command = command_line;
-  try {
-    export_opts.Validate();
-  } catch (const InputError& e) {
-    throw OptionError(std::string("--joint: ") + e.what());
-  }
+  RequireValid(export_opts);
   CheckDistinctFiles({options.params}, {{"-o", options.output}});
   const ParameterFile file = ReadParameterFile(options.params);
   const std::string text = ExportParameters(file, ParseExportTarget(options.target), export_opts);

@@ -1,5 +1,7 @@
 #include "common/log_input_options.h"
 
+#include "core/option_check.h"
+
 namespace driveid::cli {
 
 std::vector<std::string> LogCommandInputs(const std::vector<std::string>& logs, const std::string& params,
@@ -66,9 +68,7 @@ LogInputOptions MakeLogInputOptions(const LogInputCli& options) {
   out.rate = options.rate;
   if (std::isfinite(options.from)) out.from = options.from;
   if (std::isfinite(options.to)) out.to = options.to;
-  if (out.from && out.to && !(*out.from < *out.to)) {
-    throw OptionError(fmt::format("--from {} --to {}: need from < to", options.from, options.to));
-  }
+  RequireValid(out);
   return out;
 }
 

@@ -186,12 +186,14 @@ std::vector<std::string> CheckAxisAdequacy(const LinearRegression& regression, c
 
 namespace {
 
-// Rows built for the same logs, decimation and rate floor, by cutoff: the
-// cutoff search builds each candidate's, and the central fit and the
-// half/twice sensitivity fits take them from here (the candidates double,
-// so half and twice the chosen one are usually among them). Rows larger
-// than kCachedRowBytes are not kept.
-using AxisRowCache = std::map<std::tuple<double, AxisTorqueTiming, AxisReach>, std::shared_ptr<const AxisRows>>;
+// Rows built for the same logs, decimation and rate floor, by cutoff,
+// timing and each log's reach (AxisRowReaches): the cutoff search builds
+// each candidate's, and the central fit and the half/twice sensitivity fits
+// take them from here (the candidates double, so half and twice the chosen
+// one are usually among them; at the band the search's rows are the fit's).
+// Rows larger than kCachedRowBytes are not kept.
+using AxisRowCache =
+    std::map<std::tuple<double, AxisTorqueTiming, std::vector<int>>, std::shared_ptr<const AxisRows>>;
 constexpr std::size_t kCachedRowBytes = std::size_t{64} << 20;
 
 // What a fit at one cutoff does beyond the estimates: the adequacy checks
@@ -218,23 +220,18 @@ double ChooseCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, 
   AxisFitOptions trial = options;
   trial.per_log = false;
   trial.sensitivity = false;
-  double best = candidates.front(), best_residual = HUGE_VAL;
-  for (std::size_t i = candidates.size(); i-- > 0;) {
-    trial.cutoff = candidates[i];
+  return PickAxisCutoff(candidates, [&](double cutoff) {
+    trial.cutoff = cutoff;
     try {
       const FitResult fit = FitAtCutoff(logs, start, trial, cache, AtCutoff::kScore, AxisReach::kAtBand).fit;
       int rows = 0;
       for (const auto& channel : fit.channels) rows += channel.samples;
-      const double mean_square = rows > 0 ? 2.0 * fit.cost / rows : HUGE_VAL;
-      if (mean_square < (1.0 - kAxisLowerCutoffGain) * best_residual) {
-        best_residual = mean_square;
-        best = candidates[i];
-      }
+      return rows > 0 ? 2.0 * fit.cost / rows : HUGE_VAL;
     } catch (const std::exception&) {
       // A candidate the data refuse does not win; FitAxis reports the chosen one's errors.
+      return HUGE_VAL;
     }
-  }
-  return best;
+  });
 }
 
 // (axis_rows.h kFromData) At options.cutoff, the reading of the torque's
@@ -486,8 +483,10 @@ void AxisDesign(const AxisSection& start, const std::vector<std::string>& free, 
 std::shared_ptr<const AxisRows> RowsAtCutoff(const std::vector<AxisLog>& logs, const AxisFitOptions& options,
                                              AxisReach reach, AxisRowCache* cache) {
   std::shared_ptr<const AxisRows> built;
+  const auto key = std::make_tuple(options.cutoff, options.torque_timing,
+                                   AxisRowReaches(logs, options.cutoff, options.decimation, reach));
   if (cache != nullptr) {
-    const auto found = cache->find({options.cutoff, options.torque_timing, reach});
+    const auto found = cache->find(key);
     if (found != cache->end()) built = found->second;
   }
   if (!built) {
@@ -496,7 +495,7 @@ std::shared_ptr<const AxisRows> RowsAtCutoff(const std::vector<AxisLog>& logs, c
         BuildAxisRows(logs, options.cutoff, options.decimation, options.min_rate_fraction, column_names,
                       options.torque_timing, reach));
     if (cache != nullptr && built->regression.rows() * column_names.size() * sizeof(double) <= kCachedRowBytes) {
-      (*cache)[{options.cutoff, options.torque_timing, reach}] = built;
+      (*cache)[key] = built;
     }
   }
   return built;

@@ -7,11 +7,14 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/option_check.h"
 #include "fit/adequacy.h"
 #include "fit/axis_fit.h"
 #include "sim/axis_simulator.h"
 
 namespace driveid {
+
+bool AxisOeOptions::IsValid(std::string* error) const { return OptionCheck(error).Nested(fit); }
 namespace {
 
 // Samples over which the start rate is taken when qd is not logged.
@@ -278,6 +281,7 @@ FitResult FitWithStribeckVelocity(OeLogs& prepared, const OeDesign& d, AxisOeRes
 
 AxisOeOutput FitAxisOutputError(const std::vector<AxisLog>& logs, const AxisSection& start,
                                 const AxisParameters* initial, const AxisOeOptions& options) {
+  RequireValid(options);
   if (logs.empty()) throw OptionError("no logs given");
   CheckFreeNames(AxisParameterTable(), "axis", options.free);
   const OeDesign d = MakeOeDesign(start, initial, options.free);

@@ -24,6 +24,8 @@ struct AxisOeOptions {
   std::vector<std::string> free = FitParameterKeys(AxisParameterTable(), "axis", true);
   bool per_log = true;  ///< several logs: each fitted alone too, and tested for agreement
   FitOptions fit;
+  /// Every bound on these fields (‹field› names the option); see core/option_check.h.
+  bool IsValid(std::string* error) const;
 };
 
 struct AxisOeOutput {

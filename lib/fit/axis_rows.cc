@@ -130,9 +130,38 @@ std::vector<double> AxisCutoffCandidates(const std::vector<AxisLog>& logs, int d
   return candidates;
 }
 
+double PickAxisCutoff(const std::vector<double>& candidates, const std::function<double(double)>& mean_square) {
+  if (candidates.empty()) return 0.0;
+  double best = candidates.back(), best_residual = HUGE_VAL;
+  for (std::size_t i = candidates.size(); i-- > 0;) {
+    const double residual = mean_square(candidates[i]);
+    if (residual < (1.0 - kAxisLowerCutoffGain) * best_residual) {
+      best_residual = residual;
+      best = candidates[i];
+    }
+  }
+  return best;
+}
+
+int AxisShortestReach(double rate, int decimation) {
+  return (rate > 0.0 ? kAxisExclusionDecimations : kAxisExclusionDecimationsIrregular) * std::max(1, decimation);
+}
+
+int AxisRowReach(double rate, double cutoff, int decimation, AxisReach reach) {
+  return AxisExclusionReach(rate, reach == AxisReach::kAtBand ? AxisDecimatedBand(rate, decimation) : cutoff,
+                            decimation);
+}
+
+std::vector<int> AxisRowReaches(const std::vector<AxisLog>& logs, double cutoff, int decimation, AxisReach reach) {
+  std::vector<int> reaches;
+  reaches.reserve(logs.size());
+  for (const auto& log : logs) reaches.push_back(AxisRowReach(ConstantRate(log.time), cutoff, decimation, reach));
+  return reaches;
+}
+
 int AxisExclusionReach(double rate, double cutoff, int decimation) {
   const int step = std::max(1, decimation);
-  if (!(rate > 0.0)) return kAxisExclusionDecimationsIrregular * step;
+  if (!(rate > 0.0)) return AxisShortestReach(rate, step);
   const double band = AxisDecimatedBand(rate, step);
   const double position_cutoff = std::max(cutoff > 0.0 ? cutoff : rate / 40.0, kAxisExclusionLowestCutoff * band);
   // A unit step in the middle of a record long enough for both filters to
@@ -277,14 +306,12 @@ AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int deci
     // A kept sample must be clear of slow samples by the filters' reach,
     // but the reach takes at most kAxisExclusionShareOfMotion of a typical
     // stretch of motion from each end (no less than the shortest reach).
-    int reach = AxisExclusionReach(
-        d.rate_hz, reach_at == AxisReach::kAtBand ? AxisDecimatedBand(d.rate_hz, decimation) : cutoff, decimation);
+    int reach = AxisRowReach(d.rate_hz, cutoff, decimation, reach_at);
     const std::size_t stretch = MedianMotionStretch(slow);
     if (stretch > 0) {
       const int step = std::max(1, decimation);
       const int share = static_cast<int>(kAxisExclusionShareOfMotion * static_cast<double>(stretch)) / step * step;
-      const int shortest = (d.rate_hz > 0.0 ? kAxisExclusionDecimations : kAxisExclusionDecimationsIrregular) * step;
-      reach = std::min(reach, std::max(shortest, share));
+      reach = std::min(reach, std::max(AxisShortestReach(d.rate_hz, step), share));
     }
     const std::vector<std::size_t> kept = ClearSamples(slow, static_cast<std::size_t>(std::max(1, reach)), decimation);
     // Full-rate columns, one at a time (memory: one column besides the log):

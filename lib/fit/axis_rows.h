@@ -6,6 +6,7 @@
 // fit (axis_fit.h) and the validation of a parameter file (validation.h).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,13 @@ constexpr double kCutoffPerMotionFrequency = 5.0;
 /// than this fraction (docs/models.md#axis-cutoff-from-the-data).
 constexpr double kAxisLowerCutoffGain = 0.05;
 std::vector<double> AxisCutoffCandidates(const std::vector<AxisLog>& logs, int decimation);
+/// The fit's and the validation's choice among `candidates` (ascending):
+/// walking down from the highest, a lower candidate replaces the one held
+/// only if its `mean_square` residual is below (1 - kAxisLowerCutoffGain)
+/// times the held one's. `mean_square` returns +inf for a candidate the
+/// data refuse, which never wins; if every one is refused, the highest
+/// (the band) is returned; 0 for no candidates.
+double PickAxisCutoff(const std::vector<double>& candidates, const std::function<double(double)>& mean_square);
 
 /// The diagnostic columns' names (never fitted: the adequacy checks'
 /// candidates for direction-dependent friction and drift).
@@ -94,6 +102,9 @@ constexpr int kAxisExclusionDecimationsIrregular = 2;
 /// up to whole decimations and at least kAxisExclusionDecimations of them;
 /// kAxisExclusionDecimationsIrregular decimations on irregular logs (rate 0).
 int AxisExclusionReach(double rate, double cutoff, int decimation);
+/// The shortest reach [samples]: kAxisExclusionDecimations decimations at a
+/// constant rate (rate > 0), kAxisExclusionDecimationsIrregular otherwise.
+int AxisShortestReach(double rate, int decimation);
 /// BuildAxisRows shortens the reach to this share of the median stretch of
 /// motion between slow stretches (whole decimations, no less than
 /// kAxisExclusionDecimations of them): a log that reverses every 0.2 s at a
@@ -106,6 +117,13 @@ constexpr double kAxisExclusionLowestCutoff = 0.5;
 /// the decimated band's (kAtBand: the same rows,
 /// near enough, at every cutoff candidate, so that their residuals compare).
 enum class AxisReach { kAtCutoff, kAtBand };
+/// The reach [samples] BuildAxisRows starts from on a log sampled at `rate`
+/// [Hz] (0: irregular), before the share-of-motion cap: AxisExclusionReach
+/// at `cutoff` (kAtCutoff) or at the decimated band (kAtBand).
+int AxisRowReach(double rate, double cutoff, int decimation, AxisReach reach);
+/// AxisRowReach of each log (its rate as the rows read it): two row builds
+/// at one cutoff and timing whose reaches agree build the same rows.
+std::vector<int> AxisRowReaches(const std::vector<AxisLog>& logs, double cutoff, int decimation, AxisReach reach);
 
 struct AxisRows {
   LinearRegression regression;  ///< one channel per log ("path:tau")

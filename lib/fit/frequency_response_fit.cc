@@ -9,11 +9,22 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/option_check.h"
 #include "core/order_statistics.h"
 #include "fit/adequacy.h"
 #include "models/missing_values.h"
 
 namespace driveid {
+
+bool TwoMassFitOptions::IsValid(std::string* error) const {
+  return OptionCheck(error)
+      .Require(NotNegative(band_low), "‹band› low", band_low, ">= 0 Hz")
+      .Require(NotNegative(band_high) && (band_high == 0.0 || band_high > band_low), "‹band› high", band_high,
+               "above the low end (0, 0: the coherent bins)")
+      .Require(min_coherence >= 0.0 && min_coherence <= 1.0, "min_coherence", min_coherence, "0 <= coherence <= 1")
+      .Require(NotNegative(hold_rate), "hold_rate", hold_rate, "rate >= 0 Hz (0: continuous)")
+      .Nested(fit);
+}
 namespace {
 
 using Complex = std::complex<double>;
@@ -373,6 +384,7 @@ void CheckResponseShape(const TwoMassFitOutput& out, std::vector<std::string>& w
 
 TwoMassFitOutput FitTwoMassResponse(const ResponseData& motor, const ResponseData* link, const JointSection& start,
                                     const TwoMassFitOptions& options) {
+  RequireValid(options);
   const std::vector<std::size_t> free_terms = FreeTerms(options.free);
   if (free_terms.empty()) throw OptionError("no parameter to estimate");
   const double n = start.gear_ratio.value_or(1.0);

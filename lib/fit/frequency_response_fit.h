@@ -32,6 +32,8 @@ struct TwoMassFitOptions {
   double hold_rate = 0.0;
   FitOptions fit;
   ResponseBand Band() const { return {band_low, band_high, min_coherence}; }
+  /// Every bound on these fields (‹field› names the option); see core/option_check.h.
+  bool IsValid(std::string* error) const;
 };
 
 struct TwoMassFitOutput {

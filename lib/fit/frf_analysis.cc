@@ -6,10 +6,13 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/option_check.h"
 #include "signal/butterworth.h"
 #include "signal/resample.h"
 
 namespace driveid {
+
+bool FrfOptions::IsValid(std::string* error) const { return OptionCheck(error).Nested(estimate).Nested(two_mass); }
 namespace {
 
 // The mean rotation frequency [Hz] of the motor output (a rate or an angle,
@@ -94,6 +97,7 @@ FrequencyResponseSection FrfResult::Section() const {
 
 FrfResult AnalyseFrequencyResponse(const std::vector<FrfSignals>& logs, const JointSection& start,
                                    const FrfOptions& options) {
+  RequireValid(options);
   if (logs.empty()) throw OptionError("no logs given");
   FrfResult out;
   std::vector<FrequencyRecord> motor, link;
@@ -160,6 +164,7 @@ FrfResult AnalyseFrequencyResponse(const std::vector<FrfSignals>& logs, const Jo
 }
 
 FrfResult AnalyseMeasuredResponse(const MeasuredResponse& measured, const JointSection& start, const FrfOptions& options) {
+  RequireValid(options);
   const std::size_t n = measured.frequency.size();
   if (n < 5) throw InputError(fmt::format("a measured response of {} bins: at least 5 are needed", n));
   FrfResult out;

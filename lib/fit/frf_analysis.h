@@ -26,6 +26,8 @@ struct FrfOptions {
   bool fit = false;                 ///< --fit two-mass
   bool hold = true;                 ///< the torque is held between samples (zero-order hold)
   TwoMassFitOptions two_mass;       ///< outputs' quantities, band, free set
+  /// Every bound on these fields (‹field› names the option); see core/option_check.h.
+  bool IsValid(std::string* error) const;
 };
 
 struct FrfResult {

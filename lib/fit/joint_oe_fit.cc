@@ -10,14 +10,21 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/option_check.h"
 #include "fit/adequacy.h"
 #include "fit/axis_rows.h"
 #include "fit/joint_fit.h"
-#include "models/missing_values.h"
 #include "fit/joint_oe_segments.h"
+#include "models/missing_values.h"
 #include "sim/joint_simulator.h"
 
 namespace driveid {
+
+bool JointOeOptions::IsValid(std::string* error) const {
+  return OptionCheck(error)
+      .Require(segment_seconds >= 0.0, "‹segment›", segment_seconds, "segment >= 0 s (0: auto, inf: whole log)")
+      .Nested(fit);
+}
 namespace {
 
 // A simulated deflection below this fit % (with correlated residuals) draws
@@ -625,6 +632,7 @@ void RequireMemory(const std::vector<JointLog>& logs, const JointOeOptions& opti
 
 JointOeOutput FitJointOutputError(const std::vector<JointLog>& logs, const JointSection& start,
                                   const JointParameters* initial, const JointOeOptions& given) {
+  RequireValid(given);
   if (logs.empty()) throw OptionError("no logs given");
   JointOeOptions options = given;
   if (options.free.empty()) options.free = JointOeDefaultFree(logs);

@@ -34,6 +34,8 @@ struct JointOeOptions {
   /// start values' resonance), infinite: the whole log (single shooting).
   double segment_seconds = 0.0;
   FitOptions fit;
+  /// Every bound on these fields (‹field› names the option); see core/option_check.h.
+  bool IsValid(std::string* error) const;
 };
 
 /// The inverse-dynamics default (JointDefaultFree) without link_coulomb.

@@ -12,8 +12,17 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/option_check.h"
 
 namespace driveid {
+
+bool FitOptions::IsValid(std::string* error) const {
+  return OptionCheck(error)
+      .Require(max_iterations >= 1, "max_iterations", max_iterations, ">= 1")
+      .Require(identifiability_threshold >= 0.0 && identifiability_threshold < 1.0, "identifiability_threshold",
+               identifiability_threshold, "0 <= threshold < 1")
+      .Require(NotNegative(max_seconds), "‹max_seconds›", max_seconds, "max seconds >= 0 (0: no limit)");
+}
 namespace {
 
 // Rows per residual block when a large problem goes to Ceres in chunks.
@@ -354,12 +363,14 @@ FitResult SolveBlocks(BlockResidualModel& model, ResidualModel* whole, const std
 
 FitResult FitLeastSquares(ResidualModel& model, const std::vector<FitParameter>& parameters,
                           const std::vector<FitChannel>& channels, const FitOptions& options) {
+  RequireValid(options);
   WholeModelBlock block(model, static_cast<int>(parameters.size()));
   return SolveBlocks(block, &model, parameters, channels, options);
 }
 
 FitResult FitBlockLeastSquares(BlockResidualModel& model, const std::vector<FitParameter>& parameters,
                                const std::vector<FitChannel>& channels, const FitOptions& options) {
+  RequireValid(options);
   return SolveBlocks(model, nullptr, parameters, channels, options);
 }
 

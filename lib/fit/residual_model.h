@@ -128,6 +128,8 @@ struct FitOptions {
   /// parameters are scaled and identifiable, so squaring the condition
   /// number costs no accuracy that matters (as for large problems).
   bool normal_equations = false;
+  /// Every bound on these fields (‹field› names the option); see core/option_check.h.
+  bool IsValid(std::string* error) const;
 };
 
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;

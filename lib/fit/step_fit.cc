@@ -11,12 +11,15 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/option_check.h"
 #include "fit/point_memo.h"
 #include "fit/scaled_cost.h"
 #include "io/csv_log.h"
 #include "sim/drivetrain_simulator.h"
 
 namespace driveid {
+
+bool StepFitOptions::IsValid(std::string* error) const { return OptionCheck(error).Nested(fit); }
 namespace {
 
 // The estimable parameters in enum order (sensitivity order), derived from
@@ -599,6 +602,7 @@ StepFitOutput KeepLowerCost(StepFitOutput staged, StepFitOutput given) {
 
 StepFitOutput FitStepResponses(const std::vector<StepLog>& logs, const DriveTrainParameters& start,
                                const StepFitOptions& options) {
+  RequireValid(options);
   if (logs.empty()) throw OptionError("no step logs given");
   CheckFreeNames(DriveTrainParameterTable(), "step", options.free, {"offset"});
   for (const auto& log : logs) CheckStepLog(log);

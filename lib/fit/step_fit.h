@@ -35,6 +35,8 @@ struct StepFitOptions {
   FitOptions fit;
   /// How the simulations are integrated (sim/drivetrain_simulator.h).
   DriveTrainIntegration integration = DriveTrainIntegration::kExact;
+  /// Every bound on these fields (‹field› names the option); see core/option_check.h.
+  bool IsValid(std::string* error) const;
 };
 
 struct StepFitOutput {

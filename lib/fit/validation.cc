@@ -86,21 +86,15 @@ void RequireValidated(const std::vector<ValidatedLog>& logs) {
 
 double ChooseAxisValidationCutoff(const std::vector<AxisLog>& logs, const AxisParameters& params, int decimation,
                                   AxisTorqueTiming timing) {
-  const std::vector<double> candidates = AxisCutoffCandidates(logs, decimation);
-  double best = candidates.empty() ? 0.0 : candidates.back(), best_residual = HUGE_VAL;
-  for (std::size_t i = candidates.size(); i-- > 0;) {
+  return PickAxisCutoff(AxisCutoffCandidates(logs, decimation), [&](double cutoff) {
     double ssr = 0.0;
     int count = 0;
-    for (const auto& log : ValidateAxis(logs, params, candidates[i], decimation, timing, AxisReach::kAtBand)) {
+    for (const auto& log : ValidateAxis(logs, params, cutoff, decimation, timing, AxisReach::kAtBand)) {
       ssr += log.stats.rmse * log.stats.rmse * log.stats.samples;
       count += log.stats.samples;
     }
-    if (count > 0 && ssr / count < (1.0 - kAxisLowerCutoffGain) * best_residual) {
-      best_residual = ssr / count;
-      best = candidates[i];
-    }
-  }
-  return best;
+    return count > 0 ? ssr / count : HUGE_VAL;
+  });
 }
 
 std::vector<ValidatedLog> ValidateCDrive(const std::vector<CDriveLog>& logs, const CDriveParameters& params,

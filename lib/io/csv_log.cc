@@ -15,9 +15,18 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/option_check.h"
 #include "io/log_input.h"
 
 namespace driveid {
+
+bool CsvReadOptions::IsValid(std::string* error) const {
+  OptionCheck check(error);
+  for (const auto& [name, header] : column_map) {
+    check.Require(!name.empty() && !header.empty(), fmt::format("‹col› '{}={}': a name and a header", name, header));
+  }
+  return check;
+}
 
 const std::vector<double>& CsvLog::column(const std::string& name) const {
   for (std::size_t k = 0; k < names.size(); ++k) {
@@ -120,6 +129,7 @@ std::map<std::string, std::string> ParseColumnMap(const std::vector<std::string>
 
 CsvLog ParseCsvLog(const std::string& path, const std::string& text,
                    const std::vector<std::string>& required, const CsvReadOptions& options) {
+  RequireValid(options);
   LogInputOptions input;
   input.columns = options.column_map;
   input.time_column = options.time_column;

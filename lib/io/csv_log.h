@@ -39,6 +39,8 @@ struct CsvReadOptions {
   std::string time_column = "t";
   /// Longest accepted line, in bytes (a longer one is an error, not a hang).
   std::size_t max_line_bytes = 1 << 20;
+  /// Every bound on these fields (‹field› names the option); see core/option_check.h.
+  bool IsValid(std::string* error) const;
 };
 
 /// Parses a log already in memory (CSV, or any format of ReadLogs that

@@ -6,9 +6,24 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/option_check.h"
 #include "io/column_expression.h"
 
 namespace driveid {
+
+bool LogInputOptions::IsValid(std::string* error) const {
+  OptionCheck check(error);
+  check.Require(NotNegative(rate), "‹rate›", rate, "rate >= 0 Hz (0: the time column)")
+      .Require(!from || Finite(*from), "‹from›", from.value_or(0.0), "finite")
+      .Require(!to || Finite(*to), "‹to›", to.value_or(0.0), "finite")
+      .Require(!(from && to) || *from < *to, fmt::format("‹from› {} ‹to› {}: need from < to", from.value_or(0.0),
+                                                         to.value_or(0.0)));
+  for (const auto& [name, expression] : columns) {
+    check.Require(!name.empty() && !expression.empty(), fmt::format("‹col› '{}={}': a name and an expression", name,
+                                                                    expression));
+  }
+  return check;
+}
 namespace {
 
 std::vector<std::string> Alternatives(const std::string& entry) {
@@ -315,6 +330,7 @@ void CheckMagnitudes(const std::vector<std::string>& required, const std::string
 
 CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>& required,
                       const LogInputOptions& options) {
+  RequireValid(options);
   const std::string where = Where(source);
   CheckColumnOptions(required, options);
   CsvLog log;
@@ -338,6 +354,7 @@ CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>&
 std::vector<std::unique_ptr<TableSource>> OpenLogSources(const std::string& path, const std::string& text,
                                                          const std::vector<JoinedFile>& joins,
                                                          const LogInputOptions& options) {
+  RequireValid(options);
   auto sources = OpenTableSources(path, text, options.csv, options.sysid);
   for (const auto& join : joins) {
     auto joined = OpenTableSources(join.path, *join.text, options.csv, SysIdFormat{});
@@ -360,6 +377,7 @@ std::vector<std::unique_ptr<TableSource>> OpenLogSources(const std::string& path
 
 std::vector<CsvLog> ReadLogs(const std::string& path, const std::string& text, const std::vector<JoinedFile>& joins,
                              const std::vector<std::string>& required, const LogInputOptions& options) {
+  RequireValid(options);
   std::vector<CsvLog> logs;
   for (const auto& source : OpenLogSources(path, text, joins, options)) logs.push_back(ReadLogColumns(*source, required, options));
   return logs;

@@ -31,6 +31,8 @@ struct LogInputOptions {
   double rate = 0.0;  ///< --rate [Hz]: samples at this rate from t = 0 (0: the time column)
   std::optional<double> from, to;  ///< --from, --to [s]: crop in the log's time
   std::string time_column = "t";   ///< strictly increasing
+  /// Every bound on these fields (‹field› names the option); see core/option_check.h.
+  bool IsValid(std::string* error) const;
 };
 
 /// A file joined (`--join`): its name and contents, row by row or by time.

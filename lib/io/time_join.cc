@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/option_check.h"
 #include "io/column_expression.h"
 #include "io/log_input.h"
 #include "io/paired_source.h"
@@ -197,6 +198,7 @@ TableData TimeJoinedSource::Read(const std::vector<std::size_t>& columns) const 
 
 std::unique_ptr<TableSource> JoinSourcesByTime(std::unique_ptr<TableSource> log, std::unique_ptr<TableSource> joined,
                                                const JoinTiming& timing, const LogInputOptions& options) {
+  RequireValid(options);
   return std::make_unique<TimeJoinedSource>(std::move(log), std::move(joined), timing, options);
 }
 

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/option_check.h"
 #include "fit/axis_fit.h"
 #include "fit/axis_oe_fit.h"
 #include "fit/validation.h"
@@ -15,6 +16,13 @@
 #include "report/status_frame_logs.h"
 
 namespace driveid {
+
+bool AxisIdentificationOptions::IsValid(std::string* error) const {
+  return OptionCheck(error)
+      .Require(NotNegative(cutoff), "‹cutoff›", cutoff, "cutoff > 0 Hz (0: from the data)")
+      .Require(decimation >= 1, "‹decimation›", decimation, ">= 1")
+      .Nested(fit);
+}
 namespace {
 
 std::string Key(double AxisParameters::*member) { return KeyOf(AxisParameterTable(), member); }
@@ -332,6 +340,7 @@ std::string StatusFrameWarning(const StatusFrameRetiming& frames, std::size_t lo
 
 AxisIdentification IdentifyAxis(const std::vector<AxisLog>& logged, const AxisSection& section,
                                 const AxisIdentificationOptions& requested, const std::vector<AxisLog>& held_out) {
+  RequireValid(requested);
   std::vector<AxisLog> logs = logged, validation = held_out;
   const StatusFrameRetiming frames = RetimeStatusFrames(logs);
   RetimeStatusFrames(validation);

@@ -40,6 +40,8 @@ struct AxisIdentificationOptions {
   /// The SysId test every log declares ("Simple", "Elevator", "Arm"), else
   /// "": an Arm adds the gravity terms to the default free set.
   std::string sysid_mechanism;
+  /// Every bound on these fields (‹field› names the option); see core/option_check.h.
+  bool IsValid(std::string* error) const;
 };
 
 struct AxisIdentification {

@@ -7,9 +7,26 @@
 
 #include "control/feedback_gains.h"
 #include "core/errors.h"
+#include "core/option_check.h"
 #include "report/export_text.h"
 
 namespace driveid {
+
+bool AxisGainsOptions::IsValid(std::string* error) const {
+  return OptionCheck(error)
+      .Require(loop == "velocity" || loop == "position",
+               "‹loop›: velocity or position for an axis (speed: an elastic joint's section)")
+      .Require(!period || Positive(*period), "‹period›", period.value_or(0.0), "period > 0 s")
+      .Require(!delay || NotNegative(*delay), "‹delay›", delay.value_or(0.0), "delay >= 0 s")
+      .Require(Positive(max_position_error), "‹max_position_error›", max_position_error, "> 0")
+      .Require(Positive(max_velocity_error), "‹max_velocity_error›", max_velocity_error, "> 0")
+      .Require(Positive(max_effort), "‹max_effort›", max_effort, "> 0")
+      .Require(Positive(conversion), "‹conversion›", conversion, "> 0")
+      .Require(!kv || Finite(*kv), "‹kv›", kv.value_or(0.0), "finite")
+      .Require(!ka || Finite(*ka), "‹ka›", ka.value_or(0.0), "finite")
+      .Require(NotNegative(kv_std), "‹kv_std›", kv_std, ">= 0")
+      .Require(NotNegative(ka_std), "‹ka_std›", ka_std, ">= 0");
+}
 namespace {
 
 // Kv and Ka from the file: the feed-forward section (with stds and the
@@ -71,14 +88,12 @@ LqrSettings Settings(const AxisGainsOptions& o, const ControllerPreset& preset) 
 }  // namespace
 
 AxisGainsDesign DesignAxisGains(const ParameterFile* file, const std::string& path, const AxisGainsOptions& o) {
+  RequireValid(o);
   const ControllerPreset* preset = FindControllerPreset(o.preset);
   if (!preset) {
     std::string names;
     for (const auto& p : ControllerPresets()) names += (names.empty() ? "" : ", ") + std::string(p.name);
     throw OptionError(fmt::format("‹preset› '{}': one of {}", UnitTextProblem(o.preset).empty() ? o.preset : "?", names));
-  }
-  if (o.loop != "velocity" && o.loop != "position") {
-    throw OptionError("‹loop›: velocity or position for an axis (speed: an elastic joint's section)");
   }
   AxisGainsDesign d;
   if (file) TakeFromFile(*file, path, d);

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "io/parameter_file.h"
 #include "control/speed_loop.h"
+#include "io/parameter_file.h"
 #include "models/feedback.h"
 #include "report/json.h"
 #include "report/plot.h"
@@ -27,6 +27,8 @@ struct AxisGainsOptions {
   double conversion = 1.0;        ///< controller units per position unit
   std::optional<double> kv, ka;   ///< given values (no file, or overriding it)
   double kv_std = 0.0, ka_std = 0.0;
+  /// Every bound on these fields (‹field› names the option); see core/option_check.h.
+  bool IsValid(std::string* error) const;
 };
 
 struct AxisGainsDesign {
@@ -57,6 +59,8 @@ struct JointGainsOptions {
   double period = 0.001;           ///< [s]; the loop's delay is 1.5 periods
   double phase_margin_deg = 50.0;
   double notch_width_hz = 0.0;     ///< 0: from the resonance's uncertainty
+  /// Every bound on these fields (‹field› names the option); see core/option_check.h.
+  bool IsValid(std::string* error) const;
 };
 
 struct JointGainsDesign {

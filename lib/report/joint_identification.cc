@@ -8,12 +8,20 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/option_check.h"
 #include "fit/adequacy.h"
 #include "fit/joint_fit.h"
 #include "fit/joint_oe_fit.h"
 #include "report/fit_summary.h"
 
 namespace driveid {
+
+bool JointIdentificationOptions::IsValid(std::string* error) const {
+  return OptionCheck(error)
+      .Require(NotNegative(cutoff), "‹cutoff›", cutoff, "cutoff > 0 Hz (0: rate / 40)")
+      .Require(segment_seconds >= 0.0, "‹segment›", segment_seconds, "segment >= 0 s (0: auto, inf: whole log)")
+      .Nested(fit);
+}
 namespace {
 
 // auto takes output error while the inverse-dynamics cutoff is below this
@@ -205,6 +213,7 @@ void WarnLinkCoulomb(const JointFitOutput& start, bool filter_near_resonance, Fi
 
 JointIdentification IdentifyJoint(const std::vector<JointLog>& logs, const JointSection& section,
                                   const JointIdentificationOptions& options) {
+  RequireValid(options);
   if (options.method == JointMethod::kOutputError) {
     if (options.cutoff > 0.0) throw OptionError("‹cutoff› applies to ‹method› id only");
   } else if (options.method == JointMethod::kInverseDynamics && options.segment_seconds != 0.0) {

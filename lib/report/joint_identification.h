@@ -26,6 +26,8 @@ struct JointIdentificationOptions {
   FitOptions fit;                 ///< progress callback
   bool trace = false;             ///< build the trace CSV
   bool plot = false;              ///< build the plot panels
+  /// Every bound on these fields (‹field› names the option); see core/option_check.h.
+  bool IsValid(std::string* error) const;
 };
 
 struct JointIdentification {

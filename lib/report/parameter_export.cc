@@ -8,13 +8,14 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/option_check.h"
 #include "models/axis.h"
 #include "models/feedforward.h"
 #include "report/export_text.h"
 #include "report/feedback_export.h"
 #include "report/joint_export.h"
-#include "report/wpilib_export.h"
 #include "report/json.h"
+#include "report/wpilib_export.h"
 
 namespace driveid {
 namespace {
@@ -202,18 +203,17 @@ ExportTarget ParseExportTarget(const std::string& name) {
   throw InputError(fmt::format("export target '{}': one of {}", CommentText(name), fmt::join(ExportTargetNames(), ", ")));
 }
 
-void ExportOptions::Validate() const {
+bool ExportOptions::IsValid(std::string* error) const {
   bool valid = !joint.empty() && joint.size() <= 64 &&
                (std::isalpha(static_cast<unsigned char>(joint[0])) || joint[0] == '_');
   for (char c : joint) valid = valid && (std::isalnum(static_cast<unsigned char>(c)) || c == '_');
-  if (!valid) {
-    throw InputError(fmt::format("joint name '{}': letters, digits and _ only, starting with a letter or _, at most 64 "
-                                 "(it becomes an XML name and a Java/C identifier)", CommentText(joint)));
-  }
+  return OptionCheck(error).Require(
+      valid, fmt::format("‹joint›: joint name '{}': letters, digits and _ only, starting with a letter or _, at most "
+                         "64 (it becomes an XML name and a Java/C identifier)", CommentText(joint)));
 }
 
 std::string ExportParameters(const ParameterFile& file, ExportTarget target, const ExportOptions& options) {
-  options.Validate();
+  RequireValid(options);
   if (file.feedforward.law == kCDriveCompensationLaw && target != ExportTarget::kCHeader &&
       target != ExportTarget::kJson) {
     throw InputError(fmt::format("the C-drive's compensation law (31) couples the two motors through their rate "

@@ -32,8 +32,8 @@ struct ExportOptions {
   std::string joint = "axis";  ///< joint / identifier name: [A-Za-z_][A-Za-z0-9_]*, at most 64 characters
   std::string source;          ///< the parameter file's path, for provenance comments
   std::string command;         ///< the command line, for provenance comments
-  /// Throws InputError naming the field when the options are not valid.
-  void Validate() const;
+  /// The joint name's bound (‹joint›; see core/option_check.h).
+  bool IsValid(std::string* error) const;
 };
 
 /// The text of `target` for the file's axis section and feed-forward

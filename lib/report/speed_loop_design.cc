@@ -9,9 +9,18 @@
 
 #include "control/speed_loop.h"
 #include "core/errors.h"
+#include "core/option_check.h"
 #include "report/feedback_design.h"
 
 namespace driveid {
+
+bool JointGainsOptions::IsValid(std::string* error) const {
+  return OptionCheck(error)
+      .Require(Positive(period), "‹period›", period, "period > 0 s")
+      .Require(phase_margin_deg > 0.0 && phase_margin_deg < 90.0, "‹phase_margin›", phase_margin_deg,
+               "0 < margin < 90 degrees")
+      .Require(NotNegative(notch_width_hz), "‹notch_width›", notch_width_hz, "width >= 0 Hz (0: from the data)");
+}
 namespace {
 
 // chi^2 quantiles at 95 % for 1 .. 6 degrees of freedom.
@@ -74,6 +83,7 @@ void AddMargins(const char* prefix, const LoopMargins& m, FeedbackController& c)
 }  // namespace
 
 JointGainsDesign DesignJointGains(const ParameterFile& file, const std::string& path, const JointGainsOptions& o) {
+  RequireValid(o);
   const JointSection* section = file.Find<JointSection>();
   if (!section) {
     throw InputError(fmt::format("{}: no 'joint' section for a speed loop (a two-mass fit of frf, or joint, writes it)", path));

@@ -2,12 +2,16 @@
 
 #include <fmt/format.h>
 
+#include "core/option_check.h"
 #include "fit/validation.h"
 
 namespace driveid {
 
+bool StepIdentificationOptions::IsValid(std::string* error) const { return OptionCheck(error).Nested(fit); }
+
 StepIdentification IdentifySteps(const std::vector<StepLog>& logs, const DriveTrainParameters& start,
                                  const StepIdentificationOptions& options, const std::vector<StepLog>& validation) {
+  RequireValid(options);
   const StepFitOutput result = FitStepResponses(logs, start, options.fit);
   StepIdentification run;
   run.params = result.params;

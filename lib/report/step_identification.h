@@ -19,6 +19,8 @@ struct StepIdentificationOptions {
   StepFitOptions fit;
   bool trace = false;  ///< build the trace CSV
   bool plot = false;   ///< build the plot series
+  /// Every bound on these fields (‹field› names the option); see core/option_check.h.
+  bool IsValid(std::string* error) const;
 };
 
 struct StepIdentification {

@@ -3,11 +3,20 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/option_check.h"
 #include "models/missing_values.h"
 #include "report/export_target.h"
 #include "sim/mujoco_axis_simulator.h"
 
 namespace driveid {
+
+bool AxisValidationOptions::IsValid(std::string* error) const {
+  return OptionCheck(error)
+      .Require(NotNegative(cutoff), "‹cutoff›", cutoff, "cutoff > 0 Hz (0: the candidate that predicts best)")
+      .Require(decimation >= 1, "‹decimation›", decimation, ">= 1")
+      .Require(torque_timing != AxisTorqueTiming::kFromData,
+               "‹torque_timing› auto: a validation takes the timing the fit chose (sampled or held)");
+}
 
 ValidationModel ChooseValidationModel(const ParameterFile* file, bool mjcf, const std::string& path,
                                       const std::string& requested) {
@@ -41,6 +50,7 @@ ValidationModel ChooseValidationModel(const ParameterFile* file, bool mjcf, cons
 
 ValidationRun RunAxisValidation(const std::vector<AxisLog>& logs, const AxisSection& axis, const std::string& path,
                                 const AxisValidationOptions& options) {
+  RequireValid(options);
   RequireModelValues(AxisParameterTable(), axis, path, "axis", "the prediction", AxisTermsZeroUnlessGiven(axis));
   const AxisParameters params = MakeModelParameters(AxisParameterTable(), axis, AxisParameters{}, "axis");
   if (options.simulate) {

@@ -41,6 +41,8 @@ struct AxisValidationOptions {
   double cutoff = 0.0;    ///< inverse dynamics: position low-pass [Hz]; 0: the candidate that predicts best
   int decimation = 10;
   AxisTorqueTiming torque_timing = AxisTorqueTiming::kSampled;  ///< inverse dynamics (fit/axis_rows.h; not kFromData)
+  /// Every bound on these fields (‹field› names the option); see core/option_check.h.
+  bool IsValid(std::string* error) const;
 };
 ValidationRun RunAxisValidation(const std::vector<AxisLog>& logs, const AxisSection& axis, const std::string& path,
                                 const AxisValidationOptions& options);

@@ -8,9 +8,16 @@
 #include <unsupported/Eigen/FFT>
 
 #include "core/errors.h"
+#include "core/option_check.h"
 #include "core/order_statistics.h"
 
 namespace driveid {
+
+bool FrequencyResponseOptions::IsValid(std::string* error) const {
+  return OptionCheck(error)
+      .Require(NotNegative(resolution), "‹resolution›", resolution, "resolution >= 0 Hz (0: from the records)")
+      .Require(NotNegative(period), "‹period›", period, "period >= 0 s (0: detected)");
+}
 namespace {
 
 using Complex = std::complex<double>;
@@ -374,6 +381,7 @@ std::size_t DetectPeriod(const std::vector<double>& signal) {
 
 FrequencyResponse EstimateFrequencyResponse(const std::vector<FrequencyRecord>& records, double rate,
                                             const FrequencyResponseOptions& options) {
+  RequireValid(options);
   bool closed_loop = false;
   CheckRecords(records, closed_loop);
   if (!(rate > 0.0) || !std::isfinite(rate)) throw InputError("the sample rate is not a positive number");

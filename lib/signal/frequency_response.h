@@ -34,6 +34,8 @@ struct FrequencyResponseOptions {
                             ///< (down to 4 averages) to resolve a narrow excited band in 32 bins
   FrequencyMethod method = FrequencyMethod::kAuto;  ///< auto: periodic when the excitation repeats
   double period = 0.0;      ///< [s] periodic method; 0: detected from the excitation
+  /// Every bound on these fields (‹field› names the option); see core/option_check.h.
+  bool IsValid(std::string* error) const;
 };
 
 struct FrequencyResponse {

@@ -13,10 +13,15 @@
 
 namespace driveid {
 
+bool ClosedLoopOptions::IsValid(std::string* error) const {
+  return OptionCheck(error)
+      .Require(Positive(program.stroke), "‹stroke›", program.stroke, "stroke > 0 s")
+      .Require(cycles >= 1 && cycles <= 1000, "‹cycles›", cycles, "1 <= cycles <= 1000")
+      .Require(NotNegative(torque_noise), "‹noise›", torque_noise, "noise >= 0");
+}
+
 void ValidateClosedLoop(const ClosedLoopOptions& o, const CDriveControlSettings& s) {
-  RequireOption(std::isfinite(o.program.stroke) && o.program.stroke > 0.0, "‹stroke›", o.program.stroke, "stroke > 0 s");
-  RequireOption(o.cycles >= 1 && o.cycles <= 1000, "‹cycles›", o.cycles, "1 <= cycles <= 1000");
-  RequireOption(std::isfinite(o.torque_noise) && o.torque_noise >= 0.0, "‹noise›", o.torque_noise, "noise >= 0");
+  RequireValid(o);
   RequireSampleCount(std::round(2.0 * o.program.stroke * o.cycles / s.sample_time) + 1, kMinCDriveLogSamples,
                      fmt::format("‹stroke› {} with ‹cycles› {} at cdrive.control.sample_time {} s", o.program.stroke,
                                  o.cycles, s.sample_time));

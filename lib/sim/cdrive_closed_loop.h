@@ -22,6 +22,8 @@ struct ClosedLoopOptions {
   int cycles = 1;            ///< forward-and-back cycles (each 2 T)
   double torque_noise = 0.0; ///< std of Gaussian noise added to the logged torques [N m]
   std::uint64_t seed = 1;
+  /// Every bound on these fields (‹field› names the option); see core/option_check.h.
+  bool IsValid(std::string* error) const;
 };
 
 struct TrackingTrace {

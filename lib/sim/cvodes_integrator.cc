@@ -10,8 +10,19 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/option_check.h"
 
 namespace driveid {
+
+bool IntegratorOptions::IsValid(std::string* error) const {
+  OptionCheck check(error);
+  check.Require(Positive(relative_tolerance) && relative_tolerance < 1.0, "relative_tolerance", relative_tolerance,
+                "0 < tolerance < 1")
+      .Require(max_steps >= 1, "max_steps", static_cast<double>(max_steps), ">= 1");
+  for (const double a : absolute_tolerance) check.Require(Positive(a), "absolute_tolerance", a, "> 0 per state");
+  for (const double s : parameter_scale) check.Require(Positive(s), "parameter_scale", s, "> 0 per parameter");
+  return check;
+}
 namespace {
 
 // CVODES reports details through an error handler; keep the last message
@@ -109,6 +120,7 @@ struct CvodesIntegrator::Handles {
 
 CvodesIntegrator::CvodesIntegrator(const SensitivityOdeSystem& system, const IntegratorOptions& options)
     : handles_(std::make_unique<Handles>()), system_(system) {
+  RequireValid(options);
   Handles& h = *handles_;
   const int n = system.state_size();
 #if SUNDIALS_VERSION_MAJOR >= 7

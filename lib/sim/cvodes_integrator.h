@@ -36,6 +36,8 @@ struct IntegratorOptions {
   std::vector<double> absolute_tolerance;  ///< per state; empty = 1e-12 each
   std::vector<double> parameter_scale;     ///< |p_j| for sensitivity tolerances; empty = 1
   long max_steps = 20000;                  ///< per call to Advance
+  /// Every bound on these fields (‹field› names the option); see core/option_check.h.
+  bool IsValid(std::string* error) const;
 };
 
 class CvodesIntegrator {

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/option_check.h"
 #include "io/child_process.h"
 #include "sim/mjcf_files.h"
 
@@ -20,6 +21,12 @@
 #endif
 
 namespace driveid {
+
+bool MujocoAxisOptions::IsValid(std::string* error) const {
+  return OptionCheck(error)
+      .Require(!joint.empty(), "‹joint›: the MJCF joint's name may not be empty")
+      .Require(Positive(max_step), "‹mujoco_step›", max_step, "MuJoCo's largest step > 0 s");
+}
 
 #if defined(DRIVEID_HAVE_MUJOCO)
 namespace {
@@ -252,6 +259,7 @@ MujocoRunResponse SimulateMujoco(const std::string& path, const MujocoRun& run, 
 MujocoAxisResponse SimulateMujocoAxis(const std::string& path, const MujocoAxisOptions& options,
                                       const std::vector<double>& time, const std::vector<double>& effort, double q0,
                                       double v0) {
+  RequireValid(options);
   MujocoRun run;
   run.drive = options.joint;
   run.record = {{options.joint, q0, v0, false}};

@@ -22,6 +22,8 @@ namespace driveid {
 struct MujocoAxisOptions {
   std::string joint = "axis";  ///< the joint's name in the MJCF
   double max_step = 1e-3;      ///< largest MuJoCo time step [s], > 0
+  /// Every bound on these fields (‹field› names the option); see core/option_check.h.
+  bool IsValid(std::string* error) const;
 };
 
 struct MujocoAxisResponse {

@@ -522,3 +522,33 @@ TEST_CASE("exclusion reach: 4 decimations at the decimated band, longer below it
   // Half the band spreads the step further than the band.
   CHECK(AxisExclusionReach(rate, band / 2.0, decimation) > AxisExclusionReach(rate, band, decimation));
 }
+
+TEST_CASE("cutoff pick: the highest unless a lower one wins by the margin; refused candidates never win") {
+  const std::vector<double> candidates{5.0, 10.0, 20.0, 40.0};
+  const auto pick = [&](std::map<double, double> score) {
+    return PickAxisCutoff(candidates, [&](double c) { return score.at(c); });
+  };
+  // Ties and small gains keep the band.
+  CHECK(pick({{5.0, 1.0}, {10.0, 1.0}, {20.0, 0.97}, {40.0, 1.0}}) == 40.0);
+  // A clear gain moves down; the next one is measured against the new holder.
+  CHECK(pick({{5.0, 0.9}, {10.0, 0.9}, {20.0, 0.94}, {40.0, 1.0}}) == 20.0);
+  CHECK(pick({{5.0, 0.5}, {10.0, 0.9}, {20.0, 0.94}, {40.0, 1.0}}) == 5.0);
+  // A refused band (+inf) gives way to the first candidate that fits.
+  CHECK(pick({{5.0, 1.95}, {10.0, 2.0}, {20.0, HUGE_VAL}, {40.0, HUGE_VAL}}) == 10.0);
+  // All refused: the band (the fit and the validation agree on it).
+  CHECK(pick({{5.0, HUGE_VAL}, {10.0, HUGE_VAL}, {20.0, HUGE_VAL}, {40.0, HUGE_VAL}}) == 40.0);
+  CHECK(PickAxisCutoff({}, [](double) { return 1.0; }) == 0.0);
+}
+
+TEST_CASE("row reaches: at the band the fit's rows and the search's agree; irregular logs keep the shortest") {
+  const double rate = 1000.0;
+  const int decimation = 10;
+  const double band = AxisDecimatedBand(rate, decimation);
+  CHECK(AxisRowReach(rate, band, decimation, AxisReach::kAtCutoff) ==
+        AxisRowReach(rate, band / 2.0, decimation, AxisReach::kAtBand));
+  CHECK(AxisRowReach(rate, band / 2.0, decimation, AxisReach::kAtCutoff) >
+        AxisRowReach(rate, band / 2.0, decimation, AxisReach::kAtBand));
+  CHECK(AxisShortestReach(rate, decimation) == kAxisExclusionDecimations * decimation);
+  CHECK(AxisShortestReach(0.0, decimation) == kAxisExclusionDecimationsIrregular * decimation);
+  CHECK(AxisRowReach(0.0, band, decimation, AxisReach::kAtCutoff) == AxisShortestReach(0.0, decimation));
+}
