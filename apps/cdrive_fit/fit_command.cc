@@ -8,7 +8,7 @@
 #include "io/csv_log.h"
 #include "io/parameter_file.h"
 #include "io/sha256.h"
-#include "report/cdrive_compensation.h"
+#include "workflow/cdrive_compensation.h"
 
 namespace driveid::cli {
 

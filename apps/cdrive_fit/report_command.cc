@@ -8,7 +8,7 @@
 #include "common/command_registry.h"
 #include "core/errors.h"
 #include "io/parameter_file.h"
-#include "report/axis_feedforward.h"
+#include "workflow/axis_feedforward.h"
 #include "report/cdrive_report.h"
 
 namespace driveid::cli {

@@ -2,7 +2,7 @@
 // written for MuJoCo, URDF, WPILib (Java, C++), firmware (C header) or as
 // JSON; cdrive-fit export: the C-drive's compensation law (31) as a C header
 // or JSON (docs/export.md).
-// Parse, call the library, write: the formats live in report/parameter_export.
+// Parse, call the library, write: the formats live in export/parameter_export.
 #include <string>
 #include <vector>
 
@@ -13,7 +13,7 @@
 #include "core/option_check.h"
 #include "io/atomic_file.h"
 #include "io/parameter_file.h"
-#include "report/parameter_export.h"
+#include "export/parameter_export.h"
 
 namespace driveid::cli {
 namespace {

@@ -10,7 +10,7 @@
 #include "io/csv_log.h"
 #include "io/parameter_file.h"
 #include "io/sha256.h"
-#include "report/axis_identification.h"
+#include "workflow/axis_identification.h"
 
 namespace driveid::cli {
 

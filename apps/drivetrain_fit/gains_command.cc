@@ -1,6 +1,6 @@
 // drivetrain-fit gains: feedback gains for the controller that loads the
 // parameter file (docs/models.md#feedback-gains). Parsing and output only;
-// the design is report/feedback_design.h.
+// the design is workflow/feedback_design.h.
 #include <functional>
 #include <optional>
 #include <string>
@@ -13,7 +13,7 @@
 #include "control/feedback_gains.h"
 #include "io/atomic_file.h"
 #include "io/parameter_file.h"
-#include "report/feedback_design.h"
+#include "workflow/feedback_design.h"
 
 namespace driveid::cli {
 namespace {

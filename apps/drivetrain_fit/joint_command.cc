@@ -11,7 +11,7 @@
 #include "core/errors.h"
 #include "io/csv_log.h"
 #include "io/parameter_file.h"
-#include "report/joint_identification.h"
+#include "workflow/joint_identification.h"
 
 namespace driveid::cli {
 

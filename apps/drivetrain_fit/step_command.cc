@@ -4,7 +4,7 @@
 
 #include "common/command_registry.h"
 #include "core/errors.h"
-#include "report/step_identification.h"
+#include "workflow/step_identification.h"
 #include "io/csv_log.h"
 #include "io/parameter_file.h"
 #include "io/sha256.h"

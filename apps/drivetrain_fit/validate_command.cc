@@ -12,7 +12,7 @@
 #include "io/joint_log.h"
 #include "io/parameter_file.h"
 #include "io/step_log.h"
-#include "report/validation_run.h"
+#include "workflow/validation_run.h"
 
 namespace driveid::cli {
 

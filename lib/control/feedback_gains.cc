@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include <Eigen/Dense>
+#include <fmt/format.h>
 #include <unsupported/Eigen/MatrixFunctions>
 
 namespace driveid {
@@ -156,6 +157,22 @@ GainUncertainty PropagateGains(double kv, double kv_std, double ka, double ka_st
   };
   out.standard_error = {combine(d_kv.kp, d_ka.kp), combine(d_kv.kd, d_ka.kd)};
   return out;
+}
+
+std::string FeedbackGainUnit(const FeedbackController& f, const std::string& key) {
+  const ControllerPreset* preset = FindControllerPreset(f.preset);
+  const bool own_units = !preset || (preset->output_factor == 1.0 && preset->velocity_time_factor == 1.0);
+  const std::string effort = own_units ? f.effort_unit : std::string("output (") + f.preset + ")";
+  const std::string position = f.position_unit;
+  if (f.loop == "velocity" && key == "kp") return fmt::format("{} s/{}", effort, position);
+  if (f.loop == "position" && key == "kp") return fmt::format("{}/{}", effort, position);
+  if (f.loop == "position" && key == "kd") {
+    return preset && !preset->normalized ? fmt::format("{} period/{}", effort, position)
+                                         : fmt::format("{} s/{}", effort, position);
+  }
+  if (f.loop == "speed" && key == "kp") return fmt::format("{} s/{}", f.effort_unit, position);
+  if (f.loop == "speed" && key == "ki") return fmt::format("{}/{}", f.effort_unit, position);
+  return "";
 }
 
 }  // namespace driveid

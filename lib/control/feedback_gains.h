@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "models/feedback.h"
+
 namespace driveid {
 
 struct LqrSettings {
@@ -82,5 +84,8 @@ FeedbackGains VelocityLqr(double kv, double ka, const LqrSettings& s);
 
 /// Position loop: kp on the position error, kd on the velocity error.
 FeedbackGains PositionLqr(double kv, double ka, const LqrSettings& s);
+
+/// The unit of a gain in a section (e.g. "V s/Radians"), or "controller units".
+std::string FeedbackGainUnit(const FeedbackController& feedback, const std::string& key);
 
 }  // namespace driveid

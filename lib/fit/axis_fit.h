@@ -43,7 +43,7 @@ namespace driveid {
 
 /// The end of the processing warning's advice where the rate was measured
 /// (output error does not differentiate); the identification run tries it
-/// and says what it gives right after it (report/axis_identification.cc).
+/// and says what it gives right after it (workflow/axis_identification.cc).
 inline constexpr const char* kAxisOutputErrorAdvice = "‹method› oe, which does not differentiate";
 
 struct AxisFitOptions {

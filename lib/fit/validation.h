@@ -67,7 +67,7 @@ std::vector<ValidatedLog> ValidateMujocoAxis(const std::vector<AxisLog>& logs, c
                                              const MujocoAxisOptions& options);
 
 /// The elastic joint's logs simulated in MuJoCo from an MJCF as `export`
-/// writes it (report/joint_export.h): the motor torque drives `joint`_motor
+/// writes it (export/joint_export.h): the motor torque drives `joint`_motor
 /// through its actuator (gear n), motor and link start at the logged angles
 /// and rates (logged, else the slope of the first 10 samples); two entries
 /// per log, "path:q_motor" (motor shaft, n x theta_m) and "path:q_link".

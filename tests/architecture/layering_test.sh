@@ -14,6 +14,8 @@ declare -A allowed=(
   [design]="core models design"
   [fit]="core models signal io sim fit"
   [report]="core models control io signal sim fit design report"
+  [export]="core models control io signal report export"
+  [workflow]="core models control io signal sim fit design report export workflow"
 )
 bad=0
 checked=0
@@ -33,6 +35,21 @@ done
 for dir in "$lib"/*/; do
   name=$(basename "$dir")
   [ -n "${allowed[$name]+x}" ] || { echo "FAIL: lib/$name is not a known layer"; bad=$((bad + 1)); }
+done
+# Inside the top layers no include runs back up: a file's includes (its
+# header's and its source's together) form no cycle with another file's.
+for layer in report export workflow; do
+  edges=$(for file in "$lib/$layer"/*; do
+            unit=$(basename "${file%.*}")
+            grep -o "^#include \"$layer/[a-z_]*" "$file" | sed "s|.*/||" | while read -r target; do
+              [ "$target" != "$unit" ] && echo "$unit $target"
+            done
+          done | sort -u)
+  checked=$((checked + 1))
+  if ! cycle=$(printf '%s\n' "$edges" | tsort 2>&1 >/dev/null) || [ -n "$cycle" ]; then
+    echo "FAIL: lib/$layer: its files include each other in a cycle: $(echo "$cycle" | tr '\n' ' ')"
+    bad=$((bad + 1))
+  fi
 done
 echo "$checked includes checked"
 echo "$((checked - bad)) passed, $bad failed"

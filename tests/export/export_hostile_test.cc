@@ -9,8 +9,8 @@
 
 #include "core/errors.h"
 #include "io/parameter_file.h"
-#include "report/export_text.h"
-#include "report/parameter_export.h"
+#include "export/export_text.h"
+#include "export/parameter_export.h"
 
 using namespace driveid;
 

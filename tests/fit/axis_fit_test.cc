@@ -12,7 +12,7 @@
 #include <catch2/catch.hpp>
 
 #include "core/errors.h"
-#include "report/axis_feedforward.h"
+#include "workflow/axis_feedforward.h"
 #include "signal/butterworth.h"
 #include "sim/axis_experiment.h"
 

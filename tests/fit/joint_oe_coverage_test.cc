@@ -16,7 +16,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "report/joint_identification.h"
+#include "workflow/joint_identification.h"
 #include "support/friction_joint_cases.h"
 
 using namespace driveid;

@@ -14,7 +14,7 @@
 
 #include "io/csv_log.h"
 #include "io/log_input.h"
-#include "report/joint_identification.h"
+#include "workflow/joint_identification.h"
 #include "support/reference_scope_trace.h"
 
 using namespace driveid;

@@ -1,8 +1,8 @@
-// `inspect` (lib/report/log_inspection.h) of a MAT file with a struct: its
+// `inspect` (lib/workflow/log_inspection.h) of a MAT file with a struct: its
 // variables and struct fields with sizes and addresses, columns on request;
 // a log that cannot be read as a fit would read it says why, not "no time
 // base" when the time base is fine.
-#include "report/log_inspection.h"
+#include "workflow/log_inspection.h"
 
 #include <string>
 

@@ -1,4 +1,4 @@
-#include "report/export_target.h"
+#include "export/export_target.h"
 
 #include <array>
 #include <utility>

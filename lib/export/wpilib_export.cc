@@ -1,4 +1,4 @@
-#include "report/wpilib_export.h"
+#include "export/wpilib_export.h"
 
 #include <array>
 #include <cctype>
@@ -9,9 +9,9 @@
 
 #include "core/errors.h"
 #include "models/feedforward.h"
-#include "report/export_target.h"
-#include "report/export_text.h"
-#include "report/feedback_export.h"
+#include "export/export_target.h"
+#include "export/export_text.h"
+#include "export/feedback_export.h"
 
 namespace driveid {
 namespace {

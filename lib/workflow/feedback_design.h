@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "control/feedback_gains.h"
 #include "control/speed_loop.h"
 #include "io/parameter_file.h"
 #include "models/feedback.h"
@@ -48,8 +49,6 @@ AxisGainsDesign DesignAxisGains(const ParameterFile* file, const std::string& pa
 std::string FormatFeedbackReport(const FeedbackController& feedback);
 /// {loop, preset, effort_unit, position_unit, feedback: {kp: {value, std}, ...}, settings..., controller...}.
 Json FeedbackReportJson(const FeedbackController& feedback);
-/// The unit of a gain in a section (e.g. "V s/Radians"), or "controller units".
-std::string FeedbackGainUnit(const FeedbackController& feedback, const std::string& key);
 
 }  // namespace driveid
 

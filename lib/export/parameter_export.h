@@ -12,7 +12,7 @@
 //          actuator force = ctrl - tau_0 (affine bias), gravity as a point
 //          mass m at distance r with m g r = Kg, placed at angle Kg_angle;
 //   URDF   <dynamics damping="b" friction="tau_c"/>, the link's inertia J;
-//   WPILib (Java and C++, report/wpilib_export.h) SimpleMotorFeedforward(ks, kv, ka), ArmFeedforward(ks, kg, kv, ka)
+//   WPILib (Java and C++, export/wpilib_export.h) SimpleMotorFeedforward(ks, kv, ka), ArmFeedforward(ks, kg, kv, ka)
 //          when gravity was fitted, ElevatorFeedforward(ks, kg, kv, ka) for a
 //          linear axis (kg = the offset); per direction where fitted;
 //   C header and JSON: the feed-forward gains with units and std.
@@ -21,23 +21,16 @@
 #include <string>
 
 #include "io/parameter_file.h"
-#include "report/export_target.h"
+#include "export/export_target.h"
+#include "export/export_text.h"
 
 namespace driveid {
 
-/// The target a name spells (report/export_target.h); InputError listing the names for any other.
+/// The target a name spells (export/export_target.h); InputError listing the names for any other.
 ExportTarget ParseExportTarget(const std::string& name);
 
-struct ExportOptions {
-  std::string joint = "axis";  ///< joint / identifier name: [A-Za-z_][A-Za-z0-9_]*, at most 64 characters
-  std::string source;          ///< the parameter file's path, for provenance comments
-  std::string command;         ///< the command line, for provenance comments
-  /// The joint name's bound (‹joint›; see core/option_check.h).
-  bool IsValid(std::string* error) const;
-};
-
 /// The text of `target` for the file's axis section and feed-forward
-/// section, or for its elastic joint (report/joint_export.h). Throws
+/// section, or for its elastic joint (export/joint_export.h). Throws
 /// InputError when the file has neither (the drive train, robot and C-drive
 /// have no export target yet).
 std::string ExportParameters(const ParameterFile& file, ExportTarget target, const ExportOptions& options);

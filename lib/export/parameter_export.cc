@@ -1,4 +1,4 @@
-#include "report/parameter_export.h"
+#include "export/parameter_export.h"
 
 #include <cctype>
 #include <cmath>
@@ -11,11 +11,11 @@
 #include "core/option_check.h"
 #include "models/axis.h"
 #include "models/feedforward.h"
-#include "report/export_text.h"
-#include "report/feedback_export.h"
-#include "report/joint_export.h"
+#include "export/export_text.h"
+#include "export/feedback_export.h"
+#include "export/joint_export.h"
 #include "report/json.h"
-#include "report/wpilib_export.h"
+#include "export/wpilib_export.h"
 
 namespace driveid {
 namespace {
@@ -201,15 +201,6 @@ ExportTarget ParseExportTarget(const std::string& name) {
   ExportTarget target{};
   if (FindExportTarget(name, &target)) return target;
   throw InputError(fmt::format("export target '{}': one of {}", CommentText(name), fmt::join(ExportTargetNames(), ", ")));
-}
-
-bool ExportOptions::IsValid(std::string* error) const {
-  bool valid = !joint.empty() && joint.size() <= 64 &&
-               (std::isalpha(static_cast<unsigned char>(joint[0])) || joint[0] == '_');
-  for (char c : joint) valid = valid && (std::isalnum(static_cast<unsigned char>(c)) || c == '_');
-  return OptionCheck(error).Require(
-      valid, fmt::format("‹joint›: joint name '{}': letters, digits and _ only, starting with a letter or _, at most "
-                         "64 (it becomes an XML name and a Java/C identifier)", CommentText(joint)));
 }
 
 std::string ExportParameters(const ParameterFile& file, ExportTarget target, const ExportOptions& options) {

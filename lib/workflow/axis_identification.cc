@@ -1,4 +1,4 @@
-#include "report/axis_identification.h"
+#include "workflow/axis_identification.h"
 
 #include <algorithm>
 #include <exception>
@@ -12,8 +12,8 @@
 #include "fit/axis_oe_fit.h"
 #include "fit/validation.h"
 #include "models/feedforward.h"
-#include "report/axis_feedforward.h"
-#include "report/status_frame_logs.h"
+#include "workflow/axis_feedforward.h"
+#include "workflow/status_frame_logs.h"
 
 namespace driveid {
 

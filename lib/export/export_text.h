@@ -1,5 +1,5 @@
-// What the export targets share (report/parameter_export.h,
-// report/joint_export.h): comment-safe text, exact numbers, a value with its
+// What the export targets share (export/parameter_export.h,
+// export/joint_export.h): comment-safe text, exact numbers, a value with its
 // std from the fit section, the provenance lines, and gravity as a point
 // mass for MJCF and URDF.
 #pragma once
@@ -8,7 +8,18 @@
 #include <string>
 
 #include "io/parameter_file.h"
-#include "report/parameter_export.h"
+
+namespace driveid {
+
+struct ExportOptions {
+  std::string joint = "axis";  ///< joint / identifier name: [A-Za-z_][A-Za-z0-9_]*, at most 64 characters
+  std::string source;          ///< the parameter file's path, for provenance comments
+  std::string command;         ///< the command line, for provenance comments
+  /// The joint name's bound (‹joint›; see core/option_check.h).
+  bool IsValid(std::string* error) const;
+};
+
+}  // namespace driveid
 
 namespace driveid::export_text {
 

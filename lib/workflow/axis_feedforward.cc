@@ -1,4 +1,4 @@
-#include "report/axis_feedforward.h"
+#include "workflow/axis_feedforward.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "report/status_frame_logs.h"
+#include "workflow/status_frame_logs.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "report/feedback_design.h"
+#include "workflow/feedback_design.h"
 
 #include <cmath>
 #include <stdexcept>
@@ -8,7 +8,7 @@
 #include "control/feedback_gains.h"
 #include "core/errors.h"
 #include "core/option_check.h"
-#include "report/export_text.h"
+#include "export/export_text.h"
 
 namespace driveid {
 
@@ -136,22 +136,6 @@ AxisGainsDesign DesignAxisGains(const ParameterFile* file, const std::string& pa
     d.notes.push_back("Ka below 1e-7: the velocity follows the effort at once; no velocity feedback is needed (kp 0)");
   }
   return d;
-}
-
-std::string FeedbackGainUnit(const FeedbackController& f, const std::string& key) {
-  const ControllerPreset* preset = FindControllerPreset(f.preset);
-  const bool own_units = !preset || (preset->output_factor == 1.0 && preset->velocity_time_factor == 1.0);
-  const std::string effort = own_units ? f.effort_unit : std::string("output (") + f.preset + ")";
-  const std::string position = f.position_unit;
-  if (f.loop == "velocity" && key == "kp") return fmt::format("{} s/{}", effort, position);
-  if (f.loop == "position" && key == "kp") return fmt::format("{}/{}", effort, position);
-  if (f.loop == "position" && key == "kd") {
-    return preset && !preset->normalized ? fmt::format("{} period/{}", effort, position)
-                                         : fmt::format("{} s/{}", effort, position);
-  }
-  if (f.loop == "speed" && key == "kp") return fmt::format("{} s/{}", f.effort_unit, position);
-  if (f.loop == "speed" && key == "ki") return fmt::format("{}/{}", f.effort_unit, position);
-  return "";
 }
 
 std::string FormatFeedbackReport(const FeedbackController& f) {

@@ -1,4 +1,4 @@
-#include "report/step_identification.h"
+#include "workflow/step_identification.h"
 
 #include <fmt/format.h>
 

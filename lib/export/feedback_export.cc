@@ -1,11 +1,11 @@
-#include "report/feedback_export.h"
+#include "export/feedback_export.h"
 
 #include <cctype>
 
 #include <fmt/format.h>
 
-#include "report/export_text.h"
-#include "report/feedback_design.h"
+#include "export/export_text.h"
+#include "control/feedback_gains.h"
 
 namespace driveid {
 namespace {

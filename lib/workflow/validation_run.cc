@@ -1,11 +1,11 @@
-#include "report/validation_run.h"
+#include "workflow/validation_run.h"
 
 #include <fmt/format.h>
 
 #include "core/errors.h"
 #include "core/option_check.h"
 #include "models/missing_values.h"
-#include "report/export_target.h"
+#include "export/export_target.h"
 #include "sim/mujoco_axis_simulator.h"
 
 namespace driveid {

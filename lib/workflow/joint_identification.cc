@@ -1,4 +1,4 @@
-#include "report/joint_identification.h"
+#include "workflow/joint_identification.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "report/log_inspection.h"
+#include "workflow/log_inspection.h"
 
 #include <algorithm>
 #include <cmath>

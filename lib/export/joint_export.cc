@@ -1,4 +1,4 @@
-#include "report/joint_export.h"
+#include "export/joint_export.h"
 
 #include <cctype>
 #include <cmath>
@@ -8,8 +8,8 @@
 
 #include "core/errors.h"
 #include "models/joint.h"
-#include "report/export_text.h"
-#include "report/feedback_export.h"
+#include "export/export_text.h"
+#include "export/feedback_export.h"
 
 namespace driveid {
 namespace {

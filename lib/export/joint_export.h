@@ -16,7 +16,8 @@
 #include <string>
 
 #include "io/parameter_file.h"
-#include "report/parameter_export.h"
+#include "export/export_target.h"
+#include "export/export_text.h"
 
 namespace driveid {
 

@@ -1,4 +1,4 @@
-// `gains --loop speed` (report/feedback_design.h): the joint section and the
+// `gains --loop speed` (workflow/feedback_design.h): the joint section and the
 // 95 % region of its fitted parameters, handed to control/speed_loop.h.
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include "control/speed_loop.h"
 #include "core/errors.h"
 #include "core/option_check.h"
-#include "report/feedback_design.h"
+#include "workflow/feedback_design.h"
 
 namespace driveid {
 

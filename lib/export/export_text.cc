@@ -1,4 +1,4 @@
-#include "report/export_text.h"
+#include "export/export_text.h"
 
 #include <algorithm>
 #include <cctype>
@@ -7,6 +7,20 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/option_check.h"
+
+namespace driveid {
+
+bool ExportOptions::IsValid(std::string* error) const {
+  bool valid = !joint.empty() && joint.size() <= 64 &&
+               (std::isalpha(static_cast<unsigned char>(joint[0])) || joint[0] == '_');
+  for (char c : joint) valid = valid && (std::isalnum(static_cast<unsigned char>(c)) || c == '_');
+  return OptionCheck(error).Require(
+      valid, fmt::format("‹joint›: joint name '{}': letters, digits and _ only, starting with a letter or _, at most "
+                         "64 (it becomes an XML name and a Java/C identifier)", export_text::CommentText(joint)));
+}
+
+}  // namespace driveid
 
 namespace driveid::export_text {
 

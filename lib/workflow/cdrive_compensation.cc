@@ -1,6 +1,6 @@
-#include "report/cdrive_compensation.h"
+#include "workflow/cdrive_compensation.h"
 
-#include "report/axis_feedforward.h"
+#include "workflow/axis_feedforward.h"
 
 namespace driveid {
 
