@@ -12,9 +12,9 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/fit_options.h"
 #include "core/fit_result.h"
 #include "models/parameter_table.h"
-#include "fit/least_squares.h"
 #include "io/csv_log.h"
 #include "io/sha256.h"
 #include "report/plot.h"

@@ -6,11 +6,8 @@
 
 #include "common/cli_support.h"
 #include "common/command_registry.h"
-#include "core/errors.h"
 #include "io/atomic_file.h"
 #include "io/parameter_file.h"
-#include "io/torque_reference.h"
-#include "models/missing_values.h"
 
 namespace driveid::cli {
 
@@ -77,23 +74,8 @@ CLI::App* SetupSimulateRobotCommand(CLI::App& simulate, SimulateRobotOptions& ro
 
 void RunSimulateRobotCommand(const SimulateRobotOptions& options, const std::string& command_line) {
   CheckDistinctFiles({options.params}, {{"-o", options.output}});
-  const ParameterFile file = ReadParameterFile(options.params);
-  if (!file.Find<PlanarRobotSection>()) throw InputError(fmt::format("{}: no 'planar_robot' section", options.params));
-  RobotLog log;
-  try {
-    log = SimulateRobotExperiment(MakePlanarRobotParameters(*file.Find<PlanarRobotSection>()), options.experiment);
-  } catch (const std::domain_error& e) {
-    throw InputError(fmt::format("{}: the triangle leaves the workspace: {}", options.params, e.what()));
-  }
-  const auto& r = options.experiment;
-  const PlanarRobotParameters p = MakePlanarRobotParameters(*file.Find<PlanarRobotSection>());
-  std::string text = FormatRobotLog(
-      log, {"synthetic robot log (docs/formats.md#logs) made by: " + command_line,
-            fmt::format("triangle side {} m, {} m/s^2, {} m/s, dwell {} s, {} loops, {} Hz, 13-bit encoders behind the "
-                        "gears, prestress {} N m, current noise {} A (seed {})",
-                        r.side, r.acceleration, r.speed, r.dwell, r.loops, r.rate, r.prestress, r.current_noise, r.seed),
-            fmt::format("truth: Theta {}, m_c {}, d_g {}, n_g {}, k_t {}", p.output_inertia, p.center_mass,
-                        p.viscous_friction, p.gear_ratio, p.torque_constant)});
+  std::string text =
+      SyntheticRobotLog(ReadParameterFile(options.params), options.params, options.experiment, command_line);
   if (options.output.empty()) {
     WriteStdout(text);
   } else {
@@ -105,23 +87,8 @@ void RunSimulateAxisCommand(const SimulateAxisOptions& options, const std::strin
   std::vector<std::string> inputs = {options.params};
   if (!options.reference.empty()) inputs.push_back(options.reference);
   CheckDistinctFiles(inputs, {{"-o", options.output}});
-  const ParameterFile file = ReadParameterFile(options.params);
-  if (!file.Find<AxisSection>()) throw InputError(fmt::format("{}: no 'axis' section", options.params));
-  RequireModelValues(AxisParameterTable(), *file.Find<AxisSection>(), options.params, "axis", "the simulation",
-                     AxisTermsZeroUnlessGiven(*file.Find<AxisSection>()));
-  const AxisParameters params = MakeModelParameters(AxisParameterTable(), *file.Find<AxisSection>(), AxisParameters{}, "axis");
-  AxisExperiment e = options.experiment;
-  if (!options.reference.empty()) {
-    e.profile = "reference";
-    e.reference = ReadAxisReference(options.reference);
-  }
-  const AxisLog log = SimulateAxisExperiment(params, e);
-  std::string text = FormatAxisLog(
-      log, {"synthetic axis log (docs/formats.md#logs) made by: " + command_line,
-            fmt::format("profile {}, rate {} Hz, resolution {}, noise {} (seed {})", e.profile, e.rate, e.resolution,
-                        e.noise, e.seed),
-            fmt::format("truth: inertia {}, viscous {}, coulomb {}, offset {}", params.inertia, params.viscous,
-                        params.coulomb, params.offset)});
+  std::string text = SyntheticAxisLog(ReadParameterFile(options.params), options.params, options.experiment,
+                                      options.reference, command_line);
   if (options.output.empty()) {
     WriteStdout(text);
   } else {
@@ -131,24 +98,8 @@ void RunSimulateAxisCommand(const SimulateAxisOptions& options, const std::strin
 
 void RunSimulateStepCommand(const SimulateStepOptions& options, const std::string& command_line) {
   CheckDistinctFiles({options.params}, {{"-o", options.output}});
-  const ParameterFile file = ReadParameterFile(options.params);
-  if (!file.Find<DriveTrainSection>()) throw InputError(fmt::format("{}: no 'drivetrain' section", options.params));
-  StepExperiment experiment = options.experiment;
-  experiment.model = options.model == "full" ? DriveTrainModel::kFull : DriveTrainModel::kReduced;
-  const DriveTrainParameters p = MakeDriveTrainParameters(*file.Find<DriveTrainSection>());
-  if (experiment.model == DriveTrainModel::kFull && !(p.gearbox_inertia > 0.0)) {
-    throw InputError(fmt::format("{}: the full model needs drivetrain.Theta_g > 0", options.params));
-  }
-  const StepLog log = SimulateStepExperiment(p, experiment);
-  const std::vector<std::string> comments = {
-      "synthetic step log (docs/formats.md#logs) made by: " + command_line,
-      fmt::format("model {}, rate {} Hz, step {} N m at {} s, noise {} N m (seed {}), offset {} N m", options.model,
-                  experiment.rate, experiment.step_torque, experiment.step_time, experiment.noise, experiment.seed,
-                  experiment.offset),
-      fmt::format("truth: n_g {}, k_Tl {}, k_Tg {}, Theta_motor {}, Theta_g {}, d_g {}, tau_c {}",
-                  p.gear_ratio, p.link_stiffness, p.gearbox_stiffness, p.motor_inertia, p.gearbox_inertia,
-                  p.viscous_friction, p.coulomb_friction)};
-  std::string text = FormatStepLog(log, comments);
+  std::string text = SyntheticStepLog(ReadParameterFile(options.params), options.params, options.model,
+                                      options.experiment, command_line);
   if (options.output.empty()) {
     WriteStdout(text);
   } else {
@@ -197,32 +148,13 @@ void RunSimulateJointCommand(const SimulateJointOptions& o, const std::string& c
   std::vector<std::string> inputs{o.params};
   if (!o.reference.empty()) inputs.push_back(o.reference);
   CheckDistinctFiles(inputs, {{"-o", o.output}});
-  const ParameterFile file = ReadParameterFile(o.params);
-  if (!file.Find<JointSection>()) throw InputError(fmt::format("{}: no 'joint' section", o.params));
-  const JointSection& section = *file.Find<JointSection>();
-  const JointParameters p = ModelValuesOr(JointParameterTable(), section, 0.0);
-  JointExperiment e = o.experiment;
+  JointExperiment experiment = o.experiment;
   if (o.band.size() == 2) {
-    e.f_low = o.band[0];
-    e.f_high = o.band[1];
+    experiment.f_low = o.band[0];
+    experiment.f_high = o.band[1];
   }
-  if (!o.reference.empty()) {
-    const TorqueReference reference = ReadTorqueReference(o.reference);
-    e.excitation = "reference";
-    e.reference = reference.torque;
-    e.rate = TorqueReferenceRate(reference);
-    if (!o.duration_given) e.duration = static_cast<double>(reference.torque.size()) / e.rate;
-  }
-  const double n = section.gear_ratio.value_or(1.0);
-  const JointExperimentLog log = SimulateJointExperiment(p, n, e);
-  std::string text = FormatJointExperimentLog(
-      log, {"synthetic joint log (docs/formats.md#logs) made by: " + command_line,
-            fmt::format("{} {} .. {} Hz, period {} s, rms {} N m; PI speed loop kp {} ki {}; rate {} Hz; speed noise {} "
-                        "rad/s (seed {}); r is the injected excitation",
-                        e.excitation, e.f_low, e.f_high, e.period, e.amplitude, e.kp, e.ki, e.rate, e.noise, e.seed),
-            fmt::format("truth (link side): n {}, J_m {}, J_l {}, k {}, d {}, b_m {}, c_m {}, b_l {}, c_l {}", n,
-                        p.motor_inertia, p.link_inertia, p.stiffness, p.damping, p.motor_viscous, p.motor_coulomb,
-                        p.link_viscous, p.link_coulomb)});
+  std::string text = SyntheticJointLog(ReadParameterFile(o.params), o.params, experiment, o.reference,
+                                       o.duration_given, command_line);
   if (o.output.empty()) {
     WriteStdout(text);
   } else {

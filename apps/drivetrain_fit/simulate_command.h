@@ -6,10 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "sim/axis_experiment.h"
-#include "sim/joint_experiment.h"
-#include "sim/robot_experiment.h"
-#include "sim/step_experiment.h"
+#include "workflow/synthetic_logs.h"
 
 namespace driveid::cli {
 

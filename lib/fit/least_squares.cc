@@ -16,13 +16,6 @@
 
 namespace driveid {
 
-bool FitOptions::IsValid(std::string* error) const {
-  return OptionCheck(error)
-      .Require(max_iterations >= 1, "max_iterations", max_iterations, ">= 1")
-      .Require(identifiability_threshold >= 0.0 && identifiability_threshold < 1.0, "identifiability_threshold",
-               identifiability_threshold, "0 <= threshold < 1")
-      .Require(NotNegative(max_seconds), "‹max_seconds›", max_seconds, "max seconds >= 0 (0: no limit)");
-}
 namespace {
 
 // Rows per residual block when a large problem goes to Ceres in chunks.
