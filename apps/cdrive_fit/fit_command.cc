@@ -7,7 +7,6 @@
 #include "fit/cdrive_fit.h"
 #include "io/csv_log.h"
 #include "io/parameter_file.h"
-#include "io/sha256.h"
 #include "workflow/cdrive_compensation.h"
 
 namespace driveid::cli {

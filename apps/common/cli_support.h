@@ -16,7 +16,6 @@
 #include "core/fit_result.h"
 #include "models/parameter_table.h"
 #include "io/csv_log.h"
-#include "io/sha256.h"
 #include "report/plot.h"
 
 namespace driveid::cli {

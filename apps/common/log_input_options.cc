@@ -93,4 +93,22 @@ JoinTiming JoinTimingFor(const LogInputCli& options, std::size_t k, std::size_t 
   return timing;
 }
 
+std::vector<LogFileRequest> LogFileRequests(const LogInputCli& options, const std::vector<std::string>& paths) {
+  std::vector<LogFileRequest> files;
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    LogFileRequest file{paths[i], JoinFor(options, i, paths.size()), {}};
+    if (!file.join_path.empty()) file.join_timing = JoinTimingFor(options, i, paths.size());
+    files.push_back(std::move(file));
+  }
+  return files;
+}
+
+ReadLimits LogReadLimits(const FitOutputOptions& output) {
+  ReadLimits limits;
+  limits.lines_unless_structured = true;  // logs may be JSON or MAT
+  limits.max_bytes = static_cast<std::size_t>(output.max_log_gib * 1073741824.0);
+  limits.max_bytes_hint = fmt::format("a log may be at most {} GiB (raise with --max-log-size)", output.max_log_gib);
+  return limits;
+}
+
 }  // namespace driveid::cli

@@ -12,9 +12,8 @@
 
 #include "common/cli_support.h"
 #include "io/csv_log.h"
+#include "io/log_files.h"
 #include "io/log_input.h"
-#include "io/sha256.h"
-#include "io/transpose_table.h"
 
 namespace driveid::cli {
 
@@ -50,54 +49,30 @@ std::string JoinFor(const LogInputCli& options, std::size_t k, std::size_t count
 /// --join-shift once or once per log, --join-align); OptionError otherwise.
 JoinTiming JoinTimingFor(const LogInputCli& options, std::size_t k, std::size_t count);
 
+/// Each log with its --join file and timing (JoinFor, JoinTimingFor).
+std::vector<LogFileRequest> LogFileRequests(const LogInputCli& options, const std::vector<std::string>& paths);
+
+/// The read limits of a log: --max-log-size for the file (and its joined
+/// file), no line limit for JSON, MAT and HDF5 files.
+ReadLimits LogReadLimits(const FitOutputOptions& output);
+
 /// Reads each log once (at most --max-log-size bytes; joined files too),
 /// makes its logs with `make(CsvLog)` (a SysId file gives several) and
 /// records each one's provenance (file, SHA-256, samples, segment, notes).
 /// Refuses (exit 2) a file whose contents were given already. The column
 /// `time_column` must increase strictly (a frequency for a measured response).
 /// `transpose`: the files hold one signal per row (io/transpose_table.h).
+/// The reading is io/log_files.h ReadLogFiles'.
 template <typename Log, typename Make>
 std::vector<Log> LoadLogs(const std::vector<std::string>& paths, const LogInputCli& input,
                           const FitOutputOptions& output, FitProvenance& provenance,
                           const std::vector<std::string>& columns, Make make, const std::string& time_column = "t",
                           bool transpose = false) {
-  ReadLimits limits;
-  limits.lines_unless_structured = true;  // logs may be JSON or MAT
-  limits.max_bytes = static_cast<std::size_t>(output.max_log_gib * 1073741824.0);
-  limits.max_bytes_hint = fmt::format("a log may be at most {} GiB (raise with --max-log-size)", output.max_log_gib);
   LogInputOptions options = MakeLogInputOptions(input);
   options.time_column = time_column;
   std::vector<Log> logs;
-  std::vector<std::pair<std::string, std::string>> seen;  // hash, file
-  for (std::size_t i = 0; i < paths.size(); ++i) {
-    const std::string& path = paths[i];
-    const std::string raw = ReadFileToString(path, limits);
-    const std::string hash = Sha256Hex(raw);
-    const std::string text = transpose ? TransposeTable(path, raw) : raw;
-    // The same data twice would count twice and shrink every std by sqrt(2).
-    for (const auto& [earlier_hash, earlier] : seen) {
-      if (earlier_hash == hash) {
-        throw OptionError(fmt::format("{}: the same data as {} (sha256 {}): give each log once", path, earlier,
-                                      hash.substr(0, 12)));
-      }
-    }
-    seen.emplace_back(hash, path);
-    std::vector<std::string> join_notes;
-    std::string join_text;
-    std::vector<JoinedFile> joins;
-    const std::string join_path = JoinFor(input, i, paths.size());
-    if (!join_path.empty()) {
-      join_text = ReadFileToString(join_path, limits);
-      joins.push_back({join_path, &join_text, JoinTimingFor(input, i, paths.size())});
-      join_notes.push_back(fmt::format("joined with {} (sha256 {})", join_path, Sha256Hex(join_text)));
-    }
-    for (CsvLog& csv : ReadLogs(path, text, joins, columns, options)) {
-      DataFileRecord record{path, hash, static_cast<int>(csv.rows()), csv.segment, csv.notes};
-      record.notes.insert(record.notes.end(), join_notes.begin(), join_notes.end());
-      logs.push_back(make(std::move(csv)));
-      provenance.data.push_back(std::move(record));
-    }
-  }
+  ReadLogFiles(LogFileRequests(input, paths), columns, options, LogReadLimits(output), transpose, provenance.data,
+               [&](CsvLog csv) { logs.push_back(make(std::move(csv))); });
   return logs;
 }
 

@@ -9,7 +9,6 @@
 #include "core/errors.h"
 #include "io/csv_log.h"
 #include "io/parameter_file.h"
-#include "io/sha256.h"
 #include "workflow/axis_identification.h"
 
 namespace driveid::cli {

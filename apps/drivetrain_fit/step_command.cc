@@ -7,7 +7,6 @@
 #include "workflow/step_identification.h"
 #include "io/csv_log.h"
 #include "io/parameter_file.h"
-#include "io/sha256.h"
 
 namespace driveid::cli {
 
