@@ -10,10 +10,10 @@
 #include "common/command_registry.h"
 #include "common/log_input_options.h"
 #include "core/errors.h"
-#include "fit/frf_analysis.h"
 #include "io/parameter_file.h"
 #include "report/fit_summary.h"
 #include "report/frf_report.h"
+#include "workflow/frequency_response_run.h"
 
 namespace driveid::cli {
 namespace {
@@ -34,19 +34,6 @@ struct FrfCliOptions {
   LogInputCli log_input;
   FitOutputOptions out;
 };
-
-ResponseQuantity Quantity(const std::string& word) {
-  if (word == "position") return ResponseQuantity::kPosition;
-  if (word == "rate") return ResponseQuantity::kRate;
-  return ResponseQuantity::kAcceleration;
-}
-
-// --output-is from a signal's name: q_* a position, qd_* a rate.
-std::string QuantityFromName(const std::string& expression) {
-  if (expression.rfind("qd", 0) == 0) return "rate";
-  if (expression.rfind("q", 0) == 0) return "position";
-  return "";
-}
 
 CLI::App* Setup(CLI::App& app, FrfCliOptions& o) {
   CLI::App* c = app.add_subcommand(
@@ -129,14 +116,7 @@ MeasuredResponse ReadMeasured(const FrfCliOptions& o, FitProvenance& provenance)
         return 0;
       },
       "frequency", o.transpose);
-  for (double& f : m.frequency) f /= o.frequency_unit == "rad/s" ? 2.0 * M_PI : 1.0;
-  if (o.magnitude_unit == "db") {
-    for (double& v : m.magnitude) v = std::pow(10.0, v / 20.0);
-  }
-  if (o.phase_unit == "deg") {
-    for (double& v : m.phase) v *= M_PI / 180.0;
-  }
-  return m;
+  return MeasuredResponseInSi(std::move(m), {o.frequency_unit == "rad/s", o.magnitude_unit == "db", o.phase_unit == "deg"});
 }
 
 void Run(FrfCliOptions o, const std::string& command_line) {
@@ -167,7 +147,7 @@ void Run(FrfCliOptions o, const std::string& command_line) {
   options.fit = o.fit == "two-mass";
   options.hold = o.hold == "zoh";
   options.two_mass.free = o.free;
-  options.two_mass.link_output = Quantity(o.link_is);
+  options.two_mass.link_output = ResponseQuantityFromName(o.link_is, "--link-is");
   if (o.band.size() == 2) {
     if (!(o.band[1] > o.band[0])) throw OptionError(fmt::format("--band {},{}: LO must be below HI", o.band[0], o.band[1]));
     options.two_mass.band_low = o.band[0];
@@ -177,7 +157,7 @@ void Run(FrfCliOptions o, const std::string& command_line) {
   FrfResult result;
   if (!o.measured.empty()) {
     if (o.output_is.empty()) throw OptionError("--measured: say what its output is with --output-is position|rate|acceleration");
-    options.two_mass.motor_output = Quantity(o.output_is);
+    options.two_mass.motor_output = ResponseQuantityFromName(o.output_is, "--output-is");
     result = AnalyseMeasuredResponse(ReadMeasured(o, provenance), section, options);
   } else {
     result = AnalyseLogs(o, section, options, provenance);
@@ -192,7 +172,7 @@ FrfResult AnalyseLogs(FrfCliOptions& o, const JointSection& section, FrfOptions&
   if (!o.input.empty()) o.log_input.columns.push_back("tau=" + o.input);
   if (!o.output.empty()) {
     o.log_input.columns.push_back("y=" + o.output);
-    if (o.output_is.empty()) o.output_is = QuantityFromName(o.output);
+    if (o.output_is.empty()) o.output_is = ResponseQuantityOfSignal(o.output);
     if (o.output_is.empty()) {
       throw OptionError(fmt::format("--output {}: say what it is with --output-is position|rate|acceleration", o.output));
     }
@@ -209,23 +189,12 @@ FrfResult AnalyseLogs(FrfCliOptions& o, const JointSection& section, FrfOptions&
   std::vector<FrfSignals> signals;
   std::string output_name;
   LoadLogs<int>(o.logs, o.log_input, o.out, provenance, required, [&](CsvLog csv) {
-    FrfSignals s;
-    s.label = csv.label();
-    s.time = csv.columns[0];
-    s.input = csv.columns[1];
-    if (csv.names[1] == "i") {
-      if (!(k_t > 0.0)) throw InputError(fmt::format("{}: a log of current i needs joint.k_t in --params", s.label));
-      for (double& v : s.input) v *= k_t;
-    }
-    s.output = csv.columns[2];
     output_name = csv.names[2];
-    if (!o.reference.empty()) s.reference = csv.columns[3];
-    if (!o.link.empty()) s.link = csv.columns.back();
-    signals.push_back(std::move(s));
+    signals.push_back(FrfSignalsFromLog(std::move(csv), k_t, !o.reference.empty(), !o.link.empty()));
     return 0;
   });
   if (o.output.empty()) o.output_is = output_name == "qd_motor" ? "rate" : "position";
-  options.two_mass.motor_output = Quantity(o.output_is);
+  options.two_mass.motor_output = ResponseQuantityFromName(o.output_is, "--output-is");
   return AnalyseFrequencyResponse(signals, section, options);
 }
 
@@ -233,15 +202,8 @@ void Emit(const FrfCliOptions& o, const ParameterFile& start, const JointSection
           const FitProvenance& provenance) {
   FitOutputs outputs;
   outputs.provenance = provenance;
-  ParameterFile fitted = start;
-  if (result.fit) {
-    JointSection out_section = section;
-    if (!out_section.gear_ratio) out_section.gear_ratio = 1.0;
-    StoreModelParameters(JointParameterTable(), result.fit->params, out_section);
-    fitted.Set(out_section);
-    outputs.fit = result.fit->fit;
-  }
-  fitted.Set(result.Section());
+  const ParameterFile fitted = FrfParameterFile(start, section, result);
+  if (result.fit) outputs.fit = result.fit->fit;
   outputs.parameter_file = FormatParameterFile(fitted, result.fit ? &outputs.fit : nullptr, &outputs.provenance);
   if (!o.out.trace.empty()) outputs.trace_csv = FormatFrfCsv(result);
   if (!o.out.plot.empty()) outputs.plot_panels = MakeBodePanels(result);
