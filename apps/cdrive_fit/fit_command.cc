@@ -4,10 +4,8 @@
 
 #include "common/command_registry.h"
 #include "core/errors.h"
-#include "fit/cdrive_fit.h"
 #include "io/csv_log.h"
 #include "io/parameter_file.h"
-#include "workflow/cdrive_compensation.h"
 
 namespace driveid::cli {
 
@@ -47,68 +45,35 @@ CLI::App* SetupCDriveFitCommand(CLI::App& app, CDriveFitCommandOptions& options,
 
 void RunCDriveFitCommand(const CDriveFitCommandOptions& options, const std::string& command_line) {
   CheckFitOutputs(options.output, LogCommandInputs(options.logs, options.params, options.input));
-  const bool friction = options.kind == CDriveFitKind::kFriction;
   const ParameterFile start = ReadParameterFile(options.params);
   if (!start.Find<CDriveSection>()) throw InputError(fmt::format("{}: no 'cdrive' section", options.params));
 
   FitOutputs outputs;
   outputs.provenance.command = command_line;
   outputs.provenance.version = DRIVEID_VERSION;
-  outputs.provenance.model = friction ? "cdrive friction (28)" : "cdrive inertia (17), (28)";
   const auto logs = LoadLogs<CDriveLog>(options.logs, options.input, options.output, outputs.provenance, CDriveLogColumns(),
                                         [&](CsvLog csv) { return MakeCDriveLog(std::move(csv), start.Find<CDriveSection>()->torque_constant.value_or(0.0)); });
 
-  CDriveFitOptions fit_options;
+  CDriveIdentificationOptions run_options;
+  run_options.kind = options.kind;
+  CDriveFitOptions& fit_options = run_options.fit;
   fit_options.free = options.free;
-  fit_options.half_window = options.window > 0.0 ? options.window : (friction ? 0.01 : 0.005);
+  fit_options.half_window = options.window > 0.0 ? options.window : CDriveDefaultHalfWindow(options.kind);
   fit_options.min_rate = options.min_rate;
   fit_options.settle = options.settle;  // < 0: the fit's default
-  fit_options.traces = !options.output.trace.empty() || !options.output.plot.empty();
   SetProgress(fit_options.fit, options.output.verbose, options.output.max_seconds);
-  const CDriveFitOutput result = friction ? FitCDriveFriction(logs, *start.Find<CDriveSection>(), fit_options)
-                                          : FitCDriveInertia(logs, *start.Find<CDriveSection>(), fit_options);
+  run_options.trace = !options.output.trace.empty();
+  run_options.plot = !options.output.plot.empty();
+  CDriveIdentification run = IdentifyCDrive(logs, start, options.params, run_options);
 
   ParameterFile fitted = start;
-  fitted.Set(result.section);
-  outputs.fit = result.fit;
-  if (friction) {
-    // Eq. (31) as a controller loads it, with the fit's uncertainty (docs/models.md#c-drive).
-    const auto* control = start.Find<CDriveControlSection>();
-    fitted.feedforward = CalcCDriveCompensation(
-        MakeModelParameters(CDriveParameterTable(), result.section, CDriveParameters{}, "cdrive"),
-        control ? MakeControlSettings(*control) : CDriveControlSettings{}, result.fit);  // seed's DZ, RL by default
-  }
-  outputs.parameter_file = FormatParameterFile(fitted, &outputs.fit, &outputs.provenance, result.derived);
-  outputs.trace_csv = "# cdrive-fit trace: measured and model motor torques [N m]; used = entered the fit\n";
-  outputs.trace_csv += "log,t,tau_L_measured,tau_L_model,tau_R_measured,tau_R_model,used\n";
-  // One panel per log (measured dots, model lines for both motors), then the
-  // residuals of the samples that entered the fit.
-  PlotPanel residuals{"residual (measured - model) of the samples used in the fit", "residual torque [N m]", {}};
-  for (std::size_t i = 0; i < logs.size(); ++i) {
-    if (options.output.trace.empty() && options.output.plot.empty()) break;  // nothing asked for
-    const CDriveTrace& trace = result.traces[i];
-    PlotLine used_left{logs[i].path + " tau_L", {}, {}, false, true};
-    PlotLine used_right{logs[i].path + " tau_R", {}, {}, false, true};
-    for (std::size_t k = 0; k < trace.time.size(); ++k) {
-      if (!options.output.trace.empty()) outputs.trace_csv += fmt::format("{},{},{},{:.7g},{},{:.7g},{}\n", i + 1, trace.time[k], trace.measured_left[k],
-                                       trace.model_left[k], trace.measured_right[k], trace.model_right[k],
-                                       trace.used[k] ? 1 : 0);
-      if (!trace.used[k]) continue;
-      used_left.x.push_back(trace.time[k]);
-      used_left.y.push_back(trace.measured_left[k] - trace.model_left[k]);
-      used_right.x.push_back(trace.time[k]);
-      used_right.y.push_back(trace.measured_right[k] - trace.model_right[k]);
-    }
-    outputs.plot_panels.push_back(
-        {fmt::format("{} fit: {}", friction ? "friction" : "inertia", logs[i].path), "motor torque [N m]",
-         {{"measured tau_L", trace.time, trace.measured_left, true},
-          {"model tau_L", trace.time, trace.model_left, false},
-          {"measured tau_R", trace.time, trace.measured_right, true},
-          {"model tau_R", trace.time, trace.model_right, false}}});
-    residuals.lines.push_back(std::move(used_left));
-    residuals.lines.push_back(std::move(used_right));
-  }
-  outputs.plot_panels.push_back(std::move(residuals));
+  fitted.Set(run.section);
+  if (run.feedforward) fitted.feedforward = std::move(*run.feedforward);
+  outputs.provenance.model = run.model;
+  outputs.fit = run.fit;
+  outputs.parameter_file = FormatParameterFile(fitted, &outputs.fit, &outputs.provenance, run.derived);
+  outputs.trace_csv = std::move(run.trace_csv);
+  outputs.plot_panels = std::move(run.panels);
   EmitFitOutputs(options.output, outputs);
 }
 

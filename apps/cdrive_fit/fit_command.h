@@ -8,10 +8,9 @@
 
 #include "common/cli_support.h"
 #include "common/log_input_options.h"
+#include "workflow/cdrive_identification.h"
 
 namespace driveid::cli {
-
-enum class CDriveFitKind { kFriction, kInertia };
 
 struct CDriveFitCommandOptions {
   CDriveFitKind kind = CDriveFitKind::kFriction;

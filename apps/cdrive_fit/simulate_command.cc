@@ -6,14 +6,11 @@
 
 #include "common/cli_support.h"
 #include "common/command_registry.h"
-#include "core/errors.h"
 #include "io/atomic_file.h"
 #include "io/parameter_file.h"
-#include "models/missing_values.h"
 #include "report/json.h"
-#include "report/fit_summary.h"
 #include "report/plot.h"
-#include "sim/cdrive_closed_loop.h"
+#include "workflow/cdrive_simulation.h"
 
 namespace driveid::cli {
 
@@ -44,71 +41,21 @@ CLI::App* SetupCDriveSimulateCommand(CLI::App& app, CDriveSimulateOptions& optio
 
 void RunCDriveSimulateCommand(const CDriveSimulateOptions& options, const std::string& command_line) {
   CheckDistinctFiles({options.params}, {{"-o", options.output}, {"--trace", options.trace}, {"--plot", options.plot}});
-  const ParameterFile file = ReadParameterFile(options.params);
-  if (!file.Find<CDriveSection>()) throw InputError(fmt::format("{}: no 'cdrive' section", options.params));
-  RequireModelValues(CDriveParameterTable(), *file.Find<CDriveSection>(), options.params, "cdrive", "the simulation");
-  const CDriveParameters params = MakeModelParameters(CDriveParameterTable(), *file.Find<CDriveSection>(), CDriveParameters{}, "cdrive");
-  CDriveControlSettings settings = MakeControlSettings(file.Find<CDriveControlSection>() ? *file.Find<CDriveControlSection>() : CDriveControlSection{});
-  if (options.law == "PI") settings.law = ControlLaw::kPI;
-  if (options.law == "PD") settings.law = ControlLaw::kPD;
-  if (options.law == "PID") settings.law = ControlLaw::kPID;
-
-  ClosedLoopOptions loop;
-  loop.program = TableTwoProgram(options.program, options.stroke);
-  loop.cycles = options.cycles;
-  loop.torque_noise = options.noise;
-  loop.seed = options.seed;
-  const ClosedLoopResult result = SimulateClosedLoop(params, settings, loop);
-
-  const std::vector<std::string> comments = {
-      "C-drive log (docs/formats.md#logs) made by: " + command_line,
-      fmt::format("program {} (alpha_L {}, alpha_R {} rad), stroke {} s, {} cycles, {} at {} Hz, 13-bit encoders, "
-                  "torque noise {} N m (seed {})",
-                  loop.program.name, loop.program.amplitude_left, loop.program.amplitude_right, loop.program.stroke,
-                  loop.cycles, ControlLawName(settings.law), 1.0 / settings.sample_time, options.noise, options.seed),
-      fmt::format("truth: p {}, I_h {}, I_c {}, m {}, beta {}, gamma {}, delta {}, eta {}", params.lead,
-                  params.hub_inertia, params.collar_inertia, params.collar_mass, params.viscous_motor,
-                  params.viscous_collar, params.coulomb_motor, params.coulomb_collar)};
-  std::string log_text = FormatCDriveLog(result.log, comments);
+  CDriveSimulationRequest request;
+  request.program = options.program;
+  request.stroke = options.stroke;
+  request.cycles = options.cycles;
+  request.noise = options.noise;
+  request.seed = options.seed;
+  request.law = options.law;
+  CDriveSimulation run = SimulateCDrive(ReadParameterFile(options.params), options.params, request, command_line);
+  std::string& log_text = run.log_text;
 
   std::vector<std::pair<std::string, std::string>> files;  // written together, all or nothing
-  if (!options.plot.empty()) {
-    std::vector<double> millimetres(result.tracking.translation_error);
-    for (double& v : millimetres) v *= 1e3;
-    files.emplace_back(options.plot, RenderPanels(options.plot,
-                 {{fmt::format("tracking error in u, {} ({})", loop.program.name, ControlLawName(settings.law)),
-                   "u error [mm]", {{"u_ref - u", result.tracking.time, millimetres, false}}},
-                  {"tracking error in theta", "theta error [rad]",
-                   {{"theta_ref - theta", result.tracking.time, result.tracking.rotation_error, false}}}},
-                 "time [s]"));
-  }
-  if (!options.trace.empty()) {
-    std::string trace = "# tracking errors from the encoder angles (docs/models.md#c-drive coordinates)\nt,u_error,theta_error\n";
-    for (std::size_t k = 0; k < result.tracking.time.size(); ++k) {
-      trace += fmt::format("{},{:.6g},{:.6g}\n", result.tracking.time[k], result.tracking.translation_error[k],
-                           result.tracking.rotation_error[k]);
-    }
-    files.emplace_back(options.trace, std::move(trace));
-  }
+  if (!options.plot.empty()) files.emplace_back(options.plot, RenderPanels(options.plot, run.panels, "time [s]"));
+  if (!options.trace.empty()) files.emplace_back(options.trace, std::move(run.trace_csv));
   if (!options.output.empty()) files.emplace_back(options.output, ShowFlags(std::move(log_text)));  // (not read again)
-  std::string summary;
-  if (options.json) {
-    const Json json = {{"program", loop.program.name},
-                       {"law", ControlLawName(settings.law)},
-                       {"endpoint_u_error", result.endpoint_translation_error},
-                       {"endpoint_theta_error", result.endpoint_rotation_error},
-                       {"max_u_error", result.max_translation_error},
-                       {"max_theta_error", result.max_rotation_error},
-                       {"switches", result.switches}};
-    summary = DumpJson(json);
-  } else {
-    summary = fmt::format(
-                 "{}, {}: end-point error u {:.4f} mm, theta {:.5f} rad (seed 001: < 0.1 mm, < 0.01 rad); max over the "
-                 "run u {:.3f} mm, theta {:.4f} rad; {} stick/slip switches\n",
-                 loop.program.name, ControlLawName(settings.law), result.endpoint_translation_error * 1e3,
-                 result.endpoint_rotation_error, result.max_translation_error * 1e3, result.max_rotation_error,
-                 result.switches);
-  }
+  const std::string summary = options.json ? DumpJson(run.summary_json) : run.summary;
   // Standard output belongs to the transaction (docs/formats.md#outputs).
   WriteFilesAtomically(files, [&] {
     if (options.output.empty()) WriteText(stderr, summary);

@@ -12,10 +12,10 @@
 #include "common/log_input_options.h"
 #include "common/validation_output.h"
 #include "core/errors.h"
-#include "fit/validation.h"
 #include "io/cdrive_log.h"
 #include "io/parameter_file.h"
 #include "models/missing_values.h"
+#include "workflow/validation_run.h"
 
 namespace driveid::cli {
 namespace {
@@ -61,7 +61,6 @@ void RunCDriveValidate(const CDriveValidateOptions& options, const std::string& 
   const CDriveSection* section = file.Find<CDriveSection>();
   if (section == nullptr) throw InputError(fmt::format("{}: no 'cdrive' section", options.params));
   RequireModelValues(CDriveParameterTable(), *section, options.params, "cdrive", "the prediction");
-  const CDriveParameters params = MakeModelParameters(CDriveParameterTable(), *section, CDriveParameters{}, "cdrive");
   FitProvenance provenance;
   const auto logs = LoadLogs<CDriveLog>(options.logs, options.input, options.output, provenance, CDriveLogColumns(),
                                         [&](CsvLog csv) {
@@ -71,11 +70,8 @@ void RunCDriveValidate(const CDriveValidateOptions& options, const std::string& 
   prediction.half_window = options.window;
   prediction.min_rate = options.min_rate;
   prediction.settle = options.settle;
-  EmitValidation(options.output,
-                 {"cdrive-fit", command_line,
-                  fmt::format("C-drive inverse dynamics (eq. 28), differentiator half window {} s", options.window),
-                  "C-drive validation: motor torques by inverse dynamics", "motor torque [N m]"},
-                 ValidateCDrive(logs, params, prediction));
+  const ValidationRun run = RunCDriveValidation(logs, *section, options.params, prediction);
+  EmitValidation(options.output, {"cdrive-fit", command_line, run.method, run.title, run.unit}, run.logs);
 }
 
 CDriveValidateOptions validate_options;

@@ -9,7 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "common/cli_support.h"
-#include "fit/validation.h"
+#include "workflow/validation_run.h"
 
 namespace driveid::cli {
 

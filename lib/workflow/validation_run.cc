@@ -4,8 +4,8 @@
 
 #include "core/errors.h"
 #include "core/option_check.h"
-#include "models/missing_values.h"
 #include "export/export_target.h"
+#include "models/missing_values.h"
 #include "sim/mujoco_axis_simulator.h"
 
 namespace driveid {
@@ -96,6 +96,15 @@ ValidationRun RunMujocoJointValidation(const std::vector<JointLog>& logs, const 
                       "(held per sample, step <= {:g} s)",
                       joint, joint, max_step),
           "elastic joint in MuJoCo: motor and link angles simulated from the motor torque", "angle [rad]"};
+}
+
+ValidationRun RunCDriveValidation(const std::vector<CDriveLog>& logs, const CDriveSection& section,
+                                  const std::string& path, const CDriveFitOptions& prediction) {
+  RequireModelValues(CDriveParameterTable(), section, path, "cdrive", "the prediction");
+  const CDriveParameters params = MakeModelParameters(CDriveParameterTable(), section, CDriveParameters{}, "cdrive");
+  return {ValidateCDrive(logs, params, prediction),
+          fmt::format("C-drive inverse dynamics (eq. 28), differentiator half window {} s", prediction.half_window),
+          "C-drive validation: motor torques by inverse dynamics", "motor torque [N m]"};
 }
 
 }  // namespace driveid

@@ -1,4 +1,4 @@
-// What `drivetrain-fit validate` runs (docs/models.md#validation,
+// What `drivetrain-fit validate` and `cdrive-fit validate` run (docs/models.md#validation,
 // docs/export.md#validation-in-mujoco): which model a parameter file or an
 // MJCF is validated as, and each validation with the words its outputs
 // carry (method, plot title, unit). The command parses, loads the logs the
@@ -8,8 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "fit/cdrive_fit.h"
 #include "fit/validation.h"
 #include "io/axis_log.h"
+#include "io/cdrive_log.h"
 #include "io/joint_log.h"
 #include "io/parameter_file.h"
 #include "io/step_log.h"
@@ -54,5 +56,10 @@ ValidationRun RunMujocoValidation(const std::vector<AxisLog>& logs, const std::s
                                   double max_step);
 ValidationRun RunMujocoJointValidation(const std::vector<JointLog>& logs, const std::string& mjcf,
                                        const std::string& joint, double max_step);
+/// `cdrive-fit validate`: both motor torques by inverse dynamics (28) from
+/// the complete cdrive `section` (InputError naming `path` for a missing
+/// value), the differentiator and sample selection of `prediction`.
+ValidationRun RunCDriveValidation(const std::vector<CDriveLog>& logs, const CDriveSection& section,
+                                  const std::string& path, const CDriveFitOptions& prediction);
 
 }  // namespace driveid

@@ -51,6 +51,12 @@ for layer in report export workflow; do
     bad=$((bad + 1))
   fi
 done
+# The tools call the workflow: no file of apps/ includes a fit/ or sim/ header.
+while IFS=: read -r file line target; do
+  echo "FAIL: $file:$line includes \"$target\" (apps/ calls workflow/, not fit/ or sim/)"
+  bad=$((bad + 1))
+done < <(cd "$1" && grep -rno '^#include "\(fit\|sim\)/[^"]*"' apps | sed 's/#include "//; s/"$//')
+checked=$((checked + 1))
 echo "$checked includes checked"
 echo "$((checked - bad)) passed, $bad failed"
 [ "$bad" -eq 0 ]
