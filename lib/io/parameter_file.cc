@@ -13,6 +13,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "core/errors.h"
+#include "core/fit_section.h"
 #include "io/csv_log.h"
 #include "io/feedback_section.h"
 #include "io/parameter_sections.h"
@@ -491,31 +492,34 @@ void ParseFitSection(const std::string& path, const YAML::Node& node, ParameterF
   // Provenance of an earlier fit: accepted so that a fit's output is a
   // valid input; replaced by a new fit, kept by a writer that fits nothing.
   CheckMapping(path, "fit", node);
-  static const char* const kFitKeys[] = {"command", "version", "model", "data", "estimates", "derived",
-                                         "correlation", "rmse", "fit_percent", "autocorrelation", "inflation", "singular_values",
-                                         "iterations", "converged"};
+  std::vector<std::string> known;
+  for (const FitKey key : kFitSectionKeys) known.emplace_back(FitKeyName(key));
   for (const auto& entry : node) {
     const std::string key = entry.first.Scalar();
-    if (std::find(std::begin(kFitKeys), std::end(kFitKeys), key) == std::end(kFitKeys)) {
+    if (std::find(known.begin(), known.end(), key) == known.end()) {
       throw InputError(fmt::format("{}: fit.{}: unknown key (the fit section is written by the tools; known: {})",
-                                   Where(path, entry.first), key, fmt::join(kFitKeys, ", ")));
+                                   Where(path, entry.first), key, fmt::join(known, ", ")));
     }
   }
   file.had_fit_section = true;
-  const YAML::Node data = node["data"];
+  const YAML::Node data = node[FitKeyName(FitKey::kData)];
   if (data && data.IsSequence()) {
-    for (const auto& record : data) CheckKeys(path, "fit.data", record, {"file", "sha256", "samples", "segment", "notes"});
+    for (const auto& record : data) {
+      CheckKeys(path, "fit.data", record, {kFitDataKeys.begin(), kFitDataKeys.end()});
+    }
   }
-  const YAML::Node derived = node["derived"];
+  const YAML::Node derived = node[FitKeyName(FitKey::kDerived)];
   if (derived && derived.IsMap()) {
-    for (const auto& entry : derived) CheckKeys(path, "fit.derived." + entry.first.Scalar(), entry.second, {"value", "std"});
+    for (const auto& entry : derived) {
+      CheckKeys(path, "fit.derived." + entry.first.Scalar(), entry.second, {kFitDerivedKeys.begin(), kFitDerivedKeys.end()});
+    }
   }
-  const YAML::Node estimates = node["estimates"];
+  const YAML::Node estimates = node[FitKeyName(FitKey::kEstimates)];
   if (estimates && estimates.IsMap()) {
     for (const auto& entry : estimates) {
       const YAML::Node& e = entry.second;
       const std::string name = "fit.estimates." + entry.first.Scalar();
-      CheckKeys(path, name, e, {"value", "std", "ci95"});
+      CheckKeys(path, name, e, {kFitEstimateKeys.begin(), kFitEstimateKeys.end()});
       if (!e["value"] || !e["std"]) {
         throw InputError(fmt::format("{}: {}: needs a value and a std", Where(path, e), name));
       }
@@ -531,8 +535,9 @@ void ParseFitSection(const std::string& path, const YAML::Node& node, ParameterF
       file.fit_estimates.push_back(estimate);
     }
   }
-  ParseFitCorrelation(path, node["correlation"], file);
-  for (auto [key, into] : {std::pair{"rmse", &file.fit_rmse}, std::pair{"inflation", &file.fit_inflation}}) {
+  ParseFitCorrelation(path, node[FitKeyName(FitKey::kCorrelation)], file);
+  for (auto [key, into] : {std::pair{FitKeyName(FitKey::kRmse), &file.fit_rmse},
+                           std::pair{FitKeyName(FitKey::kInflation), &file.fit_inflation}}) {
     const YAML::Node channels = node[key];
     if (!channels || !channels.IsMap()) continue;
     for (const auto& entry : channels) {
@@ -617,15 +622,10 @@ ParameterFile ReadParameterFile(const std::string& path) {
 
 namespace {
 
-// The fit section's command, version, model and data records.
-std::string FormatProvenance(const FitProvenance* provenance) {
+// The fit section's data records.
+std::string FormatDataRecords(const FitProvenance& provenance) {
   std::string out;
-  out += "fit:\n";
-  out += fmt::format("  command: {}\n", Quoted(Abbreviated(provenance->command, kMaxProvenanceText)));
-  out += fmt::format("  version: {}\n", Quoted(provenance->version));
-  if (!provenance->model.empty()) out += fmt::format("  model: {}\n", provenance->model);
-  out += "  data:\n";
-  for (const auto& record : provenance->data) {
+  for (const auto& record : provenance.data) {
     out += fmt::format("    - {{file: {}, sha256: {}, samples: {}", Quoted(record.file), record.sha256,
                        record.samples);
     if (!record.segment.empty()) out += fmt::format(", segment: {}", Quoted(record.segment));
@@ -644,7 +644,7 @@ std::string FormatCorrelation(const FitResult* fit) {
   std::string out;
   const std::size_t p = fit->estimates.size();
   if (p <= kFullCorrelationParameters) {
-    out += "  correlation:\n";
+    out += "\n";
     for (std::size_t i = 0; i < p; ++i) {
       out += fmt::format("    {}: [", fit->estimates[i].name);
       for (std::size_t j = 0; j < p; ++j) out += fmt::format("{}{:.4f}", j ? ", " : "", fit->correlation[i * p + j]);
@@ -653,12 +653,87 @@ std::string FormatCorrelation(const FitResult* fit) {
   } else {
     // The matrix grows with the square of the parameters (a fit of 1000
     // logs with offsets: 8 MB): the strongest pairs (the matrix: --json).
-    out += fmt::format("  correlation:  # {} parameters: the {} strongest pairs (docs/formats.md)\n", p,
-                       kFullCorrelationParameters);
+    out += fmt::format("  # {} parameters: the {} strongest pairs (docs/formats.md)\n", p, kFullCorrelationParameters);
     for (const auto& pair : StrongestCorrelations(*fit, kFullCorrelationParameters)) {
       out += fmt::format("    - [{}, {}, {:.4f}]\n", fit->estimates[pair.first].name, fit->estimates[pair.second].name,
                          pair.correlation);
     }
+  }
+  return out;
+}
+
+// One key of the fit section (core/fit_section.h), its lines indented
+// under "fit:"; model and derived only when there are any.
+std::string FormatFitKey(FitKey key, const FitResult& fit, const FitProvenance& provenance,
+                         const std::vector<DerivedQuantity>& derived) {
+  const std::string name = FitKeyName(key);
+  std::string out;
+  switch (key) {
+    case FitKey::kCommand:
+      return fmt::format("  {}: {}\n", name, Quoted(Abbreviated(provenance.command, kMaxProvenanceText)));
+    case FitKey::kVersion:
+      return fmt::format("  {}: {}\n", name, Quoted(provenance.version));
+    case FitKey::kModel:
+      return provenance.model.empty() ? "" : fmt::format("  {}: {}\n", name, provenance.model);
+    case FitKey::kData:
+      return "  " + name + ":\n" + FormatDataRecords(provenance);
+    case FitKey::kEstimates:
+      out = "  " + name + ":\n";
+      for (const auto& e : fit.estimates) {
+        for (double v : {e.value, e.standard_error, e.ci95_low, e.ci95_high}) {
+          if (!std::isfinite(v)) {
+            throw OutputError(fmt::format("fit.estimates.{}: not finite ({} +- {}); nothing written", e.name, e.value,
+                                          e.standard_error));
+          }
+        }
+        const std::string path = "fit.estimates." + e.name;
+        out += fmt::format("    {}: {{value: {}, std: {}, ci95: [{}, {}]}}{}\n", e.name, Number(Writable(path, e.value)),
+                           Short(Writable(path + ".std", e.standard_error)), Short(Writable(path + ".ci95", e.ci95_low)),
+                           Short(Writable(path + ".ci95", e.ci95_high)), e.unit.empty() ? "" : "  # " + Comment(e.unit));
+      }
+      return out;
+    case FitKey::kDerived:
+      if (derived.empty()) return "";
+      out = "  " + name + ":\n";
+      for (const auto& d : derived) {
+        out += fmt::format("    {}: {{value: {}, std: {}}}  # {}\n", d.name,
+                           Number(Writable("fit.derived." + d.name, d.value)),
+                           Short(Writable("fit.derived." + d.name + ".std", d.standard_error)), Comment(d.unit));
+      }
+      return out;
+    case FitKey::kCorrelation:
+      return "  " + name + ":" + FormatCorrelation(&fit);
+    case FitKey::kRmse:
+      out = "  " + name + ":\n";
+      for (const auto& c : fit.channels) out += fmt::format("    {}: {}\n", Quoted(c.name), Short(c.rmse));
+      return out;
+    case FitKey::kFitPercent:
+      out = "  " + name + ":\n";
+      for (const auto& c : fit.channels) {
+        out += std::isnan(c.fit_percent)
+                   ? fmt::format("    {}: null  # the channel (nearly) does not vary: docs/models.md#adequacy\n",
+                                 Quoted(c.name))
+                   : fmt::format("    {}: {:.3f}\n", Quoted(c.name), c.fit_percent);
+      }
+      return out;
+    case FitKey::kAutocorrelation:
+      out = "  " + name + ":  # residual lag-1, per channel\n";
+      for (const auto& c : fit.channels) out += fmt::format("    {}: {:.4f}\n", Quoted(c.name), c.autocorrelation);
+      return out;
+    case FitKey::kInflation:
+      out = "  " + name + ":  # std with / without the correlation of the residuals (docs/models.md#identification)\n";
+      for (const auto& c : fit.channels) out += fmt::format("    {}: {:.4f}\n", Quoted(c.name), c.inflation);
+      return out;
+    case FitKey::kSingularValues:
+      out = "  " + name + ": [";
+      for (std::size_t i = 0; i < fit.singular_values.size(); ++i) {
+        out += fmt::format("{}{:.4g}", i ? ", " : "", fit.singular_values[i]);
+      }
+      return out + "]\n";
+    case FitKey::kIterations:
+      return fmt::format("  {}: {}\n", name, fit.iterations);
+    case FitKey::kConverged:
+      return fmt::format("  {}: {}\n", name, fit.converged ? "true" : "false");
   }
   return out;
 }
@@ -693,50 +768,8 @@ std::string FormatParameterFile(const ParameterFile& file, const FitResult* fit,
   if (!file.feedback.empty()) out += FormatFeedbackSection(file.feedback);
   if (fit == nullptr && provenance == nullptr) out += file.fit_text;
   if (fit != nullptr && provenance != nullptr) {
-    out += FormatProvenance(provenance);
-    out += "  estimates:\n";
-    for (const auto& e : fit->estimates) {
-      for (double v : {e.value, e.standard_error, e.ci95_low, e.ci95_high}) {
-        if (!std::isfinite(v)) {
-          throw OutputError(fmt::format("fit.estimates.{}: not finite ({} +- {}); nothing written", e.name, e.value,
-                                        e.standard_error));
-        }
-      }
-      const std::string name = "fit.estimates." + e.name;
-      out += fmt::format("    {}: {{value: {}, std: {}, ci95: [{}, {}]}}{}\n", e.name, Number(Writable(name, e.value)),
-                         Short(Writable(name + ".std", e.standard_error)), Short(Writable(name + ".ci95", e.ci95_low)),
-                         Short(Writable(name + ".ci95", e.ci95_high)),
-                         e.unit.empty() ? "" : "  # " + Comment(e.unit));
-    }
-    if (!derived.empty()) {
-      out += "  derived:\n";
-      for (const auto& d : derived) {
-        out += fmt::format("    {}: {{value: {}, std: {}}}  # {}\n", d.name, Number(Writable("fit.derived." + d.name, d.value)),
-                           Short(Writable("fit.derived." + d.name + ".std", d.standard_error)),
-                           Comment(d.unit));
-      }
-    }
-    out += FormatCorrelation(fit);
-    out += "  rmse:\n";
-    for (const auto& c : fit->channels) out += fmt::format("    {}: {}\n", Quoted(c.name), Short(c.rmse));
-    out += "  fit_percent:\n";
-    for (const auto& c : fit->channels) {
-      out += std::isnan(c.fit_percent)
-                 ? fmt::format("    {}: null  # the channel (nearly) does not vary: docs/models.md#adequacy\n",
-                               Quoted(c.name))
-                 : fmt::format("    {}: {:.3f}\n", Quoted(c.name), c.fit_percent);
-    }
-    out += "  autocorrelation:  # residual lag-1, per channel\n";
-    for (const auto& c : fit->channels) out += fmt::format("    {}: {:.4f}\n", Quoted(c.name), c.autocorrelation);
-    out += "  inflation:  # std with / without the correlation of the residuals (docs/models.md#identification)\n";
-    for (const auto& c : fit->channels) out += fmt::format("    {}: {:.4f}\n", Quoted(c.name), c.inflation);
-    out += "  singular_values: [";
-    for (std::size_t i = 0; i < fit->singular_values.size(); ++i) {
-      out += fmt::format("{}{:.4g}", i ? ", " : "", fit->singular_values[i]);
-    }
-    out += "]\n";
-    out += fmt::format("  iterations: {}\n", fit->iterations);
-    out += fmt::format("  converged: {}\n", fit->converged ? "true" : "false");
+    out += "fit:\n";
+    for (const FitKey key : kFitSectionKeys) out += FormatFitKey(key, *fit, *provenance, derived);
   }
   RequireReadable(out);
   return out;

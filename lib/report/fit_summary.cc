@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "core/fit_section.h"
+
 namespace driveid {
 
 std::string FitPercentText(double fit_percent, double variation) {
@@ -16,7 +18,7 @@ std::string FitPercentText(double fit_percent, double variation) {
 namespace {
 
 // NaN (no fit %: a constant channel) sorts above every fit %.
-double FitKey(const ChannelStatistics& c) { return std::isnan(c.fit_percent) ? HUGE_VAL : c.fit_percent; }
+double FitPercentOrder(const ChannelStatistics& c) { return std::isnan(c.fit_percent) ? HUGE_VAL : c.fit_percent; }
 
 // A line per channel; beyond kListedChannels the ranges over all channels
 // and the channels of the lowest fit and the most correlated residuals.
@@ -53,7 +55,7 @@ std::string FormatChannelLines(const std::vector<ChannelStatistics>& channels) {
                      channels.size(), fit_range, rmse_low, rmse_high, lag_low, lag_high, inflation_low,
                      inflation_high);
   const auto worst_fit = std::min_element(channels.begin(), channels.end(),
-                                          [](const auto& a, const auto& b) { return FitKey(a) < FitKey(b); });
+                                          [](const auto& a, const auto& b) { return FitPercentOrder(a) < FitPercentOrder(b); });
   const auto most_correlated = std::max_element(
       channels.begin(), channels.end(), [](const auto& a, const auto& b) { return a.autocorrelation < b.autocorrelation; });
   out += "  lowest fit: " + line(*worst_fit);
@@ -211,43 +213,71 @@ std::string FormatPerLogTable(const FitResult& fit) {
   return out;
 }
 
+namespace {
+
+// One key of the fit section (core/fit_section.h) as the JSON summary has
+// it: the correlation always as the full matrix; the derived quantities are
+// the parameter file's only (null here, left out).
+Json FitKeyJson(FitKey key, const FitResult& fit, const FitProvenance& provenance) {
+  Json out;
+  switch (key) {
+    case FitKey::kCommand: return provenance.command;
+    case FitKey::kVersion: return provenance.version;
+    case FitKey::kModel: return provenance.model;
+    case FitKey::kData:
+      out = Json::array();
+      for (const auto& d : provenance.data) {
+        Json record = {{"file", d.file}, {"sha256", d.sha256}, {"samples", d.samples}};
+        if (!d.segment.empty()) record["segment"] = d.segment;
+        if (!d.notes.empty()) record["notes"] = d.notes;
+        out.push_back(record);
+      }
+      return out;
+    case FitKey::kEstimates:
+      out = Json::object();
+      for (const auto& e : fit.estimates) {
+        out[e.name] = {{"value", e.value}, {"std", e.standard_error}, {"ci95", {e.ci95_low, e.ci95_high}}};
+        if (!e.unit.empty()) out[e.name]["unit"] = e.unit;
+      }
+      return out;
+    case FitKey::kDerived: return nullptr;
+    case FitKey::kCorrelation: {
+      const std::size_t p = fit.estimates.size();
+      out = Json::array();
+      for (std::size_t i = 0; i < p; ++i) {
+        Json row = Json::array();
+        for (std::size_t j = 0; j < p; ++j) row.push_back(fit.correlation[i * p + j]);
+        out.push_back(row);
+      }
+      return out;
+    }
+    case FitKey::kRmse:
+    case FitKey::kFitPercent:
+    case FitKey::kAutocorrelation:
+    case FitKey::kInflation:
+      out = Json::object();
+      for (const auto& c : fit.channels) {
+        out[c.name] = key == FitKey::kRmse         ? c.rmse
+                      : key == FitKey::kFitPercent ? c.fit_percent
+                      : key == FitKey::kAutocorrelation ? c.autocorrelation
+                                                        : c.inflation;
+      }
+      return out;
+    case FitKey::kSingularValues: return fit.singular_values;
+    case FitKey::kIterations: return fit.iterations;
+    case FitKey::kConverged: return fit.converged;
+  }
+  return out;
+}
+
+}  // namespace
+
 Json FitJson(const FitResult& fit, const FitProvenance& provenance) {
   Json out;
-  out["command"] = provenance.command;
-  out["version"] = provenance.version;
-  out["model"] = provenance.model;
-  out["data"] = Json::array();
-  for (const auto& d : provenance.data) {
-    Json record = {{"file", d.file}, {"sha256", d.sha256}, {"samples", d.samples}};
-    if (!d.segment.empty()) record["segment"] = d.segment;
-    if (!d.notes.empty()) record["notes"] = d.notes;
-    out["data"].push_back(record);
+  for (const FitKey key : kFitSectionKeys) {
+    Json value = FitKeyJson(key, fit, provenance);
+    if (!value.is_null()) out[FitKeyName(key)] = std::move(value);
   }
-  out["estimates"] = Json::object();
-  for (const auto& e : fit.estimates) {
-    out["estimates"][e.name] = {{"value", e.value}, {"std", e.standard_error}, {"ci95", {e.ci95_low, e.ci95_high}}};
-    if (!e.unit.empty()) out["estimates"][e.name]["unit"] = e.unit;
-  }
-  const std::size_t p = fit.estimates.size();
-  out["correlation"] = Json::array();
-  for (std::size_t i = 0; i < p; ++i) {
-    Json row = Json::array();
-    for (std::size_t j = 0; j < p; ++j) row.push_back(fit.correlation[i * p + j]);
-    out["correlation"].push_back(row);
-  }
-  out["rmse"] = Json::object();
-  out["fit_percent"] = Json::object();
-  out["autocorrelation"] = Json::object();  // residual lag-1, per channel
-  out["inflation"] = Json::object();        // std with / without it
-  for (const auto& c : fit.channels) {
-    out["rmse"][c.name] = c.rmse;
-    out["fit_percent"][c.name] = c.fit_percent;
-    out["autocorrelation"][c.name] = c.autocorrelation;
-    out["inflation"][c.name] = c.inflation;
-  }
-  out["singular_values"] = fit.singular_values;
-  out["iterations"] = fit.iterations;
-  out["converged"] = fit.converged;
   out["warnings"] = fit.warnings;
   out["notes"] = fit.notes;
   if (!fit.validation.empty()) out["validation"] = ValidationJson(fit.validation);
