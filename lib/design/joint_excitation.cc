@@ -8,6 +8,7 @@
 #include <utility>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "core/errors.h"
 
@@ -15,8 +16,6 @@ namespace driveid {
 namespace {
 
 // The dynamic terms in CalcJointResponse's gradient order.
-constexpr std::array<const char*, 6> kDynamicTerms = {"motor_inertia", "link_inertia", "stiffness",
-                                                      "damping",       "motor_viscous", "link_viscous"};
 constexpr std::array<double JointParameters::*, 6> kDynamicMembers = {
     &JointParameters::motor_inertia, &JointParameters::link_inertia, &JointParameters::stiffness,
     &JointParameters::damping,       &JointParameters::motor_viscous, &JointParameters::link_viscous};
@@ -29,13 +28,14 @@ constexpr double kCrestIterations = 60;
 constexpr double kMaxCrestWork = 3e7;  // line x sample products of the crest-factor rounds
 
 std::size_t TermIndex(const std::string& name) {
-  for (std::size_t i = 0; i < kDynamicTerms.size(); ++i) {
-    if (name == kDynamicTerms[i]) return i;
+  std::vector<std::string> keys;
+  for (const auto member : kDynamicMembers) keys.push_back(KeyOf(JointParameterTable(), member));
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    if (name == keys[i]) return i;
   }
-  throw OptionError(fmt::format("‹free› {}: the joint design predicts the dynamic terms only ({}, {}, {}, {}, {}, {}); "
+  throw OptionError(fmt::format("‹free› {}: the joint design predicts the dynamic terms only ({}); "
                                "Coulomb friction and the offsets do not enter the frequency response",
-                               name, kDynamicTerms[0], kDynamicTerms[1], kDynamicTerms[2], kDynamicTerms[3],
-                               kDynamicTerms[4], kDynamicTerms[5]));
+                               name, fmt::join(keys, ", ")));
 }
 
 // Per line: the motor-rate response and the information per unit power share

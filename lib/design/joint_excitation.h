@@ -46,7 +46,7 @@ inline constexpr double kJointTorqueMargin = 0.99;
 inline constexpr double kJointSpeedMargin = 0.95;
 
 struct JointDesignOptions {
-  std::vector<std::string> free = {"motor_inertia", "link_inertia", "stiffness", "damping", "motor_viscous"};
+  std::vector<std::string> free = TwoMassDefaultFree();
   double duration = 0.0;               ///< log length [s] (whole periods)
   double rate = 1000.0;                ///< logging rate [Hz]
   double period = 2.0;                 ///< multisine period [s]

@@ -9,13 +9,13 @@
 
 #include "core/errors.h"
 #include "core/option_check.h"
-#include "models/axis.h"
-#include "models/feedforward.h"
 #include "export/export_text.h"
 #include "export/feedback_export.h"
 #include "export/joint_export.h"
-#include "report/json.h"
 #include "export/wpilib_export.h"
+#include "models/axis.h"
+#include "models/feedforward.h"
+#include "report/json.h"
 
 namespace driveid {
 namespace {
@@ -42,10 +42,7 @@ AxisView ViewAxis(const ParameterFile& file) {
   }
   AxisView v;
   const AxisSection& a = *section;
-  v.p = AxisParameters{a.inertia.value_or(0.0),     a.viscous.value_or(0.0),     a.coulomb.value_or(0.0),
-                       a.offset.value_or(0.0),      a.gravity_cos.value_or(0.0), a.gravity_sin.value_or(0.0),
-                       a.coulomb_pos.value_or(0.0), a.coulomb_neg.value_or(0.0), a.viscous_pos.value_or(0.0),
-                       a.viscous_neg.value_or(0.0), a.stribeck.value_or(0.0),    a.stribeck_velocity.value_or(0.0)};
+  v.p = ModelValuesOr(AxisParameterTable(), a, 0.0);  // a term not given is 0 (models/axis.h)
   v.linear = section->linear;
   v.per_direction = v.p.coulomb_pos != 0.0 || v.p.coulomb_neg != 0.0 || v.p.viscous_pos != 0.0 || v.p.viscous_neg != 0.0;
   v.damping = v.p.viscous + 0.5 * (v.p.viscous_pos + v.p.viscous_neg);

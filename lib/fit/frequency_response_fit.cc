@@ -30,12 +30,20 @@ namespace {
 using Complex = std::complex<double>;
 
 // The dynamic terms in the order of JointResponse's gradients, then the delay.
-const std::array<const char*, 7> kTerms = {"motor_inertia", "link_inertia", "stiffness",   "damping",
-                                           "motor_viscous", "link_viscous", "delay"};
 constexpr std::size_t kDelay = 6;
 const std::array<double JointParameters::*, 6> kMembers = {
     &JointParameters::motor_inertia, &JointParameters::link_inertia,  &JointParameters::stiffness,
     &JointParameters::damping,       &JointParameters::motor_viscous, &JointParameters::link_viscous};
+// Their keys (models/joint.h's table), then "delay".
+const std::array<std::string, 7>& Terms() {
+  static const std::array<std::string, 7> terms = [] {
+    std::array<std::string, 7> t;
+    for (std::size_t i = 0; i < kMembers.size(); ++i) t[i] = KeyOf(JointParameterTable(), kMembers[i]);
+    t[kDelay] = "delay";
+    return t;
+  }();
+  return terms;
+}
 
 double Omega(double hz) { return 2.0 * M_PI * hz; }
 
@@ -201,13 +209,17 @@ FrequencyEstimate Derived(const FitResult& fit, const std::function<double(const
 
 std::string TwoMassAdvice(const std::vector<std::string>& involved) {
   std::vector<std::string> advice;
-  const auto has = [&](const char* key) { return std::find(involved.begin(), involved.end(), key) != involved.end(); };
-  if (has("motor_viscous") || has("link_viscous")) {
+  const auto has = [&](double JointParameters::*member) {
+    return std::find(involved.begin(), involved.end(), KeyOf(JointParameterTable(), member)) != involved.end();
+  };
+  if (has(&JointParameters::motor_viscous) || has(&JointParameters::link_viscous)) {
     advice.push_back("viscous friction needs the band to reach down to where friction dominates the inertia; fix "
                      "motor_viscous/link_viscous in ‹params› and leave them out of ‹free›");
   }
-  if (has("damping")) advice.push_back("the damping needs coherent bins around the resonance and anti-resonance");
-  if (has("delay")) advice.push_back("a delay separates from damping only with phase data well above the resonance");
+  if (has(&JointParameters::damping)) {
+    advice.push_back("the damping needs coherent bins around the resonance and anti-resonance");
+  }
+  if (std::find(involved.begin(), involved.end(), Terms()[kDelay]) != involved.end()) advice.push_back("a delay separates from damping only with phase data well above the resonance");
   return fmt::format("{}", fmt::join(advice, "; "));
 }
 
@@ -215,12 +227,13 @@ std::string TwoMassAdvice(const std::vector<std::string>& involved) {
 std::vector<std::size_t> FreeTerms(const std::vector<std::string>& free) {
   std::vector<std::size_t> free_terms;
   for (const auto& name : free) {
-    const auto it = std::find_if(kTerms.begin(), kTerms.end(), [&](const char* t) { return name == t; });
-    if (it == kTerms.end()) {
+    const auto& terms = Terms();
+    const auto it = std::find(terms.begin(), terms.end(), name);
+    if (it == terms.end()) {
       throw OptionError(fmt::format("'{}' cannot be estimated from a frequency response (possible: {})", name,
-                                    fmt::join(kTerms, ", ")));
+                                    fmt::join(terms, ", ")));
     }
-    const auto index = static_cast<std::size_t>(it - kTerms.begin());
+    const auto index = static_cast<std::size_t>(it - terms.begin());
     if (std::find(free_terms.begin(), free_terms.end(), index) != free_terms.end()) {
       throw OptionError(fmt::format("'{}' is named twice", name));
     }
@@ -242,7 +255,7 @@ void StartValues(const ResponseData& motor, const JointSection& s, const std::ve
   for (std::size_t i = 0; i < 3; ++i) {
     const bool is_free = std::find(free_terms.begin(), free_terms.end(), i) != free_terms.end();
     if (!is_free && !(given[i].value_or(0.0) > 0.0)) {
-      needed.push_back(&FindParameter(JointParameterTable(), kTerms[i])->spec);
+      needed.push_back(&FindParameter(JointParameterTable(), Terms()[i])->spec);
     }
   }
   if (!needed.empty()) {
@@ -258,7 +271,7 @@ void StartValues(const ResponseData& motor, const JointSection& s, const std::ve
   }
   std::vector<std::string> missing;
   for (std::size_t index : free_terms) {
-    if (index != kDelay && !(given[index].value_or(0.0) > 0.0)) missing.emplace_back(kTerms[index]);
+    if (index != kDelay && !(given[index].value_or(0.0) > 0.0)) missing.emplace_back(Terms()[index]);
   }
   if (!missing.empty()) {
     throw IdentificationError(fmt::format(
@@ -407,7 +420,7 @@ TwoMassFitOutput FitTwoMassResponse(const ResponseData& motor, const ResponseDat
   std::vector<FitParameter> parameters;
   for (std::size_t index : free_terms) {
     const double value = index == kDelay ? 0.0 : initial.*(kMembers[index]);
-    FitParameter fp{kTerms[index], value, 0.0, 0.0};
+    FitParameter fp{Terms()[index], value, 0.0, 0.0};
     if (index == kDelay) fp.scale = 1.0 / Omega(out.band_high);
     parameters.push_back(fp);
   }
@@ -432,7 +445,7 @@ TwoMassFitOutput FitTwoMassResponse(const ResponseData& motor, const ResponseDat
   }
   std::vector<std::string> nonnegative;
   for (std::size_t index : free_terms) {
-    if (index != kDelay) nonnegative.emplace_back(kTerms[index]);
+    if (index != kDelay) nonnegative.emplace_back(Terms()[index]);
   }
   const auto model_at = [&](const ResponseData& data, bool is_link) {
     std::vector<ResponseResiduals::Row> all;

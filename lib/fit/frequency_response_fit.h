@@ -21,7 +21,7 @@ namespace driveid {
 struct TwoMassFitOptions {
   /// Free: any of motor_inertia, link_inertia, stiffness, damping,
   /// motor_viscous, link_viscous, and `delay` (a pure input delay [s]).
-  std::vector<std::string> free = {"motor_inertia", "link_inertia", "stiffness", "damping", "motor_viscous"};
+  std::vector<std::string> free = TwoMassDefaultFree();
   ResponseQuantity motor_output = ResponseQuantity::kRate;
   ResponseQuantity link_output = ResponseQuantity::kPosition;
   double band_low = 0.0, band_high = 0.0;  ///< [Hz]; 0, 0: the coherent bins

@@ -212,15 +212,18 @@ class JointOeResiduals final : public ResidualModel {
 
 std::string OeAdvice(const std::vector<std::string>& involved) {
   std::vector<std::string> advice;
-  const auto has = [&](const char* key) { return std::find(involved.begin(), involved.end(), key) != involved.end(); };
-  if (has("stiffness") || has("damping")) {
+  const auto has = [&](const std::string& key) {
+    return std::find(involved.begin(), involved.end(), key) != involved.end();
+  };
+  const auto key = [](double JointParameters::*member) { return KeyOf(JointParameterTable(), member); };
+  if (has(key(&JointParameters::stiffness)) || has(key(&JointParameters::damping))) {
     advice.push_back("stiffness and damping need the joint to deflect: excite it across its resonance");
   }
-  if (has("offset") && has("motor_coulomb")) {
+  if (has("offset") && has(key(&JointParameters::motor_coulomb))) {
     advice.push_back("the offset and Coulomb friction separate only with motion in both directions");
   }
   if (has("gravity_cos") || has("gravity_sin")) advice.push_back("gravity terms need the link to move through angles");
-  if (has("motor_inertia") && has("link_inertia")) {
+  if (has(key(&JointParameters::motor_inertia)) && has(key(&JointParameters::link_inertia))) {
     advice.push_back("only the total J_m + J_l is determined: fix one of them in ‹params› (a motor's data-sheet "
                      "inertia for motor_inertia) and leave it out of ‹free›");
   }

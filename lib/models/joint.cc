@@ -59,4 +59,13 @@ std::complex<double> SampledJointResponse::Link(double omega, ResponseQuantity q
   return 0.0;
 }
 
+std::vector<std::string> TwoMassDefaultFree() {
+  std::vector<std::string> keys;
+  for (const auto member : {&JointParameters::motor_inertia, &JointParameters::link_inertia, &JointParameters::stiffness,
+                            &JointParameters::damping, &JointParameters::motor_viscous}) {
+    keys.push_back(KeyOf(JointParameterTable(), member));
+  }
+  return keys;
+}
+
 }  // namespace driveid

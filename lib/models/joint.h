@@ -22,6 +22,8 @@
 #include <cmath>
 #include <complex>
 #include <optional>
+#include <vector>
+#include <string>
 
 #include "models/parameter_table.h"
 
@@ -181,5 +183,9 @@ inline double JointResonance(const JointParameters& p) {
   return std::sqrt(p.stiffness * (1.0 / p.motor_inertia + 1.0 / p.link_inertia));
 }
 inline double JointAntiresonance(const JointParameters& p) { return std::sqrt(p.stiffness / p.link_inertia); }
+
+/// The frequency-response fit's and design's default free set: the keys of
+/// J_m, J_l, k, d and b_m (the terms a two-mass response determines best).
+std::vector<std::string> TwoMassDefaultFree();
 
 }  // namespace driveid

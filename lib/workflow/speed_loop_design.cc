@@ -26,25 +26,25 @@ namespace {
 // chi^2 quantiles at 95 % for 1 .. 6 degrees of freedom.
 constexpr double kChiSquare95[] = {3.841, 5.991, 7.815, 9.488, 11.070, 12.592};
 
-struct Member {
-  const char* key;
-  double JointParameters::*field;
-};
-constexpr Member kDynamic[] = {{"motor_inertia", &JointParameters::motor_inertia},
-                               {"link_inertia", &JointParameters::link_inertia},
-                               {"stiffness", &JointParameters::stiffness},
-                               {"damping", &JointParameters::damping},
-                               {"motor_viscous", &JointParameters::motor_viscous},
-                               {"link_viscous", &JointParameters::link_viscous}};
+// The dynamic terms a speed loop's region spans (their keys: models/joint.h's table).
+constexpr double JointParameters::*kDynamic[] = {&JointParameters::motor_inertia, &JointParameters::link_inertia,
+                                                 &JointParameters::stiffness,     &JointParameters::damping,
+                                                 &JointParameters::motor_viscous, &JointParameters::link_viscous};
 
 // The plants at the ends of the principal axes of the 95 % region of the
 // fitted dynamic parameters (those the fit estimated), each kept physical.
 std::vector<SpeedLoopPlant> Region(const ParameterFile& file, const SpeedLoopPlant& nominal) {
-  std::vector<const Member*> members;
+  std::vector<double JointParameters::*> members;
+  std::vector<std::string> keys;
   std::vector<double> stds;
-  for (const auto& m : kDynamic) {
+  for (const auto member : kDynamic) {
+    const std::string key = KeyOf(JointParameterTable(), member);
     for (const auto& e : file.fit_estimates) {
-      if (e.name == m.key && e.standard_error > 0.0) members.push_back(&m), stds.push_back(e.standard_error);
+      if (e.name == key && e.standard_error > 0.0) {
+        members.push_back(member);
+        keys.push_back(key);
+        stds.push_back(e.standard_error);
+      }
     }
   }
   const std::size_t p = members.size();
@@ -52,7 +52,7 @@ std::vector<SpeedLoopPlant> Region(const ParameterFile& file, const SpeedLoopPla
   Eigen::MatrixXd covariance(p, p);
   for (std::size_t i = 0; i < p; ++i) {
     for (std::size_t j = 0; j < p; ++j) {
-      covariance(i, j) = file.FitCorrelation(members[i]->key, members[j]->key) * stds[i] * stds[j];
+      covariance(i, j) = file.FitCorrelation(keys[i], keys[j]) * stds[i] * stds[j];
     }
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(covariance);
@@ -63,7 +63,7 @@ std::vector<SpeedLoopPlant> Region(const ParameterFile& file, const SpeedLoopPla
     for (double sign : {-1.0, 1.0}) {
       SpeedLoopPlant edge = nominal;
       for (std::size_t i = 0; i < p; ++i) {
-        double& value = edge.joint.*(members[i]->field);
+        double& value = edge.joint.*(members[i]);
         value = std::max(value + sign * radius * length * eigen.eigenvectors()(i, k), 1e-3 * std::abs(value));
       }
       out.push_back(edge);
