@@ -51,6 +51,12 @@ for layer in report export workflow; do
     bad=$((bad + 1))
   fi
 done
+# The tests mirror the library: every layer has its folder of tests.
+for dir in "$lib"/*/; do
+  name=$(basename "$dir")
+  checked=$((checked + 1))
+  ls "$1/tests/$name"/*_test.cc > /dev/null 2>&1 || { echo "FAIL: tests/$name holds no test of lib/$name"; bad=$((bad + 1)); }
+done
 # The tools call the workflow: no file of apps/ includes a fit/ or sim/ header.
 while IFS=: read -r file line target; do
   echo "FAIL: $file:$line includes \"$target\" (apps/ calls workflow/, not fit/ or sim/)"
