@@ -8,7 +8,7 @@
 #include "core/fit_result.h"
 #include "models/axis.h"
 #include "models/feedforward.h"
-#include "report/json.h"
+#include "report/feedforward_report.h"
 
 namespace driveid {
 
@@ -23,10 +23,5 @@ double PropagateStandardError(const FitResult& fit, const std::vector<std::pair<
 /// Kg_angle where the gravity terms were; the offset where fitted or non-zero.
 Feedforward CalcAxisFeedforward(const AxisParameters& p, const FitResult& fit, const std::string& effort_unit,
                                 const std::string& position_unit, bool with_inertia);
-
-/// `report` text: the law and one line per gain, value +- std and unit.
-std::string FormatFeedforwardReport(const Feedforward& feedforward);
-/// `report --json`: {effort_unit, position_unit, gains: {key: {value, std, unit}}}.
-Json FeedforwardReportJson(const Feedforward& feedforward);
 
 }  // namespace driveid

@@ -12,6 +12,7 @@
 #include "control/speed_loop.h"
 #include "io/parameter_file.h"
 #include "models/feedback.h"
+#include "report/feedback_report.h"
 #include "report/json.h"
 #include "report/plot.h"
 
@@ -44,11 +45,6 @@ struct AxisGainsDesign {
 /// for Ka <= 0 or Kv < 0 estimates, OptionError for bad settings.
 AxisGainsDesign DesignAxisGains(const ParameterFile* file, const std::string& path, const AxisGainsOptions& options);
 
-/// The text `gains` prints: the gains with their std and units, the plant
-/// and the settings they came from.
-std::string FormatFeedbackReport(const FeedbackController& feedback);
-/// {loop, preset, effort_unit, position_unit, feedback: {kp: {value, std}, ...}, settings..., controller...}.
-Json FeedbackReportJson(const FeedbackController& feedback);
 
 }  // namespace driveid
 
