@@ -8,8 +8,8 @@
 #include "common/command_registry.h"
 #include "core/errors.h"
 #include "io/parameter_file.h"
-#include "workflow/axis_feedforward.h"
 #include "report/cdrive_report.h"
+#include "workflow/axis_feedforward.h"
 
 namespace driveid::cli {
 

@@ -14,8 +14,8 @@
 #include "core/errors.h"
 #include "core/fit_options.h"
 #include "core/fit_result.h"
-#include "models/parameter_table.h"
 #include "io/csv_log.h"
+#include "models/parameter_table.h"
 #include "report/plot.h"
 
 namespace driveid::cli {

@@ -11,9 +11,9 @@
 #include "common/cli_support.h"
 #include "common/command_registry.h"
 #include "core/option_check.h"
+#include "export/parameter_export.h"
 #include "io/atomic_file.h"
 #include "io/parameter_file.h"
-#include "export/parameter_export.h"
 
 namespace driveid::cli {
 namespace {

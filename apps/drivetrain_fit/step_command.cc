@@ -4,9 +4,9 @@
 
 #include "common/command_registry.h"
 #include "core/errors.h"
-#include "workflow/step_identification.h"
 #include "io/csv_log.h"
 #include "io/parameter_file.h"
+#include "workflow/step_identification.h"
 
 namespace driveid::cli {
 

@@ -4,8 +4,8 @@
 
 #include <fmt/format.h>
 
-#include "export/export_text.h"
 #include "control/feedback_gains.h"
+#include "export/export_text.h"
 
 namespace driveid {
 namespace {

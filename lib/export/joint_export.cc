@@ -7,9 +7,9 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
-#include "models/joint.h"
 #include "export/export_text.h"
 #include "export/feedback_export.h"
+#include "models/joint.h"
 
 namespace driveid {
 namespace {

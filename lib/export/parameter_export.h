@@ -20,9 +20,9 @@
 
 #include <string>
 
-#include "io/parameter_file.h"
 #include "export/export_target.h"
 #include "export/export_text.h"
+#include "io/parameter_file.h"
 
 namespace driveid {
 

@@ -8,10 +8,10 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
-#include "models/feedforward.h"
 #include "export/export_target.h"
 #include "export/export_text.h"
 #include "export/feedback_export.h"
+#include "models/feedforward.h"
 
 namespace driveid {
 namespace {

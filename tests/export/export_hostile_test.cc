@@ -8,9 +8,9 @@
 #include <catch2/catch.hpp>
 
 #include "core/errors.h"
-#include "io/parameter_file.h"
 #include "export/export_text.h"
 #include "export/parameter_export.h"
+#include "io/parameter_file.h"
 
 using namespace driveid;
 

@@ -13,8 +13,8 @@
 #include <mujoco/mujoco.h>
 
 #include "core/errors.h"
-#include "io/parameter_file.h"
 #include "export/parameter_export.h"
+#include "io/parameter_file.h"
 #include "sim/mujoco_axis_simulator.h"
 
 using namespace driveid;

@@ -12,9 +12,9 @@
 #include <catch2/catch.hpp>
 
 #include "core/errors.h"
-#include "workflow/axis_feedforward.h"
 #include "signal/butterworth.h"
 #include "sim/axis_experiment.h"
+#include "workflow/axis_feedforward.h"
 
 using namespace driveid;
 

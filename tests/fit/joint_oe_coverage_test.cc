@@ -16,8 +16,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "workflow/joint_identification.h"
 #include "support/friction_joint_cases.h"
+#include "workflow/joint_identification.h"
 
 using namespace driveid;
 

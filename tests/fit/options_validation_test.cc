@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/errors.h"
+#include "export/parameter_export.h"
 #include "fit/axis_fit.h"
 #include "fit/axis_oe_fit.h"
 #include "fit/cdrive_fit.h"
@@ -17,16 +18,15 @@
 #include "fit/step_fit.h"
 #include "io/csv_log.h"
 #include "io/log_input.h"
-#include "workflow/axis_identification.h"
-#include "workflow/feedback_design.h"
-#include "workflow/joint_identification.h"
-#include "export/parameter_export.h"
-#include "workflow/step_identification.h"
-#include "workflow/validation_run.h"
 #include "signal/frequency_response.h"
 #include "sim/cdrive_closed_loop.h"
 #include "sim/cvodes_integrator.h"
 #include "sim/mujoco_axis_simulator.h"
+#include "workflow/axis_identification.h"
+#include "workflow/feedback_design.h"
+#include "workflow/joint_identification.h"
+#include "workflow/step_identification.h"
+#include "workflow/validation_run.h"
 
 using namespace driveid;
 

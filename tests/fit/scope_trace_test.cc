@@ -14,8 +14,8 @@
 
 #include "io/csv_log.h"
 #include "io/log_input.h"
-#include "workflow/joint_identification.h"
 #include "support/reference_scope_trace.h"
+#include "workflow/joint_identification.h"
 
 using namespace driveid;
 
