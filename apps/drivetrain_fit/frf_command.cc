@@ -79,7 +79,8 @@ CLI::App* Setup(CLI::App& app, FrfCliOptions& o) {
                 "link_viscous, delay [s] (default motor_inertia,link_inertia,stiffness,damping,motor_viscous)");
   AddLogInputOptions(*c, o.log_input, "tau=#4");
   c->add_option("-o,--output-file", o.out.output, "write the parameter file (joint and frf sections) here");
-  c->add_option("--csv", o.out.trace, "write the response as CSV (docs/formats.md#frequency-response-csv)");
+  c->add_option("--csv,--trace", o.out.trace,
+                "write the response as CSV (docs/formats.md#frequency-response-csv); --trace as in the other commands");
   c->add_option("--plot", o.out.plot, "render the Bode plot (.png or .svg)")->check(PlotPath());
   c->add_flag("--json", o.out.json, "print the summary as one JSON object instead of text");
   c->add_flag("-q,--quiet", o.out.quiet, "print no summary");

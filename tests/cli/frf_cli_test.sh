@@ -45,6 +45,9 @@ grep -q "method: \"periodic" fit.yaml && ok || fail "periodic method not used: $
 head -2 frf.csv | tail -1 | grep -q "^frequency_hz,magnitude,phase_deg,coherence,magnitude_std,phase_std_deg,model_magnitude,model_phase_deg$" \
   && ok || fail "CSV header: $(head -2 frf.csv)"
 [ -s bode.svg ] && ok || fail "no Bode plot"
+# --trace, as the other commands spell it, writes the same CSV as --csv.
+"$bin" frf twomass.csv --params gear.yaml --fit two-mass -q --trace frf_trace.csv && cmp -s frf.csv frf_trace.csv \
+  && ok || fail "--trace and --csv differ"
 # The written file reads back (as --params of another fit).
 "$bin" frf twomass.csv --params fit.yaml -q -o refit.yaml && grep -q "^frf:" refit.yaml && ok || fail "fit.yaml does not read back"
 # --json: one object with the fitted resonance.
