@@ -134,12 +134,7 @@ void Run(GainsOptions o) {
   if (o.ka >= 0.0) o.axis.ka = o.ka;
   if (o.axis.loop == "speed") return RunSpeedLoop(o, file);
   const AxisGainsDesign d = DesignAxisGains(file ? &*file : nullptr, o.params, o.axis);
-  Json plant = {{"source", d.kv_source}, {"kv", {{"value", d.kv}, {"std", d.kv_std}}},
-                {"ka", {{"value", d.ka}, {"std", d.ka_std}}}, {"correlation", d.correlation}};
-  Emit(o, file,
-       {d.controller, d.notes, {}, {{"plant", plant}},
-        fmt::format("plant: Kv {:.6g} +- {:.3g}, Ka {:.6g} +- {:.3g} (correlation {:.3f}) from {}\n", d.kv, d.kv_std,
-                    d.ka, d.ka_std, d.correlation, d.kv_source)});
+  Emit(o, file, {d.controller, d.notes, {}, {{"plant", AxisGainsPlantJson(d)}}, FormatAxisGainsPlant(d)});
 }
 
 GainsOptions gains_options;

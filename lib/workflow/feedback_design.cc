@@ -138,4 +138,14 @@ AxisGainsDesign DesignAxisGains(const ParameterFile* file, const std::string& pa
   return d;
 }
 
+std::string FormatAxisGainsPlant(const AxisGainsDesign& d) {
+  return fmt::format("plant: Kv {:.6g} +- {:.3g}, Ka {:.6g} +- {:.3g} (correlation {:.3f}) from {}\n", d.kv, d.kv_std,
+                     d.ka, d.ka_std, d.correlation, d.kv_source);
+}
+
+Json AxisGainsPlantJson(const AxisGainsDesign& d) {
+  return {{"source", d.kv_source}, {"kv", {{"value", d.kv}, {"std", d.kv_std}}},
+          {"ka", {{"value", d.ka}, {"std", d.ka_std}}}, {"correlation", d.correlation}};
+}
+
 }  // namespace driveid

@@ -44,6 +44,10 @@ struct AxisGainsDesign {
 /// neither a feed-forward nor an axis section, IdentificationError (exit 4)
 /// for Ka <= 0 or Kv < 0 estimates, OptionError for bad settings.
 AxisGainsDesign DesignAxisGains(const ParameterFile* file, const std::string& path, const AxisGainsOptions& options);
+/// The plant the gains came from, as `gains` prints it: one line of text, and
+/// {source, kv: {value, std}, ka: {value, std}, correlation}.
+std::string FormatAxisGainsPlant(const AxisGainsDesign& design);
+Json AxisGainsPlantJson(const AxisGainsDesign& design);
 
 
 }  // namespace driveid
