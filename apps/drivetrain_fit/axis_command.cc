@@ -75,12 +75,7 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
                                           return make(std::move(csv));
                                         });
   AxisIdentificationOptions fit_options;
-  const bool sysid = std::all_of(sysid_units.begin(), sysid_units.end(),
-                                 [&](const std::string& u) { return !u.empty() && u == sysid_units.front(); });
-  if (sysid) fit_options.sysid_unit = sysid_units.front();
-  if (sysid && std::all_of(mechanisms.begin(), mechanisms.end(), [&](const auto& m) { return m == mechanisms.front(); })) {
-    fit_options.sysid_mechanism = mechanisms.front();
-  }
+  TakeSysIdDeclarations(sysid_units, mechanisms, fit_options);
   fit_options.method = options.method == "oe"     ? AxisMethod::kOutputError
                        : options.method == "idim" ? AxisMethod::kInverseDynamics
                                                   : AxisMethod::kAuto;

@@ -360,4 +360,16 @@ AxisIdentification IdentifyAxis(const std::vector<AxisLog>& logged, const AxisSe
   return run;
 }
 
+void TakeSysIdDeclarations(const std::vector<std::string>& units, const std::vector<std::string>& mechanisms,
+                           AxisIdentificationOptions& options) {
+  const bool sysid = !units.empty() && std::all_of(units.begin(), units.end(), [&](const std::string& u) {
+    return !u.empty() && u == units.front();
+  });
+  if (!sysid) return;
+  options.sysid_unit = units.front();
+  if (std::all_of(mechanisms.begin(), mechanisms.end(), [&](const auto& m) { return m == mechanisms.front(); })) {
+    options.sysid_mechanism = mechanisms.front();
+  }
+}
+
 }  // namespace driveid

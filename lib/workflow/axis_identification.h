@@ -44,6 +44,13 @@ struct AxisIdentificationOptions {
   bool IsValid(std::string* error) const;
 };
 
+/// The SysId declarations of the logs (per log: the file's position unit,
+/// "" for a log that is no SysId file; its test): the unit when every log
+/// is a SysId file in one unit, and then the mechanism when they all
+/// declare one, go into `options` (sysid_unit, sysid_mechanism).
+void TakeSysIdDeclarations(const std::vector<std::string>& units, const std::vector<std::string>& mechanisms,
+                           AxisIdentificationOptions& options);
+
 struct AxisIdentification {
   AxisMethod method = AxisMethod::kInverseDynamics;
   AxisSection section;                  ///< the start section with the estimates put in
