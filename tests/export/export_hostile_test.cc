@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include "core/errors.h"
+#include "export/export_target.h"
 #include "export/export_text.h"
 #include "export/parameter_export.h"
 #include "io/parameter_file.h"

@@ -8,6 +8,7 @@
 
 #include "core/errors.h"
 #include "fit/frequency_response_fit.h"
+#include "fit/response_features.h"
 #include "signal/frequency_response.h"
 #include "support/reference_two_mass.h"
 

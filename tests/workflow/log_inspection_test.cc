@@ -8,6 +8,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "io/table_source.h"
 #include "support/mat_fixture.h"
 
 using namespace driveid;
