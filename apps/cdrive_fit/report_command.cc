@@ -9,7 +9,7 @@
 #include "core/errors.h"
 #include "io/parameter_file.h"
 #include "report/cdrive_report.h"
-#include "workflow/axis_feedforward.h"
+#include "report/feedforward_report.h"
 
 namespace driveid::cli {
 
