@@ -103,6 +103,12 @@ std::string FormatFeedbackSection(const FeedbackController& f) {
       throw OutputError(fmt::format("feedback.{}: not a name: {}; nothing written", field, UnitTextProblem(*name)));
     }
   }
+  // What the reader refuses is not written (ParseFeedbackSection).
+  if (std::find_if(kFeedbackLoops.begin(), kFeedbackLoops.end(), [&](const char* loop) { return f.loop == loop; }) ==
+      kFeedbackLoops.end()) {
+    throw OutputError(fmt::format("feedback.loop: {}: not one of {}; nothing written", f.loop,
+                                  fmt::join(kFeedbackLoops, ", ")));
+  }
   std::string out = "feedback:  # the controller `gains` designed: docs/models.md#feedback-gains\n";
   out += fmt::format("  loop: {}\n", f.loop);
   if (!f.preset.empty()) out += fmt::format("  preset: {}\n", f.preset);
