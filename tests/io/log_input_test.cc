@@ -2,6 +2,7 @@
 // CSV, column expressions, --rate, crops, joins, MAT v5 and v7.3 files
 // written here with matio, WPILib SysId JSON; values and error messages.
 #include "io/log_input.h"
+#include "io/time_join.h"
 
 #include <chrono>
 #include <cmath>
