@@ -2,7 +2,6 @@
 // CSV, column expressions, --rate, crops, joins, MAT v5 and v7.3 files
 // written here with matio, WPILib SysId JSON; values and error messages.
 #include "io/log_input.h"
-#include "io/time_join.h"
 
 #include <chrono>
 #include <cmath>
@@ -17,6 +16,7 @@
 #include <matio.h>
 
 #include "core/errors.h"
+#include "io/time_join.h"
 #include "support/mat_fixture.h"
 
 using namespace driveid;
