@@ -43,10 +43,7 @@ CLI::App* SetupInspect(CLI::App& app, InspectOptions& options) {
 }
 
 void RunInspect(const InspectOptions& options) {
-  ReadLimits limits;
-  limits.lines_unless_structured = true;  // logs may be JSON or MAT
-  limits.max_bytes = static_cast<std::size_t>(options.max_log_gib * 1073741824.0);
-  limits.max_bytes_hint = fmt::format("a log may be at most {} GiB (raise with --max-log-size)", options.max_log_gib);
+  const ReadLimits limits = LogReadLimits(options.max_log_gib);
   const LogInputOptions input = MakeLogInputOptions(options.input);
   std::string text_out;
   Json json = Json::array();

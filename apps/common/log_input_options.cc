@@ -103,11 +103,11 @@ std::vector<LogFileRequest> LogFileRequests(const LogInputCli& options, const st
   return files;
 }
 
-ReadLimits LogReadLimits(const FitOutputOptions& output) {
+ReadLimits LogReadLimits(double max_log_gib) {
   ReadLimits limits;
   limits.lines_unless_structured = true;  // logs may be JSON or MAT
-  limits.max_bytes = static_cast<std::size_t>(output.max_log_gib * 1073741824.0);
-  limits.max_bytes_hint = fmt::format("a log may be at most {} GiB (raise with --max-log-size)", output.max_log_gib);
+  limits.max_bytes = static_cast<std::size_t>(max_log_gib * 1073741824.0);
+  limits.max_bytes_hint = fmt::format("a log may be at most {} GiB (raise with --max-log-size)", max_log_gib);
   return limits;
 }
 

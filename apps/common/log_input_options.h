@@ -52,9 +52,9 @@ JoinTiming JoinTimingFor(const LogInputCli& options, std::size_t k, std::size_t 
 /// Each log with its --join file and timing (JoinFor, JoinTimingFor).
 std::vector<LogFileRequest> LogFileRequests(const LogInputCli& options, const std::vector<std::string>& paths);
 
-/// The read limits of a log: --max-log-size for the file (and its joined
-/// file), no line limit for JSON, MAT and HDF5 files.
-ReadLimits LogReadLimits(const FitOutputOptions& output);
+/// The read limits of a log: --max-log-size [GiB] for the file (and its
+/// joined file), no line limit for JSON, MAT and HDF5 files.
+ReadLimits LogReadLimits(double max_log_gib);
 
 /// Reads each log once (at most --max-log-size bytes; joined files too),
 /// makes its logs with `make(CsvLog)` (a SysId file gives several) and
@@ -71,7 +71,7 @@ std::vector<Log> LoadLogs(const std::vector<std::string>& paths, const LogInputC
   LogInputOptions options = MakeLogInputOptions(input);
   options.time_column = time_column;
   std::vector<Log> logs;
-  ReadLogFiles(LogFileRequests(input, paths), columns, options, LogReadLimits(output), transpose, provenance.data,
+  ReadLogFiles(LogFileRequests(input, paths), columns, options, LogReadLimits(output.max_log_gib), transpose, provenance.data,
                [&](CsvLog csv) { logs.push_back(make(std::move(csv))); });
   return logs;
 }
