@@ -23,6 +23,7 @@ namespace {
 using Complex = std::complex<double>;
 
 constexpr int kMinAverages = 4;
+constexpr std::size_t kMinPeriodSamples = 4;  // shortest period read, given or detected
 constexpr double kPeriodTolerance = 1e-3;
 
 // Largest prime factor of n (n >= 1).
@@ -45,6 +46,7 @@ std::vector<Complex> Dft(Eigen::FFT<double>& fft, const std::vector<double>& x) 
   const std::size_t n = x.size();
   std::vector<Complex> out;
   if (n == 0) return out;
+  if (n == 1) return {Complex(x[0], 0.0)};  // kissfft's plan for one point indexes an empty buffer
   if (LargestPrimeFactor(n) <= 7) {
     fft.ClearFlag(Eigen::FFT<double>::HalfSpectrum);
     fft.fwd(out, x);
@@ -364,7 +366,7 @@ std::size_t DetectPeriod(const std::vector<double>& signal) {
   const std::vector<double> correlation = LaggedProducts(x, n - 1);
   const double r0 = correlation[0];
   int checked = 0;
-  for (std::size_t lag = 4; lag <= n / 2 && checked < 64; ++lag) {
+  for (std::size_t lag = kMinPeriodSamples; lag <= n / 2 && checked < 64; ++lag) {
     const double r = correlation[lag] / r0 * static_cast<double>(n) / static_cast<double>(n - lag);
     if (r < 0.9 || correlation[lag] < correlation[lag - 1] || correlation[lag] < correlation[lag + 1]) continue;
     ++checked;
@@ -394,6 +396,12 @@ FrequencyResponse EstimateFrequencyResponse(const std::vector<FrequencyRecord>& 
   std::size_t period = options.period > 0.0 ? static_cast<std::size_t>(std::lround(options.period * rate)) : 0;
   if (options.period > 0.0 && std::abs(static_cast<double>(period) - options.period * rate) > 1e-6 * options.period * rate) {
     throw OptionError(fmt::format("‹period› {} s: not a whole number of samples at {} Hz", options.period, rate));
+  }
+  if (options.period > 0.0 && period < kMinPeriodSamples) {
+    // The detector's shortest lag too: fewer samples excite no line between
+    // DC and Nyquist.
+    throw OptionError(fmt::format("‹period› {} s: {} samples at {} Hz; a period needs at least {}", options.period,
+                                  period, rate, kMinPeriodSamples));
   }
   if (options.method == FrequencyMethod::kPeriodic && period == 0) {
     // Every record must repeat with one period.

@@ -158,6 +158,8 @@ expect 3 "missing column" -- frf twomass.csv --reference r
 expect 2 "averages" -- frf twomass.csv --method welch --resolution 0.05
 expect 2 "finer than the shortest log" -- frf twomass.csv --method welch --resolution 1e-300
 expect 2 "longer than half the longest log" -- frf twomass.csv --period 1e300
+# One sample per period (found by the options fuzzer: it crashed the FFT).
+expect 2 "a period needs at least 4" -- frf twomass.csv --period 0.001
 expect 3 "joint.motor_inertia and joint.link_inertia are needed" -- frf twomass.csv --params gear.yaml --fit two-mass \
   --free stiffness
 finish

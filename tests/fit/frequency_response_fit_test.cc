@@ -204,8 +204,9 @@ TEST_CASE("two-mass fit: 95 % intervals cover the truth over seeds (closed loop,
 
 TEST_CASE("periodic and Welch estimates are exact for a known system at any length, primes included") {
   // y[k] = 2 u[k-1]: H = 2 exp(-j w / rate) at every line; a random periodic
-  // input whose period is smooth (1000), prime (1009) or a large prime (100003).
-  for (std::size_t period : {std::size_t{1000}, std::size_t{1009}, std::size_t{100003}}) {
+  // input whose period is the shortest read (4), smooth (1000), prime (1009)
+  // or a large prime (100003).
+  for (std::size_t period : {std::size_t{4}, std::size_t{1000}, std::size_t{1009}, std::size_t{100003}}) {
     std::mt19937_64 rng(period);
     std::normal_distribution<double> normal(0.0, 1.0);
     std::vector<double> one(period);
@@ -226,6 +227,18 @@ TEST_CASE("periodic and Welch estimates are exact for a known system at any leng
     }
     INFO("period " << period);
     CHECK(worst < 1e-8);
+  }
+  // A given period shorter than 4 samples excites no line between DC and
+  // Nyquist: refused by name (one sample used to crash the FFT).
+  for (double samples : {1.0, 2.0, 3.0}) {
+    FrequencyRecord record;
+    for (int i = 0; i < 64; ++i) record.input.push_back(i % 2 == 0 ? 1.0 : -1.0);
+    record.output = record.input;
+    FrequencyResponseOptions options;
+    options.period = samples / 1000.0;
+    INFO("period of " << samples << " samples");
+    CHECK_THROWS_WITH(EstimateFrequencyResponse({record}, 1000.0, options),
+                      Catch::Contains("a period needs at least 4"));
   }
   // Welch with a prime segment length on white noise through the same system.
   std::mt19937_64 rng(3);
