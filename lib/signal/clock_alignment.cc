@@ -40,7 +40,7 @@ std::vector<double> OnGrid(const std::vector<double>& t, const std::vector<doubl
 
 // c[l] = sum_j a[j + l] b[j] for every lag l in -(nb - 1) .. na - 1, at index l + nb - 1.
 std::vector<double> CrossProducts(const std::vector<double>& a, const std::vector<double>& b) {
-  std::size_t padded = 1;
+  std::size_t padded = 2;  // kissfft's one-point plan indexes an empty buffer
   while (padded < a.size() + b.size()) padded *= 2;
   std::vector<double> pa(a), pb(b);
   pa.resize(padded, 0.0);

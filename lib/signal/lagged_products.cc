@@ -7,7 +7,7 @@
 namespace driveid {
 
 std::vector<double> LaggedProducts(const std::vector<double>& x, std::size_t max_lag) {
-  std::size_t padded = 1;
+  std::size_t padded = 2;  // kissfft's one-point plan indexes an empty buffer
   while (padded < x.size() + max_lag) padded *= 2;
   std::vector<double> signal(x);
   signal.resize(padded, 0.0);

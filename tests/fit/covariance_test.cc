@@ -79,3 +79,12 @@ TEST_CASE("lagged products: r(l) = sum_t x_t x_(t+l), exact against the direct s
     CHECK(r[l] == Approx(direct).epsilon(1e-10).margin(1e-10));
   }
 }
+
+TEST_CASE("lagged products of one sample and of none (a one-point FFT used to crash)") {
+  const std::vector<double> one = LaggedProducts({3.0}, 0);
+  REQUIRE(one.size() == 1);
+  CHECK(one[0] == Approx(9.0));
+  const std::vector<double> none = LaggedProducts({}, 0);
+  REQUIRE(none.size() == 1);
+  CHECK(none[0] == Approx(0.0).margin(1e-15));
+}
