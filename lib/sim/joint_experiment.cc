@@ -14,12 +14,20 @@ namespace {
 
 using State = std::array<double, 4>;  // theta_m, theta_m', theta_l, theta_l' (link side)
 
-// Accelerations without the Coulomb terms, which the sub-step adds (sticking).
-State Smooth(const JointParameters& p, const State& x, double tau_m, double coulomb_m, double coulomb_l) {
+// The forces on the motor and the link but their Coulomb friction [N m].
+std::array<double, 2> Forces(const JointParameters& p, const State& x, double tau_m) {
   const double spring = p.stiffness * (x[0] - x[2]) + p.damping * (x[1] - x[3]);
   const double gravity = p.gravity_cos * std::cos(x[2]) + p.gravity_sin * std::sin(x[2]);
-  return {x[1], (tau_m - spring - p.motor_viscous * x[1] - coulomb_m - p.offset) / p.motor_inertia, x[3],
-          (spring - p.link_viscous * x[3] - coulomb_l - gravity) / p.link_inertia};
+  return {tau_m - spring - p.motor_viscous * x[1] - p.offset, spring - p.link_viscous * x[3] - gravity};
+}
+
+// The state's derivative with the Coulomb forces the sub-step chose: a body
+// held at rest gets exactly the force that holds it, so its acceleration is
+// exactly 0 (a force recovered from an acceleration times the inertia was
+// off in the last bit, and the body crept).
+State Derivative(const JointParameters& p, const State& x, double tau_m, double coulomb_m, double coulomb_l) {
+  const std::array<double, 2> force = Forces(p, x, tau_m);
+  return {x[1], (force[0] - coulomb_m) / p.motor_inertia, x[3], (force[1] - coulomb_l) / p.link_inertia};
 }
 
 std::vector<double> Excitation(const JointExperiment& e, std::size_t samples) {
@@ -114,15 +122,14 @@ JointExperimentLog SimulateJointExperiment(const JointParameters& p, double n, c
     for (int s = 0; s < e.substeps; ++s) {
       // Coulomb forces of this sub-step: kinetic while moving, else what
       // holds the mass (within the Coulomb level) or the level itself.
-      const State at_rest = Smooth(p, x, tau_m, 0.0, 0.0);
-      const auto coulomb = [](double rate, double other_acceleration, double inertia, double level) {
+      const std::array<double, 2> force = Forces(p, x, tau_m);  // what would move each body
+      const auto coulomb = [](double rate, double needed, double level) {
         if (rate != 0.0) return level * (rate > 0.0 ? 1.0 : -1.0);
-        const double needed = other_acceleration * inertia;  // force that would move it
         return std::abs(needed) <= level ? needed : level * (needed > 0.0 ? 1.0 : -1.0);
       };
-      const double cm = coulomb(x[1], at_rest[1], p.motor_inertia, p.motor_coulomb);
-      const double cl = coulomb(x[3], at_rest[3], p.link_inertia, p.link_coulomb);
-      const auto f = [&](const State& y) { return Smooth(p, y, tau_m, cm, cl); };
+      const double cm = coulomb(x[1], force[0], p.motor_coulomb);
+      const double cl = coulomb(x[3], force[1], p.link_coulomb);
+      const auto f = [&](const State& y) { return Derivative(p, y, tau_m, cm, cl); };
       const State k1 = f(x);
       State y;
       for (int j = 0; j < 4; ++j) y[j] = x[j] + 0.5 * h * k1[j];
