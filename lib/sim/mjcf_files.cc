@@ -31,11 +31,13 @@ std::string ElementAt(const std::string& text, std::size_t at) {
   return text.substr(open + 1, end - open - 1);
 }
 
-// Values of the attributes `file`, `meshdir`, `texturedir`, `assetdir`
-// (a whole attribute name: preceded by a blank), single or double quoted.
+// Values of the attributes `file`, a cube texture's six faces' `fileright`
+// .. `fileback`, `meshdir`, `texturedir`, `assetdir` (a whole attribute
+// name: preceded by a blank), single or double quoted.
 std::vector<Reference> FileReferences(const std::string& text) {
   std::vector<Reference> out;
-  for (const char* name : {"file", "meshdir", "texturedir", "assetdir"}) {
+  for (const char* name : {"file", "fileright", "fileleft", "fileup", "filedown", "filefront", "fileback", "meshdir",
+                           "texturedir", "assetdir"}) {
     const std::string key = name;
     for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + 1)) {
       if (at == 0 || !std::isspace(static_cast<unsigned char>(text[at - 1]))) continue;
@@ -84,7 +86,7 @@ void Check(const std::filesystem::path& file, const std::filesystem::path& folde
   limits.max_bytes_hint = "an MJCF may be at most 64 MiB";
   const std::string text = ReadFileToString(file.string(), limits);
   for (const Reference& r : FileReferences(text)) {
-    const bool directory = r.attribute != "file";
+    const bool directory = r.attribute.size() > 3 && r.attribute.compare(r.attribute.size() - 3, 3, "dir") == 0;
     const std::string why = Problem(r.value, folder, directory);
     if (!why.empty()) {
       throw InputError(fmt::format("{}: {}=\"{}\": {}; MuJoCo may read only files in the model's folder {}",

@@ -1,5 +1,6 @@
 // The files an MJCF makes MuJoCo read (docs/export.md#validation-in-mujoco):
-// `<include file>`, asset `file` attributes (meshes, textures, height
+// `<include file>`, asset `file` attributes (meshes, textures and a cube
+// texture's six face files `fileright` .. `fileback`, height
 // fields, skins) and the compiler's `meshdir`, `texturedir`, `assetdir`.
 // `validate MODEL.xml` lets MuJoCo read only what lies in the model's
 // folder: each reference is checked before MuJoCo opens anything, and
