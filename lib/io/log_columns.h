@@ -14,6 +14,7 @@
 
 #include <fmt/format.h>
 
+#include "core/errors.h"
 #include "io/csv_log.h"
 
 namespace driveid {
@@ -84,7 +85,8 @@ Log MakeLogFromColumns(const LogColumn<Log> (&table)[N], CsvLog& csv) {
 }
 
 /// CSV text of the written columns, '#' comment lines first; throws
-/// OutputError for a value the reader would refuse.
+/// OutputError for a value the reader would refuse or a column whose length
+/// is not the time column's.
 template <typename Log, std::size_t N>
 std::string FormatLogColumns(const LogColumn<Log> (&table)[N], const Log& log,
                              const std::vector<std::string>& comments) {
@@ -97,6 +99,12 @@ std::string FormatLogColumns(const LogColumn<Log> (&table)[N], const Log& log,
     formats.push_back(column.write);
   }
   const std::vector<double>& time = *written.front().second;
+  for (const auto& [name, values] : written) {
+    if (values->size() != time.size()) {
+      throw OutputError(fmt::format("column '{}' holds {} values for {} times; nothing written", name, values->size(),
+                                    time.size()));
+    }
+  }
   RequireFiniteColumns(written, time);
   std::string out;
   for (const auto& line : comments) out += "# " + line + "\n";
