@@ -13,7 +13,8 @@
 
 namespace driveid {
 
-/// Text and JSON of the joint and frf sections present ("" / null when neither).
+/// Text and JSON of the joint and frf sections present ("" and an empty
+/// object when neither: the JSON is merged into the report's).
 std::string FormatJointReport(const ParameterFile& file);
 Json JointReportJson(const ParameterFile& file);
 
