@@ -95,17 +95,19 @@ struct CorrelationPair {
   double correlation = 0.0;
 };
 
-/// The `count` pairs of largest |correlation| (ties: the earlier pair),
-/// strongest first.
+/// The `count` pairs of largest |correlation| (ties: the earlier pair; NaN
+/// weakest), strongest first.
 inline std::vector<CorrelationPair> StrongestCorrelations(const FitResult& fit, std::size_t count) {
   const std::size_t p = fit.estimates.size();
   std::vector<CorrelationPair> pairs;
   for (std::size_t i = 0; i < p; ++i) {
     for (std::size_t j = 0; j < i; ++j) pairs.push_back({i, j, fit.correlation[i * p + j]});
   }
-  const auto stronger = [](const CorrelationPair& a, const CorrelationPair& b) {
-    const double x = a.correlation < 0 ? -a.correlation : a.correlation;
-    const double y = b.correlation < 0 ? -b.correlation : b.correlation;
+  // |r|, and a NaN (an estimate without a std) weakest of all: a NaN in the
+  // comparison would break the ordering and list it among the strongest.
+  const auto strength = [](double r) { return r != r ? -1.0 : r < 0 ? -r : r; };
+  const auto stronger = [&](const CorrelationPair& a, const CorrelationPair& b) {
+    const double x = strength(a.correlation), y = strength(b.correlation);
     return x > y || (x == y && (a.first < b.first || (a.first == b.first && a.second < b.second)));
   };
   const std::size_t kept = count < pairs.size() ? count : pairs.size();

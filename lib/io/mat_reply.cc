@@ -57,7 +57,7 @@ MatContents DeserialiseMatReply(const std::string& path, const std::string& in) 
     if (v.cols != 0 && v.rows > kMaxMatElements / v.cols) throw InputError(fmt::format("{}: variable too large", path));
     const std::string bytes = get_bytes(v.rows * v.cols * sizeof(double));
     v.data.resize(v.rows * v.cols);
-    std::memcpy(v.data.data(), bytes.data(), bytes.size());
+    if (!bytes.empty()) std::memcpy(v.data.data(), bytes.data(), bytes.size());  // (an empty vector's data() may be null)
     out.variables.push_back(std::move(v));
   }
   const std::uint64_t notes = get();
