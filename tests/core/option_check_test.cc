@@ -9,6 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include "core/errors.h"
+#include "core/fit_options.h"
 #include "core/option_check.h"
 
 namespace driveid {
@@ -85,6 +86,28 @@ TEST_CASE("RequireOption, and the sample count of a simulated log from both side
                                     "least 100"));
   CHECK_THROWS_WITH(RequireSampleCount(2e7, 1, "--duration 2e4"), Catch::Contains("at most 1e+07"));
   CHECK_THROWS_AS(RequireSampleCount(std::nan(""), 1, "c"), OptionError);
+}
+
+TEST_CASE("the fit options' bounds, and the large-problem line at exactly its bytes") {
+  std::string error;
+  FitOptions options;
+  CHECK(options.IsValid(&error));
+  options.max_iterations = 0;
+  CHECK_FALSE(options.IsValid(&error));
+  CHECK(error == "max_iterations = 0: violated constraint: >= 1");
+  options = FitOptions{};
+  options.identifiability_threshold = 1.0;
+  CHECK_FALSE(options.IsValid(&error));
+  options = FitOptions{};
+  options.max_seconds = std::nan("");
+  CHECK_FALSE(options.IsValid(&error));
+  CHECK(error == "‹max_seconds› = nan: violated constraint: max seconds >= 0 (0: no limit)");
+  LargeProblemPolicy large;
+  large.jacobian_bytes = 800;
+  CHECK_FALSE(large.IsLarge(25, 4));  // 800 bytes: not above
+  CHECK(large.IsLarge(25, 5));
+  CHECK_FALSE(LargeProblemPolicy{}.IsLarge(std::size_t{1} << 20, 2));  // 16 MiB exactly: not above
+  CHECK(LargeProblemPolicy{}.IsLarge((std::size_t{1} << 20) + 1, 2));
 }
 
 }  // namespace

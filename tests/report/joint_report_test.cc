@@ -11,6 +11,7 @@
 #include <catch2/catch.hpp>
 
 #include "io/parameter_file.h"
+#include "models/frequency_response.h"
 #include "report/joint_report.h"
 
 namespace driveid {
@@ -58,6 +59,23 @@ TEST_CASE("nothing is derived without both inertias and a stiffness; no sections
   const ParameterFile none = ParseParameterFile("axis.yaml", "axis:\n  inertia: 0.5\n");
   CHECK(FormatJointReport(none).empty());
   CHECK(JointReportJson(none).empty());
+}
+
+TEST_CASE("the frf section's table: each key read into its own member") {
+  const auto& table = FrequencyResponseTable();
+  REQUIRE(table.size() == 4);
+  for (std::size_t i = 0; i < table.size(); ++i) {
+    const std::string text = std::string("frf:\n  ") + table[i].spec.key + ": " + std::to_string(i + 1) + ".5\n";
+    const ParameterFile file = ParseParameterFile("frf.yaml", text);
+    const FrequencyResponseSection* f = file.Find<FrequencyResponseSection>();
+    REQUIRE(f != nullptr);
+    INFO(table[i].spec.key);
+    for (std::size_t j = 0; j < table.size(); ++j) {
+      const std::optional<double>& value = f->*(table[j].in_section);
+      CHECK(value.has_value() == (i == j));
+      if (i == j) CHECK(*value == static_cast<double>(i + 1) + 0.5);
+    }
+  }
 }
 
 }  // namespace
