@@ -3,6 +3,7 @@
 // friction fit only, traces and panels only when asked for, one panel per
 // log and the residuals; the robot's Fig. 7 trace and panels; the report
 // of a parameter file; and refusals of invalid options before any fit.
+#include <algorithm>
 #include <cstdlib>
 #include <string>
 
@@ -15,6 +16,7 @@
 #include "io/robot_log.h"
 #include "workflow/cdrive_compensation.h"
 #include "workflow/cdrive_identification.h"
+#include "workflow/cdrive_simulation.h"
 #include "workflow/parameter_report.h"
 #include "workflow/robot_identification.h"
 
@@ -96,4 +98,21 @@ TEST_CASE("parameter report: one block per section; a file without any refused b
   request.fitted_path = "axis_example.yaml";
   const ParameterFile robot = ReadParameterFile(Data("robot_paper000.yaml"));
   CHECK_THROWS_WITH(ReportParameterFile(robot, request, false), Catch::Contains("has no fit.estimates"));
+}
+
+TEST_CASE("C-drive simulation: the trace and panels only when asked for, the log and summary the same either way") {
+  const ParameterFile table1 = ReadParameterFile(Data("cdrive_table1.yaml"));
+  CDriveSimulationRequest request;
+  request.program = "rotation";
+  request.stroke = 0.5;
+  const CDriveSimulation traced = SimulateCDrive(table1, "t.yaml", request, "cmd");
+  request.with_trace = false;
+  const CDriveSimulation plain = SimulateCDrive(table1, "t.yaml", request, "cmd");
+  CHECK(plain.trace_csv.empty());
+  CHECK(plain.panels.empty());
+  CHECK(std::count(traced.trace_csv.begin(), traced.trace_csv.end(), '\n') > 1000);
+  REQUIRE(traced.panels.size() == 2);
+  CHECK(plain.log_text == traced.log_text);
+  CHECK(plain.summary == traced.summary);
+  CHECK(plain.summary_json == traced.summary_json);
 }
