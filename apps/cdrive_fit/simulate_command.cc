@@ -48,7 +48,8 @@ void RunCDriveSimulateCommand(const CDriveSimulateOptions& options, const std::s
   request.noise = options.noise;
   request.seed = options.seed;
   request.law = options.law;
-  request.with_trace = !options.trace.empty() || !options.plot.empty();
+  request.trace = !options.trace.empty();
+  request.plot = !options.plot.empty();
   CDriveSimulation run = SimulateCDrive(ReadParameterFile(options.params), options.params, request, command_line);
   std::string& log_text = run.log_text;
 

@@ -41,7 +41,7 @@ CDriveSimulation SimulateCDrive(const ParameterFile& file, const std::string& pa
        fmt::format("truth: p {}, I_h {}, I_c {}, m {}, beta {}, gamma {}, delta {}, eta {}", params.lead,
                    params.hub_inertia, params.collar_inertia, params.collar_mass, params.viscous_motor,
                    params.viscous_collar, params.coulomb_motor, params.coulomb_collar)});
-  if (request.with_trace) {
+  if (request.plot) {
     std::vector<double> millimetres(result.tracking.translation_error);
     for (double& v : millimetres) v *= 1e3;
     out.panels = {{fmt::format("tracking error in u, {} ({})", loop.program.name, ControlLawName(settings.law)),
@@ -49,6 +49,8 @@ CDriveSimulation SimulateCDrive(const ParameterFile& file, const std::string& pa
                    {{"u_ref - u", result.tracking.time, millimetres, false}}},
                   {"tracking error in theta", "theta error [rad]",
                    {{"theta_ref - theta", result.tracking.time, result.tracking.rotation_error, false}}}};
+  }
+  if (request.trace) {
     out.trace_csv =
         "# tracking errors from the encoder angles (docs/models.md#c-drive coordinates)\nt,u_error,theta_error\n";
     for (std::size_t k = 0; k < result.tracking.time.size(); ++k) {

@@ -21,7 +21,8 @@ struct CDriveSimulationRequest {
   double noise = 0.0;   ///< std of the logged torques' noise [N m]
   std::uint64_t seed = 1;
   std::string law;      ///< PI, PD or PID overriding cdrive.control.law; "" keeps it
-  bool with_trace = true;  ///< build trace_csv and panels (false: left empty, nothing asked for them)
+  bool trace = false;   ///< build the trace CSV (as the other runs' requests)
+  bool plot = false;    ///< build the plot panels
 };
 
 struct CDriveSimulation {

@@ -105,14 +105,20 @@ TEST_CASE("C-drive simulation: the trace and panels only when asked for, the log
   CDriveSimulationRequest request;
   request.program = "rotation";
   request.stroke = 0.5;
-  const CDriveSimulation traced = SimulateCDrive(table1, "t.yaml", request, "cmd");
-  request.with_trace = false;
   const CDriveSimulation plain = SimulateCDrive(table1, "t.yaml", request, "cmd");
+  request.trace = true;
+  const CDriveSimulation traced = SimulateCDrive(table1, "t.yaml", request, "cmd");
+  request.trace = false;
+  request.plot = true;
+  const CDriveSimulation plotted = SimulateCDrive(table1, "t.yaml", request, "cmd");
   CHECK(plain.trace_csv.empty());
   CHECK(plain.panels.empty());
   CHECK(std::count(traced.trace_csv.begin(), traced.trace_csv.end(), '\n') > 1000);
-  REQUIRE(traced.panels.size() == 2);
+  CHECK(traced.panels.empty());
+  CHECK(plotted.trace_csv.empty());
+  REQUIRE(plotted.panels.size() == 2);
   CHECK(plain.log_text == traced.log_text);
+  CHECK(plain.log_text == plotted.log_text);
   CHECK(plain.summary == traced.summary);
   CHECK(plain.summary_json == traced.summary_json);
 }
