@@ -4,13 +4,14 @@
 // acceleration amplitude equals the sampled acceleration's DFT amplitude at
 // that line (computed here).
 #include <cmath>
-#include <complex>
 #include <string>
+#include <vector>
 
 #include <catch2/catch.hpp>
 
 #include "design/fourier_reference.h"
 #include "report/design_report.h"
+#include "support/dft_bin.h"
 
 namespace driveid {
 namespace {
@@ -62,16 +63,13 @@ TEST_CASE("the designed reference on the logging grid, the prior's torque, and e
     CHECK(torque_error < 1e-9);
     // One period (10 s, 2000 samples): line n at bin n.
     const std::size_t n = 2000;
+    std::vector<double> acceleration(n);
+    for (std::size_t k = 0; k < n; ++k) acceleration[k] = candidate.reference.At(static_cast<double>(k) / rate).acceleration;
     REQUIRE(lines.x.size() == candidate.reference.harmonics.size());
     for (std::size_t j = 0; j < lines.x.size(); ++j) {
       const int harmonic = candidate.reference.harmonics[j];
       CHECK(lines.x[j] == Approx(0.1 * harmonic));
-      std::complex<double> sum = 0.0;
-      for (std::size_t k = 0; k < n; ++k) {
-        const double t = static_cast<double>(k) / rate;
-        sum += candidate.reference.At(t).acceleration * std::polar(1.0, -2.0 * M_PI * harmonic * static_cast<double>(k) / n);
-      }
-      CHECK(lines.y[j] == Approx(2.0 * std::abs(sum) / n).epsilon(1e-9));
+      CHECK(lines.y[j] == Approx(testing::LineAmplitude(acceleration, n, harmonic)).epsilon(1e-9));
     }
   }
 }

@@ -3,11 +3,11 @@
 // each line at its amplitude (the DFT over one period, computed here) and
 // nothing between the lines, and has the rms sqrt(sum A^2 / 2).
 #include <cmath>
-#include <complex>
 
 #include <catch2/catch.hpp>
 
 #include "report/joint_design_report.h"
+#include "support/dft_bin.h"
 
 namespace driveid {
 namespace {
@@ -36,9 +36,7 @@ TEST_CASE("the designed multisine: periodic, its lines at their amplitudes and n
   CHECK(std::sqrt(power / n) == Approx(std::sqrt((0.09 + 0.01 + 0.0025) / 2.0)).epsilon(1e-12));
   double between = 0.0;
   for (int bin = 1; bin < 40; ++bin) {
-    std::complex<double> sum = 0.0;
-    for (std::size_t k = 0; k < n; ++k) sum += r.torque[k] * std::polar(1.0, -2.0 * M_PI * bin * static_cast<double>(k) / n);
-    const double amplitude = 2.0 * std::abs(sum) / n;
+    const double amplitude = testing::LineAmplitude(r.torque, n, bin);
     const double f = bin / d.period;
     bool line = false;
     for (std::size_t j = 0; j < d.frequency.size(); ++j) {

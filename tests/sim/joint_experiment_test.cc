@@ -4,13 +4,13 @@
 // multisine's rms and lines, the PI loop's law recomputed from the log, a
 // motor held by its Coulomb friction, and refusals naming the option.
 #include <cmath>
-#include <complex>
 #include <vector>
 
 #include <catch2/catch.hpp>
 
 #include "core/errors.h"
 #include "sim/joint_experiment.h"
+#include "support/dft_bin.h"
 
 namespace driveid {
 namespace {
@@ -70,9 +70,7 @@ TEST_CASE("the multisine: rms as asked, periodic, its lines only inside the band
   // Line l of the period is at l / 2 s: lines 6 .. 40 carry it all.
   double inside = 0.0, outside = 0.0;
   for (int l = 0; l <= 1000; ++l) {
-    std::complex<double> sum = 0.0;
-    for (std::size_t k = 0; k < period; ++k) sum += log.r[k] * std::polar(1.0, -2.0 * M_PI * l * k / period);
-    (l >= 6 && l <= 40 ? inside : outside) += std::norm(sum);
+    (l >= 6 && l <= 40 ? inside : outside) += std::norm(testing::DftBin(log.r, period, l));
   }
   CHECK(outside < 1e-20 * inside);
 }
