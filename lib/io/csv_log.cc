@@ -104,6 +104,12 @@ std::string ReadFileToString(const std::string& path, const ReadLimits& limits) 
 void RequireFiniteColumns(const std::vector<std::pair<std::string, const std::vector<double>*>>& columns,
                           const std::vector<double>& time) {
   for (const auto& [name, values] : columns) {
+    if (values->size() != time.size()) {
+      throw OutputError(fmt::format("column '{}' holds {} values for {} times; nothing written", name, values->size(),
+                                    time.size()));
+    }
+  }
+  for (const auto& [name, values] : columns) {
     for (std::size_t k = 0; k < values->size(); ++k) {
       if (!std::isfinite((*values)[k])) {
         throw OutputError(fmt::format(

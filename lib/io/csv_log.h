@@ -55,9 +55,10 @@ CsvLog ParseCsvLog(const std::string& path, const std::string& text,
 CsvLog ReadCsvLog(const std::string& path, const std::vector<std::string>& required,
                   const CsvReadOptions& options = {});
 
-/// A writer's check: throws OutputError (exit 3) naming the column and time
-/// of the first non-finite value, which the tools' own reader would refuse.
-/// `columns` pairs a column name with its values; `time` gives the sample times.
+/// A writer's check: throws OutputError (exit 3) naming a column whose length
+/// is not the times', else the column and time of the first non-finite
+/// value, which the tools' own reader would refuse. `columns` pairs a column
+/// name with its values; `time` gives the sample times.
 void RequireFiniteColumns(const std::vector<std::pair<std::string, const std::vector<double>*>>& columns,
                           const std::vector<double>& time);
 

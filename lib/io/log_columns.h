@@ -14,7 +14,6 @@
 
 #include <fmt/format.h>
 
-#include "core/errors.h"
 #include "io/csv_log.h"
 
 namespace driveid {
@@ -99,12 +98,6 @@ std::string FormatLogColumns(const LogColumn<Log> (&table)[N], const Log& log,
     formats.push_back(column.write);
   }
   const std::vector<double>& time = *written.front().second;
-  for (const auto& [name, values] : written) {
-    if (values->size() != time.size()) {
-      throw OutputError(fmt::format("column '{}' holds {} values for {} times; nothing written", name, values->size(),
-                                    time.size()));
-    }
-  }
   RequireFiniteColumns(written, time);
   std::string out;
   for (const auto& line : comments) out += "# " + line + "\n";
