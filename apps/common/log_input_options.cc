@@ -19,6 +19,9 @@ void AddLogInputOptions(CLI::App& command, LogInputCli& options, const std::stri
                                  "path) times or divided by numbers, pi or MAT scalars (e.g. {}; docs/formats.md)",
                                  example));
   command.add_flag("--no-header", options.no_header, "CSV: the first row is data; columns are #1, #2, ...");
+  command.add_option("--skip-rows", options.skip_rows,
+                     "CSV: skip this many lines before the header (a drive export's preamble; kept as comments)")
+      ->check(CLI::Range(0, 1000000));
   command.add_option("--delimiter", options.delimiter, "CSV: comma, semicolon, tab or space (default: detected)")
       ->check(CLI::IsMember({"comma", "semicolon", "tab", "space", ",", ";"}));
   command.add_option("--rate", options.rate, "samples at this rate [Hz] from t = 0, for logs without a time column")
@@ -61,6 +64,7 @@ LogInputOptions MakeLogInputOptions(const LogInputCli& options) {
     throw OptionError("--join-time, --join-shift and --join-align apply to a file given with --join");
   }
   out.csv.no_header = options.no_header;
+  out.csv.skip_rows = static_cast<std::size_t>(options.skip_rows);
   const std::string& d = options.delimiter;
   out.csv.delimiter = d == "comma" || d == "," ? ',' : d == "semicolon" || d == ";" ? ';' : d == "tab" ? '\t'
                       : d == "space" ? ' ' : 0;

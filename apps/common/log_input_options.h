@@ -1,5 +1,5 @@
 // The options of every subcommand that reads logs (docs/formats.md#logs):
-// --col NAME=EXPR, --no-header, --delimiter, --rate, --from, --to, --join
+// --col NAME=EXPR, --no-header, --skip-rows, --delimiter, --rate, --from, --to, --join
 // (row by row or by time: --join-time, --join-shift, --join-align), --side, and reading the logs with their provenance.
 #pragma once
 
@@ -20,6 +20,7 @@ namespace driveid::cli {
 struct LogInputCli {
   std::vector<std::string> columns;  ///< --col NAME=EXPR
   bool no_header = false;
+  int skip_rows = 0;                 ///< --skip-rows N: lines before the header
   std::string delimiter;             ///< "", "comma", "semicolon", "tab", "space" (or the character)
   double rate = 0.0;
   double from = -INFINITY, to = INFINITY;

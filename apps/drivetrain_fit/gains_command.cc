@@ -1,6 +1,7 @@
 // drivetrain-fit gains: feedback gains for the controller that loads the
 // parameter file (docs/models.md#feedback-gains). Parsing and output only;
 // the design is workflow/feedback_design.h.
+#include <cstdio>
 #include <functional>
 #include <optional>
 #include <string>
@@ -51,7 +52,10 @@ CLI::App* Setup(CLI::App& app, GainsOptions& o) {
       ->check(FiniteAbove(0.0));
   command->add_option("--preset", o.axis.preset, PresetHelp())->capture_default_str();
   command->add_option("--period", o.period, "controller period [s] (default: the preset's; speed loop 0.001)")->check(FiniteAbove(0.0));
-  command->add_option("--delay", o.delay, "velocity measurement delay [s] (default: the preset's)")
+  command->add_option("--delay", o.delay,
+                      "velocity/position: the velocity measurement delay [s] (default: the preset's); speed: the "
+                      "drive's delay from torque command to measured speed [s] (default: the file's fitted delay, "
+                      "frf --free ...,delay), to which the loop adds 1.5 periods")
       ->check(FiniteAtLeast(0.0));
   command->add_option("--max-position-error", o.axis.max_position_error, "LQR state cost: position error tolerated")
       ->capture_default_str()
@@ -63,8 +67,9 @@ CLI::App* Setup(CLI::App& app, GainsOptions& o) {
       ->capture_default_str()
       ->check(FiniteAbove(0.0));
   command->add_option("--conversion", o.axis.conversion,
-                      "controller position units per parameter-file position unit (e.g. encoder counts per rotation)")
-      ->capture_default_str()
+                      "controller position units per parameter-file position unit (e.g. encoder counts per rotation; "
+                      "default: the preset's: rotations from an angle unit for ctre-phoenix6 and rev-*, 1 for wpilib; "
+                      "ctre-phoenix5 needs it)")
       ->check(FiniteAbove(0.0));
   command->add_option("--kv", o.kv, "Kv [effort s/position] instead of the file's")->check(FiniteAtLeast(0.0));
   command->add_option("--ka", o.ka, "Ka [effort s^2/position] instead of the file's")->check(FiniteAtLeast(0.0));
@@ -89,6 +94,7 @@ CLI::App* Setup(CLI::App& app, GainsOptions& o) {
 struct Emitted {
   const FeedbackController& controller;
   const std::vector<std::string>& notes;
+  const std::vector<std::string>& warnings;
   std::function<std::vector<PlotPanel>()> panels;  // only with --plot
   Json json_extra = Json::object();
   std::string text_extra{};
@@ -107,20 +113,23 @@ void Emit(const GainsOptions& o, const std::optional<ParameterFile>& file, const
     Json json = FeedbackReportJson(e.controller);
     json.update(e.json_extra);
     json["notes"] = e.notes;
+    json["warnings"] = e.warnings;
     WriteStdout(DumpJson(json));
-    return;
+  } else {
+    std::string text = FormatFeedbackReport(e.controller) + e.text_extra;
+    for (const auto& note : e.notes) text += "note: " + note + "\n";
+    WriteStdout(text);
   }
-  std::string text = FormatFeedbackReport(e.controller) + e.text_extra;
-  for (const auto& note : e.notes) text += "note: " + note + "\n";
-  WriteStdout(text);
+  for (const auto& warning : e.warnings) std::fprintf(stderr, "drivetrain-fit gains: warning: %s\n", warning.c_str());
 }
 
 void RunSpeedLoop(const GainsOptions& o, const std::optional<ParameterFile>& file) {
   if (!file) throw OptionError("--loop speed needs a parameter file with a joint section");
   JointGainsOptions options = o.joint;
   if (o.period > 0.0) options.period = o.period;
+  if (o.delay >= 0.0) options.delay = o.delay;
   const JointGainsDesign design = DesignJointGains(*file, o.params, options);
-  Emit(o, file, {design.controller, design.notes, [&] { return SpeedLoopPanels(design); }});
+  Emit(o, file, {design.controller, design.notes, {}, [&] { return SpeedLoopPanels(design); }});
 }
 
 void Run(GainsOptions o) {
@@ -134,7 +143,7 @@ void Run(GainsOptions o) {
   if (o.ka >= 0.0) o.axis.ka = o.ka;
   if (o.axis.loop == "speed") return RunSpeedLoop(o, file);
   const AxisGainsDesign d = DesignAxisGains(file ? &*file : nullptr, o.params, o.axis);
-  Emit(o, file, {d.controller, d.notes, {}, {{"plant", AxisGainsPlantJson(d)}}, FormatAxisGainsPlant(d)});
+  Emit(o, file, {d.controller, d.notes, d.warnings, {}, {{"plant", AxisGainsPlantJson(d)}}, FormatAxisGainsPlant(d)});
 }
 
 GainsOptions gains_options;

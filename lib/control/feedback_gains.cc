@@ -1,6 +1,7 @@
 #include "control/feedback_gains.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <stdexcept>
 
@@ -90,16 +91,33 @@ const std::vector<ControllerPreset>& ControllerPresets() {
   // controllers' velocity filters, (N - 1)/2 T for an N-tap moving average
   // plus T/2 for a backward difference over T.
   static const std::vector<ControllerPreset> kPresets = {
-      {"wpilib", 1.0, 1.0, 0.020, true, 0.0, "WPILib PIDController on the roboRIO: volts, 20 ms"},
-      {"ctre-phoenix6", 1.0, 1.0, 0.001, true, 0.001, "CTRE Phoenix 6 (Talon FX): volts, rotations, 1 ms, 1 ms filter"},
+      {"wpilib", 1.0, 1.0, 0.020, true, 0.0, "WPILib PIDController on the roboRIO: volts, the log's unit, 20 ms", ""},
+      {"ctre-phoenix6", 1.0, 1.0, 0.001, true, 0.001, "CTRE Phoenix 6 (Talon FX): volts, rotations, 1 ms, 1 ms filter",
+       "rotation"},
       {"ctre-phoenix5", 1023.0 / 12.0, 0.1, 0.001, false, 0.0815,
-       "CTRE Phoenix 5 (Talon SRX/FX): 1023 per 12 V, rate per 100 ms, 1 ms, 81.5 ms filter"},
+       "CTRE Phoenix 5 (Talon SRX/FX): 1023 per 12 V, sensor units (conversion given), rate per 100 ms, 1 ms, 81.5 ms "
+       "filter",
+       "sensor unit"},
       {"rev-neo", 1.0 / 12.0, 60.0, 0.001, false, 0.112,
-       "REV Spark MAX with the NEO's built-in encoder: duty cycle, rate per minute, 1 ms, 112 ms filter"},
+       "REV Spark MAX with the NEO's built-in encoder: duty cycle, rotations, rate per minute, 1 ms, 112 ms filter",
+       "rotation"},
       {"rev-external", 1.0 / 12.0, 60.0, 0.001, false, 0.0815,
-       "REV Spark MAX with an external encoder: duty cycle, rate per minute, 1 ms, 81.5 ms filter"},
+       "REV Spark MAX with an external encoder: duty cycle, rotations, rate per minute, 1 ms, 81.5 ms filter",
+       "rotation"},
   };
   return kPresets;
+}
+
+double RotationsPerUnit(const std::string& unit) {
+  std::string u;
+  for (char c : unit) {
+    if (c != ' ') u += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  if (u.size() > 1 && u.back() == 's') u.pop_back();
+  if (u == "rad" || u == "radian") return 1.0 / (2.0 * M_PI);
+  if (u == "deg" || u == "degree") return 1.0 / 360.0;
+  if (u == "rotation" || u == "rot" || u == "rev" || u == "revolution" || u == "turn") return 1.0;
+  return 0.0;
 }
 
 const ControllerPreset* FindControllerPreset(const std::string& name) {

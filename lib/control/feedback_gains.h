@@ -42,7 +42,15 @@ struct ControllerPreset {
   bool normalized;              ///< kd per second (true) or per loop period (false)
   double delay;                 ///< velocity measurement delay [s] (moving-average and finite-difference filters)
   const char* description;
+  /// The position unit the controller's gains are in: "" any (the log's),
+  /// "rotation" (Phoenix 6; REV with its conversion factor 1), "sensor unit"
+  /// (Phoenix 5: encoder counts, which only the user knows).
+  const char* native_position = "";
 };
+
+/// Rotations per `unit` for an angle unit (rad, Radians, deg, Degrees,
+/// rotation, Rotations, rev, turn, ...; case and plural ignored), else 0.
+double RotationsPerUnit(const std::string& unit);
 
 /// The presets, first the default (WPILib PIDController).
 const std::vector<ControllerPreset>& ControllerPresets();

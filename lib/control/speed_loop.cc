@@ -22,77 +22,119 @@ Polynomial Multiply(const Polynomial& a, const Polynomial& b) {
   return out;
 }
 
-Polynomial Add(Polynomial a, Polynomial b) {
-  if (a.size() < b.size()) std::swap(a, b);
-  const std::size_t shift = a.size() - b.size();
-  for (std::size_t i = 0; i < b.size(); ++i) a[shift + i] += b[i];
-  return a;
+// (1 + x)^a (1 - x)^b as a polynomial in x, lowest power first.
+Polynomial Binomials(int plus, int minus) {
+  Polynomial out = {1.0};
+  for (int i = 0; i < plus; ++i) out = Multiply(out, {1.0, 1.0});
+  for (int i = 0; i < minus; ++i) out = Multiply(out, {1.0, -1.0});
+  return out;
 }
 
-// Pade approximant of e^(-s tau) of order 4: N(s) / N(-s).
-void PadeDelay(double tau, Polynomial& numerator, Polynomial& denominator) {
-  constexpr int n = 4;
-  numerator.assign(n + 1, 0.0);
-  denominator.assign(n + 1, 0.0);
-  const auto factorial = [](int k) { return std::tgamma(k + 1.0); };
-  for (int k = 0; k <= n; ++k) {
-    const double c = factorial(2 * n - k) * factorial(n) / (factorial(2 * n) * factorial(k) * factorial(n - k)) *
-                     std::pow(tau, k);
-    numerator[n - k] = (k % 2 ? -c : c);
-    denominator[n - k] = c;
+// P(s) (1 + x)^N with s = K (1 - x) / (1 + x), x = z^-1: P highest power
+// first, of degree at most N; the result lowest power of x first.
+Polynomial TustinPolynomial(const Polynomial& p, double gain, int order) {
+  Polynomial out(static_cast<std::size_t>(order) + 1, 0.0);
+  const int degree = static_cast<int>(p.size()) - 1;
+  for (int i = 0; i <= degree; ++i) {
+    const int power = degree - i;  // of s
+    const Polynomial term = Binomials(order - power, power);
+    for (std::size_t j = 0; j < term.size(); ++j) out[j] += p[static_cast<std::size_t>(i)] * std::pow(gain, power) * term[j];
   }
+  return out;
 }
 
-bool StableRoots(Polynomial p) {
-  while (p.size() > 1 && p.front() == 0.0) p.erase(p.begin());
-  const std::size_t degree = p.size() - 1;
-  if (degree == 0) return true;
-  // s = w0 z with w0 the geometric mean of the roots' magnitudes: the
-  // coefficients of a loop with a stiff spring span many decades otherwise.
-  const double w0 = std::abs(p.back()) > 0.0 ? std::pow(std::abs(p.back() / p.front()), 1.0 / static_cast<double>(degree)) : 1.0;
-  const double lead = p[0];
-  for (std::size_t j = 0; j <= degree; ++j) p[j] /= lead * std::pow(w0, static_cast<double>(j));
-  Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(degree, degree);
-  for (std::size_t j = 0; j < degree; ++j) companion(0, j) = -p[j + 1] / p[0];
-  for (std::size_t i = 1; i < degree; ++i) companion(i, i - 1) = 1.0;
-  const Eigen::VectorXcd roots = companion.eigenvalues();
-  for (Eigen::Index i = 0; i < roots.size(); ++i) {
-    if (!(roots[i].real() < 0.0)) return false;
-  }
-  return true;
-}
+// The joint from the log torque u to the motor speed y = n w_m, states
+// (theta_m - theta_l, w_m, w_l) on the link side, sampled exactly with the
+// zero-order hold and the input delayed by D = d T + e (0 <= e < T):
+// x[k+1] = Phi x[k] + Gamma0 u[k-d] + Gamma1 u[k-d-1] (Astrom & Wittenmark),
+// Gamma0 = int_0^(T-e) e^(A s) ds B, Gamma1 = e^(A (T-e)) int_0^e e^(A s) ds B.
+struct SampledPlant {
+  Eigen::Matrix3d phi;
+  Eigen::Vector3d gamma0, gamma1;
+  Eigen::RowVector3d output;
+  int whole = 0;  // d
+};
 
-// The plant from the log torque to the motor speed: n^2 A_l s / Delta with the
-// common s cancelled: n^2 A_l / (Delta / s) (models/joint.h).
-void PlantPolynomials(const SpeedLoopPlant& plant, Polynomial& numerator, Polynomial& denominator) {
+SampledPlant SamplePlant(const SpeedLoopPlant& plant, double period, double delay) {
   const JointParameters& p = plant.joint;
-  const double n2 = plant.gear_ratio * plant.gear_ratio;
-  const double a = p.damping + p.motor_viscous, b = p.damping + p.link_viscous;
-  numerator = {n2 * p.link_inertia, n2 * b, n2 * p.stiffness};
-  denominator = {p.motor_inertia * p.link_inertia, p.motor_inertia * b + p.link_inertia * a,
-                 p.stiffness * (p.motor_inertia + p.link_inertia) + a * b - p.damping * p.damping,
-                 p.stiffness * (p.motor_viscous + p.link_viscous)};
+  const double n = plant.gear_ratio;
+  Eigen::Matrix4d augmented = Eigen::Matrix4d::Zero();
+  augmented.block<3, 3>(0, 0) << 0.0, 1.0, -1.0,  //
+      -p.stiffness / p.motor_inertia, -(p.damping + p.motor_viscous) / p.motor_inertia, p.damping / p.motor_inertia,  //
+      p.stiffness / p.link_inertia, p.damping / p.link_inertia, -(p.damping + p.link_viscous) / p.link_inertia;
+  augmented(1, 3) = n / p.motor_inertia;
+  const auto hold = [&](double h, Eigen::Matrix3d& phi, Eigen::Vector3d& gamma) {
+    const Eigen::Matrix4d e = (augmented * h).exp();
+    phi = e.block<3, 3>(0, 0);
+    gamma = e.block<3, 1>(0, 3);
+  };
+  SampledPlant out;
+  out.whole = static_cast<int>(std::floor(delay / period + 1e-9));
+  const double fraction = std::max(0.0, delay - out.whole * period);
+  Eigen::Matrix3d phi_rest, phi_fraction;
+  Eigen::Vector3d gamma_fraction;
+  hold(period, out.phi, out.gamma0);
+  hold(period - fraction, phi_rest, out.gamma0);
+  hold(fraction, phi_fraction, gamma_fraction);
+  out.gamma1 = phi_rest * gamma_fraction;
+  out.output << 0.0, n, 0.0;
+  return out;
 }
 
-bool ClosedLoopStable(const SpeedLoopPlant& plant, const PiNotch& c, double tau) {
-  Polynomial pn, pd, dn, dd;
-  PlantPolynomials(plant, pn, pd);
-  PadeDelay(tau, dn, dd);
-  const Polynomial open_numerator = Multiply(Multiply(pn, c.Numerator()), dn);
-  const Polynomial open_denominator = Multiply(Multiply(pd, c.Denominator()), dd);
-  return StableRoots(Add(open_denominator, open_numerator));
+// The loop as a drive runs it, state (x, the controller's transposed direct
+// form w1..w3, past commands u[k-1] .. u[k-d-1]): s[k+1] = M s[k] + R r[k],
+// with the measured speed n w_m = x(1) n.
+struct SampledLoop {
+  Eigen::MatrixXd transition;
+  Eigen::VectorXd reference;
+};
+
+SampledLoop MakeSampledLoop(const SpeedLoopPlant& plant, const PiNotch& c, double period) {
+  const SampledPlant g = SamplePlant(plant, period, period + plant.delay);  // one period of computation
+  Polynomial b, a;
+  c.Discrete(period, b, a);
+  const int order = static_cast<int>(a.size()) - 1;  // 3
+  const int history = g.whole + 1;                   // u[k-1] .. u[k-d-1]
+  const int size = 3 + order + history;
+  SampledLoop loop;
+  loop.transition = Eigen::MatrixXd::Zero(size, size);
+  loop.reference = Eigen::VectorXd::Zero(size);
+  // u[k] = b0 (r - y) + w1, as a row over the state (and r).
+  Eigen::RowVectorXd command = Eigen::RowVectorXd::Zero(size);
+  command.head<3>() = -b[0] * g.output;
+  command(3) = 1.0;
+  const double command_r = b[0];
+  const auto past = [&](int j) { return 3 + order + j - 1; };  // u[k-j], j >= 1
+  auto& m = loop.transition;
+  m.block<3, 3>(0, 0) = g.phi;
+  m.block(0, past(g.whole), 3, 1) += g.gamma0;
+  m.block(0, past(g.whole + 1), 3, 1) += g.gamma1;
+  for (int i = 0; i < order; ++i) {  // w_i[k+1] = b_i e - a_i u + w_(i+1)
+    const int row = 3 + i;
+    const std::size_t k = static_cast<std::size_t>(i) + 1;
+    m.row(row) = -a[k] * command;
+    m.block(row, 0, 1, 3) += -b[k] * g.output;
+    if (i + 1 < order) m(row, row + 1) += 1.0;
+    loop.reference(row) = b[k] - a[k] * command_r;
+  }
+  m.row(past(1)) = command;
+  loop.reference(past(1)) = command_r;
+  for (int j = 2; j <= history; ++j) m(past(j), past(j - 1)) = 1.0;
+  return loop;
 }
 
-Complex Loop(const SpeedLoopPlant& plant, const PiNotch& c, double tau, double omega) {
+Complex Loop(const SpeedLoopPlant& plant, const PiNotch& c, double period, double omega) {
   const Complex p = CalcJointResponse(plant.joint, plant.gear_ratio, omega, ResponseQuantity::kRate).motor;
-  return p * c.Evaluate(omega) * std::exp(Complex(0.0, -omega * tau));
+  return p * c.Evaluate(omega) * std::exp(Complex(0.0, -omega * plant.LoopDelay(period)));
 }
 
 void CheckPlant(const SpeedLoopPlant& plant) {
   const JointParameters& p = plant.joint;
   if (!(p.motor_inertia > 0.0) || !(p.link_inertia > 0.0) || !(p.stiffness > 0.0) || !(p.damping >= 0.0) ||
-      !(p.motor_viscous >= 0.0) || !(p.link_viscous >= 0.0) || !(plant.gear_ratio > 0.0)) {
-    throw std::invalid_argument("speed loop: the joint needs J_m, J_l, k > 0, d, b_m, b_l >= 0 and a gear ratio");
+      !(p.motor_viscous >= 0.0) || !(p.link_viscous >= 0.0) || !(plant.gear_ratio > 0.0) || !(plant.delay >= 0.0) ||
+      !std::isfinite(plant.delay)) {
+    throw std::invalid_argument(
+        "speed loop: the joint needs J_m, J_l, k > 0, d, b_m, b_l >= 0, a gear ratio and a delay >= 0");
   }
 }
 
@@ -101,6 +143,15 @@ void CheckPlant(const SpeedLoopPlant& plant) {
 bool Meets(const LoopMargins& m, const SpeedLoopSettings& s, bool edge) {
   return m.stable && m.phase_margin_deg >= s.phase_margin_deg - (edge ? 10.0 : 0.0) &&
          m.gain_margin_db >= s.min_gain_margin_db && m.modulus_margin >= s.min_modulus_margin;
+}
+
+// The smallest of the margins' relative excess over their requirements
+// (negative: one is missed); unstable loops rank below every stable one.
+double Slack(const LoopMargins& m, const SpeedLoopSettings& s) {
+  if (!m.stable) return -1e300;
+  return std::min({(m.phase_margin_deg - s.phase_margin_deg) / s.phase_margin_deg,
+                   (m.gain_margin_db - s.min_gain_margin_db) / s.min_gain_margin_db,
+                   (m.modulus_margin - s.min_modulus_margin) / s.min_modulus_margin});
 }
 
 }  // namespace
@@ -126,11 +177,34 @@ Complex PiNotch::Evaluate(double omega) const {
   return num / den;
 }
 
+void PiNotch::Discrete(double period, std::vector<double>& numerator, std::vector<double>& denominator) const {
+  const double wn = 2.0 * M_PI * notch_hz;
+  // Prewarped at the notch while it lies below the Nyquist frequency.
+  const double gain = wn * period < 0.9 * M_PI && wn > 0.0 ? wn / std::tan(wn * period / 2.0) : 2.0 / period;
+  const Polynomial num = Numerator(), den = Denominator();
+  const int order = static_cast<int>(std::max(num.size(), den.size())) - 1;
+  numerator = TustinPolynomial(num, gain, order);
+  denominator = TustinPolynomial(den, gain, order);
+  const double lead = denominator[0];
+  for (double& v : numerator) v /= lead;
+  for (double& v : denominator) v /= lead;
+}
+
+double DiscreteLoopRadius(const SpeedLoopPlant& plant, const PiNotch& c, double period) {
+  CheckPlant(plant);
+  if (!(period > 0.0) || plant.delay > 1000.0 * period) {
+    throw std::invalid_argument("speed loop: a period > 0 and a delay of at most 1000 periods are required");
+  }
+  const SampledLoop loop = MakeSampledLoop(plant, c, period);
+  if (!loop.transition.allFinite()) return std::numeric_limits<double>::infinity();
+  return loop.transition.eigenvalues().cwiseAbs().maxCoeff();
+}
+
 LoopMargins EvaluateSpeedLoop(const SpeedLoopPlant& plant, const PiNotch& c, double period) {
   CheckPlant(plant);
-  const double tau = 1.5 * period, nyquist = M_PI / period;
+  const double nyquist = M_PI / period;
   LoopMargins m;
-  m.stable = ClosedLoopStable(plant, c, tau);
+  m.stable = DiscreteLoopRadius(plant, c, period) < 1.0;
   m.phase_margin_deg = std::numeric_limits<double>::infinity();
   m.gain_margin_db = std::numeric_limits<double>::infinity();
   m.modulus_margin = std::numeric_limits<double>::infinity();
@@ -139,7 +213,7 @@ LoopMargins EvaluateSpeedLoop(const SpeedLoopPlant& plant, const PiNotch& c, dou
   double previous_magnitude = 0.0, previous_phase = 0.0, phase_offset = 0.0;
   for (int i = 0; i < points; ++i) {
     const double omega = low * std::pow(nyquist / low, static_cast<double>(i) / (points - 1));
-    const Complex l = Loop(plant, c, tau, omega);
+    const Complex l = Loop(plant, c, period, omega);
     const double magnitude = std::abs(l);
     double phase = std::arg(l) + phase_offset;
     if (i > 0) {  // unwrap
@@ -171,6 +245,7 @@ SpeedLoopDesign DesignSpeedLoop(const SpeedLoopPlant& plant, const std::vector<S
     throw std::invalid_argument("speed loop: period > 0 and a phase margin between 0 and 90 degrees are required");
   }
   SpeedLoopDesign best;
+  double closest_slack = -std::numeric_limits<double>::infinity();
   PiNotch c;
   c.notch_hz = JointResonance(plant.joint) / (2.0 * M_PI);
   c.notch_width_hz = s.notch_width_hz > 0.0 ? s.notch_width_hz
@@ -182,9 +257,12 @@ SpeedLoopDesign DesignSpeedLoop(const SpeedLoopPlant& plant, const std::vector<S
     const double wc = low * std::pow(0.2 * nyquist / low, static_cast<double>(i) / (candidates - 1));
     c.integral_corner = wc / 4.0;
     c.kp = 1.0;
-    c.kp = 1.0 / std::abs(Loop(plant, c, 1.5 * s.period, wc));
+    c.kp = 1.0 / std::abs(Loop(plant, c, s.period, wc));
     const LoopMargins nominal = EvaluateSpeedLoop(plant, c, s.period);
+    const double slack = Slack(nominal, s);
+    if (!best.met && slack > closest_slack) closest_slack = slack, best.closest = nominal;
     if (!Meets(nominal, s, false)) continue;
+    best.nominal_only_crossover_hz = std::max(best.nominal_only_crossover_hz, nominal.crossover_hz);
     LoopMargins worst = nominal;
     bool robust = true;
     for (const auto& edge : region) {
@@ -198,7 +276,12 @@ SpeedLoopDesign DesignSpeedLoop(const SpeedLoopPlant& plant, const std::vector<S
       if (!robust) break;
     }
     if (!robust) continue;
-    if (!best.met || nominal.crossover_hz > best.nominal.crossover_hz) best = {c, nominal, worst, true};
+    if (!best.met || nominal.crossover_hz > best.nominal.crossover_hz) {
+      best.controller = c;
+      best.nominal = nominal;
+      best.worst = worst;
+      best.met = true;
+    }
   }
   return best;
 }
@@ -206,58 +289,20 @@ SpeedLoopDesign DesignSpeedLoop(const SpeedLoopPlant& plant, const std::vector<S
 std::vector<std::complex<double>> OpenLoopResponse(const SpeedLoopPlant& plant, const PiNotch& controller, double period,
                                                    const std::vector<double>& frequencies_hz) {
   std::vector<std::complex<double>> out;
-  for (double f : frequencies_hz) out.push_back(Loop(plant, controller, 1.5 * period, 2.0 * M_PI * f));
+  for (double f : frequencies_hz) out.push_back(Loop(plant, controller, period, 2.0 * M_PI * f));
   return out;
 }
 
 StepResponse SimulateSpeedStep(const SpeedLoopPlant& plant, const PiNotch& c, double period, double duration) {
   CheckPlant(plant);
-  const JointParameters& p = plant.joint;
-  const double n = plant.gear_ratio;
-  // x = (theta_m, theta_m', theta_l, theta_l'), link side; input the log torque (tau_m = n tau).
-  Eigen::Matrix<double, 5, 5> augmented = Eigen::Matrix<double, 5, 5>::Zero();
-  augmented.block<4, 4>(0, 0) << 0, 1, 0, 0,  //
-      -p.stiffness / p.motor_inertia, -(p.damping + p.motor_viscous) / p.motor_inertia, p.stiffness / p.motor_inertia,
-      p.damping / p.motor_inertia,  //
-      0, 0, 0, 1,                   //
-      p.stiffness / p.link_inertia, p.damping / p.link_inertia, -p.stiffness / p.link_inertia,
-      -(p.damping + p.link_viscous) / p.link_inertia;
-  augmented(1, 4) = n / p.motor_inertia;
-  const Eigen::Matrix<double, 5, 5> e = (augmented * period).exp();
-  const Eigen::Matrix4d phi = e.block<4, 4>(0, 0);
-  const Eigen::Vector4d gamma = e.block<4, 1>(0, 4);
-  // C(s) in controllable canonical form, then Tustin: (I - A h/2)^-1.
-  const std::vector<double> num = c.Numerator(), den = c.Denominator();
-  const Eigen::Index m = static_cast<Eigen::Index>(den.size()) - 1;
-  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(m, m);
-  Eigen::VectorXd b = Eigen::VectorXd::Zero(m), cc(m);
-  for (Eigen::Index j = 0; j < m; ++j) a(0, j) = -den[j + 1] / den[0];
-  for (Eigen::Index i = 1; i < m; ++i) a(i, i - 1) = 1.0;
-  b(0) = 1.0;
-  const double direct = num.size() == den.size() ? num[0] / den[0] : 0.0;
-  for (Eigen::Index j = 0; j < m; ++j) {
-    const std::size_t k = num.size() - static_cast<std::size_t>(m) + static_cast<std::size_t>(j);
-    cc(j) = (k < num.size() ? num[k] / den[0] : 0.0) - direct * den[j + 1] / den[0];
-  }
-  const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(m, m);
-  const Eigen::MatrixXd inverse = (identity - a * period / 2.0).inverse();
-  const Eigen::MatrixXd ad = inverse * (identity + a * period / 2.0);
-  const Eigen::VectorXd bd = inverse * b * period;
-  // Output of the Tustin form: y = cc (x + bd e / 2) + direct e (the trapezoid's half step).
+  const SampledLoop loop = MakeSampledLoop(plant, c, period);
   StepResponse out;
-  Eigen::Vector4d x = Eigen::Vector4d::Zero();
-  Eigen::VectorXd z = Eigen::VectorXd::Zero(m);
-  double applied = 0.0;
+  Eigen::VectorXd state = Eigen::VectorXd::Zero(loop.transition.rows());
   const auto steps = static_cast<std::size_t>(std::ceil(duration / period));
   for (std::size_t k = 0; k <= steps; ++k) {
-    const double speed = n * x(1);
     out.time.push_back(static_cast<double>(k) * period);
-    out.speed.push_back(speed);
-    const double error = 1.0 - speed;
-    const double command = cc.dot(z + bd * error / 2.0) + direct * error;
-    z = ad * z + bd * error;
-    x = phi * x + gamma * applied;
-    applied = command;  // one period late
+    out.speed.push_back(plant.gear_ratio * state(1));
+    state = loop.transition * state + loop.reference;
   }
   return out;
 }

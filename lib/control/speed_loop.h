@@ -7,11 +7,16 @@
 // the controller
 //   C(s) = kp (1 + w_i / s) (s^2 + 2 z_z w_n s + w_n^2) / (s^2 + 2 z_p w_n s + w_n^2)
 // with the notch at the resonance w_n, its -3 dB width 2 z_p w_n and its
-// depth z_z / z_p, and the loop's delay e^(-s tau), tau = 1.5 T (the
-// computation's period and the zero-order hold's half period).
-// Margins are read on the exact delay's frequency response; closed-loop
-// stability is checked on the poles with the delay as a 4th-order Pade
-// approximant.
+// depth z_z / z_p, and the loop's delay e^(-s tau), tau = tau_p + 1.5 T:
+// the drive's own delay tau_p from the torque command to the measured speed
+// (measured or fitted) plus the controller's (the computation's period and
+// the zero-order hold's half period).
+// Margins are read on the exact delay's frequency response. Closed-loop
+// stability is judged on the loop as a drive runs it: the plant sampled
+// exactly with the zero-order hold and its delay (whole periods and a
+// fraction, Astrom & Wittenmark's modified z-transform), the controller
+// C(z) by Tustin's rule prewarped at the notch, its torque applied one
+// period late; stable when every closed-loop pole lies inside |z| = 1.
 #pragma once
 
 #include <complex>
@@ -32,6 +37,11 @@ struct PiNotch {
   std::vector<double> Numerator() const;
   std::vector<double> Denominator() const;
   std::complex<double> Evaluate(double omega) const;
+  /// C(z) at `period` by Tustin's rule prewarped at the notch,
+  /// s = w_n / tan(w_n T / 2) (1 - z^-1) / (1 + z^-1): coefficients of
+  /// z^0, z^-1, z^-2, z^-3, the denominator's first 1, so that
+  /// u[k] = sum_i b_i e[k-i] - sum_{i>0} a_i u[k-i].
+  void Discrete(double period, std::vector<double>& numerator, std::vector<double>& denominator) const;
 };
 
 struct LoopMargins {
@@ -45,10 +55,13 @@ struct LoopMargins {
 struct SpeedLoopPlant {
   JointParameters joint;
   double gear_ratio = 1.0;
+  double delay = 0.0;  ///< tau_p [s]: the drive's delay from the torque command to the measured speed
+  /// tau_p + 1.5 T: the delay the loop sees at controller period T.
+  double LoopDelay(double period) const { return delay + 1.5 * period; }
 };
 
 struct SpeedLoopSettings {
-  double period = 0.001;           ///< T [s]; the loop's delay is 1.5 T
+  double period = 0.001;           ///< T [s]; the loop's delay is the plant's + 1.5 T
   double phase_margin_deg = 50.0;  ///< designed for
   double min_gain_margin_db = 6.0;
   double min_modulus_margin = 0.5;
@@ -56,14 +69,24 @@ struct SpeedLoopSettings {
   double resonance_std_hz = 0.0;   ///< the fitted resonance's std
 };
 
-/// Margins of C P e^(-1.5 T s) on a log grid up to the Nyquist frequency.
+/// Margins of C P e^(-(tau_p + 1.5 T) s) on a log grid up to the Nyquist
+/// frequency; `stable` from the poles of the sampled loop (DiscreteLoopRadius).
 LoopMargins EvaluateSpeedLoop(const SpeedLoopPlant& plant, const PiNotch& controller, double period);
+
+/// The largest magnitude of the closed-loop poles of the sampled loop
+/// (below 1: stable): the plant exactly discretised at `period` with its
+/// delay tau_p, C(z) of PiNotch::Discrete, the torque applied one period late.
+double DiscreteLoopRadius(const SpeedLoopPlant& plant, const PiNotch& controller, double period);
 
 struct SpeedLoopDesign {
   PiNotch controller;
   LoopMargins nominal;
   LoopMargins worst;  ///< over `region` (the nominal when it is empty)
   bool met = false;   ///< every requirement met at the nominal plant
+  /// When not met: the largest crossover whose loop meets the margins at the
+  /// nominal plant (0: none), and the candidate that came closest.
+  double nominal_only_crossover_hz = 0.0;
+  LoopMargins closest;
 };
 
 /// The largest crossover (PI corner a quarter of it) whose loop meets the
@@ -76,14 +99,15 @@ SpeedLoopDesign DesignSpeedLoop(const SpeedLoopPlant& plant, const std::vector<S
 
 /// The closed loop's response to a unit step of the speed reference: the
 /// plant exactly discretised at `period` (zero-order hold), the controller
-/// by Tustin's rule, its torque applied one period late. Motor speed at
+/// by Tustin's rule, its torque applied one period late after the plant's
+/// delay (whole periods and a fraction, exactly). Motor speed at
 /// t = k period for `duration` seconds.
 struct StepResponse {
   std::vector<double> time, speed;
 };
 StepResponse SimulateSpeedStep(const SpeedLoopPlant& plant, const PiNotch& controller, double period, double duration);
 
-/// Open-loop response L(jw) = C P e^(-1.5 T s) on `frequencies_hz`.
+/// Open-loop response L(jw) = C P e^(-(tau_p + 1.5 T) s) on `frequencies_hz`.
 std::vector<std::complex<double>> OpenLoopResponse(const SpeedLoopPlant& plant, const PiNotch& controller, double period,
                                                    const std::vector<double>& frequencies_hz);
 

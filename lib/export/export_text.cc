@@ -63,9 +63,25 @@ std::string WithStd(const ParameterFile& file, const std::string& name, double v
   return fmt::format("{} = {:.6g} {} (not fitted)", name, value, unit);
 }
 
+std::string CodeCommentText(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    const bool printable = c >= 0x20 && c < 0x7f;
+    const char kept = printable && c != '\\' ? c : '?';
+    if (kept == '/' && !out.empty() && out.back() == '*') out += ' ';
+    out += kept;
+  }
+  if (out.size() > 300) out = out.substr(0, 297) + "...";
+  return out;
+}
+
 std::string Provenance(const ExportOptions& o, const std::string& open, const std::string& close) {
-  return fmt::format("{} driveid export of {} (docs/export.md){}\n{} made by: {}{}\n", open, CommentText(o.source), close,
-                     open, CommentText(o.command), close);
+  // XML comments may not hold "--"; C, C++ and Java comments may, so their
+  // command line stays as typed and can be pasted back.
+  const bool xml = open.find("<!--") != std::string::npos;
+  const auto text = [&](const std::string& t) { return xml ? CommentText(t) : CodeCommentText(t); };
+  return fmt::format("{} driveid export of {} (docs/export.md){}\n{} made by: {}{}\n", open, text(o.source), close, open,
+                     text(o.command), close);
 }
 
 const Feedforward& RequireFeedforward(const ParameterFile& file) {

@@ -32,6 +32,10 @@ constexpr double kMjcfTimestep = 0.001;     // s, the MJCF's <option timestep>
 /// C splices a line after one), and neither "--" nor "*/" can close the
 /// comment, nor a trailing "-" an XML comment.
 std::string CommentText(const std::string& text);
+/// `text` for a C, C++ or Java comment: printable ASCII ('?' for others and
+/// for a backslash), "*/" broken as "* /", "--" kept (a command line stays
+/// one that can be pasted back), at most 300 characters.
+std::string CodeCommentText(const std::string& text);
 
 /// All 17 significant digits.
 std::string Number(double value);

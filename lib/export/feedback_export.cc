@@ -19,6 +19,14 @@ double Value(const FeedbackController& f, const char* key) {
 
 bool Pid(const FeedbackController& f) { return !f.empty() && (f.loop == "velocity" || f.loop == "position"); }
 
+// A WPILib PIDController runs the gains on the roboRIO: only for gains in its
+// convention. A vendor's gains (per its own units, its 1 ms period, a kD per
+// period) go into the vendor's slot, never into a PIDController.
+bool RoboRioPid(const FeedbackController& f) {
+  const ControllerPreset* preset = FindControllerPreset(f.preset);
+  return Pid(f) && (!preset || preset->native_position[0] == '\0');
+}
+
 }  // namespace
 
 std::string FeedbackCHeaderLines(const FeedbackController& f, const std::string& upper) {
@@ -39,11 +47,17 @@ std::string FeedbackCHeaderLines(const FeedbackController& f, const std::string&
                          Number((*coefficients)[i]), coefficients->size() - 1 - i);
     }
   }
+  for (const auto& [name, coefficients] : {std::pair{"NUM", &f.numerator_z}, std::pair{"DEN", &f.denominator_z}}) {
+    for (std::size_t i = 0; i < coefficients->size(); ++i) {
+      out += fmt::format("DRIVEID_CONSTANT {}_FEEDBACK_CZ_{}{} = {};  /* z^-{} */\n", upper, name, i,
+                         Number((*coefficients)[i]), i);
+    }
+  }
   return out;
 }
 
 std::string FeedbackJavaImport(const FeedbackController& f) {
-  return Pid(f) ? "import edu.wpi.first.math.controller.PIDController;\n" : "";
+  return RoboRioPid(f) ? "import edu.wpi.first.math.controller.PIDController;\n" : "";
 }
 
 std::string FeedbackJavaMembers(const FeedbackController& f) {
@@ -58,13 +72,14 @@ std::string FeedbackJavaMembers(const FeedbackController& f) {
                        key[1] == 'p' ? "kP" : "kD", Number(v ? v->value : 0.0));
   }
   out += fmt::format("  public static final double kControllerPeriodSeconds = {};\n", Number(Value(f, "period")));
+  if (!RoboRioPid(f)) return out;  // the vendor's slot values only
   out += "\n  public static PIDController pidController() {\n"
          "    return new PIDController(kP, 0.0, kD, kControllerPeriodSeconds);\n  }\n";
   return out;
 }
 
 std::string FeedbackCppInclude(const FeedbackController& f) {
-  return Pid(f) ? "#include <frc/controller/PIDController.h>\n" : "";
+  return RoboRioPid(f) ? "#include <frc/controller/PIDController.h>\n" : "";
 }
 
 std::string FeedbackCppMembers(const FeedbackController& f) {
@@ -77,6 +92,10 @@ std::string FeedbackCppMembers(const FeedbackController& f) {
     out += fmt::format("/// {} +- {:.3g} {}\ninline constexpr double {} = {};\n", key, v ? v->standard_error : 0.0,
                        CommentText(FeedbackGainUnit(f, key)), key[1] == 'p' ? "kP" : "kD", Number(v ? v->value : 0.0));
   }
+  if (!RoboRioPid(f)) {  // the vendor's slot values only
+    out += fmt::format("inline constexpr double kControllerPeriodSeconds = {};\n", Number(Value(f, "period")));
+    return out;
+  }
   out += fmt::format("inline constexpr units::second_t kControllerPeriod{{{}}};\n", Number(Value(f, "period")));
   out += "\ninline frc::PIDController MakePIDController() { return frc::PIDController{kP, 0.0, kD, kControllerPeriod}; }\n";
   return out;
@@ -84,13 +103,16 @@ std::string FeedbackCppMembers(const FeedbackController& f) {
 
 std::string FeedbackVendorNote(const FeedbackController& f, const char* c) {
   if (f.preset == "ctre-phoenix6") {
-    return fmt::format("{} CTRE Phoenix 6: new Slot0Configs().withKP(kP).withKD(kD) (volts per rotation, per rotation/s)\n", c);
+    return fmt::format("{} CTRE Phoenix 6: new Slot0Configs().withKP(kP).withKD(kD) (volts per rotation, per rotation/s); "
+                       "these run in the Talon at 1 ms, not in a PIDController\n", c);
   }
   if (f.preset == "ctre-phoenix5") {
-    return fmt::format("{} CTRE Phoenix 5: talon.config_kP(0, kP); talon.config_kD(0, kD); (1023/12 per volt, rate per 100 ms)\n", c);
+    return fmt::format("{} CTRE Phoenix 5: talon.config_kP(0, kP); talon.config_kD(0, kD); (1023/12 per volt, sensor "
+                       "units, rate per 100 ms, kD per 1 ms period); not for a PIDController\n", c);
   }
   if (f.preset == "rev-neo" || f.preset == "rev-external") {
-    return fmt::format("{} REV Spark MAX: closedLoop.pid(kP, 0.0, kD) in the slot's config (duty cycle, rate per minute)\n", c);
+    return fmt::format("{} REV Spark MAX: closedLoop.pid(kP, 0.0, kD) in the slot's config (duty cycle, rotations, "
+                       "rate per minute, kD per 1 ms period); not for a PIDController\n", c);
   }
   return "";
 }

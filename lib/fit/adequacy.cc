@@ -19,23 +19,31 @@ void RequireDetermined(FitResult& fit, const std::vector<std::string>& nonnegati
     if (e.standard_error <= max_relative_std * std::abs(e.value)) continue;
     const auto start = start_values.find(e.name);
     // At its bound: the data push it below 0, and how far above 0 it may be
-    // is known. Reported so when that limit rules out the start value, or
-    // when the start value itself is 0 (the user expects none: the limit
-    // says how much there may be).
-    const bool bounded = e.value == 0.0 && start != start_values.end() &&
-                         (start->second == 0.0 ||
-                          (start->second > 0.0 && kOneSided95 * e.standard_error <= max_relative_std * start->second));
-    if (bounded && std::isfinite(e.standard_error)) {
+    // is known: reported as 0 with the one-sided 95 % upper limit as its
+    // interval, and the fit stands. A note when that limit rules out the
+    // start value (or the start value itself is 0: the user expects none);
+    // a warning when it does not (the data cannot tell 0 from the start).
+    const bool bounded = e.value == 0.0 && start != start_values.end() && std::isfinite(e.standard_error);
+    if (bounded) {
       e.ci95_low = 0.0;
       e.ci95_high = kOneSided95 * e.standard_error;
-      fit.notes.push_back(
-          start->second > 0.0
-              ? fmt::format("{} sits at its bound 0 (the data push it below, and rule out its start value {:.3g}): "
-                            "reported as 0 with the one-sided 95 % upper limit {:.3g} (1.645 std) as its interval",
-                            e.name, start->second, e.ci95_high)
-              : fmt::format("{} sits at its bound 0 (the data push it below; its start value is 0): reported as 0 with "
-                            "the one-sided 95 % upper limit {:.3g} (1.645 std) as its interval",
-                            e.name, e.ci95_high));
+      const bool rules_out = start->second == 0.0 || e.ci95_high <= max_relative_std * start->second;
+      if (rules_out) {
+        fit.notes.push_back(
+            start->second > 0.0
+                ? fmt::format("{} sits at its bound 0 (the data push it below, and rule out its start value {:.3g}): "
+                              "reported as 0 with the one-sided 95 % upper limit {:.3g} (1.645 std) as its interval",
+                              e.name, start->second, e.ci95_high)
+                : fmt::format("{} sits at its bound 0 (the data push it below; its start value is 0): reported as 0 "
+                              "with the one-sided 95 % upper limit {:.3g} (1.645 std) as its interval",
+                              e.name, e.ci95_high));
+      } else {
+        fit.warnings.push_back(fmt::format(
+            "{} sits at its bound 0: the data push it below, but do not rule out its start value {:.3g}; reported as "
+            "0 with the one-sided 95 % upper limit {:.3g} (1.645 std) as its interval [0, {:.3g}]: the logs determine "
+            "no more than that bound (log motion that excites it, or fix it in ‹params›)",
+            e.name, start->second, e.ci95_high, e.ci95_high));
+      }
       continue;
     }
     undetermined.push_back(e.value != 0.0 ? fmt::format("{} = {:.4g} +- {:.2g} (relative std {:.0f} %)", e.name,

@@ -36,11 +36,12 @@ constexpr double kNearlyConstant = 0.05;
 /// Throws IdentificationError naming every free parameter with lower bound 0
 /// (per `nonnegative`) whose standard error exceeds `max_relative_std` of
 /// its magnitude. `context` is appended to the message (e.g. the warnings).
-/// A parameter at its bound 0 whose one-sided 95 % upper limit 1.645 std
-/// lies within `max_relative_std` of its start value (`start_values`, > 0:
-/// the data rule out the magnitude it started from) is determined there: it
-/// is reported at the bound with that limit as its interval, and a note
-/// says so (FitResult::notes); the fit stands.
+/// A parameter at its bound 0 with a finite std and a start value in
+/// `start_values` is reported at the bound with its one-sided 95 % upper
+/// limit (1.645 std) as its interval, and the fit stands: with a note
+/// (FitResult::notes) when that limit lies within `max_relative_std` of the
+/// start value or the start is 0 (the data rule out the magnitude it started
+/// from), else with a warning (the data cannot tell 0 from the start).
 void RequireDetermined(FitResult& fit, const std::vector<std::string>& nonnegative, double max_relative_std,
                        const std::vector<std::string>& context,
                        const std::map<std::string, double>& start_values = {});

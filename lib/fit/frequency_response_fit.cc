@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <utility>
 
@@ -182,6 +183,41 @@ JointParameters StartFromFeatures(const ResponseData& motor, const std::vector<c
   p.motor_viscous = std::max(viscous.empty() ? 0.0 : Median(viscous), floor);
   p.link_viscous = 0.1 * p.motor_viscous;
   return p;
+}
+
+// The delay's start: the phase of a delay turns many times over a band
+// (3 ms is 430 degrees at 400 Hz), so a fit from 0 lands in a wrong turn.
+// The measured phase less the start model's, r_b = arg(H_b / G_b), is
+// matched by -w_b tau: the circular misfit sum w_b (1 - cos(r_b + w_b tau)),
+// with w_b the bin's phase weight, is scanned over 0 .. kMaxStartDelay in
+// steps that turn the band's top by 0.2 rad, and its minimum taken. This is
+// the unwrapped phase slope's least squares, made robust to gaps between
+// bins and to a start model's phase error near the modes.
+constexpr double kMaxStartDelay = 0.02;  // [s]
+
+template <typename Row>
+double StartDelay(const ResponseData& motor, const std::vector<char>& used, const std::vector<Complex>& start_model,
+                  const std::vector<Row>& rows, double band_high) {
+  std::vector<double> omega, residual, weight;
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    if (rows[r].link || rows[r].phase || !used[rows[r].bin]) continue;  // one row per motor bin
+    const std::size_t b = rows[r].bin;
+    const double phase = std::arg(motor.response[b] / start_model[r]);
+    const double s = motor.phase_std.empty() ? 1.0 : motor.phase_std[b];
+    if (!std::isfinite(phase) || !(s > 0.0) || !std::isfinite(s)) continue;
+    omega.push_back(Omega(motor.frequency[b]));
+    residual.push_back(phase);
+    weight.push_back(1.0 / (s * s));
+  }
+  if (omega.empty() || !(band_high > 0.0)) return 0.0;
+  const double step = 0.2 / Omega(band_high);
+  double best = 0.0, best_cost = std::numeric_limits<double>::infinity();
+  for (double tau = 0.0; tau <= kMaxStartDelay; tau += step) {
+    double cost = 0.0;
+    for (std::size_t i = 0; i < omega.size(); ++i) cost += weight[i] * (1.0 - std::cos(residual[i] + omega[i] * tau));
+    if (cost < best_cost) best_cost = cost, best = tau;
+  }
+  return best;
 }
 
 // Delta-method std of f(estimates) by central differences.
@@ -379,7 +415,7 @@ void CheckLinearPhase(const ResponseData& motor, const TwoMassFitOutput& out, st
 constexpr double kResponseFitPercent = 90.0;
 constexpr double kResponseWaves = 0.5;
 
-void CheckResponseShape(const TwoMassFitOutput& out, std::vector<std::string>& warnings) {
+void CheckResponseShape(const TwoMassFitOutput& out, bool delay_free, std::vector<std::string>& warnings) {
   for (const auto& c : out.fit.channels) {
     if (!(c.fit_percent < kResponseFitPercent) || c.fit_percent < kLowFitPercent || c.autocorrelation < kResponseWaves) {
       continue;  // below 50 % the generic low-fit warning speaks
@@ -388,8 +424,8 @@ void CheckResponseShape(const TwoMassFitOutput& out, std::vector<std::string>& w
         "model: {}: fitted {:.1f} % (below {:.0f} %) with residuals in long waves across frequency (lag-1 {:.2f} over "
         "{} bins): the two-mass model misses a feature of the response (a second mode, a notch or filter, a lag), and "
         "its stiffness, inertias, resonance and anti-resonance may be off by more than their std; look at the Bode "
-        "plot (‹plot›), narrow ‹band› to the first mode, or free delay",
-        c.name, c.fit_percent, kResponseFitPercent, c.autocorrelation, c.samples));
+        "plot (‹plot›), narrow ‹band› to the first mode{}",
+        c.name, c.fit_percent, kResponseFitPercent, c.autocorrelation, c.samples, delay_free ? "" : ", or free delay"));
   }
 }
 
@@ -432,6 +468,12 @@ TwoMassFitOutput FitTwoMassResponse(const ResponseData& motor, const ResponseDat
   const std::vector<FitChannel>& channels = fitted.channels;
   const std::vector<ResponseResiduals::Row>& rows = fitted.rows;
   ResponseResiduals model(rows, fixed, n, free_terms, options);
+  const auto delay_at = std::find(free_terms.begin(), free_terms.end(), kDelay);
+  if (delay_at != free_terms.end()) {
+    parameters[static_cast<std::size_t>(delay_at - free_terms.begin())].initial =
+        StartDelay(motor, out.motor_used, ResponseResiduals(rows, initial, n, {}, options).Values(initial, 0.0), rows,
+                   out.band_high);
+  }
   FitOptions fit_options = options.fit;
   if (!fit_options.advice) fit_options.advice = TwoMassAdvice;
   out.fit = FitLeastSquares(model, parameters, channels, fit_options);
@@ -458,7 +500,7 @@ TwoMassFitOutput FitTwoMassResponse(const ResponseData& motor, const ResponseDat
   if (std::find(free_terms.begin(), free_terms.end(), kDelay) == free_terms.end()) {
     CheckLinearPhase(motor, out, out.fit.warnings);
   }
-  CheckResponseShape(out, out.fit.warnings);
+  CheckResponseShape(out, delay_at != free_terms.end(), out.fit.warnings);
   std::map<std::string, double> start_values;
   for (const auto& p : parameters) start_values[p.name] = p.initial;
   RequireDetermined(out.fit, nonnegative, kMaxRelativeStd, out.fit.warnings, start_values);

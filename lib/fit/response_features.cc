@@ -89,6 +89,90 @@ int RotationHarmonic(const ResponseData& data, double hz, double resolution) {
   return k >= 1 && std::abs(hz - k * f) <= resolution ? k : 0;
 }
 
+// A resonance turns the phase down across its peak: by 90 degrees between
+// its half-power points, by 120 between the points 6 dB down, whatever its
+// damping. kMinPhaseTurn is asked between the bins where the level has
+// fallen by kTurnDrop on either side (or the window's ends: the band's
+// edge, a factor kTurnSpan in frequency, or where the level rises again
+// past a notch).
+// A maximum of |H| whose phase does not turn (a band edge, a filter's
+// corner, noise) is not a mode.
+constexpr double kMinPhaseTurn = M_PI / 2.0;
+constexpr double kTurnDrop = 0.6931471805599453;  // ln 2: 6 dB
+constexpr double kTurnSpan = 1.5;
+constexpr double kTurnRise = 0.3453877639491069;  // ln sqrt(2): 3 dB
+
+// The phase's fall [rad] across bins[peak], unwrapped bin to bin.
+double PhaseTurn(const ResponseData& motor, const std::vector<std::size_t>& bins, const std::vector<double>& level,
+                 std::size_t peak) {
+  const std::size_t m = bins.size();
+  const double f = motor.frequency[bins[peak]];
+  // Outwards from the peak until the level has fallen by kTurnDrop, the
+  // span ends, or the level rises kTurnRise above its lowest so far (past a
+  // neighbouring anti-resonance, which turns the phase back up).
+  const auto walk = [&](std::size_t from, int step) {
+    std::size_t at = from;
+    double lowest = level[from];
+    while (true) {
+      const std::size_t next = step < 0 ? at - 1 : at + 1;
+      if ((step < 0 && at == 0) || (step > 0 && next >= m)) break;
+      const double fn = motor.frequency[bins[next]];
+      if (fn < f / kTurnSpan || fn > f * kTurnSpan || level[next] > lowest + kTurnRise) break;
+      at = next;
+      lowest = std::min(lowest, level[at]);
+      if (level[peak] - level[at] >= kTurnDrop) break;
+    }
+    return at;
+  };
+  const std::size_t left = walk(peak, -1), right = walk(peak, 1);
+  double phase = 0.0;  // unwrapped from `left`
+  for (std::size_t j = left + 1; j <= right; ++j) {
+    phase += std::arg(motor.response[bins[j]] / motor.response[bins[j - 1]]);
+  }
+  return -phase;
+}
+
+// The largest maximum of the level (ln |H_acc|) at least two bins inside the
+// band and a bin below `top` that is a mode: not on a line of the
+// excitation, not on a harmonic of the rotation, its phase turning down
+// (PhaseTurn). 0: none. What was skipped is said in `notes`.
+std::size_t FindPeak(const ResponseData& motor, const std::vector<std::size_t>& bins, const std::vector<double>& level,
+                     double top, double resolution, std::vector<std::string>& notes) {
+  const std::size_t m = bins.size();
+  std::size_t peak = 0, unturned = 0;
+  std::string unturned_note;
+  for (std::size_t i = 2; i + 2 < m; ++i) {
+    if (!(level[i] > level[i - 1] && level[i] >= level[i + 1])) continue;
+    if (peak != 0 && level[i] <= level[peak]) continue;
+    const double f = motor.frequency[bins[i]];
+    if (f + resolution >= top) continue;  // at least a bin below 0.8 x Nyquist
+    if (ExcitationLine(motor, bins[i])) {
+      notes.push_back(fmt::format("a peak at {:.4g} Hz stands on a line of the excitation's own spectrum: a "
+                                      "disturbance passed to the input, not a mode (skipped)",
+                                      f));
+      continue;
+    }
+    if (const int k = RotationHarmonic(motor, f, resolution); k > 0) {
+      notes.push_back(fmt::format("a peak at {:.4g} Hz lies on harmonic {} of the rotation frequency {:.4g} Hz: a "
+                                      "disturbance, not a mode (skipped)",
+                                      f, k, motor.rotation_hz));
+      continue;
+    }
+    if (const double turn = PhaseTurn(motor, bins, level, i); !(turn >= kMinPhaseTurn)) {
+      if (unturned != 0 && level[unturned] >= level[i]) continue;
+      unturned = i;
+      unturned_note = (fmt::format("a maximum of |H| at {:.4g} Hz, but the phase changes by {:+.0f} degrees across "
+                                      "it (a resonance turns it down by 90 or more): not a mode (skipped)",
+                                      f, -turn * 180.0 / M_PI));
+      continue;
+    }
+    peak = i;
+  }
+  // The highest maximum that was no mode, when it stands above the mode read.
+  if (unturned != 0 && (peak == 0 || level[unturned] > level[peak])) notes.push_back(unturned_note);
+  return peak;
+}
+
 }  // namespace
 
 std::vector<char> BandBins(const ResponseData& data, const ResponseBand& band) {
@@ -178,26 +262,7 @@ ResponseFeatures ReadResponseFeatures(const ResponseData& motor, ResponseQuantit
     return e;
   };
   const double top = motor.nyquist_hz > 0.0 ? kNyquistMargin * motor.nyquist_hz : HUGE_VAL;
-  std::size_t peak = 0;
-  for (std::size_t i = 2; i + 2 < m; ++i) {
-    if (!(level[i] > level[i - 1] && level[i] >= level[i + 1])) continue;
-    if (peak != 0 && level[i] <= level[peak]) continue;
-    const double f = motor.frequency[bins[i]];
-    if (f > top) continue;
-    if (ExcitationLine(motor, bins[i])) {
-      out.notes.push_back(fmt::format("a peak at {:.4g} Hz stands on a line of the excitation's own spectrum: a "
-                                      "disturbance passed to the input, not a mode (skipped)",
-                                      f));
-      continue;
-    }
-    if (const int k = RotationHarmonic(motor, f, resolution); k > 0) {
-      out.notes.push_back(fmt::format("a peak at {:.4g} Hz lies on harmonic {} of the rotation frequency {:.4g} Hz: a "
-                                      "disturbance, not a mode (skipped)",
-                                      f, k, motor.rotation_hz));
-      continue;
-    }
-    peak = i;
-  }
+  const std::size_t peak = FindPeak(motor, bins, level, top, resolution, out.notes);
   if (peak == 0) {
     out.warnings.push_back(fmt::format("no resonance peak inside the excited, coherent band {} (features are read at "
                                        "least two bins inside it{}): excite across the resonance",

@@ -1,6 +1,7 @@
 #include "io/feedback_section.h"
 
 #include <algorithm>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -16,7 +17,7 @@ using namespace section_io;
 constexpr std::size_t kMaxCoefficients = 16;
 
 std::string KnownKeys() {
-  std::string known = "loop, preset, effort_unit, position_unit, numerator, denominator";
+  std::string known = "loop, preset, effort_unit, position_unit, numerator, denominator, numerator_z, denominator_z";
   for (const auto& k : kFeedbackKeys) known += std::string(", ") + k.key;
   return known;
 }
@@ -79,8 +80,10 @@ FeedbackController ParseFeedbackSection(const std::string& path, const YAML::Nod
       const std::string value = ParseName(path, key, item.second);
       (key == "loop" ? out.loop : key == "preset" ? out.preset : key == "effort_unit" ? out.effort_unit
                                                                                       : out.position_unit) = value;
-    } else if (key == "numerator" || key == "denominator") {
-      (key == "numerator" ? out.numerator : out.denominator) = ParseCoefficients(path, key, item.second);
+    } else if (key == "numerator" || key == "denominator" || key == "numerator_z" || key == "denominator_z") {
+      (key == "numerator" ? out.numerator : key == "denominator" ? out.denominator
+                                          : key == "numerator_z" ? out.numerator_z : out.denominator_z) =
+          ParseCoefficients(path, key, item.second);
     } else if (FindFeedbackKey(key)) {
       out.values.push_back(ParseValue(path, key, item.second));
     } else {
@@ -126,11 +129,15 @@ std::string FormatFeedbackSection(const FeedbackController& f) {
       out += fmt::format("  {}: {}  # {}\n", v.key, Number(Writable(name, v.value)), comment);
     }
   }
-  for (const auto& [key, coefficients] : {std::pair{"numerator", &f.numerator}, std::pair{"denominator", &f.denominator}}) {
+  for (const auto& [key, coefficients, comment] :
+       {std::tuple{"numerator", &f.numerator, "C(s), highest power of s first"},
+        std::tuple{"denominator", &f.denominator, "C(s), highest power of s first"},
+        std::tuple{"numerator_z", &f.numerator_z, "C(z) at the period, powers z^0, z^-1, ...: u[k] = sum b_i e[k-i]"},
+        std::tuple{"denominator_z", &f.denominator_z, "C(z): - sum_(i>0) a_i u[k-i]; a_0 = 1"}}) {
     if (coefficients->empty()) continue;
     std::string list;
     for (double c : *coefficients) list += (list.empty() ? "" : ", ") + Number(Writable(std::string("feedback.") + key, c));
-    out += fmt::format("  {}: [{}]  # C(s), highest power of s first\n", key, list);
+    out += fmt::format("  {}: [{}]  # {}\n", key, list, comment);
   }
   return out;
 }

@@ -92,6 +92,10 @@ class CsvSource : public TableSource {
       const std::size_t next = NextLine(p, ++line, b, e);
       const std::size_t line_start = p;
       p = next;
+      if (static_cast<std::size_t>(line) <= format.skip_rows) {
+        comments_.emplace_back(b, e);
+        continue;
+      }
       if (b == e) continue;
       if (*b == '#') {
         comments_.emplace_back(b + 1, e);
@@ -130,7 +134,13 @@ class CsvSource : public TableSource {
       }
       ++rows_;
     }
-    if (first) throw InputError(fmt::format("{}: empty file: no header row", path_));
+    if (first) {
+      throw InputError(format.skip_rows > 0 && static_cast<std::size_t>(line) <= format.skip_rows
+                           ? fmt::format("{}: {} lines, all skipped (skip {}): no header row", path_, line,
+                                         format.skip_rows)
+                           : fmt::format("{}: empty file: no header row", path_));
+    }
+    if (format.skip_rows > 0) notes_.push_back(fmt::format("the first {} lines skipped", format.skip_rows));
     if (rows_ == 0) throw InputError(fmt::format("{}:{}: no data rows after the header", path_, header_line_));
     if (delimiter_ != ',') notes_.push_back("delimiter: " + DelimiterText(delimiter_));
   }

@@ -80,6 +80,7 @@ class TableSource {
 struct CsvFormat {
   char delimiter = 0;      ///< 0: detect (',', ';', tab, else blanks)
   bool no_header = false;  ///< the first row is data (also detected: a first row of numbers)
+  std::size_t skip_rows = 0;  ///< lines skipped before the header (a drive export's preamble), kept as comments
   std::size_t max_line_bytes = 1 << 20;
 };
 

@@ -27,12 +27,14 @@ struct FeedbackKey {
   const char* description;
   bool gain;  ///< written as {value, std}
 };
-inline constexpr std::array<FeedbackKey, 18> kFeedbackKeys = {{
+inline constexpr std::array<FeedbackKey, 20> kFeedbackKeys = {{
     {"kp", "", "proportional gain (controller units: docs/models.md#feedback-gains)", true},
     {"kd", "", "derivative gain on the rate error", true},
     {"ki", "", "integral gain of the speed loop [effort/position]", true},
     {"period", "s", "controller period", false},
     {"delay", "s", "measurement delay compensated", false},
+    {"plant_delay", "s", "speed loop: the drive's delay from torque command to measured speed (fitted or given)", false},
+    {"loop_delay", "s", "speed loop: the delay designed for, plant_delay + 1.5 periods", false},
     {"max_position_error", "position", "LQR: tolerated position error", false},
     {"max_velocity_error", "position/s", "LQR: tolerated velocity error", false},
     {"max_effort", "effort", "LQR: effort at those errors", false},
@@ -70,6 +72,11 @@ struct FeedbackController {
   std::vector<FeedbackValue> values;  ///< kFeedbackKeys, in that order
   std::vector<double> numerator;      ///< speed loop: C(s), highest power of s first
   std::vector<double> denominator;
+  /// Speed loop: C(z) at `period` (Tustin prewarped at the notch), powers
+  /// z^0, z^-1, ... with denominator_z[0] = 1:
+  /// u[k] = sum_i numerator_z[i] e[k-i] - sum_{i>0} denominator_z[i] u[k-i].
+  std::vector<double> numerator_z;
+  std::vector<double> denominator_z;
 
   const FeedbackValue* Find(const std::string& key) const {
     for (const auto& v : values) {

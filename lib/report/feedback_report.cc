@@ -22,6 +22,10 @@ std::string FormatFeedbackReport(const FeedbackController& f) {
     out += fmt::format("  C(s) numerator   [{:.6g}]\n  C(s) denominator [{:.6g}]\n", fmt::join(f.numerator, ", "),
                        fmt::join(f.denominator, ", "));
   }
+  if (!f.numerator_z.empty()) {
+    out += fmt::format("  C(z) numerator   [{:.10g}]  (z^0, z^-1, ...)\n  C(z) denominator [{:.10g}]\n",
+                       fmt::join(f.numerator_z, ", "), fmt::join(f.denominator_z, ", "));
+  }
   return out;
 }
 
@@ -33,6 +37,10 @@ Json FeedbackReportJson(const FeedbackController& f) {
   out["position_unit"] = f.position_unit;
   Json gains = Json::object(), settings = Json::object(), controller = Json::object();
   if (!f.numerator.empty()) controller = {{"numerator", f.numerator}, {"denominator", f.denominator}};
+  if (!f.numerator_z.empty()) {
+    controller["numerator_z"] = f.numerator_z;
+    controller["denominator_z"] = f.denominator_z;
+  }
   for (const auto& v : f.values) {
     const FeedbackKey* key = FindFeedbackKey(v.key);
     const bool gain = key && key->gain;

@@ -247,6 +247,34 @@ FrequencyResponse EstimateWelch(const std::vector<FrequencyRecord>& records, dou
   return out;
 }
 
+// The output less its drift: a periodic response plus a constant speed
+// (a position read while the joint turns) has a ramp that is the same in
+// every period, so it does not average out and leaks into every line as a
+// sawtooth's spectrum. Its slope is the least-squares slope of the used
+// periods' means (from `first` on: the settling period stays out) against
+// their index, divided by the period, which a periodic signal leaves
+// untouched; the ramp is removed from every sample.
+std::vector<double> WithoutDrift(const std::vector<double>& y, std::size_t period, std::size_t first) {
+  const std::size_t whole = y.size() / period;
+  if (whole < first + 2) return y;
+  const std::size_t used = whole - first;
+  std::vector<double> means(used, 0.0);
+  for (std::size_t i = 0; i < used; ++i) {
+    for (std::size_t k = 0; k < period; ++k) means[i] += y[(first + i) * period + k];
+    means[i] /= static_cast<double>(period);
+  }
+  const double centre = 0.5 * static_cast<double>(used - 1);
+  double num = 0.0, den = 0.0;
+  for (std::size_t i = 0; i < used; ++i) {
+    num += (static_cast<double>(i) - centre) * means[i];
+    den += (static_cast<double>(i) - centre) * (static_cast<double>(i) - centre);
+  }
+  const double slope = num / den / static_cast<double>(period);  // per sample
+  std::vector<double> out(y.size());
+  for (std::size_t k = 0; k < y.size(); ++k) out[k] = y[k] - slope * static_cast<double>(k);
+  return out;
+}
+
 FrequencyResponse EstimatePeriodic(const std::vector<FrequencyRecord>& records, double rate, std::size_t period,
                                    bool closed_loop) {
   const std::size_t bins = period / 2 + 1;
@@ -257,9 +285,10 @@ FrequencyResponse EstimatePeriodic(const std::vector<FrequencyRecord>& records, 
     // The first period settles when there are enough others.
     const std::size_t whole = r.input.size() / period;
     const std::size_t first = whole >= 3 ? 1 : 0;
+    const std::vector<double> output = WithoutDrift(r.output, period, first);
     for (std::size_t begin = first * period; begin + period <= r.input.size(); begin += period) {
       u_spectra.push_back(SegmentSpectrum(fft, r.input, begin, period, {}, false));
-      y_spectra.push_back(SegmentSpectrum(fft, r.output, begin, period, {}, false));
+      y_spectra.push_back(SegmentSpectrum(fft, output, begin, period, {}, false));
       const auto x = closed_loop ? SegmentSpectrum(fft, r.reference, begin, period, {}, false) : u_spectra.back();
       for (std::size_t b = 0; b < bins; ++b) excitation[b] += std::abs(x[b]);
     }
@@ -276,8 +305,8 @@ FrequencyResponse EstimatePeriodic(const std::vector<FrequencyRecord>& records, 
   out.closed_loop = closed_loop;
   out.method = FrequencyMethod::kPeriodic;
   out.description = fmt::format("periodic: {} periods of {} samples averaged (rectangular window; a log's first "
-                                "period left out to settle when it holds three or more), noise variance from the spread "
-                                "between periods",
+                                "period left out to settle when it holds three or more; the output's drift across periods "
+                                "removed), noise variance from the spread between periods",
                                 m, period);
   double peak = 0.0;
   std::vector<Complex> u_mean(bins, 0.0), y_mean(bins, 0.0);

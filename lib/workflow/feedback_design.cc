@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -21,7 +22,7 @@ bool AxisGainsOptions::IsValid(std::string* error) const {
       .Require(Positive(max_position_error), "‹max_position_error›", max_position_error, "> 0")
       .Require(Positive(max_velocity_error), "‹max_velocity_error›", max_velocity_error, "> 0")
       .Require(Positive(max_effort), "‹max_effort›", max_effort, "> 0")
-      .Require(Positive(conversion), "‹conversion›", conversion, "> 0")
+      .Require(NotNegative(conversion), "‹conversion›", conversion, "> 0 (0: from the preset's unit)")
       .Require(!kv || Finite(*kv), "‹kv›", kv.value_or(0.0), "finite")
       .Require(!ka || Finite(*ka), "‹ka›", ka.value_or(0.0), "finite")
       .Require(NotNegative(kv_std), "‹kv_std›", kv_std, ">= 0")
@@ -75,7 +76,7 @@ LqrSettings Settings(const AxisGainsOptions& o, const ControllerPreset& preset) 
   s.max_velocity_error = o.max_velocity_error;
   s.max_effort = o.max_effort;
   if (!(s.period > 0.0) || !(s.delay >= 0.0) || !(s.max_position_error > 0.0) || !(s.max_velocity_error > 0.0) ||
-      !(s.max_effort > 0.0) || !(o.conversion > 0.0)) {
+      !(s.max_effort > 0.0) || !(o.conversion >= 0.0)) {
     throw OptionError("‹period›, ‹max_position_error›, ‹max_velocity_error›, ‹max_effort› and ‹conversion› must be "
                       "positive, ‹delay› not negative");
   }
@@ -84,6 +85,41 @@ LqrSettings Settings(const AxisGainsOptions& o, const ControllerPreset& preset) 
   }
   return s;
 }
+
+// The controller's position unit and units per file unit: the preset's own
+// (Phoenix 6 and REV in rotations, converted from an angle unit; Phoenix 5
+// in sensor units, which only ‹conversion› gives), else the log's.
+void ControllerUnits(const AxisGainsOptions& o, const ControllerPreset& preset, const std::string& file_unit,
+                     double& conversion, std::string& unit) {
+  const std::string native = preset.native_position;
+  const std::string shown = UnitTextProblem(file_unit).empty() ? file_unit : "?";
+  if (native.empty()) {
+    conversion = o.conversion > 0.0 ? o.conversion : 1.0;
+    unit = conversion == 1.0 ? file_unit : fmt::format("controller unit ({:g} per {})", conversion, file_unit);
+    return;
+  }
+  unit = native;
+  if (o.conversion > 0.0) {
+    conversion = o.conversion;
+    return;
+  }
+  if (native == "rotation" && RotationsPerUnit(file_unit) > 0.0) {
+    conversion = RotationsPerUnit(file_unit);
+    return;
+  }
+  throw OptionError(
+      native == "rotation"
+          ? fmt::format("‹preset› {} works in rotations, and the file's position unit is '{}': give ‹conversion› "
+                        "(rotations per {}, e.g. 1 / the wheel's circumference for metres)",
+                        preset.name, shown, shown)
+          : fmt::format("‹preset› {} works in the sensor's units: give ‹conversion› (sensor units per {}, e.g. "
+                        "2048 per rotation for a Talon FX's integrated sensor, 4096 for a CTRE Mag Encoder)",
+                        preset.name, shown));
+}
+
+// A gain below this fraction of the one the same loop gets without its
+// measurement delay is useless: the delay, not the plant, set it.
+constexpr double kUsefulGainFraction = 1e-3;
 
 }  // namespace
 
@@ -116,14 +152,37 @@ AxisGainsDesign DesignAxisGains(const ParameterFile* file, const std::string& pa
   request.output_factor = preset->output_factor;
   request.velocity_time_factor = preset->velocity_time_factor;
   request.normalized = preset->normalized;
-  request.conversion = o.conversion;
-  const GainUncertainty g = PropagateGains(d.kv, d.kv_std, d.ka, d.ka_std, d.correlation, request);
-
   FeedbackController& c = d.controller;
-  c.loop = o.loop;
-  c.preset = preset->name;
   if (c.effort_unit.empty()) c.effort_unit = "V";
   if (c.position_unit.empty()) c.position_unit = "unit";
+  double conversion = 1.0;
+  std::string controller_unit;
+  ControllerUnits(o, *preset, c.position_unit, conversion, controller_unit);
+  if (conversion != 1.0 || controller_unit != c.position_unit) {
+    d.notes.push_back(fmt::format("gains per {} (the {} preset's unit): {:.6g} {} per {} of the file", controller_unit,
+                                  preset->name, conversion, controller_unit, c.position_unit));
+  }
+  request.conversion = conversion;
+  const GainUncertainty g = PropagateGains(d.kv, d.kv_std, d.ka, d.ka_std, d.correlation, request);
+  if (request.lqr.delay > 0.0) {
+    GainRequest undelayed = request;
+    undelayed.lqr.delay = 0.0;
+    const FeedbackGains free = ControllerGains(d.kv, d.ka, undelayed);
+    for (const auto& [key, value, reference] : {std::tuple{"kp", g.value.kp, free.kp}, std::tuple{"kd", g.value.kd, free.kd}}) {
+      if (std::abs(reference) > 0.0 && std::abs(value) < kUsefulGainFraction * std::abs(reference)) {
+        d.warnings.push_back(fmt::format(
+            "{} = {:.3g} is {:.1g} of the {:.3g} the same loop gets without its {:.4g} s measurement delay ({:.3g} "
+            "periods): the delay, not the plant, sets it, and feedback this weak does nothing; shorten the delay (a "
+            "faster velocity filter) or the period, or control from the rate that lags less",
+            key, value, std::abs(value / reference), reference, request.lqr.delay,
+            request.lqr.delay / request.lqr.period));
+      }
+    }
+  }
+
+  c.loop = o.loop;
+  c.preset = preset->name;
+  c.position_unit = controller_unit;
   c.values.push_back({"kp", g.value.kp, g.standard_error.kp});
   if (request.loop == FeedbackLoop::kPosition) c.values.push_back({"kd", g.value.kd, g.standard_error.kd});
   c.values.push_back({"period", request.lqr.period, 0.0});
@@ -131,7 +190,7 @@ AxisGainsDesign DesignAxisGains(const ParameterFile* file, const std::string& pa
   if (request.loop == FeedbackLoop::kPosition) c.values.push_back({"max_position_error", o.max_position_error, 0.0});
   c.values.push_back({"max_velocity_error", o.max_velocity_error, 0.0});
   c.values.push_back({"max_effort", o.max_effort, 0.0});
-  c.values.push_back({"conversion", o.conversion, 0.0});
+  c.values.push_back({"conversion", conversion, 0.0});
   if (d.ka < 1e-7 && request.loop == FeedbackLoop::kVelocity) {
     d.notes.push_back("Ka below 1e-7: the velocity follows the effort at once; no velocity feedback is needed (kp 0)");
   }

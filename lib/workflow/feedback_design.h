@@ -26,7 +26,9 @@ struct AxisGainsOptions {
   double max_position_error = 1.0;
   double max_velocity_error = 1.5;
   double max_effort = 7.0;
-  double conversion = 1.0;        ///< controller units per position unit
+  /// Controller position units per parameter-file position unit; 0: from
+  /// the preset's unit (rotations from an angle unit; 1 for wpilib).
+  double conversion = 0.0;
   std::optional<double> kv, ka;   ///< given values (no file, or overriding it)
   double kv_std = 0.0, ka_std = 0.0;
   /// Every bound on these fields (‹field› names the option); see core/option_check.h.
@@ -38,6 +40,7 @@ struct AxisGainsDesign {
   std::string kv_source;          ///< where Kv and Ka came from, for the report
   double kv = 0.0, kv_std = 0.0, ka = 0.0, ka_std = 0.0, correlation = 0.0;
   std::vector<std::string> notes;
+  std::vector<std::string> warnings;  ///< e.g. a gain the delay makes useless
 };
 
 /// `file` may be null when Kv and Ka are given. InputError for a file with
@@ -55,7 +58,10 @@ Json AxisGainsPlantJson(const AxisGainsDesign& design);
 namespace driveid {
 
 struct JointGainsOptions {
-  double period = 0.001;           ///< [s]; the loop's delay is 1.5 periods
+  double period = 0.001;           ///< [s]; the loop's delay is the drive's + 1.5 periods
+  /// The drive's delay from the torque command to the measured speed [s];
+  /// else the file's fitted `delay` (frf), else none.
+  std::optional<double> delay;
   double phase_margin_deg = 50.0;
   double notch_width_hz = 0.0;     ///< 0: from the resonance's uncertainty
   /// Every bound on these fields (‹field› names the option); see core/option_check.h.

@@ -19,30 +19,48 @@ bool JointGainsOptions::IsValid(std::string* error) const {
       .Require(Positive(period), "‹period›", period, "period > 0 s")
       .Require(phase_margin_deg > 0.0 && phase_margin_deg < 90.0, "‹phase_margin›", phase_margin_deg,
                "0 < margin < 90 degrees")
-      .Require(NotNegative(notch_width_hz), "‹notch_width›", notch_width_hz, "width >= 0 Hz (0: from the data)");
+      .Require(NotNegative(notch_width_hz), "‹notch_width›", notch_width_hz, "width >= 0 Hz (0: from the data)")
+      .Require(!delay || (NotNegative(*delay) && *delay <= 1000.0 * period), "‹delay›", delay.value_or(0.0),
+               "0 <= delay <= 1000 periods");
 }
 namespace {
 
-// chi^2 quantiles at 95 % for 1 .. 6 degrees of freedom.
-constexpr double kChiSquare95[] = {3.841, 5.991, 7.815, 9.488, 11.070, 12.592};
+// chi^2 quantiles at 95 % for 1 .. 7 degrees of freedom.
+constexpr double kChiSquare95[] = {3.841, 5.991, 7.815, 9.488, 11.070, 12.592, 14.067};
 
-// The dynamic terms a speed loop's region spans (their keys: models/joint.h's table).
-constexpr double JointParameters::*kDynamic[] = {&JointParameters::motor_inertia, &JointParameters::link_inertia,
-                                                 &JointParameters::stiffness,     &JointParameters::damping,
-                                                 &JointParameters::motor_viscous, &JointParameters::link_viscous};
+// The terms a speed loop's region spans: the joint's dynamic terms (their
+// keys: models/joint.h's table) and the drive's delay (frf's key "delay").
+struct RegionTerm {
+  std::string key;
+  double& (*value)(SpeedLoopPlant&);
+};
+const std::vector<RegionTerm>& RegionTerms() {
+  static const std::vector<RegionTerm> terms = [] {
+    std::vector<RegionTerm> t;
+    const auto key = [](double JointParameters::*m) { return KeyOf(JointParameterTable(), m); };
+    t.push_back({key(&JointParameters::motor_inertia), [](SpeedLoopPlant& p) -> double& { return p.joint.motor_inertia; }});
+    t.push_back({key(&JointParameters::link_inertia), [](SpeedLoopPlant& p) -> double& { return p.joint.link_inertia; }});
+    t.push_back({key(&JointParameters::stiffness), [](SpeedLoopPlant& p) -> double& { return p.joint.stiffness; }});
+    t.push_back({key(&JointParameters::damping), [](SpeedLoopPlant& p) -> double& { return p.joint.damping; }});
+    t.push_back({key(&JointParameters::motor_viscous), [](SpeedLoopPlant& p) -> double& { return p.joint.motor_viscous; }});
+    t.push_back({key(&JointParameters::link_viscous), [](SpeedLoopPlant& p) -> double& { return p.joint.link_viscous; }});
+    t.push_back({"delay", [](SpeedLoopPlant& p) -> double& { return p.delay; }});
+    return t;
+  }();
+  return terms;
+}
 
 // The plants at the ends of the principal axes of the 95 % region of the
-// fitted dynamic parameters (those the fit estimated), each kept physical.
-std::vector<SpeedLoopPlant> Region(const ParameterFile& file, const SpeedLoopPlant& nominal) {
-  std::vector<double JointParameters::*> members;
-  std::vector<std::string> keys;
+// fitted terms (those the fit estimated; the delay only when it is the
+// fit's), each kept physical.
+std::vector<SpeedLoopPlant> Region(const ParameterFile& file, const SpeedLoopPlant& nominal, bool fitted_delay) {
+  std::vector<const RegionTerm*> members;
   std::vector<double> stds;
-  for (const auto member : kDynamic) {
-    const std::string key = KeyOf(JointParameterTable(), member);
+  for (const auto& term : RegionTerms()) {
+    if (term.key == "delay" && !fitted_delay) continue;
     for (const auto& e : file.fit_estimates) {
-      if (e.name == key && e.standard_error > 0.0) {
-        members.push_back(member);
-        keys.push_back(key);
+      if (e.name == term.key && e.standard_error > 0.0) {
+        members.push_back(&term);
         stds.push_back(e.standard_error);
       }
     }
@@ -52,7 +70,7 @@ std::vector<SpeedLoopPlant> Region(const ParameterFile& file, const SpeedLoopPla
   Eigen::MatrixXd covariance(p, p);
   for (std::size_t i = 0; i < p; ++i) {
     for (std::size_t j = 0; j < p; ++j) {
-      covariance(i, j) = file.FitCorrelation(keys[i], keys[j]) * stds[i] * stds[j];
+      covariance(i, j) = file.FitCorrelation(members[i]->key, members[j]->key) * stds[i] * stds[j];
     }
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(covariance);
@@ -63,8 +81,9 @@ std::vector<SpeedLoopPlant> Region(const ParameterFile& file, const SpeedLoopPla
     for (double sign : {-1.0, 1.0}) {
       SpeedLoopPlant edge = nominal;
       for (std::size_t i = 0; i < p; ++i) {
-        double& value = edge.joint.*(members[i]);
-        value = std::max(value + sign * radius * length * eigen.eigenvectors()(i, k), 1e-3 * std::abs(value));
+        double& value = members[i]->value(edge);
+        const double floor = members[i]->key == "delay" ? 0.0 : 1e-3 * std::abs(value);
+        value = std::max(value + sign * radius * length * eigen.eigenvectors()(i, k), floor);
       }
       out.push_back(edge);
     }
@@ -94,26 +113,57 @@ JointGainsDesign DesignJointGains(const ParameterFile& file, const std::string& 
   if (!(plant.joint.motor_inertia > 0.0) || !(plant.joint.link_inertia > 0.0) || !(plant.joint.stiffness > 0.0)) {
     throw InputError(fmt::format("{}: joint: a speed loop needs motor_inertia, link_inertia and stiffness > 0", path));
   }
+  // The drive's delay: --delay, else the fit's (frf --free ...,delay), else none.
+  const ParameterEstimate* fitted_delay = nullptr;
+  for (const auto& e : file.fit_estimates) {
+    if (e.name == "delay") fitted_delay = &e;
+  }
+  std::string delay_source;
+  if (o.delay) {
+    plant.delay = *o.delay;
+    delay_source = "given (‹delay›)";
+  } else if (fitted_delay) {
+    if (!(fitted_delay->value >= -3.0 * fitted_delay->standard_error) || !std::isfinite(fitted_delay->value)) {
+      throw InputError(fmt::format("{}: fit.estimates.delay = {:.4g} s: a negative delay is not a drive's; refit, or give "
+                                   "‹delay›", path, fitted_delay->value));
+    }
+    plant.delay = std::max(0.0, fitted_delay->value);
+    delay_source = fmt::format("fitted ({:.4g} +- {:.2g} ms)", 1e3 * fitted_delay->value, 1e3 * fitted_delay->standard_error);
+  }
+  if (plant.delay > 1000.0 * o.period) {
+    throw OptionError(fmt::format("the drive's delay {} s is more than 1000 periods of {} s", plant.delay, o.period));
+  }
   SpeedLoopSettings settings;
   settings.period = o.period;
   settings.phase_margin_deg = o.phase_margin_deg;
   settings.notch_width_hz = o.notch_width_hz;
   if (const auto* frf = file.Find<FrequencyResponseSection>()) settings.resonance_std_hz = frf->resonance_hz_std.value_or(0.0);
   JointGainsDesign d;
-  const std::vector<SpeedLoopPlant> region = Region(file, plant);
+  const std::vector<SpeedLoopPlant> region = Region(file, plant, !o.delay && fitted_delay);
   SpeedLoopDesign design;
   try {
     design = DesignSpeedLoop(plant, region, settings);
   } catch (const std::invalid_argument& e) {
     throw OptionError(e.what());
   }
+  const std::string delay_text =
+      fmt::format("a loop delay of {:.4g} ms (the drive's {:.4g} ms{} + 1.5 x the period {} s)",
+                  1e3 * plant.LoopDelay(o.period), 1e3 * plant.delay,
+                  delay_source.empty() ? ", none measured" : ", " + delay_source, o.period);
   if (!design.met) {
+    const LoopMargins& b = design.closest;
     throw IdentificationError(fmt::format(
         "no PI speed loop with a notch at {:.4g} Hz meets a phase margin of {} deg, 6 dB gain margin and 0.5 modulus "
-        "margin with a delay of 1.5 x {} s{}: try a shorter ‹period›, a smaller ‹phase_margin›, or a fit with "
-        "narrower intervals",
-        JointResonance(plant.joint) / (2.0 * M_PI), o.phase_margin_deg, o.period,
-        region.empty() ? "" : " (and over the 95 % region, the phase margin less 10 deg)"));
+        "margin with {}{}: {}; try a shorter ‹period›, a smaller ‹phase_margin›, or a fit with narrower intervals",
+        JointResonance(plant.joint) / (2.0 * M_PI), o.phase_margin_deg, delay_text,
+        region.empty() ? "" : " (and over the 95 % region, the phase margin less 10 deg)",
+        design.nominal_only_crossover_hz > 0.0
+            ? fmt::format("the largest crossover meeting them at the nominal plant is {:.4g} Hz, and the 95 % region "
+                          "breaks it", design.nominal_only_crossover_hz)
+            : b.stable ? fmt::format("the closest loop reaches a phase margin of {:.3g} deg, gain margin {:.3g} dB and "
+                                     "modulus margin {:.3g} at {:.4g} Hz crossover",
+                                     b.phase_margin_deg, b.gain_margin_db, b.modulus_margin, b.crossover_hz)
+                       : "no crossover gives a stable loop"));
   }
   d.plant = plant;
   d.design = design;
@@ -127,13 +177,21 @@ JointGainsDesign DesignJointGains(const ParameterFile& file, const std::string& 
   c.values.push_back({"kp", pi.kp, 0.0});
   c.values.push_back({"ki", pi.kp * pi.integral_corner, 0.0});
   c.values.push_back({"period", o.period, 0.0});
-  c.values.push_back({"delay", 1.5 * o.period, 0.0});
+  c.values.push_back({"plant_delay", plant.delay, !o.delay && fitted_delay ? fitted_delay->standard_error : 0.0});
+  c.values.push_back({"loop_delay", plant.LoopDelay(o.period), 0.0});
   c.values.push_back({"notch_hz", pi.notch_hz, 0.0});
   c.values.push_back({"notch_width_hz", pi.notch_width_hz, 0.0});
   AddMargins("", design.nominal, c);
   if (!region.empty()) AddMargins("worst_", design.worst, c);
   c.numerator = pi.Numerator();
   c.denominator = pi.Denominator();
+  pi.Discrete(o.period, c.numerator_z, c.denominator_z);
+  d.notes.push_back(fmt::format("designed for {}; C(z) by Tustin's rule prewarped at the notch", delay_text));
+  if (delay_source.empty()) {
+    d.notes.push_back("no measured delay of the drive: give ‹delay›, or fit it (frf's two-mass fit with delay among the free "
+                      "parameters); "
+                      "a drive's delay the loop does not know can destabilise it");
+  }
   d.notes.push_back(region.empty()
                         ? "the file has no fit estimates with std: margins at the nominal plant only"
                         : fmt::format("worst margins over {} plants at the ends of the principal axes of the "
@@ -159,7 +217,7 @@ std::vector<PlotPanel> SpeedLoopPanels(const JointGainsDesign& d) {
     zero.push_back(0.0);
     minus180.push_back(-180.0);
   }
-  PlotPanel gain{fmt::format("open loop C P e^(-1.5 T s): crossover {:.3g} Hz, gain margin {:.3g} dB, modulus margin {:.3g}",
+  PlotPanel gain{fmt::format("open loop C P e^(-(tau_p + 1.5 T) s): crossover {:.3g} Hz, gain margin {:.3g} dB, modulus margin {:.3g}",
                              m.crossover_hz, m.gain_margin_db, m.modulus_margin),
                  "|L| [dB]", {{"|L(jw)|", f, magnitude}, {"0 dB", f, zero}}};
   PlotPanel angle{fmt::format("phase: margin {:.3g} deg; notch at {:.4g} Hz", m.phase_margin_deg,

@@ -294,7 +294,7 @@ expect 3 "position unit 'furlongs'" -- export furlong.yaml --to wpilib-cpp
 # PIDController(double, double, double, units::second_t)), Java (stub
 # PIDController(double, double, double, double)) and the C header, each read
 # back equal to the feedback section.
-"$bin" gains flywheel.yaml --loop position --preset ctre-phoenix6 -o flywheel_pid.yaml > /dev/null 2>&1 || fail "gains for export"
+"$bin" gains flywheel.yaml --loop position --preset wpilib -o flywheel_pid.yaml > /dev/null 2>&1 || fail "gains for export"
 kp=$(sed -n 's/^  kp: {value: \([^,]*\),.*/\1/p' flywheel_pid.yaml); kd=$(sed -n 's/^  kd: {value: \([^,]*\),.*/\1/p' flywheel_pid.yaml)
 cat > cppstubs/frc/controller/PIDController.h << 'STUB'
 #pragma once
@@ -312,9 +312,16 @@ sed -i 's|^struct volts {}; struct seconds {};|struct volts {}; struct seconds {
 "$bin" export flywheel_pid.yaml --to wpilib-cpp --joint flywheel -o flywheel_pid.h &&
   printf '#include <cstdio>\n#include "flywheel_pid.h"\nint main() { auto p = flywheel_feedforward::MakePIDController(); std::printf("%%.17g %%.17g %%.17g\\n", p.kp, p.kd, p.period.value()); }\n' > pid_use.cc &&
   c++ -std=c++20 -Wall -Werror -I cppstubs pid_use.cc -o pid_use 2> cxx.txt && read -r c_kp c_kd c_period < <(./pid_use) &&
-  same_value "C++ kP" "$c_kp" "$kp" && same_value "C++ kD" "$c_kd" "$kd" && [ "$c_period" = "0.001" ] && ok ||
+  same_value "C++ kP" "$c_kp" "$kp" && same_value "C++ kD" "$c_kd" "$kd" && [ "$c_period" = "0.02" ] && ok ||
   fail "wpilib-cpp feedback: $(cat cxx.txt)"
-grep -q "CTRE Phoenix 6: new Slot0Configs().withKP(kP).withKD(kD)" flywheel_pid.h && ok || fail "vendor slot note"
+# A vendor's gains go into its slot: the note, the constants, no PIDController.
+"$bin" gains flywheel.yaml --loop position --preset ctre-phoenix6 -o flywheel_ctre.yaml > /dev/null 2>&1 || fail "gains, phoenix6"
+"$bin" export flywheel_ctre.yaml --to wpilib-cpp --joint flywheel -o flywheel_ctre.h && 
+  grep -q "CTRE Phoenix 6: new Slot0Configs().withKP(kP).withKD(kD)" flywheel_ctre.h && ! grep -q "PIDController{" flywheel_ctre.h &&
+  ! grep -q "#include <frc/controller/PIDController.h>" flywheel_ctre.h && ok || fail "vendor slot note: $(cat flywheel_ctre.h)"
+# The provenance line is the command as typed: it can be pasted back.
+grep -q "^// made by: drivetrain-fit export flywheel_ctre.yaml --to wpilib-cpp --joint flywheel -o flywheel_ctre.h$" flywheel_ctre.h &&
+  ok || fail "provenance: $(grep 'made by' flywheel_ctre.h)"
 "$bin" export flywheel_pid.yaml --to c-header --joint flywheel -o flywheel_pid_c.h &&
   printf '#include <stdio.h>\n#include "flywheel_pid_c.h"\nint main(void) { printf("%%.17g %%.17g\\n", FLYWHEEL_FEEDBACK_KP, FLYWHEEL_FEEDBACK_KD); return 0; }\n' > pid_c.c &&
   cc -std=c99 -Wall -Werror pid_c.c -o pid_c 2> cc.txt && read -r h_kp h_kd < <(./pid_c) &&

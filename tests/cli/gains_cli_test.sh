@@ -104,6 +104,21 @@ expect 4 "LQR gains need Kv >= 0 and Ka > 0" -- gains negative.yaml
 sed 's/"V"/"N m"/' fitted.yaml > torque.yaml
 expect 2 "--preset rev-neo converts volts to its output, but the effort is in N m" -- gains torque.yaml --preset rev-neo
 expect 2 "gains needs a parameter file or both --kv and --ka" -- gains --kv 1
+# Vendor units: Phoenix 6 and REV work in rotations, so a log in radians is
+# converted (2 pi rad per rotation: the same as --conversion 1/(2 pi)); a
+# unit that is no angle, or Phoenix 5's sensor units, must be given.
+"$bin" gains fitted.yaml --loop position --preset ctre-phoenix6 --json > p6.json &&
+  "$bin" gains fitted.yaml --loop position --preset ctre-phoenix6 --conversion 0.15915494309189535 --json > p6c.json &&
+  cmp -s p6.json p6c.json && grep -q '"position_unit":"rotation"' p6.json && grep -q '"unit":"V/rotation"' p6.json && ok ||
+  fail "phoenix6 from radians: $(head -c 500 p6.json)"
+sed 's/"Radians"/"Meters"/' fitted.yaml > meters.yaml
+expect 2 "--preset ctre-phoenix6 works in rotations, and the file's position unit is 'Meters': give --conversion" -- gains meters.yaml --preset ctre-phoenix6
+expect 2 "--preset ctre-phoenix5 works in the sensor's units: give --conversion" -- gains fitted.yaml --preset ctre-phoenix5
+# A delay that leaves no useful gain is named (the gain stays printed).
+"$bin" gains --kv 1 --ka 0.001 --loop velocity --period 0.001 --delay 0.5 --json > weak.json 2> weak.txt &&
+  grep -q "measurement delay" weak.txt && grep -q '"warnings":\["kp = ' weak.json && ok || fail "a useless gain: $(cat weak.txt)"
+"$bin" gains --kv 1 --ka 0.001 --loop velocity --period 0.001 --delay 0.001 > strong.txt 2>&1 && ! grep -q "warning" strong.txt && ok ||
+  fail "a useful gain warned: $(cat strong.txt)"
 sed "/^feedback:/a\\  kq: 3" gains.yaml > hostile.yaml
 expect 3 "hostile.yaml:[0-9]+:[0-9]+: feedback.kq: unknown key" -- gains hostile.yaml
 sed 's/^  loop: position/  loop: "x\\u002a\/"/' gains.yaml > loop.yaml
@@ -200,6 +215,85 @@ settled = abs(ys[-500:] - 1).max() < 0.02 and np.isfinite(ys).all()
 rep = json.load(open(sys.argv[1]))["controller"]
 print(f"true plant: crossover {fc:.2f} Hz, PM {pm:.1f} (reported {rep['phase_margin_deg']:.1f}), GM {gm:.1f} dB, MM {mm:.3f}, step settled {settled}")
 ok = pm >= 40 and gm >= 6 and mm >= 0.5 and fc >= 3 and abs(pm - rep["phase_margin_deg"]) <= 5 and settled
+sys.exit(0 if ok else 1)
+PY
+fi
+# A drive's Bode export (torque to motor speed, the same joint) behind a
+# true 3 ms delay, made here in awk with 2 % magnitude and 1 degree phase
+# noise: frf fits the delay, gains designs for 3 ms + 1.5 periods, and the
+# loop is checked on the TRUE plant in numpy: margins of C(s) P(s)
+# e^(-4.5 ms s), and the sampled loop with C(z) as written (three whole
+# periods of drive delay, the torque one period late) settling on a step.
+awk 'BEGIN {
+  n = 10; jm = 0.5; jl = 1.5; k = 2000; d = 2; bm = 6; tau = 0.003; pi = atan2(0, -1); srand(5);
+  print "frequency,magnitude,phase";
+  for (i = 0; i < 400; ++i) {
+    f = exp(log(400) * i / 399); w = 2 * pi * f;
+    # s = jw: al = k - jl w^2 + j d w, am = k - jm w^2 + j (d + bm) w, c = k + j d w
+    alr = k - jl * w * w; ali = d * w; amr = k - jm * w * w; ami = (d + bm) * w; cr = k; ci = d * w;
+    denr = amr * alr - ami * ali - (cr * cr - ci * ci); deni = amr * ali + ami * alr - 2 * cr * ci;
+    numr = -n * n * w * ali; numi = n * n * w * alr;
+    hr = (numr * denr + numi * deni) / (denr * denr + deni * deni);
+    hi = (numi * denr - numr * deni) / (denr * denr + deni * deni);
+    g1 = sqrt(-2 * log(1 - rand())) * cos(2 * pi * rand()); g2 = sqrt(-2 * log(1 - rand())) * cos(2 * pi * rand());
+    mag = sqrt(hr * hr + hi * hi) * exp(0.02 * g1);
+    ph = atan2(hi, hr) * 180 / pi - 360 * f * tau + g2;
+    printf "%.6f,%.9g,%.6f\n", f, mag, ph;
+  }
+}' > bode3ms.csv
+"$bin" frf --measured bode3ms.csv --output-is rate --params gear.yaml --fit two-mass \
+  --free motor_inertia,link_inertia,stiffness,damping,motor_viscous,delay -o drive3ms.yaml > frf3.txt 2>&1 ||
+  fail "frf of the 3 ms Bode export: $(tail -5 frf3.txt)"
+grep -Eq "^    delay: \{value: 0\.00(29|30|31)" drive3ms.yaml && ok || fail "the fitted delay: $(grep -A1 ' delay' drive3ms.yaml)"
+"$bin" gains drive3ms.yaml --loop speed --json > speed3.json 2> speed3_err.txt || fail "speed loop, 3 ms: $(cat speed3_err.txt)"
+grep -q '"loop_delay":0\.004[45]' speed3.json && grep -q '"numerator_z":\[' speed3.json && ok ||
+  fail "speed loop, 3 ms: loop delay and C(z): $(head -c 900 speed3.json)"
+# --delay is honoured: a 20 ms drive delay cannot hold 50 degrees at a
+# useful crossover with this resonance, or lowers it a lot.
+"$bin" gains drive3ms.yaml --loop speed --delay 0.02 --json > speed20.json 2>&1
+grep -q '"plant_delay":0\.02' speed20.json || grep -q "no PI speed loop" speed20.json && ok || fail "--delay ignored: $(head -c 600 speed20.json)"
+if "$py" -c "import numpy" 2> /dev/null; then
+  "$py" - speed3.json <<'PY' && ok || fail "the 3 ms speed loop does not hold on the true plant"
+import json, sys
+import numpy as np
+from numpy.linalg import matrix_power
+c = json.load(open(sys.argv[1]))["controller"]
+num, den = np.array(c["numerator"]), np.array(c["denominator"])
+n, jm, jl, k, d, bm, bl, T, tp = 10.0, 0.5, 1.5, 2000.0, 2.0, 6.0, 0.0, 0.001, 0.003
+w = 2 * np.pi * np.logspace(-3, np.log10(500), 200000)
+s = 1j * w
+al = jl * s**2 + (d + bl) * s + k
+am = jm * s**2 + (d + bm) * s + k
+L = n**2 * s * al / (am * al - (d * s + k) ** 2) * np.polyval(num, s) / np.polyval(den, s) * np.exp(-s * (tp + 1.5 * T))
+mag, ph = np.abs(L), np.unwrap(np.angle(L))
+cross = np.where(np.diff(np.sign(mag - 1)) != 0)[0]
+pm = min(180 - abs((np.degrees(ph[i]) + 180) % 360 - 180) for i in cross)
+odd = np.floor((ph / np.pi - 1) / 2)
+pc = np.where(np.diff(odd) != 0)[0]
+gm = min(-20 * np.log10(mag[i + 1]) for i in pc) if len(pc) else np.inf
+mm = np.min(np.abs(1 + L))
+# The sampled loop: plant by fine Euler sub-steps (independent of the
+# library's matrix exponential), C(z) as a difference equation, the torque
+# applied 1 + 3 periods after it is computed.
+b, a = np.array(c["numerator_z"]), np.array(c["denominator_z"])
+A = np.array([[0, 1, 0, 0], [-k / jm, -(d + bm) / jm, k / jm, d / jm], [0, 0, 0, 1], [k / jl, d / jl, -k / jl, -(d + bl) / jl]])
+B = np.array([0, n / jm, 0, 0])
+ns = 50
+Phi = matrix_power(np.eye(4) + A * (T / ns), ns)
+Gam = sum(matrix_power(np.eye(4) + A * (T / ns), j) for j in range(ns)) @ B * (T / ns)
+x = np.zeros(4); e_hist = np.zeros(len(b)); u_hist = np.zeros(len(a)); queue = [0.0] * 4; ys = []
+for i in range(8000):
+    y = n * x[1]
+    e_hist = np.roll(e_hist, 1); e_hist[0] = 1.0 - y
+    u = (b @ e_hist - a[1:] @ u_hist[:-1]) / a[0]
+    u_hist = np.roll(u_hist, 1); u_hist[0] = u
+    queue.append(u)
+    x = Phi @ x + Gam * queue.pop(0)
+    ys.append(y)
+ys = np.array(ys)
+settled = np.isfinite(ys).all() and abs(ys[-1000:] - 1).max() < 0.02
+print(f"3 ms: crossover {c['crossover_hz']:.2f} Hz, true plant PM {pm:.1f} (reported {c['phase_margin_deg']:.1f}), GM {gm:.1f} dB, MM {mm:.3f}, sampled step settled {settled}")
+ok = pm >= 40 and gm >= 6 and mm >= 0.5 and abs(pm - c["phase_margin_deg"]) <= 5 and settled
 sys.exit(0 if ok else 1)
 PY
 fi

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <complex>
 
+#include <Eigen/Dense>
 #include <catch2/catch.hpp>
 
 using namespace driveid;
@@ -100,4 +101,124 @@ TEST_CASE("a designed speed loop meets its margins; a bad plant is refused") {
   CHECK_FALSE(std::abs(SimulateSpeedStep(plant, loud, s.period, 1.0).speed.back()) < 10.0);  // diverged (or overflowed)
   plant.joint.stiffness = 0.0;
   CHECK_THROWS_AS(DesignSpeedLoop(plant, {}, s), std::invalid_argument);
+}
+
+namespace {
+
+// The roots' largest magnitude of a monic-led polynomial (highest power
+// first), by the companion matrix: written here, not taken from the library.
+double LargestRoot(const std::vector<double>& p) {
+  const Eigen::Index degree = static_cast<Eigen::Index>(p.size()) - 1;
+  Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(degree, degree);
+  for (Eigen::Index j = 0; j < degree; ++j) companion(0, j) = -p[static_cast<std::size_t>(j) + 1] / p[0];
+  for (Eigen::Index i = 1; i < degree; ++i) companion(i, i - 1) = 1.0;
+  return companion.eigenvalues().cwiseAbs().maxCoeff();
+}
+
+std::complex<double> Polyval(const std::vector<double>& lowest_first, std::complex<double> x) {
+  std::complex<double> out = 0.0;
+  for (std::size_t i = lowest_first.size(); i-- > 0;) out = out * x + lowest_first[i];
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("C(z) is Tustin's rule prewarped at the notch") {
+  PiNotch c;
+  c.kp = 2.0;
+  c.integral_corner = 5.0;
+  c.notch_hz = 120.0;
+  c.notch_width_hz = 40.0;
+  const double period = 1e-3;
+  std::vector<double> b, a;
+  c.Discrete(period, b, a);
+  REQUIRE(b.size() == 4);
+  REQUIRE(a.size() == 4);
+  CHECK(a[0] == 1.0);
+  // The integrator maps to z = 1: the denominator vanishes there.
+  CHECK(std::abs(a[0] + a[1] + a[2] + a[3]) < 1e-12);
+  const auto cz = [&](double omega) {
+    const std::complex<double> x = std::exp(std::complex<double>(0.0, -omega * period));  // z^-1
+    return Polyval(b, x) / Polyval(a, x);
+  };
+  // Exact at the notch (the prewarping); far below it, s is scaled by
+  // (w_n T / 2) / tan(w_n T / 2) (0.95 here), which moves the PI's corner.
+  const double wn = 2.0 * M_PI * c.notch_hz;
+  CHECK(std::abs(cz(wn) - c.Evaluate(wn)) < 1e-9 * std::abs(c.Evaluate(0.3 * wn)));
+  CHECK(std::abs(cz(2.0 * M_PI * 3.0) - c.Evaluate(2.0 * M_PI * 3.0)) < 0.02 * std::abs(c.Evaluate(2.0 * M_PI * 3.0)));
+}
+
+TEST_CASE("the sampled loop's stability limit is the delayed integrator's") {
+  // Nearly rigid: L(z) = K T z^-(m+1) / (z - 1) with m whole periods of the
+  // drive's delay; the closed loop's poles solve z^(m+1) (z - 1) + K T = 0.
+  SpeedLoopPlant plant = NearlyRigid();
+  const double period = 1e-3, inertia = 2.0;
+  PiNotch c;
+  c.notch_hz = 2000.0;
+  c.notch_width_hz = 100.0;
+  c.notch_depth_db = 0.0;
+  c.integral_corner = 1e-3;
+  for (int m : {0, 3}) {
+    plant.delay = m * period;
+    std::vector<double> characteristic(static_cast<std::size_t>(m) + 3, 0.0);
+    characteristic[0] = 1.0;
+    characteristic[1] = -1.0;
+    // The critical K T by bisection on the closed form's roots.
+    double low = 0.0, high = 2.0;
+    for (int i = 0; i < 60; ++i) {
+      const double mid = 0.5 * (low + high);
+      characteristic.back() = mid;
+      (LargestRoot(characteristic) < 1.0 ? low : high) = mid;
+    }
+    INFO("m " << m << ", critical K T " << low);
+    for (double factor : {0.9, 1.1}) {
+      c.kp = factor * low / period * inertia / 100.0;
+      const double radius = DiscreteLoopRadius(plant, c, period);
+      CHECK((radius < 1.0) == (factor < 1.0));
+      CHECK(EvaluateSpeedLoop(plant, c, period).stable == (factor < 1.0));
+    }
+  }
+}
+
+TEST_CASE("the step response waits out the drive's delay") {
+  SpeedLoopPlant plant = NearlyRigid();
+  plant.delay = 0.0034;  // 3 whole periods and a fraction
+  PiNotch c;
+  c.kp = 0.002;
+  c.integral_corner = 1.0;
+  c.notch_hz = 2000.0;
+  c.notch_width_hz = 100.0;
+  c.notch_depth_db = 0.0;
+  const StepResponse step = SimulateSpeedStep(plant, c, 1e-3, 0.02);
+  // The first command at k = 0 reaches the plant at 1 ms + 3.4 ms: the
+  // speed sampled at k = 4 is still 0, at k = 5 it has moved.
+  CHECK(step.speed[4] == 0.0);
+  CHECK(step.speed[5] > 0.0);
+}
+
+TEST_CASE("a drive's delay the design knows keeps the loop stable; ignoring it does not") {
+  SpeedLoopPlant plant;
+  plant.gear_ratio = 10.0;
+  plant.joint.motor_inertia = 0.5;
+  plant.joint.link_inertia = 1.5;
+  plant.joint.stiffness = 2000.0;
+  plant.joint.damping = 2.0;
+  plant.joint.motor_viscous = 6.0;
+  SpeedLoopSettings s;
+  const SpeedLoopDesign blind = DesignSpeedLoop(plant, {}, s);
+  REQUIRE(blind.met);
+  SpeedLoopPlant delayed = plant;
+  delayed.delay = 0.003;
+  const LoopMargins on_true = EvaluateSpeedLoop(delayed, blind.controller, s.period);
+  INFO("blind design on the delayed plant: PM " << on_true.phase_margin_deg << ", GM " << on_true.gain_margin_db);
+  CHECK_FALSE((on_true.stable && on_true.phase_margin_deg >= 40.0 && on_true.gain_margin_db >= 6.0));
+  const SpeedLoopDesign aware = DesignSpeedLoop(delayed, {}, s);
+  REQUIRE(aware.met);
+  CHECK(aware.nominal.stable);
+  CHECK(aware.nominal.phase_margin_deg >= 50.0);
+  CHECK(aware.nominal.gain_margin_db >= 6.0);
+  CHECK(aware.nominal.modulus_margin >= 0.5);
+  CHECK(aware.nominal.crossover_hz < blind.nominal.crossover_hz);
+  const StepResponse step = SimulateSpeedStep(delayed, aware.controller, s.period, 6.0);
+  CHECK(std::abs(step.speed.back() - 1.0) < 0.01);
 }

@@ -46,10 +46,32 @@ TEST_CASE("C header: each value to the last bit, stds only where there are, C(s)
   CHECK(FeedbackCHeaderLines(FeedbackController{}, "X").empty());
 }
 
-TEST_CASE("a PID loop: kP, kD and the period in Java and C++, the vendor's slot named; hostile names commented out") {
+TEST_CASE("a vendor's gains: its slot values only, no PIDController built from them") {
   FeedbackController f;
   f.loop = "position";
   f.preset = "ctre-phoenix6";
+  f.effort_unit = "V";
+  f.position_unit = "rotation";
+  f.values = {{"kp", 12.5, 0.25}, {"kd", 0.75, 0.0}, {"period", 0.001, 0.0}};
+  const std::string java = FeedbackJavaMembers(f), cpp = FeedbackCppMembers(f);
+  CHECK(java.find("public static final double kP = 12.5;") != std::string::npos);
+  CHECK(java.find("Slot0Configs") != std::string::npos);
+  CHECK(java.find("new PIDController") == std::string::npos);
+  CHECK(cpp.find("inline constexpr double kP = 12.5;") != std::string::npos);
+  CHECK(cpp.find("frc::PIDController") == std::string::npos);
+  CHECK(FeedbackJavaImport(f).empty());
+  CHECK(FeedbackCppInclude(f).empty());
+  for (const char* vendor : {"ctre-phoenix5", "rev-neo", "rev-external"}) {
+    f.preset = vendor;
+    CHECK(FeedbackJavaMembers(f).find("new PIDController") == std::string::npos);
+    CHECK(FeedbackCppMembers(f).find("MakePIDController") == std::string::npos);
+  }
+}
+
+TEST_CASE("a PID loop: kP, kD and the period in Java and C++; hostile names commented out") {
+  FeedbackController f;
+  f.loop = "position";
+  f.preset = "wpilib";
   f.effort_unit = "V";
   f.position_unit = "Rotations";
   f.values = {{"kp", 12.5, 0.25}, {"kd", 0.75, 0.0}, {"period", 0.02, 0.0}};
@@ -57,7 +79,7 @@ TEST_CASE("a PID loop: kP, kD and the period in Java and C++, the vendor's slot 
   CHECK(java.find("public static final double kP = 12.5;") != std::string::npos);
   CHECK(java.find("public static final double kD = 0.75;") != std::string::npos);
   CHECK(java.find("kControllerPeriodSeconds = 0.02;") != std::string::npos);
-  CHECK(java.find("Slot0Configs") != std::string::npos);
+  CHECK(java.find("new PIDController(kP, 0.0, kD, kControllerPeriodSeconds)") != std::string::npos);
   CHECK(cpp.find("inline constexpr double kP = 12.5;") != std::string::npos);
   CHECK(cpp.find("kControllerPeriod{0.02}") != std::string::npos);
   CHECK(FeedbackJavaImport(f) == "import edu.wpi.first.math.controller.PIDController;\n");

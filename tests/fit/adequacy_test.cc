@@ -7,6 +7,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "core/errors.h"
 #include "fit/fit_statistics.h"
 
 using namespace driveid;
@@ -125,4 +126,33 @@ TEST_CASE("processing: a move past 2 std and 5 %, or past 4 std at a higher cuto
   REQUIRE(large.size() == 1);
   CHECK(large[0].find("processing: inertia") == 0);
   CHECK(large[0].find("by more than 5 %") != std::string::npos);
+}
+
+TEST_CASE("a parameter at its bound 0 is reported with its one-sided limit; the fit stands") {
+  const auto at_bound = [](double std) {
+    FitResult fit;
+    fit.estimates = {{"stiffness", 100.0, 2.0, 96.0, 104.0}, {"damping", 0.0, std, -1.96 * std, 1.96 * std}};
+    return fit;
+  };
+  // Limit 1.645 x 0.0053 = 0.0087 rules out a start of 0.05 (within 50 %): a note.
+  FitResult ruled_out = at_bound(0.0053);
+  REQUIRE_NOTHROW(RequireDetermined(ruled_out, {"stiffness", "damping"}, 0.5, {}, {{"damping", 0.05}}));
+  CHECK(ruled_out.estimates[1].ci95_low == 0.0);
+  CHECK(ruled_out.estimates[1].ci95_high == Approx(1.645 * 0.0053).epsilon(1e-3));
+  CHECK(ruled_out.warnings.empty());
+  REQUIRE(ruled_out.notes.size() == 1);
+  CHECK_THAT(ruled_out.notes[0], Catch::Contains("damping sits at its bound 0"));
+  // The same with a start of 0.01 that the limit does not rule out: still
+  // reported at the bound, now with a warning that names it.
+  FitResult open_start = at_bound(0.0053);
+  REQUIRE_NOTHROW(RequireDetermined(open_start, {"stiffness", "damping"}, 0.5, {}, {{"damping", 0.01}}));
+  CHECK(open_start.estimates[1].ci95_high == Approx(1.645 * 0.0053).epsilon(1e-3));
+  REQUIRE(open_start.warnings.size() == 1);
+  CHECK_THAT(open_start.warnings[0], Catch::Contains("do not rule out its start value 0.01"));
+  // Without a start value (a fit that gives none) or with no finite std: refused by name.
+  FitResult unknown = at_bound(0.0053);
+  CHECK_THROWS_WITH(RequireDetermined(unknown, {"stiffness", "damping"}, 0.5, {}),
+                    Catch::Contains("damping = 0 +- 0.0053 (at its bound 0)"));
+  FitResult infinite = at_bound(INFINITY);
+  CHECK_THROWS_AS(RequireDetermined(infinite, {"stiffness", "damping"}, 0.5, {}, {{"damping", 0.01}}), IdentificationError);
 }

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "core/errors.h"
+#include "io/table_source.h"
 
 using driveid::CsvReadOptions;
 using driveid::InputError;
@@ -88,4 +89,27 @@ TEST_CASE("alternatives: the first present column wins, names tell which") {
   CHECK(with_current.column("i_L")[0] == 1.0);
   CHECK_THROWS_WITH(ParseCsvLog("c.csv", "t,x\n0,1\n", wanted),
                     Catch::StartsWith("c.csv:1: missing column 'tau_L' or 'i_L' (header has"));
+}
+
+TEST_CASE("--skip-rows: a drive export's preamble before the header") {
+  using driveid::CsvFormat;
+  using driveid::OpenCsvSource;
+  const std::string text =
+      "Servo drive XY-200 Bode export\nAxis: 1, 2026-11-27 10:00\n\nfrequency,magnitude,phase\n1,2,3\n4,5,6\n";
+  // Unskipped, the preamble is taken for the header and its rows differ.
+  CHECK_THROWS_AS(OpenCsvSource("bode.csv", text, CsvFormat{})->Read({0, 1, 2}), InputError);
+  CsvFormat format;
+  format.skip_rows = 3;
+  const auto source = OpenCsvSource("bode.csv", text, format);
+  CHECK(source->column_names() == std::vector<std::string>{"frequency", "magnitude", "phase"});
+  CHECK(source->header_line() == 4);
+  const auto data = source->Read({0, 2});
+  REQUIRE(data.columns[1].size() == 2);
+  CHECK(data.columns[1][1] == 6.0);
+  CHECK(data.line_numbers[1] == 6);
+  REQUIRE(source->comments().size() == 3);
+  CHECK(source->comments()[0] == "Servo drive XY-200 Bode export");
+  // Every line skipped: refused by name, not read as empty.
+  format.skip_rows = 10;
+  CHECK_THROWS_WITH(OpenCsvSource("bode.csv", text, format), Catch::Contains("all skipped"));
 }
