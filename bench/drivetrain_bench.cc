@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
     e.noise = 0.05;
     e.duration = duration;
     const AxisLog log = SimulateAxisExperiment(axis_truth, e);
-    const double ms = time_best([&] { FitAxis({log}, AxisSection{0.1, 0.5, 2.0, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}}, {}); });
+    const double ms = time_best([&] { FitAxis({log}, AxisSection{0.1, 0.5, 2.0, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}}, {}); });
     std::printf("| axis (IDIM-LS) | %zu | %.2f ms | %.3f ms |\n", log.time.size(), ms, ms * 1000.0 / static_cast<double>(log.time.size()));
   }
   const CDriveParameters cdrive = testing_support::TableOneCDrive();

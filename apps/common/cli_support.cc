@@ -6,13 +6,17 @@
 #include <algorithm>
 
 #include <charconv>
+#include <condition_variable>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <optional>
+#include <thread>
 #include <filesystem>
 #include <system_error>
 
@@ -269,6 +273,18 @@ CLI::Validator Seed() {
       "SEED");
 }
 
+CLI::Validator TorqueTimingText(bool file) {
+  return CLI::Validator(
+      [file](std::string& text) -> std::string {
+        if (text == "sampled" || text == "held" || (file ? text == "file" : text == "auto")) return {};
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        if (!text.empty() && end == text.c_str() + text.size() && std::abs(value) <= 1.0) return {};
+        return fmt::format("{}: {}sampled, held or a delay in samples from -1 to 1", text, file ? "file, " : "auto, ");
+      },
+      file ? "file|sampled|held|D" : "auto|sampled|held|D");
+}
+
 namespace {
 
 // Identity of a file: device and inode if it exists, else its absolute path.
@@ -351,8 +367,8 @@ void AddFitOutputOptions(CLI::App& command, FitOutputOptions& options) {
       ->capture_default_str()
       ->check(FiniteWithin(1e-6, 1024.0));
   command.add_option("--max-seconds", options.max_seconds,
-                     "wall-clock limit of one solver run [s]: reached, the fit ends at its best point with a warning "
-                     "(0: none)")
+                     "wall-clock limit of all the command's fits together [s]: reached, a fit ends at its best point "
+                     "with a warning, and one that would start after it is refused naming the limit (0: none)")
       ->capture_default_str()
       ->check(FiniteWithin(0.0, 1e6));
   command.add_flag("--strict", options.strict,
@@ -387,23 +403,98 @@ void EmitFitOutputs(const FitOutputOptions& options, const FitOutputs& outputs) 
   });
 }
 
+namespace {
+
+// A line on stderr at least every kHeartbeatSeconds while a fit runs, also
+// inside one long evaluation (a multi-log output-error simulation), from a
+// thread of its own; the iteration lines count as lines. Started at the
+// first fit, stopped and joined at exit.
+constexpr double kHeartbeatSeconds = 5.0;
+
+class Heartbeat {
+ public:
+  ~Heartbeat() {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    if (thread_.joinable()) thread_.join();
+  }
+  void Running(bool on) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    active_ += on ? 1 : -1;
+    if (on && start_ == 0.0) start_ = last_line_ = MonotonicSeconds();
+    if (!thread_.joinable()) thread_ = std::thread([this] { Loop(); });
+  }
+  /// A line was printed (an iteration's); `iteration`, `cost` for the next beat.
+  void Said(int iteration, double cost) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    last_line_ = MonotonicSeconds();
+    iteration_ = iteration;
+    cost_ = cost;
+  }
+  void Saw(int iteration, double cost) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    iteration_ = iteration;
+    cost_ = cost;
+  }
+  double Elapsed() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return start_ == 0.0 ? 0.0 : MonotonicSeconds() - start_;
+  }
+
+ private:
+  void Loop() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!stop_) {
+      wake_.wait_for(lock, std::chrono::milliseconds(500));
+      const double now = MonotonicSeconds();
+      if (stop_ || active_ <= 0 || now - last_line_ < kHeartbeatSeconds) continue;
+      last_line_ = now;
+      std::fprintf(stderr, "fitting: %.0f s, iteration %d, cost %.6e (evaluating)\n", now - start_, iteration_, cost_);
+    }
+  }
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::thread thread_;
+  bool stop_ = false;
+  int active_ = 0, iteration_ = 0;
+  double start_ = 0.0, last_line_ = 0.0, cost_ = 0.0;
+};
+
+Heartbeat& TheHeartbeat() {
+  static Heartbeat heartbeat;
+  return heartbeat;
+}
+
+}  // namespace
+
 void SetProgress(FitOptions& fit, bool verbose, double max_seconds) {
   fit.max_seconds = max_seconds;
+  // --max-seconds bounds the command's every fit together: from here on.
+  fit.deadline = max_seconds > 0.0 ? MonotonicSeconds() + max_seconds : 0.0;
+  fit.running = [](bool on) { TheHeartbeat().Running(on); };
   if (verbose) {
     fit.progress = [](const FitIteration& it) {
       std::fprintf(stderr, "iteration %3d  cost %.9e  |gradient| %.3e  |step| %.3e\n", it.iteration, it.cost,
                    it.gradient_norm, it.step_norm);
+      TheHeartbeat().Said(it.iteration, it.cost);
     };
     return;
   }
-  // A long fit says it is alive: a line every 2 s after the first 2 s.
-  const auto start = std::chrono::steady_clock::now();
+  // A long fit says it is alive: a line every 2 s after the first 2 s (and
+  // the heartbeat's every 5 s inside a long evaluation).
   auto next = std::make_shared<double>(2.0);
-  fit.progress = [start, next](const FitIteration& it) {
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (elapsed < *next) return;
+  fit.progress = [next](const FitIteration& it) {
+    const double elapsed = TheHeartbeat().Elapsed();
+    if (elapsed < *next) {
+      TheHeartbeat().Saw(it.iteration, it.cost);
+      return;
+    }
     *next = elapsed + 2.0;
     std::fprintf(stderr, "fitting: %.0f s, iteration %d, cost %.6e\n", elapsed, it.iteration, it.cost);
+    TheHeartbeat().Said(it.iteration, it.cost);
   };
 }
 

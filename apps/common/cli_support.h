@@ -57,6 +57,9 @@ CLI::Validator FiniteAbove(double minimum);
 CLI::Validator FiniteWithin(double minimum, double maximum);
 CLI::Validator FiniteAtLeast(double minimum);
 CLI::Validator Seed();
+/// --torque-timing: sampled, held, a delay in samples from -1 to 1, and
+/// auto (a fit) or file (validate: the fit's, recorded in the file).
+CLI::Validator TorqueTimingText(bool file = false);
 /// A --plot file name: .png or .svg (report/plot.h, IsSupportedPlotPath).
 CLI::Validator PlotPath();
 
@@ -77,7 +80,7 @@ struct FitOutputOptions {
   bool verbose = false;
   double max_log_gib = 4.0;  ///< --max-log-size: largest log read [GiB]
   bool strict = false;       ///< --strict: adequacy warnings exit 4, nothing written
-  double max_seconds = 0.0;  ///< --max-seconds: wall-clock limit of one solver run (0: none)
+  double max_seconds = 0.0;  ///< --max-seconds: wall-clock limit of all the command's fits (0: none)
   std::optional<double> fail_below{};  ///< validate --fail-below: exit 1 when a log's fit % is below this
 };
 /// Adds -o, --trace, --plot, --json, -q, -v, --max-log-size and --strict.

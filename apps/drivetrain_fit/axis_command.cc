@@ -42,11 +42,12 @@ CLI::App* SetupAxisCommand(CLI::App& app, AxisOptions& options) {
       ->check(CLI::Range(1, 1000));
   command->add_option("--torque-timing", options.torque_timing,
                       "idim: when the logged torque acts. sampled: at its sample's instant (a measured current); "
-                      "held: the command the drive holds until the next sample, as output error simulates it "
-                      "(docs/models.md#torque-timing); auto: the one whose fit leaves the smaller residual")
+                      "held: the command the drive holds until the next sample, as output error simulates it; a "
+                      "number D in [-1, 1]: D samples after its stamp (held 0.5; -0.5 a command held since the last "
+                      "sample, as ros2_control logs it); auto: D estimated from the data, its std in the intervals "
+                      "(docs/models.md#torque-timing)")
       ->capture_default_str()
-      ->check(CLI::IsMember(AxisTorqueTimingNames(
-          {AxisTorqueTiming::kFromData, AxisTorqueTiming::kSampled, AxisTorqueTiming::kHeld})));
+      ->check(TorqueTimingText());
   AddFitOutputOptions(*command, options.output);
   command->footer(
       "Example:\n  drivetrain-fit simulate axis --params data/axis_example.yaml --noise 0.05 -o axis.csv\n"
@@ -89,7 +90,7 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
   fit_options.free = options.free;
   fit_options.cutoff = options.cutoff;
   fit_options.decimation = options.decimation;
-  fit_options.torque_timing = AxisTorqueTimingFromName(options.torque_timing);
+  fit_options.torque_timing = ParseAxisTorqueTiming(options.torque_timing, fit_options.torque_delay);
   fit_options.trace = !options.output.trace.empty();
   SetProgress(fit_options.fit, options.output.verbose, options.output.max_seconds);
   std::vector<AxisLog> validation;

@@ -43,10 +43,11 @@ CLI::App* SetupValidateCommand(CLI::App& app, ValidateOptions& options) {
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
   command->add_option("--torque-timing", options.torque_timing,
-                      "axis: when the logged torque acts, as the fit read it (its text output says): sampled or held "
+                      "axis: when the logged torque acts: file (the fit's reading, axis.torque_delay; sampled when "
+                      "the file has none), sampled, held, or a delay in samples from -1 to 1 "
                       "(docs/models.md#torque-timing)")
       ->capture_default_str()
-      ->check(CLI::IsMember(AxisTorqueTimingNames({AxisTorqueTiming::kSampled, AxisTorqueTiming::kHeld})));
+      ->check(TorqueTimingText(true));
   command->add_flag("--simulate", options.simulate,
                     "axis: simulate the position from the logged torque, Coulomb friction that sticks "
                     "(docs/models.md#axis-output-error), instead of the torque by inverse dynamics");
@@ -106,9 +107,15 @@ void RunValidateCommand(const ValidateOptions& options, const std::string& comma
     const AxisSection& axis = *file->Find<AxisSection>();
     const double k_t = axis.torque_constant.value_or(0.0);
     const auto logs = load(AxisLogColumns(), [k_t](CsvLog csv) { return MakeAxisLog(std::move(csv), k_t); });
-    run = RunAxisValidation(logs, axis, options.params,
-                            {options.simulate, options.cutoff, options.decimation,
-                             AxisTorqueTimingFromName(options.torque_timing)});
+    AxisValidationOptions validation;
+    validation.simulate = options.simulate;
+    validation.cutoff = options.cutoff;
+    validation.decimation = options.decimation;
+    validation.timing_from_file = options.torque_timing == "file";
+    if (!validation.timing_from_file) {
+      validation.torque_timing = ParseAxisTorqueTiming(options.torque_timing, validation.torque_delay);
+    }
+    run = RunAxisValidation(logs, axis, options.params, validation);
   } else {
     const auto logs = load(StepLogColumns(), [](CsvLog csv) { return MakeStepLog(std::move(csv)); });
     run = RunStepValidation(logs, *file->Find<DriveTrainSection>(),

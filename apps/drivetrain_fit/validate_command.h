@@ -20,7 +20,7 @@ struct ValidateOptions {
   LogInputCli input;
   double cutoff = 0.0;
   int decimation = 10;
-  std::string torque_timing = "sampled";
+  std::string torque_timing = "file";
   bool simulate = false;          ///< axis: position by simulation instead of torque by inverse dynamics
   std::string joint = "axis";     ///< MJCF: the joint driven by the logged effort
   double mujoco_step = 1e-3;      ///< MJCF: largest MuJoCo time step [s]

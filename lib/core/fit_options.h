@@ -4,6 +4,7 @@
 // the large-problem policy and the error clusters.
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <functional>
 #include <string>
@@ -20,6 +21,11 @@ struct FitIteration {
   double gradient_norm;
   double step_norm;
 };
+
+/// Seconds on the monotonic clock (for FitOptions::deadline).
+inline double MonotonicSeconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 /// When a problem counts as large: its Jacobian above `jacobian_bytes`
 /// (16 MB). One named policy for the choices that follow from it: a model
@@ -53,6 +59,13 @@ struct FitOptions {
   /// Wall-clock limit of one solver run [s] (0: none). Reached, the run ends
   /// at its best point so far with a warning instead of a refusal.
   double max_seconds = 0.0;
+  /// The whole command's limit on MonotonicSeconds() (0: none): every solver
+  /// run gets at most the time left, and a run that would start after it is
+  /// refused naming the limit (`max_seconds` says how long it was).
+  double deadline = 0.0;
+  /// Told true when a solver run starts and false when it ends (also by an
+  /// exception): a caller's heartbeat speaks only while a fit runs.
+  std::function<void(bool)> running;
   LargeProblemPolicy large;
   /// Groups of rows whose errors may be correlated in any way among
   /// themselves (across channels too) and are independent between groups,

@@ -264,19 +264,58 @@ std::vector<std::string> ProcessingWarnings(const FitResult& fit, double cutoff,
     if (largest > 2.0 * e.standard_error && largest > 0.01 * kProcessingPercent * std::abs(e.value)) {
       warnings.push_back(fmt::format(
           "processing: {} = {:.4g} +- {:.2g} at the cutoff {:.3g} Hz moves to {} (more than 2 std): the estimate "
-          "depends on the differentiation filter by more than 5 %; its std does not include that ({})",
+          "depends on the differentiation filter by more than 5 %; that spread is added to its std, which says how "
+          "far it may be off, not where ({})",
           e.name, e.value, e.standard_error, cutoff, fmt::join(moves, ", "), advice));
     } else if (largest_up_in_std > kProcessingStds) {
       warnings.push_back(fmt::format(
           "processing: {} = {:.4g} +- {:.2g} at the cutoff {:.3g} Hz moves to {}: {:.1f} std at a higher cutoff, "
-          "which keeps more of the motion; the interval leaves out an error of that size, and other estimates "
-          "of the fit may carry one as well ({})",
+          "which keeps more of the motion; that spread is added to its std, and other estimates of the fit may "
+          "carry an error of that size as well ({})",
           e.name, e.value, e.standard_error, cutoff, fmt::join(moves, ", "), largest_up_in_std, advice));
     }
   }
   return warnings;
 }
 
+
+bool WidenForProcessing(FitResult& fit, double cutoff) {
+  std::vector<const EstimateSet*> usable;
+  bool moves = false;
+  for (const auto& other : fit.sensitivity) {
+    if (!other.failure.empty() || other.estimates.empty()) continue;
+    usable.push_back(&other);
+    for (const auto& e : fit.estimates) {
+      for (const auto& o : other.estimates) {
+        if (o.name == e.name && std::abs(o.value - e.value) > e.standard_error) moves = true;
+      }
+    }
+  }
+  if (!moves) return false;
+  const std::vector<ParameterEstimate> before = fit.estimates;
+  const double share = 1.0 / std::sqrt(static_cast<double>(usable.size()));
+  for (const EstimateSet* other : usable) {
+    std::vector<double> gradient;
+    for (const auto& e : fit.estimates) {
+      double moved = e.value;
+      for (const auto& o : other->estimates) {
+        if (o.name == e.name) moved = o.value;
+      }
+      gradient.push_back(share * (moved - e.value));
+    }
+    AddSystematicCovariance(fit, gradient, 1.0);
+  }
+  std::vector<std::string> widened;
+  for (std::size_t j = 0; j < fit.estimates.size(); ++j) {
+    const double factor = before[j].standard_error > 0.0 ? fit.estimates[j].standard_error / before[j].standard_error : 1.0;
+    if (factor > 1.05) widened.push_back(fmt::format("{} x{:.2f}", fit.estimates[j].name, factor));
+  }
+  fit.notes.push_back(fmt::format(
+      "processing: the estimates move with the differentiation cutoff (fits at {} around {:.3g} Hz) by more than their "
+      "std; that spread is in the covariance and the intervals (std {})",
+      usable.size(), cutoff, widened.empty() ? "barely changed" : fmt::format("{}", fmt::join(widened, ", "))));
+  return true;
+}
 
 void AddSystematicCovariance(FitResult& fit, const std::vector<double>& gradient, double sigma) {
   const std::size_t p = fit.estimates.size();

@@ -93,6 +93,14 @@ inline constexpr double kProcessingStds = 4.0;
 /// `cutoff` [Hz] the fit's own, `advice` what to try.
 std::vector<std::string> ProcessingWarnings(const FitResult& fit, double cutoff, const std::string& advice);
 
+/// The processing's spread in the covariance: where some estimate moves
+/// with the processing (`fit.sensitivity`) by more than its std, each
+/// alternative i (m of them) enters as a systematic error
+/// g = (theta_i - theta) / sqrt(m), sigma 1 (AddSystematicCovariance): the
+/// covariance of a choice among the candidates about the fit's own. Returns
+/// whether it widened (a note says so in `fit.notes`).
+bool WidenForProcessing(FitResult& fit, double cutoff);
+
 /// Several logs: fits each alone through `fit_one(i)` (its estimates of the
 /// shared parameters; an exception is recorded as that log's failure) into
 /// fit.per_log labelled by `labels`, tests them for agreement

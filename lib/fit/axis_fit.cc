@@ -1,6 +1,7 @@
 #include "fit/axis_fit.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -30,6 +31,8 @@ bool AxisFitOptions::IsValid(std::string* error) const {
     *error = ViolatedConstraint("‹cutoff›", cutoff, "cutoff > 0 Hz (0: from the data)");
   } else if (!(min_rate_fraction >= 0.0 && min_rate_fraction < 1.0)) {
     *error = ViolatedConstraint("min_rate_fraction", min_rate_fraction, "0 <= fraction < 1");
+  } else if (!(std::abs(torque_delay) <= kMaxTorqueDelay)) {
+    *error = ViolatedConstraint("‹torque-timing›", torque_delay, "a delay from -1 to 1 samples");
   } else {
     return true;
   }
@@ -193,7 +196,7 @@ namespace {
 // one are usually among them; at the band the search's rows are the fit's).
 // Rows larger than kCachedRowBytes are not kept.
 using AxisRowCache =
-    std::map<std::tuple<double, AxisTorqueTiming, std::vector<int>>, std::shared_ptr<const AxisRows>>;
+    std::map<std::tuple<double, AxisTorqueTiming, double, std::vector<int>>, std::shared_ptr<const AxisRows>>;
 constexpr std::size_t kCachedRowBytes = std::size_t{64} << 20;
 
 // What a fit at one cutoff does beyond the estimates: the adequacy checks
@@ -234,97 +237,121 @@ double ChooseCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, 
   });
 }
 
-// (axis_rows.h kFromData) At options.cutoff, the reading of the torque's
-// timing whose fit leaves the smaller cost. Both fit the same dependent
-// column, the two-sample mean of the torque: the held reading against the
-// regressors at the sample, the sampled one against the regressors through
-// the same mean (kSampledSmoothed), so neither gains from the mean's
-// smoothing of the torque's noise. `rule` says what decided.
+// (axis_rows.h kFromData) At options.cutoff, when the logged torque acts,
+// among the readings kTimingReadings (samples after its stamp: -0.5 a
+// command held since the last sample, as ros2_control logs it; 0 sampled;
+// +0.5 held). Each fits the same dependent column, the torque's two-sample
+// mean, against the regressors moved to when it acts (kDelayed), so their
+// costs compare: residual sums of squares, each residual clipped at
+// kTimingClip robust std so that a start-up transient does not decide.
+// The evidence against reading i is its cost above the best in units of the
+// best's residual variance, divided by the square of the residuals' std
+// inflation (fewer independent rows); each reading weighs exp(-evidence/2)
+// (normalised), and the timing's uncertainty enters the covariance as the
+// weighted spread of the estimates between the readings (AddTimingCovariance).
+// The cost is not profiled over a continuous delay: under feedback the
+// measured position's noise is in both the torque and the regressors, and a
+// regressor moved earlier than the torque correlates with it, so the cost
+// keeps falling past the true delay (a held 1 kHz log's minimum runs to +1).
 constexpr double kTimingClip = 4.0;
-// Below this evidence the fit names the estimates the other reading moves.
-constexpr double kTimingEvidence = 10.0;
+constexpr std::array<double, 3> kTimingReadings = {-0.5, 0.0, 0.5};
+// Readings weighing less are left out of the covariance.
+constexpr double kTimingMinWeight = 1e-4;
 
-AxisTorqueTiming ChooseTiming(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options,
-                              AxisRowCache* cache, std::string* rule, double* evidence) {
+struct TorqueDelayEstimate {
+  double delay = 0.5;  ///< the best reading [samples]
+  std::vector<double> delays, weights;  ///< the readings fitted and their weights
+  std::string rule;
+};
+
+TorqueDelayEstimate EstimateTorqueDelay(const std::vector<AxisLog>& logs, const AxisSection& start,
+                                        const AxisFitOptions& options, AxisRowCache* cache) {
   AxisFitOptions trial = options;
   trial.per_log = false;
   trial.sensitivity = false;
-  double cost[2] = {HUGE_VAL, HUGE_VAL};
-  const AxisTorqueTiming readings[2] = {AxisTorqueTiming::kSampledSmoothed, AxisTorqueTiming::kHeld};
-  std::vector<double> residual[2];
-  double inflation[2] = {1.0, 1.0};
-  for (int i = 0; i < 2; ++i) {
-    trial.torque_timing = readings[i];
+  trial.torque_timing = AxisTorqueTiming::kDelayed;
+  std::vector<std::vector<double>> residual(kTimingReadings.size());
+  std::vector<double> inflation(kTimingReadings.size(), 1.0);
+  for (std::size_t i = 0; i < kTimingReadings.size(); ++i) {
+    trial.torque_delay = kTimingReadings[i];
     try {
       const AxisFitOutput fit = FitAtCutoff(logs, start, trial, cache, AtCutoff::kScore);
       for (std::size_t r = 0; r < fit.measured.size(); ++r) residual[i].push_back(fit.measured[r] - fit.model[r]);
       for (const auto& channel : fit.fit.channels) inflation[i] = std::max(inflation[i], channel.inflation);
     } catch (const std::exception&) {
-      // A reading the data refuse does not win; the fit reports the chosen one's errors.
+      // A reading the data refuse does not win.
     }
   }
-  if (!residual[0].empty() && residual[0].size() == residual[1].size()) {
-    std::vector<double> magnitude;
-    for (const auto& r : residual) for (double x : r) magnitude.push_back(std::abs(x));
-    const double clip = kTimingClip * RobustStd(std::move(magnitude));
-    for (int i = 0; i < 2; ++i) {
-      cost[i] = 0.0;
-      for (double x : residual[i]) cost[i] += 0.5 * std::min(x * x, clip * clip);
-    }
-  } else if (!residual[1].empty()) {
-    cost[1] = 0.0;
-  } else if (!residual[0].empty()) {
-    cost[0] = 0.0;
+  std::vector<double> magnitude;
+  std::size_t rows = 0;
+  for (const auto& r : residual) {
+    for (double x : r) magnitude.push_back(std::abs(x));
+    rows = std::max(rows, r.size());
   }
-  // The evidence: the difference of the costs in units of the residual
-  // variance of the better reading (a log-likelihood ratio for white
-  // residuals), divided by the square of the std inflation the residuals'
-  // correlation causes (fewer independent rows).
-  const int b = cost[1] < cost[0] ? 1 : 0;
-  const std::size_t rows = residual[0].size();
-  *evidence = std::isfinite(cost[0]) && std::isfinite(cost[1]) && cost[b] > 0.0
-                  ? std::abs(cost[1] - cost[0]) * static_cast<double>(rows) / cost[b] /
-                        (inflation[b] * inflation[b])
-                  : HUGE_VAL;
-  *rule = std::isfinite(cost[0]) && std::isfinite(cost[1])
-              ? fmt::format("from the data at the cutoff {:.4g} Hz: the clipped residual sum of squares of the "
-                            "two-sample mean of the torque is {:.6g} held, {:.6g} sampled (evidence {:.3g} "
-                            "residual variances)",
-                            options.cutoff, 2.0 * cost[1], 2.0 * cost[0], *evidence)
-          : std::isfinite(cost[0]) || std::isfinite(cost[1]) ? "from the data: the other reading was refused"
-                                                              : "neither reading could be fitted to judge: sampled kept";
-  return b == 1 ? AxisTorqueTiming::kHeld : AxisTorqueTiming::kSampled;
+  TorqueDelayEstimate out;
+  if (magnitude.empty()) {
+    out.rule = "no reading could be fitted to judge: held (+0.5) kept";
+    return out;
+  }
+  const double clip = kTimingClip * RobustStd(std::move(magnitude));
+  std::vector<double> cost(kTimingReadings.size(), HUGE_VAL);
+  for (std::size_t i = 0; i < kTimingReadings.size(); ++i) {
+    if (residual[i].size() != rows) continue;
+    cost[i] = 0.0;
+    for (double x : residual[i]) cost[i] += 0.5 * std::min(x * x, clip * clip);
+  }
+  const auto best = static_cast<std::size_t>(std::min_element(cost.begin(), cost.end()) - cost.begin());
+  out.delay = kTimingReadings[best];
+  std::vector<std::string> said;
+  double total = 0.0;
+  for (std::size_t i = 0; i < kTimingReadings.size(); ++i) {
+    const double evidence = std::isfinite(cost[i]) && cost[best] > 0.0
+                                ? (cost[i] - cost[best]) * static_cast<double>(rows) / cost[best] /
+                                      (inflation[best] * inflation[best])
+                                : HUGE_VAL;
+    const double weight = std::exp(-0.5 * evidence);
+    out.delays.push_back(kTimingReadings[i]);
+    out.weights.push_back(weight);
+    total += weight;
+    if (i != best) said.push_back(fmt::format("{:+.1f}: {:.3g}", kTimingReadings[i], evidence));
+  }
+  for (double& w : out.weights) w /= total;
+  out.rule = fmt::format("from the data at the cutoff {:.4g} Hz: of the readings -0.5 (a command held since the last "
+                         "sample), 0 (sampled) and +0.5 (held) samples after the stamp, {:+.1f} leaves the smallest "
+                         "clipped residual sum of squares; evidence against the others {} residual variances; "
+                         "their weighted spread is in the intervals",
+                         options.cutoff, out.delay, fmt::join(said, ", "));
+  return out;
 }
 
-// The warning for a timing chosen on weak evidence: the estimates that
-// the other reading moves by more than 2 std (none: no warning).
-void AddTimingWarning(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& central,
-                      double evidence, AxisRowCache* cache, FitResult& fit) {
-  AxisFitOptions other = central;
-  other.per_log = false;
-  other.torque_timing =
-      central.torque_timing == AxisTorqueTiming::kHeld ? AxisTorqueTiming::kSampled : AxisTorqueTiming::kHeld;
-  FitResult alternative;
-  try {
-    alternative = FitAtCutoff(logs, start, other, cache, AtCutoff::kScore).fit;
-  } catch (const std::exception&) {
-    return;  // the other reading refused: nothing to compare
-  }
-  std::vector<std::string> moves;
-  for (const auto& e : fit.estimates) {
-    for (const auto& o : alternative.estimates) {
-      if (o.name != e.name || !(e.standard_error > 0.0)) continue;
-      const double in_std = std::abs(o.value - e.value) / std::max(e.standard_error, o.standard_error);
-      if (!(in_std > 2.0)) continue;
-      moves.push_back(fmt::format("{} {:.4g} -> {:.4g} ({:.1f} std)", e.name, e.value, o.value, in_std));
+// The timing's uncertainty in the covariance: for each other reading i of
+// weight w_i, the estimates' move theta_i - theta_best enters as a
+// systematic error with g = sqrt(w_i) (theta_i - theta_best), sigma 1
+// (adequacy.h AddSystematicCovariance): the covariance of a mixture over the
+// readings, about the best one.
+void AddTimingCovariance(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& central,
+                         const TorqueDelayEstimate& timing, AxisRowCache* cache, FitResult& fit) {
+  for (std::size_t i = 0; i < timing.delays.size(); ++i) {
+    if (timing.delays[i] == central.torque_delay || !(timing.weights[i] >= kTimingMinWeight)) continue;
+    AxisFitOptions other = central;
+    other.per_log = false;
+    other.torque_delay = timing.delays[i];
+    FitResult alternative;
+    try {
+      alternative = FitAtCutoff(logs, start, other, cache, AtCutoff::kScore).fit;
+    } catch (const std::exception&) {
+      continue;  // a reading the data refuse adds nothing
     }
+    std::vector<double> gradient;
+    for (const auto& e : fit.estimates) {
+      double moved = e.value;
+      for (const auto& o : alternative.estimates) {
+        if (o.name == e.name) moved = o.value;
+      }
+      gradient.push_back(std::sqrt(timing.weights[i]) * (moved - e.value));
+    }
+    AddSystematicCovariance(fit, gradient, 1.0);
   }
-  if (moves.empty()) return;
-  fit.warnings.push_back(fmt::format(
-      "torque timing: the residuals barely tell the readings apart (evidence {:.3g} < {:g} residual variances) and "
-      "read {} the estimates move: {}; the intervals leave that out: state when the logged torque acts with "
-      "‹torque-timing›",
-      evidence, kTimingEvidence, AxisTorqueTimingName(other.torque_timing), fmt::join(moves, ", ")));
 }
 
 }  // namespace
@@ -341,7 +368,7 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
   CheckFreeNames(AxisParameterTable(), "axis", options.free);
   AxisRowCache cache;
   std::string timing_rule = "given (‹torque-timing›)";
-  double timing_evidence = HUGE_VAL;
+  TorqueDelayEstimate timing;
   if (options.torque_timing == AxisTorqueTiming::kFromData) {
     // The timing first, judged at twice the decimated band (below 0.4 x
     // rate; the given cutoff if higher), where the position filter no
@@ -351,11 +378,15 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
     AxisFitOptions judged = central;
     const double rate = AxisSamplingRate(logs);
     judged.cutoff = std::max(options.cutoff, std::min(2.0 * AxisDecimatedBand(rate, options.decimation), 0.4 * rate));
-    central.torque_timing = ChooseTiming(logs, start, judged, &cache, &timing_rule, &timing_evidence);
+    timing = EstimateTorqueDelay(logs, start, judged, &cache);
+    central.torque_timing = AxisTorqueTiming::kDelayed;
+    central.torque_delay = timing.delay;
+    timing_rule = timing.rule;
   }
   central.cutoff = options.cutoff > 0.0 ? options.cutoff : ChooseCutoff(logs, start, central, &cache);
   AxisFitOutput out = FitAtCutoff(logs, start, central, &cache, AtCutoff::kFull);
   out.torque_timing = central.torque_timing;
+  out.torque_delay = central.torque_delay;
   out.timing_rule = timing_rule;
   out.cutoff_rule = options.cutoff > 0.0
                         ? "given (‹cutoff›)"
@@ -389,8 +420,9 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
   for (auto& w : ProcessingWarnings(out.fit, out.cutoff, advice)) {
     out.fit.warnings.push_back(std::move(w));
   }
-  // A timing the residuals barely chose: the estimates under the other one.
-  if (timing_evidence < kTimingEvidence) AddTimingWarning(logs, start, central, timing_evidence, &cache, out.fit);
+  WidenForProcessing(out.fit, out.cutoff);
+  // The timing's uncertainty in the covariance, when the data chose it.
+  AddTimingCovariance(logs, start, central, timing, &cache, out.fit);
   return out;
 }
 
@@ -483,7 +515,8 @@ void AxisDesign(const AxisSection& start, const std::vector<std::string>& free, 
 std::shared_ptr<const AxisRows> RowsAtCutoff(const std::vector<AxisLog>& logs, const AxisFitOptions& options,
                                              AxisReach reach, AxisRowCache* cache) {
   std::shared_ptr<const AxisRows> built;
-  const auto key = std::make_tuple(options.cutoff, options.torque_timing,
+  const double delay = options.torque_timing == AxisTorqueTiming::kDelayed ? options.torque_delay : 0.0;
+  const auto key = std::make_tuple(options.cutoff, options.torque_timing, delay,
                                    AxisRowReaches(logs, options.cutoff, options.decimation, reach));
   if (cache != nullptr) {
     const auto found = cache->find(key);
@@ -493,7 +526,7 @@ std::shared_ptr<const AxisRows> RowsAtCutoff(const std::vector<AxisLog>& logs, c
     const std::vector<std::string> column_names = AxisRowColumnNames();
     built = std::make_shared<const AxisRows>(
         BuildAxisRows(logs, options.cutoff, options.decimation, options.min_rate_fraction, column_names,
-                      options.torque_timing, reach));
+                      options.torque_timing, reach, delay));
     if (cache != nullptr && built->regression.rows() * column_names.size() * sizeof(double) <= kCachedRowBytes) {
       (*cache)[key] = built;
     }
@@ -530,6 +563,7 @@ AxisFitOutput FitAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& s
   out.method = rows.method;
   out.cutoff = options.cutoff;
   out.torque_timing = options.torque_timing;
+  out.torque_delay = options.torque_delay;
   out.time = rows.time;
   out.measured = rows.measured;
   out.log_index = rows.log_index;

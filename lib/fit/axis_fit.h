@@ -51,7 +51,8 @@ struct AxisFitOptions {
   double cutoff = 0.0;                ///< position low-pass [Hz]; 0 = ChooseAxisCutoff
   bool sensitivity = true;            ///< also fit at half and twice the cutoff
   int decimation = 10;                ///< keep every n-th sample after parallel filtering
-  AxisTorqueTiming torque_timing = AxisTorqueTiming::kSampled;  ///< fit/axis_rows.h; kFromData: FitAxis chooses
+  AxisTorqueTiming torque_timing = AxisTorqueTiming::kSampled;  ///< fit/axis_rows.h; kFromData: FitAxis estimates
+  double torque_delay = 0.0;          ///< kDelayed: when the torque acts after its stamp [samples, -1 .. 1]
   double min_rate_fraction = 0.01;    ///< exclude |q'| below this fraction of max |q'|
   double max_relative_std = kMaxRelativeStd;  ///< refuse a free J, b or tau_c less certain than this
   bool per_log = true;                ///< with several logs, also fit each alone and compare
@@ -69,6 +70,7 @@ struct AxisFitOutput {
   double cutoff = 0.0;
   std::string cutoff_rule;                        ///< how the cutoff was chosen
   AxisTorqueTiming torque_timing = AxisTorqueTiming::kSampled;  ///< the reading used (never kFromData)
+  double torque_delay = 0.0;      ///< kDelayed: the delay used [samples]
   std::string timing_rule;                        ///< how it was chosen
   int samples_used = 0;
   std::vector<double> time, measured, model;  ///< decimated samples used, for traces and plots

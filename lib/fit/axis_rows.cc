@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include <fmt/format.h>
 
@@ -195,6 +196,7 @@ const char* AxisTorqueTimingName(AxisTorqueTiming timing) {
     case AxisTorqueTiming::kHeld: return "held";
     case AxisTorqueTiming::kFromData: return "auto";
     case AxisTorqueTiming::kSampledSmoothed: return "sampled (smoothed)";
+    case AxisTorqueTiming::kDelayed: return "delay";
     case AxisTorqueTiming::kSampled: break;
   }
   return "sampled";
@@ -216,18 +218,53 @@ AxisTorqueTiming AxisTorqueTimingFromName(const std::string& name) {
       fmt::format("‹torque-timing› {}: not one of {}", name, fmt::join(AxisTorqueTimingNames(named), ", ")));
 }
 
+AxisTorqueTiming ParseAxisTorqueTiming(const std::string& text, double& delay) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (!text.empty() && end == text.c_str() + text.size() && std::isfinite(value)) {
+    if (!(std::abs(value) <= kMaxTorqueDelay)) {
+      throw OptionError(fmt::format("‹torque-timing› {}: a delay in samples from -1 to 1", text));
+    }
+    delay = value;
+    return AxisTorqueTiming::kDelayed;
+  }
+  delay = 0.0;
+  return AxisTorqueTimingFromName(text);
+}
+
+std::string DescribeAxisTorqueTiming(AxisTorqueTiming timing, double delay) {
+  if (timing != AxisTorqueTiming::kDelayed) return AxisTorqueTimingName(timing);
+  return fmt::format("delay {:+.3f} samples", delay);
+}
+
 std::vector<double> TimedAxisTorque(const std::vector<double>& torque, AxisTorqueTiming timing) {
   if (timing == AxisTorqueTiming::kFromData) {
     throw OptionError("‹torque-timing› auto: the fit chooses the timing before it builds rows");
   }
   std::vector<double> out = torque;
-  if (timing == AxisTorqueTiming::kHeld || timing == AxisTorqueTiming::kSampledSmoothed) {
+  if (timing == AxisTorqueTiming::kHeld || timing == AxisTorqueTiming::kSampledSmoothed ||
+      timing == AxisTorqueTiming::kDelayed) {
     for (std::size_t k = 1; k < torque.size(); ++k) out[k] = 0.5 * (torque[k - 1] + torque[k]);
   }
   return out;
 }
 
 namespace {
+
+// column at k + shift (|shift| <= 1.5 samples), linear between neighbours,
+// held beyond the ends.
+void ShiftColumn(std::vector<double>& column, double shift) {
+  if (shift == 0.0 || column.size() < 2) return;
+  const std::vector<double> in = column;
+  const auto n = static_cast<long>(in.size());
+  const long whole = static_cast<long>(std::floor(shift));
+  const double fraction = shift - static_cast<double>(whole);
+  for (long k = 0; k < n; ++k) {
+    const long a = std::clamp(k + whole, 0L, n - 1), b = std::clamp(k + whole + 1, 0L, n - 1);
+    column[static_cast<std::size_t>(k)] =
+        (1.0 - fraction) * in[static_cast<std::size_t>(a)] + fraction * in[static_cast<std::size_t>(b)];
+  }
+}
 
 // Every `decimation`-th sample more than `reach` samples from any slow one
 // and more than reach + 2 from the ends (the filters' start-up).
@@ -281,7 +318,12 @@ std::size_t MedianMotionStretch(const std::vector<char>& slow) {
 }  // namespace
 
 AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int decimation, double min_rate_fraction,
-                       const std::vector<std::string>& column_names, AxisTorqueTiming timing, AxisReach reach_at) {
+                       const std::vector<std::string>& column_names, AxisTorqueTiming timing, AxisReach reach_at,
+                       double torque_delay) {
+  if (timing == AxisTorqueTiming::kDelayed && !(std::abs(torque_delay) <= kMaxTorqueDelay)) {
+    throw OptionError(fmt::format("torque delay {} samples: from -1 to 1", torque_delay));
+  }
+  const double shift = timing == AxisTorqueTiming::kDelayed ? torque_delay - 0.5 : 0.0;
   AxisRows out{LinearRegression(column_names), {}, {}, {}, ""};
   LinearRegression& regression = out.regression;
   for (std::size_t i = 0; i < logs.size(); ++i) {
@@ -292,6 +334,10 @@ AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int deci
                                  : "IDIM-LS on irregular samples: local-polynomial rates, subsampling";
     if (!log.rate.empty()) out.method += "; measured rate qd (q'' from it)";
     if (timing == AxisTorqueTiming::kHeld) out.method += "; torque held per sample (rows average u_(k-1), u_k)";
+    if (timing == AxisTorqueTiming::kDelayed) {
+      out.method += fmt::format("; torque acting {:+.3f} samples after its stamp (rows average u_(k-1), u_k)",
+                                torque_delay);
+    }
     const bool smoothed = timing == AxisTorqueTiming::kSampledSmoothed;
     const std::size_t n = log.time.size();
     double max_rate = 0.0;
@@ -335,6 +381,7 @@ AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int deci
       if (smoothed) {
         for (std::size_t k = n; k-- > 1;) column[k] = 0.5 * (column[k - 1] + column[k]);
       }
+      if (c < kAxisTerms) ShiftColumn(column, shift);
       if (filtered) ZeroPhaseLowPassInPlace(column, band, d.rate_hz);
       for (std::size_t r = 0; r < kept.size(); ++r) rows[r * width + c] = column[kept[r]];
     }

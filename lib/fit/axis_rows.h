@@ -141,8 +141,17 @@ struct AxisRows {
 /// the two leaves the smaller residual (FitAxis; docs/models.md#torque-timing).
 /// kSampledSmoothed: the sampled reading with the torque and every regressor
 /// column through the held reading's two-sample mean, so that both readings
-/// fit the same dependent column (the from-data choice compares their costs).
-enum class AxisTorqueTiming { kSampled, kHeld, kFromData, kSampledSmoothed };
+/// fit the same dependent column. kDelayed: the logged torque acts `delay`
+/// samples after its stamp (a fraction in [-1, 1]: 0 sampled, +0.5 held, -0.5
+/// a command held since the last sample, as ros2_control logs it); row k
+/// takes the two-sample mean (u_(k-1) + u_k) / 2, which acts at
+/// t_k + (delay - 0.5) h, against the regressors interpolated linearly to
+/// that instant, so every delay fits the same dependent column and their
+/// costs compare (kFromData estimates the delay so: FitAxis).
+enum class AxisTorqueTiming { kSampled, kHeld, kFromData, kSampledSmoothed, kDelayed };
+
+/// Largest |delay| of kDelayed [samples].
+inline constexpr double kMaxTorqueDelay = 1.0;
 
 /// The timing's name as the options and outputs spell it: sampled, held, auto.
 const char* AxisTorqueTimingName(AxisTorqueTiming timing);
@@ -151,6 +160,11 @@ std::vector<std::string> AxisTorqueTimingNames(const std::vector<AxisTorqueTimin
 /// The timing a name spells (AxisTorqueTimingName's inverse for sampled,
 /// held, auto); OptionError naming ‹torque-timing› for any other.
 AxisTorqueTiming AxisTorqueTimingFromName(const std::string& name);
+/// As AxisTorqueTimingFromName, and a number in [-1, 1] (samples) spells
+/// kDelayed with that `delay`.
+AxisTorqueTiming ParseAxisTorqueTiming(const std::string& text, double& delay);
+/// "sampled", "held", or "delay +0.37 samples" for kDelayed.
+std::string DescribeAxisTorqueTiming(AxisTorqueTiming timing, double delay);
 
 /// The torque as row k sees it under `timing` (the first sample kept).
 std::vector<double> TimedAxisTorque(const std::vector<double>& torque, AxisTorqueTiming timing);
@@ -159,6 +173,7 @@ std::vector<double> TimedAxisTorque(const std::vector<double>& torque, AxisTorqu
 /// order above (AxisRowColumnNames). InputError for a log shorter than kMinAxisLogSamples.
 AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int decimation, double min_rate_fraction,
                        const std::vector<std::string>& column_names,
-                       AxisTorqueTiming timing = AxisTorqueTiming::kSampled, AxisReach reach = AxisReach::kAtCutoff);
+                       AxisTorqueTiming timing = AxisTorqueTiming::kSampled, AxisReach reach = AxisReach::kAtCutoff,
+                       double torque_delay = 0.0);
 
 }  // namespace driveid

@@ -11,6 +11,7 @@
 #include "core/option_check.h"
 #include "fit/adequacy.h"
 #include "fit/axis_rows.h"
+#include "fit/joint_mismatch.h"
 #include "fit/linear_regression.h"
 #include "fit/omitted_terms.h"
 #include "models/missing_values.h"
@@ -231,6 +232,7 @@ void AddJointLogRows(const JointLog& log, std::size_t i, const JointDesign& d, c
       out.measured.push_back(target);
       out.equation.push_back(equation);
       out.log_index.push_back(static_cast<int>(i));
+      out.motor_angle.push_back(log.motor_position[k]);
     }
   }
 }
@@ -422,6 +424,13 @@ JointFitOutput FitJoint(const std::vector<JointLog>& given_logs, const JointSect
   }
   CheckJointAdequacy(logs, start, options, d, out);
   if (auto warning = ShaftTorqueLocation(regression, d, values, out.fit)) out.fit.warnings.push_back(std::move(*warning));
+  if (options.sensitivity || options.mismatch) {
+    std::vector<std::string> free_names;
+    for (const auto& e : out.fit.estimates) free_names.push_back(e.name);
+    for (auto& w : JointMismatchWarnings(regression, free_names, values, out.equation, out.motor_angle)) {
+      out.fit.warnings.push_back(std::move(w));
+    }
+  }
   std::map<std::string, double> start_values;  // the given start values, for a term at its bound
   for (const auto& row : JointParameterTable()) {
     if (row.in_section != nullptr && (start.*(row.in_section)).has_value()) {
@@ -431,6 +440,10 @@ JointFitOutput FitJoint(const std::vector<JointLog>& given_logs, const JointSect
   if (options.refuse_undetermined) {
     RequireDetermined(out.fit, nonnegative, kMaxRelativeStd, out.fit.warnings, start_values);
   }
+  // The processing's spread in the intervals, after the refusal rule (which
+  // judges what the data determine at the chosen cutoff; the processing
+  // warnings say how the cutoff moves it).
+  if (options.sensitivity) WidenForProcessing(out.fit, out.cutoff);
   out.model = regression.Predict(values);
   return out;
 }

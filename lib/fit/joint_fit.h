@@ -31,6 +31,9 @@ struct JointFitOptions {
   /// cutoff (adequacy.h ProcessingWarnings), the cutoff advice tried, and the
   /// shaft-torque location test (false: a per-log, trial or start fit).
   bool sensitivity = true;
+  /// Name what the two-mass model lacks (fit/joint_mismatch.h) even without
+  /// `sensitivity` (an output-error fit's inverse-dynamics start).
+  bool mismatch = false;
   /// false: estimates however uncertain (start values of an output-error fit).
   bool refuse_undetermined = true;
   FitOptions fit;
@@ -53,6 +56,7 @@ struct JointFitOutput {
   /// (0 motor, 1 total, 2 shaft torque) and log.
   std::vector<double> time, measured, model;
   std::vector<int> equation, log_index;
+  std::vector<double> motor_angle;  ///< the motor shaft's angle at each used sample [rad] (q_motor)
 };
 
 /// Fits the free parameters jointly over all logs; fixed ones from `start`

@@ -61,6 +61,10 @@ ceres::Solver::Options SolverOptions(const FitOptions& options, ProgressCallback
   solver_options.logging_type = ceres::SILENT;
   solver_options.num_threads = 1;  // deterministic
   if (options.max_seconds > 0.0) solver_options.max_solver_time_in_seconds = options.max_seconds;
+  if (options.deadline > 0.0) {
+    const double left = std::max(options.deadline - MonotonicSeconds(), 1e-3);
+    solver_options.max_solver_time_in_seconds = std::min(solver_options.max_solver_time_in_seconds, left);
+  }
   if (options.progress) {
     solver_options.callbacks.push_back(&callback);
     solver_options.update_state_every_iteration = false;
@@ -93,7 +97,9 @@ void TakeSummary(const ceres::Solver::Summary& summary, const FitOptions& option
   if (summary.termination_type == ceres::FAILURE || summary.termination_type == ceres::USER_FAILURE) {
     throw IdentificationError("solver failed: " + summary.message);
   }
-  if (!result.converged && options.max_seconds > 0.0 && summary.total_time_in_seconds >= options.max_seconds) {
+  const bool out_of_time = (options.max_seconds > 0.0 && summary.total_time_in_seconds >= options.max_seconds) ||
+                           (options.deadline > 0.0 && MonotonicSeconds() >= options.deadline);
+  if (!result.converged && out_of_time) {
     result.warnings.push_back(fmt::format("the solver stopped at the time limit of {:.3g} s (‹max_seconds›) after {} "
                                           "iterations, not converged: the estimates are its best point so far (crop the "
                                           "log with ‹from›/‹to›, or allow more time)",
@@ -270,8 +276,31 @@ std::shared_ptr<ceres::ParameterBlockOrdering> AddCosts(ceres::Problem& problem,
 // copy of the Jacobian (N x P) — the parameters are scaled and identifiable
 // (collinearity index < 1000), so squaring the condition number costs no
 // accuracy that matters.
+// Says `running` true for its lifetime, false at its end (an exception too).
+class RunningGuard {
+ public:
+  explicit RunningGuard(const std::function<void(bool)>& running) : running_(running) {
+    if (running_) running_(true);
+  }
+  ~RunningGuard() {
+    if (running_) running_(false);
+  }
+  RunningGuard(const RunningGuard&) = delete;
+  RunningGuard& operator=(const RunningGuard&) = delete;
+
+ private:
+  const std::function<void(bool)>& running_;
+};
+
 FitResult SolveBlocks(BlockResidualModel& model, ResidualModel* whole, const std::vector<FitParameter>& parameters,
                       const std::vector<FitChannel>& channels, const FitOptions& options) {
+  if (options.deadline > 0.0 && MonotonicSeconds() >= options.deadline) {
+    throw IdentificationError(fmt::format(
+        "the time limit of {:.3g} s (‹max_seconds›) ran out before this fit could start: the estimates so far are "
+        "not all a result needs (allow more time, or crop the logs with ‹from›/‹to›)",
+        options.max_seconds));
+  }
+  const RunningGuard guard(options.running);
   const int q = model.shared_count();
   const int block_count = model.block_count();
   const int p = static_cast<int>(parameters.size());

@@ -31,6 +31,28 @@ void LinearRegression::Reserve(std::size_t rows) {
 
 void LinearRegression::BeginChannel(const std::string& name) { channels_.push_back({name, rows()}); }
 
+LinearRegression LinearRegression::WithColumns(const std::vector<std::string>& names,
+                                               const std::vector<std::vector<double>>& values) const {
+  if (names.size() != values.size()) throw std::logic_error("LinearRegression::WithColumns: names and values differ");
+  for (const auto& v : values) {
+    if (v.size() != rows()) throw std::logic_error("LinearRegression::WithColumns: a column's length is not rows()");
+  }
+  std::vector<std::string> columns = columns_;
+  columns.insert(columns.end(), names.begin(), names.end());
+  LinearRegression out(std::move(columns));
+  out.Reserve(rows());
+  std::size_t channel = 0;
+  std::vector<double> row(out.columns_.size());
+  for (std::size_t r = 0; r < rows(); ++r) {
+    while (channel < channels_.size() && channels_[channel].begin == r) out.BeginChannel(channels_[channel++].name);
+    for (std::size_t j = 0; j < columns_.size(); ++j) row[j] = at(r, j);
+    for (std::size_t c = 0; c < names.size(); ++c) row[columns_.size() + c] = values[c][r];
+    out.AddRow(row, measured_[r], known_[r]);
+  }
+  while (channel < channels_.size()) out.BeginChannel(channels_[channel++].name);
+  return out;
+}
+
 void LinearRegression::AddRow(const std::vector<double>& regressor, double measured, double known) {
   if (regressor.size() != columns_.size() || channels_.empty()) {
     throw std::logic_error("LinearRegression::AddRow: row size differs from the columns, or no channel begun");

@@ -57,6 +57,11 @@ class LinearRegression {
   FitResult FitAndRelease(const std::vector<FitParameter>& free, const std::map<std::string, double>& fixed,
                           const FitOptions& options);
 
+  /// A copy with more columns: `names`, and for each its value at every row
+  /// (`values[c][row]`); the rows, channels and known parts the same.
+  LinearRegression WithColumns(const std::vector<std::string>& names,
+                               const std::vector<std::vector<double>>& values) const;
+
   /// The model at each row for column values `values` (all columns), known part included.
   std::vector<double> Predict(const std::map<std::string, double>& values) const;
 

@@ -35,13 +35,13 @@ constexpr double kMinRateFraction = 0.01;
 }  // namespace
 
 std::vector<ValidatedLog> ValidateAxis(const std::vector<AxisLog>& logs, const AxisParameters& params, double cutoff,
-                                       int decimation, AxisTorqueTiming timing, AxisReach reach) {
+                                       int decimation, AxisTorqueTiming timing, AxisReach reach, double torque_delay) {
   if (params.stribeck != 0.0) {
     throw InputError("axis.stribeck is not 0: the inverse-dynamics prediction has no Stribeck term (an output-error "
                      "validation is not built)");
   }
   const AxisRows rows =
-      BuildAxisRows(logs, cutoff, decimation, kMinRateFraction, AxisRowColumnNames(), timing, reach);
+      BuildAxisRows(logs, cutoff, decimation, kMinRateFraction, AxisRowColumnNames(), timing, reach, torque_delay);
   const std::vector<double> model = rows.regression.Predict(AxisColumnValues(params));
   std::vector<ValidatedLog> out(logs.size());
   for (std::size_t r = 0; r < model.size(); ++r) {
@@ -85,11 +85,11 @@ void RequireValidated(const std::vector<ValidatedLog>& logs) {
 }
 
 double ChooseAxisValidationCutoff(const std::vector<AxisLog>& logs, const AxisParameters& params, int decimation,
-                                  AxisTorqueTiming timing) {
+                                  AxisTorqueTiming timing, double torque_delay) {
   return PickAxisCutoff(AxisCutoffCandidates(logs, decimation), [&](double cutoff) {
     double ssr = 0.0;
     int count = 0;
-    for (const auto& log : ValidateAxis(logs, params, cutoff, decimation, timing, AxisReach::kAtBand)) {
+    for (const auto& log : ValidateAxis(logs, params, cutoff, decimation, timing, AxisReach::kAtBand, torque_delay)) {
       ssr += log.stats.rmse * log.stats.rmse * log.stats.samples;
       count += log.stats.samples;
     }

@@ -48,14 +48,14 @@ void RequireValidated(const std::vector<ValidatedLog>& logs);
 /// `reach` (fit/axis_rows.h AxisReach).
 std::vector<ValidatedLog> ValidateAxis(const std::vector<AxisLog>& logs, const AxisParameters& params, double cutoff,
                                        int decimation, AxisTorqueTiming timing = AxisTorqueTiming::kSampled,
-                                       AxisReach reach = AxisReach::kAtCutoff);
+                                       AxisReach reach = AxisReach::kAtCutoff, double torque_delay = 0.0);
 
 /// The cutoff for validating without a fit: the fit's rule
 /// (ChooseAxisCutoff) on the prediction's residuals: of its candidates, the
 /// highest unless a lower one's mean squared residual is kAxisLowerCutoffGain
 /// smaller, each scored on the rows the band's reach keeps.
 double ChooseAxisValidationCutoff(const std::vector<AxisLog>& logs, const AxisParameters& params, int decimation,
-                                  AxisTorqueTiming timing = AxisTorqueTiming::kSampled);
+                                  AxisTorqueTiming timing = AxisTorqueTiming::kSampled, double torque_delay = 0.0);
 
 /// The axis logs' positions simulated from their logged effort with `params`
 /// (sim/axis_simulator.h), each from its start (fit/axis_oe_fit.h's

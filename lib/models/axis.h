@@ -53,6 +53,9 @@ struct AxisSection {
   std::optional<double> torque_constant;  ///< k_t [N m/A], for logs of current
   std::optional<double> gear_ratio;       ///< n_g [-], to report d_g = b / n_g^2
   std::optional<double> stribeck, stribeck_velocity;
+  /// When the logged torque acts after its stamp [samples]: the IDIM fit's
+  /// reading (0 sampled, 0.5 held, else estimated), which validate reuses.
+  std::optional<double> torque_delay;
   bool linear = false;  ///< q in m, forces in N (`linear: true`); else rotary
 };
 
@@ -83,6 +86,10 @@ inline const ParameterTable<AxisSection, AxisParameters>& AxisParameterTable() {
        &AxisSection::torque_constant, nullptr},
       {Spec("n_g", "n_g", "-", "gear ratio, to report d_g = b / n_g^2").Above(0.0),
        &AxisSection::gear_ratio, nullptr},
+      {Spec("torque_delay", "d_u", "samples",
+            "when the logged torque acts after its stamp, as the fit read it (0 sampled, 0.5 held; validate reuses "
+            "it; docs/models.md#torque-timing)").Unbounded(),
+       &AxisSection::torque_delay, nullptr},
       // Nonlinear terms after the settings, so that rows 0 .. kAxisTerms - 1
       // are the linear ones (CalcAxisRegressors).
       {Spec("stribeck", "tau_s", "N m", "Stribeck breakaway excess over Coulomb (output error only)").Fit("axis"),

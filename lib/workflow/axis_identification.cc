@@ -38,8 +38,13 @@ void FitByInverseDynamics(const std::vector<AxisLog>& logs, const AxisIdentifica
   fit_options.cutoff = options.cutoff;
   fit_options.decimation = options.decimation;
   fit_options.torque_timing = options.torque_timing;
+  fit_options.torque_delay = options.torque_delay;
   fit_options.fit = options.fit;
   const AxisFitOutput result = FitAxis(logs, run.section, fit_options);
+  // The reading, recorded for validate: as a delay in samples.
+  run.section.torque_delay = result.torque_timing == AxisTorqueTiming::kDelayed ? result.torque_delay
+                             : result.torque_timing == AxisTorqueTiming::kHeld  ? 0.5
+                                                                                : 0.0;
   run.params = result.params;
   run.fit = result.fit;
   run.series.assign(logs.size(), {});
@@ -62,7 +67,8 @@ void FitByInverseDynamics(const std::vector<AxisLog>& logs, const AxisIdentifica
     s.model.push_back(result.model[k]);
   }
   for (const auto& v :
-       ValidateAxis(validation, result.params, result.cutoff, options.decimation, result.torque_timing)) {
+       ValidateAxis(validation, result.params, result.cutoff, options.decimation, result.torque_timing,
+                    AxisReach::kAtCutoff, result.torque_delay)) {
     run.fit.validation.push_back(v.stats);
   }
   run.summary.push_back(fmt::format("processing: {}", result.method));
@@ -70,7 +76,8 @@ void FitByInverseDynamics(const std::vector<AxisLog>& logs, const AxisIdentifica
                                     "{:.3g} 1/s",
                                     result.relative_error_percent, result.samples_used, result.acceleration_content));
   run.summary.push_back(fmt::format("position cutoff {:.4g} Hz ({})", result.cutoff, result.cutoff_rule));
-  run.summary.push_back(fmt::format("torque timing {} ({})", AxisTorqueTimingName(result.torque_timing),
+  run.summary.push_back(fmt::format("torque timing {} ({})",
+                                    DescribeAxisTorqueTiming(result.torque_timing, result.torque_delay),
                                     result.timing_rule));
   run.derived.push_back({"relative_error_percent", result.relative_error_percent, 0.0, "% |tau - model| / |tau|"});
   run.model = "axis (docs/models.md#axis), IDIM-LS";

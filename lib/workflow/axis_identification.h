@@ -32,6 +32,7 @@ struct AxisIdentificationOptions {
   double cutoff = 0.0;  ///< inverse dynamics: position low-pass [Hz], 0: from the data
   int decimation = 10;  ///< inverse dynamics: parallel decimation factor
   AxisTorqueTiming torque_timing = AxisTorqueTiming::kFromData;  ///< inverse dynamics (fit/axis_rows.h)
+  double torque_delay = 0.0;  ///< kDelayed: when the torque acts after its stamp [samples]
   FitOptions fit;       ///< progress callback
   bool trace = false;   ///< build the trace CSV
   /// The SysId files' position unit when every log is a SysId file in one

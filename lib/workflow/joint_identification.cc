@@ -11,6 +11,7 @@
 #include "core/option_check.h"
 #include "fit/adequacy.h"
 #include "fit/joint_fit.h"
+#include "fit/joint_mismatch.h"
 #include "fit/joint_oe_fit.h"
 #include "report/fit_summary.h"
 
@@ -232,6 +233,7 @@ JointIdentification IdentifyJoint(const std::vector<JointLog>& logs, const Joint
     id_options.free = options.free;
     id_options.cutoff = options.cutoff;
     id_options.per_log = id_options.sensitivity = id_options.refuse_undetermined = false;
+    id_options.mismatch = true;
     try {
       id_start = FitJoint(logs, section, id_options);
     } catch (const IdentificationError&) {
@@ -248,7 +250,14 @@ JointIdentification IdentifyJoint(const std::vector<JointLog>& logs, const Joint
   const bool oe = method == JointMethod::kOutputError;
   JointRun run = oe ? RunOutputError(logs, section, options, id_start ? &id_start->params : nullptr)
                     : RunInverseDynamics(logs, section, options);
-  if (oe && id_start) WarnLinkCoulomb(*id_start, filter_near_resonance, run.fit);
+  if (oe && id_start) {
+    WarnLinkCoulomb(*id_start, filter_near_resonance, run.fit);
+    // What the model lacks, named from the inverse-dynamics rows (output
+    // error simulates the same two-mass model and lacks it too).
+    for (const auto& w : id_start->fit.warnings) {
+      if (w.rfind(kJointMismatchPrefix, 0) == 0) run.fit.warnings.push_back(w);
+    }
+  }
   JointIdentification out;
   out.method = method;
   out.model = oe ? "elastic joint (docs/models.md#joint-output-error), output error (exact ZOH, sticking motor Coulomb)"

@@ -15,7 +15,9 @@ bool AxisValidationOptions::IsValid(std::string* error) const {
       .Require(NotNegative(cutoff), "‹cutoff›", cutoff, "cutoff > 0 Hz (0: the candidate that predicts best)")
       .Require(decimation >= 1, "‹decimation›", decimation, ">= 1")
       .Require(torque_timing != AxisTorqueTiming::kFromData,
-               "‹torque_timing› auto: a validation takes the timing the fit chose (sampled or held)");
+               "‹torque_timing› auto: a validation takes the timing the fit chose (the file's, sampled, held or a "
+               "delay)")
+      .Require(std::abs(torque_delay) <= kMaxTorqueDelay, "‹torque_timing›", torque_delay, "a delay from -1 to 1 samples");
 }
 
 ValidationModel ChooseValidationModel(const ParameterFile* file, bool mjcf, const std::string& path,
@@ -59,13 +61,25 @@ ValidationRun RunAxisValidation(const std::vector<AxisLog>& logs, const AxisSect
             "axis validation: position simulated from the logged torque",
             axis.linear ? "position [m]" : "position [rad]"};
   }
-  const double cutoff = options.cutoff > 0.0
-                            ? options.cutoff
-                            : ChooseAxisValidationCutoff(logs, params, options.decimation, options.torque_timing);
-  return {ValidateAxis(logs, params, cutoff, options.decimation, options.torque_timing),
-          fmt::format("axis inverse dynamics, position cutoff {:.4g} Hz ({}), torque {}", cutoff,
+  AxisTorqueTiming timing = options.torque_timing;
+  double delay = options.torque_delay;
+  std::string source = "given";
+  if (options.timing_from_file && axis.torque_delay) {
+    if (!(std::abs(*axis.torque_delay) <= kMaxTorqueDelay)) {
+      throw InputError(fmt::format("{}: axis.torque_delay = {}: from -1 to 1 samples", path, *axis.torque_delay));
+    }
+    timing = AxisTorqueTiming::kDelayed;
+    delay = *axis.torque_delay;
+    source = "the fit's, from the file";
+  } else if (options.timing_from_file) {
+    source = "the file records none";
+  }
+  const double cutoff = options.cutoff > 0.0 ? options.cutoff
+                                             : ChooseAxisValidationCutoff(logs, params, options.decimation, timing, delay);
+  return {ValidateAxis(logs, params, cutoff, options.decimation, timing, AxisReach::kAtCutoff, delay),
+          fmt::format("axis inverse dynamics, position cutoff {:.4g} Hz ({}), torque {} ({})", cutoff,
                       options.cutoff > 0.0 ? "given" : "the candidate that predicts best",
-                      AxisTorqueTimingName(options.torque_timing)),
+                      DescribeAxisTorqueTiming(timing, delay), source),
           "axis validation: inverse dynamics (filtered, decimated)", "force or torque"};
 }
 

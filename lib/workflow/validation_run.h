@@ -43,6 +43,9 @@ struct AxisValidationOptions {
   double cutoff = 0.0;    ///< inverse dynamics: position low-pass [Hz]; 0: the candidate that predicts best
   int decimation = 10;
   AxisTorqueTiming torque_timing = AxisTorqueTiming::kSampled;  ///< inverse dynamics (fit/axis_rows.h; not kFromData)
+  double torque_delay = 0.0;  ///< kDelayed: when the torque acts after its stamp [samples]
+  /// Take the timing the fit recorded (axis.torque_delay) when the file has it.
+  bool timing_from_file = false;
   /// Every bound on these fields (‹field› names the option); see core/option_check.h.
   bool IsValid(std::string* error) const;
 };

@@ -13,9 +13,13 @@
 # logged torque is u at the sample's instant (a current sampled with the
 # position; the log's encoder is still quantised).
 # Input: a reference CSV with header t,q,qd,qdd. Output: t,q,tau.
+# With logged=previous the log is as ros2_control writes it: the effort in
+# row k is the command that was held over the step before it (u_(k-1)),
+# i.e. the torque acts half a sample before its stamp.
 # Variables: J, b, tc, t0 (the axis), bw (loop bandwidth [Hz]), bits (encoder
 # counts per turn as 2^bits), noise (std of the logged torque), seed, steps
-# (integration substeps per logger step), loop (continuous or empty).
+# (integration substeps per logger step), loop (continuous or empty),
+# logged (previous or empty).
 # Run as awk -f gauss.awk -f axis_tracking.awk (gauss(): a normal deviate).
 function sgn(x) { return x > 0 ? 1 : (x < 0 ? -1 : 0) }
 # The quintic Hermite reference at x in [0, 1] of step k (length dt):
@@ -54,7 +58,9 @@ END {
     qm_prev = qm
     u = kp * (r[k] - qm) + kd * (rd[k] - vm) + J * rdd[k]
     if (loop == "continuous") u = kp * (r[k] - q) + kd * (rd[k] - v) + J * rdd[k]
-    printf "%.6f,%.10g,%.7g\n", t[k], qm, u + noise * gauss()
+    logged_u = logged == "previous" ? (k > 0 ? u_prev : 0) : u
+    printf "%.6f,%.10g,%.7g\n", t[k], qm, logged_u + noise * gauss()
+    u_prev = u
     h = dt / steps
     for (s = 0; s < steps; s++) {
       if (loop == "continuous" && s > 0 && k + 1 < n) {

@@ -342,6 +342,13 @@ grep -q "^    d_g: {value: 3.1" axis_fit.yaml && ok || fail "axis fit lacks d_g 
   || fail "joint refit from its own output"
 printf 'joint:\n  motor_inertia: 0.02\n' > joint_nogear.yaml
 expect 3 "joint.gear_ratio: missing value" -- joint "$src/data/joint_example.csv" --params joint_nogear.yaml
+# --max-seconds bounds every fit of a command together (output error here
+# runs an inverse-dynamics start, then its own fits): 0.3 s of a 1.5 s run
+# ends within a few seconds, refused naming the limit.
+started=$(date +%s.%N)
+expect 4 "the time limit of 0.3 s \(--max-seconds\) ran out" -- joint "$src/data/joint_example.csv" \
+  --params "$src/data/joint_start.yaml" --method oe --max-seconds 0.3
+awk -v a="$started" -v b="$(date +%s.%N)" 'BEGIN { exit !(b - a < 5) }' && ok || fail "--max-seconds 0.3 took over 5 s"
 expect 3 "joint.link_inertia, joint.damping, joint.motor_viscous, joint.motor_coulomb, joint.link_viscous, joint.link_coulomb and joint.offset are needed \\(fixed in this fit\\)" -- joint "$src/data/joint_example.csv" \
   --params "$src/data/joint_start.yaml" --free motor_inertia,stiffness
 cut -d, -f1,2,4 "$src/data/joint_example.csv" > joint_nolink.csv

@@ -156,3 +156,35 @@ TEST_CASE("a parameter at its bound 0 is reported with its one-sided limit; the 
   FitResult infinite = at_bound(INFINITY);
   CHECK_THROWS_AS(RequireDetermined(infinite, {"stiffness", "damping"}, 0.5, {}, {{"damping", 0.01}}), IdentificationError);
 }
+
+TEST_CASE("processing: a move past the std widens the covariance by the candidates' spread; a small one does not") {
+  FitResult fit;
+  fit.estimates = {{"viscous", 191.6, 4.2, 191.6 - 1.96 * 4.2, 191.6 + 1.96 * 4.2}, {"coulomb", 20.0, 0.5, 19.02, 20.98}};
+  fit.covariance = {4.2 * 4.2, 0.3 * 4.2 * 0.5, 0.3 * 4.2 * 0.5, 0.25};
+  fit.correlation = {1.0, 0.3, 0.3, 1.0};
+  FitResult quiet = fit;
+  fit.sensitivity = {{"cutoff 20 Hz", {{"viscous", 204.5, 4.0, 0, 0}, {"coulomb", 19.6, 0.5, 0, 0}}, "", 20.0},
+                     {"cutoff 80 Hz", {{"viscous", 190.0, 4.5, 0, 0}, {"coulomb", 20.1, 0.5, 0, 0}}, "", 80.0}};
+  REQUIRE(WidenForProcessing(fit, 40.0));
+  // By hand: the covariance gains sum_i (theta_i - theta)(theta_i - theta)' / 2.
+  const double dv[2] = {204.5 - 191.6, 190.0 - 191.6}, dc[2] = {19.6 - 20.0, 20.1 - 20.0};
+  const double vv = 4.2 * 4.2 + (dv[0] * dv[0] + dv[1] * dv[1]) / 2.0;
+  const double cc = 0.25 + (dc[0] * dc[0] + dc[1] * dc[1]) / 2.0;
+  const double vc = 0.3 * 4.2 * 0.5 + (dv[0] * dc[0] + dv[1] * dc[1]) / 2.0;
+  CHECK(fit.covariance[0] == Approx(vv));
+  CHECK(fit.covariance[3] == Approx(cc));
+  CHECK(fit.covariance[1] == Approx(vc));
+  CHECK(fit.estimates[0].standard_error == Approx(std::sqrt(vv)));
+  // The reference 203.5 now lies inside the viscous interval.
+  CHECK(fit.estimates[0].ci95_low < 203.5);
+  CHECK(203.5 < fit.estimates[0].ci95_high);
+  REQUIRE(fit.notes.size() == 1);
+  CHECK_THAT(fit.notes[0], Catch::Contains("viscous x"));
+  // Moves within the std: nothing changes.
+  quiet.sensitivity = {{"cutoff 20 Hz", {{"viscous", 193.0, 4.0, 0, 0}, {"coulomb", 20.2, 0.5, 0, 0}}, "", 20.0}};
+  CHECK_FALSE(WidenForProcessing(quiet, 40.0));
+  CHECK(quiet.covariance[0] == 4.2 * 4.2);
+  // A failed candidate is left out.
+  quiet.sensitivity.push_back({"cutoff 80 Hz", {}, "refused", 80.0});
+  CHECK_FALSE(WidenForProcessing(quiet, 40.0));
+}

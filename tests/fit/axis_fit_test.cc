@@ -86,7 +86,7 @@ TEST_CASE("axis: multisine logs recover the truth within 1 % with the defaults")
     e.noise = 0.05;
     e.duration = 25.0;
     e.seed = seed;
-    const AxisFitOutput out = FitAxis({SimulateAxisExperiment(kTruth, e)}, AxisSection{0.1, 0.5, 2.0, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}}, {});
+    const AxisFitOutput out = FitAxis({SimulateAxisExperiment(kTruth, e)}, AxisSection{0.1, 0.5, 2.0, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}}, {});
     CHECK(out.params.inertia == Approx(kTruth.inertia).epsilon(0.01));
     CHECK(out.params.viscous == Approx(kTruth.viscous).epsilon(0.01));
     CHECK(out.params.coulomb == Approx(kTruth.coulomb).epsilon(0.01));
@@ -108,7 +108,7 @@ TEST_CASE("axis: irregular sampling is detected and handled without assuming a r
     irregular.position.push_back(log.position[k]);
     irregular.force.push_back(log.force[k]);
   }
-  const AxisFitOutput out = FitAxis({irregular}, AxisSection{0.1, 0.5, 2.0, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}}, {});
+  const AxisFitOutput out = FitAxis({irregular}, AxisSection{0.1, 0.5, 2.0, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}}, {});
   CHECK(out.method.find("irregular") != std::string::npos);
   CHECK(out.params.inertia == Approx(kTruth.inertia).epsilon(0.02));
   CHECK(out.params.coulomb == Approx(kTruth.coulomb).epsilon(0.02));
@@ -124,7 +124,7 @@ TEST_CASE("axis: constant-rate logs identify friction only, a free inertia is re
     e.duration = 5.0;
     logs.push_back(SimulateAxisExperiment(kTruth, e));
   }
-  AxisSection start{std::nullopt, 0.5, 2.0, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};  // inertia not given
+  AxisSection start{std::nullopt, 0.5, 2.0, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};  // inertia not given
   try {
     FitAxis(logs, start, {});
     FAIL("fitted an inertia from constant-rate logs");
@@ -259,7 +259,7 @@ TEST_CASE("axis: an offset with both Coulomb directions, or coulomb with its rep
   AxisFitOptions both;
   both.free = {"inertia", "offset", "coulomb_pos", "coulomb_neg"};
   try {
-    FitAxis({log}, AxisSection{{}, 0.2, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}}, both);
+    FitAxis({log}, AxisSection{{}, 0.2, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}}, both);
     FAIL("no refusal");
   } catch (const IdentificationError& e) {
     const std::string message = e.what();
@@ -398,7 +398,7 @@ TEST_CASE("axis processing advice: a measured rate is suggested only to logs wit
   }
   AxisFitOptions options;
   options.cutoff = 2.0;
-  const AxisSection start{0.1, 0.5, 2.0, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+  const AxisSection start{0.1, 0.5, 2.0, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
   const std::string differentiated = WarningText(FitAxis({without_rate}, start, options).fit, "processing: inertia");
   const std::string measured = WarningText(FitAxis({with_rate}, start, options).fit, "processing: inertia");
   REQUIRE_FALSE(differentiated.empty());
@@ -551,4 +551,37 @@ TEST_CASE("row reaches: at the band the fit's rows and the search's agree; irreg
   CHECK(AxisShortestReach(rate, decimation) == kAxisExclusionDecimations * decimation);
   CHECK(AxisShortestReach(0.0, decimation) == kAxisExclusionDecimationsIrregular * decimation);
   CHECK(AxisRowReach(0.0, band, decimation, AxisReach::kAtCutoff) == AxisShortestReach(0.0, decimation));
+}
+
+TEST_CASE("torque delay: a number spells kDelayed; its rows are the held rows moved, exactly at whole samples") {
+  double delay = 9.0;
+  CHECK(ParseAxisTorqueTiming("-0.5", delay) == AxisTorqueTiming::kDelayed);
+  CHECK(delay == -0.5);
+  CHECK(ParseAxisTorqueTiming("held", delay) == AxisTorqueTiming::kHeld);
+  CHECK_THROWS_WITH(ParseAxisTorqueTiming("1.5", delay), Catch::Contains("from -1 to 1"));
+  CHECK(DescribeAxisTorqueTiming(AxisTorqueTiming::kDelayed, -0.5) == "delay -0.500 samples");
+  // A log whose torque column is the held one's moved one sample later (as
+  // ros2_control writes the command held over the step before): read with
+  // delay -0.5 its rows equal the held log's rows one sample earlier, the
+  // same regressors against the same torque.
+  AxisExperiment e;
+  e.duration = 4.0;
+  const AxisLog held = SimulateAxisExperiment(kTruth, e);
+  AxisLog later = held;
+  for (std::size_t k = later.force.size(); k-- > 1;) later.force[k] = held.force[k - 1];
+  const auto names = AxisRowColumnNames();
+  const AxisRows a = BuildAxisRows({held}, 20.0, 1, 0.01, names, AxisTorqueTiming::kHeld);
+  const AxisRows b = BuildAxisRows({later}, 20.0, 1, 0.01, names, AxisTorqueTiming::kDelayed, AxisReach::kAtCutoff, -0.5);
+  REQUIRE(a.regression.rows() > 100);
+  // Row r of b stands at sample k and holds the held rows' values of k - 1.
+  std::size_t compared = 0;
+  for (std::size_t r = 0; r < b.regression.rows(); ++r) {
+    for (std::size_t s = 0; s < a.regression.rows(); ++s) {
+      if (std::abs(a.time[s] - (b.time[r] - (held.time[1] - held.time[0]))) > 1e-9) continue;
+      CHECK(b.measured[r] == Approx(a.measured[s]).margin(1e-12));
+      for (std::size_t c = 0; c < kAxisTerms; ++c) CHECK(b.regression.at(r, c) == Approx(a.regression.at(s, c)).margin(1e-9));
+      ++compared;
+    }
+  }
+  CHECK(compared > 100);
 }

@@ -158,7 +158,7 @@ TEST_CASE("axis simulator: the exact per-sample solution agrees with CVODES and 
 TEST_CASE("axis OE: torque steps from an independent generator recover J, b, tau_c, tau_0 with covering intervals") {
   AxisOeOptions options;
   options.free = {"inertia", "viscous", "coulomb", "offset"};
-  AxisSection start{0.08, 0.1, 0.5, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+  AxisSection start{0.08, 0.1, 0.5, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
   int covered = 0, total = 0;
   for (unsigned seed : {1u, 2u, 3u}) {
     const AxisLog log = StepLog({}, 2 * M_PI / 4096, 0.05, seed, true);
@@ -188,7 +188,7 @@ TEST_CASE("axis OE: per-direction Coulomb from position alone") {
   const AxisLog log = StepLog(truth, 2 * M_PI / 4096, 0.0, 4, false);
   AxisOeOptions options;
   options.free = {"inertia", "viscous", "coulomb_pos", "coulomb_neg"};
-  AxisSection start{0.08, 0.1, {}, {}, {}, {}, 0.5, 0.5, {}, {}, {}, {}, {}, {}};
+  AxisSection start{0.08, 0.1, {}, {}, {}, {}, 0.5, 0.5, {}, {}, {}, {}, {}, {}, {}};
   const AxisOeOutput out = FitAxisOutputError({log}, start, nullptr, options);
   CHECK(out.params.coulomb_pos == Approx(1.1).epsilon(0.02));
   CHECK(out.params.coulomb_neg == Approx(0.7).epsilon(0.02));
@@ -204,7 +204,7 @@ TEST_CASE("axis OE: one direction of motion cannot separate offset and Coulomb: 
   log.force.resize(1200);
   AxisOeOptions options;
   options.free = {"inertia", "viscous", "coulomb", "offset"};
-  AxisSection start{0.08, 0.1, 0.5, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+  AxisSection start{0.08, 0.1, 0.5, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
   try {
     FitAxisOutputError({log}, start, nullptr, options);
     FAIL("no refusal");
@@ -226,7 +226,7 @@ TEST_CASE("axis OE: a Stribeck excess and its velocity recovered from torque ste
     const AxisLog log = StepLog(truth, 2 * M_PI / 4096, 0.05, seed, true);
     AxisOeOptions options;
     options.free = {"inertia", "viscous", "coulomb", "offset", "stribeck", "stribeck_velocity"};
-    AxisSection start{0.08, 0.1, 0.5, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, 0.1, 1.0};
+    AxisSection start{0.08, 0.1, 0.5, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, 0.1, 1.0, {}};
     const AxisOeOutput out = FitAxisOutputError({log}, start, nullptr, options);
     CHECK(out.params.stribeck == Approx(0.3).epsilon(0.05));
     CHECK(out.params.stribeck_velocity == Approx(0.5).epsilon(0.05));
@@ -241,7 +241,7 @@ TEST_CASE("axis OE: a Stribeck excess and its velocity recovered from torque ste
   AxisOeOptions options;
   options.free = {"inertia", "stribeck"};
   const AxisLog log = StepLog(truth, 2 * M_PI / 4096, 0.05, 9, true);
-  CHECK_THROWS_AS(FitAxisOutputError({log}, AxisSection{0.08, 0.2, 1.0, 0.3, {}, {}, {}, {}, {}, {}, {}, {}, 0.1, {}},
+  CHECK_THROWS_AS(FitAxisOutputError({log}, AxisSection{0.08, 0.2, 1.0, 0.3, {}, {}, {}, {}, {}, {}, {}, {}, 0.1, {}, {}},
                                      nullptr, options),
                   InputError);
 }
@@ -249,7 +249,7 @@ TEST_CASE("axis OE: a Stribeck excess and its velocity recovered from torque ste
 TEST_CASE("axis OE: repeats are fitted one by one, and one that ran differently is named") {
   AxisOeOptions options;
   options.free = {"inertia", "viscous", "coulomb", "offset"};
-  AxisSection start{0.08, 0.1, 0.5, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+  AxisSection start{0.08, 0.1, 0.5, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
   std::vector<AxisLog> logs;
   for (unsigned seed : {11u, 12u, 13u}) {
     logs.push_back(StepLog({}, 2 * M_PI / 4096, 0.05, seed, true));

@@ -134,8 +134,8 @@ TEST_CASE("every options struct refuses a value outside its bounds, by field") {
   CheckRefusal<StepIdentificationOptions>([](auto& o) { o.fit.fit.max_iterations = 0; },
                                           "max_iterations = 0: violated constraint: >= 1");
   CheckRefusal<AxisValidationOptions>([](auto& o) { o.torque_timing = AxisTorqueTiming::kFromData; },
-                                      "‹torque_timing› auto: a validation takes the timing the fit chose (sampled "
-                                      "or held)");
+                                      "‹torque_timing› auto: a validation takes the timing the fit chose (the file's, sampled, held or "
+                                      "a delay)");
   CheckRefusal<AxisGainsOptions>([](auto& o) { o.loop = "speed"; },
                                  "‹loop›: velocity or position for an axis (speed: an elastic joint's section)");
   CheckRefusal<AxisGainsOptions>([](auto& o) { o.period = 0.0; }, "‹period› = 0: violated constraint: period > 0 s");

@@ -17,12 +17,22 @@ struct Plant {
   int direction = 0;   // sgn th_m' while sliding
   bool stuck = true;
 
+  // The spring's torque at deflection D (backlash's gap and the cubic term included).
+  double Spring(double deflection) const {
+    double d = deflection;
+    if (p.backlash > 0.0) d = std::abs(d) <= p.backlash / 2 ? 0.0 : d - std::copysign(p.backlash / 2, d);
+    return p.stiffness * d + p.hardening * d * d * d;
+  }
+  double Ripple(const State& x) const {
+    return p.ripple == 0.0 ? 0.0 : p.gear_ratio * p.ripple * std::sin(p.ripple_order * p.gear_ratio * x[0]);
+  }
   State Derivative(const State& x) const {
-    const double spring = p.stiffness * (x[0] - x[2]) + p.damping * (x[1] - x[3]);
+    const double spring = Spring(x[0] - x[2]) + p.damping * (x[1] - x[3]);
     State dx{0.0, 0.0, x[3], (spring - p.link_viscous * x[3]) / p.link_inertia};
     if (!stuck) {
       dx[0] = x[1];
-      dx[1] = (u - spring - p.motor_viscous * x[1] - p.motor_coulomb * direction - p.offset) / p.motor_inertia;
+      dx[1] = (u + Ripple(x) - spring - p.motor_viscous * x[1] - p.motor_coulomb * direction - p.offset) /
+              p.motor_inertia;
     }
     return dx;
   }
@@ -37,7 +47,7 @@ struct Plant {
     return out;
   }
   // Torque on the resting motor other than friction.
-  double Holding(const State& x) const { return u - p.stiffness * (x[0] - x[2]) + p.damping * x[3] - p.offset; }
+  double Holding(const State& x) const { return u + Ripple(x) - Spring(x[0] - x[2]) + p.damping * x[3] - p.offset; }
   // At rest: stick, or slide towards the holding torque.
   void Decide(const State& x) {
     const double net = Holding(x);

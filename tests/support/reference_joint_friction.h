@@ -26,6 +26,11 @@ struct FrictionJointTruth {
   double motor_viscous = 6.0, motor_coulomb = 2.0;  // link side [N m s/rad], [N m]
   double link_viscous = 0.5;                        // [N m s/rad]
   double offset = 0.5;                              // tau_0, link side [N m]
+  // What the two-mass model lacks (all 0: the model itself):
+  double hardening = 0.0;  // k3 [N m/rad^3]: the spring is k D + k3 D^3
+  double backlash = 0.0;   // total gap [rad]: the spring acts on D -+ gap/2 outside it, 0 inside
+  double ripple = 0.0;     // torque ripple on the motor [N m, motor shaft], not in the logged torque
+  int ripple_order = 6;    // its order of the motor's rotation: ripple sin(order q_motor)
 };
 
 struct FrictionJointExperiment {
