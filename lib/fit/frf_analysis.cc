@@ -49,7 +49,12 @@ void FitResponse(FrfResult& out, const JointSection& start, const FrfOptions& op
                                   "rate): nothing was measured there",
                                   band.low, band.high, 0.5 * out.rate, out.rate));
   }
-  out.read = ReadResponseFeatures(motor_data, fit_options.motor_output, band);
+  ResponseData read_data = motor_data;
+  if (out.motor.std_scale_unknown) {  // the read's std from its own scatter
+    read_data.log_magnitude_std.clear();
+    read_data.phase_std.clear();
+  }
+  out.read = ReadResponseFeatures(read_data, fit_options.motor_output, band);
   if (out.read.bins < kMinResponseBins) {
     // An empty frf section with exit 0 would pass for a measurement.
     throw IdentificationError(fmt::format(
@@ -163,6 +168,11 @@ FrfResult AnalyseFrequencyResponse(const std::vector<FrfSignals>& logs, const Jo
   return out;
 }
 
+namespace {
+// A measured coherence of 1 would weigh its bin infinitely: clamped here.
+constexpr double kMinMeasuredCoherence = 0.01, kMaxMeasuredCoherence = 0.999;
+}  // namespace
+
 FrfResult AnalyseMeasuredResponse(const MeasuredResponse& measured, const JointSection& start, const FrfOptions& options) {
   RequireValid(options);
   const std::size_t n = measured.frequency.size();
@@ -187,8 +197,26 @@ FrfResult AnalyseMeasuredResponse(const MeasuredResponse& measured, const JointS
     r.coherence.push_back(measured.coherence.empty() ? 1.0 : measured.coherence[b]);
   }
   r.resolution = n > 1 ? (r.frequency.back() - r.frequency.front()) / static_cast<double>(n - 1) : 0.0;
-  out.notes.push_back("no std with the measured response: every bin weighs the same and the fit estimates the residual "
-                      "scale; the model is continuous (the measurement's sampling is unknown)");
+  if (measured.coherence.empty()) {
+    out.notes.push_back("no std with the measured response: every bin weighs the same and the fit estimates the "
+                        "residual scale; the model is continuous (the measurement's sampling is unknown)");
+  } else {
+    // The coherence sets each bin's relative std (Bendat & Piersol,
+    // eps = sqrt(1 - g^2) / (|g| sqrt(2 n)) with n, the averages, unknown and
+    // the same for all: the fit estimates the scale from the residuals).
+    for (double g2 : r.coherence) {
+      const double g = std::min(std::max(g2, kMinMeasuredCoherence), kMaxMeasuredCoherence);
+      const double relative = std::sqrt((1.0 - g) / g);
+      r.log_magnitude_std.push_back(relative);
+      r.phase_std.push_back(relative);
+    }
+    r.std_scale_unknown = true;
+    out.notes.push_back(fmt::format(
+        "the measured coherence weighs the bins: std of ln|H| and of the phase proportional to sqrt(1 - g^2) / g "
+        "(coherence taken within {} .. {}), the scale from the residuals; the model is continuous (the measurement's "
+        "sampling is unknown)",
+        kMinMeasuredCoherence, kMaxMeasuredCoherence));
+  }
   FitResponse(out, start, options, 0.0, 0.0);
   return out;
 }

@@ -24,7 +24,12 @@ using Complex = std::complex<double>;
 
 constexpr int kMinAverages = 4;
 constexpr std::size_t kMinPeriodSamples = 4;  // shortest period read, given or detected
-constexpr double kPeriodTolerance = 1e-3;
+// A lag is the period when the signal shifted by it (and by twice it, where
+// the record holds three periods) differs from itself by at most this rms
+// fraction of the signal's rms: a repeating excitation under measurement
+// noise of up to about 20 % of its rms (a logged torque's) passes, a sweep
+// or a signal that only resembles itself does not.
+constexpr double kPeriodTolerance = 0.3;
 
 // Largest prime factor of n (n >= 1).
 std::size_t LargestPrimeFactor(std::size_t n) {
@@ -399,13 +404,19 @@ std::size_t DetectPeriod(const std::vector<double>& signal) {
     const double r = correlation[lag] / r0 * static_cast<double>(n) / static_cast<double>(n - lag);
     if (r < 0.9 || correlation[lag] < correlation[lag - 1] || correlation[lag] < correlation[lag + 1]) continue;
     ++checked;
-    double difference = 0.0, power = 0.0;
-    for (std::size_t k = 0; k + lag < n; ++k) {
-      const double d = signal[k + lag] - signal[k];
-      difference += d * d;
-      power += x[k] * x[k];
+    bool repeats = true;
+    for (std::size_t multiple = 1; multiple <= 2 && repeats; ++multiple) {
+      const std::size_t shift = multiple * lag;
+      if (multiple == 2 && 3 * lag > n) break;
+      double difference = 0.0, power = 0.0;
+      for (std::size_t k = 0; k + shift < n; ++k) {
+        const double d = signal[k + shift] - signal[k];
+        difference += d * d;
+        power += x[k] * x[k];
+      }
+      repeats = difference <= kPeriodTolerance * kPeriodTolerance * power;
     }
-    if (difference <= kPeriodTolerance * kPeriodTolerance * power) return lag;
+    if (repeats) return lag;
   }
   return 0;
 }

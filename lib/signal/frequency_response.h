@@ -44,6 +44,10 @@ struct FrequencyResponse {
   std::vector<double> coherence;                 ///< gamma^2 in [0, 1]
   std::vector<double> log_magnitude_std;         ///< std of ln |H| (relative std of |H|); empty: unknown
   std::vector<double> phase_std;                 ///< [rad]; empty: unknown
+  /// The stds above are relative only (a measured coherence gives their
+  /// ratios, not their scale): they weigh a fit, whose covariance takes the
+  /// scale from the residuals, but not a read's delta-method std.
+  bool std_scale_unknown = false;
   /// Power of the excitation (the reference closed loop, else the input)
   /// per bin, in its units squared; where it is excited.
   std::vector<double> excitation;
@@ -71,8 +75,11 @@ constexpr double kExcitedPowerRatio = 1e-3;
 /// excited out (of `bins` bins).
 std::vector<char> ExcitedBins(const std::vector<double>& excitation, std::size_t bins);
 
-/// The period [samples] with which `signal` repeats (rms difference of the
-/// shifted signal below 1e-3 of its rms, at least two whole periods), or 0.
+/// The period [samples] with which `signal` repeats, or 0: the first lag
+/// whose autocorrelation is a local maximum of at least 0.9 and at which
+/// (and at twice which, when three periods fit) the shifted signal differs
+/// from itself by at most 0.3 of its rms (a repeating excitation under noise
+/// of up to about 20 % of its rms).
 std::size_t DetectPeriod(const std::vector<double>& signal);
 
 }  // namespace driveid
