@@ -396,7 +396,8 @@ void EmitFitOutputs(const FitOutputOptions& options, const FitOutputs& outputs) 
   WriteFilesAtomically(files, [&] {
     const bool summary_on_stdout = !options.output.empty();
     std::string summary;
-    if (options.json) summary = DumpJson(FitJson(outputs.fit, outputs.provenance));
+    if (outputs.summary) summary = options.quiet && !options.json ? "" : *outputs.summary;
+    else if (options.json) summary = DumpJson(FitJson(outputs.fit, outputs.provenance));
     else if (!options.quiet) summary = FormatFitTable(outputs.fit, outputs.provenance);
     if (!summary_on_stdout) WriteText(stderr, summary);
     WriteStdout(summary_on_stdout ? summary : outputs.parameter_file);

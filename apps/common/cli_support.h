@@ -97,6 +97,9 @@ struct FitOutputs {
   bool plot_log_x = false;
   FitResult fit;
   FitProvenance provenance;
+  /// A command's own summary (text or JSON) instead of the fit table, printed
+  /// where the table would be (unless quiet), inside the transaction.
+  std::optional<std::string> summary;
 };
 
 /// Prints the adequacy warnings on stderr (with --strict they end the run:

@@ -75,10 +75,14 @@ void RunCompare(const CompareOptions& o) {
     if (file.fit_estimates.empty()) throw InputError(fmt::format("{}: no fit.estimates to compare", path));
     files.push_back(CompareEstimates(path, base.fit_estimates, file.fit_estimates, gate));
   }
+  // Standard output belongs to the transaction: a failed write changes no file.
+  std::vector<std::pair<std::string, std::string>> plot;
   if (!o.plot.empty()) {
-    WriteFilesAtomically({{o.plot, RenderPanels(o.plot, ComparisonPanels(files, gate), "file (in the order given)")}});
+    plot.emplace_back(o.plot, RenderPanels(o.plot, ComparisonPanels(files, gate), "file (in the order given)"));
   }
-  WriteStdout(o.json ? DumpJson(ComparisonsJson(o.base, files, gate)) : FormatComparisons(o.base, files, gate));
+  WriteFilesAtomically(plot, [&] {
+    WriteStdout(o.json ? DumpJson(ComparisonsJson(o.base, files, gate)) : FormatComparisons(o.base, files, gate));
+  });
   const auto drifted = std::count_if(files.begin(), files.end(), [](const FileComparison& f) { return f.drift; });
   if (drifted > 0) throw GateFailed{fmt::format("{} of {} files drifted from {}", drifted, files.size(), o.base)};
 }

@@ -103,8 +103,10 @@ void Run(DesignAxisOptions o, const std::string& command_line) {
   if (!o.plot.empty()) {
     files.emplace_back(o.plot, RenderPanels(o.plot, AxisDesignPanels(design, prior, o.design.rate), "time [s]"));
   }
-  WriteFilesAtomically(files);
-  WriteStdout(o.json ? DumpJson(AxisDesignJson(design)) : FormatAxisDesign(design, section->linear));
+  // Standard output belongs to the transaction: a failed write changes no file.
+  WriteFilesAtomically(files, [&] {
+    WriteStdout(o.json ? DumpJson(AxisDesignJson(design)) : FormatAxisDesign(design, section->linear));
+  });
 }
 
 DesignAxisOptions options;

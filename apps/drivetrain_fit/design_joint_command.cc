@@ -103,8 +103,8 @@ void Run(DesignJointOptions o, const std::string& command_line) {
   if (!o.plot.empty()) {
     files.emplace_back(o.plot, RenderPanels(o.plot, JointDesignPanels(design, o.design.rate), "time [s]"));
   }
-  WriteFilesAtomically(files);
-  WriteStdout(o.json ? DumpJson(JointDesignJson(design)) : FormatJointDesign(design));
+  // Standard output belongs to the transaction: a failed write changes no file.
+  WriteFilesAtomically(files, [&] { WriteStdout(o.json ? DumpJson(JointDesignJson(design)) : FormatJointDesign(design)); });
 }
 
 DesignJointOptions options;

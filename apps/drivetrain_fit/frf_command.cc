@@ -210,23 +210,20 @@ void Emit(const FrfCliOptions& o, const ParameterFile& start, const JointSection
   if (!o.out.plot.empty()) outputs.plot_panels = MakeBodePanels(result);
   outputs.plot_x_label = "frequency [Hz]";
   outputs.plot_log_x = true;
-  FitOutputOptions files_only = o.out;
-  files_only.quiet = true;
-  files_only.json = false;
   // Without a fit the response's own warnings go the fit's way (stderr, or exit 4 with --strict).
   if (!result.fit) outputs.fit.warnings = result.warnings;
-  // Files (and the parameter file on stdout when no -o) first, all or nothing.
-  EmitFitOutputs(files_only, outputs);
-  std::FILE* summary = o.out.output.empty() ? stderr : stdout;
+  // The summary goes where the fit table would (stdout with -o, else
+  // stderr), inside the transaction: a failed stdout changes no file.
   if (o.out.json) {
     Json j = FrfJson(result);
     if (result.fit) j["fit"] = FitJson(outputs.fit, outputs.provenance);
-    WriteText(summary, DumpJson(j));
-  } else if (!o.out.quiet) {
+    outputs.summary = DumpJson(j);
+  } else {
     std::string text = FormatFrfSummary(result);
     if (result.fit) text += FormatFitTable(outputs.fit, outputs.provenance);
-    WriteText(summary, text);
+    outputs.summary = text;
   }
+  EmitFitOutputs(o.out, outputs);
 }
 
 FrfCliOptions frf_options;

@@ -108,18 +108,20 @@ void Emit(const GainsOptions& o, const std::optional<ParameterFile>& file, const
     files.emplace_back(o.output, FormatParameterFile(out));
   }
   if (!o.plot.empty()) files.emplace_back(o.plot, RenderPanels(o.plot, e.panels(), "frequency [Hz]", true));
-  WriteFilesAtomically(files);
-  if (o.json) {
-    Json json = FeedbackReportJson(e.controller);
-    json.update(e.json_extra);
-    json["notes"] = e.notes;
-    json["warnings"] = e.warnings;
-    WriteStdout(DumpJson(json));
-  } else {
-    std::string text = FormatFeedbackReport(e.controller) + e.text_extra;
-    for (const auto& note : e.notes) text += "note: " + note + "\n";
-    WriteStdout(text);
-  }
+  // Standard output belongs to the transaction: a failed write changes no file.
+  WriteFilesAtomically(files, [&] {
+    if (o.json) {
+      Json json = FeedbackReportJson(e.controller);
+      json.update(e.json_extra);
+      json["notes"] = e.notes;
+      json["warnings"] = e.warnings;
+      WriteStdout(DumpJson(json));
+    } else {
+      std::string text = FormatFeedbackReport(e.controller) + e.text_extra;
+      for (const auto& note : e.notes) text += "note: " + note + "\n";
+      WriteStdout(text);
+    }
+  });
   for (const auto& warning : e.warnings) std::fprintf(stderr, "drivetrain-fit gains: warning: %s\n", warning.c_str());
 }
 

@@ -171,7 +171,20 @@ if [ -w /dev/full ]; then
   [ $? -eq 3 ] && grep -q "standard output: write error" stderr.txt && [ "$(cat kept.yaml)" = kept ] && ok ||
     fail "--json -o with stdout on /dev/full: $(cat stderr.txt); kept.yaml: $(head -c 80 kept.yaml)"
   "$bin" validate paper.yaml good.csv --trace new_trace.csv > /dev/full 2> stderr.txt
-  [ $? -eq 3 ] && [ ! -e new_trace.csv ] && ok || fail "validate --trace with stdout on /dev/full: $(cat stderr.txt)"
+  [ $? -eq 3 ] && [ ! -e new_trace.csv ] && ok || fail "validate --trace with stdout on /dev/full: $(cat stderr.txt)"  # Every command's standard output is part of its transaction (issue 55):
+  # gains, design axis, compare --plot and frf change no file when it fails.
+  "$bin" axis "$src/data/axis_steps.csv" -q -o axis_fit.yaml 2> /dev/null
+  for run in "gains axis_fit.yaml -o g.yaml" "gains axis_fit.yaml --loop position --json -o g.yaml" \
+             "design axis --params axis_fit.yaml --duration 5 --max-position 1 --max-speed 2 --max-torque 3 -o g.csv" \
+             "compare axis_fit.yaml axis_fit.yaml --plot g.svg" \
+             "frf $src/data/joint_example.csv --params $src/data/joint_start.yaml -o g.yaml"; do
+    rm -f g.yaml g.csv g.svg
+    # shellcheck disable=SC2086
+    "$bin" $run > /dev/full 2> stderr.txt
+    code=$?
+    [ $code -ne 0 ] && [ ! -e g.yaml ] && [ ! -e g.csv ] && [ ! -e g.svg ] && ok ||
+      fail "$run > /dev/full: exit $code, files $(ls g.* 2> /dev/null); $(tail -1 stderr.txt)"
+  done
 fi
 ( cat lonely.fifo > fifo_copy.csv ) &
 "$bin" step good.csv --params start.yaml -o kept.yaml --trace lonely.fifo 2> stderr.txt

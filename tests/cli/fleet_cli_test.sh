@@ -80,11 +80,12 @@ awk '
   { n = parse($0); rows++
     if (n != columns) { print "row " NR ": " n " fields, header has " columns; bad = 1 }
     if (cell[2] == 0) { ok_rows++
-      for (i = 4; i < columns; i++) if (cell[i] !~ /^-?[0-9.]+(e[-+]?[0-9]+)?$/) { print "row " NR " " head[i] ": not a number: " cell[i]; bad = 1 } }
-    else if (cell[columns] == "") { print "row " NR ": failed without a message"; bad = 1 } }
+      for (i = 4; i < columns - 1; i++) if (cell[i] !~ /^-?[0-9.]+(e[-+]?[0-9]+)?$/) { print "row " NR " " head[i] ": not a number: " cell[i]; bad = 1 } }
+    else if (cell[columns - 1] == "") { print "row " NR ": failed without a message"; bad = 1 }
+    if (cell[columns] !~ /\.yaml$/) { print "row " NR ": no output file named"; bad = 1 } }
   END { if (rows != 202 || ok_rows != 200) { print rows " rows, " ok_rows " fitted"; bad = 1 }; exit bad }' out/summary.csv > csv.txt &&
   ok || fail "summary.csv: $(head -3 csv.txt)"
-head -1 out/summary.csv | grep -q '^file,exit_code,fit_percent,inertia,inertia_std,viscous,viscous_std,coulomb,coulomb_std,offset,offset_std,message$' &&
+head -1 out/summary.csv | grep -q '^file,exit_code,fit_percent,inertia,inertia_std,viscous,viscous_std,coulomb,coulomb_std,offset,offset_std,message,output$' &&
   ok || fail "summary header: $(head -1 out/summary.csv)"
 if command -v python3 > /dev/null && python3 -c 'import csv' 2> /dev/null; then
   python3 - out/summary.csv << 'PY' && ok || fail "python csv reader"
