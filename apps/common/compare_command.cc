@@ -84,7 +84,16 @@ void RunCompare(const CompareOptions& o) {
     WriteStdout(o.json ? DumpJson(ComparisonsJson(o.base, files, gate)) : FormatComparisons(o.base, files, gate));
   });
   const auto drifted = std::count_if(files.begin(), files.end(), [](const FileComparison& f) { return f.drift; });
-  if (drifted > 0) throw GateFailed{fmt::format("{} of {} files drifted from {}", drifted, files.size(), o.base)};
+  // One gate rule: a gate that cannot judge a file fails, naming why.
+  std::vector<std::string> undecided;
+  for (const auto& f : files) {
+    for (const auto& u : f.undecided) undecided.push_back(fmt::format("{}: {}", f.file, u));
+  }
+  if (drifted > 0 || !undecided.empty()) {
+    throw GateFailed{fmt::format("{} of {} files drifted from {}{}", drifted, files.size(), o.base,
+                                 undecided.empty() ? std::string()
+                                                   : fmt::format("; the gate cannot judge {}", fmt::join(undecided, "; ")))};
+  }
 }
 
 CompareOptions compare_options;

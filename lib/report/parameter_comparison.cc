@@ -58,9 +58,11 @@ FileComparison CompareEstimates(const std::string& file, const std::vector<Param
         std::find(gate.parameters.begin(), gate.parameters.end(), b.name) == gate.parameters.end()) {
       continue;
     }
+    const bool gated = gate.max_percent || gate.max_z;
     const ParameterEstimate* e = Find(other, b.name);
     if (e == nullptr) {
       out.missing.push_back(b.name);
+      if (gated) out.undecided.push_back(fmt::format("{}: the file has no estimate of it", b.name));
       continue;
     }
     ParameterChange c;
@@ -73,6 +75,12 @@ FileComparison CompareEstimates(const std::string& file, const std::vector<Param
     const double s = std::hypot(b.standard_error, e->standard_error);
     c.z = s > 0.0 ? (e->value - b.value) / s : kNaN;
     c.drift = Exceeds(c, gate);
+    if (gate.max_percent && !std::isfinite(c.relative_change)) {
+      out.undecided.push_back(fmt::format("{}: the base value is 0, so a change in percent is undefined", b.name));
+    }
+    if (gate.max_z && !std::isfinite(c.z)) {
+      out.undecided.push_back(fmt::format("{}: neither file gives it a std, so z is undefined", b.name));
+    }
     out.drift = out.drift || c.drift;
     out.parameters.push_back(c);
   }
@@ -91,6 +99,7 @@ std::string FormatComparisons(const std::string& base_file, const std::vector<Fi
                          100.0 * c.relative_change, c.z, c.drift ? "   drift" : "");
     }
     if (!f.missing.empty()) out += fmt::format("  no estimate of {}\n", fmt::join(f.missing, ", "));
+    for (const auto& u : f.undecided) out += fmt::format("  the gate cannot judge {}\n", u);
   }
   out += fmt::format("{} of {} files drifted\n", drifted, files.size());
   return out;
@@ -104,7 +113,11 @@ Json ComparisonsJson(const std::string& base_file, const std::vector<FileCompari
   out["files"] = Json::array();
   std::size_t drifted = 0;
   for (const auto& f : files) {
-    Json file = {{"file", f.file}, {"drift", f.drift}, {"missing", f.missing}, {"parameters", Json::object()}};
+    Json file = {{"file", f.file},
+                 {"drift", f.drift},
+                 {"missing", f.missing},
+                 {"undecided", f.undecided},
+                 {"parameters", Json::object()}};
     for (const auto& c : f.parameters) {
       file["parameters"][c.name] = {{"base", c.base},       {"base_std", c.base_std},
                                     {"value", c.value},     {"std", c.value_std},

@@ -34,6 +34,10 @@ struct FileComparison {
   bool drift = false;                     ///< any parameter drifted
   std::vector<ParameterChange> parameters;  ///< in the base's order
   std::vector<std::string> missing;       ///< compared parameters the file has no estimate of
+  /// Why the gate (when one is set) cannot judge a parameter of this file:
+  /// no estimate in the file, a base of 0 under a percent gate, no std on
+  /// either side under a z gate. A gate that cannot judge fails.
+  std::vector<std::string> undecided;
 };
 
 /// Compares `other` with `base` (estimates by name). Parameters asked for

@@ -114,6 +114,11 @@ expected=$(for f in $drifted_list; do basename "$f" .csv; done | sort | tr '\n' 
 grep -q '"relative_change":' compare.json && grep -q '"z":' compare.json && ok || fail "compare json lacks relative_change / z"
 # No drift among the nominal ones: exit 0; a parameter the base lacks: exit 3, named.
 "$bin" compare base.yaml out/logs_axis_001.yaml out/logs_axis_002.yaml --fail-above 10 > /dev/null && ok || fail "nominal logs drifted"
+# A gate that cannot judge fails (exit 1) and says why: a file without the estimate.
+grep -v "^    offset: {value" out/logs_axis_001.yaml > no_offset.yaml
+"$bin" compare base.yaml no_offset.yaml --fail-above 10 > /dev/null 2> undecided.err
+[ $? -eq 1 ] && grep -q "the gate cannot judge no_offset.yaml: offset: the file has no estimate of it" undecided.err && ok ||
+  fail "a gate that cannot judge passed: $(cat undecided.err)"
 "$bin" compare base.yaml out/logs_axis_001.yaml --parameters stiffness > /dev/null 2> unknown.err
 code=$?
 [ "$code" -eq 3 ] && grep -q "^drivetrain-fit: --parameters: the base has no estimate of stiffness" unknown.err && ok ||

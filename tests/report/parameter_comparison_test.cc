@@ -56,3 +56,24 @@ TEST_CASE("comparison: relative change and z, the gate's bounds, missing estimat
   const Json json = ComparisonsJson("base.yaml", {by_percent}, percent);
   CHECK(json["files"][0]["parameters"]["tau_0"]["z"].is_null());
 }
+
+TEST_CASE("a gate that cannot judge says so: no estimate, a base of 0, no std on either side") {
+  const std::vector<ParameterEstimate> base = {Estimate("J", 0.05, 0.001), Estimate("tau_0", 0.0, 0.01),
+                                               Estimate("c", 1.0, 0.0)};
+  const std::vector<ParameterEstimate> other = {Estimate("tau_0", 0.1, 0.01), Estimate("c", 1.0, 0.0)};
+  DriftGate percent;
+  percent.max_percent = 10.0;
+  const FileComparison p = CompareEstimates("f.yaml", base, other, percent);
+  CHECK_FALSE(p.drift);
+  REQUIRE(p.undecided.size() == 2);
+  CHECK_THAT(p.undecided[0], Catch::Contains("J: the file has no estimate"));
+  CHECK_THAT(p.undecided[1], Catch::Contains("tau_0: the base value is 0"));
+  DriftGate z;
+  z.max_z = 3.0;
+  const FileComparison q = CompareEstimates("f.yaml", base, other, z);
+  REQUIRE(q.undecided.size() == 2);
+  CHECK_THAT(q.undecided[1], Catch::Contains("c: neither file gives it a std"));
+  // Without a gate it is a report: nothing to judge.
+  CHECK(CompareEstimates("f.yaml", base, other, DriftGate{}).undecided.empty());
+  CHECK_THAT(FormatComparisons("base.yaml", {p}, percent), Catch::Contains("the gate cannot judge tau_0"));
+}
