@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "control/feedback_gains.h"
+#include "core/errors.h"
 #include "export/export_text.h"
 
 namespace driveid {
@@ -12,12 +13,29 @@ namespace {
 
 using namespace export_text;
 
+bool Pid(const FeedbackController& f) { return !f.empty() && (f.loop == "velocity" || f.loop == "position"); }
+
+// A value the export writes: refused by name when the section lacks it (an
+// export never invents a gain of 0 or a period of 0).
 double Value(const FeedbackController& f, const char* key) {
   const FeedbackValue* v = f.Find(key);
-  return v ? v->value : 0.0;
+  if (v == nullptr) {
+    throw InputError(fmt::format("feedback.{}: missing from the {} loop's section; an export would have to invent it "
+                                 "(rerun drivetrain-fit gains)",
+                                 key, CommentText(f.loop)));
+  }
+  if (std::string(key) == "period" && !(v->value > 0.0)) {
+    throw InputError(fmt::format("feedback.period = {}: a controller period is > 0 s", v->value));
+  }
+  return v->value;
 }
 
-bool Pid(const FeedbackController& f) { return !f.empty() && (f.loop == "velocity" || f.loop == "position"); }
+// The keys a PID export writes, checked before any text is made.
+void RequirePidValues(const FeedbackController& f) {
+  Value(f, "kp");
+  if (f.loop == "position") Value(f, "kd");
+  Value(f, "period");
+}
 
 // A WPILib PIDController runs the gains on the roboRIO: only for gains in its
 // convention. A vendor's gains (per its own units, its 1 ms period, a kD per
@@ -31,6 +49,7 @@ bool RoboRioPid(const FeedbackController& f) {
 
 std::string FeedbackCHeaderLines(const FeedbackController& f, const std::string& upper) {
   if (f.empty()) return "";
+  if (Pid(f)) RequirePidValues(f);
   std::string out = fmt::format("\n/* feedback ({} loop, preset {}; docs/models.md#feedback-gains) */\n",
                                 CommentText(f.loop), CommentText(f.preset));
   for (const auto& v : f.values) {
@@ -62,6 +81,7 @@ std::string FeedbackJavaImport(const FeedbackController& f) {
 
 std::string FeedbackJavaMembers(const FeedbackController& f) {
   if (!Pid(f)) return "";
+  RequirePidValues(f);
   std::string out = fmt::format("\n  // Feedback: {} loop, preset {} (docs/models.md#feedback-gains).\n", CommentText(f.loop),
                                 CommentText(f.preset));
   out += FeedbackVendorNote(f, "  //");
@@ -84,6 +104,7 @@ std::string FeedbackCppInclude(const FeedbackController& f) {
 
 std::string FeedbackCppMembers(const FeedbackController& f) {
   if (!Pid(f)) return "";
+  RequirePidValues(f);
   std::string out = fmt::format("\n// Feedback: {} loop, preset {} (docs/models.md#feedback-gains).\n", CommentText(f.loop),
                                 CommentText(f.preset));
   out += FeedbackVendorNote(f, "//");

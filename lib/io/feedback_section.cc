@@ -62,6 +62,10 @@ FeedbackValue ParseValue(const std::string& path, const std::string& key, const 
     if (!node["value"]) throw InputError(fmt::format("{}: {}: needs a value", Where(path, node), name));
     value.value = ParseNumber(path, name + ".value", node["value"]);
     if (node["std"]) value.standard_error = ParseNumber(path, name + ".std", node["std"]);
+    if (!(value.standard_error >= 0.0)) {
+      throw InputError(fmt::format("{}: {}.std = {}: a standard error is >= 0", Where(path, node["std"]), name,
+                                   value.standard_error));
+    }
   } else {
     value.value = ParseNumber(path, name, node);
   }
@@ -86,6 +90,10 @@ FeedbackController ParseFeedbackSection(const std::string& path, const YAML::Nod
           ParseCoefficients(path, key, item.second);
     } else if (FindFeedbackKey(key)) {
       out.values.push_back(ParseValue(path, key, item.second));
+      if (key == "period" && !(out.values.back().value > 0.0)) {
+        throw InputError(fmt::format("{}: feedback.period = {}: a controller period is > 0 s", Where(path, item.second),
+                                     out.values.back().value));
+      }
     } else {
       throw InputError(fmt::format("{}: feedback.{}: unknown key (known: {})", Where(path, item.first), key, KnownKeys()));
     }

@@ -8,6 +8,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "core/errors.h"
 #include "export/feedback_export.h"
 
 namespace driveid {
@@ -91,6 +92,28 @@ TEST_CASE("a PID loop: kP, kD and the period in Java and C++; hostile names comm
   INFO(first_line);
   CHECK(std::regex_match(first_line, std::regex(R"(/\* [^*]*(\*[^/][^*]*)* \*/)")));
   CHECK(FeedbackJavaMembers(f).find("\n  // Feedback: position loop, preset x ") != std::string::npos);
+}
+
+}  // namespace
+}  // namespace driveid
+
+namespace driveid {
+namespace {
+
+TEST_CASE("a PID export refuses a section without kp, kd or a period instead of writing 0") {
+  FeedbackController f;
+  f.loop = "position";
+  f.preset = "wpilib";
+  f.effort_unit = "V";
+  f.position_unit = "Rotations";
+  f.values = {{"kp", 12.5, 0.25}, {"period", 0.02, 0.0}};  // no kd
+  CHECK_THROWS_WITH(FeedbackJavaMembers(f), Catch::Contains("feedback.kd: missing"));
+  CHECK_THROWS_WITH(FeedbackCppMembers(f), Catch::Contains("feedback.kd: missing"));
+  CHECK_THROWS_WITH(FeedbackCHeaderLines(f, "AXIS"), Catch::Contains("feedback.kd: missing"));
+  f.values = {{"kp", 12.5, 0.25}, {"kd", 0.5, 0.0}, {"period", -0.02, 0.0}};
+  CHECK_THROWS_WITH(FeedbackJavaMembers(f), Catch::Contains("feedback.period = -0.02"));
+  f.values = {{"kd", 0.5, 0.0}, {"period", 0.02, 0.0}};
+  CHECK_THROWS_AS(FeedbackCppMembers(f), InputError);
 }
 
 }  // namespace

@@ -40,3 +40,13 @@ TEST_CASE("feedback section: written, read back unchanged; unknown keys refused 
   bad.loop = "torque";
   CHECK_THROWS_AS(FormatFeedbackSection(bad), OutputError);
 }
+
+TEST_CASE("feedback section: a negative std or a period not above 0 is refused where it stands") {
+  const YAML::Node negative = YAML::Load("feedback:\n  loop: velocity\n  kp: {value: 1, std: -0.1}\n")["feedback"];
+  CHECK_THROWS_WITH(ParseFeedbackSection("f.yaml", negative), Catch::Contains("f.yaml:3") && Catch::Contains("feedback.kp.std = -0.1"));
+  const YAML::Node period = YAML::Load("feedback:\n  loop: velocity\n  kp: 1\n  period: -0.02\n")["feedback"];
+  CHECK_THROWS_WITH(ParseFeedbackSection("f.yaml", period), Catch::Contains("feedback.period = -0.02"));
+  // The C-drive, speed and other loops keep their polynomials and margins: only these two rules here.
+  const YAML::Node fine = YAML::Load("feedback:\n  loop: velocity\n  kp: {value: 1, std: 0}\n  period: 0.02\n")["feedback"];
+  CHECK_NOTHROW(ParseFeedbackSection("f.yaml", fine));
+}
