@@ -377,7 +377,7 @@ printf 'joint:\n  gear_ratio: 50\n  motor_inertia: 0.02\n  link_inertia: 0.05\n 
 printf 'joint:\n  gear_ratio: 50\n' > stiff_start.yaml
 "$bin" simulate joint --params stiff_truth.yaml --kp 0.0004 --ki 0.002 --duration 10 --band 1,60 --amplitude 0.5 \
   --noise 0.5 -o stiff.csv && ok || fail "simulate joint (stiff)"
-"$bin" joint stiff.csv --params stiff_start.yaml -o stiff_fit.yaml --trace stiff_trace.csv --plot stiff_fit.svg > stiff.txt 2>&1 \
+"$bin" joint stiff.csv --params stiff_start.yaml --max-seconds 600 -o stiff_fit.yaml --trace stiff_trace.csv --plot stiff_fit.svg > stiff.txt 2>&1 \
   && grep -q "^method: output error (auto: the inverse-dynamics cutoff 25 Hz is below 4 x the resonance" stiff.txt \
   && grep -q "^  stiffness: \(39[2-9]\|40[0-8]\)" stiff_fit.yaml && grep -q "output error (exact ZOH" stiff_fit.yaml \
   && head -2 stiff_trace.csv | grep -q "^log,t,q_motor_measured,q_motor_model,q_link_measured,q_link_model" \
@@ -402,7 +402,7 @@ expect 2 "--segment.*expected auto, none or a number of seconds > 0, got '-1'" -
 expect 2 "--segment.*got 'nan'" -- joint stiff.csv --params stiff_start.yaml --segment nan
 grep -q "^note: output error by multiple shooting: [0-9]* segments of" stiff.txt && ok \
   || fail "joint auto -> output error names its segments: $(cat stiff.txt)"
-"$bin" joint stiff.csv --params stiff_start.yaml --method oe --segment none -o /dev/null > stiff_single.txt 2>&1 \
+"$bin" joint stiff.csv --params stiff_start.yaml --method oe --segment none --max-seconds 600 -o /dev/null > stiff_single.txt 2>&1 \
   && grep -q "^note: output error by single shooting" stiff_single.txt && ok \
   || fail "joint --segment none: $(cat stiff_single.txt)"
 cut -d, -f1,3,5 stiff.csv > stiff_notau.csv
