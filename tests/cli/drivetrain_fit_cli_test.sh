@@ -415,7 +415,7 @@ expect 3 "stiff_shaft.csv: --method oe simulates the joint from the motor torque
 "$bin" joint "$src/data/joint_example.csv" --params "$src/data/joint_start.yaml" -o /dev/null > example_auto.txt 2>&1
 grep -q "^method: inverse dynamics (auto: inverse dynamics finds link Coulomb friction" example_auto.txt && ok \
   || fail "joint auto on the example: $(cat example_auto.txt)"
-"$bin" joint "$src/data/joint_example.csv" --params "$src/data/joint_start.yaml" --method oe -o /dev/null > example_oe.txt 2>&1
+"$bin" joint "$src/data/joint_example.csv" --params "$src/data/joint_start.yaml" --method oe --max-seconds 600 -o /dev/null > example_oe.txt 2>&1
 grep -q "model: inverse dynamics finds link Coulomb friction .* which output error does not simulate" example_oe.txt && ok \
   || fail "joint --method oe on the example: $(cat example_oe.txt)"
 
