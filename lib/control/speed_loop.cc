@@ -72,8 +72,8 @@ SampledPlant SamplePlant(const SpeedLoopPlant& plant, double period, double dela
   out.whole = static_cast<int>(std::floor(delay / period + 1e-9));
   const double fraction = std::max(0.0, delay - out.whole * period);
   Eigen::Matrix3d phi_rest, phi_fraction;
-  Eigen::Vector3d gamma_fraction;
-  hold(period, out.phi, out.gamma0);
+  Eigen::Vector3d gamma_period, gamma_fraction;
+  hold(period, out.phi, gamma_period);  // Phi over a whole period (its Gamma is not one of the two)
   hold(period - fraction, phi_rest, out.gamma0);
   hold(fraction, phi_fraction, gamma_fraction);
   out.gamma1 = phi_rest * gamma_fraction;

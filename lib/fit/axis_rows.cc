@@ -195,7 +195,6 @@ const char* AxisTorqueTimingName(AxisTorqueTiming timing) {
   switch (timing) {
     case AxisTorqueTiming::kHeld: return "held";
     case AxisTorqueTiming::kFromData: return "auto";
-    case AxisTorqueTiming::kSampledSmoothed: return "sampled (smoothed)";
     case AxisTorqueTiming::kDelayed: return "delay";
     case AxisTorqueTiming::kSampled: break;
   }
@@ -242,8 +241,7 @@ std::vector<double> TimedAxisTorque(const std::vector<double>& torque, AxisTorqu
     throw OptionError("‹torque-timing› auto: the fit chooses the timing before it builds rows");
   }
   std::vector<double> out = torque;
-  if (timing == AxisTorqueTiming::kHeld || timing == AxisTorqueTiming::kSampledSmoothed ||
-      timing == AxisTorqueTiming::kDelayed) {
+  if (timing == AxisTorqueTiming::kHeld || timing == AxisTorqueTiming::kDelayed) {
     for (std::size_t k = 1; k < torque.size(); ++k) out[k] = 0.5 * (torque[k - 1] + torque[k]);
   }
   return out;
@@ -338,7 +336,6 @@ AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int deci
       out.method += fmt::format("; torque acting {:+.3f} samples after its stamp (rows average u_(k-1), u_k)",
                                 torque_delay);
     }
-    const bool smoothed = timing == AxisTorqueTiming::kSampledSmoothed;
     const std::size_t n = log.time.size();
     double max_rate = 0.0;
     for (std::size_t k = 0; k < n; ++k) {
@@ -377,9 +374,6 @@ AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int deci
         column[k] = c < kAxisTerms   ? CalcAxisRegressors(position, d.rate[m], d.acceleration[m])[c]
                     : c == kAxisTerms ? std::abs(d.rate[m])
                                       : log.time[k] - middle_time;
-      }
-      if (smoothed) {
-        for (std::size_t k = n; k-- > 1;) column[k] = 0.5 * (column[k - 1] + column[k]);
       }
       if (c < kAxisTerms) ShiftColumn(column, shift);
       if (filtered) ZeroPhaseLowPassInPlace(column, band, d.rate_hz);

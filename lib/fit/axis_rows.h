@@ -137,18 +137,16 @@ struct AxisRows {
 /// drive holds from its sample to the next (zero-order hold); the central
 /// second difference of q at sample k integrates u_(k-1) and u_k for half
 /// each, (q_(k+1) - 2 q_k + q_(k-1)) / h^2 = (u_(k-1) + u_k) / (2 J) for an
-/// inertia, so row k takes (u_(k-1) + u_k) / 2. kFromData: whichever of
-/// the two leaves the smaller residual (FitAxis; docs/models.md#torque-timing).
-/// kSampledSmoothed: the sampled reading with the torque and every regressor
-/// column through the held reading's two-sample mean, so that both readings
-/// fit the same dependent column. kDelayed: the logged torque acts `delay`
+/// inertia, so row k takes (u_(k-1) + u_k) / 2. kFromData: FitAxis reads it
+/// from the data among kDelayed -0.5, 0 and +0.5 (docs/models.md#torque-timing).
+/// kDelayed: the logged torque acts `delay`
 /// samples after its stamp (a fraction in [-1, 1]: 0 sampled, +0.5 held, -0.5
 /// a command held since the last sample, as ros2_control logs it); row k
 /// takes the two-sample mean (u_(k-1) + u_k) / 2, which acts at
 /// t_k + (delay - 0.5) h, against the regressors interpolated linearly to
 /// that instant, so every delay fits the same dependent column and their
 /// costs compare (kFromData estimates the delay so: FitAxis).
-enum class AxisTorqueTiming { kSampled, kHeld, kFromData, kSampledSmoothed, kDelayed };
+enum class AxisTorqueTiming { kSampled, kHeld, kFromData, kDelayed };
 
 /// Largest |delay| of kDelayed [samples].
 inline constexpr double kMaxTorqueDelay = 1.0;
