@@ -92,10 +92,19 @@ ChildOutcome RunInChild(const std::function<void()>& body, const ChildLimits& li
     if (outcome.output.size() > limits.max_output_bytes) break;
   }
   ::close(fds[0]);
-  // Past the output limit or the deadline the child is of no more use.
-  if (outcome.timed_out || outcome.output.size() > limits.max_output_bytes) ::kill(child, SIGKILL);
+  // Past the output limit or the deadline the child is of no more use:
+  // SIGTERM first (a child may remove its own files then), SIGKILL after 1 s.
   int status = 0;
-  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  bool reaped = false;
+  if (outcome.timed_out || outcome.output.size() > limits.max_output_bytes) {
+    ::kill(child, SIGTERM);
+    for (int tick = 0; tick < 100 && !reaped; ++tick) {
+      reaped = ::waitpid(child, &status, WNOHANG) == child;
+      if (!reaped) ::usleep(10000);
+    }
+    if (!reaped) ::kill(child, SIGKILL);
+  }
+  while (!reaped && ::waitpid(child, &status, 0) < 0 && errno == EINTR) {
   }
   SetTemporaryFileWriter(0);
   outcome.exited = WIFEXITED(status);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -226,11 +228,60 @@ MatContents ReadMatFile(const std::string& path, const std::string& file, const 
   return MatReader(path).Read(file);
 }
 
+namespace {
+
+// The name of a v7.3 copy while it exists, for RemoveMatReaderCopyNow().
+char copy_name[4096 + 16] = "";
+char copy_folder[4096] = "";
+
+bool IsHdf5(const std::string& bytes) {
+  static const std::string signature("\x89HDF\r\n\x1a\n", 8);
+  return bytes.size() >= 520 && bytes.compare(512, 8, signature) == 0;
+}
+
+// Reads `bytes` (of `path`) as a named file: HDF5 resolves the name it is
+// given with realpath(), which fails for /proc/self/fd of an unnamed file,
+// so a v7.3 file gets a name for the read, in a private folder of the
+// temporary directory, removed when the read ends.
+MatContents ReadNamedCopy(const std::string& path, const std::string& bytes) {
+  std::error_code error;
+  const std::string pattern = (std::filesystem::temp_directory_path(error) / "driveid-mat.XXXXXX").string();
+  if (error || pattern.size() + 16 >= sizeof copy_folder) throw InputError(path + ": no temporary folder for the MAT reader");
+  std::snprintf(copy_folder, sizeof copy_folder, "%s", pattern.c_str());
+  if (::mkdtemp(copy_folder) == nullptr) {
+    copy_folder[0] = '\0';
+    throw InputError(path + ": cannot create a temporary copy for the MAT reader");
+  }
+  std::snprintf(copy_name, sizeof copy_name, "%s/copy.mat", copy_folder);
+  try {
+    {
+      std::ofstream out(copy_name, std::ios::binary);
+      out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+      if (!out.flush()) throw InputError(path + ": cannot write a temporary copy for the MAT reader");
+    }
+    MatContents contents = ReadMatFile(path, copy_name, bytes);
+    RemoveMatReaderCopyNow();
+    return contents;
+  } catch (...) {
+    RemoveMatReaderCopyNow();
+    throw;
+  }
+}
+
+}  // namespace
+
+void RemoveMatReaderCopyNow() noexcept {
+  if (copy_name[0] != '\0') ::unlink(copy_name);
+  if (copy_folder[0] != '\0') ::rmdir(copy_folder);
+  copy_name[0] = copy_folder[0] = '\0';
+}
+
 std::string MatReaderReply(const std::string& path, const std::string& file) {
   try {
     std::ifstream in(file, std::ios::binary);
     const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (!in.good() && !in.eof()) throw InputError(path + ": cannot read the MAT file");
+    if (IsHdf5(bytes) && file.rfind("/proc/self/fd/", 0) == 0) return SerialiseMatReply(ReadNamedCopy(path, bytes));
     return SerialiseMatReply(ReadMatFile(path, file, bytes));
   } catch (const std::exception& e) {
     return SerialiseMatError(e.what());

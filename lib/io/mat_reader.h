@@ -23,6 +23,15 @@ MatContents ReadMatFile(const std::string& path, const std::string& file, const 
 /// named `path` in messages: its contents or the error that ended reading.
 std::string MatReaderReply(const std::string& path, const std::string& file);
 
+/// `file` may be /proc/self/fd/N, an unnamed copy (the tools pass one, so
+/// that nothing named is left behind); a v7.3 (HDF5) file is then read from
+/// a named copy in a private folder of the temporary directory for the
+/// length of the read, since HDF5 cannot open the unnamed one.
+
+/// Async-signal-safe: removes that named copy, if one exists now. For the
+/// reader process's signal handlers.
+void RemoveMatReaderCopyNow() noexcept;
+
 /// Writes `reply` to the file descriptor `fd`; false if it could not.
 bool WriteMatReaderReply(int fd, const std::string& reply);
 

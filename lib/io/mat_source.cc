@@ -5,8 +5,9 @@
 // elements `name(i)`, `name(i,j)` are scalars for expressions.
 // Cells, characters, sparse, objects and function handles are skipped with a
 // note. matio reads from a file: the bytes already read (and hashed) are
-// written to a registered temporary file first, so the data read is the data
-// recorded, and a FIFO works too.
+// written to an unnamed temporary file first, so the data read is the data
+// recorded, and a FIFO works too; the copy has no name (nothing is left
+// behind by a killed process, nothing is swept).
 #include <algorithm>
 #include <cerrno>
 #include <cstdint>
@@ -16,9 +17,10 @@
 #include <filesystem>
 #include <map>
 
+#include <fcntl.h>
+#include <sys/mman.h>
 #include <unistd.h>
 #include <sys/stat.h>
-#include <csignal>
 
 #include <fmt/format.h>
 
@@ -30,7 +32,6 @@
 #include "io/mat_reader.h"
 #endif
 #include "io/table_source.h"
-#include "io/temporary_files.h"
 
 namespace driveid {
 namespace {
@@ -53,29 +54,21 @@ std::string MatReaderPath() {
   return DRIVEID_MAT_READER_BUILT;
 }
 
-constexpr const char* kMatCopyPrefix = "driveid-mat.";
-
-// Removes the MAT copies (driveid-mat.PID.XXXXXX, regular files of this
-// user) in the temporary folder whose process no longer runs.
-void RemoveStaleMatCopies() {
+// An unnamed file holding `text` (O_TMPFILE in the temporary folder, else a
+// memfd): it has no name to leave behind, whatever kills the process, and
+// nothing needs sweeping. -1 when neither can be made. Close-on-exec: the
+// reader's child clears that flag for itself (RunInChild's body).
+int UnnamedCopy(const std::string& text) {
   std::error_code error;
   const auto dir = std::filesystem::temp_directory_path(error);
-  if (error) return;
-  std::filesystem::directory_iterator it(dir, error), end;
-  for (int seen = 0; !error && it != end && seen < 100000; it.increment(error), ++seen) {
-    const std::string file = it->path().filename().string();
-    if (file.rfind(kMatCopyPrefix, 0) != 0) continue;
-    const std::size_t dot = file.find('.', std::strlen(kMatCopyPrefix));
-    if (dot == std::string::npos) continue;
-    long pid = 0;
-    const char* first = file.data() + std::strlen(kMatCopyPrefix);
-    const auto parsed = std::from_chars(first, file.data() + dot, pid);
-    if (parsed.ec != std::errc() || parsed.ptr != file.data() + dot || pid <= 0) continue;
-    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;  // running, or not ours to judge
-    struct stat info {};
-    if (::lstat(it->path().c_str(), &info) != 0 || !S_ISREG(info.st_mode) || info.st_uid != ::geteuid()) continue;
-    ::unlink(it->path().c_str());
+  int fd = error ? -1 : ::open(dir.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
+  if (fd < 0) fd = ::memfd_create("driveid-mat", MFD_CLOEXEC);
+  if (fd < 0) return -1;
+  if (!WriteAll(fd, text.data(), text.size())) {
+    ::close(fd);
+    return -1;
   }
+  return fd;
 }
 
 struct ColumnRef {
@@ -87,34 +80,17 @@ struct ColumnRef {
 class MatSource : public TableSource {
  public:
   MatSource(std::string path, const std::string& text) : path_(std::move(path)) {
-    // The bytes go to a temporary file for matio (which opens files by name;
-    // HDF5 cannot open an unlinked file's /proc/self/fd link on every kernel).
-    // Its name holds this process's id: copies of processes that were killed
-    // (SIGKILL leaves them) are removed by the next read.
-    RemoveStaleMatCopies();
-    std::string name =
-        (std::filesystem::temp_directory_path() / fmt::format("{}{}.XXXXXX", kMatCopyPrefix, ::getpid())).string();
-    const int fd = CreateTemporaryFile(name);
+    // The bytes go to an unnamed file for matio, which the reader opens
+    // through /proc/self/fd (matio and HDF5 open files by name).
+    const int fd = UnnamedCopy(text);
     if (fd < 0) throw InputError(fmt::format("{}: cannot create a temporary copy for the MAT reader", path_));
-    std::size_t written = 0;
-    bool ok = true;
-    while (written < text.size()) {
-      const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
-      if (n <= 0) {
-        ok = false;
-        break;
-      }
-      written += static_cast<std::size_t>(n);
-    }
-    ::close(fd);
     try {
-      if (!ok) throw InputError(fmt::format("{}: cannot write a temporary copy for the MAT reader", path_));
-      Load(name, text);
+      Load(fd, text);
     } catch (...) {
-      RemoveTemporaryFile(name);
+      ::close(fd);
       throw;
     }
-    RemoveTemporaryFile(name);
+    ::close(fd);
     // Listed columns: vectors, and each matrix along its longer side (the
     // samples): the columns name(:,k) of a tall one, the rows name(k,:) of
     // a wide one. The other side is found on request (Find).
@@ -252,8 +228,9 @@ class MatSource : public TableSource {
   // plus 1 s per 10 MB of file, at most 120 s); the
   // variables come back through a pipe, and a child that dies is an
   // unreadable file, not a dead tool.
-  void Load(const std::string& file, const std::string& text) {
+  void Load(int copy, const std::string& text) {
     CheckHdf5Length(path_, text);  // a cut v7.3 file is refused without a process
+    const std::string file = fmt::format("/proc/self/fd/{}", copy);
     const std::string reader = MatReaderPath();
     const char* arguments[] = {reader.c_str(), path_.c_str(), file.c_str(), nullptr};
     ChildLimits limits;
@@ -271,6 +248,7 @@ class MatSource : public TableSource {
           (void)arguments;
           ::_exit(WriteMatReaderReply(STDOUT_FILENO, MatReaderReply(path_, file)) ? 0 : 1);
 #endif
+          ::fcntl(copy, F_SETFD, 0);  // the reader inherits the copy (this process's flag only)
           ::execv(reader.c_str(), const_cast<char* const*>(arguments));
           // Not started: say so through the pipe.
           const std::string message = SerialiseMatError(fmt::format(

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string>
 
 #include <sys/wait.h>
@@ -206,32 +207,33 @@ TEST_CASE("MAT with many variables: read in one pass (20 000 scalars), refused b
   }
 }
 
-TEST_CASE("a MAT copy left by a killed process is removed by the next read; others are left alone") {
-  // A process that has exited: its id no longer runs.
+TEST_CASE("a MAT read names no file: nothing in the temporary folder is created, swept or left behind") {
+  // Files that look like the copies older versions made, of a process that
+  // has exited and of this one: a user's, never the tool's to remove.
   const pid_t child = ::fork();
   if (child == 0) ::_exit(0);
   REQUIRE(child > 0);
   ::waitpid(child, nullptr, 0);
   const auto dir = std::filesystem::temp_directory_path();
-  const auto stale = dir / ("driveid-mat." + std::to_string(child) + ".Ab12Cd");
+  const auto foreign = dir / ("driveid-mat." + std::to_string(child) + ".mine");
   const auto live = dir / ("driveid-mat." + std::to_string(::getpid()) + ".Ef34Gh");
-  const auto folder = dir / ("driveid-mat." + std::to_string(child) + ".folder");
-  std::ofstream(stale) << "stale";
+  std::ofstream(foreign) << "mine";
   std::ofstream(live) << "live";
-  std::filesystem::create_directory(folder);
+  const auto listing = [&] {
+    std::set<std::string> names;
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) names.insert(entry.path().filename().string());
+    return names;
+  };
+  const auto before = listing();
   LogInputOptions options;
   options.columns = {{"t", "time"}, {"q", "data(:,2)"}, {"tau", "data(:,3)"}};
-  ReadLogs("m.mat", driveid::testing::WriteMat(MAT_FT_MAT5), {}, {"t", "q", "tau|i"}, options);
-  CHECK_FALSE(std::filesystem::exists(stale));
-  CHECK(std::filesystem::exists(live));
-  CHECK(std::filesystem::is_directory(folder));
-  // The read's own copy is gone too.
-  int own = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    const std::string name = entry.path().filename().string();
-    own += name.rfind("driveid-mat." + std::to_string(::getpid()) + ".", 0) == 0 && entry.path() != live;
+  for (const int version : {MAT_FT_MAT5, MAT_FT_MAT73}) {
+    const auto logs = ReadLogs("m.mat", driveid::testing::WriteMat(static_cast<mat_ft>(version)), {}, {"t", "q", "tau|i"}, options);
+    CHECK(logs.size() == 1);
   }
-  CHECK(own == 0);
+  CHECK(listing() == before);
+  CHECK(std::filesystem::exists(foreign));
+  CHECK(std::filesystem::exists(live));
+  std::filesystem::remove(foreign);
   std::filesystem::remove(live);
-  std::filesystem::remove(folder);
 }
