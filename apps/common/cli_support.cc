@@ -49,10 +49,13 @@ void Fail(const std::string& program, const std::string& message) {
   std::fprintf(stderr, "%s: %s\n", program.c_str(), OneLine(ShowFlags(message)).c_str());
 }
 
-// SIGINT, SIGTERM, SIGHUP: remove the run's temporary files (and stop
-// gnuplot), then die of the signal as if there were no handler (exit status
-// 128 + signal in a shell). A signal ignored at start (nohup, a background
-// job of a script) stays ignored.
+// SIGINT, SIGTERM, SIGHUP and SIGPIPE (standard output closed by its
+// reader, as `| head` does; it arrives while the outputs are staged, since
+// standard output is written before they are committed): remove the run's
+// temporary files (and stop gnuplot), then die of the signal as if there
+// were no handler (exit status 128 + signal in a shell). A signal ignored at
+// start (nohup, a background job of a script) stays ignored; an ignored
+// SIGPIPE makes the write fail, handled as a full disk is.
 void DieOfSignal(int signal_number) {
   RemoveTemporaryFilesNow();
   ::signal(signal_number, SIG_DFL);
@@ -60,13 +63,13 @@ void DieOfSignal(int signal_number) {
 }
 
 void InstallSignalCleanup() {
-  for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+  for (int signal_number : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) {
     struct sigaction previous {};
     if (::sigaction(signal_number, nullptr, &previous) == 0 && previous.sa_handler == SIG_IGN) continue;
     struct sigaction action {};
     action.sa_handler = DieOfSignal;
     sigemptyset(&action.sa_mask);
-    for (int other : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&action.sa_mask, other);
+    for (int other : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) sigaddset(&action.sa_mask, other);
     ::sigaction(signal_number, &action, nullptr);
   }
 }

@@ -18,7 +18,6 @@
 #include <map>
 
 #include <fcntl.h>
-#include <sys/mman.h>
 #include <unistd.h>
 #include <sys/stat.h>
 
@@ -32,6 +31,7 @@
 #include "io/mat_reader.h"
 #endif
 #include "io/table_source.h"
+#include "io/temporary_files.h"
 
 namespace driveid {
 namespace {
@@ -54,17 +54,10 @@ std::string MatReaderPath() {
   return DRIVEID_MAT_READER_BUILT;
 }
 
-// An unnamed file holding `text` (O_TMPFILE in the temporary folder, else a
-// memfd): it has no name to leave behind, whatever kills the process, and
-// nothing needs sweeping. -1 when neither can be made. Close-on-exec: the
-// reader's child clears that flag for itself (RunInChild's body).
+// An unnamed file (io/temporary_files.h) holding `text`; -1 when none.
 int UnnamedCopy(const std::string& text) {
-  std::error_code error;
-  const auto dir = std::filesystem::temp_directory_path(error);
-  int fd = error ? -1 : ::open(dir.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
-  if (fd < 0) fd = ::memfd_create("driveid-mat", MFD_CLOEXEC);
-  if (fd < 0) return -1;
-  if (!WriteAll(fd, text.data(), text.size())) {
+  const int fd = CreateUnnamedFile();
+  if (fd >= 0 && !WriteAll(fd, text.data(), text.size())) {
     ::close(fd);
     return -1;
   }

@@ -7,8 +7,14 @@
 #include <cstring>
 #include <vector>
 
+#include <filesystem>
+#include <system_error>
+
+#include <fcntl.h>
 #include <stdlib.h>
+#include <sys/mman.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 namespace driveid {
@@ -41,6 +47,7 @@ sigset_t TerminationSignals() {
   sigaddset(&set, SIGINT);
   sigaddset(&set, SIGTERM);
   sigaddset(&set, SIGHUP);
+  sigaddset(&set, SIGPIPE);
   return set;
 }
 
@@ -85,14 +92,31 @@ void RemoveTemporaryFilesNow() noexcept {
   const int saved_errno = errno;
   const pid_t child = writer.exchange(0);
   if (child > 0) {
-    ::kill(child, SIGKILL);
-    while (::waitpid(child, nullptr, 0) < 0 && errno == EINTR) {
+    // SIGTERM first, so that the child can remove its own files (the MAT
+    // reader's named copy), then SIGKILL after at most a second.
+    ::kill(child, SIGTERM);
+    bool reaped = false;
+    for (int tick = 0; tick < 100 && !reaped; ++tick) {
+      reaped = ::waitpid(child, nullptr, WNOHANG) == child;
+      const struct timespec pause = {0, 10'000'000};
+      if (!reaped) ::nanosleep(&pause, nullptr);
+    }
+    if (!reaped) ::kill(child, SIGKILL);
+    while (!reaped && ::waitpid(child, nullptr, 0) < 0 && errno == EINTR) {
     }
   }
   for (std::size_t i = 0; i < kSlots; ++i) {
     if (slot_state[i].load() == 2) ::unlink(slot_path[i].data());
   }
   errno = saved_errno;
+}
+
+int CreateUnnamedFile() {
+  std::error_code error;
+  const auto folder = std::filesystem::temp_directory_path(error);
+  int fd = error ? -1 : ::open(folder.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
+  if (fd < 0) fd = ::memfd_create("driveid", MFD_CLOEXEC);
+  return fd;
 }
 
 }  // namespace driveid

@@ -5,7 +5,7 @@
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
+#include <cstring>
 #include <stdexcept>
 #include <vector>
 
@@ -17,8 +17,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
-#include "io/atomic_file.h"
-#include "io/csv_log.h"
+#include "io/child_process.h"
 #include "io/temporary_files.h"
 
 extern char** environ;
@@ -45,13 +44,6 @@ std::string GnuplotString(const std::string& text) {
   return out + "'";
 }
 
-std::string TemporaryName(const std::string& base, const std::string& suffix) {
-  std::string name = base + ".tmp.XXXXXX" + suffix;
-  const int fd = CreateTemporaryFile(name, static_cast<int>(suffix.size()));
-  if (fd < 0) throw OutputError(fmt::format("{}: cannot create temporary file", base));
-  ::close(fd);
-  return name;
-}
 
 }  // namespace
 
@@ -130,17 +122,51 @@ std::string GnuplotScript(const std::vector<PlotPanel>& panels, const std::strin
   return script;
 }
 
-// Runs gnuplot on the script (standard error to `error_path`), registered as
-// the writer of the image (killed by a termination signal before the files
-// go); it starts with no signal blocked. False when it could not start;
-// `status` is its wait status.
-bool RunGnuplot(const std::string& script_path, const std::string& error_path, int& status) {
+// An unnamed file (io/temporary_files.h) that a child reaches as
+// /proc/self/fd/N; closed when this object goes.
+class UnnamedFile {
+ public:
+  explicit UnnamedFile(const std::string& what) : fd_(CreateUnnamedFile()) {
+    if (fd_ < 0) throw OutputError(fmt::format("{}: cannot create a temporary file: {}", what, std::strerror(errno)));
+  }
+  ~UnnamedFile() { ::close(fd_); }
+  UnnamedFile(const UnnamedFile&) = delete;
+  UnnamedFile& operator=(const UnnamedFile&) = delete;
+  int fd() const { return fd_; }
+  std::string name() const { return fmt::format("/proc/self/fd/{}", fd_); }
+  // Everything written to it (by this process or a child), at most `limit` bytes.
+  std::string Contents(std::size_t limit) const {
+    std::string out;
+    std::vector<char> chunk(1 << 16);
+    for (off_t at = 0; out.size() <= limit;) {
+      const ssize_t n = ::pread(fd_, chunk.data(), chunk.size(), at);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;
+      out.append(chunk.data(), static_cast<std::size_t>(n));
+      at += n;
+    }
+    return out;
+  }
+
+ private:
+  int fd_;
+};
+
+// Runs gnuplot on the script file `script` (standard error to `errors`),
+// registered as the writer of the image (killed by a termination signal);
+// it starts with no signal blocked and inherits the unnamed files it names
+// (a dup2 onto itself clears close-on-exec in the child only). False when it
+// could not start; `status` is its wait status.
+bool RunGnuplot(const UnnamedFile& script, const UnnamedFile& image, const UnnamedFile& errors, int& status) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, error_path.c_str(), O_WRONLY | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, errors.fd(), STDERR_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, script.fd(), script.fd());
+  posix_spawn_file_actions_adddup2(&actions, image.fd(), image.fd());
   std::string program = "gnuplot";
-  std::vector<char*> argv = {program.data(), const_cast<char*>(script_path.c_str()), nullptr};
+  std::string script_name = script.name();
+  std::vector<char*> argv = {program.data(), script_name.data(), nullptr};
   posix_spawnattr_t attributes;
   posix_spawnattr_init(&attributes);
   sigset_t none;
@@ -169,50 +195,26 @@ bool RunGnuplot(const std::string& script_path, const std::string& error_path, i
 std::string RenderPanels(const std::string& path, const std::vector<PlotPanel>& panels, const std::string& x_label,
                          bool log_x) {
   const bool svg = EndsWith(Lower(path), ".svg");
-  // gnuplot's files live in the temporary directory, not beside the output.
-  const std::string base = (std::filesystem::temp_directory_path() / "driveid-plot").string();
-  const std::string image = TemporaryName(base, svg ? ".svg" : ".png");
-  const std::string script_path = TemporaryName(base, ".gp");
-  const std::string error_path = TemporaryName(base, ".err");
-  auto cleanup = [&] {
-    RemoveTemporaryFile(script_path);
-    RemoveTemporaryFile(error_path);
-  };
-  const std::string script = GnuplotScript(panels, x_label, log_x, svg, image);
-  try {
-    WriteFileAtomically(script_path, script);
-  } catch (...) {
-    cleanup();
-    RemoveTemporaryFile(image);
-    throw;
+  // gnuplot's script, image and messages go through files without a name:
+  // nothing is left behind, whatever ends the run (SIGKILL too).
+  const UnnamedFile script_file(path), image(path), errors(path);
+  const std::string script = GnuplotScript(panels, x_label, log_x, svg, image.name());
+  if (!WriteAll(script_file.fd(), script.data(), script.size())) {
+    throw OutputError(fmt::format("{}: cannot write gnuplot's script: {}", path, std::strerror(errno)));
   }
-
   int status = 0;
-  const bool started = RunGnuplot(script_path, error_path, status);
-  std::string error_text;
-  try {
-    error_text = ReadFileToString(error_path);
-  } catch (...) {
-  }
-  cleanup();
-  if (!started || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    RemoveTemporaryFile(image);
-    if (!started) throw OutputError("cannot run gnuplot for ‹plot› (install the Debian package gnuplot-nox)");
-    std::string first = error_text;
+  const bool started = RunGnuplot(script_file, image, errors, status);
+  if (!started) throw OutputError("cannot run gnuplot for ‹plot› (install the Debian package gnuplot-nox)");
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    std::string first = errors.Contents(1 << 16);
     while (!first.empty() && (first.front() == '\n' || first.front() == ' ')) first.erase(first.begin());
     first = first.substr(0, first.find('\n'));
     throw OutputError(fmt::format("{}: gnuplot failed: {}", path, first));
   }
-  std::string bytes;
-  try {
-    ReadLimits binary;
-    binary.max_line_bytes = 0;  // an image has no lines
-    bytes = ReadFileToString(image, binary);
-  } catch (const InputError&) {
-    RemoveTemporaryFile(image);
-    throw OutputError(fmt::format("{}: gnuplot wrote no image", path));
-  }
-  RemoveTemporaryFile(image);
+  constexpr std::size_t kMaxImageBytes = std::size_t{1} << 30;
+  std::string bytes = image.Contents(kMaxImageBytes);
+  if (bytes.empty()) throw OutputError(fmt::format("{}: gnuplot wrote no image", path));
+  if (bytes.size() > kMaxImageBytes) throw OutputError(fmt::format("{}: gnuplot's image exceeds 1 GiB", path));
   return bytes;
 }
 

@@ -74,27 +74,37 @@ for signal in INT TERM HUP; do
   cmp -s big.csv old.csv && ok || fail "SIG$signal changed the old file"
   rm -f big.csv.tmp.*
 done
-# During a plot: a stand-in gnuplot that hangs; the signal stops it and
-# removes the script, its error file and the image from TMPDIR.
+# During a plot: a stand-in gnuplot that hangs; the signal stops it, and
+# nothing is left in TMPDIR — gnuplot's script, messages and image have no
+# name (SIGKILL included, which no handler sees).
 mkdir -p fakebin plot_tmp
-printf '#!/bin/sh\nexec sleep 60\n' > fakebin/gnuplot
+printf '#!/bin/sh\n[ -r "$1" ] || exit 9\nexec sleep 60\n' > fakebin/gnuplot
 chmod +x fakebin/gnuplot
 "$dt" simulate step --params "$src/data/paper000.yaml" --noise 0.1 -o plotted.csv
-for signal in INT TERM HUP; do
+for signal in INT TERM HUP KILL; do
   PATH="$work/fakebin:$PATH" TMPDIR="$work/plot_tmp" "$dt" step plotted.csv --params "$src/data/paper000_start.yaml" -q \
     -o plotted.yaml --plot plotted.png &
   pid=$!
   while kill -0 "$pid" 2> /dev/null && ! pgrep -P "$pid" sleep > /dev/null 2>&1; do sleep 0.01; done
-  ls plot_tmp/driveid-plot.tmp.* > /dev/null 2>&1 || fail "SIG$signal: no plot file was seen (the test proved nothing)"
   sleeper=$(pgrep -P "$pid" sleep)
+  [ -n "$sleeper" ] || fail "SIG$signal: the stand-in gnuplot did not start (the test proved nothing)"
   kill -s "$signal" "$pid"
   wait "$pid"
   code=$?
   [ "$code" -eq $((128 + $(kill -l "$signal"))) ] && ok || fail "SIG$signal during a plot: exit status $code"
-  [ -z "$(ls plot_tmp)" ] && ok || fail "SIG$signal during a plot left $(ls plot_tmp)"
-  { [ -z "$sleeper" ] || ! kill -0 "$sleeper" 2> /dev/null; } && ok || fail "SIG$signal: gnuplot still runs"
+  [ -z "$(ls -A plot_tmp)" ] && ok || fail "SIG$signal during a plot left $(ls -A plot_tmp)"
+  if [ "$signal" = KILL ]; then
+    [ -z "$sleeper" ] || kill "$sleeper" 2> /dev/null
+  else
+    { [ -z "$sleeper" ] || ! kill -0 "$sleeper" 2> /dev/null; } && ok || fail "SIG$signal: gnuplot still runs"
+  fi
   [ ! -e plotted.yaml ] && [ ! -e plotted.png ] && ok || fail "SIG$signal during a plot wrote outputs"
 done
+# A temporary folder that does not exist: the plot is made all the same.
+TMPDIR=/nonexistent/driveid "$dt" step plotted.csv --params "$src/data/paper000_start.yaml" -q -o plotted.yaml \
+  --plot plotted.png > /dev/null 2> plot_err.txt && [ -s plotted.png ] && ok \
+  || fail "TMPDIR=/nonexistent with --plot: $(cat plot_err.txt)"
+rm -f plotted.yaml plotted.png
 set +m
 
 # Byte-identical reruns of every fitting subcommand (same command line).
@@ -114,6 +124,25 @@ rerun friction.yaml "$cd_bin" friction "$src/data/cdrive_slow_translation.csv" "
 rerun inertia.yaml "$cd_bin" inertia "$src/data/cdrive_fast_translation.csv" "$src/data/cdrive_fast_rotation.csv" \
   "$src/data/cdrive_fast_helical.csv" --params "$src/data/cdrive_table1.yaml" -q -o inertia.yaml
 rerun sim.csv "$cd_bin" simulate --program helical --params "$src/data/cdrive_table1.yaml" --noise 0.01 -o sim.csv
+
+# Standard output closed by its reader (`| head`, SIGPIPE): the run dies of
+# the signal (141) and, as with a full disk, changes no file and leaves no
+# staging file (issue 55).
+mkdir closed_pipe
+closed_pipe() {
+  (cd closed_pipe && { "$@" 2> /dev/null; echo $? > ../pipe_code; } | true)
+  [ "$(cat pipe_code)" = 141 ] && [ -z "$(ls -A closed_pipe)" ] && ok ||
+    fail "stdout closed: $* exit $(cat pipe_code), left $(ls -A closed_pipe)"
+  rm -rf closed_pipe/*
+}
+closed_pipe "$dt" step ../step.csv --params "$src/data/paper000_start.yaml" -o p.yaml
+closed_pipe "$dt" axis ../axis.csv --params "$src/data/axis_example.yaml" -o p.yaml
+closed_pipe "$dt" robot "$src/data/robot_triangle.csv" --params "$src/data/robot_start.yaml" -o p.yaml
+closed_pipe "$dt" validate "$src/data/paper000.yaml" ../step.csv --trace p.csv
+closed_pipe "$cd_bin" friction "$src/data/cdrive_slow_translation.csv" "$src/data/cdrive_slow_rotation.csv" \
+  "$src/data/cdrive_slow_helical.csv" --params "$src/data/cdrive_start.yaml" -o p.yaml
+closed_pipe "$cd_bin" simulate --program helical --params "$src/data/cdrive_table1.yaml" --noise 0.01 -o p.csv
+closed_pipe "$cd_bin" validate "$src/data/cdrive_table1.yaml" "$src/data/cdrive_fast_helical.csv" --trace p.csv
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -3,6 +3,11 @@
 // child writing them killed and reaped), and forgotten once committed.
 #include <string>
 
+#include <chrono>
+#include <set>
+#include <fstream>
+#include <fcntl.h>
+#include <filesystem>
 #include <catch2/catch.hpp>
 
 #include <signal.h>
@@ -73,6 +78,68 @@ TEST_CASE("the registered writer is killed and reaped by the handler's call") {
   // Reaped already: no child left to wait for.
   CHECK(::waitpid(child, nullptr, WNOHANG) == -1);
   CHECK(::kill(child, 0) == -1);
+}
+
+TEST_CASE("the writer gets SIGTERM first (to remove its own files), SIGKILL when it ignores that") {
+  int pipe_fds[2];
+  REQUIRE(::pipe(pipe_fds) == 0);
+  const pid_t tidy = ::fork();
+  REQUIRE(tidy >= 0);
+  if (tidy == 0) {
+    static int report = -1;
+    report = pipe_fds[1];
+    ::signal(SIGTERM, [](int) {
+      const char done = 't';
+      (void)!::write(report, &done, 1);
+      ::_exit(3);
+    });
+    for (;;) ::pause();
+  }
+  ::close(pipe_fds[1]);
+  ::usleep(50000);  // the handler is installed
+  SetTemporaryFileWriter(tidy);
+  RemoveTemporaryFilesNow();
+  char seen = 0;
+  CHECK(::read(pipe_fds[0], &seen, 1) == 1);
+  CHECK(seen == 't');
+  ::close(pipe_fds[0]);
+
+  const pid_t stubborn = ::fork();
+  REQUIRE(stubborn >= 0);
+  if (stubborn == 0) {
+    ::signal(SIGTERM, SIG_IGN);
+    for (;;) ::pause();
+  }
+  ::usleep(50000);
+  SetTemporaryFileWriter(stubborn);
+  const auto start = std::chrono::steady_clock::now();
+  RemoveTemporaryFilesNow();
+  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  CHECK(::kill(stubborn, 0) == -1);  // killed and reaped
+  CHECK(waited > 0.5);
+  CHECK(waited < 5.0);
+}
+
+TEST_CASE("an unnamed file is readable and writable, close-on-exec, and adds no name to the temporary folder") {
+  const auto listing = [] {
+    std::set<std::string> names;
+    for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::temp_directory_path())) {
+      names.insert(entry.path().filename().string());
+    }
+    return names;
+  };
+  const auto before = listing();
+  const int fd = CreateUnnamedFile();
+  REQUIRE(fd >= 0);
+  CHECK((::fcntl(fd, F_GETFD) & FD_CLOEXEC) != 0);
+  CHECK(::write(fd, "abc", 3) == 3);
+  CHECK(listing() == before);
+  // Reopened through /proc, as a child reaches it.
+  std::ifstream again("/proc/self/fd/" + std::to_string(fd));
+  std::string text;
+  again >> text;
+  CHECK(text == "abc");
+  ::close(fd);
 }
 
 TEST_CASE("termination signals are held while blocked and delivered at the end") {
