@@ -15,6 +15,7 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <new>
 #include <optional>
 #include <thread>
 #include <filesystem>
@@ -124,6 +125,12 @@ int RunMain(CLI::App& app, int argc, char** argv, const std::function<void()>& d
   } catch (const OptionError& e) {
     Fail(program, e.what());
     return kUsage;
+  } catch (const std::bad_alloc&) {
+    // The input's size met the memory this process may use (ulimit -v, a
+    // container's limit): a limit of the machine, not a bug.
+    Fail(program, "out of memory: the inputs need more memory than this process may use (ulimit -v); "
+                  "crop or split the logs, or raise the limit");
+    return kInvalidInput;
   } catch (const std::exception& e) {
     Fail(program, std::string("internal error: ") + e.what());
     return kInternal;

@@ -70,10 +70,14 @@ struct ReadLimits {
   /// (files of logs; the whole-file limit still holds).
   bool lines_unless_structured = false;
   std::string max_bytes_hint = "a log may be at most 4 GiB";  ///< how to raise max_bytes, for the message
+  double fifo_wait_seconds = 5.0;  ///< a named FIFO's writer must send its first bytes within this
 };
 
 /// Reads a whole file into memory; throws InputError naming the file (and
-/// the line) when it cannot be read, is a directory or exceeds `limits`.
+/// the line) when it cannot be read, is a directory or exceeds `limits`
+/// (a regular file by its size, before reading), when a line-oriented file
+/// holds a control byte (binary data: refused at its first chunk), when a
+/// named FIFO gets no writer in time, or when it does not fit in memory.
 std::string ReadFileToString(const std::string& path, const ReadLimits& limits = {});
 
 /// Parses `--col NAME=HEADER` entries; throws InputError on a malformed entry.

@@ -43,7 +43,9 @@ expect 3 "empty_cell.csv:3: column 'tau_motor': empty cell" -- step empty_cell.c
 expect 3 "ragged.csv:3: 2 fields, but the header" -- step ragged.csv --params start.yaml
 expect 3 "extra.csv:3: 4 fields, but the header" -- step extra.csv --params start.yaml
 expect 3 "time_back.csv:4: column 't': time not strictly increasing" -- step time_back.csv --params start.yaml
-expect 3 "garbage.csv:3: column 'tau_link': not a number" -- step garbage.csv --params start.yaml
+expect 3 "garbage.csv:3: byte 0x00 at offset 38: not a text file" -- step garbage.csv --params start.yaml
+printf 't,tau_motor,tau_link\n0,0,0\n0.001,-0.8,\xff\xfe\x7f\n' > latin.csv
+expect 3 "latin.csv:3: column 'tau_link': not a number" -- step latin.csv --params start.yaml
 expect 3 "long_line.csv:2: line longer than" -- step long_line.csv --params start.yaml
 expect 3 "nowhere.csv: cannot open" -- step nowhere.csv --params start.yaml
 expect 3 "good.csv:4: missing column 'strain'" -- step good.csv --params start.yaml --col tau_link=strain
@@ -128,13 +130,38 @@ expect 3 "column 'tau_link' would be inf" -- simulate step --params paper.yaml -
 # memory cannot be reserved under such a cap.)
 ( ldd "$bin" 2> /dev/null | grep -q libasan || ulimit -v 4000000
   failed=0
-  expect 3 "/dev/zero:1: line longer than" -- step /dev/zero --params start.yaml
-  expect 3 "/dev/zero:1: line longer than" -- step good.csv --params /dev/zero
+  # Binary data is refused at its first bytes (issue 55: /dev/urandom, whose
+  # newlines kept every line short, was buffered to 4 GiB before its refusal).
+  expect 3 "/dev/zero:1: byte 0x00 at offset 0: not a text file" -- step /dev/zero --params start.yaml
+  expect 3 "/dev/zero:1: byte 0x00 at offset 0: not a text file" -- step good.csv --params /dev/zero
+  expect 3 "/dev/urandom:[0-9]+: byte 0x[0-9a-f]{2} at offset [0-9]+: not a text file" -- axis /dev/urandom
+  head -c 2000000 /dev/zero | tr '\0' a > long_line.csv
+  expect 3 "long_line.csv:1: line longer than 1048576 bytes" -- step long_line.csv --params start.yaml
+  # A regular file beyond the limit is refused by its size, before a byte is
+  # read (a sparse 5 GiB file under a 3 GiB cap ended in bad_alloc).
+  if truncate -s 5G sparse.csv 2> /dev/null; then
+    expect 3 "sparse.csv: larger than 4294967296 bytes" -- axis sparse.csv
+    rm -f sparse.csv
+  fi
   expect 3 "is a directory, not a file" -- step out_dir --params start.yaml
   expect 3 "good.csv: larger than 1073 bytes \(a log may be at most 1e-06 GiB \(raise with --max-log-size\)\)" -- \
     step good.csv --params start.yaml --max-log-size 1e-6
   expect 2 "--max-log-size: nan: must be a number in" -- step good.csv --params start.yaml --max-log-size nan
   finish > /dev/null ) || fail "endless inputs"
+
+# A named FIFO nobody writes to is refused after 5 s with a message, not
+# waited on forever (issue 55): as a log, a parameter file and a joined log.
+mkfifo silent.fifo
+"$bin" report silent.fifo > stdout.txt 2> stderr.txt
+[ $? -eq 3 ] && grep -q "silent.fifo: a FIFO that no process wrote to within 5 s" stderr.txt && ok ||
+  fail "report of a FIFO without a writer: $(cat stderr.txt)"
+expect 3 "silent.fifo: a FIFO that no process wrote to within 5 s" -- step silent.fifo --params start.yaml
+( sleep 1; cat good.csv > silent.fifo ) &
+"$bin" step silent.fifo --params start.yaml -q -o from_fifo.yaml 2> stderr.txt && grep -q "^drivetrain:" from_fifo.yaml &&
+  ok || fail "a FIFO whose writer starts a second later: $(cat stderr.txt)"
+wait
+cat good.csv | "$bin" step /dev/stdin --params start.yaml -q -o from_pipe.yaml 2> stderr.txt &&
+  grep -q "^drivetrain:" from_pipe.yaml && ok || fail "a log from a pipe: $(cat stderr.txt)"
 
 # Output error that the machine cannot hold is refused up front with its
 # size and what to do (issue 36: a 10 M-row log ended in bad_alloc after
@@ -146,7 +173,7 @@ if ! ldd "$bin" 2> /dev/null | grep -q libasan; then
   ( ulimit -v 1500000
     expect 4 "output error on these logs would hold about [0-9.]+ GiB .* GiB are available: crop the logs \(--from/--to\)" -- \
       joint long_joint.csv --params long_joint.yaml --method oe
-    finish > /dev/null ) && ok || fail "output error beyond memory not refused up front"
+    finish ) && ok || fail "output error beyond memory not refused up front"
   rm -f long_joint.csv
 fi
 
