@@ -38,6 +38,10 @@ bool AxisDesignOptions::IsValid(std::string* error) const {
         (band_high == 0.0 || band_high > band_low))) {
     return fail(fmt::format("‹band› {},{}: violated constraint: 0 <= low < high", band_low, band_high));
   }
+  if (!(band_high < rate / 2.0)) {
+    return fail(fmt::format("‹band› {},{}: the top line must lie below the Nyquist frequency ‹rate› / 2 = {} Hz", band_low,
+                            band_high, rate / 2.0));
+  }
   if (lines < 2 || lines > 40) return fail(ViolatedConstraint("‹lines›", lines, "2 <= lines <= 40"));
   if (criterion != "d" && criterion != "a") return fail("‹criterion› " + criterion + ": choose d or a");
   if (!(std::isfinite(noise) && noise >= 0.0)) return fail(ViolatedConstraint("‹noise›", noise, "noise >= 0"));
@@ -391,15 +395,19 @@ AxisDesign DesignAtPeriod(const AxisParameters& prior, const AxisDesignOptions& 
   const double f0 = 1.0 / d.period;
   d.band_high = o.band_high > 0.0 ? o.band_high : DefaultBandHigh(prior, o);
   d.band_low = o.band_low > 0.0 ? o.band_low : f0;
-  const int low = std::max(1, static_cast<int>(std::ceil(d.band_low / f0 - 1e-9)));
-  const int high = static_cast<int>(std::floor(d.band_high / f0 + 1e-9));
+  // Harmonic numbers counted in double first: a band far above the period's
+  // 2000th harmonic must be refused, not wrapped around an int.
+  const double low_harmonic = std::max(1.0, std::ceil(d.band_low / f0 - 1e-9));
+  const double high_harmonic = std::floor(d.band_high / f0 + 1e-9);
+  if (high_harmonic > 2000.0) {
+    throw OptionError(fmt::format("‹period› {:.4g} s: the band's top {:.4g} Hz is its {:.0f}th harmonic; at most the 2000th "
+                                  "(shorten the period)", d.period, d.band_high, high_harmonic));
+  }
+  const int low = static_cast<int>(std::min(low_harmonic, 2001.0));
+  const int high = static_cast<int>(high_harmonic);
   if (high - low + 1 < 2) {
     throw OptionError(fmt::format("‹band› {:.4g} to {:.4g} Hz holds fewer than two harmonics of 1 / ‹period› = {:.4g} Hz; "
                                   "widen the band or lengthen the period", d.band_low, d.band_high, f0));
-  }
-  if (high > 2000) {
-    throw OptionError(fmt::format("‹period› {:.4g} s: the band's top {:.4g} Hz is its {}th harmonic; at most the 2000th "
-                                  "(shorten the period)", d.period, d.band_high, high));
   }
   const std::vector<int> h = Harmonics(low, high, o.lines);
   const DesignProblem p = MakeProblem(prior, o, d.period, h);

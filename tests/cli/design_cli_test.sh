@@ -137,6 +137,14 @@ code=$?
   > /dev/null 2> err.txt
 code=$?
 [ "$code" -eq 2 ] && grep -q -- "--max-torque" err.txt && ok || fail "torque below the friction: exit $code, $(cat err.txt)"
+# A band beyond the log's Nyquist frequency, or past the period's 2000th
+# harmonic, is refused by name (issue 55: "internal error: sizes").
+for band in 0,1e9 1e9,2e9 0.1,499; do
+  "$bin" design axis --params prior.yaml $limits --band $band --period 10 > /dev/null 2> err.txt
+  code=$?
+  [ "$code" -eq 2 ] && grep -qE -- "--band .*Nyquist|--period 10 s: the band's top" err.txt && ok ||
+    fail "--band $band: exit $code, $(cat err.txt)"
+done
 printf 't,q\n0,0\n0.001,x\n' > bad.csv
 "$bin" simulate axis --params nofit.yaml --reference bad.csv > /dev/null 2> err.txt
 code=$?
