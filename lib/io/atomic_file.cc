@@ -53,6 +53,20 @@ void WriteInPlace(const std::string& path, const std::string& contents) {
   if (!closed) Fail(path, "cannot write output", errno);
 }
 
+// The staging file's mkstemp pattern beside `destination`: its name with
+// ".tmp.XXXXXX" appended, the name cut short where that would pass the
+// file system's limit on a name (NAME_MAX), so that an output name of up to
+// that limit can be staged.
+std::string StagingPattern(const std::string& destination) {
+  static const std::string suffix = ".tmp.XXXXXX";
+  const std::size_t slash = destination.rfind('/');
+  const std::size_t name_start = slash == std::string::npos ? 0 : slash + 1;
+  std::string folder = destination.substr(0, name_start);
+  std::string name = destination.substr(name_start);
+  if (name.size() + suffix.size() > NAME_MAX) name.resize(NAME_MAX - suffix.size());
+  return folder + name + suffix;
+}
+
 mode_t CurrentUmask() {
   const mode_t mask = ::umask(0);
   ::umask(mask);
@@ -91,7 +105,7 @@ StagedOutput Stage(const std::string& path, const std::string& contents) {
     }
     mode = status.st_mode & 07777;  // an existing file keeps its permissions
   }
-  std::string name = out.destination + ".tmp.XXXXXX";
+  std::string name = StagingPattern(out.destination);
   const int fd = CreateTemporaryFile(name);
   if (fd < 0) Fail(path, "cannot create output file", errno);
   out.temporary = name;

@@ -125,6 +125,15 @@ rerun inertia.yaml "$cd_bin" inertia "$src/data/cdrive_fast_translation.csv" "$s
   "$src/data/cdrive_fast_helical.csv" --params "$src/data/cdrive_table1.yaml" -q -o inertia.yaml
 rerun sim.csv "$cd_bin" simulate --program helical --params "$src/data/cdrive_table1.yaml" --noise 0.01 -o sim.csv
 
+# Output names up to the file system's limit (255 bytes) are written: the
+# staging name beside them is cut to fit (issue 55: 245-255 were refused).
+for length in 245 250 255; do
+  long_name=$(head -c $((length - 5)) /dev/zero | tr '\0' n).yaml
+  "$dt" axis axis.csv --params "$src/data/axis_example.yaml" -q -o "$long_name" 2> long_err.txt &&
+    [ -s "$long_name" ] && [ -z "$(ls | grep '\.tmp\.')" ] && ok || fail "a $length-byte output name: $(cat long_err.txt)"
+  rm -f "$long_name"
+done
+
 # Standard output closed by its reader (`| head`, SIGPIPE): the run dies of
 # the signal (141) and, as with a full disk, changes no file and leaves no
 # staging file (issue 55).
