@@ -37,6 +37,54 @@ void RequirePidValues(const FeedbackController& f) {
   Value(f, "period");
 }
 
+bool Speed(const FeedbackController& f) { return !f.empty() && f.loop == "speed"; }
+
+// The speed loop's keys an export writes, and its C(z), checked first.
+void RequireSpeedValues(const FeedbackController& f) {
+  Value(f, "kp");
+  Value(f, "ki");
+  Value(f, "period");
+  if (f.numerator_z.empty() || f.denominator_z.empty()) {
+    throw InputError("feedback.numerator_z, denominator_z: missing from the speed loop's section; the notch runs only "
+                     "as C(z) (rerun drivetrain-fit gains --loop speed)");
+  }
+}
+
+std::string List(const std::vector<double>& values) {
+  std::string out;
+  for (std::size_t i = 0; i < values.size(); ++i) out += (i ? ", " : "") + Number(values[i]);
+  return out;
+}
+
+// The speed loop in Java or C++ (`cpp`): its gains, period and notch as
+// constants and C(z) as arrays, with the difference equation to run; no
+// PIDController holds the notch, so none is made.
+std::string SpeedLoopMembers(const FeedbackController& f, bool cpp) {
+  RequireSpeedValues(f);
+  const char* c = cpp ? "//" : "  //";
+  const std::string scalar = cpp ? "inline constexpr double" : "  public static final double";
+  std::string out = fmt::format(
+      "\n{} Feedback: speed loop, preset {} (docs/models.md#feedback-gains): a PI with a notch at the resonance on the\n"
+      "{} motor-speed error e. No PIDController holds the notch: run C(z) every kControllerPeriodSeconds,\n"
+      "{} u[k] = sum_i kCzNumerator[i] e[k-i] - sum_(i>0) kCzDenominator[i] u[k-i].\n",
+      c, CommentText(f.preset), c, c);
+  for (const char* key : {"kp", "ki"}) {
+    const FeedbackValue* v = f.Find(key);
+    out += fmt::format(cpp ? "/// {} +- {:.3g} {}\n" : "  /** {} +- {:.3g} {} */\n", key, v->standard_error,
+                       CommentText(FeedbackGainUnit(f, key)));
+    out += fmt::format("{} {} = {};\n", scalar, key[1] == 'p' ? "kP" : "kI", Number(v->value));
+  }
+  out += fmt::format("{} kControllerPeriodSeconds = {};\n", scalar, Number(Value(f, "period")));
+  for (const auto& [key, name] : {std::pair{"notch_hz", "kNotchHz"}, std::pair{"notch_width_hz", "kNotchWidthHz"}}) {
+    if (const FeedbackValue* v = f.Find(key)) out += fmt::format("{} {} = {};\n", scalar, name, Number(v->value));
+  }
+  for (const auto& [name, values] : {std::pair{"kCzNumerator", &f.numerator_z}, std::pair{"kCzDenominator", &f.denominator_z}}) {
+    out += cpp ? fmt::format("inline constexpr std::array<double, {}> {}{{{}}};\n", values->size(), name, List(*values))
+               : fmt::format("  public static final double[] {} = {{{}}};\n", name, List(*values));
+  }
+  return out;
+}
+
 // A WPILib PIDController runs the gains on the roboRIO: only for gains in its
 // convention. A vendor's gains (per its own units, its 1 ms period, a kD per
 // period) go into the vendor's slot, never into a PIDController.
@@ -80,6 +128,7 @@ std::string FeedbackJavaImport(const FeedbackController& f) {
 }
 
 std::string FeedbackJavaMembers(const FeedbackController& f) {
+  if (Speed(f)) return SpeedLoopMembers(f, false);
   if (!Pid(f)) return "";
   RequirePidValues(f);
   std::string out = fmt::format("\n  // Feedback: {} loop, preset {} (docs/models.md#feedback-gains).\n", CommentText(f.loop),
@@ -99,10 +148,12 @@ std::string FeedbackJavaMembers(const FeedbackController& f) {
 }
 
 std::string FeedbackCppInclude(const FeedbackController& f) {
+  if (Speed(f)) return "#include <array>\n";
   return RoboRioPid(f) ? "#include <frc/controller/PIDController.h>\n" : "";
 }
 
 std::string FeedbackCppMembers(const FeedbackController& f) {
+  if (Speed(f)) return SpeedLoopMembers(f, true);
   if (!Pid(f)) return "";
   RequirePidValues(f);
   std::string out = fmt::format("\n// Feedback: {} loop, preset {} (docs/models.md#feedback-gains).\n", CommentText(f.loop),
@@ -119,6 +170,26 @@ std::string FeedbackCppMembers(const FeedbackController& f) {
   }
   out += fmt::format("inline constexpr units::second_t kControllerPeriod{{{}}};\n", Number(Value(f, "period")));
   out += "\ninline frc::PIDController MakePIDController() { return frc::PIDController{kP, 0.0, kD, kControllerPeriod}; }\n";
+  return out;
+}
+
+Json FeedbackJson(const FeedbackController& f) {
+  if (f.empty()) return nullptr;
+  if (Pid(f)) RequirePidValues(f);
+  if (Speed(f)) RequireSpeedValues(f);
+  Json out = {{"loop", f.loop}, {"preset", f.preset}, {"effort_unit", f.effort_unit}, {"position_unit", f.position_unit}};
+  Json values = Json::object();
+  for (const auto& v : f.values) {
+    const FeedbackKey* declared = FindFeedbackKey(v.key);
+    Json entry = {{"value", v.value}};
+    if (declared != nullptr && declared->gain) entry["std"] = v.standard_error;
+    const std::string unit = FeedbackGainUnit(f, v.key);
+    if (!unit.empty()) entry["unit"] = unit;
+    values[v.key] = entry;
+  }
+  out["values"] = values;
+  if (!f.numerator.empty()) out["c_s"] = {{"numerator", f.numerator}, {"denominator", f.denominator}};
+  if (!f.numerator_z.empty()) out["c_z"] = {{"numerator", f.numerator_z}, {"denominator", f.denominator_z}};
   return out;
 }
 

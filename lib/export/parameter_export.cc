@@ -189,6 +189,7 @@ std::string ExportJson(const ParameterFile& file, const ExportOptions& o) {
   Json gains = Json::object();
   for (const FeedforwardGain& g : ff.gains) gains[g.key] = {{"value", g.value}, {"std", g.standard_error}, {"unit", g.unit}};
   doc["gains"] = gains;
+  if (!file.feedback.empty()) doc["feedback"] = FeedbackJson(file.feedback);
   return DumpJson(doc);
 }
 

@@ -339,6 +339,36 @@ if command -v javac > /dev/null; then
     same_value "Java kP" "$j_kp" "$kp" && same_value "Java kD" "$j_kd" "$kd" && ok || fail "wpilib-java feedback: $(cat javac.txt)"
 fi
 
+# The JSON export carries the feedback section too (issue 55: it was dropped).
+"$bin" export flywheel_pid.yaml --to json --joint flywheel -o flywheel_pid.json &&
+  json_kp=$(python3 -c 'import json,sys; f=json.load(open(sys.argv[1]))["feedback"]; print(f["loop"], f["values"]["kp"]["value"], f["values"]["kd"]["value"])' flywheel_pid.json) &&
+  read -r j_loop j_kp j_kd <<< "$json_kp" && [ "$j_loop" = position ] && same_value "JSON kP" "$j_kp" "$kp" &&
+  same_value "JSON kD" "$j_kd" "$kd" && ok || fail "json feedback: $(head -c 600 flywheel_pid.json)"
+# A speed loop (PI with a notch) is written, not dropped: kP, kI, the period
+# and C(z) as arrays in C++ and Java, C(s) and C(z) in JSON, each read back.
+"$bin" gains "$src/data/joint_example_truth.yaml" --loop speed -o speed_gains.yaml > /dev/null 2>&1 || fail "gains --loop speed"
+{ cat flywheel.yaml; awk '/^[a-z]/ { inside = /^feedback:/ } inside' speed_gains.yaml; } > flywheel_speed.yaml
+cz0=$(sed -n 's/^  numerator_z: \[\([^,]*\),.*/\1/p' flywheel_speed.yaml)
+ki=$(sed -n 's/^  ki: {value: \([^,]*\),.*/\1/p' flywheel_speed.yaml)
+"$bin" export flywheel_speed.yaml --to wpilib-cpp --joint flywheel -o flywheel_speed.h &&
+  printf '#include <cstdio>\n#include "flywheel_speed.h"\nint main() { using namespace flywheel_feedforward; std::printf("%%.17g %%.17g %%zu\\n", kI, kCzNumerator[0], kCzDenominator.size()); }\n' > speed_use.cc &&
+  c++ -std=c++20 -Wall -Werror -I cppstubs speed_use.cc -o speed_use 2> cxx.txt && read -r s_ki s_cz0 s_den < <(./speed_use) &&
+  same_value "C++ kI" "$s_ki" "$ki" && same_value "C++ C(z)" "$s_cz0" "$cz0" && [ "$s_den" = 4 ] &&
+  grep -q "No PIDController holds the notch" flywheel_speed.h && ok || fail "wpilib-cpp speed loop: $(cat cxx.txt)"
+"$bin" export flywheel_speed.yaml --to json --joint flywheel -o flywheel_speed.json &&
+  python3 -c 'import json,sys; f=json.load(open(sys.argv[1]))["feedback"]; assert f["loop"] == "speed"; assert len(f["c_z"]["numerator"]) == 4; assert len(f["c_s"]["denominator"]) == 4' flywheel_speed.json &&
+  ok || fail "json speed loop: $(head -c 600 flywheel_speed.json)"
+if command -v javac > /dev/null; then
+  "$bin" export flywheel_speed.yaml --to wpilib-java --joint flywheel -o FlywheelFeedforwardGains.java &&
+    printf 'public class SpeedBack { public static void main(String[] x) { System.out.println(FlywheelFeedforwardGains.kI + " " + FlywheelFeedforwardGains.kCzNumerator[0]); } }\n' > SpeedBack.java &&
+    javac -d speedclasses pidstubs/edu/wpi/first/math/controller/*.java FlywheelFeedforwardGains.java SpeedBack.java 2> javac.txt &&
+    read -r js_ki js_cz0 < <(java -cp speedclasses SpeedBack) &&
+    same_value "Java kI" "$js_ki" "$ki" && same_value "Java C(z)" "$js_cz0" "$cz0" && ok || fail "wpilib-java speed loop: $(cat javac.txt)"
+fi
+# A speed loop without its C(z) is refused by name, not exported without the notch.
+grep -v "numerator_z\|denominator_z" flywheel_speed.yaml > speed_no_cz.yaml
+expect 3 "feedback.numerator_z, denominator_z: missing from the speed loop's section" -- export speed_no_cz.yaml --to json
+
 # The elastic joint (docs/export.md#elastic-joint): MJCF (loaded and checked
 # in tests/export/mjcf_mujoco_test.cc), URDF through check_urdf, the C header
 # compiled; no feed-forward targets; missing values named together.
