@@ -61,11 +61,7 @@ FeedbackValue ParseValue(const std::string& path, const std::string& key, const 
     }
     if (!node["value"]) throw InputError(fmt::format("{}: {}: needs a value", Where(path, node), name));
     value.value = ParseNumber(path, name + ".value", node["value"]);
-    if (node["std"]) value.standard_error = ParseNumber(path, name + ".std", node["std"]);
-    if (!(value.standard_error >= 0.0)) {
-      throw InputError(fmt::format("{}: {}.std = {}: a standard error is >= 0", Where(path, node["std"]), name,
-                                   value.standard_error));
-    }
+    if (node["std"]) value.standard_error = ParseStandardError(path, name + ".std", node["std"]);
   } else {
     value.value = ParseNumber(path, name, node);
   }

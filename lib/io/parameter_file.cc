@@ -49,6 +49,12 @@ double ParseNumber(const std::string& path, const std::string& name, const YAML:
   return value;
 }
 
+double ParseStandardError(const std::string& path, const std::string& name, const YAML::Node& node) {
+  const double value = ParseNumber(path, name, node);
+  if (value < 0.0) throw InputError(fmt::format("{}: {} = {}: a standard error is >= 0", Where(path, node), name, value));
+  return value;
+}
+
 // Refuses non-mappings, duplicate and non-scalar keys.
 void CheckMapping(const std::string& path, const std::string& name, const YAML::Node& node) {
   if (!node.IsMap()) throw InputError(fmt::format("{}: {}: expected a mapping of keys", Where(path, node), name));
@@ -377,7 +383,7 @@ Feedforward ParseFeedforward(const std::string& path, const YAML::Node& node) {
     FeedforwardGain gain;
     gain.key = key;
     gain.value = ParseNumber(path, name + ".value", item.second["value"]);
-    if (item.second["std"]) gain.standard_error = ParseNumber(path, name + ".std", item.second["std"]);
+    if (item.second["std"]) gain.standard_error = ParseStandardError(path, name + ".std", item.second["std"]);
     out.gains.push_back(gain);
   }
   for (auto& gain : out.gains) gain.unit = FeedforwardUnit(gain.key, out.effort_unit, out.position_unit);
@@ -526,11 +532,15 @@ void ParseFitSection(const std::string& path, const YAML::Node& node, ParameterF
       ParameterEstimate estimate;
       estimate.name = entry.first.Scalar();
       estimate.value = ParseNumber(path, name + ".value", e["value"]);
-      estimate.standard_error = ParseNumber(path, name + ".std", e["std"]);
+      estimate.standard_error = ParseStandardError(path, name + ".std", e["std"]);
       const YAML::Node interval = e["ci95"];
       if (interval && interval.IsSequence() && interval.size() == 2) {
         estimate.ci95_low = ParseNumber(path, name + ".ci95", interval[0]);
         estimate.ci95_high = ParseNumber(path, name + ".ci95", interval[1]);
+        if (estimate.ci95_low > estimate.ci95_high) {
+          throw InputError(fmt::format("{}: {}.ci95 = [{}, {}]: the low end lies above the high end", Where(path, interval),
+                                       name, estimate.ci95_low, estimate.ci95_high));
+        }
       }
       file.fit_estimates.push_back(estimate);
     }

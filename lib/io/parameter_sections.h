@@ -26,6 +26,8 @@ namespace section_io {
 std::string Where(const std::string& path, const YAML::Node& node);
 /// A parameter value: finite, 0 or 1e-100 <= |v| <= 1e100; InputError naming `name` else.
 double ParseNumber(const std::string& path, const std::string& name, const YAML::Node& node);
+/// A standard error: a number as above and >= 0 (`name` ends in ".std").
+double ParseStandardError(const std::string& path, const std::string& name, const YAML::Node& node);
 /// Refuses non-mappings, duplicate and non-scalar keys.
 void CheckMapping(const std::string& path, const std::string& name, const YAML::Node& node);
 /// A number as written (shortest round trip).

@@ -398,6 +398,15 @@ for target in mjcf urdf wpilib-java wpilib-cpp; do
   expect 3 "the C-drive's compensation law \(31\) couples the two motors" -- export comp.yaml --to "$target"
 done
 "$bin" export comp.yaml --to c-header | grep -q "DRIVEID_CONSTANT AXIS_gamma_half = 0.001;" && ok || fail "C-drive c-header"
+# A negative std is refused by every command that reads the file (issue 55).
+sed 's/Kv: {value: 0.12, std: 0.002}/Kv: {value: 0.12, std: -0.002}/' flywheel.yaml > negative_std.yaml
+expect 3 "feedforward.Kv.std = -0.002: a standard error is >= 0" -- export negative_std.yaml --to json
+for command in "report negative_std.yaml" "compare flywheel.yaml negative_std.yaml"; do
+  # shellcheck disable=SC2086
+  "$bin" $command > /dev/null 2> err.txt
+  code=$?
+  [ $code -eq 3 ] && grep -q "a standard error is >= 0" err.txt && ok || fail "$command: exit $code, $(cat err.txt)"
+done
 printf 'axis:\n  inertia: 0\n' > zero.yaml
 expect 3 "axis.inertia = 0" -- export zero.yaml --to urdf
 expect 3 "no axis 'feedforward' section" -- export zero.yaml --to json

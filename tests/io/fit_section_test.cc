@@ -91,3 +91,21 @@ TEST_CASE("fit section: written in the declared order, read back, other keys ref
     CHECK(json.contains(FitKeyName(key)) == (key != FitKey::kDerived));
   }
 }
+
+TEST_CASE("a negative standard error or an inverted interval is refused where it is written (issue 55)") {
+  const std::string axis = "axis:\n  inertia: 0.05\n";
+  const std::string negative =
+      axis + "fit:\n  estimates:\n    inertia: {value: 0.05, std: -0.001, ci95: [0.049, 0.051]}\n";
+  CHECK_THROWS_WITH(ParseParameterFile("p.yaml", negative),
+                    Catch::Contains("p.yaml:5") && Catch::Contains("fit.estimates.inertia.std = -0.001: a standard error is >= 0"));
+  const std::string inverted = axis + "fit:\n  estimates:\n    inertia: {value: 0.05, std: 0.001, ci95: [0.051, 0.049]}\n";
+  CHECK_THROWS_WITH(ParseParameterFile("p.yaml", inverted),
+                    Catch::Contains("fit.estimates.inertia.ci95 = [0.051, 0.049]: the low end lies above the high end"));
+  const std::string gain = axis +
+                           "feedforward:\n  law: axis\n  effort_unit: \"V\"\n  position_unit: \"rad\"\n"
+                           "  Kv: {value: 0.12, std: -0.002}\n";
+  CHECK_THROWS_WITH(ParseParameterFile("p.yaml", gain), Catch::Contains("feedforward.Kv.std = -0.002: a standard error is >= 0"));
+  // Zero is a standard error (a value held fixed).
+  const std::string zero = axis + "fit:\n  estimates:\n    inertia: {value: 0.05, std: 0, ci95: [0.05, 0.05]}\n";
+  CHECK(ParseParameterFile("p.yaml", zero).fit_estimates.at(0).standard_error == 0.0);
+}
