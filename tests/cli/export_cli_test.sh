@@ -401,7 +401,7 @@ done
 # A negative std is refused by every command that reads the file (issue 55).
 sed 's/Kv: {value: 0.12, std: 0.002}/Kv: {value: 0.12, std: -0.002}/' flywheel.yaml > negative_std.yaml
 expect 3 "feedforward.Kv.std = -0.002: a standard error is >= 0" -- export negative_std.yaml --to json
-for command in "report negative_std.yaml" "compare flywheel.yaml negative_std.yaml"; do
+for command in "report negative_std.yaml" "compare negative_std.yaml flywheel.yaml"; do
   # shellcheck disable=SC2086
   "$bin" $command > /dev/null 2> err.txt
   code=$?
