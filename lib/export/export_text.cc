@@ -31,7 +31,10 @@ std::string CommentText(const std::string& text) {
     // A backslash could start an escape javac decodes even in comments
     // (\u002a/ closes one) or splice a // comment's line in C.
     char kept = printable && c != '\\' ? c : '?';
-    if ((kept == '-' && !out.empty() && out.back() == '-') || (kept == '/' && !out.empty() && out.back() == '*')) {
+    // "--" would end an XML comment, "*/" a C one, and "/*" inside a C
+    // comment is what gcc's -Wcomment warns of (fatal with -Werror).
+    if (!out.empty() && ((kept == '-' && out.back() == '-') || (kept == '/' && out.back() == '*') ||
+                         (kept == '*' && out.back() == '/'))) {
       out += ' ';
     }
     out += kept;
@@ -68,7 +71,7 @@ std::string CodeCommentText(const std::string& text) {
   for (char c : text) {
     const bool printable = c >= 0x20 && c < 0x7f;
     const char kept = printable && c != '\\' ? c : '?';
-    if (kept == '/' && !out.empty() && out.back() == '*') out += ' ';
+    if (!out.empty() && ((kept == '/' && out.back() == '*') || (kept == '*' && out.back() == '/'))) out += ' ';
     out += kept;
   }
   if (out.size() > 300) out = out.substr(0, 297) + "...";

@@ -30,10 +30,11 @@ constexpr double kMjcfTimestep = 0.001;     // s, the MJCF's <option timestep>
 /// Text from a file or the command line inside an XML, C or Java comment:
 /// printable ASCII only, no backslash (Java decodes \\u escapes in comments,
 /// C splices a line after one), and neither "--" nor "*/" can close the
-/// comment, nor a trailing "-" an XML comment.
+/// comment, nor a trailing "-" an XML comment; "/*" is broken as "/ *"
+/// (gcc's -Wcomment).
 std::string CommentText(const std::string& text);
 /// `text` for a C, C++ or Java comment: printable ASCII ('?' for others and
-/// for a backslash), "*/" broken as "* /", "--" kept (a command line stays
+/// for a backslash), "*/" broken as "* /" and "/*" as "/ *", "--" kept (a command line stays
 /// one that can be pasted back), at most 300 characters.
 std::string CodeCommentText(const std::string& text);
 

@@ -398,6 +398,12 @@ for target in mjcf urdf wpilib-java wpilib-cpp; do
   expect 3 "the C-drive's compensation law \(31\) couples the two motors" -- export comp.yaml --to "$target"
 done
 "$bin" export comp.yaml --to c-header | grep -q "DRIVEID_CONSTANT AXIS_gamma_half = 0.001;" && ok || fail "C-drive c-header"
+# A unit with "*" beside a "/" cannot open a comment inside the C header's
+# comment (issue 55: "/* V/*rad */", an error under gcc -Wall -Werror).
+sed 's/position_unit: "Rotations"/position_unit: "*rad"/' flywheel_pid.yaml > star_unit.yaml
+"$bin" export star_unit.yaml --to c-header --joint star -o star.h && printf '#include "star.h"\nint main(void) { return STAR_FEEDBACK_KP > 0 ? 0 : 1; }\n' > star.c &&
+  cc -std=c99 -Wall -Wextra -Werror star.c -o star 2> cc.txt && ./star && ok || fail "'*rad' unit in the C header: $(cat cc.txt)"
+
 # A negative std is refused by every command that reads the file (issue 55).
 sed 's/Kv: {value: 0.12, std: 0.002}/Kv: {value: 0.12, std: -0.002}/' flywheel.yaml > negative_std.yaml
 expect 3 "feedforward.Kv.std = -0.002: a standard error is >= 0" -- export negative_std.yaml --to json

@@ -40,10 +40,23 @@ TEST_CASE("C header: each value to the last bit, stds only where there are, C(s)
   CHECK(std::regex_search(text, std::regex(R"(ELBOW_FEEDBACK_C_NUM0 = [0-9.e+-]+;  /\* s\^1 \*/)")));
   CHECK(text.find("ELBOW_FEEDBACK_C_DEN1 = 0") != std::string::npos);
   CHECK(text.find("/* s^0 */") != std::string::npos);
-  // A speed loop has no PIDController to hold its notch: no Java/C++ members.
-  CHECK(FeedbackJavaMembers(f).empty());
-  CHECK(FeedbackCppMembers(f).empty());
+  // A speed loop has no PIDController to hold its notch: none is made, and
+  // without its C(z) the Java/C++ members are refused by name, not dropped.
+  CHECK_THROWS_WITH(FeedbackJavaMembers(f), Catch::Contains("feedback.numerator_z, denominator_z"));
+  CHECK_THROWS_WITH(FeedbackCppMembers(f), Catch::Contains("feedback.numerator_z, denominator_z"));
   CHECK(FeedbackJavaImport(f).empty());
+  f.numerator_z = {0.25, -0.125};
+  f.denominator_z = {1.0, -1.0};
+  const std::string java = FeedbackJavaMembers(f), cpp = FeedbackCppMembers(f);
+  CHECK(java.find("public static final double[] kCzNumerator = {0.25, -0.125};") != std::string::npos);
+  CHECK(java.find("public static final double kI = 7.1234567890123452e-05;") != std::string::npos);
+  CHECK(cpp.find("inline constexpr std::array<double, 2> kCzDenominator{1, -1};") != std::string::npos);
+  CHECK(java.find("PIDController") == java.find("No PIDController") + 3);
+  CHECK(FeedbackCppInclude(f) == "#include <array>\n");
+  const Json json = FeedbackJson(f);
+  CHECK(json["c_z"]["numerator"][1] == -0.125);
+  CHECK(json["values"]["kp"]["std"] == 1.0 / 3.0);
+  CHECK(json["values"]["kp"]["unit"] == "N m s/rad");
   CHECK(FeedbackCHeaderLines(FeedbackController{}, "X").empty());
 }
 
