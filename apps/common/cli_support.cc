@@ -47,7 +47,7 @@ std::string OneLine(std::string text) {
 }
 
 void Fail(const std::string& program, const std::string& message) {
-  std::fprintf(stderr, "%s: %s\n", program.c_str(), OneLine(ShowFlags(message)).c_str());
+  std::fprintf(stderr, "%s: %s\n", program.c_str(), Printable(OneLine(ShowFlags(message))).c_str());
 }
 
 // SIGINT, SIGTERM, SIGHUP and SIGPIPE (standard output closed by its
@@ -176,14 +176,32 @@ std::string ShowFlags(std::string text) {
   return text;
 }
 
-void WriteText(std::FILE* stream, const std::string& text) { std::fputs(ShowFlags(text).c_str(), stream); }
+std::string Printable(std::string text) {
+  const auto control = [](unsigned char c) { return (c < 0x20 && c != '\n' && c != '\t') || c == 0x7f; };
+  if (std::none_of(text.begin(), text.end(), [&](char c) { return control(static_cast<unsigned char>(c)); })) {
+    return text;
+  }
+  std::string out;
+  out.reserve(text.size() + 16);
+  for (char c : text) {
+    if (control(static_cast<unsigned char>(c))) out += fmt::format("\\x{:02x}", static_cast<unsigned char>(c));
+    else out += c;
+  }
+  return out;
+}
+
+void WriteText(std::FILE* stream, const std::string& text) { std::fputs(Printable(ShowFlags(text)).c_str(), stream); }
 
 void WriteStdout(const std::string& text) {
   // A simulated log can be hundreds of MB: copied only when it holds a mark.
   std::string shown;
   const bool marked = text.find("\u2039") != std::string::npos;
-  if (marked) shown = ShowFlags(text);
-  const std::string& out = marked ? shown : text;
+  const bool control = std::any_of(text.begin(), text.end(), [](char c) {
+    const auto b = static_cast<unsigned char>(c);
+    return (b < 0x20 && b != '\n' && b != '\t') || b == 0x7f;
+  });
+  if (marked || control) shown = Printable(marked ? ShowFlags(text) : text);
+  const std::string& out = marked || control ? shown : text;
   if (std::fwrite(out.data(), 1, out.size(), stdout) != out.size() || std::fflush(stdout) != 0 ||
       std::ferror(stdout)) {
     throw OutputError("standard output: write error");
@@ -409,6 +427,12 @@ void EmitFitOutputs(const FitOutputOptions& options, const FitOutputs& outputs) 
     if (outputs.summary) summary = options.quiet && !options.json ? "" : *outputs.summary;
     else if (options.json) summary = DumpJson(FitJson(outputs.fit, outputs.provenance));
     else if (!options.quiet) summary = FormatFitTable(outputs.fit, outputs.provenance);
+    // --json: exactly one JSON object on stdout (docs/formats.md#json-summaries);
+    // without -o the parameter file is then not written anywhere.
+    if (options.json) {
+      WriteStdout(summary);
+      return;
+    }
     if (!summary_on_stdout) WriteText(stderr, summary);
     WriteStdout(summary_on_stdout ? summary : outputs.parameter_file);
   });

@@ -47,6 +47,11 @@ void WriteStdout(const std::string& text);
 /// a large text that is not needed afterwards by std::move: it is then
 /// rewritten in place, not copied.
 std::string ShowFlags(std::string text);
+/// `text` with each control byte but newline and tab (ESC, CR, ...: a file
+/// name or a key from a file could move a terminal's cursor or recolour it)
+/// written as \xNN. Every message and summary passes through it.
+std::string Printable(std::string text);
+
 /// Writes text from the library to a stream (stderr, or stdout for summaries).
 void WriteText(std::FILE* stream, const std::string& text);
 

@@ -122,7 +122,7 @@ void Emit(const GainsOptions& o, const std::optional<ParameterFile>& file, const
       WriteStdout(text);
     }
   });
-  for (const auto& warning : e.warnings) std::fprintf(stderr, "drivetrain-fit gains: warning: %s\n", warning.c_str());
+  for (const auto& warning : e.warnings) WriteText(stderr, "drivetrain-fit gains: warning: " + warning + "\n");
 }
 
 void RunSpeedLoop(const GainsOptions& o, const std::optional<ParameterFile>& file) {

@@ -134,6 +134,19 @@ for length in 245 250 255; do
   rm -f "$long_name"
 done
 
+# Terminal escape sequences in a file name or a key read from a file are
+# shown as \x1b, never sent raw to the terminal (issue 55).
+escaped=$'esc\e[31mred.csv'
+cp axis.csv "$escaped"
+"$dt" axis "$escaped" --from 1e9 > escape_out.txt 2> escape_err.txt
+grep -q 'esc\\x1b\[31mred.csv' escape_err.txt && ! grep -q $'\e' escape_err.txt escape_out.txt && ok ||
+  fail "escape in a file name reached the terminal: $(cat -v escape_err.txt)"
+"$dt" axis "$escaped" --params "$src/data/axis_example.yaml" -q -o escaped.yaml &&
+  sed 's/^    inertia: {value/    "in\\x1b[2Jertia": {value/' escaped.yaml > escaped_key.yaml &&
+  "$dt" report escaped_key.yaml > escape_out.txt 2> escape_err.txt
+! grep -q $'\e' escape_err.txt escape_out.txt && ok || fail "escape in a key reached the terminal: $(cat -v escape_out.txt escape_err.txt | head -5)"
+rm -f "$escaped"
+
 # Standard output closed by its reader (`| head`, SIGPIPE): the run dies of
 # the signal (141) and, as with a full disk, changes no file and leaves no
 # staging file (issue 55).
