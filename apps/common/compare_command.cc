@@ -59,6 +59,9 @@ CLI::App* SetupCompare(CLI::App& parent, CompareOptions& o) {
 }
 
 void RunCompare(const CompareOptions& o) {
+  std::vector<std::string> inputs = o.files;
+  inputs.push_back(o.base);
+  CheckDistinctFiles(inputs, {{"--plot", o.plot}});
   DriftGate gate;
   gate.max_percent = o.fail_above;
   gate.max_z = o.z;

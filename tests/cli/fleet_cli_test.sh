@@ -123,6 +123,12 @@ grep -v "^    offset: {value" out/logs_axis_001.yaml > no_offset.yaml
 code=$?
 [ "$code" -eq 3 ] && grep -q "^drivetrain-fit: --parameters: the base has no estimate of stiffness" unknown.err && ok ||
   fail "unknown parameter: exit $code, $(cat unknown.err)"
+# --plot onto one of the compared files is refused (exit 2), the file kept (issue 55).
+cp base.yaml base.png
+"$bin" compare base.png out/logs_axis_001.yaml --plot base.png > /dev/null 2> plot_self.err
+code=$?
+[ "$code" -eq 2 ] && grep -q "is an input of this run" plot_self.err && cmp -s base.png base.yaml && ok ||
+  fail "compare --plot onto its base: exit $code, $(cat plot_self.err)"
 # report --fitted beside an axis: the two fits compared; a file without a fit refused by name.
 "$bin" report base.yaml --fitted out/logs_axis_013.yaml > fitted.txt 2>&1 && grep -q "^out/logs_axis_013.yaml$" fitted.txt &&
   grep -q "^  viscous .*%" fitted.txt && ok || fail "report --fitted of an axis: $(cat fitted.txt)"
