@@ -1,6 +1,10 @@
 #include "common/log_input_options.h"
 
+#include <algorithm>
+#include <cstring>
+
 #include "core/option_check.h"
+#include "io/table_source.h"
 
 namespace driveid::cli {
 
@@ -113,6 +117,19 @@ ReadLimits LogReadLimits(double max_log_gib) {
   limits.max_bytes = static_cast<std::size_t>(max_log_gib * 1073741824.0);
   limits.max_bytes_hint = fmt::format("a log may be at most {} GiB (raise with --max-log-size)", max_log_gib);
   return limits;
+}
+
+void ShowReaderWarnings(const std::vector<DataFileRecord>& records, std::size_t first) {
+  std::vector<std::string> shown;
+  for (std::size_t i = first; i < records.size(); ++i) {
+    for (const auto& note : records[i].notes) {
+      if (note.rfind(kReaderWarning, 0) != 0) continue;
+      const std::string line = fmt::format("warning: {}: {}\n", records[i].file, note.substr(std::strlen(kReaderWarning) + 1));
+      if (std::find(shown.begin(), shown.end(), line) != shown.end()) continue;
+      shown.push_back(line);
+      WriteText(stderr, line);
+    }
+  }
 }
 
 }  // namespace driveid::cli

@@ -57,6 +57,10 @@ std::vector<LogFileRequest> LogFileRequests(const LogInputCli& options, const st
 /// joined file), no line limit for JSON, MAT and HDF5 files.
 ReadLimits LogReadLimits(double max_log_gib);
 
+/// Prints on stderr the readers' warnings (io/table_source.h kReaderWarning)
+/// in records[first..], each once, naming its file.
+void ShowReaderWarnings(const std::vector<DataFileRecord>& records, std::size_t first);
+
 /// Reads each log once (at most --max-log-size bytes; joined files too),
 /// makes its logs with `make(CsvLog)` (a SysId file gives several) and
 /// records each one's provenance (file, SHA-256, samples, segment, notes).
@@ -72,8 +76,10 @@ std::vector<Log> LoadLogs(const std::vector<std::string>& paths, const LogInputC
   LogInputOptions options = MakeLogInputOptions(input);
   options.time_column = time_column;
   std::vector<Log> logs;
+  const std::size_t first_record = provenance.data.size();
   ReadLogFiles(LogFileRequests(input, paths), columns, options, LogReadLimits(output.max_log_gib), transpose, provenance.data,
                [&](CsvLog csv) { logs.push_back(make(std::move(csv))); });
+  ShowReaderWarnings(provenance.data, first_record);
   return logs;
 }
 

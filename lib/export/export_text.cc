@@ -31,8 +31,8 @@ std::string CommentText(const std::string& text) {
     // A backslash could start an escape javac decodes even in comments
     // (\u002a/ closes one) or splice a // comment's line in C.
     char kept = printable && c != '\\' ? c : '?';
-    // "--" would end an XML comment, "*/" a C one, and "/*" inside a C
-    // comment is what gcc's -Wcomment warns of (fatal with -Werror).
+    // Two dashes would end an XML comment, star-slash a C one, and
+    // slash-star inside a C comment is what gcc's -Wcomment warns of.
     if (!out.empty() && ((kept == '-' && out.back() == '-') || (kept == '/' && out.back() == '*') ||
                          (kept == '*' && out.back() == '/'))) {
       out += ' ';

@@ -46,7 +46,7 @@ void RequireSpeedValues(const FeedbackController& f) {
   Value(f, "period");
   if (f.numerator_z.empty() || f.denominator_z.empty()) {
     throw InputError("feedback.numerator_z, denominator_z: missing from the speed loop's section; the notch runs only "
-                     "as C(z) (rerun drivetrain-fit gains --loop speed)");
+                     "as C(z) (rerun drivetrain-fit gains ‹loop› speed)");
   }
 }
 

@@ -143,6 +143,13 @@ class CsvSource : public TableSource {
     if (format.skip_rows > 0) notes_.push_back(fmt::format("the first {} lines skipped", format.skip_rows));
     if (rows_ == 0) throw InputError(fmt::format("{}:{}: no data rows after the header", path_, header_line_));
     if (delimiter_ != ',') notes_.push_back("delimiter: " + DelimiterText(delimiter_));
+    // A last line without its line end: the file may have been cut while it
+    // was written (a number cut short still parses). Read, and said.
+    if (!text_.empty() && text_.back() != '\n') {
+      notes_.push_back(fmt::format("{} line {} has no line end: the file may have been cut while it was written; "
+                                   "check that its last row is whole",
+                                   kReaderWarning, line));
+    }
   }
 
   std::string path() const override { return path_; }

@@ -13,6 +13,11 @@
 
 namespace driveid {
 
+/// A source's note that the user must see (printed by the tools on
+/// stderr, kept in the fit's provenance): it starts with this.
+inline constexpr const char* kReaderWarning = "warning:";
+
+
 /// Columns read from a source: values per requested column, and the file
 /// line of each row where the source is text (empty otherwise).
 struct TableData {

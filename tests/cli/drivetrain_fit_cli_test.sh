@@ -149,6 +149,13 @@ expect 3 "column 'tau_link' would be inf" -- simulate step --params paper.yaml -
   expect 2 "--max-log-size: nan: must be a number in" -- step good.csv --params start.yaml --max-log-size nan
   finish > /dev/null ) || fail "endless inputs"
 
+# A CSV whose last line has no line end (cut while written: "0.00" of
+# "0.0012" still parses) is read with a warning naming the line (issue 55).
+head -c -3 good.csv > cut_short.csv
+"$bin" step cut_short.csv --params start.yaml -q -o cut_short.yaml 2> stderr.txt &&
+  grep -q "^warning: cut_short.csv: line [0-9]* has no line end: the file may have been cut" stderr.txt &&
+  grep -q "has no line end" cut_short.yaml && ok || fail "unterminated last line: $(cat stderr.txt)"
+
 # A named FIFO nobody writes to is refused after 5 s with a message, not
 # waited on forever (issue 55): as a log, a parameter file and a joined log.
 mkfifo silent.fifo
