@@ -44,7 +44,8 @@ CLI::App* SetupInspect(CLI::App& app, InspectOptions& options) {
 
 void RunInspect(const InspectOptions& options) {
   const ReadLimits limits = LogReadLimits(options.max_log_gib);
-  const LogInputOptions input = MakeLogInputOptions(options.input);
+  LogInputOptions input = MakeLogInputOptions(options.input);
+  input.sysid.catalog = true;  // a WPILog lists its entries, routines and motors
   std::string text_out;
   Json json = Json::array();
   for (std::size_t i = 0; i < options.logs.size(); ++i) {

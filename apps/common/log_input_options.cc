@@ -49,6 +49,13 @@ void AddLogInputOptions(CLI::App& command, LogInputCli& options, const std::stri
                      "both files record, LOG_COLUMN=JOINED_COLUMN (e.g. speed=#2)");
   command.add_option("--side", options.side, "SysId Drivetrain files: left, right or both (two logs per test)")
       ->check(CLI::IsMember({"left", "right", "both"}));
+  command.add_option("--mechanism", options.mechanism,
+                     "WPILog: the SysIdRoutine (its sysid-test-state-NAME entry) when the log holds several "
+                     "(docs/formats.md#wpilog)");
+  command.add_option("--motor", options.motor,
+                     "WPILog: the motor of the SysIdRoutine (its voltage-MOTOR-... entries) when it logs several");
+  command.add_option("--test", options.test, "WPILog: the mechanism SysId would be told: simple (default), arm, elevator")
+      ->check(CLI::IsMember({"simple", "arm", "elevator"}));
 }
 
 LogInputOptions MakeLogInputOptions(const LogInputCli& options) {
@@ -73,6 +80,9 @@ LogInputOptions MakeLogInputOptions(const LogInputCli& options) {
   out.csv.delimiter = d == "comma" || d == "," ? ',' : d == "semicolon" || d == ";" ? ';' : d == "tab" ? '\t'
                       : d == "space" ? ' ' : 0;
   out.sysid.side = options.side;
+  out.sysid.mechanism = options.mechanism;
+  out.sysid.motor = options.motor;
+  out.sysid.test = options.test;
   out.rate = options.rate;
   if (std::isfinite(options.from)) out.from = options.from;
   if (std::isfinite(options.to)) out.to = options.to;

@@ -29,6 +29,7 @@ struct LogInputCli {
   std::vector<double> join_shift;       ///< --join-shift S: once, or once per log
   std::string join_align;               ///< --join-align A=B
   std::string side;
+  std::string mechanism, motor, test;  ///< WPILog SysIdRoutine: --mechanism, --motor, --test
 };
 
 /// Every input file of a command reading logs: the logs, the parameter file,

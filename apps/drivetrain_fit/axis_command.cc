@@ -71,7 +71,7 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
   const auto make = [&](CsvLog csv) { return MakeAxisLog(std::move(csv), section.torque_constant.value_or(0.0)); };
   const auto logs = LoadLogs<AxisLog>(options.logs, options.input, options.output, outputs.provenance, AxisLogColumns(),
                                         [&](CsvLog csv) {
-                                          sysid_units.push_back(csv.format == "sysid" ? csv.units : "");
+                                          sysid_units.push_back(csv.format == "sysid" || csv.format == "wpilog" ? csv.units : "");
                                           mechanisms.push_back(csv.mechanism);
                                           return make(std::move(csv));
                                         });

@@ -1,4 +1,5 @@
 #include "io/table_source.h"
+#include "io/wpilog.h"
 
 #include <algorithm>
 #include <charconv>
@@ -352,6 +353,7 @@ std::vector<std::unique_ptr<TableSource>> OpenTableSources(const std::string& pa
     out = OpenSysIdSources(path, text, sysid);
     return out;
   }
+  if (LooksLikeWpilog(text)) return OpenWpilogSources(path, text, sysid);
   if (!sysid.side.empty()) {
     throw OptionError(fmt::format("‹side› {}: {} is a {} file; ‹side› applies to SysId Drivetrain files", sysid.side,
                                   path, LooksLikeMat(text) ? "MAT" : "CSV"));

@@ -1,6 +1,7 @@
 // Where a log's columns come from (docs/formats.md#logs): a CSV file (with or
 // without a header row; comma, semicolon, tab or blank separated), a MATLAB
-// MAT file (v5, v7.3) or one test of a WPILib SysId JSON file. A source has
+// MAT file (v5, v7.3), one test of a WPILib SysId JSON file or of a
+// SysIdRoutine in a WPILib DataLog (.wpilog). A source has
 // columns addressed by name, by 1-based position `#k`, or (MAT) by variable
 // path, and may have named scalars for column expressions.
 #pragma once
@@ -92,6 +93,11 @@ struct CsvFormat {
 /// Options of the SysId reader.
 struct SysIdFormat {
   std::string side;  ///< "left", "right" or "both" for the Drivetrain layout
+  /// WPILog SysIdRoutine logs (docs/formats.md#wpilog): the routine (the
+  /// `sysid-test-state-<mechanism>` entry) and motor, "" when the log has one;
+  /// the mechanism: "" or "simple", "arm", "elevator".
+  std::string mechanism, motor, test;
+  bool catalog = false;  ///< `inspect`: a WPILog gives its entries, routines and motors
 };
 
 /// Opens a file already in memory (`text` must outlive the sources) as one or more sources (a SysId file has
@@ -105,6 +111,10 @@ std::vector<std::unique_ptr<TableSource>> OpenTableSources(const std::string& pa
 std::unique_ptr<TableSource> OpenCsvSource(const std::string& path, const std::string& text, const CsvFormat& format);
 /// The MAT reader alone (v5 and v7.3 through libmatio).
 std::unique_ptr<TableSource> OpenMatSource(const std::string& path, const std::string& text);
+/// The WPILog reader alone: a SysIdRoutine's tests, or with
+/// SysIdFormat::catalog one source listing the log's entries.
+std::vector<std::unique_ptr<TableSource>> OpenWpilogSources(const std::string& path, const std::string& text,
+                                                            const SysIdFormat& format);
 /// The SysId JSON reader alone.
 std::vector<std::unique_ptr<TableSource>> OpenSysIdSources(const std::string& path, const std::string& text,
                                                            const SysIdFormat& format);

@@ -57,6 +57,9 @@ InspectedLog InspectLog(const TableSource& source, const LogInputOptions& option
   }
   const std::vector<std::size_t> lengths = source.column_lengths();
   out.rows = lengths.empty() ? 0 : *std::max_element(lengths.begin(), lengths.end());
+  // A catalog (a WPILog's entries) has no columns of its own: its tests
+  // follow as their own sources.
+  if (names.empty() && !out.variables.empty() && source.column_lengths().empty()) return out;
   // The time base and the mapped columns, as a fit would read them.
   std::vector<std::string> wanted = {options.time_column};
   for (const auto& [name, expression] : options.columns) {
@@ -94,9 +97,12 @@ InspectedLog InspectLog(const TableSource& source, const LogInputOptions& option
 
 std::string FormatLogInspection(const InspectedLog& log) {
   std::string out = fmt::format("{}{} ({})\n", log.path, log.segment.empty() ? "" : " [" + log.segment + "]", log.format);
+  const bool catalog = log.format == "wpilog" && log.segment.empty();
   if (log.has_time) {
     out += fmt::format("  {} samples, t = {:.6g} .. {:.6g} s ({:.6g} s), rate {:.6g} Hz, jitter {:.3g} % of the step\n",
                        log.rows, log.start, log.end, log.end - log.start, log.rate, 100.0 * log.jitter);
+  } else if (catalog) {
+    out += "  the log's entries; a SysIdRoutine's tests follow as the sources a fit reads\n";
   } else {
     out += fmt::format("  {} rows; not readable as a fit would read it: {}\n", log.rows, log.time_problem);
   }
@@ -104,11 +110,12 @@ std::string FormatLogInspection(const InspectedLog& log) {
   if (!log.variables.empty()) {
     std::size_t width = 8;
     for (const auto& v : log.variables) width = std::max(width, std::min<std::size_t>(v.name.size(), 48));
-    out += fmt::format("  {:<{}} {:>13}  {}\n", "variable", width, "size", "address (‹col› NAME=...)");
+    out += fmt::format("  {:<{}} {:>13}  {}\n", catalog ? "entry" : "variable", width, catalog ? "records" : "size",
+                       catalog ? "type, records, span, mean rate over the span, metadata" : "address (‹col› NAME=...)");
     for (const auto& v : log.variables) {
       out += fmt::format("  {:<{}} {:>13}  {}\n", v.name, width, fmt::format("{} x {}", v.rows, v.cols), v.address);
     }
-    if (log.columns.empty()) out += "  (columns with their ranges: inspect ‹columns›)\n";
+    if (log.columns.empty() && !catalog) out += "  (columns with their ranges: inspect ‹columns›)\n";
   }
   if (!log.columns.empty()) {
     out += fmt::format("  {:>5}  {:<28} {:>8} {:>14} {:>14}\n", "#", "column", "values", "min", "max");
