@@ -11,6 +11,7 @@
 #include "common/cli_support.h"
 #include "common/command_registry.h"
 #include "common/log_input_options.h"
+#include "io/ros_bag.h"
 #include "workflow/log_inspection.h"
 
 namespace driveid::cli {
@@ -49,7 +50,7 @@ void RunInspect(const InspectOptions& options) {
   std::string text_out;
   Json json = Json::array();
   for (std::size_t i = 0; i < options.logs.size(); ++i) {
-    const std::string text = ReadFileToString(options.logs[i], limits);
+    const std::string text = ReadFileToString(ResolveBagPath(options.logs[i]), limits);
     std::string join_text;
     std::vector<JoinedFile> joins;
     const std::string join_path = JoinFor(options.input, i, options.logs.size());

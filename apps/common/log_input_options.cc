@@ -56,6 +56,17 @@ void AddLogInputOptions(CLI::App& command, LogInputCli& options, const std::stri
                      "WPILog: the motor of the SysIdRoutine (its voltage-MOTOR-... entries) when it logs several");
   command.add_option("--test", options.test, "WPILog: the mechanism SysId would be told: simple (default), arm, elevator")
       ->check(CLI::IsMember({"simple", "arm", "elevator"}));
+  command.add_option("--topic", options.topic,
+                     "ROS bag: the sensor_msgs/JointState topic when the bag has several (docs/formats.md#ros-bags)");
+  // `validate` names an MJCF joint with --joint; there a bag's joint is a --col.
+  if (command.get_option_no_throw("--joint") == nullptr) {
+    command.add_option("--joint", options.joints,
+                       "ROS bag: the joint whose position, velocity and effort are q, qd and tau (repeat for several: "
+                       "their messages make the rows; map them with --col q_motor=NAME.position ...)");
+  }
+  command.add_option("--time", options.time,
+                     "ROS bag: the time base, header (the messages' stamps, default) or receive (the bag's times)")
+      ->check(CLI::IsMember({"header", "receive"}));
 }
 
 LogInputOptions MakeLogInputOptions(const LogInputCli& options) {
@@ -83,6 +94,9 @@ LogInputOptions MakeLogInputOptions(const LogInputCli& options) {
   out.sysid.mechanism = options.mechanism;
   out.sysid.motor = options.motor;
   out.sysid.test = options.test;
+  out.sysid.topic = options.topic;
+  out.sysid.joints = options.joints;
+  out.sysid.time = options.time;
   out.rate = options.rate;
   if (std::isfinite(options.from)) out.from = options.from;
   if (std::isfinite(options.to)) out.to = options.to;

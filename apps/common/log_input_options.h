@@ -30,6 +30,9 @@ struct LogInputCli {
   std::string join_align;               ///< --join-align A=B
   std::string side;
   std::string mechanism, motor, test;  ///< WPILog SysIdRoutine: --mechanism, --motor, --test
+  std::string topic;                   ///< ROS bags: --topic, --joint (repeated), --time header|receive
+  std::vector<std::string> joints;
+  std::string time = "header";
 };
 
 /// Every input file of a command reading logs: the logs, the parameter file,

@@ -34,6 +34,11 @@ CLI::App* SetupValidateCommand(CLI::App& app, ValidateOptions& options) {
   command->add_option("--step-model", options.step_model, "step: reduced (eq. 16) or full (eqs. 13-14)")
       ->capture_default_str()
       ->check(CLI::IsMember({"reduced", "full"}));
+  // Before the log options: here --joint names the MJCF joint (a bag's joint is a --col).
+  command->add_option("--joint", options.joint,
+                      "MJCF: the joint the logged effort drives (--model joint: the link joint; the motor is "
+                      "JOINT_motor, as export names them)")
+      ->capture_default_str();
   AddLogInputOptions(*command, options.input, "q=pi/180*#2, tau=10*#14");
   command->add_option("--cutoff", options.cutoff,
                       "axis: position low-pass cutoff [Hz] (default: the candidate that predicts best, "
@@ -51,10 +56,6 @@ CLI::App* SetupValidateCommand(CLI::App& app, ValidateOptions& options) {
   command->add_flag("--simulate", options.simulate,
                     "axis: simulate the position from the logged torque, Coulomb friction that sticks "
                     "(docs/models.md#axis-output-error), instead of the torque by inverse dynamics");
-  command->add_option("--joint", options.joint,
-                      "MJCF: the joint the logged effort drives (--model joint: the link joint; the motor is "
-                      "JOINT_motor, as export names them)")
-      ->capture_default_str();
   command->add_option("--mujoco-step", options.mujoco_step,
                       "MJCF: largest MuJoCo time step [s] (docs/export.md#validation-in-mujoco)")
       ->capture_default_str()

@@ -1,5 +1,7 @@
 #include "io/log_files.h"
 
+#include "io/ros_bag.h"
+
 #include <utility>
 
 #include <fmt/format.h>
@@ -16,7 +18,7 @@ void ReadLogFiles(const std::vector<LogFileRequest>& files, const std::vector<st
   std::vector<std::pair<std::string, std::string>> seen;  // hash, file
   for (const LogFileRequest& file : files) {
     const std::string& path = file.path;
-    const std::string raw = ReadFileToString(path, limits);
+    const std::string raw = ReadFileToString(ResolveBagPath(path), limits);  // a rosbag2 folder: its storage file
     const std::string hash = Sha256Hex(raw);
     const std::string text = transpose ? TransposeTable(path, raw) : raw;
     for (const auto& [earlier_hash, earlier] : seen) {

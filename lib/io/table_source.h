@@ -90,14 +90,21 @@ struct CsvFormat {
   std::size_t max_line_bytes = 1 << 20;
 };
 
-/// Options of the SysId reader.
+/// Options of the structured readers: SysId JSON, WPILog, ROS bags.
 struct SysIdFormat {
   std::string side;  ///< "left", "right" or "both" for the Drivetrain layout
   /// WPILog SysIdRoutine logs (docs/formats.md#wpilog): the routine (the
   /// `sysid-test-state-<mechanism>` entry) and motor, "" when the log has one;
   /// the mechanism: "" or "simple", "arm", "elevator".
   std::string mechanism, motor, test;
-  bool catalog = false;  ///< `inspect`: a WPILog gives its entries, routines and motors
+  bool catalog = false;  ///< `inspect`: a WPILog or bag also gives its entries or topics
+  /// ROS bags (docs/formats.md#ros-bags): the JointState topic ("" when the
+  /// bag has one), the joints whose columns are q, qd, tau by default and
+  /// whose messages make the rows, and the time: "header" (the stamps) or
+  /// "receive" (the bag's receive times).
+  std::string topic;
+  std::vector<std::string> joints;
+  std::string time = "header";
 };
 
 /// Opens a file already in memory (`text` must outlive the sources) as one or more sources (a SysId file has
@@ -114,6 +121,9 @@ std::unique_ptr<TableSource> OpenMatSource(const std::string& path, const std::s
 /// The WPILog reader alone: a SysIdRoutine's tests, or with
 /// SysIdFormat::catalog one source listing the log's entries.
 std::vector<std::unique_ptr<TableSource>> OpenWpilogSources(const std::string& path, const std::string& text,
+                                                            const SysIdFormat& format);
+/// A ROS bag's JointState topic (io/ros_bag.h), or with catalog its topics.
+std::vector<std::unique_ptr<TableSource>> OpenRosBagSources(const std::string& path, const std::string& text,
                                                             const SysIdFormat& format);
 /// The SysId JSON reader alone.
 std::vector<std::unique_ptr<TableSource>> OpenSysIdSources(const std::string& path, const std::string& text,

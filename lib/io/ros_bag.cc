@@ -1,0 +1,185 @@
+#include "io/ros_bag.h"
+
+#include <filesystem>
+#include <memory>
+
+#include <fastcdr/Cdr.h>
+#include <fastcdr/FastBuffer.h>
+#include <fastcdr/exceptions/Exception.h>
+#include <fmt/format.h>
+#include <sqlite3.h>
+#include <yaml-cpp/yaml.h>
+
+#include "core/errors.h"
+
+namespace driveid {
+namespace {
+
+constexpr const char* kJointStateType = "sensor_msgs/msg/JointState";
+
+// An SQLite connection onto bytes in memory (read-only, no copy).
+class Database {
+ public:
+  Database(const std::string& path, const std::string& bytes) : path_(path) {
+    if (sqlite3_open_v2(":memory:", &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_MEMORY, nullptr) != SQLITE_OK) {
+      Fail("cannot open an in-memory database");
+    }
+    sqlite3_db_config(db_, SQLITE_DBCONFIG_DEFENSIVE, 1, nullptr);
+    auto* data = reinterpret_cast<unsigned char*>(const_cast<char*>(bytes.data()));
+    const auto size = static_cast<sqlite3_int64>(bytes.size());
+    if (sqlite3_deserialize(db_, "main", data, size, size, SQLITE_DESERIALIZE_READONLY) != SQLITE_OK) {
+      Fail("not a readable SQLite database");
+    }
+  }
+  ~Database() { sqlite3_close(db_); }
+  Database(const Database&) = delete;
+  Database& operator=(const Database&) = delete;
+
+  // Runs `sql`, handing each row to `row`; InputError on any SQLite error.
+  template <typename Row>
+  void Query(const char* sql, Row row, const std::string& bind_text = "") {
+    sqlite3_stmt* statement = nullptr;
+    if (sqlite3_prepare_v2(db_, sql, -1, &statement, nullptr) != SQLITE_OK) Fail("not a rosbag2 SQLite3 bag");
+    std::unique_ptr<sqlite3_stmt, int (*)(sqlite3_stmt*)> guard(statement, sqlite3_finalize);
+    if (!bind_text.empty()) sqlite3_bind_text(statement, 1, bind_text.c_str(), -1, SQLITE_TRANSIENT);
+    int status = 0;
+    while ((status = sqlite3_step(statement)) == SQLITE_ROW) row(statement);
+    if (status != SQLITE_DONE) Fail("corrupt or unreadable");
+  }
+
+ private:
+  [[noreturn]] void Fail(const char* what) const {
+    throw InputError(fmt::format("{}: {}: {}", path_, what, db_ != nullptr ? sqlite3_errmsg(db_) : "out of memory"));
+  }
+  std::string path_;
+  sqlite3* db_ = nullptr;
+};
+
+std::string Column(sqlite3_stmt* s, int k) {
+  const unsigned char* text = sqlite3_column_text(s, k);
+  return text != nullptr ? reinterpret_cast<const char*>(text) : "";
+}
+
+// A sequence's element count, checked against the bytes left (each element
+// takes at least `least` bytes) before anything is allocated.
+std::uint32_t Count(eprosima::fastcdr::Cdr& cdr, std::size_t size, std::size_t least, const std::string& where,
+                    const char* field) {
+  std::uint32_t n = 0;
+  cdr >> n;
+  const std::size_t left = size - std::min(size, cdr.getSerializedDataLength());
+  if (static_cast<std::uint64_t>(n) * least > left) {
+    throw InputError(fmt::format("{}: {} claims {} elements, {} bytes remain", where, field, n, left));
+  }
+  return n;
+}
+
+}  // namespace
+
+bool LooksLikeSqlite(const std::string& text) { return text.compare(0, 16, std::string("SQLite format 3\0", 16)) == 0; }
+
+std::string ResolveBagPath(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_directory(path, error)) return path;
+  const std::filesystem::path folder(path);
+  std::vector<std::string> files;
+  if (std::filesystem::is_regular_file(folder / "metadata.yaml", error)) {
+    try {
+      const YAML::Node info = YAML::LoadFile((folder / "metadata.yaml").string())["rosbag2_bagfile_information"];
+      for (const auto& file : info["relative_file_paths"]) files.push_back(file.as<std::string>());
+    } catch (const YAML::Exception& e) {
+      throw InputError(fmt::format("{}/metadata.yaml: not a rosbag2 metadata file: {}", path, e.what()));
+    }
+  } else {
+    for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
+      const std::string ext = entry.path().extension().string();
+      if (entry.is_regular_file() && (ext == ".db3" || ext == ".mcap")) files.push_back(entry.path().filename().string());
+    }
+  }
+  if (files.empty()) throw InputError(fmt::format("{}: a folder without a rosbag2 storage file (.db3, .mcap)", path));
+  if (files.size() > 1) {
+    throw InputError(fmt::format("{}: a bag split over {} files ({}): give them one by one, each a log", path,
+                                 files.size(), fmt::join(files, ", ")));
+  }
+  const std::filesystem::path file(files.front());
+  if (file.is_absolute() || file.string().find("..") != std::string::npos) {
+    throw InputError(fmt::format("{}/metadata.yaml: storage file {} lies outside the bag's folder", path, file.string()));
+  }
+  return (folder / file).string();
+}
+
+std::vector<RosTopic> ReadSqliteTopics(const std::string& path, const std::string& bytes) {
+  Database db(path, bytes);
+  std::vector<RosTopic> topics;
+  std::vector<long long> ids;
+  db.Query("SELECT id, name, type, serialization_format FROM topics ORDER BY id", [&](sqlite3_stmt* s) {
+    ids.push_back(sqlite3_column_int64(s, 0));
+    topics.push_back({Column(s, 1), Column(s, 2), Column(s, 3), 0, 0, 0});
+  });
+  db.Query("SELECT topic_id, COUNT(*), MIN(timestamp), MAX(timestamp) FROM messages GROUP BY topic_id",
+           [&](sqlite3_stmt* s) {
+             const long long id = sqlite3_column_int64(s, 0);
+             for (std::size_t i = 0; i < ids.size(); ++i) {
+               if (ids[i] != id) continue;
+               topics[i].messages = static_cast<std::size_t>(sqlite3_column_int64(s, 1));
+               topics[i].first_ns = sqlite3_column_int64(s, 2);
+               topics[i].last_ns = sqlite3_column_int64(s, 3);
+             }
+           });
+  return topics;
+}
+
+std::vector<JointStateMessage> ReadSqliteJointStates(const std::string& path, const std::string& bytes,
+                                                     const std::string& topic) {
+  Database db(path, bytes);
+  std::vector<JointStateMessage> out;
+  db.Query(
+      "SELECT m.timestamp, m.data, t.type, t.serialization_format FROM messages m JOIN topics t ON m.topic_id = t.id "
+      "WHERE t.name = ?1 ORDER BY m.id",
+      [&](sqlite3_stmt* s) {
+        if (Column(s, 2) != kJointStateType || Column(s, 3) != "cdr") {
+          throw InputError(fmt::format("{}: topic {} is {} ({}), not {} in CDR", path, topic, Column(s, 2), Column(s, 3),
+                                       kJointStateType));
+        }
+        const auto* data = static_cast<const char*>(sqlite3_column_blob(s, 1));
+        const auto size = static_cast<std::size_t>(sqlite3_column_bytes(s, 1));
+        const std::int64_t receive = sqlite3_column_int64(s, 0);
+        const std::string where = fmt::format("{}: {} message {} (received at {:.9f} s)", path, topic, out.size() + 1,
+                                              static_cast<double>(receive) * 1e-9);
+        JointStateMessage message = DecodeJointStateCdr(where, data, size);
+        message.receive_ns = receive;
+        out.push_back(std::move(message));
+      },
+      topic);
+  return out;
+}
+
+JointStateMessage DecodeJointStateCdr(const std::string& where, const char* data, std::size_t size) {
+  JointStateMessage m;
+  if (data == nullptr || size < 4) throw InputError(fmt::format("{}: {} bytes: not a CDR message", where, size));
+  eprosima::fastcdr::FastBuffer buffer(const_cast<char*>(data), size);
+  eprosima::fastcdr::Cdr cdr(buffer, eprosima::fastcdr::Cdr::DEFAULT_ENDIAN, eprosima::fastcdr::Cdr::DDS_CDR);
+  try {
+    cdr.read_encapsulation();
+    std::int32_t sec = 0;
+    std::uint32_t nanosec = 0;
+    std::string frame;
+    cdr >> sec >> nanosec >> frame;
+    if (nanosec >= 1'000'000'000U) throw InputError(fmt::format("{}: header.stamp.nanosec = {}", where, nanosec));
+    m.stamp_ns = static_cast<std::int64_t>(sec) * 1'000'000'000 + nanosec;
+    const std::uint32_t names = Count(cdr, size, 5, where, "name[]");
+    m.name.resize(names);
+    for (auto& n : m.name) cdr >> n;
+    for (auto* values : {&m.position, &m.velocity, &m.effort}) {
+      const std::uint32_t n = Count(cdr, size, 8, where, values == &m.position ? "position[]"
+                                                          : values == &m.velocity ? "velocity[]"
+                                                                                  : "effort[]");
+      values->resize(n);
+      for (double& v : *values) cdr >> v;
+    }
+  } catch (const eprosima::fastcdr::exception::Exception& e) {
+    throw InputError(fmt::format("{}: not a sensor_msgs/msg/JointState in CDR ({})", where, e.what()));
+  }
+  return m;
+}
+
+}  // namespace driveid

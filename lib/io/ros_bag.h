@@ -1,0 +1,51 @@
+// ROS bags (docs/formats.md#ros-bags): a rosbag2 SQLite3 file (`.db3`, or
+// its folder with metadata.yaml), read with libsqlite3 from the bytes the
+// tool read (sqlite3_deserialize: the data parsed is the data hashed), and
+// `sensor_msgs/msg/JointState` messages decoded from CDR with libfastcdr.
+// Every sequence length a message claims is checked against the bytes it
+// has left before anything is allocated; a message that does not decode is
+// refused with its topic, index and receive time.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace driveid {
+
+/// A topic of a bag: name, message type, serialisation, and its messages'
+/// count and receive-time span [ns].
+struct RosTopic {
+  std::string name, type, serialization;
+  std::size_t messages = 0;
+  std::int64_t first_ns = 0, last_ns = 0;
+};
+
+/// One JointState message as recorded.
+struct JointStateMessage {
+  std::int64_t receive_ns = 0;  ///< the bag's timestamp (when the recorder received it)
+  std::int64_t stamp_ns = 0;    ///< header.stamp
+  std::vector<std::string> name;
+  std::vector<double> position, velocity, effort;
+};
+
+/// True when `text` is an SQLite 3 database (a rosbag2 .db3).
+bool LooksLikeSqlite(const std::string& text);
+
+/// The file a log path names: itself, or for a rosbag2 folder the storage
+/// file its metadata.yaml lists (or its one .db3/.mcap); InputError for a
+/// folder that is no bag or a bag split over several files.
+std::string ResolveBagPath(const std::string& path);
+
+/// The topics of a rosbag2 SQLite3 bag held in `bytes`.
+std::vector<RosTopic> ReadSqliteTopics(const std::string& path, const std::string& bytes);
+
+/// The messages of one JointState topic, in the bag's order.
+std::vector<JointStateMessage> ReadSqliteJointStates(const std::string& path, const std::string& bytes,
+                                                     const std::string& topic);
+
+/// Decodes a CDR-serialised sensor_msgs/msg/JointState (with its 4-byte
+/// encapsulation header); throws InputError naming `where`.
+JointStateMessage DecodeJointStateCdr(const std::string& where, const char* data, std::size_t size);
+
+}  // namespace driveid

@@ -1,0 +1,242 @@
+// A JointState topic of a ROS bag (io/ros_bag.h; docs/formats.md#ros-bags)
+// as a table: rows are the topic's messages that carry every chosen joint,
+// in time order; columns `stamp` (header.stamp [s]), `receive` (the bag's
+// receive time [s]) and per joint J `J.position`, `J.velocity`, `J.effort`
+// where every row carries them. `t` is `stamp` (or `receive`), and with one
+// joint chosen (or only one in the topic) q, qd and tau are its position,
+// velocity and effort. What was left out is named in the notes: messages
+// without a chosen joint, out of order, at a repeated time, fields empty in
+// some messages, and how far the two clocks differ.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "core/order_statistics.h"
+#include "io/ros_bag.h"
+#include "io/table_source.h"
+
+namespace driveid {
+namespace {
+
+constexpr const char* kJointState = "sensor_msgs/msg/JointState";
+
+class RosTableSource : public TableSource {
+ public:
+  RosTableSource(std::string path, std::string topic, std::vector<std::string> names,
+                 std::vector<std::vector<double>> columns, std::vector<std::string> notes,
+                 std::map<std::string, std::string> defaults)
+      : path_(std::move(path)), topic_(std::move(topic)), names_(std::move(names)), columns_(std::move(columns)),
+        notes_(std::move(notes)), defaults_(std::move(defaults)) {}
+  std::string path() const override { return path_; }
+  std::string segment() const override { return topic_; }
+  std::string format() const override { return "rosbag2"; }
+  std::vector<std::string> column_names() const override { return names_; }
+  std::vector<std::size_t> column_lengths() const override {
+    return std::vector<std::size_t>(names_.size(), columns_.empty() ? 0 : columns_.front().size());
+  }
+  std::vector<std::string> notes() const override { return notes_; }
+  std::string DefaultReference(const std::string& logical) const override {
+    const auto found = defaults_.find(logical);
+    return found == defaults_.end() ? std::string() : found->second;
+  }
+  TableData Read(const std::vector<std::size_t>& columns) const override {
+    TableData out;
+    for (auto c : columns) out.columns.push_back(columns_.at(c));
+    return out;
+  }
+
+ private:
+  std::string path_, topic_;
+  std::vector<std::string> names_;
+  std::vector<std::vector<double>> columns_;
+  std::vector<std::string> notes_;
+  std::map<std::string, std::string> defaults_;
+};
+
+class TopicCatalog : public TableSource {
+ public:
+  TopicCatalog(std::string path, std::vector<SourceVariable> topics, std::vector<std::string> notes)
+      : path_(std::move(path)), topics_(std::move(topics)), notes_(std::move(notes)) {}
+  std::string path() const override { return path_; }
+  std::string format() const override { return "rosbag2"; }
+  std::vector<std::string> column_names() const override { return {}; }
+  std::vector<std::size_t> column_lengths() const override { return {}; }
+  std::vector<SourceVariable> variables() const override { return topics_; }
+  std::vector<std::string> notes() const override { return notes_; }
+  TableData Read(const std::vector<std::size_t>&) const override { return {}; }
+
+ private:
+  std::string path_;
+  std::vector<SourceVariable> topics_;
+  std::vector<std::string> notes_;
+};
+
+std::size_t IndexOf(const std::vector<std::string>& names, const std::string& name) {
+  return static_cast<std::size_t>(std::find(names.begin(), names.end(), name) - names.begin());
+}
+
+// The joints of a topic in first-seen order, with the messages carrying each.
+std::vector<std::pair<std::string, std::size_t>> JointsSeen(const std::vector<JointStateMessage>& messages) {
+  std::vector<std::pair<std::string, std::size_t>> out;
+  for (const auto& m : messages) {
+    for (const auto& n : m.name) {
+      auto found = std::find_if(out.begin(), out.end(), [&](const auto& p) { return p.first == n; });
+      if (found == out.end()) out.emplace_back(n, 1);
+      else ++found->second;
+    }
+  }
+  return out;
+}
+
+std::string Choose(const std::vector<std::string>& found, const std::string& wanted, const char* what,
+                   const char* option, const std::string& path) {
+  if (!wanted.empty()) {
+    if (std::find(found.begin(), found.end(), wanted) != found.end()) return wanted;
+    throw OptionError(fmt::format("‹{}› {}: {} has no such {} (found: {})", option, wanted, path, what,
+                                  found.empty() ? std::string("none") : fmt::format("{}", fmt::join(found, ", "))));
+  }
+  if (found.size() == 1) return found.front();
+  if (found.empty()) throw InputError(fmt::format("{}: no {} topic (inspect lists the topics)", path, kJointState));
+  throw OptionError(fmt::format("{}: {} {}s ({}): give ‹{}›", path, found.size(), what, fmt::join(found, ", "), option));
+}
+
+// The table of the chosen joints (all joints of every message when none).
+std::unique_ptr<TableSource> JointTable(const std::string& path, const std::string& topic,
+                                        std::vector<JointStateMessage> messages, const SysIdFormat& format) {
+  const auto seen = JointsSeen(messages);
+  std::vector<std::string> joints = format.joints;
+  std::vector<std::string> all;
+  for (const auto& [name, count] : seen) all.push_back(name);
+  for (const auto& j : joints) Choose(all, j, "joint", "joint", path + " " + topic);
+  if (joints.empty() && all.size() > 1 && !format.catalog) {
+    throw OptionError(fmt::format("{}: topic {} carries {} joints ({}): give ‹joint› NAME (repeat it for several, and "
+                                  "map them with ‹col› q_motor=NAME.position ...)",
+                                  path, topic, all.size(), fmt::join(all, ", ")));
+  }
+  if (joints.empty()) {
+    for (const auto& [name, count] : seen) {
+      if (count == messages.size()) joints.push_back(name);
+    }
+  }
+  std::vector<std::string> notes = {fmt::format("ROS bag topic {} ({}), {} messages", topic, kJointState, messages.size())};
+  // Rows: the messages that carry every chosen joint.
+  std::vector<JointStateMessage> rows;
+  std::size_t without = 0;
+  for (auto& m : messages) {
+    const bool carries = std::all_of(joints.begin(), joints.end(), [&](const std::string& j) {
+      return IndexOf(m.name, j) < m.name.size();
+    });
+    if (carries) rows.push_back(std::move(m));
+    else ++without;
+  }
+  if (without > 0) notes.push_back(fmt::format("{} {} messages without {} left out", kReaderWarning, without, fmt::join(joints, ", ")));
+  const bool receive = format.time == "receive";
+  const auto time_of = [&](const JointStateMessage& m) { return receive ? m.receive_ns : m.stamp_ns; };
+  std::size_t disorder = 0;
+  for (std::size_t k = 1; k < rows.size(); ++k) disorder += time_of(rows[k]) < time_of(rows[k - 1]);
+  std::stable_sort(rows.begin(), rows.end(), [&](const auto& a, const auto& b) { return time_of(a) < time_of(b); });
+  if (disorder > 0) notes.push_back(fmt::format("{} messages out of time order: sorted by {}", disorder, receive ? "receive time" : "header stamp"));
+  std::size_t repeated = 0;
+  rows.erase(std::unique(rows.begin(), rows.end(), [&](const auto& a, const auto& b) {
+               const bool same = time_of(a) == time_of(b);
+               repeated += same;
+               return same;
+             }),
+             rows.end());
+  if (repeated > 0) notes.push_back(fmt::format("{} {} messages at a repeated time left out", kReaderWarning, repeated));
+  if (rows.size() < 2) {
+    throw InputError(fmt::format("{}: topic {} holds {} message{} with {}", path, topic, rows.size(),
+                                 rows.size() == 1 ? "" : "s", fmt::join(joints, ", ")));
+  }
+  std::vector<double> lag;
+  for (const auto& m : rows) lag.push_back(static_cast<double>(m.receive_ns - m.stamp_ns) * 1e-9);
+  notes.push_back(fmt::format("time t: the {}; receive time - header stamp: median {:.6g} s (range {:.6g} .. {:.6g} s)",
+                              receive ? "bag's receive times (‹time› receive)" : "header stamps", Median(lag),
+                              *std::min_element(lag.begin(), lag.end()), *std::max_element(lag.begin(), lag.end())));
+  std::vector<std::string> names = {"stamp", "receive"};
+  std::vector<std::vector<double>> columns(2);
+  for (const auto& m : rows) {
+    // Divided, not multiplied by 1e-9: the nearest double to the time, as a
+    // CSV's "0.001" is read.
+    columns[0].push_back(static_cast<double>(m.stamp_ns) / 1e9);
+    columns[1].push_back(static_cast<double>(m.receive_ns) / 1e9);
+  }
+  std::map<std::string, std::string> defaults = {{"t", receive ? "receive" : "stamp"}};
+  for (const auto& j : joints) {
+    for (const auto& [field, member, logical] :
+         {std::tuple{"position", &JointStateMessage::position, "q"}, std::tuple{"velocity", &JointStateMessage::velocity, "qd"},
+          std::tuple{"effort", &JointStateMessage::effort, "tau"}}) {
+      std::vector<double> values;
+      std::size_t carrying = 0;
+      for (const auto& m : rows) {
+        const std::size_t k = IndexOf(m.name, j);
+        const auto& array = m.*member;
+        if (array.size() == m.name.size()) {
+          ++carrying;
+          values.push_back(array[k]);
+        }
+      }
+      if (carrying != rows.size()) {
+        if (carrying > 0) notes.push_back(fmt::format("{}.{} is in {} of {} messages: not a column", j, field, carrying, rows.size()));
+        continue;
+      }
+      names.push_back(j + "." + field);
+      columns.push_back(std::move(values));
+      if (joints.size() == 1) defaults[logical] = j + "." + field;
+    }
+  }
+  return std::make_unique<RosTableSource>(path, topic, std::move(names), std::move(columns), std::move(notes),
+                                          std::move(defaults));
+}
+
+}  // namespace
+
+std::vector<std::unique_ptr<TableSource>> OpenRosBagSources(const std::string& path, const std::string& text,
+                                                            const SysIdFormat& format) {
+  const std::vector<RosTopic> topics = ReadSqliteTopics(path, text);
+  std::vector<std::string> joint_topics;
+  for (const auto& t : topics) {
+    if (t.type == kJointState) joint_topics.push_back(t.name);
+  }
+  std::vector<std::unique_ptr<TableSource>> out;
+  if (format.catalog) {
+    std::vector<SourceVariable> variables;
+    std::vector<std::string> notes = {fmt::format("rosbag2 SQLite3 bag, {} topics", topics.size())};
+    for (const auto& t : topics) {
+      const double span = static_cast<double>(t.last_ns - t.first_ns) * 1e-9;
+      std::string address = fmt::format("{} ({}), {} messages", t.type, t.serialization, t.messages);
+      if (t.messages > 1 && span > 0.0) address += fmt::format(", {:.4g} Hz over {:.4g} s", static_cast<double>(t.messages - 1) / span, span);
+      if (t.type == kJointState && t.serialization == "cdr") {
+        const auto messages = ReadSqliteJointStates(path, text, t.name);
+        std::vector<std::string> joints;
+        for (const auto& [name, count] : JointsSeen(messages)) joints.push_back(fmt::format("{} ({})", name, count));
+        std::size_t p = 0, v = 0, e = 0;
+        for (const auto& m : messages) {
+          p += !m.position.empty();
+          v += !m.velocity.empty();
+          e += !m.effort.empty();
+        }
+        notes.push_back(fmt::format("{}: joints {}; position in {}, velocity in {}, effort in {} of {} messages", t.name,
+                                    fmt::join(joints, ", "), p, v, e, messages.size()));
+      }
+      variables.push_back({t.name, t.messages, 1, address});
+    }
+    out.push_back(std::make_unique<TopicCatalog>(path, std::move(variables), std::move(notes)));
+    try {
+      const std::string topic = Choose(joint_topics, format.topic, "JointState topic", "topic", path);
+      out.push_back(JointTable(path, topic, ReadSqliteJointStates(path, text, topic), format));
+    } catch (const OptionError&) {
+    }
+    return out;
+  }
+  const std::string topic = Choose(joint_topics, format.topic, "JointState topic", "topic", path);
+  out.push_back(JointTable(path, topic, ReadSqliteJointStates(path, text, topic), format));
+  return out;
+}
+
+}  // namespace driveid

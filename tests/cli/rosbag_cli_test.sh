@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# ROS 2 bags, rosbag2 SQLite3 (docs/formats.md#ros-bags), written by
+# tests/support/rosbag2_writer.py (Python's sqlite3 and struct, independent of
+# the reader) from data/axis_steps.csv: joint "axis" carries the CSV's samples
+# (header stamps = its t), joint "wheel" beside it, receive times 3 ms later,
+# messages out of order, messages without "axis", another topic.
+#  - the bag's fit equals the CSV's fit to the last digit, with the same
+#    sample count, for the current schema, the old one and the bag folder;
+#  - refusals name what to give: several joints (--joint), an unknown
+#    topic or joint (found ones listed); a cut or corrupt bag is exit 3;
+#  - inspect lists the topics, the joints and the fields each carries.
+# Usage: rosbag_cli_test.sh DRIVETRAIN_FIT SRC
+set -u
+bin="$1"
+src="$2"
+program=drivetrain-fit
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work" || exit 1
+source "$src/tests/cli/cli_test_lib.sh"
+if ! python3 -c 'import sqlite3' 2> /dev/null; then
+  echo "python3 with sqlite3 not installed: the bag writer cannot run (skipped)"
+  exit 0
+fi
+writer="$src/tests/support/rosbag2_writer.py"
+python3 "$writer" "$src/data/axis_steps.csv" bag.db3 && python3 "$writer" "$src/data/axis_steps.csv" old.db3 --old-schema &&
+  python3 "$writer" "$src/data/axis_steps.csv" folder_bag --folder || { echo "FAIL: writer"; exit 1; }
+
+estimates() { sed -n '/^  estimates:/,/^  [a-z]/p' "$1" | grep '^    [a-z_]*: {value' | sed 's/  #.*//'; }
+samples() { grep -o 'samples: [0-9]*' "$1" | head -1; }
+"$bin" axis "$src/data/axis_steps.csv" -q -o csv.yaml 2> /dev/null || fail "fit of the CSV"
+for bag in bag.db3 old.db3 folder_bag; do
+  "$bin" axis "$bag" --joint axis -q -o bag.yaml 2> bag.err || { fail "fit of $bag: $(cat bag.err)"; continue; }
+  [ -n "$(estimates csv.yaml)" ] && [ "$(estimates bag.yaml)" = "$(estimates csv.yaml)" ] &&
+    [ "$(samples bag.yaml)" = "$(samples csv.yaml)" ] && ok ||
+    fail "$bag differs from the CSV: $(diff <(estimates bag.yaml; samples bag.yaml) <(estimates csv.yaml; samples csv.yaml) | head -6)"
+  grep -q "^warning: $bag: 8 messages without axis left out" bag.err && ok || fail "$bag: the left-out messages: $(cat bag.err)"
+done
+grep -q "4 messages out of time order: sorted by header stamp" bag.yaml && ok || fail "the disorder note"
+"$bin" axis bag.db3 --joint axis --time receive -q -o receive.yaml 2> /dev/null &&
+  grep -q "time t: the bag's receive times" receive.yaml && ok || fail "--time receive"
+
+expect 2 "bag.db3: topic /joint_states carries 2 joints \(wheel, axis\): give --joint NAME" -- axis bag.db3
+expect 2 "--joint elbow: bag.db3 /joint_states has no such joint \(found: wheel, axis\)" -- axis bag.db3 --joint elbow
+expect 2 "--topic /tf: bag.db3 has no such JointState topic \(found: /joint_states\)" -- axis bag.db3 --topic /tf --joint axis
+head -c 20000 bag.db3 > cut.db3
+expect 3 "cut.db3: " -- axis cut.db3 --joint axis
+{ head -c 100 bag.db3; head -c 100000 /dev/urandom; } > garbage.db3
+expect 3 "garbage.db3: " -- axis garbage.db3 --joint axis
+
+"$bin" inspect bag.db3 > inspect.txt 2>&1 || fail "inspect: $(cat inspect.txt)"
+grep -q "/joint_states: joints wheel (3608), axis (3600); position in 3608, velocity in 8, effort in 3608 of 3608" inspect.txt &&
+  grep -q "/rosout .*rcl_interfaces/msg/Log (cdr), 6 messages" inspect.txt && ok || fail "inspect: $(head -12 inspect.txt)"
+finish

@@ -1,0 +1,123 @@
+#!/usr/bin/env python3
+"""An independent rosbag2 SQLite3 writer for the tests (Python's sqlite3 and
+struct, from rosbag2's schema and the CDR rules; not driveid's reader).
+
+Takes a CSV log (t, q, tau) and writes a bag whose /joint_states topic
+carries sensor_msgs/msg/JointState messages: joint "axis" with the CSV's
+position and effort (velocity empty), joint "wheel" beside it, header stamps
+the CSV's t exactly, receive times 3 ms later with jitter; a few messages
+recorded out of order; extra messages holding only "wheel" (to be left
+out); a second topic /rosout of another type.
+
+usage: rosbag2_writer.py LOG.csv OUT.db3 [--old-schema] [--folder]
+  --old-schema: the Foxy/Galactic tables (no type_description_hash, no
+  message_definitions); --folder: OUT is a folder with metadata.yaml.
+"""
+import csv
+import os
+import random
+import sqlite3
+import struct
+import sys
+
+
+class Cdr:
+    def __init__(self):
+        self.buf = bytearray(b"\x00\x01\x00\x00")  # CDR, little-endian
+
+    def align(self, n):
+        while (len(self.buf) - 4) % n:
+            self.buf.append(0)
+
+    def u32(self, v):
+        self.align(4)
+        self.buf += struct.pack("<I", v)
+
+    def i32(self, v):
+        self.align(4)
+        self.buf += struct.pack("<i", v)
+
+    def string(self, s):
+        b = s.encode() + b"\x00"
+        self.u32(len(b))
+        self.buf += b
+
+    def doubles(self, values):
+        self.u32(len(values))
+        if values:
+            self.align(8)
+            for v in values:
+                self.buf += struct.pack("<d", v)
+
+
+def joint_state(stamp_ns, names, position, velocity, effort):
+    c = Cdr()
+    c.i32(stamp_ns // 1_000_000_000)
+    c.u32(stamp_ns % 1_000_000_000)
+    c.string("base")
+    c.u32(len(names))
+    for n in names:
+        c.string(n)
+    c.doubles(position)
+    c.doubles(velocity)
+    c.doubles(effort)
+    return bytes(c.buf)
+
+
+def main():
+    source, out = sys.argv[1], sys.argv[2]
+    old = "--old-schema" in sys.argv
+    folder = "--folder" in sys.argv
+    rng = random.Random(7)
+    rows = []
+    with open(source) as f:
+        for row in csv.reader(line for line in f if not line.startswith("#")):
+            if row[0] == "t":
+                continue
+            rows.append((float(row[0]), float(row[1]), float(row[2])))
+    db_path = out
+    if folder:
+        os.makedirs(out, exist_ok=True)
+        db_path = os.path.join(out, os.path.basename(out.rstrip("/")) + "_0.db3")
+    if os.path.exists(db_path):
+        os.remove(db_path)
+    db = sqlite3.connect(db_path)
+    hash_column = "" if old else ", type_description_hash TEXT NOT NULL"
+    db.execute("CREATE TABLE schema(schema_version INTEGER PRIMARY KEY, ros_distro TEXT NOT NULL)")
+    db.execute("INSERT INTO schema VALUES (?, ?)", (3 if old else 4, "foxy" if old else "jazzy"))
+    db.execute("CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL, "
+               f"serialization_format TEXT NOT NULL, offered_qos_profiles TEXT NOT NULL{hash_column})")
+    db.execute("CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL, timestamp INTEGER NOT NULL, "
+               "data BLOB NOT NULL)")
+    if not old:
+        db.execute("CREATE TABLE message_definitions(id INTEGER PRIMARY KEY, topic_type TEXT NOT NULL, "
+                   "encoding TEXT NOT NULL, encoded_message_definition TEXT NOT NULL, type_description_hash TEXT NOT NULL)")
+    extra = () if old else ("",)
+    db.execute(f"INSERT INTO topics VALUES (1, '/rosout', 'rcl_interfaces/msg/Log', 'cdr', ''{', ?' if extra else ''})", extra)
+    db.execute(f"INSERT INTO topics VALUES (2, '/joint_states', 'sensor_msgs/msg/JointState', 'cdr', ''{', ?' if extra else ''})",
+               extra)
+    messages = []
+    for k, (t, q, tau) in enumerate(rows):
+        stamp = round(t * 1e9)
+        receive = stamp + 3_000_000 + rng.randrange(0, 500_000)
+        data = joint_state(stamp, ["wheel", "axis"], [0.5 * q, q], [], [0.0, tau])
+        messages.append((receive, 2, data))
+        if k % 500 == 7:  # a message of the other joint only
+            messages.append((receive + 1, 2, joint_state(stamp + 1, ["wheel"], [0.0], [0.0], [0.0])))
+        if k % 700 == 3:
+            messages.append((receive + 2, 1, b"\x00\x01\x00\x00not a joint state"))
+    # A few swapped pairs: recorded out of order.
+    for k in range(100, len(messages) - 1, 900):
+        messages[k], messages[k + 1] = messages[k + 1], messages[k]
+    db.executemany("INSERT INTO messages (topic_id, timestamp, data) VALUES (?, ?, ?)",
+                   [(topic, receive, data) for receive, topic, data in messages])
+    db.commit()
+    db.close()
+    if folder:
+        with open(os.path.join(out, "metadata.yaml"), "w") as f:
+            f.write("rosbag2_bagfile_information:\n  version: 5\n  storage_identifier: sqlite3\n"
+                    f"  relative_file_paths:\n    - {os.path.basename(db_path)}\n")
+
+
+if __name__ == "__main__":
+    main()
