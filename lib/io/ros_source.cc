@@ -17,6 +17,7 @@
 
 #include "core/errors.h"
 #include "core/order_statistics.h"
+#include "io/mcap.h"
 #include "io/ros_bag.h"
 #include "io/table_source.h"
 
@@ -107,7 +108,8 @@ std::string Choose(const std::vector<std::string>& found, const std::string& wan
 
 // The table of the chosen joints (all joints of every message when none).
 std::unique_ptr<TableSource> JointTable(const std::string& path, const std::string& topic,
-                                        std::vector<JointStateMessage> messages, const SysIdFormat& format) {
+                                        std::vector<JointStateMessage> messages, const SysIdFormat& format,
+                                        std::vector<std::string> notes) {
   const auto seen = JointsSeen(messages);
   std::vector<std::string> joints = format.joints;
   std::vector<std::string> all;
@@ -123,7 +125,7 @@ std::unique_ptr<TableSource> JointTable(const std::string& path, const std::stri
       if (count == messages.size()) joints.push_back(name);
     }
   }
-  std::vector<std::string> notes = {fmt::format("ROS bag topic {} ({}), {} messages", topic, kJointState, messages.size())};
+  notes.insert(notes.begin(), fmt::format("ROS bag topic {} ({}), {} messages", topic, kJointState, messages.size()));
   // Rows: the messages that carry every chosen joint.
   std::vector<JointStateMessage> rows;
   std::size_t without = 0;
@@ -198,7 +200,17 @@ std::unique_ptr<TableSource> JointTable(const std::string& path, const std::stri
 
 std::vector<std::unique_ptr<TableSource>> OpenRosBagSources(const std::string& path, const std::string& text,
                                                             const SysIdFormat& format) {
-  const std::vector<RosTopic> topics = ReadSqliteTopics(path, text);
+  const bool mcap = LooksLikeMcap(text);
+  const auto read_topic = [&](const std::string& topic) {
+    return mcap ? ReadMcapJointStates(path, text, topic) : ReadSqliteJointStates(path, text, topic);
+  };
+  const std::vector<RosTopic> topics = mcap ? ReadMcapTopics(path, text) : ReadSqliteTopics(path, text);
+  std::vector<std::string> file_notes;
+  if (mcap && !McapComplete(text)) {
+    file_notes.push_back(fmt::format("{} the MCAP file ends without its closing magic: cut while it was written? "
+                                     "(its records up to the cut are read)",
+                                     kReaderWarning));
+  }
   std::vector<std::string> joint_topics;
   for (const auto& t : topics) {
     if (t.type == kJointState) joint_topics.push_back(t.name);
@@ -206,13 +218,13 @@ std::vector<std::unique_ptr<TableSource>> OpenRosBagSources(const std::string& p
   std::vector<std::unique_ptr<TableSource>> out;
   if (format.catalog) {
     std::vector<SourceVariable> variables;
-    std::vector<std::string> notes = {fmt::format("rosbag2 SQLite3 bag, {} topics", topics.size())};
+    std::vector<std::string> notes = {fmt::format("rosbag2 {} bag, {} topics", mcap ? "MCAP" : "SQLite3", topics.size())};
     for (const auto& t : topics) {
       const double span = static_cast<double>(t.last_ns - t.first_ns) * 1e-9;
       std::string address = fmt::format("{} ({}), {} messages", t.type, t.serialization, t.messages);
       if (t.messages > 1 && span > 0.0) address += fmt::format(", {:.4g} Hz over {:.4g} s", static_cast<double>(t.messages - 1) / span, span);
       if (t.type == kJointState && t.serialization == "cdr") {
-        const auto messages = ReadSqliteJointStates(path, text, t.name);
+        const auto messages = read_topic(t.name);
         std::vector<std::string> joints;
         for (const auto& [name, count] : JointsSeen(messages)) joints.push_back(fmt::format("{} ({})", name, count));
         std::size_t p = 0, v = 0, e = 0;
@@ -229,13 +241,13 @@ std::vector<std::unique_ptr<TableSource>> OpenRosBagSources(const std::string& p
     out.push_back(std::make_unique<TopicCatalog>(path, std::move(variables), std::move(notes)));
     try {
       const std::string topic = Choose(joint_topics, format.topic, "JointState topic", "topic", path);
-      out.push_back(JointTable(path, topic, ReadSqliteJointStates(path, text, topic), format));
+      out.push_back(JointTable(path, topic, read_topic(topic), format, file_notes));
     } catch (const OptionError&) {
     }
     return out;
   }
   const std::string topic = Choose(joint_topics, format.topic, "JointState topic", "topic", path);
-  out.push_back(JointTable(path, topic, ReadSqliteJointStates(path, text, topic), format));
+  out.push_back(JointTable(path, topic, read_topic(topic), format, file_notes));
   return out;
 }
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# ROS 2 bags, rosbag2 SQLite3 (docs/formats.md#ros-bags), written by
+# ROS 2 bags, rosbag2 SQLite3 and MCAP (docs/formats.md#ros-bags), written by
 # tests/support/rosbag2_writer.py (Python's sqlite3 and struct, independent of
 # the reader) from data/axis_steps.csv: joint "axis" carries the CSV's samples
 # (header stamps = its t), joint "wheel" beside it, receive times 3 ms later,
@@ -47,6 +47,33 @@ head -c 20000 bag.db3 > cut.db3
 expect 3 "cut.db3: " -- axis cut.db3 --joint axis
 { head -c 100 bag.db3; head -c 100000 /dev/urandom; } > garbage.db3
 expect 3 "garbage.db3: " -- axis garbage.db3 --joint axis
+
+# MCAP (zstd, lz4 and uncompressed chunks, a channel inside a chunk): the same
+# messages give the same fit as the db3 twin.
+"$bin" axis bag.db3 --joint axis -q -o db3.yaml 2> /dev/null
+for kind in zstd lz4 none; do
+  python3 "$writer" "$src/data/axis_steps.csv" "bag_$kind.mcap" --mcap "$kind" || { fail "MCAP writer ($kind)"; continue; }
+  "$bin" axis "bag_$kind.mcap" --joint axis -q -o mcap.yaml 2> mcap.err && [ "$(estimates mcap.yaml)" = "$(estimates db3.yaml)" ] &&
+    [ "$(samples mcap.yaml)" = "$(samples db3.yaml)" ] && ok || fail "MCAP $kind differs from the db3: $(cat mcap.err)"
+done
+# A corrupt chunk (a byte of the compressed data changed) and cuts: exit 3
+# naming the offset; never a crash or a hang (cut every 997 bytes).
+python3 - bag_zstd.mcap bad_chunk.mcap << 'PY'
+import sys
+b = bytearray(open(sys.argv[1], "rb").read())
+b[len(b) // 2] ^= 0xFF
+open(sys.argv[2], "wb").write(b)
+PY
+expect 3 "bad_chunk.mcap: MCAP (chunk|record) at offset [0-9]+" -- axis bad_chunk.mcap --joint axis
+size=$(stat -c %s bag_lz4.mcap)
+cut_failures=0
+for ((cut = 9; cut < size; cut += 997)); do
+  head -c "$cut" bag_lz4.mcap > cut.mcap
+  timeout 20 "$bin" inspect cut.mcap > /dev/null 2> cut.err
+  code=$?
+  { [ "$code" -eq 3 ] && grep -q "^drivetrain-fit: cut.mcap: MCAP" cut.err; } || cut_failures=$((cut_failures + 1))
+done
+[ "$cut_failures" -eq 0 ] && ok || fail "$cut_failures cuts of an MCAP not refused with an offset (last: $(cat cut.err))"
 
 "$bin" inspect bag.db3 > inspect.txt 2>&1 || fail "inspect: $(cat inspect.txt)"
 grep -q "/joint_states: joints wheel (3608), axis (3600); position in 3608, velocity in 8, effort in 3608 of 3608" inspect.txt &&

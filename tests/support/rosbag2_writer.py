@@ -9,16 +9,21 @@ the CSV's t exactly, receive times 3 ms later with jitter; a few messages
 recorded out of order; extra messages holding only "wheel" (to be left
 out); a second topic /rosout of another type.
 
-usage: rosbag2_writer.py LOG.csv OUT.db3 [--old-schema] [--folder]
+usage: rosbag2_writer.py LOG.csv OUT [--old-schema] [--folder] [--mcap zstd|lz4|none]
   --old-schema: the Foxy/Galactic tables (no type_description_hash, no
-  message_definitions); --folder: OUT is a folder with metadata.yaml.
+  message_definitions); --folder: OUT is a folder with metadata.yaml;
+  --mcap: the same messages as an MCAP file (the published record layout),
+  in chunks of 500 messages compressed with the zstd or lz4 command-line
+  tools (Debian's zstd, lz4), or not compressed.
 """
 import csv
 import os
 import random
 import sqlite3
 import struct
+import subprocess
 import sys
+import zlib
 
 
 class Cdr:
@@ -64,6 +69,69 @@ def joint_state(stamp_ns, names, position, velocity, effort):
     return bytes(c.buf)
 
 
+def mcap_string(s):
+    b = s.encode()
+    return struct.pack("<I", len(b)) + b
+
+
+def mcap_record(opcode, content):
+    return bytes([opcode]) + struct.pack("<Q", len(content)) + content
+
+
+def compress(kind, data):
+    if kind == "none":
+        return "", data
+    tool = {"zstd": ["zstd", "-q", "-c"], "lz4": ["lz4", "-q", "-c"]}[kind]
+    return kind, subprocess.run(tool, input=data, stdout=subprocess.PIPE, check=True).stdout
+
+
+def write_mcap(out, messages, kind):
+    """messages: (receive_ns, topic_id, data) in recording order."""
+    f = bytearray(b"\x89MCAP0\r\n")
+    f += mcap_record(0x01, mcap_string("ros2") + mcap_string("driveid test writer"))
+    f += mcap_record(0x03, struct.pack("<H", 1) + mcap_string("sensor_msgs/msg/JointState") + mcap_string("ros2msg")
+                     + mcap_string("# the message definition"))
+    f += mcap_record(0x04, struct.pack("<HH", 2, 1) + mcap_string("/joint_states") + mcap_string("cdr")
+                     + struct.pack("<I", 0))
+    # The other topic's schema and channel inside the first chunk.
+    inside = (mcap_record(0x03, struct.pack("<H", 2) + mcap_string("rcl_interfaces/msg/Log") + mcap_string("ros2msg")
+                          + mcap_string(""))
+              + mcap_record(0x04, struct.pack("<HH", 1, 2) + mcap_string("/rosout") + mcap_string("cdr")
+                            + struct.pack("<I", 0)))
+    for start in range(0, len(messages), 500):
+        part = messages[start:start + 500]
+        records = bytearray(inside if start == 0 else b"")
+        for seq, (receive, topic, data) in enumerate(part):
+            channel = 2 if topic == 2 else 1
+            records += mcap_record(0x05, struct.pack("<HIQQ", channel, seq, receive, receive) + data)
+        compression, packed = compress(kind, bytes(records))
+        times = [m[0] for m in part]
+        f += mcap_record(0x06, struct.pack("<QQQI", min(times), max(times), len(records), zlib.crc32(records))
+                         + mcap_string(compression) + struct.pack("<Q", len(packed)) + packed)
+    f += mcap_record(0x0F, struct.pack("<I", 0))
+    f += mcap_record(0x02, struct.pack("<QQI", 0, 0, 0))
+    f += b"\x89MCAP0\r\n"
+    with open(out, "wb") as stream:
+        stream.write(f)
+
+
+def make_messages(rows, rng):
+    messages = []
+    for k, (t, q, tau) in enumerate(rows):
+        stamp = round(t * 1e9)
+        receive = stamp + 3_000_000 + rng.randrange(0, 500_000)
+        data = joint_state(stamp, ["wheel", "axis"], [0.5 * q, q], [], [0.0, tau])
+        messages.append((receive, 2, data))
+        if k % 500 == 7:  # a message of the other joint only
+            messages.append((receive + 1, 2, joint_state(stamp + 1, ["wheel"], [0.0], [0.0], [0.0])))
+        if k % 700 == 3:
+            messages.append((receive + 2, 1, b"\x00\x01\x00\x00not a joint state"))
+    # A few swapped pairs: recorded out of order.
+    for k in range(100, len(messages) - 1, 900):
+        messages[k], messages[k + 1] = messages[k + 1], messages[k]
+    return messages
+
+
 def main():
     source, out = sys.argv[1], sys.argv[2]
     old = "--old-schema" in sys.argv
@@ -75,6 +143,11 @@ def main():
             if row[0] == "t":
                 continue
             rows.append((float(row[0]), float(row[1]), float(row[2])))
+    mcap = sys.argv[sys.argv.index("--mcap") + 1] if "--mcap" in sys.argv else None
+    messages = make_messages(rows, rng)
+    if mcap:
+        write_mcap(out, messages, mcap)
+        return
     db_path = out
     if folder:
         os.makedirs(out, exist_ok=True)
@@ -96,19 +169,6 @@ def main():
     db.execute(f"INSERT INTO topics VALUES (1, '/rosout', 'rcl_interfaces/msg/Log', 'cdr', ''{', ?' if extra else ''})", extra)
     db.execute(f"INSERT INTO topics VALUES (2, '/joint_states', 'sensor_msgs/msg/JointState', 'cdr', ''{', ?' if extra else ''})",
                extra)
-    messages = []
-    for k, (t, q, tau) in enumerate(rows):
-        stamp = round(t * 1e9)
-        receive = stamp + 3_000_000 + rng.randrange(0, 500_000)
-        data = joint_state(stamp, ["wheel", "axis"], [0.5 * q, q], [], [0.0, tau])
-        messages.append((receive, 2, data))
-        if k % 500 == 7:  # a message of the other joint only
-            messages.append((receive + 1, 2, joint_state(stamp + 1, ["wheel"], [0.0], [0.0], [0.0])))
-        if k % 700 == 3:
-            messages.append((receive + 2, 1, b"\x00\x01\x00\x00not a joint state"))
-    # A few swapped pairs: recorded out of order.
-    for k in range(100, len(messages) - 1, 900):
-        messages[k], messages[k + 1] = messages[k + 1], messages[k]
     db.executemany("INSERT INTO messages (topic_id, timestamp, data) VALUES (?, ?, ?)",
                    [(topic, receive, data) for receive, topic, data in messages])
     db.commit()

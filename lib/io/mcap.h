@@ -1,0 +1,33 @@
+// MCAP (docs/formats.md#ros-bags), the default rosbag2 storage since Iron,
+// read from its published specification: the magic "\x89MCAP0\r\n", then
+// records (an opcode byte, a 64-bit length, the content), little-endian.
+// Schema, Channel and Message records are read, in the data section and
+// inside Chunks (compressed with zstd or lz4 frames, or not at all; the
+// uncompressed size and CRC-32 the chunk claims are checked); index and
+// summary records are skipped. Every length is checked against the record
+// it lies in and the file; what is corrupt is refused with its offset.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "io/ros_bag.h"
+
+namespace driveid {
+
+/// True when `text` starts with the MCAP magic.
+bool LooksLikeMcap(const std::string& text);
+
+/// True when the file ends with the closing magic (a recorder that was
+/// stopped, not killed, wrote it).
+bool McapComplete(const std::string& text);
+
+/// The channels of an MCAP file as topics (type: the schema's name,
+/// serialization: the channel's message encoding), with message counts.
+std::vector<RosTopic> ReadMcapTopics(const std::string& path, const std::string& bytes);
+
+/// The messages of one JointState topic (CDR), in the file's order.
+std::vector<JointStateMessage> ReadMcapJointStates(const std::string& path, const std::string& bytes,
+                                                   const std::string& topic);
+
+}  // namespace driveid
