@@ -94,17 +94,6 @@ std::vector<std::pair<std::string, std::size_t>> JointsSeen(const std::vector<Jo
   return out;
 }
 
-std::string Choose(const std::vector<std::string>& found, const std::string& wanted, const char* what,
-                   const char* option, const std::string& path) {
-  if (!wanted.empty()) {
-    if (std::find(found.begin(), found.end(), wanted) != found.end()) return wanted;
-    throw OptionError(fmt::format("‹{}› {}: {} has no such {} (found: {})", option, wanted, path, what,
-                                  found.empty() ? std::string("none") : fmt::format("{}", fmt::join(found, ", "))));
-  }
-  if (found.size() == 1) return found.front();
-  if (found.empty()) throw InputError(fmt::format("{}: no {} topic (inspect lists the topics)", path, kJointState));
-  throw OptionError(fmt::format("{}: {} {}s ({}): give ‹{}›", path, found.size(), what, fmt::join(found, ", "), option));
-}
 
 // The table of the chosen joints (all joints of every message when none).
 std::unique_ptr<TableSource> JointTable(const std::string& path, const std::string& topic,
@@ -114,7 +103,7 @@ std::unique_ptr<TableSource> JointTable(const std::string& path, const std::stri
   std::vector<std::string> joints = format.joints;
   std::vector<std::string> all;
   for (const auto& [name, count] : seen) all.push_back(name);
-  for (const auto& j : joints) Choose(all, j, "joint", "joint", path + " " + topic);
+  for (const auto& j : joints) ChooseName(all, j, "joint", "joint", path + " " + topic);
   if (joints.empty() && all.size() > 1 && !format.catalog) {
     throw OptionError(fmt::format("{}: topic {} carries {} joints ({}): give ‹joint› NAME (repeat it for several, and "
                                   "map them with ‹col› q_motor=NAME.position ...)",
@@ -240,13 +229,13 @@ std::vector<std::unique_ptr<TableSource>> OpenRosBagSources(const std::string& p
     }
     out.push_back(std::make_unique<TopicCatalog>(path, std::move(variables), std::move(notes)));
     try {
-      const std::string topic = Choose(joint_topics, format.topic, "JointState topic", "topic", path);
+      const std::string topic = ChooseName(joint_topics, format.topic, "JointState topic", "topic", path);
       out.push_back(JointTable(path, topic, read_topic(topic), format, file_notes));
     } catch (const OptionError&) {
     }
     return out;
   }
-  const std::string topic = Choose(joint_topics, format.topic, "JointState topic", "topic", path);
+  const std::string topic = ChooseName(joint_topics, format.topic, "JointState topic", "topic", path);
   out.push_back(JointTable(path, topic, read_topic(topic), format, file_notes));
   return out;
 }

@@ -372,4 +372,16 @@ std::vector<std::unique_ptr<TableSource>> OpenTableSources(const std::string& pa
   return out;
 }
 
+std::string ChooseName(const std::vector<std::string>& found, const std::string& wanted, const char* what,
+                       const char* option, const std::string& path) {
+  if (!wanted.empty()) {
+    if (std::find(found.begin(), found.end(), wanted) != found.end()) return wanted;
+    throw OptionError(fmt::format("‹{}› {}: {} has no such {} (found: {})", option, wanted, path, what,
+                                  found.empty() ? std::string("none") : fmt::format("{}", fmt::join(found, ", "))));
+  }
+  if (found.size() == 1) return found.front();
+  if (found.empty()) throw InputError(fmt::format("{}: no {} (inspect lists what it holds)", path, what));
+  throw OptionError(fmt::format("{}: {} {}s ({}): give ‹{}›", path, found.size(), what, fmt::join(found, ", "), option));
+}
+
 }  // namespace driveid

@@ -82,6 +82,13 @@ class TableSource {
   virtual std::optional<std::size_t> Find(const std::string& reference) const;
 };
 
+/// One of the names a file offers (`found`: motors, topics, joints): the
+/// one `wanted` (OptionError listing them when absent: "‹option› NAME: PATH
+/// has no such WHAT (found: ...)"), else the only one; several and none
+/// wanted: OptionError asking for ‹option›; none at all: InputError.
+std::string ChooseName(const std::vector<std::string>& found, const std::string& wanted, const char* what,
+                       const char* option, const std::string& path);
+
 /// How to read text sources.
 struct CsvFormat {
   char delimiter = 0;      ///< 0: detect (',', ';', tab, else blanks)

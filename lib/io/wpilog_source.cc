@@ -132,16 +132,6 @@ std::map<std::string, std::vector<Run>> StateRuns(const std::vector<std::pair<st
   return runs;
 }
 
-std::string Choose(const std::vector<std::string>& found, const std::string& wanted, const char* what,
-                   const char* option, const std::string& path) {
-  if (!wanted.empty()) {
-    if (std::find(found.begin(), found.end(), wanted) != found.end()) return wanted;
-    throw OptionError(fmt::format("‹{}› {}: {} has no such {} (found: {})", option, wanted, path, what,
-                                  fmt::join(found, ", ")));
-  }
-  if (found.size() == 1) return found.front();
-  throw OptionError(fmt::format("{}: {} {}s ({}): give ‹{}›", path, found.size(), what, fmt::join(found, ", "), option));
-}
 
 std::string EntrySummary(const WpilogEntry& e) {
   const double span = static_cast<double>(e.last_us - e.first_us) * 1e-6;
@@ -382,10 +372,10 @@ std::vector<std::unique_ptr<TableSource>> OpenWpilogSources(const std::string& p
     out.push_back(std::make_unique<CatalogSource>(path, std::move(variables), std::move(notes)));
     // The tests as a fit would read them, when the routine and motor are clear.
     try {
-      const std::string mechanism = Choose(mechanisms, format.mechanism, "SysIdRoutine", "mechanism", path);
+      const std::string mechanism = ChooseName(mechanisms, format.mechanism, "SysIdRoutine", "mechanism", path);
       const Routine& routine =
           *std::find_if(routines.begin(), routines.end(), [&](const Routine& r) { return r.mechanism == mechanism; });
-      const std::string motor = Choose(routine.motors, format.motor, "motor", "motor", path);
+      const std::string motor = ChooseName(routine.motors, format.motor, "motor", "motor", path);
       for (auto& source : RoutineSources(path, text, mechanism, motor, format)) out.push_back(std::move(source));
     } catch (const OptionError&) {
     }
@@ -396,13 +386,13 @@ std::vector<std::unique_ptr<TableSource>> OpenWpilogSources(const std::string& p
                                  "sysid-test-state-<mechanism>); inspect lists its {} entries",
                                  path, index.entries.size()));
   }
-  const std::string mechanism = Choose(mechanisms, format.mechanism, "SysIdRoutine", "mechanism", path);
+  const std::string mechanism = ChooseName(mechanisms, format.mechanism, "SysIdRoutine", "mechanism", path);
   const Routine& routine = *std::find_if(routines.begin(), routines.end(), [&](const Routine& r) { return r.mechanism == mechanism; });
   if (routine.motors.empty()) {
     throw InputError(fmt::format("{}: SysIdRoutine '{}' has no motor with voltage-, position- and velocity- entries", path,
                                  mechanism));
   }
-  const std::string motor = Choose(routine.motors, format.motor, "motor", "motor", path);
+  const std::string motor = ChooseName(routine.motors, format.motor, "motor", "motor", path);
   return RoutineSources(path, text, mechanism, motor, format);
 }
 
