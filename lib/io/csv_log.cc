@@ -117,14 +117,15 @@ void CheckTextChunk(const std::string& path, std::string_view chunk, std::size_t
 }
 
 // The file's first chunk says whether it is lines: JSON (SysId writes one
-// long line), MAT, HDF5, WPILog, SQLite and MCAP (rosbag2) files are not.
+// long line), MAT, HDF5, WPILog, SQLite and MCAP (rosbag2) and ROS 1 bag
+// files are not.
 bool IsStructured(std::string_view chunk) {
   std::size_t i = chunk.size() >= 3 && chunk.substr(0, 3) == "\xEF\xBB\xBF" ? 3 : 0;  // byte-order mark
   while (i < chunk.size() && (chunk[i] == ' ' || chunk[i] == '\n' || chunk[i] == '\r' || chunk[i] == '\t')) ++i;
   const std::string_view head = chunk.substr(i);
   return head.substr(0, 1) == "{" || head.substr(0, 7) == "MATLAB " || head.substr(0, 4) == "\x89HDF" ||
          chunk.substr(0, 6) == "WPILOG" || chunk.substr(0, 16) == std::string_view("SQLite format 3\0", 16) ||
-         chunk.substr(0, 8) == std::string_view("\x89MCAP0\r\n", 8);
+         chunk.substr(0, 8) == std::string_view("\x89MCAP0\r\n", 8) || chunk.substr(0, 13) == "#ROSBAG V2.0\n";
 }
 
 }  // namespace

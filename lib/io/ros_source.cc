@@ -18,6 +18,7 @@
 #include "core/errors.h"
 #include "core/order_statistics.h"
 #include "io/mcap.h"
+#include "io/ros1_bag.h"
 #include "io/ros_bag.h"
 #include "io/table_source.h"
 
@@ -35,7 +36,7 @@ class RosTableSource : public TableSource {
         notes_(std::move(notes)), defaults_(std::move(defaults)) {}
   std::string path() const override { return path_; }
   std::string segment() const override { return topic_; }
-  std::string format() const override { return "rosbag2"; }
+  std::string format() const override { return "rosbag"; }
   std::vector<std::string> column_names() const override { return names_; }
   std::vector<std::size_t> column_lengths() const override {
     return std::vector<std::size_t>(names_.size(), columns_.empty() ? 0 : columns_.front().size());
@@ -64,7 +65,7 @@ class TopicCatalog : public TableSource {
   TopicCatalog(std::string path, std::vector<SourceVariable> topics, std::vector<std::string> notes)
       : path_(std::move(path)), topics_(std::move(topics)), notes_(std::move(notes)) {}
   std::string path() const override { return path_; }
-  std::string format() const override { return "rosbag2"; }
+  std::string format() const override { return "rosbag"; }
   std::vector<std::string> column_names() const override { return {}; }
   std::vector<std::size_t> column_lengths() const override { return {}; }
   std::vector<SourceVariable> variables() const override { return topics_; }
@@ -189,11 +190,15 @@ std::unique_ptr<TableSource> JointTable(const std::string& path, const std::stri
 
 std::vector<std::unique_ptr<TableSource>> OpenRosBagSources(const std::string& path, const std::string& text,
                                                             const SysIdFormat& format) {
-  const bool mcap = LooksLikeMcap(text);
+  const bool mcap = LooksLikeMcap(text), ros1 = LooksLikeRos1Bag(text);
   const auto read_topic = [&](const std::string& topic) {
-    return mcap ? ReadMcapJointStates(path, text, topic) : ReadSqliteJointStates(path, text, topic);
+    return mcap ? ReadMcapJointStates(path, text, topic)
+           : ros1 ? ReadRos1JointStates(path, text, topic)
+                  : ReadSqliteJointStates(path, text, topic);
   };
-  const std::vector<RosTopic> topics = mcap ? ReadMcapTopics(path, text) : ReadSqliteTopics(path, text);
+  const std::vector<RosTopic> topics = mcap ? ReadMcapTopics(path, text)
+                                       : ros1 ? ReadRos1Topics(path, text)
+                                              : ReadSqliteTopics(path, text);
   std::vector<std::string> file_notes;
   if (mcap && !McapComplete(text)) {
     file_notes.push_back(fmt::format("{} the MCAP file ends without its closing magic: cut while it was written? "
@@ -207,12 +212,13 @@ std::vector<std::unique_ptr<TableSource>> OpenRosBagSources(const std::string& p
   std::vector<std::unique_ptr<TableSource>> out;
   if (format.catalog) {
     std::vector<SourceVariable> variables;
-    std::vector<std::string> notes = {fmt::format("rosbag2 {} bag, {} topics", mcap ? "MCAP" : "SQLite3", topics.size())};
+    std::vector<std::string> notes = {
+        fmt::format("{} bag, {} topics", mcap ? "rosbag2 MCAP" : ros1 ? "ROS 1 (2.0)" : "rosbag2 SQLite3", topics.size())};
     for (const auto& t : topics) {
       const double span = static_cast<double>(t.last_ns - t.first_ns) * 1e-9;
       std::string address = fmt::format("{} ({}), {} messages", t.type, t.serialization, t.messages);
       if (t.messages > 1 && span > 0.0) address += fmt::format(", {:.4g} Hz over {:.4g} s", static_cast<double>(t.messages - 1) / span, span);
-      if (t.type == kJointState && t.serialization == "cdr") {
+      if (t.type == kJointState && (t.serialization == "cdr" || t.serialization == "ros1")) {
         const auto messages = read_topic(t.name);
         std::vector<std::string> joints;
         for (const auto& [name, count] : JointsSeen(messages)) joints.push_back(fmt::format("{} ({})", name, count));

@@ -1,5 +1,6 @@
 #include "io/table_source.h"
 #include "io/mcap.h"
+#include "io/ros1_bag.h"
 #include "io/ros_bag.h"
 #include "io/wpilog.h"
 
@@ -356,7 +357,7 @@ std::vector<std::unique_ptr<TableSource>> OpenTableSources(const std::string& pa
     return out;
   }
   if (LooksLikeWpilog(text)) return OpenWpilogSources(path, text, sysid);
-  if (LooksLikeSqlite(text) || LooksLikeMcap(text)) return OpenRosBagSources(path, text, sysid);
+  if (LooksLikeSqlite(text) || LooksLikeMcap(text) || LooksLikeRos1Bag(text)) return OpenRosBagSources(path, text, sysid);
   if (!sysid.side.empty()) {
     throw OptionError(fmt::format("‹side› {}: {} is a {} file; ‹side› applies to SysId Drivetrain files", sysid.side,
                                   path, LooksLikeMat(text) ? "MAT" : "CSV"));

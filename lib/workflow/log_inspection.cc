@@ -97,7 +97,7 @@ InspectedLog InspectLog(const TableSource& source, const LogInputOptions& option
 
 std::string FormatLogInspection(const InspectedLog& log) {
   std::string out = fmt::format("{}{} ({})\n", log.path, log.segment.empty() ? "" : " [" + log.segment + "]", log.format);
-  const bool catalog = (log.format == "wpilog" || log.format == "rosbag2") && log.segment.empty();
+  const bool catalog = (log.format == "wpilog" || log.format == "rosbag") && log.segment.empty();
   if (log.has_time) {
     out += fmt::format("  {} samples, t = {:.6g} .. {:.6g} s ({:.6g} s), rate {:.6g} Hz, jitter {:.3g} % of the step\n",
                        log.rows, log.start, log.end, log.end - log.start, log.rate, 100.0 * log.jitter);
@@ -111,7 +111,7 @@ std::string FormatLogInspection(const InspectedLog& log) {
   if (!log.variables.empty()) {
     std::size_t width = 8;
     for (const auto& v : log.variables) width = std::max(width, std::min<std::size_t>(v.name.size(), 48));
-    const bool bag = log.format == "rosbag2";
+    const bool bag = log.format == "rosbag";
     out += fmt::format("  {:<{}} {:>13}  {}\n", !catalog ? "variable" : bag ? "topic" : "entry", width,
                        !catalog ? "size" : bag ? "messages" : "records",
                        !catalog ? "address (‹col› NAME=...)"

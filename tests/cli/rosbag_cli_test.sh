@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# ROS 2 bags, rosbag2 SQLite3 and MCAP (docs/formats.md#ros-bags), written by
+# ROS bags, rosbag2 SQLite3 and MCAP, ROS 1 (docs/formats.md#ros-bags), written by
 # tests/support/rosbag2_writer.py (Python's sqlite3 and struct, independent of
 # the reader) from data/axis_steps.csv: joint "axis" carries the CSV's samples
 # (header stamps = its t), joint "wheel" beside it, receive times 3 ms later,
@@ -74,6 +74,25 @@ for ((cut = 9; cut < size; cut += 997)); do
   { [ "$code" -eq 3 ] && grep -q "^drivetrain-fit: cut.mcap: MCAP" cut.err; } || cut_failures=$((cut_failures + 1))
 done
 [ "$cut_failures" -eq 0 ] && ok || fail "$cut_failures cuts of an MCAP not refused with an offset (last: $(cat cut.err))"
+
+# ROS 1 bags (format 2.0; bz2, lz4 and uncompressed chunks; a second
+# JointState topic): the same fit as the db3; --topic chosen by name.
+for kind in bz2 lz4 none; do
+  python3 "$writer" "$src/data/axis_steps.csv" "ros1_$kind.bag" --ros1 "$kind" || { fail "ROS 1 writer ($kind)"; continue; }
+  "$bin" axis "ros1_$kind.bag" --topic /joint_states --joint axis -q -o ros1.yaml 2> ros1.err &&
+    [ "$(estimates ros1.yaml)" = "$(estimates db3.yaml)" ] && [ "$(samples ros1.yaml)" = "$(samples db3.yaml)" ] && ok ||
+    fail "ROS 1 $kind differs from the db3: $(cat ros1.err)"
+done
+expect 2 "ros1_bz2.bag: 2 JointState topics \(/joint_states, /gripper/joint_states\): give --topic" -- axis ros1_bz2.bag --joint axis
+"$bin" inspect ros1_lz4.bag > inspect1.txt 2>&1 && grep -q "ROS 1 (2.0) bag, 2 topics" inspect1.txt &&
+  grep -q "/gripper/joint_states: joints finger (15)" inspect1.txt && ok || fail "inspect of a ROS 1 bag: $(head -8 inspect1.txt)"
+python3 - ros1_bz2.bag bad.bag << 'PY'
+import sys
+b = bytearray(open(sys.argv[1], "rb").read())
+b[6000] ^= 0xFF  # inside the first chunk's compressed data
+open(sys.argv[2], "wb").write(b)
+PY
+expect 3 "bad.bag: ROS bag (chunk|record) at offset [0-9]+" -- axis bad.bag --topic /joint_states --joint axis
 
 "$bin" inspect bag.db3 > inspect.txt 2>&1 || fail "inspect: $(cat inspect.txt)"
 grep -q "/joint_states: joints wheel (3608), axis (3600); position in 3608, velocity in 8, effort in 3608 of 3608" inspect.txt &&

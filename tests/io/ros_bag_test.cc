@@ -4,6 +4,7 @@
 // crash or an allocation of what a length claims); a sequence claiming
 // 2^32 - 1 elements refused before anything is allocated.
 #include "io/ros_bag.h"
+#include "io/ros1_bag.h"
 
 #include <cstdint>
 #include <cstring>
@@ -103,4 +104,41 @@ TEST_CASE("lengths that claim more than the message holds are refused before all
   n.U32(1'500'000'000U);  // nanosec beyond a second
   n.String("");
   CHECK_THROWS_WITH(DecodeJointStateCdr("m", n.bytes().data(), n.bytes().size()), Catch::Contains("nanosec = 1500000000"));
+}
+
+TEST_CASE("a ROS 1 JointState: read back; cut at every byte refused; huge counts refused before allocating") {
+  std::string m;
+  const auto u32 = [&](std::uint32_t v) { m.append(reinterpret_cast<const char*>(&v), 4); };
+  const auto str = [&](const std::string& s) {
+    u32(static_cast<std::uint32_t>(s.size()));
+    m += s;
+  };
+  const auto doubles = [&](const std::vector<double>& v) {
+    u32(static_cast<std::uint32_t>(v.size()));
+    for (double d : v) m.append(reinterpret_cast<const char*>(&d), 8);
+  };
+  u32(7);  // seq
+  u32(3);
+  u32(500);
+  str("base");
+  u32(1);
+  str("elbow");
+  doubles({1.5});
+  doubles({});
+  doubles({-2.0});
+  const JointStateMessage read = DecodeJointStateRos1("r", m.data(), m.size());
+  CHECK(read.stamp_ns == 3'000'000'500LL);
+  CHECK(read.name == std::vector<std::string>{"elbow"});
+  CHECK(read.position == std::vector<double>{1.5});
+  CHECK(read.velocity.empty());
+  CHECK(read.effort == std::vector<double>{-2.0});
+  for (std::size_t cut = 0; cut < m.size(); ++cut) {
+    std::vector<char> exact(m.begin(), m.begin() + static_cast<std::ptrdiff_t>(cut));
+    CHECK_THROWS_AS(DecodeJointStateRos1("cut", exact.data(), exact.size()), InputError);
+  }
+  std::string huge = m.substr(0, 16);  // seq, stamp, frame "" -> then a claim
+  huge.replace(12, 4, std::string("\0\0\0\0", 4));
+  const std::uint32_t claim = 0xffffffffU;
+  huge.append(reinterpret_cast<const char*>(&claim), 4);
+  CHECK_THROWS_WITH(DecodeJointStateRos1("h", huge.data(), huge.size()), Catch::Contains("h: name[] claims 4294967295 elements"));
 }

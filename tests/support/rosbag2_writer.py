@@ -9,12 +9,16 @@ the CSV's t exactly, receive times 3 ms later with jitter; a few messages
 recorded out of order; extra messages holding only "wheel" (to be left
 out); a second topic /rosout of another type.
 
-usage: rosbag2_writer.py LOG.csv OUT [--old-schema] [--folder] [--mcap zstd|lz4|none]
+usage: rosbag2_writer.py LOG.csv OUT [--old-schema] [--folder] [--mcap zstd|lz4|none] [--ros1 bz2|lz4|none]
   --old-schema: the Foxy/Galactic tables (no type_description_hash, no
   message_definitions); --folder: OUT is a folder with metadata.yaml;
   --mcap: the same messages as an MCAP file (the published record layout),
   in chunks of 500 messages compressed with the zstd or lz4 command-line
-  tools (Debian's zstd, lz4), or not compressed.
+  tools (Debian's zstd, lz4), or not compressed;
+  --ros1: the same messages in a ROS 1 bag (format 2.0: records of
+  "name=value" header fields and data; ROS serialisation; chunks of 500
+  messages compressed with Python's bz2, the lz4 tool, or not), with a
+  second JointState topic /gripper/joint_states.
 """
 import csv
 import os
@@ -24,6 +28,7 @@ import struct
 import subprocess
 import sys
 import zlib
+import bz2
 
 
 class Cdr:
@@ -132,6 +137,91 @@ def make_messages(rows, rng):
     return messages
 
 
+def ros1_record(fields, data):
+    header = b"".join(struct.pack("<I", len(k) + 1 + len(v)) + k + b"=" + v for k, v in fields)
+    return struct.pack("<I", len(header)) + header + struct.pack("<I", len(data)) + data
+
+
+def ros1_string(s):
+    b = s.encode()
+    return struct.pack("<I", len(b)) + b
+
+
+def ros1_joint_state(seq, stamp_ns, names, position, velocity, effort):
+    out = struct.pack("<III", seq, stamp_ns // 1_000_000_000, stamp_ns % 1_000_000_000) + ros1_string("base")
+    out += struct.pack("<I", len(names)) + b"".join(ros1_string(n) for n in names)
+    for values in (position, velocity, effort):
+        out += struct.pack("<I", len(values)) + b"".join(struct.pack("<d", v) for v in values)
+    return out
+
+
+def cdr_to_ros1(seq, data):
+    """Re-serialises one of make_messages' CDR JointStates for ROS 1."""
+    at = 4
+    def align(n):
+        nonlocal at
+        while (at - 4) % n:
+            at += 1
+    def u32():
+        nonlocal at
+        align(4)
+        v = struct.unpack_from("<I", data, at)[0]
+        at += 4
+        return v
+    def string():
+        nonlocal at
+        n = u32()
+        v = data[at:at + n - 1].decode()
+        at += n
+        return v
+    def doubles():
+        nonlocal at
+        n = u32()
+        if n:
+            align(8)
+        v = list(struct.unpack_from("<%dd" % n, data, at))
+        at += 8 * n
+        return v
+    sec = u32()
+    nsec = u32()
+    string()
+    names = [string() for _ in range(u32())]
+    return ros1_joint_state(seq, sec * 1_000_000_000 + nsec, names, doubles(), doubles(), doubles())
+
+
+def write_ros1(out, messages, kind):
+    connections = [(0, "/joint_states"), (1, "/gripper/joint_states")]
+    def connection(conn, topic):
+        info = b"".join(struct.pack("<I", len(k) + 1 + len(v)) + k + b"=" + v for k, v in [
+            (b"topic", topic.encode()), (b"type", b"sensor_msgs/JointState"),
+            (b"md5sum", b"3066dcd76a6cfaef579bd0f34173e9fd"), (b"message_definition", b"# JointState")])
+        return ros1_record([(b"op", b"\x07"), (b"conn", struct.pack("<I", conn)), (b"topic", topic.encode())], info)
+    f = bytearray(b"#ROSBAG V2.0\n")
+    f += ros1_record([(b"op", b"\x03"), (b"index_pos", struct.pack("<Q", 0)), (b"conn_count", struct.pack("<I", 2)),
+                      (b"chunk_count", struct.pack("<I", 0))], b" " * 4000)
+    joint = [m for m in messages if m[1] == 2]
+    for start in range(0, len(joint), 500):
+        records = bytearray(b"".join(connection(c, t) for c, t in connections) if start == 0 else b"")
+        for seq, (receive, _, data) in enumerate(joint[start:start + 500], start):
+            time = struct.pack("<II", receive // 1_000_000_000, receive % 1_000_000_000)
+            records += ros1_record([(b"op", b"\x02"), (b"conn", struct.pack("<I", 0)), (b"time", time)], cdr_to_ros1(seq, data))
+            if seq % 250 == 0:  # the gripper's own topic
+                gripper = ros1_joint_state(seq, receive, ["finger"], [0.01], [0.0], [0.5])
+                records += ros1_record([(b"op", b"\x02"), (b"conn", struct.pack("<I", 1)), (b"time", time)], gripper)
+        if kind == "bz2":
+            packed = bz2.compress(bytes(records))
+        elif kind == "lz4":
+            packed = subprocess.run(["lz4", "-q", "-c"], input=bytes(records), stdout=subprocess.PIPE, check=True).stdout
+        else:
+            packed = bytes(records)
+        f += ros1_record([(b"op", b"\x05"), (b"compression", kind.encode()), (b"size", struct.pack("<I", len(records)))],
+                         packed)
+    for c, t in connections:  # the index section repeats the connections
+        f += connection(c, t)
+    with open(out, "wb") as stream:
+        stream.write(f)
+
+
 def main():
     source, out = sys.argv[1], sys.argv[2]
     old = "--old-schema" in sys.argv
@@ -147,6 +237,9 @@ def main():
     messages = make_messages(rows, rng)
     if mcap:
         write_mcap(out, messages, mcap)
+        return
+    if "--ros1" in sys.argv:
+        write_ros1(out, messages, sys.argv[sys.argv.index("--ros1") + 1])
         return
     db_path = out
     if folder:

@@ -1,0 +1,32 @@
+// ROS 1 bags, format 2.0 (docs/formats.md#ros-bags), read from the
+// published format: the line "#ROSBAG V2.0", then records, each a header
+// (length-prefixed "name=value" fields, `op` the record type) and data.
+// Connection records (op 7) name the topic and type; message data records
+// (op 2) hold a connection id, the receive time and the message in ROS
+// serialisation; chunks (op 5) hold both, compressed with bz2 (libbz2) or
+// lz4 (liblz4 frames) or not; index records are skipped. Every length is
+// checked against the record and the file; a chunk's claimed size (at most
+// 1 GiB) against what it inflates to.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "io/ros_bag.h"
+
+namespace driveid {
+
+/// True when `text` starts with "#ROSBAG V2.0".
+bool LooksLikeRos1Bag(const std::string& text);
+
+/// The connections of a ROS 1 bag as topics (serialization "ros1").
+std::vector<RosTopic> ReadRos1Topics(const std::string& path, const std::string& bytes);
+
+/// The messages of one sensor_msgs/JointState topic, in the file's order.
+std::vector<JointStateMessage> ReadRos1JointStates(const std::string& path, const std::string& bytes,
+                                                   const std::string& topic);
+
+/// Decodes a ROS-serialised sensor_msgs/JointState; InputError naming `where`.
+JointStateMessage DecodeJointStateRos1(const std::string& where, const char* data, std::size_t size);
+
+}  // namespace driveid
