@@ -64,6 +64,10 @@ void AddLogInputOptions(CLI::App& command, LogInputCli& options, const std::stri
                        "ROS bag: the joint whose position, velocity and effort are q, qd and tau (repeat for several: "
                        "their messages make the rows; map them with --col q_motor=NAME.position ...)");
   }
+  command.add_option("--joint-motor", options.joint_motor,
+                     "ROS bag, elastic joint: the joint whose position, velocity and effort are q_motor, qd_motor and tau");
+  command.add_option("--joint-link", options.joint_link,
+                     "ROS bag, elastic joint: the joint whose position and velocity are q_link and qd_link");
   command.add_option("--time", options.time,
                      "ROS bag: the time base, header (the messages' stamps, default) or receive (the bag's times)")
       ->check(CLI::IsMember({"header", "receive"}));
@@ -97,6 +101,8 @@ LogInputOptions MakeLogInputOptions(const LogInputCli& options) {
   out.sysid.topic = options.topic;
   out.sysid.joints = options.joints;
   out.sysid.time = options.time;
+  out.sysid.joint_motor = options.joint_motor;
+  out.sysid.joint_link = options.joint_link;
   out.rate = options.rate;
   if (std::isfinite(options.from)) out.from = options.from;
   if (std::isfinite(options.to)) out.to = options.to;

@@ -33,6 +33,7 @@ struct LogInputCli {
   std::string topic;                   ///< ROS bags: --topic, --joint (repeated), --time header|receive
   std::vector<std::string> joints;
   std::string time = "header";
+  std::string joint_motor, joint_link;  ///< ROS bags, an elastic joint: --joint-motor, --joint-link
 };
 
 /// Every input file of a command reading logs: the logs, the parameter file,

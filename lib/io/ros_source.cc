@@ -102,6 +102,9 @@ std::unique_ptr<TableSource> JointTable(const std::string& path, const std::stri
                                         std::vector<std::string> notes) {
   const auto seen = JointsSeen(messages);
   std::vector<std::string> joints = format.joints;
+  for (const std::string* j : {&format.joint_motor, &format.joint_link}) {
+    if (!j->empty() && std::find(joints.begin(), joints.end(), *j) == joints.end()) joints.push_back(*j);
+  }
   std::vector<std::string> all;
   for (const auto& [name, count] : seen) all.push_back(name);
   for (const auto& j : joints) ChooseName(all, j, "joint", "joint", path + " " + topic);
@@ -179,7 +182,11 @@ std::unique_ptr<TableSource> JointTable(const std::string& path, const std::stri
       }
       names.push_back(j + "." + field);
       columns.push_back(std::move(values));
-      if (joints.size() == 1) defaults[logical] = j + "." + field;
+      const std::string column = j + "." + field;
+      if (joints.size() == 1) defaults[logical] = column;
+      // The elastic joint: the motor joint's effort is the motor torque.
+      if (j == format.joint_motor) defaults[std::string(logical) == "tau" ? "tau" : std::string(logical) + "_motor"] = column;
+      if (j == format.joint_link && std::string(logical) != "tau") defaults[std::string(logical) + "_link"] = column;
     }
   }
   return std::make_unique<RosTableSource>(path, topic, std::move(names), std::move(columns), std::move(notes),

@@ -112,6 +112,10 @@ struct SysIdFormat {
   std::string topic;
   std::vector<std::string> joints;
   std::string time = "header";
+  /// An elastic joint's two encoders in a bag: q_motor, qd_motor, tau from
+  /// the motor joint, q_link, qd_link from the link joint (its effort is a
+  /// column, J.effort, not tau_link by default).
+  std::string joint_motor, joint_link;
 };
 
 /// Opens a file already in memory (`text` must outlive the sources) as one or more sources (a SysId file has

@@ -94,6 +94,14 @@ open(sys.argv[2], "wb").write(b)
 PY
 expect 3 "bad.bag: ROS bag (chunk|record) at offset [0-9]+" -- axis bad.bag --topic /joint_states --joint axis
 
+# An elastic joint's two encoders in one topic: --joint-motor, --joint-link
+# give the joint fit the CSV's columns; the same estimates as the CSV.
+python3 "$writer" "$src/data/joint_example.csv" elastic.db3 --elastic || fail "elastic writer"
+"$bin" joint "$src/data/joint_example.csv" --params "$src/data/joint_start.yaml" --method id -q -o joint_csv.yaml 2> /dev/null
+"$bin" joint elastic.db3 --joint-motor motor --joint-link link --params "$src/data/joint_start.yaml" --method id -q \
+  -o joint_bag.yaml 2> joint.err && [ -n "$(estimates joint_csv.yaml)" ] && [ "$(estimates joint_bag.yaml)" = "$(estimates joint_csv.yaml)" ] &&
+  ok || fail "elastic joint from a bag: $(cat joint.err) $(diff <(estimates joint_bag.yaml) <(estimates joint_csv.yaml) | head -4)"
+
 "$bin" inspect bag.db3 > inspect.txt 2>&1 || fail "inspect: $(cat inspect.txt)"
 grep -q "/joint_states: joints wheel (3608), axis (3600); position in 3608, velocity in 8, effort in 3608 of 3608" inspect.txt &&
   grep -q "/rosout .*rcl_interfaces/msg/Log (cdr), 6 messages" inspect.txt && ok || fail "inspect: $(head -12 inspect.txt)"

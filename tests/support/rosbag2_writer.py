@@ -9,7 +9,7 @@ the CSV's t exactly, receive times 3 ms later with jitter; a few messages
 recorded out of order; extra messages holding only "wheel" (to be left
 out); a second topic /rosout of another type.
 
-usage: rosbag2_writer.py LOG.csv OUT [--old-schema] [--folder] [--mcap zstd|lz4|none] [--ros1 bz2|lz4|none]
+usage: rosbag2_writer.py LOG.csv OUT [--elastic] [--old-schema] [--folder] [--mcap zstd|lz4|none] [--ros1 bz2|lz4|none]
   --old-schema: the Foxy/Galactic tables (no type_description_hash, no
   message_definitions); --folder: OUT is a folder with metadata.yaml;
   --mcap: the same messages as an MCAP file (the published record layout),
@@ -18,7 +18,9 @@ usage: rosbag2_writer.py LOG.csv OUT [--old-schema] [--folder] [--mcap zstd|lz4|
   --ros1: the same messages in a ROS 1 bag (format 2.0: records of
   "name=value" header fields and data; ROS serialisation; chunks of 500
   messages compressed with Python's bz2, the lz4 tool, or not), with a
-  second JointState topic /gripper/joint_states.
+  second JointState topic /gripper/joint_states;
+  --elastic: LOG.csv is an elastic joint's (t, q_motor, q_link, tau): the
+  joints "motor" (q_motor, effort tau) and "link" (q_link, effort 0).
 """
 import csv
 import os
@@ -222,6 +224,23 @@ def write_ros1(out, messages, kind):
         stream.write(f)
 
 
+def write_elastic(out, rows):
+    """An elastic joint's log as a db3 of JointState messages (motor, link)."""
+    if os.path.exists(out):
+        os.remove(out)
+    db = sqlite3.connect(out)
+    db.execute("CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL, "
+               "serialization_format TEXT NOT NULL, offered_qos_profiles TEXT NOT NULL, type_description_hash TEXT NOT NULL)")
+    db.execute("CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL, timestamp INTEGER NOT NULL, "
+               "data BLOB NOT NULL)")
+    db.execute("INSERT INTO topics VALUES (1, '/joint_states', 'sensor_msgs/msg/JointState', 'cdr', '', '')")
+    db.executemany("INSERT INTO messages (topic_id, timestamp, data) VALUES (1, ?, ?)",
+                   [(round(t * 1e9) + 2_000_000, joint_state(round(t * 1e9), ["motor", "link"], [qm, ql], [], [tau, 0.0]))
+                    for t, qm, ql, tau in rows])
+    db.commit()
+    db.close()
+
+
 def main():
     source, out = sys.argv[1], sys.argv[2]
     old = "--old-schema" in sys.argv
@@ -232,7 +251,10 @@ def main():
         for row in csv.reader(line for line in f if not line.startswith("#")):
             if row[0] == "t":
                 continue
-            rows.append((float(row[0]), float(row[1]), float(row[2])))
+            rows.append(tuple(float(x) for x in row))
+    if "--elastic" in sys.argv:
+        write_elastic(out, rows)
+        return
     mcap = sys.argv[sys.argv.index("--mcap") + 1] if "--mcap" in sys.argv else None
     messages = make_messages(rows, rng)
     if mcap:
