@@ -9,7 +9,6 @@
 #include <string_view>
 
 #include <fmt/format.h>
-#include <lz4frame.h>
 
 #include "core/errors.h"
 
@@ -84,21 +83,8 @@ std::string Inflate(const std::string& path, std::size_t offset, std::string_vie
     out.resize(got);
   } else if (compression == "lz4") {
     out.resize(size);
-    LZ4F_dctx* context = nullptr;
-    if (LZ4F_isError(LZ4F_createDecompressionContext(&context, LZ4F_VERSION))) {
-      throw InputError(fmt::format("{}: ROS bag chunk at offset {}: no lz4 context", path, offset));
-    }
-    std::unique_ptr<LZ4F_dctx, decltype(&LZ4F_freeDecompressionContext)> guard(context, LZ4F_freeDecompressionContext);
-    std::size_t written = 0, read = 0;
-    while (read < data.size()) {
-      std::size_t out_size = out.size() - written, in_size = data.size() - read;
-      const std::size_t hint = LZ4F_decompress(context, out.data() + written, &out_size, data.data() + read, &in_size, nullptr);
-      if (LZ4F_isError(hint)) throw InputError(fmt::format("{}: ROS bag chunk at offset {}: lz4: {}", path, offset, LZ4F_getErrorName(hint)));
-      written += out_size;
-      read += in_size;
-      if (hint == 0 || (out_size == 0 && in_size == 0)) break;
-    }
-    out.resize(written);
+    const std::string error = InflateLz4Frame(data.data(), data.size(), out);
+    if (!error.empty()) throw InputError(fmt::format("{}: ROS bag chunk at offset {}: lz4: {}", path, offset, error));
   } else {
     throw InputError(fmt::format("{}: ROS bag chunk at offset {}: compression '{}' (bz2, lz4 or none)", path, offset,
                                  std::string(compression.substr(0, 40))));

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <memory>
 
+#include <lz4frame.h>
 #include <fastcdr/Cdr.h>
 #include <fastcdr/FastBuffer.h>
 #include <fastcdr/exceptions/Exception.h>
@@ -180,6 +181,23 @@ JointStateMessage DecodeJointStateCdr(const std::string& where, const char* data
     throw InputError(fmt::format("{}: not a sensor_msgs/msg/JointState in CDR ({})", where, e.what()));
   }
   return m;
+}
+
+std::string InflateLz4Frame(const char* data, std::size_t size, std::string& out) {
+  LZ4F_dctx* context = nullptr;
+  if (LZ4F_isError(LZ4F_createDecompressionContext(&context, LZ4F_VERSION))) return "no lz4 context";
+  std::unique_ptr<LZ4F_dctx, decltype(&LZ4F_freeDecompressionContext)> guard(context, LZ4F_freeDecompressionContext);
+  std::size_t written = 0, read = 0;
+  while (read < size) {
+    std::size_t out_size = out.size() - written, in_size = size - read;
+    const std::size_t hint = LZ4F_decompress(context, out.data() + written, &out_size, data + read, &in_size, nullptr);
+    if (LZ4F_isError(hint)) return LZ4F_getErrorName(hint);
+    written += out_size;
+    read += in_size;
+    if (hint == 0 || (out_size == 0 && in_size == 0)) break;  // the frame's end, or more output than claimed
+  }
+  out.resize(written);
+  return "";
 }
 
 }  // namespace driveid

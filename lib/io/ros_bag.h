@@ -44,6 +44,11 @@ std::vector<RosTopic> ReadSqliteTopics(const std::string& path, const std::strin
 std::vector<JointStateMessage> ReadSqliteJointStates(const std::string& path, const std::string& bytes,
                                                      const std::string& topic);
 
+/// Inflates an lz4 frame (MCAP and ROS 1 bag chunks) into `out`, sized to
+/// the bytes it claims; "" on success, else liblz4's reason (or that the
+/// frame holds more than `out` can take).
+std::string InflateLz4Frame(const char* data, std::size_t size, std::string& out);
+
 /// Decodes a CDR-serialised sensor_msgs/msg/JointState (with its 4-byte
 /// encapsulation header); throws InputError naming `where`.
 JointStateMessage DecodeJointStateCdr(const std::string& where, const char* data, std::size_t size);
