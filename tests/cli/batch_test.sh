@@ -77,4 +77,11 @@ code=$?
 started=$(date +%s)
 "$src/scripts/batch-fit" -o quick --progress 60 "$bin" step --params "$src/data/paper000_start.yaml" ::: logs/step_1.csv 2>&1 | cat > /dev/null
 [ $(($(date +%s) - started)) -lt 30 ] || fail "batch-fit | cat waited for the progress sleep"
+# --list with a binary (the tool's path taken as the list when --list has
+# no value): refused at once (fuzz-options found a 240 s hang reading it).
+started=$(date +%s)
+"$src/scripts/batch-fit" -o binary_list --list "$bin" step ::: logs/step_1.csv > /dev/null 2> list.err
+code=$?
+[ "$code" -eq 2 ] && grep -q "not a list of paths" list.err && [ $(($(date +%s) - started)) -lt 10 ] ||
+  fail "--list of a binary: exit $code after $(($(date +%s) - started)) s: $(cat list.err)"
 if [ "$failed" -eq 0 ]; then echo "1 passed, 0 failed"; else echo "0 passed, $failed failed"; exit 1; fi

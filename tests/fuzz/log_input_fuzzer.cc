@@ -2,7 +2,9 @@
 // MAT v5/v7.3 through libmatio, WPILib SysId JSON, header-less CSV with
 // column expressions — must accept or refuse (InputError, OptionError) any
 // bytes, never crash, hang or throw anything else. The first byte picks the
-// reader: 0 MAT, 1 SysId JSON, 2 CSV.
+// reader: 0 MAT, 1 SysId JSON, 2 CSV, 3 WPILog (its catalog, then a
+// routine's tests), 4 ROS bags (rosbag2 SQLite3, MCAP, ROS 1: the catalog,
+// then a JointState topic's table).
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -15,7 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string text(reinterpret_cast<const char*>(data) + 1, size - 1);
   driveid::LogInputOptions options;
   try {
-    switch (data[0] % 3) {
+    switch (data[0] % 5) {
       case 0: {
         const auto source = driveid::OpenMatSource("fuzz.mat", text);
         options.columns = {{"t", "data(:,1)"}, {"q", "J*data(:,2)"}, {"tau", "data(1,:)"}};
@@ -25,6 +27,20 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       case 1: {
         driveid::SysIdFormat sides{"both"};
         for (const auto& source : driveid::OpenSysIdSources("fuzz.json", text, sides)) {
+          driveid::ReadLogColumns(*source, {"t", "q", "tau|i"}, options);
+        }
+        break;
+      }
+      case 3:
+      case 4: {
+        driveid::SysIdFormat format;
+        format.catalog = true;
+        format.joints = {"axis"};
+        format.topic = "/joint_states";
+        format.motor = "leader";
+        const auto open = data[0] % 5 == 3 ? driveid::OpenWpilogSources : driveid::OpenRosBagSources;
+        for (const auto& source : open("fuzz.log", text, format)) {
+          if (source->column_names().empty()) continue;  // the catalog
           driveid::ReadLogColumns(*source, {"t", "q", "tau|i"}, options);
         }
         break;

@@ -12,10 +12,11 @@ Beside the routine: a second motor ('follower'), a struct entry, an
 NT-mirrored entry with negative (retained) timestamps, a Finish and a
 Set-metadata control record.
 
-usage: wpilog_writer.py OUT.wpilog [--same-times CSV_PREFIX] [--seed N]
+usage: wpilog_writer.py OUT.wpilog [--same-times CSV_PREFIX] [--seed N] [--short]
   --same-times: the three entries share each loop's timestamp, and each
   test's samples are written to CSV_PREFIX<test>.csv (t, voltage, position,
-  velocity) exactly as logged, for a round trip.
+  velocity) exactly as logged, for a round trip; --short: tests of 0.2 s
+  (a small file, e.g. a fuzzing seed).
 """
 import math
 import random
@@ -91,6 +92,8 @@ def main():
 
     tests = [("quasistatic-forward", 1.5), ("quasistatic-forward", 5.0), ("quasistatic-reverse", 5.0),
              ("dynamic-forward", 2.5), ("dynamic-reverse", 2.5)]
+    if "--short" in sys.argv:
+        tests = [(name, 0.2) for name, _ in tests]
     t = 2.0  # s
     v = 0.0
     q = 0.0
