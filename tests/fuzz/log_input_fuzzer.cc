@@ -25,7 +25,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         break;
       }
       case 1: {
-        driveid::SysIdFormat sides{"both"};
+        driveid::SysIdFormat sides;
+        sides.side = "both";
         for (const auto& source : driveid::OpenSysIdSources("fuzz.json", text, sides)) {
           driveid::ReadLogColumns(*source, {"t", "q", "tau|i"}, options);
         }
