@@ -96,7 +96,9 @@ std::string ResolveBagPath(const std::string& path) {
       if (entry.is_regular_file() && (ext == ".db3" || ext == ".mcap")) files.push_back(entry.path().filename().string());
     }
   }
-  if (files.empty()) throw InputError(fmt::format("{}: a folder without a rosbag2 storage file (.db3, .mcap)", path));
+  if (files.empty()) {
+    throw InputError(fmt::format("{}: is a directory, not a file (nor a rosbag2 bag's folder: no .db3 or .mcap in it)", path));
+  }
   if (files.size() > 1) {
     throw InputError(fmt::format("{}: a bag split over {} files ({}): give them one by one, each a log", path,
                                  files.size(), fmt::join(files, ", ")));
