@@ -352,12 +352,32 @@ std::unique_ptr<TableSource> JoinSources(std::unique_ptr<TableSource> first, std
 std::vector<std::unique_ptr<TableSource>> OpenTableSources(const std::string& path, const std::string& text,
                                                            const CsvFormat& csv, const SysIdFormat& sysid) {
   std::vector<std::unique_ptr<TableSource>> out;
+  const bool wpilog = LooksLikeWpilog(text);
+  const bool bag = LooksLikeSqlite(text) || LooksLikeMcap(text) || LooksLikeRos1Bag(text);
+  // An option of another format is refused by name, not ignored.
+  const char* wpilog_option = !sysid.mechanism.empty() ? "mechanism" : !sysid.motor.empty() ? "motor"
+                              : !sysid.test.empty()    ? "test"
+                                                       : nullptr;
+  if (wpilog_option != nullptr && !wpilog) {
+    throw OptionError(fmt::format("‹{}›: {} is no WPILog; ‹{}› chooses in a SysIdRoutine's .wpilog", wpilog_option, path,
+                                  wpilog_option));
+  }
+  const char* bag_option = !sysid.topic.empty()          ? "topic"
+                           : !sysid.joints.empty()       ? "joint"
+                           : !sysid.joint_motor.empty()  ? "joint_motor"
+                           : !sysid.joint_link.empty()   ? "joint_link"
+                           : sysid.time != "header"      ? "time"
+                                                         : nullptr;
+  if (bag_option != nullptr && !bag) {
+    throw OptionError(fmt::format("‹{}›: {} is no ROS bag; ‹{}› chooses in a bag's JointState topic", bag_option, path,
+                                  bag_option));
+  }
   if (LooksLikeJson(text)) {
     out = OpenSysIdSources(path, text, sysid);
     return out;
   }
-  if (LooksLikeWpilog(text)) return OpenWpilogSources(path, text, sysid);
-  if (LooksLikeSqlite(text) || LooksLikeMcap(text) || LooksLikeRos1Bag(text)) return OpenRosBagSources(path, text, sysid);
+  if (wpilog) return OpenWpilogSources(path, text, sysid);
+  if (bag) return OpenRosBagSources(path, text, sysid);
   if (!sysid.side.empty()) {
     throw OptionError(fmt::format("‹side› {}: {} is a {} file; ‹side› applies to SysId Drivetrain files", sysid.side,
                                   path, LooksLikeMat(text) ? "MAT" : "CSV"));

@@ -42,6 +42,8 @@ grep -q "4 messages out of time order: sorted by header stamp" bag.yaml && ok ||
 
 expect 2 "bag.db3: topic /joint_states carries 2 joints \(wheel, axis\): give --joint NAME" -- axis bag.db3
 expect 2 "--joint elbow: bag.db3 /joint_states has no such joint \(found: wheel, axis\)" -- axis bag.db3 --joint elbow
+expect 2 "--joint: .*axis_steps.csv is no ROS bag; --joint chooses in a bag's JointState topic" -- axis "$src/data/axis_steps.csv" --joint axis
+expect 2 "--motor: bag.db3 is no WPILog" -- axis bag.db3 --joint axis --motor leader
 expect 2 "--topic /tf: bag.db3 has no such JointState topic \(found: /joint_states\)" -- axis bag.db3 --topic /tf --joint axis
 head -c 20000 bag.db3 > cut.db3
 expect 3 "cut.db3: " -- axis cut.db3 --joint axis
