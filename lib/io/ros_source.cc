@@ -27,57 +27,6 @@ namespace {
 
 constexpr const char* kJointState = "sensor_msgs/msg/JointState";
 
-class RosTableSource : public TableSource {
- public:
-  RosTableSource(std::string path, std::string topic, std::vector<std::string> names,
-                 std::vector<std::vector<double>> columns, std::vector<std::string> notes,
-                 std::map<std::string, std::string> defaults)
-      : path_(std::move(path)), topic_(std::move(topic)), names_(std::move(names)), columns_(std::move(columns)),
-        notes_(std::move(notes)), defaults_(std::move(defaults)) {}
-  std::string path() const override { return path_; }
-  std::string segment() const override { return topic_; }
-  std::string format() const override { return "rosbag"; }
-  std::vector<std::string> column_names() const override { return names_; }
-  std::vector<std::size_t> column_lengths() const override {
-    return std::vector<std::size_t>(names_.size(), columns_.empty() ? 0 : columns_.front().size());
-  }
-  std::vector<std::string> notes() const override { return notes_; }
-  std::string DefaultReference(const std::string& logical) const override {
-    const auto found = defaults_.find(logical);
-    return found == defaults_.end() ? std::string() : found->second;
-  }
-  TableData Read(const std::vector<std::size_t>& columns) const override {
-    TableData out;
-    for (auto c : columns) out.columns.push_back(columns_.at(c));
-    return out;
-  }
-
- private:
-  std::string path_, topic_;
-  std::vector<std::string> names_;
-  std::vector<std::vector<double>> columns_;
-  std::vector<std::string> notes_;
-  std::map<std::string, std::string> defaults_;
-};
-
-class TopicCatalog : public TableSource {
- public:
-  TopicCatalog(std::string path, std::vector<SourceVariable> topics, std::vector<std::string> notes)
-      : path_(std::move(path)), topics_(std::move(topics)), notes_(std::move(notes)) {}
-  std::string path() const override { return path_; }
-  std::string format() const override { return "rosbag"; }
-  std::vector<std::string> column_names() const override { return {}; }
-  std::vector<std::size_t> column_lengths() const override { return {}; }
-  std::vector<SourceVariable> variables() const override { return topics_; }
-  std::vector<std::string> notes() const override { return notes_; }
-  TableData Read(const std::vector<std::size_t>&) const override { return {}; }
-
- private:
-  std::string path_;
-  std::vector<SourceVariable> topics_;
-  std::vector<std::string> notes_;
-};
-
 std::size_t IndexOf(const std::vector<std::string>& names, const std::string& name) {
   return static_cast<std::size_t>(std::find(names.begin(), names.end(), name) - names.begin());
 }
@@ -189,8 +138,8 @@ std::unique_ptr<TableSource> JointTable(const std::string& path, const std::stri
       if (j == format.joint_link && std::string(logical) != "tau") defaults[std::string(logical) + "_link"] = column;
     }
   }
-  return std::make_unique<RosTableSource>(path, topic, std::move(names), std::move(columns), std::move(notes),
-                                          std::move(defaults));
+  return MakeMemorySource({path, topic, "rosbag", "", "", std::move(names), std::move(columns), std::move(notes),
+                          std::move(defaults), {}});
 }
 
 }  // namespace
@@ -218,6 +167,7 @@ std::vector<std::unique_ptr<TableSource>> OpenRosBagSources(const std::string& p
   }
   std::vector<std::unique_ptr<TableSource>> out;
   if (format.catalog) {
+    std::map<std::string, std::vector<JointStateMessage>> decoded;  // read once, for the notes and the table
     std::vector<SourceVariable> variables;
     std::vector<std::string> notes = {
         fmt::format("{} bag, {} topics", mcap ? "rosbag2 MCAP" : ros1 ? "ROS 1 (2.0)" : "rosbag2 SQLite3", topics.size())};
@@ -226,7 +176,7 @@ std::vector<std::unique_ptr<TableSource>> OpenRosBagSources(const std::string& p
       std::string address = fmt::format("{} ({}), {} messages", t.type, t.serialization, t.messages);
       if (t.messages > 1 && span > 0.0) address += fmt::format(", {:.4g} Hz over {:.4g} s", static_cast<double>(t.messages - 1) / span, span);
       if (t.type == kJointState && (t.serialization == "cdr" || t.serialization == "ros1")) {
-        const auto messages = read_topic(t.name);
+        const auto& messages = decoded[t.name] = read_topic(t.name);
         std::vector<std::string> joints;
         for (const auto& [name, count] : JointsSeen(messages)) joints.push_back(fmt::format("{} ({})", name, count));
         std::size_t p = 0, v = 0, e = 0;
@@ -240,10 +190,12 @@ std::vector<std::unique_ptr<TableSource>> OpenRosBagSources(const std::string& p
       }
       variables.push_back({t.name, t.messages, 1, address});
     }
-    out.push_back(std::make_unique<TopicCatalog>(path, std::move(variables), std::move(notes)));
+    out.push_back(MakeMemorySource({path, "", "rosbag", "", "", {}, {}, std::move(notes), {}, std::move(variables)}));
     try {
       const std::string topic = ChooseName(joint_topics, format.topic, "JointState topic", "topic", path);
-      out.push_back(JointTable(path, topic, read_topic(topic), format, file_notes));
+      const auto found = decoded.find(topic);
+      out.push_back(JointTable(path, topic, found != decoded.end() ? std::move(found->second) : read_topic(topic), format,
+                               file_notes));
     } catch (const OptionError&) {
     }
     return out;

@@ -25,41 +25,6 @@ namespace {
 
 const char* const kTests[] = {"slow-forward", "slow-backward", "fast-forward", "fast-backward"};
 
-class SysIdSource : public TableSource {
- public:
-  SysIdSource(std::string path, std::string segment, std::string units, std::string mechanism,
-              std::vector<std::string> names, std::vector<std::vector<double>> columns, std::vector<std::string> notes)
-      : path_(std::move(path)), segment_(std::move(segment)), units_(std::move(units)), mechanism_(std::move(mechanism)),
-        names_(std::move(names)), columns_(std::move(columns)), notes_(std::move(notes)) {}
-  std::string units() const override { return units_; }
-  std::string mechanism() const override { return mechanism_; }
-  std::string path() const override { return path_; }
-  std::string segment() const override { return segment_; }
-  std::string format() const override { return "sysid"; }
-  std::vector<std::string> column_names() const override { return names_; }
-  std::vector<std::size_t> column_lengths() const override {
-    return std::vector<std::size_t>(names_.size(), columns_.empty() ? 0 : columns_.front().size());
-  }
-  std::vector<std::string> notes() const override { return notes_; }
-  std::string DefaultReference(const std::string& logical) const override {
-    if (logical == "q") return "position";
-    if (logical == "tau") return "voltage";
-    if (logical == "qd") return "velocity";  // the logged rate, as SysId uses it
-    return {};
-  }
-  TableData Read(const std::vector<std::size_t>& columns) const override {
-    TableData out;
-    for (auto c : columns) out.columns.push_back(columns_.at(c));
-    return out;
-  }
-
- private:
-  std::string path_, segment_, units_, mechanism_;
-  std::vector<std::string> names_;
-  std::vector<std::vector<double>> columns_;
-  std::vector<std::string> notes_;
-};
-
 // What the SAX pass collects: the scalars, and each test's samples as one
 // flat run of numbers with the width of its samples (all equal), so that
 // the file's text is the only large thing besides the numbers themselves.
@@ -271,8 +236,8 @@ std::vector<std::unique_ptr<TableSource>> OpenSysIdSources(const std::string& pa
       std::vector<std::string> notes = {
           fmt::format("SysId {} test, units {}: position and velocity x unitsPerRotation = {}", layout, units,
                       per_rotation)};
-      out.push_back(std::make_unique<SysIdSource>(path, side.empty() ? test : std::string(test) + "/" + side, units, layout,
-                                                  std::move(names), std::move(columns), std::move(notes)));
+      out.push_back(MakeMemorySource({path, side.empty() ? test : std::string(test) + "/" + side, "sysid", units, layout,
+                                      std::move(names), std::move(columns), std::move(notes), SysIdDefaults(), {}}));
     }
   }
   return out;

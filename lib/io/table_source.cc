@@ -405,4 +405,44 @@ std::string ChooseName(const std::vector<std::string>& found, const std::string&
   throw OptionError(fmt::format("{}: {} {}s ({}): give ‹{}›", path, found.size(), what, fmt::join(found, ", "), option));
 }
 
+namespace {
+
+class MemorySource : public TableSource {
+ public:
+  explicit MemorySource(MemorySourceParts parts) : p_(std::move(parts)) {}
+  std::string path() const override { return p_.path; }
+  std::string segment() const override { return p_.segment; }
+  std::string format() const override { return p_.format; }
+  std::string units() const override { return p_.units; }
+  std::string mechanism() const override { return p_.mechanism; }
+  std::vector<std::string> column_names() const override { return p_.names; }
+  std::vector<std::size_t> column_lengths() const override {
+    return std::vector<std::size_t>(p_.names.size(), p_.columns.empty() ? 0 : p_.columns.front().size());
+  }
+  std::vector<SourceVariable> variables() const override { return p_.variables; }
+  std::vector<std::string> notes() const override { return p_.notes; }
+  std::string DefaultReference(const std::string& logical) const override {
+    const auto found = p_.defaults.find(logical);
+    return found == p_.defaults.end() ? std::string() : found->second;
+  }
+  TableData Read(const std::vector<std::size_t>& columns) const override {
+    TableData out;
+    for (auto c : columns) out.columns.push_back(p_.columns.at(c));
+    return out;
+  }
+
+ private:
+  MemorySourceParts p_;
+};
+
+}  // namespace
+
+std::unique_ptr<TableSource> MakeMemorySource(MemorySourceParts parts) {
+  return std::make_unique<MemorySource>(std::move(parts));
+}
+
+std::map<std::string, std::string> SysIdDefaults() {
+  return {{"q", "position"}, {"qd", "velocity"}, {"tau", "voltage"}};
+}
+
 }  // namespace driveid

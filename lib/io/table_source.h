@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -81,6 +82,23 @@ class TableSource {
   /// (The MAT reader also resolves rows of matrices, `name(k,:)`.)
   virtual std::optional<std::size_t> Find(const std::string& reference) const;
 };
+
+/// A source whose columns are already in memory — a SysId JSON test, a
+/// WPILog routine's test, a bag topic's table — or, without columns, a
+/// catalog of a structured file's entries (`variables`) for `inspect`.
+struct MemorySourceParts {
+  std::string path, segment, format, units, mechanism;
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> columns;  ///< one per name, of equal length
+  std::vector<std::string> notes;
+  std::map<std::string, std::string> defaults;  ///< logical name -> column (DefaultReference)
+  std::vector<SourceVariable> variables;
+};
+std::unique_ptr<TableSource> MakeMemorySource(MemorySourceParts parts);
+
+/// The columns a SysId test's q, qd and tau read by default: position,
+/// velocity (the logged rate, as SysId uses it) and voltage.
+std::map<std::string, std::string> SysIdDefaults();
 
 /// One of the names a file offers (`found`: motors, topics, joints): the
 /// one `wanted` (OptionError listing them when absent: "‹option› NAME: PATH

@@ -54,56 +54,6 @@ struct Run {
   bool complete = false;
 };
 
-class CatalogSource : public TableSource {
- public:
-  CatalogSource(std::string path, std::vector<SourceVariable> variables, std::vector<std::string> notes)
-      : path_(std::move(path)), variables_(std::move(variables)), notes_(std::move(notes)) {}
-  std::string path() const override { return path_; }
-  std::string format() const override { return "wpilog"; }
-  std::vector<std::string> column_names() const override { return {}; }
-  std::vector<std::size_t> column_lengths() const override { return {}; }
-  std::vector<SourceVariable> variables() const override { return variables_; }
-  std::vector<std::string> notes() const override { return notes_; }
-  TableData Read(const std::vector<std::size_t>&) const override { return {}; }
-
- private:
-  std::string path_;
-  std::vector<SourceVariable> variables_;
-  std::vector<std::string> notes_;
-};
-
-class TestSource : public TableSource {
- public:
-  TestSource(std::string path, std::string test, std::string units, std::string mechanism,
-             std::vector<std::vector<double>> columns, std::vector<std::string> notes)
-      : path_(std::move(path)), test_(std::move(test)), units_(std::move(units)), mechanism_(std::move(mechanism)),
-        columns_(std::move(columns)), notes_(std::move(notes)) {}
-  std::string path() const override { return path_; }
-  std::string segment() const override { return test_; }
-  std::string format() const override { return "wpilog"; }
-  std::string units() const override { return units_; }
-  std::string mechanism() const override { return mechanism_; }
-  std::vector<std::string> column_names() const override { return {"t", "voltage", "position", "velocity"}; }
-  std::vector<std::size_t> column_lengths() const override { return std::vector<std::size_t>(4, columns_[0].size()); }
-  std::vector<std::string> notes() const override { return notes_; }
-  std::string DefaultReference(const std::string& logical) const override {
-    if (logical == "q") return "position";
-    if (logical == "tau") return "voltage";
-    if (logical == "qd") return "velocity";
-    return {};
-  }
-  TableData Read(const std::vector<std::size_t>& columns) const override {
-    TableData out;
-    for (auto c : columns) out.columns.push_back(columns_.at(c));
-    return out;
-  }
-
- private:
-  std::string path_, test_, units_, mechanism_;
-  std::vector<std::vector<double>> columns_;
-  std::vector<std::string> notes_;
-};
-
 // A value interpolated linearly at `t` from a sorted series that spans it.
 double Interpolate(const Series& s, double t) {
   const auto next = std::upper_bound(s.t_us.begin(), s.t_us.end(), t);
@@ -328,8 +278,8 @@ std::vector<std::unique_ptr<TableSource>> RoutineSources(const std::string& path
   std::vector<std::unique_ptr<TableSource>> out;
   for (auto& t : taken) {
     if (!missing.empty()) t.notes.push_back(fmt::format("{} no test {} in the log", kReaderWarning, fmt::join(missing, ", ")));
-    out.push_back(std::make_unique<TestSource>(path, t.test, unit, MechanismOf(format.test), std::move(t.columns),
-                                               std::move(t.notes)));
+    out.push_back(MakeMemorySource({path, t.test, "wpilog", unit, MechanismOf(format.test), {"t", "voltage", "position", "velocity"},
+                                    std::move(t.columns), std::move(t.notes), SysIdDefaults(), {}}));
   }
   return out;
 }
@@ -369,7 +319,7 @@ std::vector<std::unique_ptr<TableSource>> OpenWpilogSources(const std::string& p
       }
     }
     std::vector<std::unique_ptr<TableSource>> out;
-    out.push_back(std::make_unique<CatalogSource>(path, std::move(variables), std::move(notes)));
+    out.push_back(MakeMemorySource({path, "", "wpilog", "", "", {}, {}, std::move(notes), {}, std::move(variables)}));
     // The tests as a fit would read them, when the routine and motor are clear.
     try {
       const std::string mechanism = ChooseName(mechanisms, format.mechanism, "SysIdRoutine", "mechanism", path);
