@@ -11,7 +11,7 @@
 #include "common/cli_support.h"
 #include "common/command_registry.h"
 #include "common/log_input_options.h"
-#include "io/ros_bag.h"
+#include "io/log_files.h"
 #include "workflow/log_inspection.h"
 
 namespace driveid::cli {
@@ -50,7 +50,10 @@ void RunInspect(const InspectOptions& options) {
   std::string text_out;
   Json json = Json::array();
   for (std::size_t i = 0; i < options.logs.size(); ++i) {
-    const std::string text = ReadFileToString(ResolveBagPath(options.logs[i]), limits);
+    const LogFileBytes file = ReadLogFile(options.logs[i], limits, false);
+    const std::string& text = file.text;
+    LogInputOptions file_input = input;
+    file_input.sysid.stream_file = file.stream_file;
     std::string join_text;
     std::vector<JoinedFile> joins;
     const std::string join_path = JoinFor(options.input, i, options.logs.size());
@@ -58,7 +61,7 @@ void RunInspect(const InspectOptions& options) {
       join_text = ReadFileToString(join_path, limits);
       joins.push_back({join_path, &join_text, JoinTimingFor(options.input, i, options.logs.size())});
     }
-    for (const auto& source : OpenLogSources(options.logs[i], text, joins, input)) {
+    for (const auto& source : OpenLogSources(options.logs[i], text, joins, file_input)) {
       const InspectedLog inspected = InspectLog(*source, input, options.columns);
       if (options.json) json.push_back(LogInspectionJson(inspected));
       else text_out += FormatLogInspection(inspected);

@@ -1,16 +1,33 @@
 #include "io/log_files.h"
 
-#include "io/ros_bag.h"
-
+#include <algorithm>
 #include <utility>
 
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "io/byte_source.h"
+#include "io/mcap.h"
+#include "io/ros1_bag.h"
+#include "io/ros_bag.h"
 #include "io/sha256.h"
 #include "io/transpose_table.h"
 
 namespace driveid {
+
+LogFileBytes ReadLogFile(const std::string& path, const ReadLimits& limits, bool hash) {
+  const std::string resolved = ResolveBagPath(path);
+  if (auto file = OpenFileBytes(resolved); file && file->size() <= limits.max_bytes) {
+    std::string head(file->View(0, std::min<std::uint64_t>(file->size(), 64)));
+    if (LooksLikeSqlite(head) || LooksLikeMcap(head) || LooksLikeRos1Bag(head)) {
+      return {std::move(head), hash ? Sha256Hex(*file) : "", resolved};
+    }
+  }
+  LogFileBytes out;
+  out.text = ReadFileToString(resolved, limits);
+  if (hash) out.sha256 = Sha256Hex(out.text);
+  return out;
+}
 
 void ReadLogFiles(const std::vector<LogFileRequest>& files, const std::vector<std::string>& columns,
                   const LogInputOptions& options, const ReadLimits& limits, bool transpose,
@@ -18,9 +35,11 @@ void ReadLogFiles(const std::vector<LogFileRequest>& files, const std::vector<st
   std::vector<std::pair<std::string, std::string>> seen;  // hash, file
   for (const LogFileRequest& file : files) {
     const std::string& path = file.path;
-    const std::string raw = ReadFileToString(ResolveBagPath(path), limits);  // a rosbag2 folder: its storage file
-    const std::string hash = Sha256Hex(raw);
-    const std::string text = transpose ? TransposeTable(path, raw) : raw;
+    const LogFileBytes raw = ReadLogFile(path, limits, true);
+    const std::string& hash = raw.sha256;
+    const std::string text = transpose ? TransposeTable(path, raw.text) : raw.text;
+    LogInputOptions file_options = options;
+    file_options.sysid.stream_file = raw.stream_file;
     for (const auto& [earlier_hash, earlier] : seen) {
       if (earlier_hash == hash) {
         throw OptionError(fmt::format("{}: the same data as {} (sha256 {}): give each log once", path, earlier,
@@ -36,7 +55,7 @@ void ReadLogFiles(const std::vector<LogFileRequest>& files, const std::vector<st
       joins.push_back({file.join_path, &join_text, file.join_timing});
       join_notes.push_back(fmt::format("joined with {} (sha256 {})", file.join_path, Sha256Hex(join_text)));
     }
-    for (CsvLog& csv : ReadLogs(path, text, joins, columns, options)) {
+    for (CsvLog& csv : ReadLogs(path, text, joins, columns, file_options)) {
       DataFileRecord record{path, hash, static_cast<int>(csv.rows()), csv.segment, csv.notes};
       record.notes.insert(record.notes.end(), join_notes.begin(), join_notes.end());
       records.push_back(std::move(record));

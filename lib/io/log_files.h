@@ -15,6 +15,17 @@
 
 namespace driveid {
 
+/// A log file as the readers take it: whole in memory, except a ROS bag on
+/// a regular file, of which only the first bytes are held — the bag readers
+/// stream it from `stream_file` (io/byte_source.h) — with its SHA-256 when
+/// asked for (a streamed bag's is read piece by piece too).
+struct LogFileBytes {
+  std::string text, sha256, stream_file;
+};
+
+/// Reads `path` (a rosbag2 folder: its storage file) within `limits`.
+LogFileBytes ReadLogFile(const std::string& path, const ReadLimits& limits, bool hash);
+
 /// One log file and the file joined to it (join_path empty: none).
 struct LogFileRequest {
   std::string path;

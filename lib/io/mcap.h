@@ -20,14 +20,12 @@ bool LooksLikeMcap(const std::string& text);
 
 /// True when the file ends with the closing magic (a recorder that was
 /// stopped, not killed, wrote it).
-bool McapComplete(const std::string& text);
+bool McapComplete(ByteSource& bytes);
 
-/// The channels of an MCAP file as topics (type: the schema's name,
-/// serialization: the channel's message encoding), with message counts.
-std::vector<RosTopic> ReadMcapTopics(const std::string& path, const std::string& bytes);
-
-/// The messages of one JointState topic (CDR), in the file's order.
-std::vector<JointStateMessage> ReadMcapJointStates(const std::string& path, const std::string& bytes,
-                                                   const std::string& topic);
+/// Reads an MCAP file record by record: its channels as topics (type: the
+/// schema's name, serialization: the channel's message encoding) with their
+/// message counts, and the messages of the JointState topics (CDR) `sinks`
+/// takes, in the file's order.
+std::vector<RosTopic> ReadMcapBag(ByteSource& bytes, const JointStateSinks& sinks);
 
 }  // namespace driveid

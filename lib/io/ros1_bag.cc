@@ -11,6 +11,8 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "io/byte_source.h"
+#include "io/joint_state_rows.h"
 
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "ROS 1 bags are read as little-endian");
 
@@ -66,14 +68,14 @@ struct Visitor {
   std::function<void(std::uint32_t, std::int64_t, std::string_view, std::size_t)> message;  // conn, time ns, data, offset
 };
 
-std::string Inflate(const std::string& path, std::size_t offset, std::string_view compression, std::string_view data,
-                    std::uint32_t size) {
+// Inflates a chunk into `out` (its storage reused).
+void Inflate(const std::string& path, std::size_t offset, std::string_view compression, std::string_view data,
+             std::uint32_t size, std::string& out) {
   if (size > kMaxChunkBytes) {
     throw InputError(fmt::format("{}: ROS bag chunk at offset {} claims {} bytes: at most {}", path, offset, size, kMaxChunkBytes));
   }
-  std::string out;
   if (compression == "none") {
-    out = std::string(data);
+    out.assign(data);
   } else if (compression == "bz2") {
     out.resize(size);
     unsigned int got = size;
@@ -92,24 +94,30 @@ std::string Inflate(const std::string& path, std::size_t offset, std::string_vie
   if (out.size() != size) {
     throw InputError(fmt::format("{}: ROS bag chunk at offset {}: {} bytes uncompressed, {} claimed", path, offset, out.size(), size));
   }
-  return out;
 }
 
-void Scan(const std::string& path, std::string_view region, std::size_t base, bool in_chunk, const Visitor& visit) {
+// One record, its header fields parsed and its data fetched (`data()`:
+// called only for the records that are read).
+template <typename Data>
+void Record(const std::string& path, const std::map<std::string, std::string_view>& fields, const Data& data,
+            std::size_t offset, bool in_chunk, const Visitor& visit, std::string& inflated);
+
+// The records of a chunk (`base`: the chunk's offset in the file).
+void Scan(const std::string& path, std::string_view region, std::size_t base, const Visitor& visit) {
+  std::string unused;
   std::size_t at = 0;
   while (at < region.size()) {
-    const std::size_t offset = base + at;
     const auto need = [&](std::size_t bytes, const char* what) {
       if (bytes > region.size() - at) {
-        throw InputError(fmt::format("{}: ROS bag record at offset {}: {} claims {} bytes, {} remain", path, offset, what,
-                                     bytes, region.size() - at));
+        throw InputError(fmt::format("{}: ROS bag record in the chunk at offset {}: {} claims {} bytes, {} remain", path,
+                                     base, what, bytes, region.size() - at));
       }
     };
     need(4, "the header length");
     const std::uint32_t header_length = U32(region, at);
     at += 4;
     need(header_length, "the header");
-    const auto fields = HeaderFields(path, region.substr(at, header_length), offset);
+    const auto fields = HeaderFields(path, region.substr(at, header_length), base);
     at += header_length;
     need(4, "the data length");
     const std::uint32_t data_length = U32(region, at);
@@ -117,46 +125,68 @@ void Scan(const std::string& path, std::string_view region, std::size_t base, bo
     need(data_length, "the data");
     const std::string_view data = region.substr(at, data_length);
     at += data_length;
-    const std::string_view op = Field(path, fields, "op", 1, offset);
-    if (op[0] == 0x07) {
-      const std::uint32_t conn = U32(Field(path, fields, "conn", 4, offset), 0);
-      const auto inner = HeaderFields(path, data, offset);
-      const auto type = inner.find("type");
-      visit.connection(conn, {std::string(Field(path, fields, "topic", 0, offset)),
-                              type != inner.end() ? std::string(type->second) : std::string()});
-    } else if (op[0] == 0x02) {
-      const std::uint32_t conn = U32(Field(path, fields, "conn", 4, offset), 0);
-      const std::string_view time = Field(path, fields, "time", 8, offset);
-      const std::int64_t ns = static_cast<std::int64_t>(U32(time, 0)) * 1'000'000'000 + U32(time, 4);
-      visit.message(conn, ns, data, offset);
-    } else if (op[0] == 0x05 && !in_chunk) {
-      const std::string inner = Inflate(path, offset, Field(path, fields, "compression", 0, offset), data,
-                                        U32(Field(path, fields, "size", 4, offset), 0));
-      Scan(path, inner, offset, true, visit);
-    }
+    Record(path, fields, [&] { return data; }, base, true, visit, unused);
   }
 }
 
-void ScanFile(const std::string& path, const std::string& bytes, std::map<std::uint32_t, Connection>& connections,
-              const std::function<void(const Connection&, std::int64_t, std::string_view, std::size_t)>& message) {
-  if (!LooksLikeRos1Bag(bytes)) throw InputError(fmt::format("{}: not a ROS 1 bag (no #ROSBAG V2.0 line)", path));
-  Visitor visit;
-  visit.connection = [&](std::uint32_t id, const Connection& c) { connections[id] = c; };
-  visit.message = [&](std::uint32_t id, std::int64_t ns, std::string_view data, std::size_t offset) {
-    const auto found = connections.find(id);
-    if (found == connections.end()) {
-      throw InputError(fmt::format("{}: ROS bag message at offset {} on connection {}, which no connection record defined",
-                                   path, offset, id));
-    }
-    message(found->second, ns, data, offset);
-  };
-  Scan(path, std::string_view(bytes).substr(kVersionLine.size()), kVersionLine.size(), false, visit);
+template <typename Data>
+void Record(const std::string& path, const std::map<std::string, std::string_view>& fields, const Data& data,
+            std::size_t offset, bool in_chunk, const Visitor& visit, std::string& inflated) {
+  const std::string_view op = Field(path, fields, "op", 1, offset);
+  if (op[0] == 0x07) {
+    const std::uint32_t conn = U32(Field(path, fields, "conn", 4, offset), 0);
+    const std::string topic(Field(path, fields, "topic", 0, offset));
+    const auto inner = HeaderFields(path, data(), offset);
+    const auto type = inner.find("type");
+    visit.connection(conn, {topic, type != inner.end() ? std::string(type->second) : std::string()});
+  } else if (op[0] == 0x02) {
+    const std::uint32_t conn = U32(Field(path, fields, "conn", 4, offset), 0);
+    const std::string_view time = Field(path, fields, "time", 8, offset);
+    const std::int64_t ns = static_cast<std::int64_t>(U32(time, 0)) * 1'000'000'000 + U32(time, 4);
+    visit.message(conn, ns, data(), offset);
+  } else if (op[0] == 0x05 && !in_chunk) {
+    const std::string compression(Field(path, fields, "compression", 0, offset));
+    const std::uint32_t size = U32(Field(path, fields, "size", 4, offset), 0);
+    Inflate(path, offset, compression, data(), size, inflated);
+    Scan(path, inflated, offset, visit);
+  }
+}
+
+// The file's records one by one: the data of index records and the bag
+// header's padding is skipped, not fetched.
+void ScanSource(ByteSource& bytes, const Visitor& visit) {
+  const std::string& path = bytes.name();
+  std::string inflated, header;
+  std::uint64_t at = kVersionLine.size();
+  while (at < bytes.size()) {
+    const std::uint64_t offset = at;
+    const auto need = [&](std::uint64_t n, const char* what) {
+      if (n > bytes.size() - at) {
+        throw InputError(fmt::format("{}: ROS bag record at offset {}: {} claims {} bytes, {} remain", path, offset,
+                                     what, n, bytes.size() - at));
+      }
+    };
+    need(4, "the header length");
+    const std::uint32_t header_length = U32(bytes.View(at, 4), 0);
+    at += 4;
+    need(header_length, "the header");
+    header.assign(bytes.View(at, header_length));  // kept while the data is fetched
+    const auto fields = HeaderFields(path, header, offset);
+    at += header_length;
+    need(4, "the data length");
+    const std::uint32_t data_length = U32(bytes.View(at, 4), 0);
+    at += 4;
+    need(data_length, "the data");
+    const std::uint64_t data_at = at;
+    at += data_length;
+    Record(path, fields, [&] { return bytes.View(data_at, data_length); }, offset, false, visit, inflated);
+  }
 }
 
 // ROS serialisation, read within the message.
 class Ros1Reader {
  public:
-  Ros1Reader(const std::string& where, const char* data, std::size_t size) : where_(where), data_(data), size_(size) {}
+  Ros1Reader(const char* data, std::size_t size) : data_(data), size_(size) {}
   std::uint32_t U32() {
     Need(4, "a 32-bit number");
     std::uint32_t v = 0;
@@ -171,26 +201,29 @@ class Ros1Reader {
     at_ += 8;
     return v;
   }
-  std::string String() {
+  void String(std::string& into) {
     const std::uint32_t n = U32();
     Need(n, "a string");
-    std::string s(data_ + at_, n);
+    into.assign(data_ + at_, n);
     at_ += n;
-    return s;
+  }
+  void Skip() {
+    const std::uint32_t n = U32();
+    Need(n, "a string");
+    at_ += n;
   }
   std::uint32_t Count(std::size_t least, const char* field) {
     const std::uint32_t n = U32();
     if (static_cast<std::uint64_t>(n) * least > size_ - at_) {
-      throw InputError(fmt::format("{}: {} claims {} elements, {} bytes remain", where_, field, n, size_ - at_));
+      throw MessageError(fmt::format("{} claims {} elements, {} bytes remain", field, n, size_ - at_));
     }
     return n;
   }
 
  private:
   void Need(std::size_t n, const char* what) const {
-    if (n > size_ - at_) throw InputError(fmt::format("{}: {} claims {} bytes, {} remain: not a sensor_msgs/JointState", where_, what, n, size_ - at_));
+    if (n > size_ - at_) throw MessageError(fmt::format("{} claims {} bytes, {} remain: not a sensor_msgs/JointState", what, n, size_ - at_));
   }
-  const std::string& where_;
   const char* data_;
   std::size_t size_, at_ = 0;
 };
@@ -199,33 +232,69 @@ class Ros1Reader {
 
 bool LooksLikeRos1Bag(const std::string& text) { return text.compare(0, kVersionLine.size(), kVersionLine) == 0; }
 
-JointStateMessage DecodeJointStateRos1(const std::string& where, const char* data, std::size_t size) {
-  Ros1Reader r(where, data, size);
-  JointStateMessage m;
+void DecodeJointStateRos1(const char* data, std::size_t size, JointStateMessage& m) {
+  Ros1Reader r(data, size);
   r.U32();  // seq
   const std::uint32_t sec = r.U32(), nsec = r.U32();
-  if (nsec >= 1'000'000'000U) throw InputError(fmt::format("{}: header.stamp.nsec = {}", where, nsec));
+  if (nsec >= 1'000'000'000U) throw MessageError(fmt::format("header.stamp.nsec = {}", nsec));
   m.stamp_ns = static_cast<std::int64_t>(sec) * 1'000'000'000 + nsec;
-  r.String();  // frame_id
+  r.Skip();  // frame_id
   m.name.resize(r.Count(4, "name[]"));
-  for (auto& n : m.name) n = r.String();
+  for (auto& n : m.name) r.String(n);
   for (auto* values : {&m.position, &m.velocity, &m.effort}) {
     values->resize(r.Count(8, values == &m.position ? "position[]" : values == &m.velocity ? "velocity[]" : "effort[]"));
     for (double& v : *values) v = r.Double();
   }
+}
+
+JointStateMessage DecodeJointStateRos1(const std::string& where, const char* data, std::size_t size) {
+  JointStateMessage m;
+  try {
+    DecodeJointStateRos1(data, size, m);
+  } catch (const MessageError& e) {
+    throw InputError(fmt::format("{}: {}", where, e.what()));
+  }
   return m;
 }
 
-std::vector<RosTopic> ReadRos1Topics(const std::string& path, const std::string& bytes) {
+std::vector<RosTopic> ReadRos1Bag(ByteSource& bytes, const JointStateSinks& sinks) {
+  const std::string& path = bytes.name();
+  if (bytes.size() < kVersionLine.size() || bytes.View(0, kVersionLine.size()) != kVersionLine) {
+    throw InputError(fmt::format("{}: not a ROS 1 bag (no #ROSBAG V2.0 line)", path));
+  }
   std::map<std::uint32_t, Connection> connections;
   std::map<std::string, RosTopic> counts;
-  ScanFile(path, bytes, connections, [&](const Connection& c, std::int64_t ns, std::string_view, std::size_t) {
+  std::map<std::string, std::pair<JointStateRows*, std::size_t>> sinks_met;  // topic: sink, messages decoded
+  JointStateMessage message;
+  Visitor visit;
+  visit.connection = [&](std::uint32_t id, const Connection& c) { connections[id] = c; };
+  visit.message = [&](std::uint32_t id, std::int64_t ns, std::string_view data, std::size_t offset) {
+    const auto found = connections.find(id);
+    if (found == connections.end()) {
+      throw InputError(fmt::format("{}: ROS bag message at offset {} on connection {}, which no connection record defined",
+                                   path, offset, id));
+    }
+    const Connection& c = found->second;
     RosTopic& t = counts[c.topic];
     if (t.messages == 0) t.first_ns = t.last_ns = ns;
     t.first_ns = std::min(t.first_ns, ns);
     t.last_ns = std::max(t.last_ns, ns);
     ++t.messages;
-  });
+    if (c.type != kJointStateType) return;
+    auto sink = sinks_met.find(c.topic);
+    if (sink == sinks_met.end()) sink = sinks_met.emplace(c.topic, std::pair{sinks(c.topic), std::size_t{0}}).first;
+    if (sink->second.first == nullptr) return;
+    const std::size_t index = ++sink->second.second;
+    try {
+      DecodeJointStateRos1(data.data(), data.size(), message);
+    } catch (const MessageError& e) {
+      throw InputError(fmt::format("{}: {} message {} (record at offset {}): {}", path, c.topic, index, offset, e.what()));
+    }
+    message.receive_ns = ns;
+    sink->second.first->Add(message);
+  };
+  ScanSource(bytes, visit);
+  bytes.CheckUnchanged();
   std::vector<RosTopic> out;
   std::map<std::string, bool> seen;
   for (const auto& [id, c] : connections) {
@@ -237,21 +306,6 @@ std::vector<RosTopic> ReadRos1Topics(const std::string& path, const std::string&
     t.serialization = "ros1";
     out.push_back(t);
   }
-  return out;
-}
-
-std::vector<JointStateMessage> ReadRos1JointStates(const std::string& path, const std::string& bytes,
-                                                   const std::string& topic) {
-  std::map<std::uint32_t, Connection> connections;
-  std::vector<JointStateMessage> out;
-  ScanFile(path, bytes, connections, [&](const Connection& c, std::int64_t ns, std::string_view data, std::size_t offset) {
-    if (c.topic != topic) return;
-    if (c.type != kJointStateType) throw InputError(fmt::format("{}: topic {} is {}, not {}", path, topic, c.type, kJointStateType));
-    const std::string where = fmt::format("{}: {} message {} (record at offset {})", path, topic, out.size() + 1, offset);
-    JointStateMessage m = DecodeJointStateRos1(where, data.data(), data.size());
-    m.receive_ns = ns;
-    out.push_back(std::move(m));
-  });
   return out;
 }
 

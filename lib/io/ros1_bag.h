@@ -19,14 +19,14 @@ namespace driveid {
 /// True when `text` starts with "#ROSBAG V2.0".
 bool LooksLikeRos1Bag(const std::string& text);
 
-/// The connections of a ROS 1 bag as topics (serialization "ros1").
-std::vector<RosTopic> ReadRos1Topics(const std::string& path, const std::string& bytes);
+/// Reads a ROS 1 bag record by record: its connections as topics
+/// (serialization "ros1") with their message counts, and the messages of the
+/// sensor_msgs/JointState topics `sinks` takes, in the file's order.
+std::vector<RosTopic> ReadRos1Bag(ByteSource& bytes, const JointStateSinks& sinks);
 
-/// The messages of one sensor_msgs/JointState topic, in the file's order.
-std::vector<JointStateMessage> ReadRos1JointStates(const std::string& path, const std::string& bytes,
-                                                   const std::string& topic);
-
-/// Decodes a ROS-serialised sensor_msgs/JointState; InputError naming `where`.
+/// Decodes a ROS-serialised sensor_msgs/JointState into `into`; MessageError.
+void DecodeJointStateRos1(const char* data, std::size_t size, JointStateMessage& into);
+/// The same, throwing InputError "where: why".
 JointStateMessage DecodeJointStateRos1(const std::string& where, const char* data, std::size_t size);
 
 }  // namespace driveid

@@ -1,6 +1,8 @@
 #include "io/ros_bag.h"
 
+#include <cctype>
 #include <filesystem>
+#include <optional>
 #include <memory>
 
 #include <lz4frame.h>
@@ -12,25 +14,32 @@
 #include <yaml-cpp/yaml.h>
 
 #include "core/errors.h"
+#include "io/byte_source.h"
+#include "io/joint_state_rows.h"
 
 namespace driveid {
 namespace {
 
 constexpr const char* kJointStateType = "sensor_msgs/msg/JointState";
 
-// An SQLite connection onto bytes in memory (read-only, no copy).
+// A read-only SQLite connection: onto bytes in memory (no copy), or onto a
+// file by its path, opened immutable (no lock, no journal).
 class Database {
  public:
-  Database(const std::string& path, const std::string& bytes) : path_(path) {
-    if (sqlite3_open_v2(":memory:", &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_MEMORY, nullptr) != SQLITE_OK) {
-      Fail("cannot open an in-memory database");
-    }
-    sqlite3_db_config(db_, SQLITE_DBCONFIG_DEFENSIVE, 1, nullptr);
-    auto* data = reinterpret_cast<unsigned char*>(const_cast<char*>(bytes.data()));
-    const auto size = static_cast<sqlite3_int64>(bytes.size());
-    if (sqlite3_deserialize(db_, "main", data, size, size, SQLITE_DESERIALIZE_READONLY) != SQLITE_OK) {
+  explicit Database(ByteSource& bytes) : path_(bytes.name()) {
+    if (const std::string* memory = bytes.memory()) {
+      if (sqlite3_open_v2(":memory:", &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_MEMORY, nullptr) != SQLITE_OK) {
+        Fail("cannot open an in-memory database");
+      }
+      auto* data = reinterpret_cast<unsigned char*>(const_cast<char*>(memory->data()));
+      const auto size = static_cast<sqlite3_int64>(memory->size());
+      if (sqlite3_deserialize(db_, "main", data, size, size, SQLITE_DESERIALIZE_READONLY) != SQLITE_OK) {
+        Fail("not a readable SQLite database");
+      }
+    } else if (sqlite3_open_v2(FileUri(path_).c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, nullptr) != SQLITE_OK) {
       Fail("not a readable SQLite database");
     }
+    sqlite3_db_config(db_, SQLITE_DBCONFIG_DEFENSIVE, 1, nullptr);
   }
   ~Database() { sqlite3_close(db_); }
   Database(const Database&) = delete;
@@ -38,11 +47,11 @@ class Database {
 
   // Runs `sql`, handing each row to `row`; InputError on any SQLite error.
   template <typename Row>
-  void Query(const char* sql, Row row, const std::string& bind_text = "") {
+  void Query(const char* sql, Row row, std::optional<long long> bind = std::nullopt) {
     sqlite3_stmt* statement = nullptr;
     if (sqlite3_prepare_v2(db_, sql, -1, &statement, nullptr) != SQLITE_OK) Fail("not a rosbag2 SQLite3 bag");
     std::unique_ptr<sqlite3_stmt, int (*)(sqlite3_stmt*)> guard(statement, sqlite3_finalize);
-    if (!bind_text.empty()) sqlite3_bind_text(statement, 1, bind_text.c_str(), -1, SQLITE_TRANSIENT);
+    if (bind) sqlite3_bind_int64(statement, 1, *bind);
     int status = 0;
     while ((status = sqlite3_step(statement)) == SQLITE_ROW) row(statement);
     if (status != SQLITE_DONE) Fail("corrupt or unreadable");
@@ -51,6 +60,15 @@ class Database {
  private:
   [[noreturn]] void Fail(const char* what) const {
     throw InputError(fmt::format("{}: {}: {}", path_, what, db_ != nullptr ? sqlite3_errmsg(db_) : "out of memory"));
+  }
+  // "file:PATH?immutable=1" with every byte but [A-Za-z0-9/._~-] escaped.
+  static std::string FileUri(const std::string& path) {
+    std::string uri = "file:";
+    for (const unsigned char c : path) {
+      if (std::isalnum(c) != 0 || c == '/' || c == '.' || c == '_' || c == '~' || c == '-') uri += static_cast<char>(c);
+      else uri += fmt::format("%{:02X}", c);
+    }
+    return uri + "?immutable=1";
   }
   std::string path_;
   sqlite3* db_ = nullptr;
@@ -63,13 +81,12 @@ std::string Column(sqlite3_stmt* s, int k) {
 
 // A sequence's element count, checked against the bytes left (each element
 // takes at least `least` bytes) before anything is allocated.
-std::uint32_t Count(eprosima::fastcdr::Cdr& cdr, std::size_t size, std::size_t least, const std::string& where,
-                    const char* field) {
+std::uint32_t Count(eprosima::fastcdr::Cdr& cdr, std::size_t size, std::size_t least, const char* field) {
   std::uint32_t n = 0;
   cdr >> n;
   const std::size_t left = size - std::min(size, cdr.getSerializedDataLength());
   if (static_cast<std::uint64_t>(n) * least > left) {
-    throw InputError(fmt::format("{}: {} claims {} elements, {} bytes remain", where, field, n, left));
+    throw MessageError(fmt::format("{} claims {} elements, {} bytes remain", field, n, left));
   }
   return n;
 }
@@ -110,8 +127,9 @@ std::string ResolveBagPath(const std::string& path) {
   return (folder / file).string();
 }
 
-std::vector<RosTopic> ReadSqliteTopics(const std::string& path, const std::string& bytes) {
-  Database db(path, bytes);
+std::vector<RosTopic> ReadSqliteBag(ByteSource& bytes, const JointStateSinks& sinks) {
+  Database db(bytes);
+  const std::string& path = bytes.name();
   std::vector<RosTopic> topics;
   std::vector<long long> ids;
   db.Query("SELECT id, name, type, serialization_format FROM topics ORDER BY id", [&](sqlite3_stmt* s) {
@@ -128,37 +146,46 @@ std::vector<RosTopic> ReadSqliteTopics(const std::string& path, const std::strin
                topics[i].last_ns = sqlite3_column_int64(s, 3);
              }
            });
+  JointStateMessage message;
+  for (std::size_t i = 0; i < topics.size(); ++i) {
+    if (topics[i].type != kJointStateType || topics[i].serialization != "cdr") continue;
+    JointStateRows* sink = sinks(topics[i].name);
+    if (sink == nullptr) continue;
+    std::size_t index = 0;
+    db.Query(
+        "SELECT timestamp, data FROM messages WHERE topic_id = ?1 ORDER BY id",
+        [&](sqlite3_stmt* s) {
+          const auto* data = static_cast<const char*>(sqlite3_column_blob(s, 1));
+          const auto size = static_cast<std::size_t>(sqlite3_column_bytes(s, 1));
+          const std::int64_t receive = sqlite3_column_int64(s, 0);
+          ++index;
+          try {
+            DecodeJointStateCdr(data, size, message);
+          } catch (const MessageError& e) {
+            throw InputError(fmt::format("{}: {} message {} (received at {:.9f} s): {}", path, topics[i].name, index,
+                                         static_cast<double>(receive) * 1e-9, e.what()));
+          }
+          message.receive_ns = receive;
+          sink->Add(message);
+        },
+        ids[i]);
+  }
+  bytes.CheckUnchanged();
   return topics;
-}
-
-std::vector<JointStateMessage> ReadSqliteJointStates(const std::string& path, const std::string& bytes,
-                                                     const std::string& topic) {
-  Database db(path, bytes);
-  std::vector<JointStateMessage> out;
-  db.Query(
-      "SELECT m.timestamp, m.data, t.type, t.serialization_format FROM messages m JOIN topics t ON m.topic_id = t.id "
-      "WHERE t.name = ?1 ORDER BY m.id",
-      [&](sqlite3_stmt* s) {
-        if (Column(s, 2) != kJointStateType || Column(s, 3) != "cdr") {
-          throw InputError(fmt::format("{}: topic {} is {} ({}), not {} in CDR", path, topic, Column(s, 2), Column(s, 3),
-                                       kJointStateType));
-        }
-        const auto* data = static_cast<const char*>(sqlite3_column_blob(s, 1));
-        const auto size = static_cast<std::size_t>(sqlite3_column_bytes(s, 1));
-        const std::int64_t receive = sqlite3_column_int64(s, 0);
-        const std::string where = fmt::format("{}: {} message {} (received at {:.9f} s)", path, topic, out.size() + 1,
-                                              static_cast<double>(receive) * 1e-9);
-        JointStateMessage message = DecodeJointStateCdr(where, data, size);
-        message.receive_ns = receive;
-        out.push_back(std::move(message));
-      },
-      topic);
-  return out;
 }
 
 JointStateMessage DecodeJointStateCdr(const std::string& where, const char* data, std::size_t size) {
   JointStateMessage m;
-  if (data == nullptr || size < 4) throw InputError(fmt::format("{}: {} bytes: not a CDR message", where, size));
+  try {
+    DecodeJointStateCdr(data, size, m);
+  } catch (const MessageError& e) {
+    throw InputError(fmt::format("{}: {}", where, e.what()));
+  }
+  return m;
+}
+
+void DecodeJointStateCdr(const char* data, std::size_t size, JointStateMessage& m) {
+  if (data == nullptr || size < 4) throw MessageError(fmt::format("{} bytes: not a CDR message", size));
   eprosima::fastcdr::FastBuffer buffer(const_cast<char*>(data), size);
   eprosima::fastcdr::Cdr cdr(buffer, eprosima::fastcdr::Cdr::DEFAULT_ENDIAN, eprosima::fastcdr::Cdr::DDS_CDR);
   try {
@@ -167,22 +194,21 @@ JointStateMessage DecodeJointStateCdr(const std::string& where, const char* data
     std::uint32_t nanosec = 0;
     std::string frame;
     cdr >> sec >> nanosec >> frame;
-    if (nanosec >= 1'000'000'000U) throw InputError(fmt::format("{}: header.stamp.nanosec = {}", where, nanosec));
+    if (nanosec >= 1'000'000'000U) throw MessageError(fmt::format("header.stamp.nanosec = {}", nanosec));
     m.stamp_ns = static_cast<std::int64_t>(sec) * 1'000'000'000 + nanosec;
-    const std::uint32_t names = Count(cdr, size, 5, where, "name[]");
+    const std::uint32_t names = Count(cdr, size, 5, "name[]");
     m.name.resize(names);
     for (auto& n : m.name) cdr >> n;
     for (auto* values : {&m.position, &m.velocity, &m.effort}) {
-      const std::uint32_t n = Count(cdr, size, 8, where, values == &m.position ? "position[]"
-                                                          : values == &m.velocity ? "velocity[]"
-                                                                                  : "effort[]");
+      const std::uint32_t n = Count(cdr, size, 8, values == &m.position ? "position[]"
+                                                  : values == &m.velocity ? "velocity[]"
+                                                                          : "effort[]");
       values->resize(n);
       for (double& v : *values) cdr >> v;
     }
   } catch (const eprosima::fastcdr::exception::Exception& e) {
-    throw InputError(fmt::format("{}: not a sensor_msgs/msg/JointState in CDR ({})", where, e.what()));
+    throw MessageError(fmt::format("not a sensor_msgs/msg/JointState in CDR ({})", e.what()));
   }
-  return m;
 }
 
 std::string InflateLz4Frame(const char* data, std::size_t size, std::string& out) {

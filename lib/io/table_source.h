@@ -134,6 +134,10 @@ struct SysIdFormat {
   /// the motor joint, q_link, qd_link from the link joint (its effort is a
   /// column, J.effort, not tau_link by default).
   std::string joint_motor, joint_link;
+  /// A bag on a regular file (io/log_files.h ReadLogFile): read from this
+  /// path piece by piece, `text` holding its first bytes only; "" reads the
+  /// bag from `text`.
+  std::string stream_file;
 };
 
 /// Opens a file already in memory (`text` must outlive the sources) as one or more sources (a SysId file has

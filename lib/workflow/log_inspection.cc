@@ -54,6 +54,7 @@ InspectedLog InspectLog(const TableSource& source, const LogInputOptions& option
     column.problem = problems[i];
     Range(values[i], column);
     out.columns.push_back(column);
+    std::vector<double>().swap(values[i]);  // a long log's copy is not held while the fit's view is read
   }
   const std::vector<std::size_t> lengths = source.column_lengths();
   out.rows = lengths.empty() ? 0 : *std::max_element(lengths.begin(), lengths.end());

@@ -8,7 +8,8 @@
 #    sample count, for the current schema, the old one and the bag folder;
 #  - refusals name what to give: several joints (--joint), an unknown
 #    topic or joint (found ones listed); a cut or corrupt bag is exit 3;
-#  - inspect lists the topics, the joints and the fields each carries.
+#  - inspect lists the topics, the joints and the fields each carries;
+#  - a bag streamed from its file reads as the same bag read whole from a pipe.
 # Usage: rosbag_cli_test.sh DRIVETRAIN_FIT SRC
 set -u
 bin="$1"
@@ -103,6 +104,15 @@ python3 "$writer" "$src/data/joint_example.csv" elastic.db3 --elastic || fail "e
 "$bin" joint elastic.db3 --joint-motor motor --joint-link link --params "$src/data/joint_start.yaml" --method id -q \
   -o joint_bag.yaml 2> joint.err && [ -n "$(estimates joint_csv.yaml)" ] && [ "$(estimates joint_bag.yaml)" = "$(estimates joint_csv.yaml)" ] &&
   ok || fail "elastic joint from a bag: $(cat joint.err) $(diff <(estimates joint_bag.yaml) <(estimates joint_csv.yaml) | head -4)"
+
+# A bag on a regular file is streamed (read piece by piece); one from a pipe
+# is read whole and parsed in memory: both read the same.
+for bag in bag.db3 bag_zstd.mcap bag_none.mcap ros1_bz2.bag ros1_none.bag; do
+  "$bin" inspect "$bag" --topic /joint_states --joint axis --json > streamed.json 2>&1 &&
+    cat "$bag" | "$bin" inspect /dev/stdin --topic /joint_states --joint axis --json 2>&1 | sed "s|/dev/stdin|$bag|g" > whole.json &&
+    [ -s streamed.json ] && cmp -s streamed.json whole.json && ok ||
+    fail "$bag streamed differs from in memory: $(diff streamed.json whole.json | head -6)"
+done
 
 "$bin" inspect bag.db3 > inspect.txt 2>&1 || fail "inspect: $(cat inspect.txt)"
 grep -q "/joint_states: joints wheel (3608), axis (3600); position in 3608, velocity in 8, effort in 3608 of 3608" inspect.txt &&
