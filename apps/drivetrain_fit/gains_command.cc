@@ -10,7 +10,6 @@
 
 #include "common/cli_support.h"
 #include "common/command_registry.h"
-#include "control/feedback_gains.h"
 #include "core/errors.h"
 #include "io/atomic_file.h"
 #include "io/parameter_file.h"

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <optional>
+#include <string>
 
 #include "models/parameter_table.h"
 
@@ -27,6 +28,9 @@ struct CDriveControlSettings {
   double velocity_window = 0.01;     ///< backward-difference window of the encoder velocity [s]
   double sample_time = 0.001;        ///< controller period [s] (seed: 1 kHz)
   double encoder_counts = 8192.0;    ///< counts per motor revolution (seed: 13-bit)
+  /// Finite gains, dead zone >= 0, rate limit, windows, period and counts > 0,
+  /// and a velocity window of at least one period.
+  bool IsValid(std::string* error) const;
 };
 
 /// The parameter file's `cdrive.control` section as written; what is not

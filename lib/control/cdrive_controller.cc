@@ -3,12 +3,28 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/option_check.h"
+
 namespace driveid {
 namespace {
 double DeadZoneSign(double value, double dead_zone) noexcept {
   return std::abs(value) < dead_zone ? 0.0 : Signum(value);
 }
 }  // namespace
+
+bool CDriveControlSettings::IsValid(std::string* error) const {
+  return OptionCheck(error)
+      .Require(Finite(proportional_gain), "cdrive.control.K_P", proportional_gain, "finite")
+      .Require(Finite(second_gain), "cdrive.control.K_I", second_gain, "finite")
+      .Require(Finite(derivative_gain), "cdrive.control.K_D", derivative_gain, "finite")
+      .Require(NotNegative(dead_zone), "cdrive.control.dead_zone", dead_zone, ">= 0")
+      .Require(Positive(rate_limit), "cdrive.control.rate_limit", rate_limit, "> 0")
+      .Require(Positive(sample_time), "cdrive.control.sample_time", sample_time, "> 0")
+      .Require(Positive(encoder_counts), "cdrive.control.encoder_counts", encoder_counts, "> 0")
+      .Require(Positive(velocity_window), "cdrive.control.velocity_window", velocity_window, "> 0")
+      .Require(velocity_window >= sample_time, "cdrive.control.velocity_window", velocity_window,
+               "velocity window >= sample time");
+}
 
 const char* ControlLawName(ControlLaw law) {
   switch (law) {

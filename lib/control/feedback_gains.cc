@@ -9,13 +9,16 @@
 #include <fmt/format.h>
 #include <unsupported/Eigen/MatrixFunctions>
 
+#include "core/errors.h"
+#include "core/option_check.h"
+
 namespace driveid {
 namespace {
 
 void Check(double kv, double ka, const LqrSettings& s) {
-  if (!(ka > 0.0) || !(kv >= 0.0) || !std::isfinite(kv) || !std::isfinite(ka) || !(s.period > 0.0) ||
-      !(s.max_effort > 0.0) || !(s.delay >= 0.0)) {
-    throw std::invalid_argument("LQR: Kv >= 0, Ka > 0, period, max effort > 0 and delay >= 0 are required");
+  RequireValid(s);
+  if (!(ka > 0.0) || !(kv >= 0.0) || !std::isfinite(kv) || !std::isfinite(ka)) {
+    throw InputError(fmt::format("LQR: Kv = {}, Ka = {}: Kv >= 0 and Ka > 0 are required", kv, ka));
   }
 }
 
@@ -127,12 +130,27 @@ const ControllerPreset* FindControllerPreset(const std::string& name) {
   return nullptr;
 }
 
+bool LqrSettings::IsValid(std::string* error) const {
+  return OptionCheck(error)
+      .Require(Positive(period), "‹period›", period, "period > 0 s")
+      .Require(Positive(max_position_error), "‹max_position_error›", max_position_error, "> 0")
+      .Require(Positive(max_velocity_error), "‹max_velocity_error›", max_velocity_error, "> 0")
+      .Require(Positive(max_effort), "‹max_effort›", max_effort, "> 0")
+      .Require(NotNegative(delay), "‹delay›", delay, "delay >= 0 s");
+}
+
+bool GainRequest::IsValid(std::string* error) const {
+  return OptionCheck(error)
+      .Require(Positive(output_factor), "output factor", output_factor, "> 0")
+      .Require(Positive(velocity_time_factor), "velocity time factor", velocity_time_factor, "> 0")
+      .Require(Positive(conversion), "‹conversion›", conversion, "> 0")
+      .Nested(lqr);
+}
+
 FeedbackGains ControllerGains(double kv, double ka, const GainRequest& request) {
   const LqrSettings& s = request.lqr;
-  if (!(request.output_factor > 0.0) || !(request.velocity_time_factor > 0.0) || !(request.conversion > 0.0) ||
-      !std::isfinite(request.conversion) || !(ka >= 0.0)) {
-    throw std::invalid_argument("gains: Ka >= 0 and positive conversion factors are required");
-  }
+  RequireValid(request);
+  if (!(ka >= 0.0)) throw InputError(fmt::format("gains: Ka = {}: Ka >= 0 is required", ka));
   const double scale = request.output_factor / request.conversion;
   if (ka < 1e-7) {
     Check(kv, 1.0, s);
@@ -182,14 +200,14 @@ std::string FeedbackGainUnit(const FeedbackController& f, const std::string& key
   const bool own_units = !preset || (preset->output_factor == 1.0 && preset->velocity_time_factor == 1.0);
   const std::string effort = own_units ? f.effort_unit : std::string("output (") + f.preset + ")";
   const std::string position = f.position_unit;
-  if (f.loop == "velocity" && key == "kp") return fmt::format("{} s/{}", effort, position);
-  if (f.loop == "position" && key == "kp") return fmt::format("{}/{}", effort, position);
-  if (f.loop == "position" && key == "kd") {
+  if (f.loop == "velocity" && key == kGainKp) return fmt::format("{} s/{}", effort, position);
+  if (f.loop == "position" && key == kGainKp) return fmt::format("{}/{}", effort, position);
+  if (f.loop == "position" && key == kGainKd) {
     return preset && !preset->normalized ? fmt::format("{} period/{}", effort, position)
                                          : fmt::format("{} s/{}", effort, position);
   }
-  if (f.loop == "speed" && key == "kp") return fmt::format("{} s/{}", f.effort_unit, position);
-  if (f.loop == "speed" && key == "ki") return fmt::format("{}/{}", f.effort_unit, position);
+  if (f.loop == "speed" && key == kGainKp) return fmt::format("{} s/{}", f.effort_unit, position);
+  if (f.loop == "speed" && key == kGainKi) return fmt::format("{}/{}", f.effort_unit, position);
   return "";
 }
 

@@ -22,6 +22,8 @@ struct LqrSettings {
   double max_velocity_error = 1.5;    ///< [position unit/s]
   double max_effort = 7.0;            ///< [effort unit, e.g. V]
   double delay = 0.0;                 ///< measurement delay [s]
+  /// Period, tolerances and effort > 0, delay >= 0 (finite).
+  bool IsValid(std::string* error) const;
 };
 
 struct FeedbackGains {
@@ -69,6 +71,8 @@ struct GainRequest {
   double velocity_time_factor = 1.0;
   bool normalized = true;
   double conversion = 1.0;
+  /// Positive conversion factors, and the LQR settings'.
+  bool IsValid(std::string* error) const;
 };
 
 /// The controller's gains as SysId computes them, in the controller's

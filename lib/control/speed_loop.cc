@@ -8,7 +8,22 @@
 #include <Eigen/Dense>
 #include <unsupported/Eigen/MatrixFunctions>
 
+#include "core/errors.h"
+#include "core/option_check.h"
+
 namespace driveid {
+
+bool SpeedLoopSettings::IsValid(std::string* error) const {
+  return OptionCheck(error)
+      .Require(Positive(period), "‹period›", period, "period > 0 s")
+      .Require(phase_margin_deg > 0.0 && phase_margin_deg < 90.0, "‹phase_margin›", phase_margin_deg,
+               "0 < phase margin < 90 deg")
+      .Require(NotNegative(min_gain_margin_db), "gain margin", min_gain_margin_db, ">= 0 dB")
+      .Require(NotNegative(min_modulus_margin), "modulus margin", min_modulus_margin, ">= 0")
+      .Require(NotNegative(notch_width_hz), "‹notch_width›", notch_width_hz, ">= 0 Hz (0: from the resonance's std)")
+      .Require(NotNegative(resonance_std_hz), "resonance std", resonance_std_hz, ">= 0 Hz");
+}
+
 namespace {
 
 using Complex = std::complex<double>;
@@ -133,8 +148,7 @@ void CheckPlant(const SpeedLoopPlant& plant) {
   if (!(p.motor_inertia > 0.0) || !(p.link_inertia > 0.0) || !(p.stiffness > 0.0) || !(p.damping >= 0.0) ||
       !(p.motor_viscous >= 0.0) || !(p.link_viscous >= 0.0) || !(plant.gear_ratio > 0.0) || !(plant.delay >= 0.0) ||
       !std::isfinite(plant.delay)) {
-    throw std::invalid_argument(
-        "speed loop: the joint needs J_m, J_l, k > 0, d, b_m, b_l >= 0, a gear ratio and a delay >= 0");
+    throw InputError("speed loop: the joint needs J_m, J_l, k > 0, d, b_m, b_l >= 0, a gear ratio and a delay >= 0");
   }
 }
 
@@ -193,7 +207,7 @@ void PiNotch::Discrete(double period, std::vector<double>& numerator, std::vecto
 double DiscreteLoopRadius(const SpeedLoopPlant& plant, const PiNotch& c, double period) {
   CheckPlant(plant);
   if (!(period > 0.0) || plant.delay > 1000.0 * period) {
-    throw std::invalid_argument("speed loop: a period > 0 and a delay of at most 1000 periods are required");
+    throw OptionError("speed loop: a period > 0 and a delay of at most 1000 periods are required");
   }
   const SampledLoop loop = MakeSampledLoop(plant, c, period);
   if (!loop.transition.allFinite()) return std::numeric_limits<double>::infinity();
@@ -241,9 +255,7 @@ LoopMargins EvaluateSpeedLoop(const SpeedLoopPlant& plant, const PiNotch& c, dou
 SpeedLoopDesign DesignSpeedLoop(const SpeedLoopPlant& plant, const std::vector<SpeedLoopPlant>& region,
                                 const SpeedLoopSettings& s) {
   CheckPlant(plant);
-  if (!(s.period > 0.0) || !(s.phase_margin_deg > 0.0) || !(s.phase_margin_deg < 90.0)) {
-    throw std::invalid_argument("speed loop: period > 0 and a phase margin between 0 and 90 degrees are required");
-  }
+  RequireValid(s);
   SpeedLoopDesign best;
   double closest_slack = -std::numeric_limits<double>::infinity();
   PiNotch c;

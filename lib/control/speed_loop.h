@@ -21,6 +21,7 @@
 
 #include <complex>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "models/joint.h"
@@ -67,6 +68,8 @@ struct SpeedLoopSettings {
   double min_modulus_margin = 0.5;
   double notch_width_hz = 0.0;     ///< 0: from the resonance's uncertainty (at least 30 % of it)
   double resonance_std_hz = 0.0;   ///< the fitted resonance's std
+  /// Period > 0, phase margin in (0, 90) deg, the rest >= 0.
+  bool IsValid(std::string* error) const;
 };
 
 /// Margins of C P e^(-(tau_p + 1.5 T) s) on a log grid up to the Nyquist

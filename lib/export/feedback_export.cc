@@ -32,8 +32,8 @@ double Value(const FeedbackController& f, const char* key) {
 
 // The keys a PID export writes, checked before any text is made.
 void RequirePidValues(const FeedbackController& f) {
-  Value(f, "kp");
-  if (f.loop == "position") Value(f, "kd");
+  Value(f, kGainKp);
+  if (f.loop == "position") Value(f, kGainKd);
   Value(f, "period");
 }
 
@@ -41,8 +41,8 @@ bool Speed(const FeedbackController& f) { return !f.empty() && f.loop == "speed"
 
 // The speed loop's keys an export writes, and its C(z), checked first.
 void RequireSpeedValues(const FeedbackController& f) {
-  Value(f, "kp");
-  Value(f, "ki");
+  Value(f, kGainKp);
+  Value(f, kGainKi);
   Value(f, "period");
   if (f.numerator_z.empty() || f.denominator_z.empty()) {
     throw InputError("feedback.numerator_z, denominator_z: missing from the speed loop's section; the notch runs only "
@@ -68,7 +68,7 @@ std::string SpeedLoopMembers(const FeedbackController& f, bool cpp) {
       "{} motor-speed error e. No PIDController holds the notch: run C(z) every kControllerPeriodSeconds,\n"
       "{} u[k] = sum_i kCzNumerator[i] e[k-i] - sum_(i>0) kCzDenominator[i] u[k-i].\n",
       c, CommentText(f.preset), c, c);
-  for (const char* key : {"kp", "ki"}) {
+  for (const char* key : {kGainKp, kGainKi}) {
     const FeedbackValue* v = f.Find(key);
     out += fmt::format(cpp ? "/// {} +- {:.3g} {}\n" : "  /** {} +- {:.3g} {} */\n", key, v->standard_error,
                        CommentText(FeedbackGainUnit(f, key)));
@@ -134,7 +134,7 @@ std::string FeedbackJavaMembers(const FeedbackController& f) {
   std::string out = fmt::format("\n  // Feedback: {} loop, preset {} (docs/models.md#feedback-gains).\n", CommentText(f.loop),
                                 CommentText(f.preset));
   out += FeedbackVendorNote(f, "  //");
-  for (const char* key : {"kp", "kd"}) {
+  for (const char* key : {kGainKp, kGainKd}) {
     const FeedbackValue* v = f.Find(key);
     out += fmt::format("  /** {} +- {:.3g} {} */\n  public static final double {} = {};\n", key,
                        v ? v->standard_error : 0.0, CommentText(FeedbackGainUnit(f, key)),
@@ -159,7 +159,7 @@ std::string FeedbackCppMembers(const FeedbackController& f) {
   std::string out = fmt::format("\n// Feedback: {} loop, preset {} (docs/models.md#feedback-gains).\n", CommentText(f.loop),
                                 CommentText(f.preset));
   out += FeedbackVendorNote(f, "//");
-  for (const char* key : {"kp", "kd"}) {
+  for (const char* key : {kGainKp, kGainKd}) {
     const FeedbackValue* v = f.Find(key);
     out += fmt::format("/// {} +- {:.3g} {}\ninline constexpr double {} = {};\n", key, v ? v->standard_error : 0.0,
                        CommentText(FeedbackGainUnit(f, key)), key[1] == 'p' ? "kP" : "kD", Number(v ? v->value : 0.0));

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/option_check.h"
 #include "io/byte_source.h"
 #include "io/mcap.h"
 #include "io/ros1_bag.h"
@@ -14,6 +15,10 @@
 #include "io/transpose_table.h"
 
 namespace driveid {
+
+bool LogFileRequest::IsValid(std::string* error) const {
+  return OptionCheck(error).Require(!path.empty(), "a log file needs a path");
+}
 
 LogFileBytes ReadLogFile(const std::string& path, const ReadLimits& limits, bool hash) {
   const std::string resolved = ResolveBagPath(path);
@@ -34,6 +39,7 @@ void ReadLogFiles(const std::vector<LogFileRequest>& files, const std::vector<st
                   std::vector<DataFileRecord>& records, const std::function<void(CsvLog)>& take) {
   std::vector<std::pair<std::string, std::string>> seen;  // hash, file
   for (const LogFileRequest& file : files) {
+    RequireValid(file);
     const std::string& path = file.path;
     const LogFileBytes raw = ReadLogFile(path, limits, true);
     const std::string& hash = raw.sha256;

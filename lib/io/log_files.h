@@ -31,6 +31,8 @@ struct LogFileRequest {
   std::string path;
   std::string join_path;
   JoinTiming join_timing;
+  /// A path given (the joined file's timing is checked where it is joined).
+  bool IsValid(std::string* error) const;
 };
 
 /// Reads each file of `files` in order (at most limits.max_bytes; the joined

@@ -50,6 +50,12 @@ inline constexpr std::array<FeedbackKey, 20> kFeedbackKeys = {{
     {"worst_modulus_margin", "", "modulus margin at the worst point of the 95 % region", false},
 }};
 
+/// The gains' keys, as the table spells them (code names a gain by these,
+/// never by a literal of its own).
+inline constexpr const char* kGainKp = kFeedbackKeys[0].key;
+inline constexpr const char* kGainKd = kFeedbackKeys[1].key;
+inline constexpr const char* kGainKi = kFeedbackKeys[2].key;
+
 /// The declaration of `key`, or nullptr.
 inline const FeedbackKey* FindFeedbackKey(const std::string& key) {
   for (const auto& k : kFeedbackKeys) {

@@ -25,8 +25,7 @@ void ValidateClosedLoop(const ClosedLoopOptions& o, const CDriveControlSettings&
   RequireSampleCount(std::round(2.0 * o.program.stroke * o.cycles / s.sample_time) + 1, kMinCDriveLogSamples,
                      fmt::format("‹stroke› {} with ‹cycles› {} at cdrive.control.sample_time {} s", o.program.stroke,
                                  o.cycles, s.sample_time));
-  RequireOption(s.velocity_window >= s.sample_time, "cdrive.control.velocity_window", s.velocity_window,
-          "velocity window >= sample time");
+  RequireValid(s);
 }
 
 ClosedLoopResult SimulateClosedLoop(const CDriveParameters& params, const CDriveControlSettings& settings,

@@ -5,16 +5,28 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/option_check.h"
 #include "io/cdrive_log.h"
 #include "models/missing_values.h"
 #include "sim/cdrive_closed_loop.h"
 
 namespace driveid {
 
+bool CDriveSimulationRequest::IsValid(std::string* error) const {
+  return OptionCheck(error)
+      .Require(program == "translation" || program == "rotation" || program == "helical",
+               "‹program› " + program + ": choose translation, rotation or helical")
+      .Require(law.empty() || law == "PI" || law == "PD" || law == "PID", "‹law› " + law + ": choose PI, PD or PID")
+      .Require(Positive(stroke), "‹stroke›", stroke, "stroke > 0 s")
+      .Require(cycles >= 1 && cycles <= 1000, "‹cycles›", cycles, "1 <= cycles <= 1000")
+      .Require(NotNegative(noise), "‹noise›", noise, "noise >= 0");
+}
+
 CDriveSimulation SimulateCDrive(const ParameterFile& file, const std::string& path,
                                 const CDriveSimulationRequest& request, const std::string& command_line) {
   if (!file.Find<CDriveSection>()) throw InputError(fmt::format("{}: no 'cdrive' section", path));
   RequireModelValues(CDriveParameterTable(), *file.Find<CDriveSection>(), path, "cdrive", "the simulation");
+  RequireValid(request);
   const CDriveParameters params =
       MakeModelParameters(CDriveParameterTable(), *file.Find<CDriveSection>(), CDriveParameters{}, "cdrive");
   CDriveControlSettings settings = MakeControlSettings(

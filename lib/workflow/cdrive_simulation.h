@@ -23,6 +23,9 @@ struct CDriveSimulationRequest {
   std::string law;      ///< PI, PD or PID overriding cdrive.control.law; "" keeps it
   bool trace = false;   ///< build the trace CSV (as the other runs' requests)
   bool plot = false;    ///< build the plot panels
+  /// A Table II program, a known law; stroke, cycles and noise as
+  /// ClosedLoopOptions::IsValid bounds them.
+  bool IsValid(std::string* error) const;
 };
 
 struct CDriveSimulation {

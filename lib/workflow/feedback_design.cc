@@ -168,7 +168,7 @@ AxisGainsDesign DesignAxisGains(const ParameterFile* file, const std::string& pa
     GainRequest undelayed = request;
     undelayed.lqr.delay = 0.0;
     const FeedbackGains free = ControllerGains(d.kv, d.ka, undelayed);
-    for (const auto& [key, value, reference] : {std::tuple{"kp", g.value.kp, free.kp}, std::tuple{"kd", g.value.kd, free.kd}}) {
+    for (const auto& [key, value, reference] : {std::tuple{kGainKp, g.value.kp, free.kp}, std::tuple{kGainKd, g.value.kd, free.kd}}) {
       if (std::abs(reference) > 0.0 && std::abs(value) < kUsefulGainFraction * std::abs(reference)) {
         d.warnings.push_back(fmt::format(
             "{} = {:.3g} is {:.1g} of the {:.3g} the same loop gets without its {:.4g} s measurement delay ({:.3g} "
@@ -183,8 +183,8 @@ AxisGainsDesign DesignAxisGains(const ParameterFile* file, const std::string& pa
   c.loop = o.loop;
   c.preset = preset->name;
   c.position_unit = controller_unit;
-  c.values.push_back({"kp", g.value.kp, g.standard_error.kp});
-  if (request.loop == FeedbackLoop::kPosition) c.values.push_back({"kd", g.value.kd, g.standard_error.kd});
+  c.values.push_back({kGainKp, g.value.kp, g.standard_error.kp});
+  if (request.loop == FeedbackLoop::kPosition) c.values.push_back({kGainKd, g.value.kd, g.standard_error.kd});
   c.values.push_back({"period", request.lqr.period, 0.0});
   c.values.push_back({"delay", request.lqr.delay, 0.0});
   if (request.loop == FeedbackLoop::kPosition) c.values.push_back({"max_position_error", o.max_position_error, 0.0});

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/option_check.h"
 #include "report/drivetrain_report.h"
 #include "report/feedback_report.h"
 #include "report/feedforward_report.h"
@@ -62,7 +63,16 @@ void AddComparison(const ParameterFile& file, const ParameterReportRequest& r, b
 
 }  // namespace
 
+bool ParameterReportRequest::IsValid(std::string* error) const {
+  const auto finite = [](const std::optional<Vector2>& v) { return !v || (Finite(v->x()) && Finite(v->y())); };
+  return OptionCheck(error)
+      .Require(fitted == nullptr || !fitted_path.empty(), "a fitted file needs its path")
+      .Require(finite(pose), "‹pose›: not finite")
+      .Require(finite(velocity), "‹velocity›: not finite");
+}
+
 ParameterReport ReportParameterFile(const ParameterFile& file, const ParameterReportRequest& r, bool json) {
+  RequireValid(r);
   if (!file.Find<DriveTrainSection>() && !file.Find<PlanarRobotSection>() && file.feedforward.gains.empty() &&
       file.feedback.empty() && !file.Find<JointSection>() && !file.Find<FrequencyResponseSection>()) {
     throw InputError(fmt::format("{}: no 'drivetrain', 'planar_robot', 'feedforward', 'feedback', 'joint' or 'frf' "

@@ -20,6 +20,8 @@ struct ParameterReportRequest {
   std::string fitted_path;
   std::optional<Vector2> pose;       ///< robot: centre joint [m]; default the workspace centre
   std::optional<Vector2> velocity;   ///< robot: centre joint velocity [m/s]; default 0
+  /// A fitted file comes with its path; a pose and velocity are finite.
+  bool IsValid(std::string* error) const;
 };
 
 struct ParameterReport {

@@ -140,12 +140,7 @@ JointGainsDesign DesignJointGains(const ParameterFile& file, const std::string& 
   if (const auto* frf = file.Find<FrequencyResponseSection>()) settings.resonance_std_hz = frf->resonance_hz_std.value_or(0.0);
   JointGainsDesign d;
   const std::vector<SpeedLoopPlant> region = Region(file, plant, !o.delay && fitted_delay);
-  SpeedLoopDesign design;
-  try {
-    design = DesignSpeedLoop(plant, region, settings);
-  } catch (const std::invalid_argument& e) {
-    throw OptionError(e.what());
-  }
+  const SpeedLoopDesign design = DesignSpeedLoop(plant, region, settings);
   const std::string delay_text =
       fmt::format("a loop delay of {:.4g} ms (the drive's {:.4g} ms{} + 1.5 x the period {} s)",
                   1e3 * plant.LoopDelay(o.period), 1e3 * plant.delay,
@@ -174,8 +169,8 @@ JointGainsDesign DesignJointGains(const ParameterFile& file, const std::string& 
   c.effort_unit = "N m";
   c.position_unit = "rad (motor)";
   const PiNotch& pi = design.controller;
-  c.values.push_back({"kp", pi.kp, 0.0});
-  c.values.push_back({"ki", pi.kp * pi.integral_corner, 0.0});
+  c.values.push_back({kGainKp, pi.kp, 0.0});
+  c.values.push_back({kGainKi, pi.kp * pi.integral_corner, 0.0});
   c.values.push_back({"period", o.period, 0.0});
   c.values.push_back({"plant_delay", plant.delay, !o.delay && fitted_delay ? fitted_delay->standard_error : 0.0});
   c.values.push_back({"loop_delay", plant.LoopDelay(o.period), 0.0});

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # Every options struct of lib/ validates itself: a `struct NameOptions {`
+# (or NameSettings, NameRequest)
 # declares `bool IsValid(std::string* error) const` (core/option_check.h),
 # which its run calls once at its entry.
 set -u
@@ -13,8 +14,8 @@ while IFS= read -r header; do
       echo "FAIL: ${header#$1/}:$line: $name has no IsValid"
       bad=$((bad + 1))
     fi
-  done < <(grep -no '^struct [A-Za-z]*Options {' "$header" | sed 's/struct //; s/ {$//')
+  done < <(grep -Eno '^struct [A-Za-z]*(Options|Settings|Request) \{' "$header" | sed 's/struct //; s/ {$//')
 done < <(find "$1/lib" -name '*.h' | sort)
-echo "$checked options structs checked"
+echo "$checked options, settings and request structs checked"
 echo "$((checked - bad)) passed, $bad failed"
 [ "$checked" -gt 0 ] && [ "$bad" -eq 0 ]

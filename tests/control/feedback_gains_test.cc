@@ -8,6 +8,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "core/errors.h"
+
 using namespace driveid;
 
 namespace {
@@ -69,9 +71,15 @@ TEST_CASE("position gains minimise the simulated LQR cost; a delay of one period
 
 TEST_CASE("LQR refuses a plant without inertia or a period of zero") {
   LqrSettings s;
-  CHECK_THROWS_AS(VelocityLqr(1.0, 0.0, s), std::invalid_argument);
+  CHECK_THROWS_WITH(VelocityLqr(1.0, 0.0, s), Catch::Contains("Ka = 0: Kv >= 0 and Ka > 0 are required"));
   s.period = 0.0;
-  CHECK_THROWS_AS(PositionLqr(1.0, 0.1, s), std::invalid_argument);
+  CHECK_THROWS_WITH(PositionLqr(1.0, 0.1, s), "‹period› = 0: violated constraint: period > 0 s");
+  s.period = 0.02;
+  s.max_velocity_error = 0.0;
+  CHECK_THROWS_AS(PositionLqr(1.0, 0.1, s), OptionError);
+  GainRequest request;
+  request.conversion = -1.0;
+  CHECK_THROWS_WITH(ControllerGains(1.0, 0.1, request), "‹conversion› = -1: violated constraint: > 0");
 }
 
 // SysId's own output for two mechanisms as a team published it (Robohawk

@@ -12,6 +12,8 @@
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
 
+#include "core/errors.h"
+
 using namespace driveid;
 
 namespace {
@@ -99,8 +101,11 @@ TEST_CASE("a designed speed loop meets its margins; a bad plant is refused") {
   PiNotch loud = d.controller;
   loud.kp *= 50.0;
   CHECK_FALSE(std::abs(SimulateSpeedStep(plant, loud, s.period, 1.0).speed.back()) < 10.0);  // diverged (or overflowed)
+  SpeedLoopSettings no_margin = s;
+  no_margin.phase_margin_deg = 95.0;
+  CHECK_THROWS_WITH(DesignSpeedLoop(plant, {}, no_margin), Catch::StartsWith("‹phase_margin› = 95"));
   plant.joint.stiffness = 0.0;
-  CHECK_THROWS_AS(DesignSpeedLoop(plant, {}, s), std::invalid_argument);
+  CHECK_THROWS_AS(DesignSpeedLoop(plant, {}, s), InputError);
 }
 
 namespace {
