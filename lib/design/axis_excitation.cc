@@ -14,6 +14,7 @@
 #include "core/option_check.h"
 #include "core/order_statistics.h"
 #include "design/nelder_mead.h"
+#include "models/axis_term.h"
 
 namespace driveid {
 
@@ -51,10 +52,24 @@ bool AxisDesignOptions::IsValid(std::string* error) const {
 
 namespace {
 
+// Every term present is affine in the rate within a direction of motion
+// (models/axis_term.h): the torque over a trajectory scales in closed form.
+bool OnlyModeAffine(const AxisParameters& prior) {
+  const AxisValues values = AxisValuesOf(prior);
+  for (const AxisTerm* term : AxisTerms()) {
+    if (!term->mode_affine() && term->Present(&values[AxisFirstIndex(*term)])) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+namespace {
+
 // One period on a grid, with the prior and the free terms.
 struct DesignProblem {
   AxisParameters prior;
-  std::vector<int> terms;       // indices of CalcAxisRegressors
+  std::vector<int> terms;       // parameter indices (CalcAxisRegressors)
   std::vector<double> scales;   // |prior| (1 where the prior is 0): relative stds
   std::vector<double> grid;     // times over one period
   double period = 0.0;          // [s]
@@ -113,8 +128,9 @@ double MaxTorque(const Kinematics& k, double s, const AxisParameters& prior) {
 }
 
 // The largest s with |tau(s)| <= limit at every sample, for a prior whose
-// torque is s d + c with c set by the direction alone (no gravity, no
-// Stribeck): per sample s <= (limit - c sgn d) / |d|; 0 where |c| > limit.
+// torque is s d + c with c set by the direction alone (every term present
+// mode-affine, OnlyModeAffine): per sample s <= (limit - c sgn d) / |d|; 0
+// where |c| > limit.
 double LargestTorqueScale(const Kinematics& k, const AxisParameters& p, double limit) {
   double s = HUGE_VAL;
   for (std::size_t i = 0; i < k.q.size(); ++i) {
@@ -146,7 +162,7 @@ double LargestScale(const Kinematics& k, const DesignProblem& p, std::string* bi
   if (!std::isfinite(s)) return 0.0;
   const double torque = kTorqueMargin * o.max_torque;
   const AxisParameters& prior = p.prior;
-  if (prior.gravity_cos == 0.0 && prior.gravity_sin == 0.0 && prior.stribeck == 0.0) {
+  if (OnlyModeAffine(prior)) {
     const double st = LargestTorqueScale(k, prior, torque);
     if (st < s) {
       s = st;
@@ -310,15 +326,15 @@ DesignProblem MakeProblem(const AxisParameters& prior, const AxisDesignOptions& 
   const std::vector<std::string> targets = o.targets.empty() ? o.free : o.targets;
   for (const auto& key : o.free) {
     int index = -1;
-    for (std::size_t j = 0; j < kAxisTerms; ++j) {
-      if (table[j].spec.key == key) index = static_cast<int>(j);
+    for (std::size_t j = 0; j < AxisLinearCount(); ++j) {
+      if (AxisTermRow(j).spec.key == key) index = static_cast<int>(j);
     }
     if (index < 0) {
       throw OptionError(fmt::format("‹free› {}: the design predicts the linear terms only (choose from {})", key,
                                     fmt::join(FitParameterKeys(table, "axis"), ", ")));
     }
     p.terms.push_back(index);
-    const double value = std::abs(prior.*(table[static_cast<std::size_t>(index)].in_model));
+    const double value = std::abs(ModelValue(AxisTermRow(static_cast<std::size_t>(index)), prior));
     p.scales.push_back(value > 0.0 ? value : 1.0);
     p.target.push_back(std::find(targets.begin(), targets.end(), key) != targets.end());
   }
@@ -355,9 +371,17 @@ DesignProblem MakeProblem(const AxisParameters& prior, const AxisDesignOptions& 
 // reaches the speed limit; below rate / 150, so that the fit's position
 // filter (at least 6 x the highest line) stays inside its decimated band.
 double DefaultBandHigh(const AxisParameters& prior, const AxisDesignOptions& o) {
-  const double friction = std::abs(prior.coulomb) + std::abs(prior.offset) + std::hypot(prior.gravity_cos, prior.gravity_sin) +
-                          std::max(std::abs(prior.coulomb_pos), std::abs(prior.coulomb_neg)) + std::abs(prior.stribeck) +
-                          std::max({std::abs(prior.viscous), std::abs(prior.viscous_pos), std::abs(prior.viscous_neg)}) * o.max_rate;
+  // Each term's bound (models/axis_term.h ForceBound): constant parts add
+  // up; the speed parts of terms that replace each other do not.
+  const AxisValues values = AxisValuesOf(prior);
+  double constant = 0.0, per_rate = 0.0;
+  for (const AxisTerm* term : AxisTerms()) {
+    double c = 0.0, r = 0.0;
+    term->ForceBound(&values[AxisFirstIndex(*term)], &c, &r);
+    constant += c;
+    per_rate = std::max(per_rate, r);
+  }
+  const double friction = constant + per_rate * o.max_rate;
   const double spare = kTorqueMargin * o.max_torque - friction;
   if (!(spare > 0.0)) {
     throw OptionError(fmt::format("‹max_torque› {}: the prior's friction at ‹max_speed› {} already needs {:.4g}; "
@@ -411,7 +435,7 @@ AxisDesign DesignAtPeriod(const AxisParameters& prior, const AxisDesignOptions& 
   }
   const std::vector<int> h = Harmonics(low, high, o.lines);
   const DesignProblem p = MakeProblem(prior, o, d.period, h);
-  for (int term : p.terms) d.prior.push_back(prior.*(AxisParameterTable()[static_cast<std::size_t>(term)].in_model));
+  for (int term : p.terms) d.prior.push_back(ModelValue(AxisTermRow(static_cast<std::size_t>(term)), prior));
   auto objective = [&](const std::vector<double>& x) {
     const Kinematics k = EvaluateOnTables(MakeRestingReference(f0, h, x), p);
     std::string binding;

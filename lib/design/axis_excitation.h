@@ -93,7 +93,7 @@ struct AxisDesign {
 /// Designs the reference. Throws OptionError naming a bad option (a limit
 /// the prior's friction alone exceeds, a band without two lines) and
 /// InputError for a prior that cannot predict (a free parameter outside the
-/// linear terms: the Stribeck pair).
+/// linear terms: a nonlinear term's).
 AxisDesign DesignAxisExcitation(const AxisParameters& prior, const AxisDesignOptions& options);
 
 /// The torque noise per logged sample [N m] that an inverse-dynamics fit's

@@ -14,6 +14,7 @@
 #include "export/joint_export.h"
 #include "export/wpilib_export.h"
 #include "models/axis.h"
+#include "models/axis_term.h"
 #include "models/feedforward.h"
 #include "report/json.h"
 
@@ -52,13 +53,25 @@ AxisView ViewAxis(const ParameterFile& file) {
   return v;
 }
 
+// What `target` says of the terms present that it cannot hold
+// (models/axis_term.h ExportNote), one note each.
+std::vector<std::string> TermNotes(const AxisView& v, AxisExportTarget target) {
+  std::vector<std::string> out;
+  const AxisValues values = AxisValuesOf(v.p);
+  for (const AxisTerm* term : AxisTerms()) {
+    const std::string note = term->ExportNote(target);
+    if (!note.empty() && term->Present(&values[AxisFirstIndex(*term)])) out.push_back(note);
+  }
+  return out;
+}
+
 void RequireInertia(const AxisView& v) { RequireExportInertia("axis.inertia", v.p.inertia); }
 
 // What a simulator joint cannot hold, one comment line each.
 std::vector<std::string> NotRepresented(const AxisView& v, bool has_offset_channel) {
   std::vector<std::string> out;
   if (v.per_direction) out.push_back("direction-dependent friction: the mean of the two directions is written");
-  if (v.p.stribeck != 0.0) out.push_back("Stribeck breakaway term: not representable, left out");
+  for (const std::string& note : TermNotes(v, AxisExportTarget::kSimulator)) out.push_back(note);
   if (v.p.offset != 0.0 && !has_offset_channel) out.push_back("offset tau_0: add it to the commanded effort");
   return out;
 }
@@ -119,8 +132,15 @@ std::string ExportUrdf(const ParameterFile& file, const ExportOptions& o) {
   const GravityBody g = MakeGravityBody(v);
   std::string out = "<?xml version=\"1.0\"?>\n";
   out += Provenance(o, "<!--", " -->");
-  out += "<!-- URDF holds damping and friction per joint; it has no rotor inertia (armature), no offset and no "
-         "Stribeck term: the link's inertia carries J -->\n";
+  std::vector<std::string> absent = {"rotor inertia (armature)", "offset"};
+  for (const AxisTerm* term : AxisTerms()) {
+    if (!term->ExportNote(AxisExportTarget::kSimulator).empty()) absent.push_back(term->name() + " term");
+  }
+  std::string list;
+  for (std::size_t i = 0; i < absent.size(); ++i) {
+    list += (i == 0 ? "no " : i + 1 == absent.size() ? " and no " : ", no ") + absent[i];
+  }
+  out += "<!-- URDF holds damping and friction per joint; it has " + list + ": the link's inertia carries J -->\n";
   for (const std::string& note : NotRepresented(v, false)) out += "<!-- " + CommentText(note) + " -->\n";
   out += fmt::format("<robot name=\"driveid_{}\">\n  <link name=\"base\"/>\n  <link name=\"{}_link\">\n", o.joint, o.joint);
   double mass = 0.0, inertia = 0.0;
@@ -150,7 +170,7 @@ std::string ExportUrdf(const ParameterFile& file, const ExportOptions& o) {
 
 WpilibAxis WpilibOf(const ParameterFile& file) {
   const AxisView v = ViewAxis(file);
-  return {RequireFeedforward(file), v.linear, v.p.stribeck != 0.0, &file.feedback};
+  return {RequireFeedforward(file), v.linear, TermNotes(v, AxisExportTarget::kWpilib), &file.feedback};
 }
 
 // The axis feed-forward section, or the C-drive's compensation law (31).

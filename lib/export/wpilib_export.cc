@@ -36,7 +36,7 @@ Plan MakePlan(const WpilibAxis& axis) {
   if (!p.arm && !p.elevator && offset && offset->value != 0.0) {
     p.notes.push_back("The offset (kOffset) has no place in SimpleMotorFeedforward: add it to the output.");
   }
-  if (axis.stribeck) p.notes.push_back("The Stribeck term is not representable in WPILib's feed-forward classes.");
+  p.notes.insert(p.notes.end(), axis.term_notes.begin(), axis.term_notes.end());
   return p;
 }
 

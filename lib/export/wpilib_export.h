@@ -11,6 +11,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "export/export_target.h"
 #include "export/export_text.h"
@@ -21,7 +22,9 @@ namespace driveid {
 struct WpilibAxis {
   const Feedforward& feedforward;
   bool linear = false;
-  bool stribeck = false;  ///< a Stribeck term was fitted (not representable)
+  /// What WPILib's classes cannot hold of the fitted terms, one note each
+  /// (models/axis_term.h ExportNote).
+  std::vector<std::string> term_notes;
   const FeedbackController* feedback = nullptr;  ///< gains' section, if any: PIDController constants
 };
 

@@ -19,6 +19,7 @@
 #include "fit/omitted_terms.h"
 #include "io/csv_log.h"
 #include "models/missing_values.h"
+#include "models/axis_term.h"
 #include "signal/butterworth.h"
 #include "signal/local_polynomial.h"
 
@@ -41,12 +42,8 @@ bool AxisFitOptions::IsValid(std::string* error) const {
 
 namespace {
 
-// The regressor columns: the axis table's model rows, in order.
-constexpr int kModelColumns = static_cast<int>(kAxisTerms);
-
-const ParameterRow<AxisSection, AxisParameters>& Column(int j) {
-  return AxisParameterTable()[static_cast<std::size_t>(j)];
-}
+// The regressor columns: the linear parameters, in index order.
+const AxisRow& Column(std::size_t j) { return AxisTermRow(j); }
 
 std::string Key(double AxisParameters::*member) { return KeyOf(AxisParameterTable(), member); }
 
@@ -426,12 +423,12 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
   return out;
 }
 
-std::vector<AxisTerm> ResolveAxisTerms(const AxisSection& start, const std::vector<std::string>& free) {
+std::vector<ResolvedAxisTerm> ResolveAxisTerms(const AxisSection& start, const std::vector<std::string>& free) {
   // A linear axis has no angle: its weight is a constant force, the offset.
   if (start.linear) {
     for (const auto member : {&AxisParameters::gravity_cos, &AxisParameters::gravity_sin}) {
       const std::string key = Key(member);
-      const auto given = start.*(FindParameter(AxisParameterTable(), key)->in_section);
+      const auto given = SectionValue(*FindParameter(AxisParameterTable(), key), start);
       if (Contains(free, key)) {
         throw OptionError(fmt::format("‹free› {}: a linear axis (axis.linear, ‹linear›) has no cos q / sin q "
                                       "gravity: its weight is a constant force, fitted as the offset",
@@ -460,18 +457,18 @@ std::vector<AxisTerm> ResolveAxisTerms(const AxisSection& start, const std::vect
   if (Contains(free, Key(&AxisParameters::coulomb_pos)) && Contains(free, Key(&AxisParameters::coulomb_neg))) {
     replaced.push_back(Key(&AxisParameters::offset));
   }
-  std::vector<AxisTerm> terms;
+  std::vector<ResolvedAxisTerm> terms;
   std::vector<const ParameterSpec*> needed;
-  for (int j = 0; j < kAxisAllTerms; ++j) {
+  for (std::size_t j = 0; j < AxisParameterCount(); ++j) {
     const ParameterSpec& spec = AxisTermRow(j).spec;
-    const std::optional<double> value = start.*(AxisTermRow(j).in_section);
+    const std::optional<double> value = SectionValue(AxisTermRow(j), start);
     const bool is_free = Contains(free, spec.key);
     if (!is_free && !value && spec.default_free && j != 0 && !Contains(replaced, spec.key)) needed.push_back(&spec);
     // A fixed inertia, a gravity or direction term, or a replaced friction
     // term that is not given counts as 0; the adequacy checks say when the
     // residuals contradict that.
     const double v = is_free ? std::max(spec.lower_bound, value.value_or(0.0)) : value.value_or(0.0);
-    terms.push_back({spec.key, static_cast<std::size_t>(j), is_free, v});
+    terms.push_back({spec.key, j, is_free, v});
   }
   if (!needed.empty()) {
     throw MissingValuesError("‹params›", "axis", needed, "(fixed in this fit)", " (or name them in ‹free›)");
@@ -485,20 +482,21 @@ AxisFitOutput FitAxisAtCutoff(const std::vector<AxisLog>& logs, const AxisSectio
 
 namespace {
 
-// The free linear terms and the fixed values (the Stribeck pair refused:
+// The free linear terms and the fixed values (a nonlinear term refused:
 // inverse dynamics neither fits nor subtracts it); the adequacy checks'
 // diagnostic columns held at 0.
 void AxisDesign(const AxisSection& start, const std::vector<std::string>& free, std::vector<FitParameter>& parameters,
                 std::map<std::string, double>& fixed) {
   for (const auto& term : ResolveAxisTerms(start, free)) {
-    if (term.index >= kAxisTerms) {
+    if (term.index >= AxisLinearCount()) {
+      const AxisTermParameter& owner = AxisParameterTerm(term.index);
       if (term.free) {
-        throw OptionError(fmt::format("‹free› {}: the Stribeck term is nonlinear in the rate: fit it with ‹method› oe",
-                                      term.key));
+        throw OptionError(fmt::format("‹free› {}: the {} term is nonlinear in the rate: fit it with ‹method› oe",
+                                      term.key, owner.term->name()));
       }
-      if (term.key == Key(&AxisParameters::stribeck) && term.value != 0.0) {
-        throw InputError(fmt::format("‹params›: axis.stribeck = {}: the Stribeck term needs ‹method› oe (inverse "
-                                     "dynamics would ignore it)", term.value));
+      if (owner.row == 0 && term.value != 0.0) {
+        throw InputError(fmt::format("‹params›: axis.{} = {}: the {} term needs ‹method› oe (inverse dynamics would "
+                                     "ignore it)", term.key, term.value, owner.term->name()));
       }
       continue;
     }
@@ -588,7 +586,7 @@ AxisFitOutput FitAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& s
   out.fit = regression.Fit(parameters, fixed, fit_options);
   std::map<std::string, double> fitted = fixed;
   for (const auto& e : out.fit.estimates) fitted[e.name] = e.value;
-  for (int j = 0; j < kModelColumns; ++j) out.params.*(Column(j).in_model) = fitted[Column(j).spec.key];
+  for (std::size_t j = 0; j < AxisLinearCount(); ++j) ModelValue(Column(j), out.params) = fitted[Column(j).spec.key];
   std::vector<std::string> free_names;
   for (const auto& e : out.fit.estimates) free_names.push_back(e.name);
   if (extent == AtCutoff::kFull) out.fit.warnings = CheckAxisAdequacy(regression, out.fit, free_names, fitted, start.linear);
@@ -598,7 +596,7 @@ AxisFitOutput FitAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& s
     AddPerLogFits(out.fit, LogLabels(logs), [&](std::size_t i) { return FitAxis({logs[i]}, start, alone).fit.estimates; });
   }
   std::vector<std::string> nonnegative;
-  for (int j = 0; j < kModelColumns; ++j) {
+  for (std::size_t j = 0; j < AxisLinearCount(); ++j) {
     if (Column(j).spec.lower_bound == 0.0) nonnegative.emplace_back(Column(j).spec.key);
   }
   RequireDetermined(out.fit, nonnegative, options.max_relative_std, out.fit.warnings);

@@ -86,10 +86,10 @@ struct AxisFitOutput {
 /// not move; docs/models.md#axis-cutoff-from-the-data).
 double ChooseAxisCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options);
 
-/// One model term of a fit: free (with its start value) or fixed.
-struct AxisTerm {
+/// One model parameter of a fit: free (with its start value) or fixed.
+struct ResolvedAxisTerm {
   std::string key;
-  std::size_t index = 0;  ///< term index: AxisTermRow; < kAxisTerms: CalcAxisRegressors
+  std::size_t index = 0;  ///< parameter index: AxisTermRow; < AxisLinearCount(): CalcAxisRegressors
   bool free = false;
   double value = 0.0;     ///< start value if free, else the fixed value
 };
@@ -98,7 +98,7 @@ struct AxisTerm {
 /// its direction-dependent replacement (OptionError) and a fixed J's
 /// siblings b, tau_c, tau_0 not given (InputError); fixed terms not given
 /// (J, the others, the replaced ones) count as 0.
-std::vector<AxisTerm> ResolveAxisTerms(const AxisSection& start, const std::vector<std::string>& free);
+std::vector<ResolvedAxisTerm> ResolveAxisTerms(const AxisSection& start, const std::vector<std::string>& free);
 
 /// The fit at options.cutoff (> 0), without the sensitivity fits.
 AxisFitOutput FitAxisAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& start,

@@ -10,6 +10,7 @@
 #include "core/option_check.h"
 #include "fit/adequacy.h"
 #include "fit/axis_fit.h"
+#include "models/axis_term.h"
 #include "sim/axis_simulator.h"
 
 namespace driveid {
@@ -89,7 +90,7 @@ class AxisOeResiduals final : public ResidualModel {
 
  private:
   void Set(const double* parameters) {
-    for (std::size_t j = 0; j < terms_.size(); ++j) params_.*(AxisTermRow(terms_[j]).in_model) = parameters[j];
+    for (std::size_t j = 0; j < terms_.size(); ++j) ModelValue(AxisTermRow(static_cast<std::size_t>(terms_[j])), params_) = parameters[j];
   }
 
   std::vector<OeLog>& logs_;
@@ -146,21 +147,29 @@ struct OeDesign {
   std::vector<FitParameter> parameters;
 };
 
+// Parameter j is a nonlinear term's scale (models/axis_term.h scale_row).
+bool IsScale(std::size_t j) {
+  const AxisTermParameter& owner = AxisParameterTerm(j);
+  return owner.term->scale_row() >= 0 && owner.row == static_cast<std::size_t>(owner.term->scale_row());
+}
+
 OeDesign MakeOeDesign(const AxisSection& start, const AxisParameters* initial, const std::vector<std::string>& free) {
   OeDesign d;
+  std::vector<bool> free_index(AxisParameterCount(), false);
   for (const auto& term : ResolveAxisTerms(start, free)) {
     double value = term.value;
-    const auto& row = AxisTermRow(static_cast<int>(term.index));
-    if (term.free && initial != nullptr && term.index < kAxisTerms) value = (*initial).*(row.in_model);
+    const auto& row = AxisTermRow(term.index);
+    if (term.free && initial != nullptr && term.index < AxisLinearCount()) value = ModelValue(row, *initial);
     const double lower = row.spec.lower_bound;
     if (term.free) {
       value = std::max(value, lower);
-      if (term.index == kAxisInertia) {
+      free_index[term.index] = true;
+      if (term.index == AxisIndex(&AxisParameters::inertia)) {
         if (!(value > 0.0)) {
           throw InputError("‹method› oe: the inertia needs a start value > 0 (axis.inertia in ‹params›)");
         }
         d.parameters.push_back({term.key, value, 1e-6 * value, 0.0});
-      } else if (term.index == static_cast<std::size_t>(kAxisStribeckVelocity)) {
+      } else if (IsScale(term.index)) {
         d.parameters.push_back({term.key, value, 1e-6 * std::max(value, 1e-9), 0.0});
       } else {
         double scale = std::abs(value);
@@ -169,15 +178,15 @@ OeDesign MakeOeDesign(const AxisSection& start, const AxisParameters* initial, c
       }
       d.terms.push_back(static_cast<int>(term.index));
     }
-    d.fixed.*(row.in_model) = value;
+    ModelValue(row, d.fixed) = value;
   }
-  const bool stribeck_free = std::find(d.terms.begin(), d.terms.end(), kAxisStribeck) != d.terms.end();
-  if ((stribeck_free || d.fixed.stribeck != 0.0) && !(d.fixed.stribeck_velocity > 0.0)) {
-    throw InputError("‹params›: axis.stribeck_velocity must be > 0 (a start value if free) with the Stribeck term");
-  }
-  if (stribeck_free && d.fixed.stribeck == 0.0) {
-    throw InputError("‹free› stribeck: give a start value > 0 in ‹params› (axis.stribeck): at 0 the fit cannot "
-                     "tell which way to move stribeck_velocity");
+  // Each nonlinear term checks its own start (models/axis_term.h).
+  const AxisValues values = AxisValuesOf(d.fixed);
+  for (const AxisTerm* term : AxisTerms()) {
+    if (term->linear()) continue;
+    const std::size_t first = AxisFirstIndex(*term), n = term->Rows().size();
+    term->CheckFitStart(&values[first], std::vector<bool>(free_index.begin() + static_cast<std::ptrdiff_t>(first),
+                                                          free_index.begin() + static_cast<std::ptrdiff_t>(first + n)));
   }
   if (!(d.fixed.inertia > 0.0)) {
     throw InputError("‹method› oe: the axis needs an inertia > 0: give axis.inertia or free it");
@@ -230,19 +239,19 @@ OeLogs PrepareOeLogs(const std::vector<AxisLog>& logs) {
   return out;
 }
 
-// The Stribeck velocity has a plateau (v_s -> infinity: the excess joins
-// the Coulomb term) that attracts the solver from poor linear terms: with
-// it free, the other terms are fitted first with the pair held at its
-// start, then all from there, starting v_s also at a quarter and four
-// times its value; the lowest cost wins.
-FitResult FitWithStribeckVelocity(OeLogs& prepared, const OeDesign& d, AxisOeResiduals& residuals,
-                                  const std::vector<FitChannel>& channels, const FitOptions& fit_options,
-                                  std::size_t vs) {
+// A nonlinear term's scale parameter (models/axis_term.h scale_row) has a
+// plateau (a fading excess whose scale grows without bound joins a linear
+// term) that attracts the solver from poor linear terms: with it free, the
+// linear terms are fitted first with the nonlinear ones held at their
+// start, then all from there, starting the scale also at a quarter and
+// four times its value; the lowest cost wins.
+FitResult FitFromPlateau(OeLogs& prepared, const OeDesign& d, AxisOeResiduals& residuals,
+                         const std::vector<FitChannel>& channels, const FitOptions& fit_options, std::size_t vs) {
   std::vector<FitParameter> parameters = d.parameters;
   std::vector<int> linear_terms;
   std::vector<FitParameter> linear_parameters;
   for (std::size_t j = 0; j < d.terms.size(); ++j) {
-    if (d.terms[j] < static_cast<int>(kAxisTerms)) {
+    if (d.terms[j] < static_cast<int>(AxisLinearCount())) {
       linear_terms.push_back(d.terms[j]);
       linear_parameters.push_back(parameters[j]);
     }
@@ -255,7 +264,7 @@ FitResult FitWithStribeckVelocity(OeLogs& prepared, const OeDesign& d, AxisOeRes
     try {
       const FitResult first = FitLeastSquares(stage, linear_parameters, channels, quiet);
       for (std::size_t j = 0, m = 0; j < d.terms.size(); ++j) {
-        if (d.terms[j] < static_cast<int>(kAxisTerms)) parameters[j].initial = first.estimates[m++].value;
+        if (d.terms[j] < static_cast<int>(AxisLinearCount())) parameters[j].initial = first.estimates[m++].value;
       }
     } catch (const IdentificationError&) {
       // The full fit from the given start reports what is wrong.
@@ -297,12 +306,12 @@ AxisOeOutput FitAxisOutputError(const std::vector<AxisLog>& logs, const AxisSect
   FitOptions fit_options = options.fit;
   if (!fit_options.advice) fit_options.advice = OeAdvice;
   AxisOeOutput out;
-  const auto vs = std::find(d.terms.begin(), d.terms.end(), kAxisStribeckVelocity);
+  const auto vs = std::find_if(d.terms.begin(), d.terms.end(), [](int j) { return IsScale(static_cast<std::size_t>(j)); });
   out.fit = vs == d.terms.end() ? FitLeastSquares(residuals, d.parameters, channels, fit_options)
-                                : FitWithStribeckVelocity(prepared, d, residuals, channels, fit_options,
-                                                          static_cast<std::size_t>(vs - d.terms.begin()));
+                                : FitFromPlateau(prepared, d, residuals, channels, fit_options,
+                                                 static_cast<std::size_t>(vs - d.terms.begin()));
   std::vector<std::string> nonnegative;
-  for (int j = 0; j < kAxisAllTerms; ++j) {
+  for (std::size_t j = 0; j < AxisParameterCount(); ++j) {
     if (AxisTermRow(j).spec.lower_bound == 0.0) nonnegative.emplace_back(AxisTermRow(j).spec.key);
   }
   RequireDetermined(out.fit, nonnegative, kMaxRelativeStd, out.fit.warnings);
@@ -314,7 +323,7 @@ AxisOeOutput FitAxisOutputError(const std::vector<AxisLog>& logs, const AxisSect
   std::vector<double> estimate;
   for (const auto& e : out.fit.estimates) estimate.push_back(e.value);
   out.params = d.fixed;
-  for (std::size_t j = 0; j < d.terms.size(); ++j) out.params.*(AxisTermRow(d.terms[j]).in_model) = estimate[j];
+  for (std::size_t j = 0; j < d.terms.size(); ++j) ModelValue(AxisTermRow(static_cast<std::size_t>(d.terms[j])), out.params) = estimate[j];
   out.position.resize(oe.size());
   out.rate.resize(oe.size());
   for (std::size_t i = 0; i < oe.size(); ++i) residuals.Simulate(estimate.data(), i, &out.position[i], &out.rate[i]);

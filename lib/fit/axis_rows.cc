@@ -9,6 +9,7 @@
 #include "core/errors.h"
 #include "core/fit_result.h"
 #include "models/axis.h"
+#include "models/axis_term.h"
 #include "signal/butterworth.h"
 #include "signal/local_polynomial.h"
 
@@ -185,7 +186,7 @@ int AxisExclusionReach(double rate, double cutoff, int decimation) {
 
 std::vector<std::string> AxisRowColumnNames() {
   std::vector<std::string> names;
-  for (std::size_t j = 0; j < kAxisTerms; ++j) names.emplace_back(AxisParameterTable()[j].spec.key);
+  for (std::size_t j = 0; j < AxisLinearCount(); ++j) names.emplace_back(AxisTermRow(j).spec.key);
   names.emplace_back(kAxisAbsRateColumn);
   names.emplace_back(kAxisTimeColumn);
   return names;
@@ -362,20 +363,21 @@ AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int deci
     // Low-passed before decimation.
     const bool filtered = d.rate_hz > 0.0 && decimation > 1;
     const double band = AxisDecimatedBand(d.rate_hz, decimation);
-    const std::size_t width = kAxisTerms + 2;
+    const std::size_t linear = AxisLinearCount(), width = linear + 2;
     std::vector<double> rows(kept.size() * width), column(n);
     const double middle_time = 0.5 * (log.time.front() + log.time.back());
     for (std::size_t c = 0; c < width; ++c) {
-      // Only the gravity terms depend on q (the trigonometry is most of the time).
-      const bool trigonometric = c == kAxisGravityCos || c == kAxisGravitySin;
+      // Only terms that are not mode-affine (gravity) depend on q (the
+      // trigonometry is most of the time).
+      const bool trigonometric = c < linear && !AxisParameterTerm(c).term->mode_affine();
       for (std::size_t k = 0; k < n; ++k) {
         const std::size_t m = derived(k);
         const double position = trigonometric ? log.position[k] : 0.0;
-        column[k] = c < kAxisTerms   ? CalcAxisRegressors(position, d.rate[m], d.acceleration[m])[c]
-                    : c == kAxisTerms ? std::abs(d.rate[m])
-                                      : log.time[k] - middle_time;
+        column[k] = c < linear   ? CalcAxisRegressors(position, d.rate[m], d.acceleration[m])[c]
+                    : c == linear ? std::abs(d.rate[m])
+                                  : log.time[k] - middle_time;
       }
-      if (c < kAxisTerms) ShiftColumn(column, shift);
+      if (c < linear) ShiftColumn(column, shift);
       if (filtered) ZeroPhaseLowPassInPlace(column, band, d.rate_hz);
       for (std::size_t r = 0; r < kept.size(); ++r) rows[r * width + c] = column[kept[r]];
     }

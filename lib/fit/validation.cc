@@ -14,6 +14,7 @@
 #include "fit/least_squares.h"
 #include "fit/linear_regression.h"
 #include "fit/step_fit.h"
+#include "models/axis_term.h"
 #include "sim/axis_simulator.h"
 
 namespace driveid {
@@ -22,7 +23,7 @@ namespace {
 std::map<std::string, double> AxisColumnValues(const AxisParameters& params) {
   std::map<std::string, double> values;
   for (const auto& row : AxisParameterTable()) {
-    if (row.in_model != nullptr) values[row.spec.key] = params.*(row.in_model);
+    if (row.is_model()) values[row.spec.key] = ModelValue(row, params);
   }
   values[kAxisAbsRateColumn] = 0.0;
   values[kAxisTimeColumn] = 0.0;
@@ -36,9 +37,13 @@ constexpr double kMinRateFraction = 0.01;
 
 std::vector<ValidatedLog> ValidateAxis(const std::vector<AxisLog>& logs, const AxisParameters& params, double cutoff,
                                        int decimation, AxisTorqueTiming timing, AxisReach reach, double torque_delay) {
-  if (params.stribeck != 0.0) {
-    throw InputError("axis.stribeck is not 0: the inverse-dynamics prediction has no Stribeck term (an output-error "
-                     "validation is not built)");
+  const AxisValues values = AxisValuesOf(params);
+  for (const AxisTerm* term : AxisTerms()) {
+    if (!term->linear() && term->Present(&values[AxisFirstIndex(*term)])) {
+      throw InputError(fmt::format("axis.{} is not 0: the inverse-dynamics prediction has no {} term (an output-error "
+                                   "validation is not built)",
+                                   term->Rows().front().spec.key, term->name()));
+    }
   }
   const AxisRows rows =
       BuildAxisRows(logs, cutoff, decimation, kMinRateFraction, AxisRowColumnNames(), timing, reach, torque_delay);

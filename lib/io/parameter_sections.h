@@ -71,10 +71,10 @@ std::vector<std::pair<std::string, YAML::Node>> ParseSection(const std::string& 
                                    row->spec.lower_exclusive ? ">" : ">=", row->spec.lower_bound, value,
                                    row->spec.Doc()));
     }
-    out.*(row->in_section) = value;
+    SectionValue(*row, out) = value;
   }
   for (const auto& row : table) {
-    if (row.spec.required && !(out.*(row.in_section))) {
+    if (row.spec.required && !SectionValue(row, out)) {
       throw InputError(fmt::format("{}: {}.{}: missing value ({})", Where(path, node), section, row.spec.key,
                                    row.spec.Doc()));
     }
@@ -90,7 +90,7 @@ std::string FormatSection(const Values& values, const ParameterTable<Values, Mod
                           const std::function<std::string(const ParameterSpec&)>& unit_of = {}) {
   std::string out;
   for (const auto& row : table) {
-    const std::optional<double>& value = values.*(row.in_section);
+    const std::optional<double>& value = SectionValue(row, values);
     if (!value) continue;
     const std::string line = fmt::format(
         "{}{}: {}", indent, row.spec.key,

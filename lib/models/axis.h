@@ -1,10 +1,14 @@
 // Rigid single axis (docs/models.md#axis; seed 000 section 5 per actuator,
 // friction at constant rates):
-//   tau = J q'' + b q' + tau_c sgn(q') + tau_0 + g_c cos q + g_s sin q
-//         + tau_c+ [q' > 0] - tau_c- [q' < 0] + b+ max(q', 0) + b- min(q', 0)
-//         + tau_s exp(-(q'/v_s)^2) sgn(q'),
-//   sgn(0) = 0. The Stribeck term (breakaway tau_c + tau_s) is nonlinear in
-//   v_s: only the output-error fit estimates it.
+//   tau = J q'' + sum over the model's terms of their forces F_t(q, q', m),
+// m = sgn(q') the direction of motion (sgn(0) = 0). Each term is an object
+// (models/axis_term.h) in a file of its own under models/axis_terms/, and
+// models/axis_terms.cc registers them: the linear ones (F = sum_i p_i
+// phi_i, which inverse dynamics fits: inertia J q'', viscous b q', Coulomb
+// tau_c sgn(q'), offset tau_0, gravity g_c cos q + g_s sin q, Coulomb per
+// direction tau_c+ [q' > 0] - tau_c- [q' < 0], viscous per direction
+// b+ max(q', 0) + b- min(q', 0)), then the nonlinear ones, which only the
+// output-error fit estimates. The parameter table is theirs, in that order.
 // The direction-dependent terms (coulomb_pos/neg, viscous_pos/neg; tau_c-
 // and b- are magnitudes) replace coulomb and viscous when fitted: both at
 // once are collinear and refused by the fit; so are an offset and both
@@ -30,6 +34,10 @@
 
 namespace driveid {
 
+/// Slots for the parameters of terms registered without a member of their
+/// own below (models/axis_terms.cc assigns them in registration order).
+inline constexpr std::size_t kAxisExtraSlots = 8;
+
 struct AxisParameters {
   double inertia = 0.0;  ///< J [kg m^2 or kg]
   double viscous = 0.0;  ///< b [N m s/rad or N s/m]
@@ -41,8 +49,8 @@ struct AxisParameters {
   double coulomb_neg = 0.0;  ///< tau_c- [N m]: its magnitude moving backward (q' < 0)
   double viscous_pos = 0.0;  ///< b+ [N m s/rad]: viscous friction moving forward
   double viscous_neg = 0.0;  ///< b- [N m s/rad]: viscous friction moving backward
-  double stribeck = 0.0;           ///< tau_s [N m]: breakaway excess over Coulomb, fading with speed
-  double stribeck_velocity = 0.0;  ///< v_s [rad/s]: speed over which it fades, exp(-(q'/v_s)^2)
+  /// The other terms' parameters, by slot (their rows say which).
+  std::array<double, kAxisExtraSlots> extra{};
 };
 
 /// The parameter file's `axis` section: every value optional.
@@ -52,53 +60,21 @@ struct AxisSection {
   std::optional<double> coulomb_pos, coulomb_neg, viscous_pos, viscous_neg;
   std::optional<double> torque_constant;  ///< k_t [N m/A], for logs of current
   std::optional<double> gear_ratio;       ///< n_g [-], to report d_g = b / n_g^2
-  std::optional<double> stribeck, stribeck_velocity;
   /// When the logged torque acts after its stamp [samples]: the IDIM fit's
   /// reading (0 sampled, 0.5 held, else estimated), which validate reuses.
   std::optional<double> torque_delay;
+  /// The other terms' parameters, by slot (as AxisParameters::extra).
+  std::array<std::optional<double>, kAxisExtraSlots> extra;
   bool linear = false;  ///< q in m, forces in N (`linear: true`); else rotary
 };
 
-/// The axis parameters: key, symbol, unit, bound, fit membership.
-inline const ParameterTable<AxisSection, AxisParameters>& AxisParameterTable() {
-  static const ParameterTable<AxisSection, AxisParameters> table = {
-      {Spec("inertia", "J", "kg m^2", "inertia").Fit("axis").FreeByDefault(),
-       &AxisSection::inertia, &AxisParameters::inertia},
-      {Spec("viscous", "b", "N m s/rad", "viscous friction").Fit("axis").FreeByDefault(),
-       &AxisSection::viscous, &AxisParameters::viscous},
-      {Spec("coulomb", "tau_c", "N m", "Coulomb friction").Fit("axis").FreeByDefault(),
-       &AxisSection::coulomb, &AxisParameters::coulomb},
-      {Spec("offset", "tau_0", "N m", "constant offset").Unbounded().Fit("axis").FreeByDefault(),
-       &AxisSection::offset, &AxisParameters::offset},
-      {Spec("gravity_cos", "g_c", "N m", "gravity torque amplitude of cos q (q in rad)").Unbounded().Fit("axis"),
-       &AxisSection::gravity_cos, &AxisParameters::gravity_cos},
-      {Spec("gravity_sin", "g_s", "N m", "gravity torque amplitude of sin q (q in rad)").Unbounded().Fit("axis"),
-       &AxisSection::gravity_sin, &AxisParameters::gravity_sin},
-      {Spec("coulomb_pos", "tau_c+", "N m", "Coulomb friction moving forward (q' > 0)").Fit("axis"),
-       &AxisSection::coulomb_pos, &AxisParameters::coulomb_pos},
-      {Spec("coulomb_neg", "tau_c-", "N m", "Coulomb friction moving backward (magnitude, q' < 0)").Fit("axis"),
-       &AxisSection::coulomb_neg, &AxisParameters::coulomb_neg},
-      {Spec("viscous_pos", "b+", "N m s/rad", "viscous friction moving forward").Fit("axis"),
-       &AxisSection::viscous_pos, &AxisParameters::viscous_pos},
-      {Spec("viscous_neg", "b-", "N m s/rad", "viscous friction moving backward").Fit("axis"),
-       &AxisSection::viscous_neg, &AxisParameters::viscous_neg},
-      {Spec("k_t", "k_t", "N m/A", "torque constant for logs of current").Above(0.0),
-       &AxisSection::torque_constant, nullptr},
-      {Spec("n_g", "n_g", "-", "gear ratio, to report d_g = b / n_g^2").Above(0.0),
-       &AxisSection::gear_ratio, nullptr},
-      {Spec("torque_delay", "d_u", "samples",
-            "when the logged torque acts after its stamp, as the fit read it (0 sampled, 0.5 held; validate reuses "
-            "it; docs/models.md#torque-timing)").Unbounded(),
-       &AxisSection::torque_delay, nullptr},
-      // Nonlinear terms after the settings, so that rows 0 .. kAxisTerms - 1
-      // are the linear ones (CalcAxisRegressors).
-      {Spec("stribeck", "tau_s", "N m", "Stribeck breakaway excess over Coulomb (output error only)").Fit("axis"),
-       &AxisSection::stribeck, &AxisParameters::stribeck},
-      {Spec("stribeck_velocity", "v_s", "rad/s", "Stribeck velocity: the excess fades as exp(-(q'/v_s)^2)").Fit("axis"),
-       &AxisSection::stribeck_velocity, &AxisParameters::stribeck_velocity},
-  };
-  return table;
-}
+using AxisRow = ParameterRow<AxisSection, AxisParameters>;
+using AxisTable = ParameterTable<AxisSection, AxisParameters>;
+
+/// The axis parameters: key, symbol, unit, bound, fit membership — the
+/// registered terms' rows (the linear terms', then the settings k_t, n_g
+/// and torque_delay, then the nonlinear terms'); models/axis_terms.cc.
+const AxisTable& AxisParameterTable();
 
 /// The unit of an axis parameter (the table's, rotary) on a rotary or a
 /// linear axis: kg m^2 -> kg, N m s/rad -> N s/m, N m -> N, rad/s -> m/s,
@@ -127,14 +103,24 @@ inline std::string AxisUnitIn(const ParameterSpec& spec, const std::string& effo
   return unit;
 }
 
-/// The linear model terms: the table's first rows, in table order (the
-/// Stribeck pair follows the settings k_t, n_g).
-constexpr std::size_t kAxisTerms = 10;
-/// Index of each term in CalcAxisRegressors and AxisTermMembers.
-enum AxisTermIndex : int {
-  kAxisInertia, kAxisViscous, kAxisCoulomb, kAxisOffset, kAxisGravityCos, kAxisGravitySin,
-  kAxisCoulombPos, kAxisCoulombNeg, kAxisViscousPos, kAxisViscousNeg
-};
+/// The model parameters (the table's rows but the settings) by index j,
+/// in table order: the linear terms' first (j < AxisLinearCount(): the
+/// regressors' order), then the nonlinear terms'.
+std::size_t AxisLinearCount();
+std::size_t AxisParameterCount();
+/// The table row of parameter j.
+const AxisRow& AxisTermRow(std::size_t j);
+/// The index of the parameter stored in `member`.
+std::size_t AxisIndex(double AxisParameters::*member);
+/// The index of the parameter named `key`, or AxisParameterCount().
+std::size_t AxisIndexOf(const std::string& key);
+
+/// Fixed-size storage for per-parameter values (regressors, parameter vectors).
+inline constexpr std::size_t kMaxAxisParameters = 32;
+using AxisValues = std::array<double, kMaxAxisParameters>;
+
+/// Every parameter's value in index order.
+AxisValues AxisValuesOf(const AxisParameters& p);
 
 /// The parameter a direction-dependent pair replaces ("" for others):
 /// coulomb_pos/neg replace coulomb, viscous_pos/neg replace viscous.
@@ -157,72 +143,28 @@ inline std::vector<std::string> AxisTermsZeroUnlessGiven(const AxisSection& give
   std::vector<std::string> keys;
   const auto& table = AxisParameterTable();
   for (const auto& row : table) {
-    if (row.in_model == nullptr) continue;
+    if (!row.is_model()) continue;
     const std::string key = row.spec.key;
     if (!row.spec.default_free) keys.push_back(key);
-    if (given.*(row.in_section) && !AxisReplacedBy(key).empty()) keys.push_back(AxisReplacedBy(key));
+    if (SectionValue(row, given) && !AxisReplacedBy(key).empty()) keys.push_back(AxisReplacedBy(key));
   }
   if (given.coulomb_pos && given.coulomb_neg) keys.push_back(KeyOf(table, &AxisParameters::offset));
   return keys;
 }
 
-/// The regressor of each term at a position, rate, acceleration and
-/// direction of motion (+1 forward, -1 backward, 0 at rest), in table order:
-/// tau = sum_j p_j phi_j. The direction is sgn(rate) except in a simulation
-/// at the instant the rate crosses 0 (sim/axis_simulator.h).
-inline std::array<double, kAxisTerms> CalcAxisRegressors(double position, double rate, double acceleration,
-                                                         int direction) {
-  const double forward = direction > 0 ? 1.0 : 0.0, backward = direction < 0 ? 1.0 : 0.0;
-  return {acceleration, rate, forward - backward, 1.0, std::cos(position), std::sin(position),
-          forward, -backward, forward * rate, backward * rate};
-}
+/// The regressor of each linear parameter at a position, rate, acceleration
+/// and direction of motion (+1 forward, -1 backward, 0 at rest), in index
+/// order (the first AxisLinearCount() entries): the linear terms' force is
+/// sum_j p_j phi_j. The direction is sgn(rate) except in a simulation at the
+/// instant the rate crosses 0 (sim/axis_simulator.h).
+AxisValues CalcAxisRegressors(double position, double rate, double acceleration, int direction);
 
 /// The regressors with the direction sgn(rate) (sgn(0) = 0: at rest neither).
-inline std::array<double, kAxisTerms> CalcAxisRegressors(double position, double rate, double acceleration) {
+inline AxisValues CalcAxisRegressors(double position, double rate, double acceleration) {
   return CalcAxisRegressors(position, rate, acceleration, (rate > 0.0) - (rate < 0.0));
 }
 
-/// The model members in table order (index j of the regressors).
-inline const std::array<double AxisParameters::*, kAxisTerms>& AxisTermMembers() {
-  static const std::array<double AxisParameters::*, kAxisTerms> members = [] {
-    std::array<double AxisParameters::*, kAxisTerms> out{};
-    for (std::size_t j = 0; j < kAxisTerms; ++j) out[j] = AxisParameterTable()[j].in_model;
-    return out;
-  }();
-  return members;
-}
-
-/// Term indices after the linear ones: the Stribeck pair (nonlinear).
-constexpr int kAxisStribeck = static_cast<int>(kAxisTerms), kAxisStribeckVelocity = kAxisStribeck + 1;
-constexpr int kAxisAllTerms = kAxisStribeckVelocity + 1;
-
-/// The table row of term index `term` (0 .. kAxisAllTerms - 1).
-inline const ParameterRow<AxisSection, AxisParameters>& AxisTermRow(int term) {
-  const auto& table = AxisParameterTable();
-  if (term < static_cast<int>(kAxisTerms)) return table[static_cast<std::size_t>(term)];
-  const double AxisParameters::*member =
-      term == kAxisStribeck ? &AxisParameters::stribeck : &AxisParameters::stribeck_velocity;
-  for (const auto& row : table) {
-    if (row.in_model == member) return row;
-  }
-  throw std::logic_error("AxisTermRow: no such term");
-}
-
-/// The Stribeck excess tau_s exp(-(v/v_s)^2) in the direction of motion
-/// (0 at rest and where v_s <= 0).
-inline double CalcStribeckForce(const AxisParameters& p, double rate, int direction) {
-  if (p.stribeck == 0.0 || !(p.stribeck_velocity > 0.0) || direction == 0) return 0.0;
-  const double x = rate / p.stribeck_velocity;
-  return direction * p.stribeck * std::exp(-x * x);
-}
-
-/// Force/torque of the axis at a position, rate and acceleration.
-inline double CalcAxisForce(const AxisParameters& p, double position, double rate, double acceleration) {
-  const std::array<double, kAxisTerms> phi = CalcAxisRegressors(position, rate, acceleration);
-  const auto& members = AxisTermMembers();
-  double tau = 0.0;
-  for (std::size_t j = 0; j < kAxisTerms; ++j) tau += p.*members[j] * phi[j];
-  return tau + CalcStribeckForce(p, rate, (rate > 0.0) - (rate < 0.0));
-}
+/// Force/torque of the axis at a position, rate and acceleration (every term).
+double CalcAxisForce(const AxisParameters& p, double position, double rate, double acceleration);
 
 }  // namespace driveid

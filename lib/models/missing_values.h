@@ -27,7 +27,7 @@ std::vector<const ParameterSpec*> MissingModelValues(const ParameterTable<Sectio
   std::vector<const ParameterSpec*> missing;
   for (const auto& row : table) {
     if (std::find(zero_unless_given.begin(), zero_unless_given.end(), row.spec.key) != zero_unless_given.end()) continue;
-    if (row.in_model != nullptr && !(section.*(row.in_section))) missing.push_back(&row.spec);
+    if (row.is_model() && !SectionValue(row, section)) missing.push_back(&row.spec);
   }
   return missing;
 }

@@ -16,6 +16,8 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -90,13 +92,51 @@ constexpr ParameterSpec Spec(const char* key, const char* symbol, const char* un
 constexpr double kUnbounded = -std::numeric_limits<double>::infinity();
 
 /// A row of a model's table: the spec, the value in the file section and
-/// (nullptr for settings) in the model's parameter struct.
+/// (nullptr for settings) in the model's parameter struct. A term added to
+/// a model without a member of its own (models/axis_term.h) stores its
+/// parameters by position instead: `slot` indexes the section's and the
+/// model's `extra` arrays (ModelValue, SectionValue reach either).
 template <class Section, class Model>
 struct ParameterRow {
   ParameterSpec spec;
   std::optional<double> Section::*in_section;
   double Model::*in_model;
+  int slot = -1;
+  /// A model parameter (the equations use it), not a setting.
+  bool is_model() const { return in_model != nullptr || slot >= 0; }
 };
+
+/// True for a model (or section) struct with `extra` slots.
+template <class T, class = void>
+struct HasExtraSlots : std::false_type {};
+template <class T>
+struct HasExtraSlots<T, std::void_t<decltype(std::declval<T&>().extra)>> : std::true_type {};
+
+/// The value a model row stores in `model` (its member or its slot).
+template <class Section, class Model>
+double& ModelValue(const ParameterRow<Section, Model>& row, Model& model) {
+  if constexpr (HasExtraSlots<Model>::value) {
+    if (row.slot >= 0) return model.extra[static_cast<std::size_t>(row.slot)];
+  }
+  return model.*(row.in_model);
+}
+template <class Section, class Model>
+double ModelValue(const ParameterRow<Section, Model>& row, const Model& model) {
+  return ModelValue(row, const_cast<Model&>(model));
+}
+
+/// The value a row stores in `section` (its member or its slot).
+template <class Section, class Model>
+std::optional<double>& SectionValue(const ParameterRow<Section, Model>& row, Section& section) {
+  if constexpr (HasExtraSlots<Section>::value) {
+    if (row.slot >= 0) return section.extra[static_cast<std::size_t>(row.slot)];
+  }
+  return section.*(row.in_section);
+}
+template <class Section, class Model>
+const std::optional<double>& SectionValue(const ParameterRow<Section, Model>& row, const Section& section) {
+  return SectionValue(row, const_cast<Section&>(section));
+}
 
 template <class Section, class Model>
 using ParameterTable = std::vector<ParameterRow<Section, Model>>;
@@ -161,14 +201,14 @@ template <class Section, class Model>
 Model MakeModelParameters(const ParameterTable<Section, Model>& table, const Section& section, Model defaults,
                           const char* section_name) {
   for (const auto& row : table) {
-    const std::optional<double>& value = section.*(row.in_section);
+    const std::optional<double>& value = SectionValue(row, section);
     if (value) {
       if (!row.spec.Admits(*value)) {
         throw InputError(fmt::format("{}.{}: must be {} {}, got {} ({})", section_name, row.spec.key,
                                      row.spec.lower_exclusive ? ">" : ">=", row.spec.lower_bound, *value,
                                      row.spec.Doc()));
       }
-      if (row.in_model != nullptr) defaults.*(row.in_model) = *value;
+      if (row.is_model()) ModelValue(row, defaults) = *value;
     } else if (row.spec.required) {
       throw InputError(fmt::format("{}.{}: missing value ({})", section_name, row.spec.key, row.spec.Doc()));
     }
@@ -182,7 +222,7 @@ template <class Section, class Model>
 Model ModelValuesOr(const ParameterTable<Section, Model>& table, const Section& section, double fill) {
   Model model{};
   for (const auto& row : table) {
-    if (row.in_model != nullptr) model.*(row.in_model) = (section.*(row.in_section)).value_or(fill);
+    if (row.is_model()) ModelValue(row, model) = SectionValue(row, section).value_or(fill);
   }
   return model;
 }
@@ -198,7 +238,7 @@ Model ModelValuesOrNaN(const ParameterTable<Section, Model>& table, const Sectio
 template <class Section, class Model>
 void StoreModelParameters(const ParameterTable<Section, Model>& table, const Model& model, Section& section) {
   for (const auto& row : table) {
-    if (row.in_model != nullptr) section.*(row.in_section) = model.*(row.in_model);
+    if (row.is_model()) SectionValue(row, section) = ModelValue(row, model);
   }
 }
 

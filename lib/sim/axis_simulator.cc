@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "models/axis_term.h"
 #include "sim/cvodes_integrator.h"
 #include "sim/held_input_driver.h"
 
@@ -48,9 +49,15 @@ Flow CalcFlow(double a, double t) {
 class AxisSimulator::System final : public SensitivityOdeSystem, public HeldInputSystem {
  public:
   System(std::vector<int> terms, double position_tolerance, double rate_tolerance, bool allow_exact)
-      : terms_(std::move(terms)), allow_exact_(allow_exact) {
+      : terms_(std::move(terms)), allow_exact_(allow_exact), inertia_(AxisIndex(&AxisParameters::inertia)),
+        linear_(AxisLinearCount()) {
     for (int j : terms_) {
-      if (j < 0 || j >= kAxisAllTerms) throw std::logic_error("AxisSimulator: term index out of range");
+      if (j < 0 || j >= static_cast<int>(AxisParameterCount())) {
+        throw std::logic_error("AxisSimulator: term index out of range");
+      }
+    }
+    for (const AxisTerm* term : AxisTerms()) {
+      if (!term->linear()) nonlinear_.push_back({term, AxisFirstIndex(*term)});
     }
     IntegratorOptions options;
     options.relative_tolerance = 1e-8;
@@ -71,35 +78,32 @@ class AxisSimulator::System final : public SensitivityOdeSystem, public HeldInpu
     ForceGradient(x, &dq, &dv);
     // Column-major: (row, col) at col * 2 + row.
     jacobian[0] = 0.0;
-    jacobian[1] = -dq / theta_[kAxisInertia];
+    jacobian[1] = -dq / theta_[inertia_];
     jacobian[2] = 1.0;
-    jacobian[3] = -dv / theta_[kAxisInertia];
+    jacobian[3] = -dv / theta_[inertia_];
   }
   void CalcSensitivityDerivative(double, const double* x, int j, const double* s, double* ds) const override {
     double dq = 0.0, dv = 0.0;
     ForceGradient(x, &dq, &dv);
-    const int term = terms_[static_cast<std::size_t>(j)];
+    const auto term = static_cast<std::size_t>(terms_[static_cast<std::size_t>(j)]);
     double forcing = 0.0;
-    if (term == kAxisInertia) {
-      forcing = -Acceleration(x) / theta_[kAxisInertia];
-    } else if (term < static_cast<int>(kAxisTerms)) {
-      forcing = -Regressors(x)[static_cast<std::size_t>(term)] / theta_[kAxisInertia];
-    } else if (StribeckActive()) {
-      // d/d tau_s and d/d v_s of tau_s m exp(-(v/v_s)^2).
-      const double vs = theta_[kAxisStribeckVelocity], e = StribeckFactor(x[kV]);
-      forcing = term == kAxisStribeck ? -mode_ * e / theta_[kAxisInertia]
-                                      : -theta_[kAxisStribeck] * mode_ * e * 2.0 * x[kV] * x[kV] / (vs * vs * vs) /
-                                            theta_[kAxisInertia];
+    if (term == inertia_) {
+      forcing = -Acceleration(x) / theta_[inertia_];
+    } else if (term < linear_) {
+      forcing = -Regressors(x)[term] / theta_[inertia_];
+    } else {
+      const AxisTermParameter& owner = AxisParameterTerm(term);
+      forcing = -owner.term->ForceParameterSlope(owner.row, &theta_[owner.first], x[kQ], x[kV], mode_) / theta_[inertia_];
     }
     ds[kQ] = s[kV];
-    ds[kV] = (-dq * s[kQ] - dv * s[kV]) / theta_[kAxisInertia] + forcing;
+    ds[kV] = (-dq * s[kQ] - dv * s[kV]) / theta_[inertia_] + forcing;
   }
   void CalcRoots(double, const double* x, double* g) const override { g[0] = x[kV]; }
 
   void Simulate(const AxisParameters& p, const std::vector<double>& time, const std::vector<double>& torque, double q0,
                 double v0, bool with_sensitivities, AxisResponse* out) {
-    for (int j = 0; j < kAxisAllTerms; ++j) theta_[static_cast<std::size_t>(j)] = p.*(AxisTermRow(j).in_model);
-    if (!(theta_[kAxisInertia] > 0.0)) throw IdentificationError("simulation: the axis needs inertia > 0");
+    theta_ = AxisValuesOf(p);
+    if (!(theta_[inertia_] > 0.0)) throw IdentificationError("simulation: the axis needs inertia > 0");
     const std::size_t samples = time.size(), np = terms_.size();
     with_sensitivities = with_sensitivities && np > 0;
     out->position.assign(samples, 0.0);
@@ -133,37 +137,56 @@ class AxisSimulator::System final : public SensitivityOdeSystem, public HeldInpu
   void Record(std::size_t k) override { Record(k, with_sensitivities_, out_); }
 
  private:
-  std::array<double, kAxisTerms> Regressors(const double* x) const {
-    return CalcAxisRegressors(x[kQ], x[kV], 0.0, mode_);
-  }
-  bool StribeckActive() const { return theta_[kAxisStribeck] != 0.0 && theta_[kAxisStribeckVelocity] > 0.0; }
-  double StribeckFactor(double v) const {
-    const double r = v / theta_[kAxisStribeckVelocity];
-    return std::exp(-r * r);
-  }
+  AxisValues Regressors(const double* x) const { return CalcAxisRegressors(x[kQ], x[kV], 0.0, mode_); }
   // J v' = u - F, F the sum of all terms but the inertia.
   double Acceleration(const double* x) const {
-    const auto phi = Regressors(x);
+    const AxisValues phi = Regressors(x);
     double force = 0.0;
-    for (std::size_t j = 1; j < kAxisTerms; ++j) force += theta_[j] * phi[j];
-    if (StribeckActive()) force += theta_[kAxisStribeck] * mode_ * StribeckFactor(x[kV]);
-    return (u_ - force) / theta_[kAxisInertia];
-  }
-  void ForceGradient(const double* x, double* dq, double* dv) const {
-    *dq = -theta_[kAxisGravityCos] * std::sin(x[kQ]) + theta_[kAxisGravitySin] * std::cos(x[kQ]);
-    *dv = theta_[kAxisViscous] + (mode_ > 0 ? theta_[kAxisViscousPos] : 0.0) + (mode_ < 0 ? theta_[kAxisViscousNeg] : 0.0);
-    if (StribeckActive()) {
-      const double vs = theta_[kAxisStribeckVelocity];
-      *dv += theta_[kAxisStribeck] * mode_ * StribeckFactor(x[kV]) * (-2.0 * x[kV] / (vs * vs));
+    for (std::size_t j = 0; j < linear_; ++j) {
+      if (j != inertia_) force += theta_[j] * phi[j];
     }
+    for (const auto& [term, first] : nonlinear_) force += term->Force(&theta_[first], x[kQ], x[kV], mode_);
+    return (u_ - force) / theta_[inertia_];
+  }
+  // dF/dq and dF/dv: the linear terms' regressor slopes, the others' own.
+  void ForceGradient(const double* x, double* dq, double* dv) const {
+    AxisValues d_dq{}, d_dv{};
+    for (std::size_t j = 0; j < linear_;) {
+      const AxisTermParameter& owner = AxisParameterTerm(j);
+      owner.term->RegressorSlopes(x[kQ], x[kV], mode_, &d_dq[j], &d_dv[j]);
+      while (j < linear_ && AxisParameterTerm(j).term == owner.term) ++j;
+    }
+    *dq = 0.0;
+    *dv = 0.0;
+    for (std::size_t j = 0; j < linear_; ++j) {
+      if (j == inertia_) continue;
+      *dq += theta_[j] * d_dq[j];
+      *dv += theta_[j] * d_dv[j];
+    }
+    for (const auto& [term, first] : nonlinear_) *dv += term->ForceRateSlope(&theta_[first], x[kQ], x[kV], mode_);
   }
   // v = 0: stuck if friction holds the static torque, else slide towards it.
+  // The static torque is u less every force at rest without a direction
+  // (offset, gravity); the breakaway forward (backward) is what the forces
+  // add moving forward (take moving backward) at v = 0: Coulomb, its
+  // per-direction parts and any breakaway excess.
   void DecideModeAtRest() {
-    const double net = u_ - theta_[kAxisOffset] - theta_[kAxisGravityCos] * std::cos(x_[kQ]) - theta_[kAxisGravitySin] * std::sin(x_[kQ]);
-    // Breakaway: Coulomb plus the Stribeck excess (its value at v = 0).
-    const double excess = StribeckActive() ? theta_[kAxisStribeck] : 0.0;
-    const double forward = theta_[kAxisCoulomb] + theta_[kAxisCoulombPos] + excess,
-                 backward = theta_[kAxisCoulomb] + theta_[kAxisCoulombNeg] + excess;
+    const AxisValues still = CalcAxisRegressors(x_[kQ], 0.0, 0.0, 0), ahead = CalcAxisRegressors(x_[kQ], 0.0, 0.0, 1),
+                     back = CalcAxisRegressors(x_[kQ], 0.0, 0.0, -1);
+    double net = u_, forward = 0.0, backward = 0.0;
+    for (std::size_t j = 0; j < linear_; ++j) {
+      if (j == inertia_) continue;
+      net -= theta_[j] * still[j];
+      forward += theta_[j] * (ahead[j] - still[j]);
+      backward += theta_[j] * (still[j] - back[j]);
+    }
+    for (const auto& [term, first] : nonlinear_) {
+      const double* p = &theta_[first];
+      const double at_rest = term->Force(p, x_[kQ], 0.0, 0);
+      net -= at_rest;
+      forward += term->Force(p, x_[kQ], 0.0, 1) - at_rest;
+      backward += at_rest - term->Force(p, x_[kQ], 0.0, -1);
+    }
     mode_ = net > forward ? 1 : (net < -backward ? -1 : 0);
   }
   void Restart(double t, bool with_sensitivities) {
@@ -210,16 +233,20 @@ class AxisSimulator::System final : public SensitivityOdeSystem, public HeldInpu
     }
   }
 
-  // Without gravity and Stribeck terms (values 0 and not estimated) the
-  // axis is linear in v per friction mode: J v' = u - b_m v - c_m, with
+  // While the terms that are not mode-affine (gravity, a breakaway excess)
+  // are 0 and not estimated, the axis is linear in v per friction mode: J v' = u - b_m v - c_m, with
   // b_m, c_m the rate and constant parts of the friction regressors. Each
   // held sample is then solved exactly (Flow), rate zero crossings in closed
   // form, so a torque that changes every sample costs no integrator restart.
   bool ExactApplies() const {
     if (!allow_exact_) return false;
-    for (const int j : {static_cast<int>(kAxisGravityCos), static_cast<int>(kAxisGravitySin), kAxisStribeck, kAxisStribeckVelocity}) {
-      if (j != kAxisStribeckVelocity && theta_[static_cast<std::size_t>(j)] != 0.0) return false;
-      if (std::find(terms_.begin(), terms_.end(), j) != terms_.end()) return false;
+    for (const AxisTerm* term : AxisTerms()) {
+      if (term->mode_affine()) continue;
+      const std::size_t first = AxisFirstIndex(*term);
+      if (term->Present(&theta_[first])) return false;
+      for (std::size_t i = 0; i < term->Rows().size(); ++i) {
+        if (std::find(terms_.begin(), terms_.end(), static_cast<int>(first + i)) != terms_.end()) return false;
+      }
     }
     return true;
   }
@@ -229,10 +256,10 @@ class AxisSimulator::System final : public SensitivityOdeSystem, public HeldInpu
   // each friction regressor is alpha_j + beta_j v in a mode.
   void ModeCoefficients(double* a, double* w, std::vector<double>* da, std::vector<double>* dw) const {
     const auto at_rest = CalcAxisRegressors(0.0, 0.0, 0.0, mode_), moving = CalcAxisRegressors(0.0, 1.0, 0.0, mode_);
-    const double inertia = theta_[kAxisInertia];
+    const double inertia = theta_[inertia_];
     double rate_part = 0.0, constant_part = 0.0;
-    for (std::size_t j = 1; j < kAxisTerms; ++j) {
-      if (j == kAxisGravityCos || j == kAxisGravitySin) continue;  // 0 on this path
+    for (std::size_t j = 0; j < linear_; ++j) {
+      if (j == inertia_ || !AxisParameterTerm(j).term->mode_affine()) continue;  // 0 on this path
       rate_part += theta_[j] * (moving[j] - at_rest[j]);
       constant_part += theta_[j] * at_rest[j];
     }
@@ -243,7 +270,7 @@ class AxisSimulator::System final : public SensitivityOdeSystem, public HeldInpu
     dw->assign(terms_.size(), 0.0);
     for (std::size_t i = 0; i < terms_.size(); ++i) {
       const auto j = static_cast<std::size_t>(terms_[i]);
-      if (j == kAxisInertia) {
+      if (j == inertia_) {
         (*da)[i] = -*a / inertia;
         (*dw)[i] = -*w / inertia;
       } else {
@@ -309,7 +336,10 @@ class AxisSimulator::System final : public SensitivityOdeSystem, public HeldInpu
   std::vector<int> terms_;
   bool allow_exact_ = true;
   std::unique_ptr<CvodesIntegrator> integrator_;
-  std::array<double, kAxisAllTerms> theta_{};
+  std::size_t inertia_;  // J's index
+  std::size_t linear_;   // the linear parameters' count
+  std::vector<std::pair<const AxisTerm*, std::size_t>> nonlinear_;  // with their first index
+  AxisValues theta_{};
   std::array<double, 2> x_{};
   std::vector<double> s_;
   std::vector<const double*> pointers_;

@@ -3,18 +3,20 @@
 // sensitivities of position and rate to chosen axis terms
 // (docs/models.md#axis-output-error). States x = (q, v):
 //   q' = v,  J v' = u(t) - F(q, v, m),
-//   F = sum_{j != J} p_j phi_j(q, v, m) + tau_s exp(-(v/v_s)^2) m   (models/axis.h; m the mode)
+//   F = sum_{j != J} p_j phi_j(q, v, m) + the nonlinear terms' forces   (models/axis.h; m the mode)
 // Modes as in the drive train (sim/drivetrain_simulator.h): sliding m = +-1
 // with root g = v; at v = 0 the axis sticks if the static torque
-//   N = u - tau_0 - g_c cos q - g_s sin q
-// lies within [-(tau_c + tau_c- + tau_s), tau_c + tau_c+ + tau_s], else it slides towards N.
+//   N = u - F(q, 0, 0)   (offset, gravity)
+// lies within [-(F(q, 0, 0) - F(q, 0, -1)), F(q, 0, +1) - F(q, 0, 0)] (Coulomb,
+// per direction, and any breakaway excess), else it slides towards N.
 // Stuck, x is constant (no dynamics), and N changes only when u does, at the
 // sample times. Sensitivity jumps at a state event t*(p):
 //   s+ = s- + (f- - f+) dt*/dp, dt*/dp = -s_v- / v'-,
 // so sticking gives s_v+ = 0 (s_q unchanged, v = 0 there) and a reversal
 // s_v+ = s_v- v'+ / v'-. u[k] is held on [t_k, t_{k+1}); samples are taken
 // at t_k before the new torque applies.
-// Without gravity and Stribeck terms each mode is linear, J v' = u - b_m v
+// While every term present is affine in v within a mode and independent of
+// q (models/axis_term.h: not gravity, not a breakaway excess) each mode is linear, J v' = u - b_m v
 // - c_m, and the simulator solves each held sample in closed form
 // (v = v0 e^{-a t} + w (1 - e^{-a t}) / a, a = b_m / J, w = (u - c_m) / J;
 // zero crossings and sensitivities likewise): no integrator restart per
@@ -39,9 +41,10 @@ struct AxisResponse {
 
 class AxisSimulator {
  public:
-  /// `terms`: indices of the axis terms (AxisTermMembers order) whose
-  /// sensitivities Simulate computes. Absolute tolerances of q and v (of
-  /// the integrator). Without gravity and Stribeck terms the axis is solved
+  /// `terms`: indices of the axis parameters (models/axis.h AxisTermRow)
+  /// whose sensitivities Simulate computes. Absolute tolerances of q and v
+  /// (of the integrator). While every term present is affine in the rate
+  /// within a mode (models/axis_term.h mode_affine) the axis is solved
   /// exactly per held sample (no integrator) unless `allow_exact` is false.
   AxisSimulator(std::vector<int> terms, double position_tolerance, double rate_tolerance, bool allow_exact = true);
   ~AxisSimulator();

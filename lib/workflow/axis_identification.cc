@@ -11,6 +11,7 @@
 #include "fit/axis_fit.h"
 #include "fit/axis_oe_fit.h"
 #include "fit/validation.h"
+#include "models/axis_term.h"
 #include "models/feedforward.h"
 #include "workflow/axis_feedforward.h"
 #include "workflow/status_frame_logs.h"
@@ -84,7 +85,7 @@ void FitByInverseDynamics(const std::vector<AxisLog>& logs, const AxisIdentifica
 }
 
 // The output-error fit's start: inverse dynamics of the linear terms (the
-// Stribeck pair is the output-error fit's) where it gives a usable inertia.
+// nonlinear ones are the output-error fit's) where it gives a usable inertia.
 // Where inverse dynamics refuses the logs, the parameter file's values;
 // without a start there, inverse dynamics' reason is rethrown.
 std::optional<AxisParameters> OutputErrorStart(const std::vector<AxisLog>& logs, const AxisSection& section,
@@ -95,16 +96,13 @@ std::optional<AxisParameters> OutputErrorStart(const std::vector<AxisLog>& logs,
     AxisFitOptions idim;
     idim.free.clear();
     for (const auto& key : free) {
-      if (key != Key(&AxisParameters::stribeck) && key != Key(&AxisParameters::stribeck_velocity)) {
-        idim.free.push_back(key);
-      }
+      if (AxisIndexOf(key) < AxisLinearCount()) idim.free.push_back(key);
     }
     idim.sensitivity = false;
     idim.per_log = false;
     idim.max_relative_std = 1e6;  // start values only: output error judges what the logs determine
     AxisSection linear = section;
-    linear.stribeck.reset();
-    linear.stribeck_velocity.reset();
+    for (std::size_t j = AxisLinearCount(); j < AxisParameterCount(); ++j) SectionValue(AxisTermRow(j), linear).reset();
     const AxisFitOutput start = FitAxis(logs, linear, idim);
     if (start.params.inertia > 0.0) initial = start.params;
   } catch (const std::exception&) {
@@ -150,8 +148,13 @@ void FitByOutputError(const std::vector<AxisLog>& logs, const std::vector<AxisLo
     }
   }
   run.summary.push_back(fmt::format("start values from {}", result.start_from));
-  run.model = "axis (docs/models.md#axis-output-error), output error (exact per held sample, CVODES with gravity or "
-              "Stribeck; sticking Coulomb)";
+  std::vector<std::string> integrated;  // the terms the exact solution does not hold
+  for (const AxisTerm* term : AxisTerms()) {
+    if (!term->mode_affine()) integrated.push_back(term->name());
+  }
+  run.model = fmt::format("axis (docs/models.md#axis-output-error), output error (exact per held sample, CVODES with "
+                          "{}; sticking Coulomb)",
+                          JoinAsList(integrated, " or "));
 }
 
 // Units in the logs' units (SysId: volts and the file's unit; else rotary

@@ -15,8 +15,10 @@
 #include "signal/butterworth.h"
 #include "sim/axis_experiment.h"
 #include "workflow/axis_feedforward.h"
+#include "support/axis_values.h"
 
 using namespace driveid;
+using driveid::testing::AxisValue;
 
 namespace {
 const AxisParameters kTruth{0.05, 0.2, 1.0, 0.3};
@@ -270,7 +272,7 @@ TEST_CASE("axis: an offset with both Coulomb directions, or coulomb with its rep
   AxisFitOptions twice;
   twice.free = {"inertia", "coulomb", "coulomb_pos", "viscous"};
   CHECK_THROWS_AS(FitAxis({log}, AxisSection{}, twice), OptionError);
-  CHECK(static_cast<std::size_t>(kAxisAllTerms) == AxisTermsZeroUnlessGiven().size() + 4);  // J, b, tau_c, tau_0 needed
+  CHECK(AxisParameterCount() == AxisTermsZeroUnlessGiven().size() + 4);  // J, b, tau_c, tau_0 needed
 }
 
 TEST_CASE("feed-forward: Kg and Kg_angle from the gravity terms cover the truth; first-order std matches sampling") {
@@ -359,14 +361,14 @@ TEST_CASE("axis IDIM-LS: the nonlinear Stribeck term is refused by name, fixed o
   CHECK_THROWS_WITH(FitAxis({log}, AxisSection{}, free_stribeck),
                     Catch::Contains("‹free› stribeck") && Catch::Contains("‹method› oe"));
   AxisSection given;
-  given.stribeck = 0.2;
-  given.stribeck_velocity = 0.5;
+  AxisValue(given, "stribeck") = 0.2;
+  AxisValue(given, "stribeck_velocity") = 0.5;
   CHECK_THROWS_WITH(FitAxis({log}, given, {}), Catch::Contains("axis.stribeck = 0.2") && Catch::Contains("‹method› oe"));
   // The model function carries the excess: at v = v_s it is tau_s / e.
   AxisParameters p;
   p.coulomb = 1.0;
-  p.stribeck = 0.2;
-  p.stribeck_velocity = 0.5;
+  AxisValue(p, "stribeck") = 0.2;
+  AxisValue(p, "stribeck_velocity") = 0.5;
   CHECK(CalcAxisForce(p, 0.0, 0.5, 0.0) == Approx(1.0 + 0.2 / std::exp(1.0)));
   CHECK(CalcAxisForce(p, 0.0, -0.5, 0.0) == Approx(-1.0 - 0.2 / std::exp(1.0)));
   CHECK(CalcAxisForce(p, 0.0, 0.0, 0.0) == 0.0);
@@ -579,7 +581,7 @@ TEST_CASE("torque delay: a number spells kDelayed; its rows are the held rows mo
     for (std::size_t s = 0; s < a.regression.rows(); ++s) {
       if (std::abs(a.time[s] - (b.time[r] - (held.time[1] - held.time[0]))) > 1e-9) continue;
       CHECK(b.measured[r] == Approx(a.measured[s]).margin(1e-12));
-      for (std::size_t c = 0; c < kAxisTerms; ++c) CHECK(b.regression.at(r, c) == Approx(a.regression.at(s, c)).margin(1e-9));
+      for (std::size_t c = 0; c < AxisLinearCount(); ++c) CHECK(b.regression.at(r, c) == Approx(a.regression.at(s, c)).margin(1e-9));
       ++compared;
     }
   }

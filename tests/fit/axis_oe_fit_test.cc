@@ -11,8 +11,10 @@
 
 #include "core/errors.h"
 #include "sim/axis_simulator.h"
+#include "support/axis_values.h"
 
 using namespace driveid;
+using driveid::testing::AxisValue;
 
 namespace {
 
@@ -69,27 +71,29 @@ AxisLog StepLog(const Truth& p, double quantum, double rate_noise, unsigned seed
 }  // namespace
 
 TEST_CASE("axis simulator: sensitivities match central differences through stick/slip events") {
-  AxisParameters p{0.05, 0.2, 1.0, 0.3, 0.4, -0.2, 0.1, 0.05, 0.03, 0.02, 0.15, 0.8};
+  AxisParameters p{0.05, 0.2, 1.0, 0.3, 0.4, -0.2, 0.1, 0.05, 0.03, 0.02, {}};
+  AxisValue(p, "stribeck") = 0.15;
+  AxisValue(p, "stribeck_velocity") = 0.8;
   const AxisLog log = StepLog({}, 0.0, 0.0, 1, false);
   std::vector<int> all;
-  for (int j = 0; j < kAxisAllTerms; ++j) all.push_back(j);
+  for (std::size_t j = 0; j < AxisParameterCount(); ++j) all.push_back(static_cast<int>(j));
   AxisSimulator simulator(all, 1e-12, 1e-10);
   AxisResponse base;
   simulator.Simulate(p, log.time, log.force, 0.4, 0.0, true, &base);
   CHECK(base.switch_count >= 3);  // sticks and reverses
-  for (std::size_t j = 0; j < static_cast<std::size_t>(kAxisAllTerms); ++j) {
-    double AxisParameters::*member = AxisTermRow(static_cast<int>(j)).in_model;
-    const double h = 1e-6 * std::max(1.0, std::abs(p.*member));
+  for (std::size_t j = 0; j < AxisParameterCount(); ++j) {
+    const AxisRow& row = AxisTermRow(j);
+    const double h = 1e-6 * std::max(1.0, std::abs(ModelValue(row, p)));
     AxisParameters plus = p, minus = p;
-    plus.*member += h;
-    minus.*member -= h;
+    ModelValue(row, plus) += h;
+    ModelValue(row, minus) -= h;
     AxisResponse a, b;
     simulator.Simulate(plus, log.time, log.force, 0.4, 0.0, false, &a);
     simulator.Simulate(minus, log.time, log.force, 0.4, 0.0, false, &b);
     double worst = 0.0, scale = 0.0;
     for (std::size_t k = 0; k < log.time.size(); ++k) {
       const double fd = (a.position[k] - b.position[k]) / (2 * h);
-      const double analytic = base.position_sensitivity[k * static_cast<std::size_t>(kAxisAllTerms) + j];
+      const double analytic = base.position_sensitivity[k * AxisParameterCount() + j];
       worst = std::max(worst, std::abs(fd - analytic));
       scale = std::max(scale, std::abs(fd));
     }
@@ -109,9 +113,13 @@ TEST_CASE("axis simulator: the exact per-sample solution agrees with CVODES and 
     log.force.push_back(1.6 * std::sin(2 * M_PI * 1.3 * t) + 0.5 * std::sin(2 * M_PI * 7.1 * t) +
                         0.05 * std::sin(1.7e3 * t * t));
   }
-  AxisParameters p{0.05, 0.2, 1.0, 0.3, 0.0, 0.0, 0.1, 0.05, 0.03, 0.02, 0.0, 0.0};
-  const std::vector<int> terms = {kAxisInertia,    kAxisViscous,    kAxisCoulomb,    kAxisOffset,
-                                  kAxisCoulombPos, kAxisCoulombNeg, kAxisViscousPos, kAxisViscousNeg};
+  AxisParameters p{0.05, 0.2, 1.0, 0.3, 0.0, 0.0, 0.1, 0.05, 0.03, 0.02, {}};
+  std::vector<int> terms;
+  for (const auto member : {&AxisParameters::inertia, &AxisParameters::viscous, &AxisParameters::coulomb,
+                            &AxisParameters::offset, &AxisParameters::coulomb_pos, &AxisParameters::coulomb_neg,
+                            &AxisParameters::viscous_pos, &AxisParameters::viscous_neg}) {
+    terms.push_back(static_cast<int>(AxisIndex(member)));
+  }
   AxisSimulator exact(terms, 1e-12, 1e-10), integrated(terms, 1e-12, 1e-10, false);
   AxisResponse e, c;
   exact.Simulate(p, log.time, log.force, 0.4, 0.0, true, &e);
@@ -131,7 +139,7 @@ TEST_CASE("axis simulator: the exact per-sample solution agrees with CVODES and 
   CHECK(v_worst <= 1e-5 * v_scale);
   const std::size_t np = terms.size();
   for (std::size_t j = 0; j < np; ++j) {
-    double AxisParameters::*member = AxisTermRow(terms[j]).in_model;
+    double AxisParameters::*member = AxisTermRow(static_cast<std::size_t>(terms[j])).in_model;
     const double h = 1e-6 * std::max(1.0, std::abs(p.*member));
     AxisParameters plus = p, minus = p;
     plus.*member += h;
@@ -226,10 +234,12 @@ TEST_CASE("axis OE: a Stribeck excess and its velocity recovered from torque ste
     const AxisLog log = StepLog(truth, 2 * M_PI / 4096, 0.05, seed, true);
     AxisOeOptions options;
     options.free = {"inertia", "viscous", "coulomb", "offset", "stribeck", "stribeck_velocity"};
-    AxisSection start{0.08, 0.1, 0.5, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, 0.1, 1.0, {}};
+    AxisSection start{0.08, 0.1, 0.5, 0.0, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, false};
+    AxisValue(start, "stribeck") = 0.1;
+    AxisValue(start, "stribeck_velocity") = 1.0;
     const AxisOeOutput out = FitAxisOutputError({log}, start, nullptr, options);
-    CHECK(out.params.stribeck == Approx(0.3).epsilon(0.05));
-    CHECK(out.params.stribeck_velocity == Approx(0.5).epsilon(0.05));
+    CHECK(AxisValue(out.params, "stribeck") == Approx(0.3).epsilon(0.05));
+    CHECK(AxisValue(out.params, "stribeck_velocity") == Approx(0.5).epsilon(0.05));
     CHECK(out.params.coulomb == Approx(1.0).epsilon(0.02));
     CHECK(out.params.inertia == Approx(0.05).epsilon(0.02));
     for (const auto& e : out.fit.estimates) {
@@ -241,9 +251,10 @@ TEST_CASE("axis OE: a Stribeck excess and its velocity recovered from torque ste
   AxisOeOptions options;
   options.free = {"inertia", "stribeck"};
   const AxisLog log = StepLog(truth, 2 * M_PI / 4096, 0.05, 9, true);
-  CHECK_THROWS_AS(FitAxisOutputError({log}, AxisSection{0.08, 0.2, 1.0, 0.3, {}, {}, {}, {}, {}, {}, {}, {}, 0.1, {}, {}},
-                                     nullptr, options),
-                  InputError);
+  AxisSection no_velocity{0.08, 0.2, 1.0, 0.3, {}, {}, {}, {}, {}, {}, {}, {}, {}, {}, false};
+  AxisValue(no_velocity, "stribeck") = 0.1;
+  CHECK_THROWS_WITH(FitAxisOutputError({log}, no_velocity, nullptr, options),
+                    Catch::Contains("axis.stribeck_velocity must be > 0"));
 }
 
 TEST_CASE("axis OE: repeats are fitted one by one, and one that ran differently is named") {

@@ -32,14 +32,17 @@ TEST_CASE("DriveTrainParameter: each enumerator is a step-fit row, every step-fi
   }
 }
 
-TEST_CASE("the axis' linear terms are the table's first kAxisTerms rows, in the regressors' order") {
+TEST_CASE("the axis' linear terms are the table's first rows, in the regressors' order") {
   const auto& table = AxisParameterTable();
-  REQUIRE(table.size() > kAxisTerms);
-  const std::pair<int, double AxisParameters::*> terms[] = {
-      {kAxisInertia, &AxisParameters::inertia},         {kAxisViscous, &AxisParameters::viscous},
-      {kAxisCoulomb, &AxisParameters::coulomb},         {kAxisOffset, &AxisParameters::offset},
-      {kAxisGravityCos, &AxisParameters::gravity_cos},  {kAxisGravitySin, &AxisParameters::gravity_sin}};
-  for (const auto& [index, member] : terms) CHECK(table[static_cast<std::size_t>(index)].in_model == member);
+  const std::size_t linear = AxisLinearCount();
+  REQUIRE(table.size() > linear);
+  for (const auto member : {&AxisParameters::inertia, &AxisParameters::viscous, &AxisParameters::coulomb,
+                            &AxisParameters::offset, &AxisParameters::gravity_cos, &AxisParameters::gravity_sin}) {
+    const std::size_t j = AxisIndex(member);
+    CHECK(j < linear);
+    CHECK(table[j].in_model == member);
+    CHECK(&AxisTermRow(j) == &table[j]);
+  }
   // Each linear row's regressor, written out here by the row's key (q 0.3,
   // q' 0.7, q'' 1.1): the regressors' order is the table's.
   const auto phi = CalcAxisRegressors(0.3, 0.7, 1.1);
@@ -47,18 +50,28 @@ TEST_CASE("the axis' linear terms are the table's first kAxisTerms rows, in the 
       {"inertia", 1.1},           {"viscous", 0.7},       {"coulomb", 1.0},     {"offset", 1.0},
       {"gravity_cos", std::cos(0.3)}, {"gravity_sin", std::sin(0.3)}, {"coulomb_pos", 1.0}, {"coulomb_neg", 0.0},
       {"viscous_pos", 0.7},       {"viscous_neg", 0.0}};
-  for (std::size_t j = 0; j < kAxisTerms; ++j) {
+  CHECK(linear == expected.size());
+  for (std::size_t j = 0; j < linear; ++j) {
     INFO(table[j].spec.key);
     REQUIRE(expected.count(table[j].spec.key) == 1);
     CHECK(phi[j] == Approx(expected.at(table[j].spec.key)));
   }
-  // Past them: settings (no model value) and the nonlinear Stribeck pair.
-  for (std::size_t j = kAxisTerms; j < table.size(); ++j) {
-    const std::string key = table[j].spec.key;
-    CHECK((table[j].in_model == nullptr || key == "stribeck" || key == "stribeck_velocity"));
+  // Past them: the settings (no model value), then the nonlinear terms'
+  // parameters, stored in slots; the index of every model row is its place
+  // among the model rows.
+  std::size_t models = 0;
+  for (std::size_t j = 0; j < table.size(); ++j) {
+    if (!table[j].is_model()) {
+      CHECK(j >= linear);
+      continue;
+    }
+    CHECK(&AxisTermRow(models) == &table[j]);
+    CHECK(AxisIndexOf(table[j].spec.key) == models);
+    if (models >= linear) CHECK((table[j].in_model == nullptr && table[j].slot >= 0));
+    ++models;
   }
-  CHECK(std::string(AxisTermRow(kAxisStribeck).spec.key) == "stribeck");
-  CHECK(std::string(AxisTermRow(kAxisStribeckVelocity).spec.key) == "stribeck_velocity");
+  CHECK(models == AxisParameterCount());
+  CHECK(AxisParameterCount() > linear);  // a nonlinear term is registered
 }
 
 TEST_CASE("the joint's simulated terms are the joint table's rows in order") {
