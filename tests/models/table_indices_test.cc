@@ -50,12 +50,14 @@ TEST_CASE("the axis' linear terms are the table's first rows, in the regressors'
       {"inertia", 1.1},           {"viscous", 0.7},       {"coulomb", 1.0},     {"offset", 1.0},
       {"gravity_cos", std::cos(0.3)}, {"gravity_sin", std::sin(0.3)}, {"coulomb_pos", 1.0}, {"coulomb_neg", 0.0},
       {"viscous_pos", 0.7},       {"viscous_neg", 0.0}};
-  CHECK(linear == expected.size());
+  std::size_t found = 0;
   for (std::size_t j = 0; j < linear; ++j) {
     INFO(table[j].spec.key);
-    REQUIRE(expected.count(table[j].spec.key) == 1);
+    if (expected.count(table[j].spec.key) == 0) continue;  // a term registered since: its own test
+    ++found;
     CHECK(phi[j] == Approx(expected.at(table[j].spec.key)));
   }
+  CHECK(found == expected.size());
   // Past them: the settings (no model value), then the nonlinear terms'
   // parameters, stored in slots; the index of every model row is its place
   // among the model rows.
