@@ -17,7 +17,7 @@ enum class FitKey {
   kVersion,          ///< the tool's version
   kModel,            ///< the model variant
   kData,             ///< one record per log: kFitDataKeys
-  kEstimates,        ///< per parameter: kFitEstimateKeys
+  kEstimates,        ///< per parameter: the estimate record (core/estimate_record.h)
   kDerived,          ///< derived quantities: kFitDerivedKeys
   kCorrelation,      ///< of the estimates
   kRmse,             ///< per channel
@@ -29,23 +29,46 @@ enum class FitKey {
   kConverged,
 };
 
-inline constexpr std::array<FitKey, 14> kFitSectionKeys = {
-    FitKey::kCommand,     FitKey::kVersion,         FitKey::kModel,     FitKey::kData,
-    FitKey::kEstimates,   FitKey::kDerived,         FitKey::kCorrelation, FitKey::kRmse,
-    FitKey::kFitPercent,  FitKey::kAutocorrelation, FitKey::kInflation, FitKey::kSingularValues,
-    FitKey::kIterations,  FitKey::kConverged};
+/// The keys in the order the file writes them, each with its spelling.
+struct FitKeySpelling {
+  FitKey key;
+  const char* name;  ///< as the file and the JSON spell it
+};
+inline constexpr std::array<FitKeySpelling, 14> kFitKeyTable = {{
+    {FitKey::kCommand, "command"},
+    {FitKey::kVersion, "version"},
+    {FitKey::kModel, "model"},
+    {FitKey::kData, "data"},
+    {FitKey::kEstimates, "estimates"},
+    {FitKey::kDerived, "derived"},
+    {FitKey::kCorrelation, "correlation"},
+    {FitKey::kRmse, "rmse"},
+    {FitKey::kFitPercent, "fit_percent"},
+    {FitKey::kAutocorrelation, "autocorrelation"},
+    {FitKey::kInflation, "inflation"},
+    {FitKey::kSingularValues, "singular_values"},
+    {FitKey::kIterations, "iterations"},
+    {FitKey::kConverged, "converged"},
+}};
+
+/// The keys in the file's order (kFitKeyTable's).
+inline constexpr std::array<FitKey, kFitKeyTable.size()> kFitSectionKeys = [] {
+  std::array<FitKey, kFitKeyTable.size()> out{};
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = kFitKeyTable[i].key;
+  return out;
+}();
 
 /// The key as the file and the JSON spell it.
 constexpr const char* FitKeyName(FitKey key) {
-  constexpr std::array<const char*, 14> kNames = {
-      "command", "version",         "model",     "data",            "estimates",  "derived",   "correlation",
-      "rmse",    "fit_percent",     "autocorrelation", "inflation", "singular_values", "iterations", "converged"};
-  return kNames[static_cast<std::size_t>(key)];
+  for (const auto& entry : kFitKeyTable) {
+    if (entry.key == key) return entry.name;
+  }
+  return "";
 }
 
-/// The keys of a data record, an estimate and a derived quantity.
+/// The keys of a data record and a derived quantity (an estimate's record:
+/// core/estimate_record.h).
 inline constexpr std::array<const char*, 5> kFitDataKeys = {"file", "sha256", "samples", "segment", "notes"};
-inline constexpr std::array<const char*, 3> kFitEstimateKeys = {"value", "std", "ci95"};
 inline constexpr std::array<const char*, 2> kFitDerivedKeys = {"value", "std"};
 
 }  // namespace driveid

@@ -13,6 +13,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "core/errors.h"
+#include "core/estimate_record.h"
 #include "core/fit_section.h"
 #include "io/csv_log.h"
 #include "io/feedback_section.h"
@@ -180,6 +181,62 @@ std::string Comment(const std::string& text) {
 
 
 std::string Short(double value) { return fmt::format("{:.6g}", value); }
+
+// An estimate record (core/estimate_record.h) as a YAML flow map,
+// "{value: V, std: S, ci95: [L, H]}": the value to the last bit, the rest
+// to six digits; `path` names it in messages (fit.estimates.NAME).
+struct YamlRecordWriter {
+  std::string path, out;
+  void Next() { out += out.empty() ? "{" : ", "; }
+  void Scalar(const char* key, EstimateField field, const double& v) {
+    Next();
+    out += field == EstimateField::kValue ? fmt::format("{}: {}", key, Number(Writable(path, v)))
+                                          : fmt::format("{}: {}", key, Short(Writable(path + "." + key, v)));
+  }
+  void Interval(const char* key, const double& low, const double& high) {
+    Next();
+    const std::string name = path + "." + key;
+    out += fmt::format("{}: [{}, {}]", key, Short(Writable(name, low)), Short(Writable(name, high)));
+  }
+  std::string Close() const { return out + "}"; }
+};
+
+// An estimate record read back from its YAML node `node` (`name`:
+// fit.estimates.NAME): the scalars required, a standard error >= 0, the
+// interval optional and ordered.
+struct YamlRecordReader {
+  const std::string& path;
+  const std::string& name;
+  const YAML::Node& node;
+  void RequireScalars() const {
+    struct Scalars {
+      std::vector<std::string> keys;
+      void Scalar(const char* key, EstimateField, const double&) { keys.emplace_back(key); }
+      void Interval(const char*, const double&, const double&) {}
+    } scalars;
+    const ParameterEstimate none;
+    VisitEstimateRecord(scalars, none);
+    for (const auto& key : scalars.keys) {
+      if (!node[key]) {
+        throw InputError(fmt::format("{}: {}: needs a {}", Where(path, node), name, fmt::join(scalars.keys, " and a ")));
+      }
+    }
+  }
+  void Scalar(const char* key, EstimateField field, double& v) const {
+    const std::string where = name + "." + key;
+    v = field == EstimateField::kValue ? ParseNumber(path, where, node[key]) : ParseStandardError(path, where, node[key]);
+  }
+  void Interval(const char* key, double& low, double& high) const {
+    const YAML::Node interval = node[key];
+    if (!interval || !interval.IsSequence() || interval.size() != 2) return;
+    low = ParseNumber(path, name + "." + key, interval[0]);
+    high = ParseNumber(path, name + "." + key, interval[1]);
+    if (low > high) {
+      throw InputError(fmt::format("{}: {}.{} = [{}, {}]: the low end lies above the high end", Where(path, interval), name,
+                                   key, low, high));
+    }
+  }
+};
 
 
 
@@ -525,23 +582,12 @@ void ParseFitSection(const std::string& path, const YAML::Node& node, ParameterF
     for (const auto& entry : estimates) {
       const YAML::Node& e = entry.second;
       const std::string name = "fit.estimates." + entry.first.Scalar();
-      CheckKeys(path, name, e, {kFitEstimateKeys.begin(), kFitEstimateKeys.end()});
-      if (!e["value"] || !e["std"]) {
-        throw InputError(fmt::format("{}: {}: needs a value and a std", Where(path, e), name));
-      }
+      CheckKeys(path, name, e, EstimateRecordKeys());
       ParameterEstimate estimate;
       estimate.name = entry.first.Scalar();
-      estimate.value = ParseNumber(path, name + ".value", e["value"]);
-      estimate.standard_error = ParseStandardError(path, name + ".std", e["std"]);
-      const YAML::Node interval = e["ci95"];
-      if (interval && interval.IsSequence() && interval.size() == 2) {
-        estimate.ci95_low = ParseNumber(path, name + ".ci95", interval[0]);
-        estimate.ci95_high = ParseNumber(path, name + ".ci95", interval[1]);
-        if (estimate.ci95_low > estimate.ci95_high) {
-          throw InputError(fmt::format("{}: {}.ci95 = [{}, {}]: the low end lies above the high end", Where(path, interval),
-                                       name, estimate.ci95_low, estimate.ci95_high));
-        }
-      }
+      YamlRecordReader reader{path, name, e};
+      reader.RequireScalars();
+      VisitEstimateRecord(reader, estimate);
       file.fit_estimates.push_back(estimate);
     }
   }
@@ -696,10 +742,9 @@ std::string FormatFitKey(FitKey key, const FitResult& fit, const FitProvenance& 
                                           e.standard_error));
           }
         }
-        const std::string path = "fit.estimates." + e.name;
-        out += fmt::format("    {}: {{value: {}, std: {}, ci95: [{}, {}]}}{}\n", e.name, Number(Writable(path, e.value)),
-                           Short(Writable(path + ".std", e.standard_error)), Short(Writable(path + ".ci95", e.ci95_low)),
-                           Short(Writable(path + ".ci95", e.ci95_high)), e.unit.empty() ? "" : "  # " + Comment(e.unit));
+        YamlRecordWriter writer{"fit.estimates." + e.name, ""};
+        VisitEstimateRecord(writer, e);
+        out += fmt::format("    {}: {}{}\n", e.name, writer.Close(), e.unit.empty() ? "" : "  # " + Comment(e.unit));
       }
       return out;
     case FitKey::kDerived:

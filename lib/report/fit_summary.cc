@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "core/estimate_record.h"
 #include "core/fit_section.h"
 
 namespace driveid {
@@ -236,7 +237,13 @@ Json FitKeyJson(FitKey key, const FitResult& fit, const FitProvenance& provenanc
     case FitKey::kEstimates:
       out = Json::object();
       for (const auto& e : fit.estimates) {
-        out[e.name] = {{"value", e.value}, {"std", e.standard_error}, {"ci95", {e.ci95_low, e.ci95_high}}};
+        struct JsonRecordWriter {
+          Json record = Json::object();
+          void Scalar(const char* key, EstimateField, const double& v) { record[key] = v; }
+          void Interval(const char* key, const double& low, const double& high) { record[key] = {low, high}; }
+        } writer;
+        VisitEstimateRecord(writer, e);
+        out[e.name] = std::move(writer.record);
         if (!e.unit.empty()) out[e.name]["unit"] = e.unit;
       }
       return out;

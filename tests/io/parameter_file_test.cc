@@ -1,3 +1,4 @@
+#include "core/estimate_record.h"
 #include "io/parameter_file.h"
 #include "models/axis.h"
 
@@ -312,7 +313,19 @@ TEST_CASE("unknown keys are refused at every level; the writer writes only what 
   fit.estimates[0].standard_error = 1e-4;
   fit.estimates[0].ci95_low = 0.0498;
   fit.estimates[0].ci95_high = 0.0502;
-  CHECK(ParseParameterFile("q.yaml", FormatParameterFile(file, &fit, &provenance)).fit_estimates.size() == 1);
+  const auto read = ParseParameterFile("q.yaml", FormatParameterFile(file, &fit, &provenance)).fit_estimates;
+  REQUIRE(read.size() == 1);
+  // The record (core/estimate_record.h) reads back as written: value to the
+  // last bit, std and interval to six digits; the JSON has its keys.
+  CHECK(read[0].value == 0.05);
+  CHECK(read[0].standard_error == 1e-4);
+  CHECK(read[0].ci95_low == 0.0498);
+  CHECK(read[0].ci95_high == 0.0502);
+  CHECK(EstimateRecordKeys() == std::vector<std::string>{"value", "std", "ci95"});
+  CHECK(ErrorOf("axis:\n  inertia: 1\nfit:\n  estimates:\n    inertia: {value: 1}\n")
+            .find("fit.estimates.inertia: needs a value and a std") != std::string::npos);
+  CHECK(ErrorOf("axis:\n  inertia: 1\nfit:\n  estimates:\n    inertia: {value: 1, std: 0.1, ci95: [2, 1]}\n")
+            .find("fit.estimates.inertia.ci95 = [2, 1]: the low end lies above the high end") != std::string::npos);
 }
 
 TEST_CASE("long provenance text is abbreviated so the file reads back; a file the reader would refuse is not written") {
