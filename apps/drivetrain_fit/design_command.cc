@@ -1,6 +1,6 @@
 // drivetrain-fit design axis: the reference whose log the next fit needs
-// (docs/models.md#excitation-design). Parsing and output only; the design
-// is design/axis_excitation.h, its rendering report/design_report.h.
+// (docs/models.md#excitation-design). Parsing and output only; the run is
+// workflow/excitation_design.h.
 #include <string>
 #include <vector>
 
@@ -11,8 +11,7 @@
 #include "core/errors.h"
 #include "io/atomic_file.h"
 #include "io/parameter_file.h"
-#include "models/missing_values.h"
-#include "report/design_report.h"
+#include "workflow/excitation_design.h"
 
 namespace driveid::cli {
 namespace {
@@ -70,43 +69,16 @@ CLI::App* Setup(CLI::App& design, DesignAxisOptions& o) {
   return c;
 }
 
-void Run(DesignAxisOptions o, const std::string& command_line) {
+void Run(const DesignAxisOptions& o, const std::string& command_line) {
   CheckDistinctFiles({o.params}, {{"-o", o.output}, {"--plot", o.plot}});
   const ParameterFile file = ReadParameterFile(o.params);
-  const AxisSection* section = file.Find<AxisSection>();
-  if (!section) throw InputError(fmt::format("{}: no 'axis' section", o.params));
-  RequireModelValues(AxisParameterTable(), *section, o.params, "axis", "the design", AxisTermsZeroUnlessGiven(*section));
-  const AxisParameters prior = MakeModelParameters(AxisParameterTable(), *section, AxisParameters{}, "axis");
-  if (o.band.size() == 2) {
-    o.design.band_low = o.band[0];
-    o.design.band_high = o.band[1];
-  }
-  o.design.targets = o.targets;
-  if (!(o.design.noise > 0.0)) o.design.noise = NoiseFromIdimResiduals(file.fit_rmse, file.fit_inflation);
-  if (!(o.design.noise > 0.0)) {
-    throw OptionError(fmt::format("--noise: {} has no inverse-dynamics fit residual to take the torque noise from; "
-                                  "give --noise", o.params));
-  }
-  const AxisDesign design = DesignAxisExcitation(prior, o.design);
+  const ExcitationDesignRun run = DesignAxisRun(
+      file, o.design, {o.params, o.band, o.targets, !o.output.empty(), !o.plot.empty(), o.json, command_line});
   std::vector<std::pair<std::string, std::string>> files;
-  if (!o.output.empty()) {
-    std::vector<std::string> comments = {"axis reference (docs/formats.md#references) designed by: " + command_line};
-    for (std::size_t j = 0; j < design.free.size(); ++j) {
-      comments.push_back(fmt::format("predicted std {}: {:.6g}", design.free[j], design.designed.predicted_std[j]));
-    }
-    std::string lines;
-    for (double f : design.designed.reference.LineFrequencies()) lines += fmt::format(" {:.6g}", f);
-    comments.push_back(fmt::format("excited lines [Hz]:{}", lines));
-    files.emplace_back(o.output, FormatAxisReference(DesignedReference(design, prior, o.design.rate, o.design.duration),
-                                                     comments));
-  }
-  if (!o.plot.empty()) {
-    files.emplace_back(o.plot, RenderPanels(o.plot, AxisDesignPanels(design, prior, o.design.rate), "time [s]"));
-  }
+  if (!o.output.empty()) files.emplace_back(o.output, run.csv);
+  if (!o.plot.empty()) files.emplace_back(o.plot, RenderPanels(o.plot, run.panels, "time [s]"));
   // Standard output belongs to the transaction: a failed write changes no file.
-  WriteFilesAtomically(files, [&] {
-    WriteStdout(o.json ? DumpJson(AxisDesignJson(design)) : FormatAxisDesign(design, section->linear));
-  });
+  WriteFilesAtomically(files, [&] { WriteStdout(run.printed); });
 }
 
 DesignAxisOptions options;

@@ -1,7 +1,6 @@
 // drivetrain-fit design joint: the injected torque multisine whose log the
 // next frequency-response fit needs (docs/models.md#joint-excitation-design).
-// Parsing and output only; the design is design/joint_excitation.h, its
-// rendering report/joint_design_report.h.
+// Parsing and output only; the run is workflow/excitation_design.h.
 #include <string>
 #include <vector>
 
@@ -12,7 +11,7 @@
 #include "core/errors.h"
 #include "io/atomic_file.h"
 #include "io/parameter_file.h"
-#include "report/joint_design_report.h"
+#include "workflow/excitation_design.h"
 
 namespace driveid::cli {
 namespace {
@@ -77,34 +76,16 @@ CLI::App* Setup(CLI::App& design, DesignJointOptions& o) {
   return c;
 }
 
-void Run(DesignJointOptions o, const std::string& command_line) {
+void Run(const DesignJointOptions& o, const std::string& command_line) {
   CheckDistinctFiles({o.params}, {{"-o", o.output}, {"--plot", o.plot}});
   const ParameterFile file = ReadParameterFile(o.params);
-  const JointSection* section = file.Find<JointSection>();
-  if (!section) throw InputError(fmt::format("{}: no 'joint' section", o.params));
-  if (!section->gear_ratio) throw InputError(fmt::format("{}: joint.gear_ratio is needed", o.params));
-  const JointParameters prior = ModelValuesOr(JointParameterTable(), *section, 0.0);
-  if (o.band.size() == 2) {
-    o.design.band_low = o.band[0];
-    o.design.band_high = o.band[1];
-  }
-  o.design.targets = o.targets;
-  const JointDesign design = DesignJointExcitation(prior, *section->gear_ratio, o.design);
+  const ExcitationDesignRun run = DesignJointRun(
+      file, o.design, {o.params, o.band, o.targets, !o.output.empty(), !o.plot.empty(), o.json, command_line});
   std::vector<std::pair<std::string, std::string>> files;
-  if (!o.output.empty()) {
-    std::vector<std::string> comments = {"joint excitation (docs/formats.md#references) designed by: " + command_line};
-    for (std::size_t j = 0; j < design.free.size(); ++j) {
-      comments.push_back(fmt::format("predicted std {}: {:.6g}", design.free[j], design.designed.predicted_std[j]));
-    }
-    comments.push_back(fmt::format("rms torque {:.6g} N m, period {:.6g} s", design.designed.rms, design.period));
-    files.emplace_back(o.output, FormatTorqueReference(DesignedExcitation(design, o.design.rate, o.design.duration),
-                                                       comments));
-  }
-  if (!o.plot.empty()) {
-    files.emplace_back(o.plot, RenderPanels(o.plot, JointDesignPanels(design, o.design.rate), "time [s]"));
-  }
+  if (!o.output.empty()) files.emplace_back(o.output, run.csv);
+  if (!o.plot.empty()) files.emplace_back(o.plot, RenderPanels(o.plot, run.panels, "time [s]"));
   // Standard output belongs to the transaction: a failed write changes no file.
-  WriteFilesAtomically(files, [&] { WriteStdout(o.json ? DumpJson(JointDesignJson(design)) : FormatJointDesign(design)); });
+  WriteFilesAtomically(files, [&] { WriteStdout(run.printed); });
 }
 
 DesignJointOptions options;

@@ -1,4 +1,3 @@
-#include "core/estimate_record.h"
 #include "io/parameter_file.h"
 #include "models/axis.h"
 
@@ -10,6 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include "core/errors.h"
+#include "core/estimate_record.h"
 
 using namespace driveid;
 
