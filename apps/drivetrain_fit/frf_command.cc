@@ -11,8 +11,6 @@
 #include "common/log_input_options.h"
 #include "core/errors.h"
 #include "io/parameter_file.h"
-#include "report/fit_summary.h"
-#include "report/frf_report.h"
 #include "workflow/frequency_response_run.h"
 
 namespace driveid::cli {
@@ -140,20 +138,8 @@ void Run(FrfCliOptions o, const std::string& command_line) {
   provenance.command = command_line;
   provenance.version = DRIVEID_VERSION;
   provenance.model = "frequency response (docs/models.md#frequency-response)";
-  FrfOptions options;
-  options.estimate.resolution = o.resolution;
-  options.estimate.period = o.period;
-  options.estimate.method = o.method == "welch" ? FrequencyMethod::kWelch
-                            : o.method == "periodic" ? FrequencyMethod::kPeriodic : FrequencyMethod::kAuto;
-  options.fit = o.fit == "two-mass";
-  options.hold = o.hold == "zoh";
-  options.two_mass.free = o.free;
-  options.two_mass.link_output = ResponseQuantityFromName(o.link_is, "--link-is");
-  if (o.band.size() == 2) {
-    if (!(o.band[1] > o.band[0])) throw OptionError(fmt::format("--band {},{}: LO must be below HI", o.band[0], o.band[1]));
-    options.two_mass.band_low = o.band[0];
-    options.two_mass.band_high = o.band[1];
-  }
+  FrfOptions options = MakeFrfOptions(
+      {o.resolution, o.period, o.method, o.fit == "two-mass", o.hold == "zoh", o.free, o.link_is, o.band});
   SetProgress(options.two_mass.fit, o.out.verbose);
   FrfResult result;
   if (!o.measured.empty()) {
@@ -201,28 +187,19 @@ FrfResult AnalyseLogs(FrfCliOptions& o, const JointSection& section, FrfOptions&
 
 void Emit(const FrfCliOptions& o, const ParameterFile& start, const JointSection& section, const FrfResult& result,
           const FitProvenance& provenance) {
+  FrfOutputs assembled =
+      AssembleFrfOutputs(start, section, result, provenance, !o.out.trace.empty(), !o.out.plot.empty(), o.out.json);
   FitOutputs outputs;
   outputs.provenance = provenance;
-  const ParameterFile fitted = FrfParameterFile(start, section, result);
-  if (result.fit) outputs.fit = result.fit->fit;
-  outputs.parameter_file = FormatParameterFile(fitted, result.fit ? &outputs.fit : nullptr, &outputs.provenance);
-  if (!o.out.trace.empty()) outputs.trace_csv = FormatFrfCsv(result);
-  if (!o.out.plot.empty()) outputs.plot_panels = MakeBodePanels(result);
+  outputs.parameter_file = std::move(assembled.parameter_file);
+  outputs.trace_csv = std::move(assembled.trace_csv);
+  outputs.plot_panels = std::move(assembled.panels);
   outputs.plot_x_label = "frequency [Hz]";
   outputs.plot_log_x = true;
-  // Without a fit the response's own warnings go the fit's way (stderr, or exit 4 with --strict).
-  if (!result.fit) outputs.fit.warnings = result.warnings;
+  outputs.fit = std::move(assembled.fit);
   // The summary goes where the fit table would (stdout with -o, else
   // stderr), inside the transaction: a failed stdout changes no file.
-  if (o.out.json) {
-    Json j = FrfJson(result);
-    if (result.fit) j["fit"] = FitJson(outputs.fit, outputs.provenance);
-    outputs.summary = DumpJson(j);
-  } else {
-    std::string text = FormatFrfSummary(result);
-    if (result.fit) text += FormatFitTable(outputs.fit, outputs.provenance);
-    outputs.summary = text;
-  }
+  outputs.summary = std::move(assembled.summary);
   EmitFitOutputs(o.out, outputs);
 }
 

@@ -6,6 +6,9 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/option_check.h"
+#include "report/fit_summary.h"
+#include "report/frf_report.h"
 
 namespace driveid {
 
@@ -60,6 +63,57 @@ ParameterFile FrfParameterFile(const ParameterFile& start, const JointSection& s
   }
   fitted.Set(result.Section());
   return fitted;
+}
+
+bool FrfRequest::IsValid(std::string* error) const {
+  OptionCheck check(error);
+  check.Require(method == "auto" || method == "welch" || method == "periodic",
+                "‹method› " + method + ": choose auto, welch or periodic");
+  check.Require(band.empty() || band.size() == 2, "‹band›: LO,HI or nothing");
+  if (band.size() == 2) {
+    check.Require(band[1] > band[0], fmt::format("‹band› {},{}: LO must be below HI", band[0], band[1]));
+  }
+  return check;
+}
+
+FrfOptions MakeFrfOptions(const FrfRequest& r) {
+  RequireValid(r);
+  FrfOptions options;
+  options.estimate.resolution = r.resolution;
+  options.estimate.period = r.period;
+  options.estimate.method = r.method == "welch"      ? FrequencyMethod::kWelch
+                            : r.method == "periodic" ? FrequencyMethod::kPeriodic
+                                                     : FrequencyMethod::kAuto;
+  options.fit = r.fit;
+  options.hold = r.zero_order_hold;
+  options.two_mass.free = r.free;
+  options.two_mass.link_output = ResponseQuantityFromName(r.link_is, "‹link_is›");
+  if (r.band.size() == 2) {
+    options.two_mass.band_low = r.band[0];
+    options.two_mass.band_high = r.band[1];
+  }
+  return options;
+}
+
+FrfOutputs AssembleFrfOutputs(const ParameterFile& start, const JointSection& section, const FrfResult& result,
+                              const FitProvenance& provenance, bool trace, bool plot, bool json) {
+  FrfOutputs out;
+  const ParameterFile fitted = FrfParameterFile(start, section, result);
+  if (result.fit) out.fit = result.fit->fit;
+  out.parameter_file = FormatParameterFile(fitted, result.fit ? &out.fit : nullptr, &provenance);
+  if (trace) out.trace_csv = FormatFrfCsv(result);
+  if (plot) out.panels = MakeBodePanels(result);
+  // Without a fit the response's own warnings go the fit's way (stderr, or exit 4 with --strict).
+  if (!result.fit) out.fit.warnings = result.warnings;
+  if (json) {
+    Json j = FrfJson(result);
+    if (result.fit) j["fit"] = FitJson(out.fit, provenance);
+    out.summary = DumpJson(j);
+  } else {
+    out.summary = FormatFrfSummary(result);
+    if (result.fit) out.summary += FormatFitTable(out.fit, provenance);
+  }
+  return out;
 }
 
 }  // namespace driveid

@@ -11,6 +11,7 @@
 #include "fit/frf_analysis.h"
 #include "io/csv_log.h"
 #include "io/parameter_file.h"
+#include "report/plot.h"
 
 namespace driveid {
 
@@ -40,5 +41,34 @@ FrfSignals FrfSignalsFromLog(CsvLog log, double torque_constant, bool has_refere
 /// when the joint was fitted, the joint section (`section` with the
 /// estimates; gear_ratio 1 unless given).
 ParameterFile FrfParameterFile(const ParameterFile& start, const JointSection& section, const FrfResult& result);
+
+/// The analysis a command's choices ask for (`frf`'s flags).
+struct FrfRequest {
+  double resolution = 0.0, period = 0.0;  ///< [Hz], [s]; 0: chosen from the data
+  std::string method = "auto";            ///< welch, periodic or auto
+  bool fit = false;                       ///< fit the two-mass joint
+  bool zero_order_hold = true;            ///< the drive holds its torque between samples
+  std::vector<std::string> free;          ///< the two-mass fit's free set
+  std::string link_is = "position";       ///< what the link signal is
+  std::vector<double> band;               ///< {LO, HI} [Hz] of the fit, or empty
+  /// A known method, a band of two frequencies with LO < HI.
+  bool IsValid(std::string* error) const;
+};
+
+/// The analysis options of `request` (method, fit, hold, free set, link
+/// quantity, band); OptionError naming the field that is wrong.
+FrfOptions MakeFrfOptions(const FrfRequest& request);
+
+/// What `frf` writes and prints: the parameter file (with the fit section
+/// when the joint was fitted), the trace CSV and the Bode panels when asked
+/// for, and the summary — the response's and the fit table, or one JSON
+/// document. Without a fit, the response's warnings are the fit's.
+struct FrfOutputs {
+  std::string parameter_file, trace_csv, summary;
+  std::vector<PlotPanel> panels;
+  FitResult fit;
+};
+FrfOutputs AssembleFrfOutputs(const ParameterFile& start, const JointSection& section, const FrfResult& result,
+                              const FitProvenance& provenance, bool trace, bool plot, bool json);
 
 }  // namespace driveid
