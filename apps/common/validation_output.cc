@@ -5,6 +5,7 @@
 #include "io/atomic_file.h"
 #include "report/fit_summary.h"
 #include "report/plot.h"
+#include "workflow/validation_run.h"
 
 namespace driveid::cli {
 
@@ -26,27 +27,14 @@ void AddValidationOutputOptions(CLI::App& command, FitOutputOptions& options) {
 
 void EmitValidation(const FitOutputOptions& options, const ValidationReport& report,
                     const std::vector<ValidatedLog>& logs) {
-  RequireValidated(logs);
-  std::vector<ChannelStatistics> stats;
-  std::vector<PlotSeries> series;
-  std::string trace =
-      fmt::format("# {} validate: {} (docs/models.md#validation)\nlog,t,measured,predicted,residual\n",
-                  report.program, report.method);
-  for (std::size_t i = 0; i < logs.size(); ++i) {
-    const ValidatedLog& v = logs[i];
-    stats.push_back(v.stats);
-    series.push_back({v.stats.name, v.time, v.measured, v.model});
-    for (std::size_t k = 0; k < v.time.size(); ++k) {
-      trace += fmt::format("{},{},{:.7g},{:.7g},{:.7g}\n", i + 1, v.time[k], v.measured[k], v.model[k],
-                           v.measured[k] - v.model[k]);
-    }
-  }
+  const ValidationOutputs made = AssembleValidationOutputs(report.program, report.method, logs);
+  const std::vector<ChannelStatistics>& stats = made.stats;
   std::vector<std::pair<std::string, std::string>> files;
   if (!options.plot.empty()) {
-    files.emplace_back(options.plot, RenderPanels(options.plot, MakeFitPanels(series, {report.title, report.unit}),
+    files.emplace_back(options.plot, RenderPanels(options.plot, MakeFitPanels(made.series, {report.title, report.unit}),
                                                   "time [s]"));
   }
-  if (!options.trace.empty()) files.emplace_back(options.trace, trace);
+  if (!options.trace.empty()) files.emplace_back(options.trace, made.trace_csv);
   WriteFilesAtomically(files, [&] {
     if (options.json) {
       Json document = {{"command", report.command_line}, {"version", DRIVEID_VERSION}, {"model", report.method}};
@@ -57,10 +45,7 @@ void EmitValidation(const FitOutputOptions& options, const ValidationReport& rep
     }
   });
   if (options.fail_below) {
-    std::vector<std::string> below;
-    for (const auto& s : stats) {
-      if (!(s.fit_percent >= *options.fail_below)) below.push_back(fmt::format("{} ({:.3g} %)", s.name, s.fit_percent));
-    }
+    const std::vector<std::string> below = LogsBelowFit(stats, *options.fail_below);
     if (!below.empty()) {
       throw GateFailed{fmt::format("fit below {:g} %: {}", *options.fail_below, fmt::join(below, ", "))};
     }

@@ -121,4 +121,30 @@ ValidationRun RunCDriveValidation(const std::vector<CDriveLog>& logs, const CDri
           "C-drive validation: motor torques by inverse dynamics", "motor torque [N m]"};
 }
 
+ValidationOutputs AssembleValidationOutputs(const std::string& program, const std::string& method,
+                                            const std::vector<ValidatedLog>& logs) {
+  RequireValidated(logs);
+  ValidationOutputs out;
+  out.trace_csv = fmt::format("# {} validate: {} (docs/models.md#validation)\nlog,t,measured,predicted,residual\n",
+                              program, method);
+  for (std::size_t i = 0; i < logs.size(); ++i) {
+    const ValidatedLog& v = logs[i];
+    out.stats.push_back(v.stats);
+    out.series.push_back({v.stats.name, v.time, v.measured, v.model});
+    for (std::size_t k = 0; k < v.time.size(); ++k) {
+      out.trace_csv += fmt::format("{},{},{:.7g},{:.7g},{:.7g}\n", i + 1, v.time[k], v.measured[k], v.model[k],
+                                   v.measured[k] - v.model[k]);
+    }
+  }
+  return out;
+}
+
+std::vector<std::string> LogsBelowFit(const std::vector<ChannelStatistics>& stats, double threshold) {
+  std::vector<std::string> below;
+  for (const auto& s : stats) {
+    if (!(s.fit_percent >= threshold)) below.push_back(fmt::format("{} ({:.3g} %)", s.name, s.fit_percent));
+  }
+  return below;
+}
+
 }  // namespace driveid

@@ -16,6 +16,7 @@
 #include "io/parameter_file.h"
 #include "io/step_log.h"
 #include "models/drivetrain.h"
+#include "report/plot.h"
 
 namespace driveid {
 
@@ -64,5 +65,20 @@ ValidationRun RunMujocoJointValidation(const std::vector<JointLog>& logs, const 
 /// value), the differentiator and sample selection of `prediction`.
 ValidationRun RunCDriveValidation(const std::vector<CDriveLog>& logs, const CDriveSection& section,
                                   const std::string& path, const CDriveFitOptions& prediction);
+
+/// What `validate` writes beside its table (docs/models.md#validation): the
+/// trace CSV (log, t, measured, predicted, residual; `program` and `method`
+/// in its header) and the plot's series, one per log.
+struct ValidationOutputs {
+  std::string trace_csv;
+  std::vector<PlotSeries> series;
+  std::vector<ChannelStatistics> stats;
+};
+ValidationOutputs AssembleValidationOutputs(const std::string& program, const std::string& method,
+                                            const std::vector<ValidatedLog>& logs);
+
+/// The quality gate (`‹fail_below›`): the logs whose fit % is below
+/// `threshold` or has none, "name (x %)" each; empty when all pass.
+std::vector<std::string> LogsBelowFit(const std::vector<ChannelStatistics>& stats, double threshold);
 
 }  // namespace driveid
