@@ -1,6 +1,7 @@
 // drivetrain-fit compare / cdrive-fit compare: parameter files against a
 // base, with a drift gate for CI (docs/guide.md#fleets-and-drift). The
-// comparison is lib/report/parameter_comparison.h.
+// comparison is lib/workflow/drift_comparison.h, its rendering
+// lib/report/parameter_comparison.h.
 #include <algorithm>
 #include <optional>
 #include <string>
@@ -14,6 +15,7 @@
 #include "io/atomic_file.h"
 #include "io/parameter_file.h"
 #include "report/parameter_comparison.h"
+#include "workflow/drift_comparison.h"
 
 namespace driveid::cli {
 namespace {

@@ -1,8 +1,6 @@
-// Parameter files compared with a base (docs/guide.md#fleets-and-drift):
-// for each estimate of the base's fit (fit.estimates, value and std) that a
-// file also holds, the relative change (v - v0) / |v0| and
-// z = (v - v0) / sqrt(s^2 + s0^2); a drift gate flags the parameters whose
-// change exceeds a percentage and/or a z (both, when both are given).
+// Parameter files compared with a base (docs/guide.md#fleets-and-drift),
+// rendered: the comparison's records and its text, JSON and plot. The
+// arithmetic and the drift gate are workflow/drift_comparison.h.
 #pragma once
 
 #include <optional>
@@ -39,12 +37,6 @@ struct FileComparison {
   /// either side under a z gate. A gate that cannot judge fails.
   std::vector<std::string> undecided;
 };
-
-/// Compares `other` with `base` (estimates by name). Parameters asked for
-/// in `gate.parameters` that the base lacks are refused (InputError naming
-/// them).
-FileComparison CompareEstimates(const std::string& file, const std::vector<ParameterEstimate>& base,
-                                const std::vector<ParameterEstimate>& other, const DriftGate& gate);
 
 /// One block per file: each parameter's base, value, change and z, drift
 /// marked; a closing line with how many files drifted.

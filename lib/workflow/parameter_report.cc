@@ -13,6 +13,7 @@
 #include "report/feedforward_report.h"
 #include "report/joint_report.h"
 #include "report/parameter_comparison.h"
+#include "workflow/drift_comparison.h"
 #include "report/planar_robot_report.h"
 
 namespace driveid {

@@ -1,7 +1,8 @@
-// report/parameter_comparison.h: the relative change and z of each shared
+// workflow/drift_comparison.h: the relative change and z of each shared
 // estimate against their closed forms; the gate drifts on either bound
 // alone and on both only when both are exceeded; a file's missing estimate
 // is named; a gate parameter the base lacks is refused.
+#include "workflow/drift_comparison.h"
 #include "report/parameter_comparison.h"
 
 #include <cmath>
