@@ -7,7 +7,7 @@
 // what an export writes where the target cannot hold it. The simulator,
 // both fits, the design, the exports and the validation loop over the
 // registered terms (models/axis_terms.cc); adding a friction law is one
-// file under models/axis_terms/ and one line there (docs/adding-a-model.md).
+// file under models/axis_terms/ and its name in lib/CMakeLists.txt (docs/adding-a-model.md).
 //
 // Conventions: q [rad or m] the position, v = q' the rate, a = q'' the
 // acceleration, m the direction of motion (+1, -1, 0 at rest; a simulation
@@ -74,6 +74,12 @@ class AxisTerm {
   /// can, or the exporter writes it itself).
   virtual std::string ExportNote(AxisExportTarget target) const;
 };
+
+/// Defines the factory of the term listed as `name` in DRIVEID_AXIS_TERMS
+/// (lib/CMakeLists.txt), the registry's only list: the last line of the
+/// term's file.
+#define DRIVEID_AXIS_TERM(name, Class) \
+  std::unique_ptr<AxisTerm> MakeAxisTerm_##name() { return std::make_unique<Class>(); }
 
 /// The registered terms, in registration order (models/axis_terms.cc).
 const std::vector<const AxisTerm*>& AxisTerms();

@@ -1,7 +1,8 @@
 // The axis model's terms, registered in the order the parameter file writes
 // them (models/axis.h): the linear terms, then the settings, then the
-// nonlinear terms. Adding a term: a file under models/axis_terms/ defining
-// its Make function, and one line in each list below.
+// nonlinear terms. The list itself is DRIVEID_AXIS_TERMS in
+// lib/CMakeLists.txt: adding a term is its file under models/axis_terms/
+// and its name there.
 #include "models/axis_term.h"
 
 #include <memory>
@@ -11,22 +12,20 @@
 
 namespace driveid {
 
-std::unique_ptr<AxisTerm> MakeInertiaTerm();
-std::unique_ptr<AxisTerm> MakeViscousTerm();
-std::unique_ptr<AxisTerm> MakeCoulombTerm();
-std::unique_ptr<AxisTerm> MakeOffsetTerm();
-std::unique_ptr<AxisTerm> MakeGravityTerm();
-std::unique_ptr<AxisTerm> MakeDirectionalCoulombTerm();
-std::unique_ptr<AxisTerm> MakeDirectionalViscousTerm();
-std::unique_ptr<AxisTerm> MakeStribeckTerm();
+// The factories of the terms lib/CMakeLists.txt lists in DRIVEID_AXIS_TERMS
+// (defined by DRIVEID_AXIS_TERM in each term's file), in its order.
+#define DRIVEID_REGISTERED_AXIS_TERM(name) std::unique_ptr<AxisTerm> MakeAxisTerm_##name();
+#include "models/registered_axis_terms.inc"
+#undef DRIVEID_REGISTERED_AXIS_TERM
 
 namespace {
 
 using MakeTerm = std::unique_ptr<AxisTerm> (*)();
+#define DRIVEID_REGISTERED_AXIS_TERM(name) MakeAxisTerm_##name,
 const MakeTerm kRegistered[] = {
-    MakeInertiaTerm,     MakeViscousTerm,          MakeCoulombTerm,           MakeOffsetTerm,
-    MakeGravityTerm,     MakeDirectionalCoulombTerm, MakeDirectionalViscousTerm, MakeStribeckTerm,
+#include "models/registered_axis_terms.inc"
 };
+#undef DRIVEID_REGISTERED_AXIS_TERM
 
 // Settings of the axis section that are no term's: between the linear and
 // the nonlinear terms' rows.

@@ -29,6 +29,6 @@ class CoulombTerm final : public AxisTerm {
 
 }  // namespace
 
-std::unique_ptr<AxisTerm> MakeCoulombTerm() { return std::make_unique<CoulombTerm>(); }
+DRIVEID_AXIS_TERM(coulomb, CoulombTerm)
 
 }  // namespace driveid

@@ -35,6 +35,6 @@ class DirectionalCoulombTerm final : public AxisTerm {
 
 }  // namespace
 
-std::unique_ptr<AxisTerm> MakeDirectionalCoulombTerm() { return std::make_unique<DirectionalCoulombTerm>(); }
+DRIVEID_AXIS_TERM(directional_coulomb, DirectionalCoulombTerm)
 
 }  // namespace driveid

@@ -37,6 +37,6 @@ class DirectionalViscousTerm final : public AxisTerm {
 
 }  // namespace
 
-std::unique_ptr<AxisTerm> MakeDirectionalViscousTerm() { return std::make_unique<DirectionalViscousTerm>(); }
+DRIVEID_AXIS_TERM(directional_viscous, DirectionalViscousTerm)
 
 }  // namespace driveid

@@ -36,6 +36,6 @@ class GravityTerm final : public AxisTerm {
 
 }  // namespace
 
-std::unique_ptr<AxisTerm> MakeGravityTerm() { return std::make_unique<GravityTerm>(); }
+DRIVEID_AXIS_TERM(gravity, GravityTerm)
 
 }  // namespace driveid

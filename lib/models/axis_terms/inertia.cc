@@ -19,6 +19,6 @@ class InertiaTerm final : public AxisTerm {
 
 }  // namespace
 
-std::unique_ptr<AxisTerm> MakeInertiaTerm() { return std::make_unique<InertiaTerm>(); }
+DRIVEID_AXIS_TERM(inertia, InertiaTerm)
 
 }  // namespace driveid

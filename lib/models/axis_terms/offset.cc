@@ -25,6 +25,6 @@ class OffsetTerm final : public AxisTerm {
 
 }  // namespace
 
-std::unique_ptr<AxisTerm> MakeOffsetTerm() { return std::make_unique<OffsetTerm>(); }
+DRIVEID_AXIS_TERM(offset, OffsetTerm)
 
 }  // namespace driveid

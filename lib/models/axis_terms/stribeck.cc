@@ -71,6 +71,6 @@ class StribeckTerm final : public AxisTerm {
 
 }  // namespace
 
-std::unique_ptr<AxisTerm> MakeStribeckTerm() { return std::make_unique<StribeckTerm>(); }
+DRIVEID_AXIS_TERM(stribeck, StribeckTerm)
 
 }  // namespace driveid

@@ -27,6 +27,6 @@ class ViscousTerm final : public AxisTerm {
 
 }  // namespace
 
-std::unique_ptr<AxisTerm> MakeViscousTerm() { return std::make_unique<ViscousTerm>(); }
+DRIVEID_AXIS_TERM(viscous, ViscousTerm)
 
 }  // namespace driveid
