@@ -52,46 +52,14 @@ struct JointSection {
   std::optional<double> torque_constant;  ///< k_t [N m/A] for logs of current i
 };
 
-inline const ParameterTable<JointSection, JointParameters>& JointParameterTable() {
-  using S = JointSection;
-  using P = JointParameters;
-  static const ParameterTable<S, P> table = {
-      {Spec("motor_inertia", "J_m", "kg m^2", "motor inertia, link side").Fit("joint").FreeByDefault(),
-       &S::motor_inertia, &P::motor_inertia},
-      {Spec("link_inertia", "J_l", "kg m^2", "link inertia").Fit("joint").FreeByDefault(),
-       &S::link_inertia, &P::link_inertia},
-      {Spec("stiffness", "k", "N m/rad", "joint stiffness").Fit("joint").FreeByDefault(), &S::stiffness,
-       &P::stiffness},
-      {Spec("damping", "d", "N m s/rad", "joint damping (of the spring)").Fit("joint").FreeByDefault(),
-       &S::damping, &P::damping},
-      {Spec("motor_viscous", "b_m", "N m s/rad", "motor-side viscous friction").Fit("joint").FreeByDefault(),
-       &S::motor_viscous, &P::motor_viscous},
-      {Spec("motor_coulomb", "c_m", "N m", "motor-side Coulomb friction").Fit("joint").FreeByDefault(),
-       &S::motor_coulomb, &P::motor_coulomb},
-      {Spec("link_viscous", "b_l", "N m s/rad", "link-side viscous friction").Fit("joint").FreeByDefault(),
-       &S::link_viscous, &P::link_viscous},
-      {Spec("link_coulomb", "c_l", "N m", "link-side Coulomb friction").Fit("joint").FreeByDefault(),
-       &S::link_coulomb, &P::link_coulomb},
-      {Spec("offset", "tau_0", "N m", "constant torque offset (motor side)").Unbounded().Fit("joint").FreeByDefault(),
-       &S::offset, &P::offset},
-      {Spec("gravity_cos", "g_c", "N m", "gravity torque amplitude of cos q_link").Unbounded().Fit("joint"),
-       &S::gravity_cos, &P::gravity_cos},
-      {Spec("gravity_sin", "g_s", "N m", "gravity torque amplitude of sin q_link").Unbounded().Fit("joint"),
-       &S::gravity_sin, &P::gravity_sin},
-      {Spec("link_torque_offset", "tau_l0", "N m",
-            "offset of a logged shaft torque tau_link (sensor bias + k x initial twist)")
-           .Unbounded()
-           .Fit("joint"),
-       &S::link_torque_offset, &P::link_torque_offset},
-      {Spec("gear_ratio", "n", "-", "gear ratio, q_motor = n theta_m").Above(0.0).Required(),
-       &S::gear_ratio, nullptr},
-      {Spec("k_t", "k_t", "N m/A", "torque constant for logs of current").Above(0.0),
-       &S::torque_constant, nullptr},
-  };
-  return table;
-}
+/// The joint section's rows: the registered terms' (models/joint_term.h) in
+/// their order, then the settings n and k_t.
+const ParameterTable<JointSection, JointParameters>& JointParameterTable();
 
+/// The model parameters (JointParameters' members) and those of them linear
+/// in the motion (J_m, J_l, k, d, b_m, b_l: the frequency response's).
 constexpr std::size_t kJointTerms = 12;
+constexpr std::size_t kJointLinearTerms = 6;
 
 /// Regressor rows of the motor, the total and the shaft-torque equation at
 /// one sample (table order; link-side angles and rates):
@@ -101,24 +69,20 @@ constexpr std::size_t kJointTerms = 12;
 struct JointRegressors {
   std::array<double, kJointTerms> motor, total, link;
 };
-inline JointRegressors CalcJointRegressors(double motor_angle, double motor_rate, double motor_acceleration,
-                                           double link_angle, double link_rate, double link_acceleration) {
-  const auto sgn = [](double x) { return static_cast<double>((x > 0.0) - (x < 0.0)); };
-  const double deflection = motor_angle - link_angle, deflection_rate = motor_rate - link_rate;
-  return {{motor_acceleration, 0.0, deflection, deflection_rate, motor_rate, sgn(motor_rate), 0.0, 0.0, 1.0, 0.0, 0.0,
-           0.0},
-          {motor_acceleration, link_acceleration, 0.0, 0.0, motor_rate, sgn(motor_rate), link_rate, sgn(link_rate), 1.0,
-           std::cos(link_angle), std::sin(link_angle), 0.0},
-          {0.0, 0.0, deflection, deflection_rate, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0}};
-}
+/// From the registered terms' columns (models/joint_terms.cc).
+JointRegressors CalcJointRegressors(double motor_angle, double motor_rate, double motor_acceleration,
+                                    double link_angle, double link_rate, double link_acceleration);
 
 /// Which derivative of an angle a frequency response has as its output.
 enum class ResponseQuantity { kPosition = 0, kRate = 1, kAcceleration = 2 };
 
 /// Frequency response of the joint from the logged motor torque tau (= tau_m / n)
 /// at s = j omega [rad/s], in log units (q_motor = n theta_m, q_link = theta_l),
-/// gravity left out (linear about rest). With A_m = J_m s^2 + (b_m + d) s + k,
-/// A_l = J_l s^2 + (b_l + d) s + k, K = d s + k and Delta = A_m A_l - K^2:
+/// gravity left out (linear about rest). From the linear terms' matrices
+/// (models/joint_term.h), Z(s) = M s^2 + D s + K and Delta = det Z:
+///   q_motor / tau = n^2 Z_ll / Delta,   q_link / tau = -n Z_lm / Delta,
+/// which for the registered terms is, with A_m = J_m s^2 + (b_m + d) s + k,
+/// A_l = J_l s^2 + (b_l + d) s + k and K = d s + k, Delta = A_m A_l - K^2:
 ///   q_motor / tau = n^2 A_l / Delta,   q_link / tau = n K / Delta,
 /// times s (rate) or s^2 (acceleration). Coulomb friction and the offset do
 /// not enter (a describing function would make the response depend on the
@@ -126,37 +90,12 @@ enum class ResponseQuantity { kPosition = 0, kRate = 1, kAcceleration = 2 };
 /// sqrt(k / J_l) and both share the resonance sqrt(k (1/J_m + 1/J_l)).
 struct JointResponse {
   std::complex<double> motor, link;
-  /// d ln(response) / d parameter for the dynamic terms, in the order
-  /// motor_inertia, link_inertia, stiffness, damping, motor_viscous, link_viscous.
-  std::array<std::complex<double>, 6> motor_log_gradient, link_log_gradient;
+  /// d ln(response) / d parameter for the linear terms, in the order of
+  /// JointLinearParameters(): motor_inertia, link_inertia, stiffness,
+  /// damping, motor_viscous, link_viscous.
+  std::array<std::complex<double>, kJointLinearTerms> motor_log_gradient, link_log_gradient;
 };
-inline JointResponse CalcJointResponse(const JointParameters& p, double gear_ratio, double omega,
-                                       ResponseQuantity quantity) {
-  using C = std::complex<double>;
-  const C s(0.0, omega);
-  const C spring = p.damping * s + p.stiffness;
-  const C a_m = p.motor_inertia * s * s + p.motor_viscous * s + spring;
-  const C a_l = p.link_inertia * s * s + p.link_viscous * s + spring;
-  const C delta = a_m * a_l - spring * spring;
-  const C derivative = std::pow(s, static_cast<int>(quantity));
-  JointResponse out;
-  out.motor = gear_ratio * gear_ratio * a_l / delta * derivative;
-  out.link = gear_ratio * spring / delta * derivative;
-  // Partials of (A_m, A_l, K) per parameter.
-  const std::array<std::array<C, 3>, 6> partials = {{{s * s, 0.0, 0.0},
-                                                     {0.0, s * s, 0.0},
-                                                     {1.0, 1.0, 1.0},
-                                                     {s, s, s},
-                                                     {s, 0.0, 0.0},
-                                                     {0.0, s, 0.0}}};
-  for (std::size_t i = 0; i < partials.size(); ++i) {
-    const auto& [da_m, da_l, dk] = partials[i];
-    const C d_delta = da_m * a_l + a_m * da_l - 2.0 * spring * dk;
-    out.motor_log_gradient[i] = da_l / a_l - d_delta / delta;
-    out.link_log_gradient[i] = dk / spring - d_delta / delta;
-  }
-  return out;
-}
+JointResponse CalcJointResponse(const JointParameters& p, double gear_ratio, double omega, ResponseQuantity quantity);
 
 /// The same response as a sampled system sees it: the torque held between
 /// samples at `rate` [Hz] (zero-order hold) and the output sampled, exactly:
