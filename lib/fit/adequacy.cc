@@ -153,6 +153,12 @@ std::vector<HeterogeneityTest> TestHeterogeneity(const std::vector<EstimateSet>&
       }
     }
     if (values.size() < 2) continue;
+    // Cochran's Q: the inverse-variance weighted spread of the per-log
+    // estimates about their pooled mean. If the logs measure one machine and
+    // their std are right, Q ~ chi^2 with L - 1 dof; a small p-value says the
+    // logs disagree by more than their noise (a changed load, temperature,
+    // a model term missing that the logs excite differently). I^2 = (Q - dof)/Q
+    // is the share of the spread that is real (Higgins and Thompson 2002).
     double weight_sum = 0.0, weighted = 0.0;
     for (const auto& [b, s] : values) {
       weight_sum += 1.0 / (s * s);
@@ -200,6 +206,11 @@ void WidenForDisagreement(FitResult& fit) {
         }
       }
     }
+    // The between-log variance tau^2 by DerSimonian and Laird's method of
+    // moments, tau^2 = (Q - dof) / (S1 - S2/S1) with S_r = sum w_i^r, and
+    // the pooled estimate's std under random effects, 1/sqrt(sum 1/(v_i +
+    // tau^2)): what the next log of this machine could differ by. Its
+    // interval uses Student's t with L - 1 dof, as tau^2 comes from few logs.
     double s1 = 0.0, s2 = 0.0;
     for (double v : variances) {
       s1 += 1.0 / v;

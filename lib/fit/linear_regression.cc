@@ -58,6 +58,8 @@ void LinearRegression::AddRow(const std::vector<double>& regressor, double measu
     throw std::logic_error("LinearRegression::AddRow: row size differs from the columns, or no channel begun");
   }
   const auto row = static_cast<Eigen::Index>(rows());
+  // Geometric growth (amortised O(1) per row) for builders that cannot count
+  // their rows ahead; those that can call Reserve once.
   if (row == design_.rows()) Reserve(std::max<std::size_t>(64, 2 * rows()));
   for (std::size_t j = 0; j < regressor.size(); ++j) design_(row, static_cast<Eigen::Index>(j)) = regressor[j];
   measured_.push_back(measured);
@@ -72,6 +74,8 @@ std::vector<std::size_t> LinearRegression::FreeIndex(const std::vector<FitParame
 
 Eigen::VectorXd LinearRegression::Target(const std::vector<std::size_t>& free_index,
                                          const std::map<std::string, double>& fixed) const {
+  // y = measured - known - sum over fixed columns of value x column: the
+  // free parameters are fitted to what the fixed ones leave.
   const std::size_t n = rows(), m = columns_.size();
   std::vector<std::pair<std::size_t, double>> fixed_terms;
   for (std::size_t j = 0; j < m; ++j) {
@@ -118,6 +122,10 @@ FitResult LinearRegression::FitAndRelease(const std::vector<FitParameter>& free,
     *this = LinearRegression(columns_);
     return result;
   }
+  // A large design (a long log of a whole arm) is handed to the solver
+  // instead of copied: when every column is free and in order the design
+  // matrix itself becomes the Jacobian block, so peak memory stays one
+  // design, not two.
   const std::vector<std::size_t> free_index = FreeIndex(free);
   const Eigen::VectorXd y = Target(free_index, fixed);
   JacobianBlock block;

@@ -4,6 +4,7 @@
 // (RMSE and fit % are of what was measured). Columns that are not estimated
 // are fixed at known values and subtracted from y, as is a per-row part
 // known from outside the columns.
+// Documented in docs/models.md#identification.
 #pragma once
 
 #include <map>

@@ -4,6 +4,9 @@
 
 namespace driveid {
 
+// Symbols of models/cdrive.h (docs/models.md#c-drive): the nuts turn the
+// collar by their mean angle and move it by their difference, one lead p
+// per turn: u = p/(4 pi) (psi_L - psi_R), theta = (psi_L + psi_R)/2.
 Matrix2 CalcCDriveJacobian(double lead) {
   const double k = lead / (4.0 * M_PI);
   return (Matrix2() << k, -k, k, k).finished();
@@ -20,6 +23,12 @@ double CalcCollarTranslation(double lead, double psi_left, double psi_right) {
 
 double CalcCollarRotation(double psi_left, double psi_right) { return 0.5 * (psi_left + psi_right); }
 
+// The inertia matrix follows from the kinetic energy in motor coordinates,
+//   T = 1/2 I_h (psi_L'^2 + psi_R'^2) + 1/2 I_c theta'^2 + 1/2 m u'^2,
+// with theta' = (psi_L' + psi_R')/2 and u' = p/(4 pi) (psi_L' - psi_R'):
+//   M = I_h 1 + I_c/4 [[1, 1], [1, 1]] + m p^2/(16 pi^2) [[1, -1], [-1, 1]].
+// The collar's rotation couples the motors positively, its translation
+// negatively; the mass term is small for a fine lead (p^2/(16 pi^2)).
 double CalcMassCoupling(double lead) { return lead * lead / (16.0 * M_PI * M_PI); }
 
 double CalcInertiaDiagonal(const CDriveParameters& p) {
@@ -35,6 +44,11 @@ Matrix2 CalcCDriveInertiaMatrix(const CDriveParameters& p) {
   return (Matrix2() << a, b, b, a).finished();
 }
 
+// Viscous friction from the Rayleigh dissipation function
+//   R = 1/2 beta (psi_L'^2 + psi_R'^2) + 1/4 gamma (psi_L' - psi_R')^2,
+// beta at each motor's bearings, gamma of the collar on the screws, which
+// only the nuts' relative rate loads; C = d^2 R / d psi'^2. The Coulomb
+// torques split the same way (delta per motor, eta on the relative rate).
 Matrix2 CalcCDriveDampingMatrix(const CDriveParameters& p) {
   const double diagonal = p.viscous_motor + 0.5 * p.viscous_collar;
   const double off = -0.5 * p.viscous_collar;

@@ -2,6 +2,7 @@
 // inertia matrix M and its isotropy, and a Table-I style table of the
 // dissipation parameters beside the paper's, with standard errors when the
 // file carries a fit. Computed once as a struct, rendered as text or JSON.
+// Documented in docs/models.md#c-drive.
 #pragma once
 
 #include <optional>

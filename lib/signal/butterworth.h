@@ -3,6 +3,7 @@
 // backward (filtfilt), so the result has no phase lag and a fourth-order
 // magnitude roll-off with -6 dB at the cutoff. The ends are padded by odd
 // reflection to avoid start-up transients.
+// Documented in docs/models.md#identification.
 #pragma once
 
 #include <vector>

@@ -6,6 +6,7 @@
 // phase lag; the velocity bias is ~ psi''' h^2 / 10, the acceleration bias
 // ~ psi'''' h^2 / 14, and quantisation noise q/sqrt(12) is averaged over
 // the window.
+// Documented in docs/models.md#identification.
 #pragma once
 
 #include <vector>

@@ -8,6 +8,8 @@
 
 namespace driveid {
 
+// The median, not the mean, step: a log with a few dropped samples or a
+// pause keeps its nominal rate.
 double MedianStep(const std::vector<double>& time) {
   std::vector<double> steps(time.size() - 1);
   for (std::size_t k = 1; k < time.size(); ++k) steps[k - 1] = time[k] - time[k - 1];
@@ -20,6 +22,9 @@ double GlitchedStep(const std::vector<double>& time) {
   std::vector<double> steps(time.size() - 1);
   for (std::size_t k = 1; k < time.size(); ++k) steps[k - 1] = time[k] - time[k - 1];
   if (!(median > 0.0)) return 0.0;
+  // A stamp jittered by the logging thread is off the median by a little; a
+  // step off by more than kMaxGlitch is a gap or a repeat, which resampling
+  // on a uniform grid would hide, so the log is not called uniform then.
   std::size_t off = 0;
   for (double s : steps) {
     const double deviation = std::abs(s / median - 1.0);
@@ -33,6 +38,9 @@ double GlitchedStep(const std::vector<double>& time) {
 std::vector<double> InterpolateLinear(const std::vector<double>& time, const std::vector<double>& values,
                                       const std::vector<double>& at) {
   std::vector<double> out(at.size());
+  // One merge-like pass: `at` ascends, so the bracketing interval j only
+  // moves forward (O(N + M), not a search per point). Points outside the
+  // log hold its end values (the clamp), they are not extrapolated.
   std::size_t j = 0;
   for (std::size_t i = 0; i < at.size(); ++i) {
     while (j + 2 < time.size() && time[j + 1] < at[i]) ++j;

@@ -41,6 +41,11 @@ ClosedLoopResult SimulateClosedLoop(const CDriveParameters& params, const CDrive
   const long periods = std::lround(2.0 * stroke * options.cycles / settings.sample_time);
   const long periods_per_stroke = std::lround(stroke / settings.sample_time);
   result.log.path = "simulated";
+  // One controller period per step, as the drive's real-time loop runs it:
+  // read the quantised encoders, compute the torque, hold it over the period
+  // (zero-order hold) while the plant integrates. The logged torque carries
+  // the measurement noise; the plant gets the commanded one (the noise is
+  // the logger's, not a disturbance).
   for (long k = 0; k <= periods; ++k) {
     const double t = static_cast<double>(k) * settings.sample_time;
     const auto left = CalcProgramReference(options.program.amplitude_left, stroke, t);
@@ -56,6 +61,9 @@ ClosedLoopResult SimulateClosedLoop(const CDriveParameters& params, const CDrive
     result.log.torque_left.push_back(torque[0] + (options.torque_noise > 0.0 ? noise.Next(options.torque_noise) : 0.0));
     result.log.torque_right.push_back(torque[1] + (options.torque_noise > 0.0 ? noise.Next(options.torque_noise) : 0.0));
 
+    // Tracking errors in the collar's coordinates (what the process sees),
+    // from the encoder angles the controller had: the worst over the run
+    // and at the stroke ends, where the program stops and settles.
     const double error_left = left.angle - encoder[0], error_right = right.angle - encoder[1];
     const double u_error = CalcCollarTranslation(params.lead, error_left, error_right);
     const double theta_error = CalcCollarRotation(error_left, error_right);

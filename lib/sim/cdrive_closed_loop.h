@@ -5,6 +5,7 @@
 // friction while the torques are held. Writes the log the rig would record
 // (encoder angles, commanded torques) and the tracking errors in collar
 // coordinates, u [m] and theta [rad], from the encoder angles as in the seed.
+// Documented in docs/models.md#c-drive and docs/cli.md (cdrive-fit simulate).
 #pragma once
 
 #include <cstdint>

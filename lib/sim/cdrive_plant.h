@@ -17,6 +17,7 @@
 // contact's force reaching its limit. The next mode is the most-stuck candidate that is
 // consistent (forces within limits, sliding directions agreeing with the
 // accelerations), found by enumeration. The torque is held over each call.
+// Documented in docs/models.md#c-drive.
 #pragma once
 
 #include <array>

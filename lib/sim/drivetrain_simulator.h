@@ -25,6 +25,7 @@
 // The torque command tau_motor[k] is held on [t_k, t_{k+1}); the response
 // y_k = tau_link(t_k) is sampled before the new command applies. The drive
 // starts at rest and unloaded at t_0 (phi = Delta = 0).
+// Documented in docs/models.md#drive-train.
 #pragma once
 
 #include <cstddef>

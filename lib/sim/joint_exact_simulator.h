@@ -2,6 +2,7 @@
 // chooses it): the joint without gravity, linear within a friction mode,
 // solved per sample interval by matrix exponentials, with the same modes,
 // events and sensitivity jumps (sim/joint_exact_simulator.cc).
+// Documented in docs/models.md#joint-output-error.
 #pragma once
 
 #include <array>

@@ -15,6 +15,7 @@
 // and handled with the jump conditions of the integrators' roots: sliding
 // into rest at t*(p), s+ = s- + (f- - f+) dt*/dp with
 // dt*/dp = -s_rate- / rate'-; a break-away is continuous.
+// Documented in docs/models.md#joint-output-error.
 #pragma once
 
 #include <array>

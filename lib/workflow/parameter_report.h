@@ -3,6 +3,7 @@
 // drive train beside a fitted file, the feed-forward, joint, frf and
 // feedback sections), and a fitted file's estimates compared with the
 // file's; as text and as one JSON document with a member per section.
+// Documented in docs/formats.md#parameter-files.
 #pragma once
 
 #include <optional>
