@@ -20,6 +20,7 @@
 #include "core/errors.h"
 #include "io/log_input.h"
 #include "support/mat_fixture.h"
+#include "support/private_tmpdir.h"
 
 using namespace driveid;
 
@@ -214,7 +215,9 @@ TEST_CASE("a MAT read names no file: nothing in the temporary folder is created,
   if (child == 0) ::_exit(0);
   REQUIRE(child > 0);
   ::waitpid(child, nullptr, 0);
+  const driveid::testing::PrivateTmpdir private_tmpdir;
   const auto dir = std::filesystem::temp_directory_path();
+  REQUIRE(dir == std::filesystem::path(private_tmpdir.path()));
   const auto foreign = dir / ("driveid-mat." + std::to_string(child) + ".mine");
   const auto live = dir / ("driveid-mat." + std::to_string(::getpid()) + ".Ef34Gh");
   std::ofstream(foreign) << "mine";

@@ -15,6 +15,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "support/private_tmpdir.h"
 #include "io/temporary_files.h"
 
 namespace driveid {
@@ -121,6 +122,7 @@ TEST_CASE("the writer gets SIGTERM first (to remove its own files), SIGKILL when
 }
 
 TEST_CASE("an unnamed file is readable and writable, close-on-exec, and adds no name to the temporary folder") {
+  const driveid::testing::PrivateTmpdir private_tmpdir;
   const auto listing = [] {
     std::set<std::string> names;
     for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::temp_directory_path())) {
