@@ -1,0 +1,192 @@
+#include "models/serial_dynamics.h"
+
+#include <stdexcept>
+
+#include <Eigen/Geometry>
+
+namespace driveid {
+namespace {
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+
+Matrix3d Skew(const Vector3d& v) {
+  Matrix3d s;
+  s << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return s;
+}
+
+// I w = Lift(w) (Ixx, Ixy, Ixz, Iyy, Iyz, Izz).
+Eigen::Matrix<double, 3, 6> Lift(const Vector3d& w) {
+  Eigen::Matrix<double, 3, 6> l;
+  l << w.x(), w.y(), w.z(), 0.0, 0.0, 0.0,  //
+      0.0, w.x(), 0.0, w.y(), w.z(), 0.0,   //
+      0.0, 0.0, w.x(), 0.0, w.y(), w.z();
+  return l;
+}
+
+// Motion of each body (in its own frame) and its pose in the parent's.
+struct BodyMotion {
+  Matrix3d rotation;     // R: body -> parent
+  Vector3d translation;  // r: the body's origin in the parent's frame
+  Vector3d w, dw, a;     // angular velocity, its rate, linear acceleration of the origin (gravity included)
+};
+
+std::vector<BodyMotion> OutwardPass(const SerialRobot& robot, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                                    const Eigen::VectorXd& qdd) {
+  const std::size_t n = robot.size();
+  if (static_cast<std::size_t>(q.size()) != n || static_cast<std::size_t>(qd.size()) != n ||
+      static_cast<std::size_t>(qdd.size()) != n) {
+    throw std::logic_error("serial dynamics: q, q', q'' need one entry per joint");
+  }
+  std::vector<BodyMotion> m(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const SerialJoint& joint = robot.joints[i];
+    const RigidTransform t = SerialJointTransform(joint, q(static_cast<Eigen::Index>(i)));
+    BodyMotion& b = m[i];
+    b.rotation = t.rotation;
+    b.translation = t.translation;
+    Vector3d wp = Vector3d::Zero(), dwp = Vector3d::Zero(), ap = -robot.gravity;
+    if (joint.parent >= 0) {
+      const BodyMotion& p = m[static_cast<std::size_t>(joint.parent)];
+      wp = p.w;
+      dwp = p.dw;
+      ap = p.a;
+    }
+    const Matrix3d rt = t.rotation.transpose();
+    const Vector3d& r = t.translation;
+    const Vector3d& s = joint.axis;
+    const double v = qd(static_cast<Eigen::Index>(i)), acc = qdd(static_cast<Eigen::Index>(i));
+    const Vector3d w_in = rt * wp;
+    b.a = rt * (ap + dwp.cross(r) + wp.cross(wp.cross(r)));
+    if (joint.type == SerialJointType::kRevolute) {
+      b.w = w_in + s * v;
+      b.dw = rt * dwp + s * acc + w_in.cross(s * v);
+    } else {
+      b.w = w_in;
+      b.dw = rt * dwp;
+      b.a += 2.0 * b.w.cross(s * v) + s * acc;
+    }
+  }
+  return m;
+}
+
+// The joint's row selector: torque = s . n (revolute) or force = s . f.
+double Project(const SerialJoint& joint, const Vector3d& f, const Vector3d& n) {
+  return joint.axis.dot(joint.type == SerialJointType::kRevolute ? n : f);
+}
+
+}  // namespace
+
+RigidTransform SerialJointTransform(const SerialJoint& joint, double q) {
+  RigidTransform motion;
+  if (joint.type == SerialJointType::kRevolute) {
+    motion.rotation = Eigen::AngleAxisd(q, joint.axis).toRotationMatrix();
+  } else {
+    motion.translation = joint.axis * q;
+  }
+  return Compose(joint.origin, motion);
+}
+
+std::vector<RigidTransform> SerialBodyPoses(const SerialRobot& robot, const Eigen::VectorXd& q) {
+  std::vector<RigidTransform> poses(robot.size());
+  for (std::size_t i = 0; i < robot.size(); ++i) {
+    const RigidTransform local = SerialJointTransform(robot.joints[i], q(static_cast<Eigen::Index>(i)));
+    const int parent = robot.joints[i].parent;
+    poses[i] = parent < 0 ? local : Compose(poses[static_cast<std::size_t>(parent)], local);
+  }
+  return poses;
+}
+
+Eigen::VectorXd CalcSerialRigidTorque(const SerialRobot& robot, const std::vector<InertialParameters>& bodies,
+                                      const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd) {
+  const std::size_t n = robot.size();
+  if (bodies.size() != n) throw std::logic_error("CalcSerialRigidTorque: one body per joint");
+  const std::vector<BodyMotion> m = OutwardPass(robot, q, qd, qdd);
+  std::vector<Vector3d> f(n), torque(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const InertialParameters& pi = bodies[i];
+    const Vector3d h(pi[1], pi[2], pi[3]);
+    const Matrix3d inertia = InertiaMatrix(pi);
+    const BodyMotion& b = m[i];
+    f[i] = pi[0] * b.a + b.dw.cross(h) + b.w.cross(b.w.cross(h));
+    torque[i] = inertia * b.dw + b.w.cross(inertia * b.w) + h.cross(b.a);
+  }
+  Eigen::VectorXd tau(static_cast<Eigen::Index>(n));
+  for (std::size_t k = n; k-- > 0;) {  // children come after their parents
+    tau(static_cast<Eigen::Index>(k)) = Project(robot.joints[k], f[k], torque[k]);
+    const int parent = robot.joints[k].parent;
+    if (parent < 0) continue;
+    const auto p = static_cast<std::size_t>(parent);
+    const Vector3d moved = m[k].rotation * f[k];
+    f[p] += moved;
+    torque[p] += m[k].rotation * torque[k] + m[k].translation.cross(moved);
+  }
+  return tau;
+}
+
+void CalcSerialRegressor(const SerialRobot& robot, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                         const Eigen::VectorXd& qdd, Eigen::Ref<Eigen::MatrixXd> y) {
+  const std::size_t n = robot.size();
+  const auto rows = static_cast<Eigen::Index>(n);
+  if (y.rows() != rows || y.cols() != static_cast<Eigen::Index>(kSerialColumnsPerJoint * n)) {
+    throw std::logic_error("CalcSerialRegressor: y must be n x 14 n");
+  }
+  y.setZero();
+  const std::vector<BodyMotion> m = OutwardPass(robot, q, qd, qdd);
+  using Block = Eigen::Matrix<double, 3, 10>;
+  for (std::size_t i = 0; i < n; ++i) {
+    const BodyMotion& b = m[i];
+    // The wrench of body i per unit of each of its parameters (f over n).
+    Block bf = Block::Zero(), bn = Block::Zero();
+    bf.col(0) = b.a;
+    bf.middleCols<3>(1) = Skew(b.dw) + Skew(b.w) * Skew(b.w);
+    bn.middleCols<3>(1) = -Skew(b.a);
+    bn.rightCols<6>() = Lift(b.dw) + Skew(b.w) * Lift(b.w);
+    const auto column = static_cast<Eigen::Index>(kSerialColumnsPerJoint * i);
+    // Carried inward through every joint between body i and the base.
+    for (std::size_t k = i;;) {
+      const SerialJoint& joint = robot.joints[k];
+      const auto row = static_cast<Eigen::Index>(k);
+      y.block<1, 10>(row, column) =
+          joint.axis.transpose() * (joint.type == SerialJointType::kRevolute ? bn : bf);
+      if (joint.parent < 0) break;
+      const Block moved = m[k].rotation * bf;
+      bn = m[k].rotation * bn + Skew(m[k].translation) * moved;
+      bf = moved;
+      k = static_cast<std::size_t>(joint.parent);
+    }
+    const Eigen::Index ii = static_cast<Eigen::Index>(i);
+    const double v = qd(ii);
+    y(ii, column + kSerialArmature) = qdd(ii);
+    y(ii, column + kSerialViscous) = v;
+    y(ii, column + kSerialCoulomb) = static_cast<double>((v > 0.0) - (v < 0.0));
+    y(ii, column + kSerialOffset) = 1.0;
+  }
+}
+
+std::vector<std::string> SerialParameterNames(const SerialRobot& robot) {
+  std::vector<std::string> names;
+  for (const SerialJoint& joint : robot.joints) {
+    for (const char* p : InertialParameterNames()) names.push_back(std::string(p) + "_" + joint.body);
+    for (const char* d : {"armature_", "viscous_", "coulomb_", "offset_"}) names.push_back(d + joint.name);
+  }
+  return names;
+}
+
+Eigen::VectorXd SerialParameterVector(const SerialRobot& robot, const std::vector<SerialDriveParameters>& drives) {
+  const std::size_t n = robot.size();
+  Eigen::VectorXd theta = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(kSerialColumnsPerJoint * n));
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto c = static_cast<Eigen::Index>(kSerialColumnsPerJoint * i);
+    for (std::size_t k = 0; k < kInertialParameters; ++k) theta(c + static_cast<Eigen::Index>(k)) = robot.bodies[i][k];
+    if (drives.empty()) continue;
+    theta(c + kSerialArmature) = drives[i].armature;
+    theta(c + kSerialViscous) = drives[i].viscous;
+    theta(c + kSerialCoulomb) = drives[i].coulomb;
+    theta(c + kSerialOffset) = drives[i].offset;
+  }
+  return theta;
+}
+
+}  // namespace driveid

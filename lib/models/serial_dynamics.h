@@ -1,0 +1,56 @@
+// Inverse dynamics of a serial robot (models/serial_robot.h,
+// docs/models.md#serial-robot) by the recursive Newton-Euler algorithm
+// (Luh, Walker and Paul 1980), and its regressor: the same recursion run on
+// the 10 inertial parameters of each body as unknowns, which the torques are
+// linear in (Atkeson, An and Hollerbach 1986).
+//
+// Outward pass, body i with parent p, R and r its frame's orientation and
+// origin in p's frame at q_i, s its axis; gravity enters as an upward
+// acceleration of the base (a_0 = -g):
+//   w_i  = R^T w_p + s q_i'                       (revolute)
+//   w_i' = R^T w_p' + s q_i'' + (R^T w_p) x s q_i'
+//   a_i  = R^T (a_p + w_p' x r + w_p x (w_p x r))  (+ 2 w_i x s q_i' + s q_i'' prismatic)
+// The wrench body i needs at its origin, linear in (m, h, I):
+//   f_i = m a_i + w_i' x h + w_i x (w_i x h)
+//   n_i = I w_i' + w_i x (I w_i) + h x a_i
+// Inward pass: a joint carries its body's wrench and its children's,
+// moved to its frame (f_p += R f_c, n_p += R n_c + r x R f_c), and its
+// torque is s . n (revolute) or its force s . f (prismatic).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "models/serial_robot.h"
+
+namespace driveid {
+
+/// Rigid-body joint torques [N m or N] at q, q', q'' (each robot.size()),
+/// with the bodies' parameters `bodies` (robot.bodies when omitted).
+Eigen::VectorXd CalcSerialRigidTorque(const SerialRobot& robot, const std::vector<InertialParameters>& bodies,
+                                      const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd);
+
+/// Columns per joint of the full regressor: its body's 10 inertial
+/// parameters, then armature, viscous, Coulomb and offset of its drive.
+inline constexpr std::size_t kSerialColumnsPerJoint = 14;
+enum SerialDriveColumn { kSerialArmature = 10, kSerialViscous, kSerialCoulomb, kSerialOffset };
+
+/// The regressor Y (n x 14 n) with tau = Y theta, theta stacked joint by
+/// joint as above. `y` must be n x 14 n; it is overwritten.
+void CalcSerialRegressor(const SerialRobot& robot, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                         const Eigen::VectorXd& qdd, Eigen::Ref<Eigen::MatrixXd> y);
+
+/// The names of the regressor's columns: m_<body> .. Izz_<body>,
+/// armature_<joint>, viscous_<joint>, coulomb_<joint>, offset_<joint>.
+std::vector<std::string> SerialParameterNames(const SerialRobot& robot);
+/// theta of the robot's own inertials and the given drives (zero drives when empty).
+Eigen::VectorXd SerialParameterVector(const SerialRobot& robot, const std::vector<SerialDriveParameters>& drives);
+
+/// The frame of every body in the base frame at q (forward kinematics).
+std::vector<RigidTransform> SerialBodyPoses(const SerialRobot& robot, const Eigen::VectorXd& q);
+/// The transform of joint i's body in its parent's frame at q_i.
+RigidTransform SerialJointTransform(const SerialJoint& joint, double q);
+
+}  // namespace driveid
