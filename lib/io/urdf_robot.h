@@ -1,0 +1,29 @@
+// A serial robot (models/serial_robot.h) from a URDF (docs/formats.md#urdf),
+// parsed by Debian's liburdfdom: revolute, continuous and prismatic joints
+// become the robot's joints, in a tree from the root link; links carried by
+// fixed joints merge into the body that moves them (their inertials added in
+// its frame); links fixed to the root do not move and are left out (noted).
+// Floating and planar joints, and mimic joints, are refused by name.
+// Meshes, visuals and collisions are ignored.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "models/serial_robot.h"
+
+namespace driveid {
+
+struct UrdfRobot {
+  SerialRobot robot;
+  std::vector<std::string> notes;  ///< merged and left-out links
+};
+
+/// Parses the URDF text read from `path` (named in errors). Throws
+/// InputError naming the file and what is wrong.
+UrdfRobot ParseUrdfRobot(const std::string& path, const std::string& text);
+
+/// Reads and parses a URDF file.
+UrdfRobot ReadUrdfRobot(const std::string& path);
+
+}  // namespace driveid
