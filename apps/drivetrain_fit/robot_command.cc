@@ -6,28 +6,74 @@
 #include "core/errors.h"
 #include "io/csv_log.h"
 #include "io/parameter_file.h"
+#include "io/serial_robot_log.h"
+#include "io/sha256.h"
+#include "io/urdf_robot.h"
 #include "workflow/robot_identification.h"
+#include "workflow/serial_robot_identification.h"
 
 namespace driveid::cli {
 
 CLI::App* SetupRobotCommand(CLI::App& app, RobotOptions& options) {
   CLI::App* command = app.add_subcommand(
-      "robot", "Theta, m_c, d_g of the planar robot from joint angles and motor currents (docs/models.md#planar-robot)");
-  command->add_option("logs", options.logs, "robot logs (CSV, MAT; docs/formats.md#logs) with t, theta1..3, i1..3")->required();
-  command->add_option("--params", options.params, "parameter file with a planar_robot section")->required();
+      "robot", "Base parameters, friction and armature of a serial robot from its URDF (--urdf; "
+               "docs/models.md#serial-robot), or Theta, m_c, d_g of the planar robot (docs/models.md#planar-robot)");
+  command->add_option("logs", options.logs,
+                      "robot logs (CSV, MAT, bags; docs/formats.md#logs): with --urdf t and per joint q_<joint> (or "
+                      "q1..qN), optionally qd_<joint>, and tau_<joint>; else t, theta1..3, i1..3")
+      ->required();
+  command->add_option("--urdf", options.urdf, "the serial robot's URDF (docs/formats.md#urdf)");
+  command->add_option("--params", options.params, "parameter file with a planar_robot section (without --urdf)");
   AddFreeOption(*command, options.free, FreeOptionHelp(PlanarRobotParameterTable(), "robot"));
   AddLogInputOptions(*command, options.input, "theta1=#2");
-  command->add_option("--window", options.window, "half window of the zero-phase differentiator [s]")
-      ->capture_default_str()
+  command->add_option("--window", options.window,
+                      "half window of the zero-phase differentiator [s] (default 0.005 planar, 0.05 with --urdf)")
       ->check(FiniteAbove(0.0));
   AddFitOutputOptions(*command, options.output);
   command->footer(
-      "Example:\n  drivetrain-fit robot data/robot_triangle.csv --params data/robot_start.yaml -o robot.yaml \\\n"
-      "      --trace robot_currents.csv --plot fig7.png");
+      "Examples:\n  drivetrain-fit robot data/robot_triangle.csv --params data/robot_start.yaml -o robot.yaml \\\n"
+      "      --trace robot_currents.csv --plot fig7.png\n"
+      "  drivetrain-fit robot arm_log.csv --urdf arm.urdf --col q1=#2 --col tau1=10*#14 ... -o arm.yaml");
   return command;
 }
 
+namespace {
+
+void RunSerialRobot(const RobotOptions& options, const std::string& command_line) {
+  if (!options.params.empty()) {
+    throw OptionError("--params: a serial robot (--urdf) starts from its URDF; give --params only for the planar robot");
+  }
+  CheckFitOutputs(options.output, LogCommandInputs(options.logs, options.urdf, options.input));
+  const std::string urdf_text = ReadFileToString(options.urdf);
+  const UrdfRobot robot = ParseUrdfRobot(options.urdf, urdf_text);
+  FitOutputs outputs;
+  outputs.provenance.command = command_line;
+  outputs.provenance.version = DRIVEID_VERSION;
+  outputs.provenance.model = "serial robot from a URDF, rigid bodies and drives, base parameters (docs/models.md#serial-robot)";
+  const auto logs = LoadLogs<SerialRobotLog>(options.logs, options.input, options.output, outputs.provenance,
+                                             SerialRobotLogColumns(robot.robot),
+                                             [&](CsvLog csv) { return MakeSerialRobotLog(robot.robot, std::move(csv)); });
+  SerialRobotIdentificationOptions run_options;
+  run_options.fit.half_window = options.window > 0.0 ? options.window : 0.05;
+  SetProgress(run_options.fit.fit, options.output.verbose, options.output.max_seconds);
+  run_options.trace = !options.output.trace.empty();
+  const SerialRobotIdentification run =
+      IdentifySerialRobot(robot, options.urdf, Sha256Hex(urdf_text), logs, run_options);
+  ParameterFile file;
+  file.Set(run.section);
+  outputs.fit = run.result.fit;
+  outputs.parameter_file = FormatParameterFile(file, &outputs.fit, &outputs.provenance);
+  outputs.trace_csv = run.trace_csv;
+  outputs.plot_panels = run.panels;
+  if (!options.output.json) outputs.summary = run.summary;
+  EmitFitOutputs(options.output, outputs);
+}
+
+}  // namespace
+
 void RunRobotCommand(const RobotOptions& options, const std::string& command_line) {
+  if (!options.urdf.empty()) return RunSerialRobot(options, command_line);
+  if (options.params.empty()) throw OptionError("robot: give --urdf (a serial robot) or --params (the planar robot)");
   CheckFitOutputs(options.output, LogCommandInputs(options.logs, options.params, options.input));
   const ParameterFile start = ReadParameterFile(options.params);
   if (!start.Find<PlanarRobotSection>()) throw InputError(fmt::format("{}: no 'planar_robot' section", options.params));
@@ -39,7 +85,7 @@ void RunRobotCommand(const RobotOptions& options, const std::string& command_lin
                                         [&](CsvLog csv) { return MakeRobotLog(std::move(csv)); });
   RobotIdentificationOptions run_options;
   run_options.fit.free = options.free;
-  run_options.fit.half_window = options.window;
+  run_options.fit.half_window = options.window > 0.0 ? options.window : 0.005;
   SetProgress(run_options.fit.fit, options.output.verbose, options.output.max_seconds);
   run_options.trace = !options.output.trace.empty();
   const RobotIdentification run =

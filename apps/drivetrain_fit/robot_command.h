@@ -15,9 +15,10 @@ namespace driveid::cli {
 struct RobotOptions {
   std::vector<std::string> logs;
   std::string params;
+  std::string urdf;  ///< a serial robot (docs/models.md#serial-robot) instead of the planar one
   std::vector<std::string> free = FitParameterKeys(PlanarRobotParameterTable(), "robot", true);
   LogInputCli input;
-  double window = 0.005;
+  double window = 0.0;  ///< 0: 0.005 s (planar robot), 0.05 s (--urdf)
   FitOutputOptions output;
 };
 

@@ -49,6 +49,9 @@ BaseParameters FindBaseParameters(const Eigen::MatrixXd& w, const std::vector<st
       // Rounding leaves ~1e-12 where the structure has 0 or a simple ratio.
       if (std::abs(c) < 1e-9) continue;
       if (std::abs(c - std::round(c)) < 1e-9) c = std::round(c);
+      // The structure's coefficients are products of the URDF's lengths:
+      // ten digits hold them; the rest is the solve's rounding.
+      c = std::stod(fmt::format("{:.10g}", c));
       out.regroup(k, static_cast<Eigen::Index>(dependent[d])) = c;
       out.combination[static_cast<std::size_t>(k)].push_back({dependent[d], c});
     }

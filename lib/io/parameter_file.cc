@@ -1,3 +1,4 @@
+#include "io/serial_robot_section.h"
 #include "io/parameter_file.h"
 
 #include <algorithm>
@@ -336,6 +337,7 @@ std::vector<SectionHandler>& Sections() {
       MakeSection(JointParameterTable, "docs/models.md#elastic-joint: two masses, link side"),
       MakeSection(FrequencyResponseTable, "docs/models.md#frequency-response: measured by drivetrain-fit frf",
                   {"band_hz", "method"}, ParseFrequencyResponseKey, FormatFrequencyResponseKeys),
+      SerialRobotSectionHandler(),
   };
   return sections;
 }

@@ -1,0 +1,251 @@
+#include "fit/serial_robot_fit.h"
+
+#include <cmath>
+#include <random>
+
+#include <Eigen/QR>
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "core/option_check.h"
+#include "fit/linear_regression.h"
+#include "models/serial_dynamics.h"
+#include "signal/local_polynomial.h"
+
+namespace driveid {
+
+bool SerialRobotFitOptions::IsValid(std::string* error) const {
+  return OptionCheck(error).Require(half_window > 0.0 && std::isfinite(half_window), "‹half_window›", half_window,
+                                    "half window > 0 s");
+}
+
+namespace {
+
+// Samples of random motions per parameter column: the structure's rows
+// outnumber the columns several times, so only true identities survive.
+constexpr int kStructureSamples = 8;
+constexpr unsigned kStructureSeed = 20260528u;
+
+void CheckLog(const SerialRobot& robot, const SerialRobotLog& log) {
+  const std::size_t n = robot.size(), samples = log.time.size();
+  if (log.position.size() != n || log.torque.size() != n || (!log.rate.empty() && log.rate.size() != n)) {
+    throw InputError(fmt::format("{}: the log has {} joints' columns, the robot {} joints", log.path,
+                                 log.position.size(), n));
+  }
+  for (std::size_t j = 0; j < n; ++j) {
+    const bool rate_ok = log.rate.empty() || log.rate[j].empty() || log.rate[j].size() == samples;
+    if (log.position[j].size() != samples || log.torque[j].size() != samples || !rate_ok) {
+      throw InputError(fmt::format("{}: joint {}'s columns differ in length from the time column", log.path,
+                                   robot.joints[j].name));
+    }
+  }
+}
+
+// q, q', q'' at the samples where every joint's differentiator window is centred.
+struct Motion {
+  std::vector<std::size_t> sample;
+  std::vector<Eigen::VectorXd> q, qd, qdd;
+};
+
+Motion Differentiate(const SerialRobot& robot, const SerialRobotLog& log, double half_window) {
+  const std::size_t n = robot.size(), samples = log.time.size();
+  std::vector<SignalDerivatives> position(n), rate(n);
+  std::vector<char> valid(samples, 1);
+  for (std::size_t j = 0; j < n; ++j) {
+    position[j] = EstimateDerivatives(log.time, log.position[j], half_window);
+    const bool logged = !log.rate.empty() && !log.rate[j].empty();
+    if (logged) rate[j] = EstimateDerivatives(log.time, log.rate[j], half_window);
+    for (std::size_t k = 0; k < samples; ++k) valid[k] = valid[k] && position[j].valid[k] && (!logged || rate[j].valid[k]);
+  }
+  Motion m;
+  for (std::size_t k = 0; k < samples; ++k) {
+    if (!valid[k]) continue;
+    Eigen::VectorXd q(static_cast<Eigen::Index>(n)), qd = q, qdd = q;
+    for (std::size_t j = 0; j < n; ++j) {
+      const auto i = static_cast<Eigen::Index>(j);
+      const bool logged = !log.rate.empty() && !log.rate[j].empty();
+      q(i) = position[j].value[k];
+      // A logged rate is the drive's own (encoder differences at its servo
+      // rate): used as logged, its acceleration from its local slope.
+      qd(i) = logged ? log.rate[j][k] : position[j].rate[k];
+      qdd(i) = logged ? rate[j].rate[k] : position[j].acceleration[k];
+    }
+    m.sample.push_back(k);
+    m.q.push_back(q);
+    m.qd.push_back(qd);
+    m.qdd.push_back(qdd);
+  }
+  return m;
+}
+
+// The base regressor's rows per joint along a motion.
+std::vector<Eigen::MatrixXd> BaseRows(const SerialRobot& robot, const BaseParameters& base, const Motion& m) {
+  const std::size_t n = robot.size(), r = base.base.size();
+  std::vector<Eigen::MatrixXd> rows(n, Eigen::MatrixXd(static_cast<Eigen::Index>(m.sample.size()), static_cast<Eigen::Index>(r)));
+  Eigen::MatrixXd y(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(kSerialColumnsPerJoint * n));
+  for (std::size_t k = 0; k < m.sample.size(); ++k) {
+    CalcSerialRegressor(robot, m.q[k], m.qd[k], m.qdd[k], y);
+    for (std::size_t j = 0; j < n; ++j) {
+      for (std::size_t c = 0; c < r; ++c) {
+        rows[j](static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(c)) =
+            y(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(base.base[c]));
+      }
+    }
+  }
+  return rows;
+}
+
+SerialJointStatistics Statistics(const std::string& joint, const std::vector<double>& measured,
+                                 const std::vector<double>& predicted) {
+  double e2 = 0.0, t2 = 0.0, mean = 0.0;
+  for (double v : measured) mean += v / static_cast<double>(measured.size());
+  double d2 = 0.0;
+  for (std::size_t k = 0; k < measured.size(); ++k) {
+    e2 += std::pow(measured[k] - predicted[k], 2);
+    t2 += measured[k] * measured[k];
+    d2 += std::pow(measured[k] - mean, 2);
+  }
+  SerialJointStatistics s;
+  s.joint = joint;
+  s.rmse = std::sqrt(e2 / static_cast<double>(std::max<std::size_t>(1, measured.size())));
+  s.fit_percent = d2 > 0.0 ? 100.0 * (1.0 - std::sqrt(e2 / d2)) : 0.0;
+  s.relative_error_percent = t2 > 0.0 ? 100.0 * std::sqrt(e2 / t2) : 0.0;
+  return s;
+}
+
+}  // namespace
+
+BaseParameters SerialBaseParameters(const SerialRobot& robot) {
+  const auto n = static_cast<Eigen::Index>(robot.size());
+  const auto columns = static_cast<Eigen::Index>(kSerialColumnsPerJoint) * n;
+  const int samples = std::max(20, static_cast<int>(kStructureSamples * columns / std::max<Eigen::Index>(1, n)));
+  std::mt19937 rng(kStructureSeed);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> angle(-M_PI, M_PI);
+  Eigen::MatrixXd w(n * samples, columns);
+  for (int s = 0; s < samples; ++s) {
+    Eigen::VectorXd q(n), qd(n), qdd(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      q(i) = robot.joints[static_cast<std::size_t>(i)].type == SerialJointType::kRevolute ? angle(rng) : normal(rng);
+      qd(i) = normal(rng);
+      qdd(i) = normal(rng);
+    }
+    CalcSerialRegressor(robot, q, qd, qdd, w.middleRows(s * n, n));
+  }
+  return FindBaseParameters(w, SerialParameterNames(robot));
+}
+
+SerialRobotFitOutput FitSerialRobot(const SerialRobot& robot, const std::vector<SerialRobotLog>& logs,
+                                    const SerialRobotFitOptions& options) {
+  RequireValid(options);
+  const std::size_t n = robot.size();
+  SerialRobotFitOutput out;
+  out.parameter_names = SerialParameterNames(robot);
+  out.base = SerialBaseParameters(robot);
+  const std::size_t r = out.base.base.size();
+  // Rows per joint over all logs, and the measured torques.
+  std::vector<std::vector<Eigen::MatrixXd>> rows;
+  std::vector<std::vector<std::vector<double>>> torque(n);
+  for (const SerialRobotLog& log : logs) {
+    CheckLog(robot, log);
+    const Motion m = Differentiate(robot, log, options.half_window);
+    rows.push_back(BaseRows(robot, out.base, m));
+    for (std::size_t j = 0; j < n; ++j) {
+      std::vector<double> t;
+      for (std::size_t k : m.sample) t.push_back(log.torque[j][k]);
+      torque[j].push_back(std::move(t));
+    }
+    out.samples += m.sample.size();
+  }
+  if (out.samples * n < 2 * r) {
+    throw InputError(fmt::format("{}: {} usable samples for {} base parameters: log more of the trajectory (or a "
+                                 "shorter ‹half_window›)",
+                                 logs.empty() ? std::string("the logs") : logs.front().path, out.samples, r));
+  }
+  // Unweighted first solve: each joint's residual std sets its weight.
+  Eigen::MatrixXd stacked(static_cast<Eigen::Index>(out.samples * n), static_cast<Eigen::Index>(r));
+  Eigen::VectorXd target(stacked.rows());
+  Eigen::Index row = 0;
+  for (std::size_t j = 0; j < n; ++j) {
+    for (std::size_t l = 0; l < logs.size(); ++l) {
+      const Eigen::MatrixXd& x = rows[l][j];
+      stacked.middleRows(row, x.rows()) = x;
+      for (Eigen::Index k = 0; k < x.rows(); ++k) target(row + k) = torque[j][l][static_cast<std::size_t>(k)];
+      row += x.rows();
+    }
+  }
+  const Eigen::VectorXd first = stacked.colPivHouseholderQr().solve(target);
+  const Eigen::VectorXd residual = target - stacked * first;
+  std::vector<double> sigma(n);
+  row = 0;
+  for (std::size_t j = 0; j < n; ++j) {
+    const Eigen::Index count = static_cast<Eigen::Index>(out.samples);
+    const double rms = std::sqrt(residual.segment(row, count).squaredNorm() / static_cast<double>(count));
+    const double scale = std::sqrt(target.segment(row, count).squaredNorm() / static_cast<double>(count));
+    sigma[j] = std::max(rms, 1e-9 * scale + 1e-300);
+    row += count;
+  }
+  std::vector<std::string> names;
+  for (std::size_t c = 0; c < r; ++c) names.push_back(out.parameter_names[out.base.base[c]]);
+  LinearRegression regression(names);
+  regression.Reserve(out.samples * n);
+  std::vector<double> values(r);
+  for (std::size_t j = 0; j < n; ++j) {
+    regression.BeginChannel(robot.joints[j].name);
+    for (std::size_t l = 0; l < logs.size(); ++l) {
+      const Eigen::MatrixXd& x = rows[l][j];
+      for (Eigen::Index k = 0; k < x.rows(); ++k) {
+        for (std::size_t c = 0; c < r; ++c) values[c] = x(k, static_cast<Eigen::Index>(c)) / sigma[j];
+        regression.AddRow(values, torque[j][l][static_cast<std::size_t>(k)] / sigma[j]);
+      }
+    }
+  }
+  std::vector<FitParameter> free;
+  for (std::size_t c = 0; c < r; ++c) {
+    const double v = first(static_cast<Eigen::Index>(c));
+    free.push_back({names[c], v, -std::numeric_limits<double>::infinity(), std::abs(v) > 0.0 ? std::abs(v) : 1.0});
+  }
+  out.fit = regression.FitAndRelease(free, {}, options.fit);
+  if (!out.fit.singular_values.empty() && out.fit.singular_values.back() > 0.0) {
+    out.condition_number = out.fit.singular_values.front() / out.fit.singular_values.back();
+  }
+  std::vector<double> estimate(r);
+  for (std::size_t c = 0; c < r; ++c) estimate[c] = out.fit.estimates[c].value;
+  for (std::size_t j = 0; j < n; ++j) {
+    std::vector<double> measured, predicted;
+    for (std::size_t l = 0; l < logs.size(); ++l) {
+      const Eigen::MatrixXd& x = rows[l][j];
+      for (Eigen::Index k = 0; k < x.rows(); ++k) {
+        measured.push_back(torque[j][l][static_cast<std::size_t>(k)]);
+        predicted.push_back(x.row(k).dot(Eigen::Map<const Eigen::VectorXd>(estimate.data(), static_cast<Eigen::Index>(r))));
+      }
+    }
+    out.joints.push_back(Statistics(robot.joints[j].name, measured, predicted));
+    out.joints.back().weight_std = sigma[j];
+  }
+  return out;
+}
+
+SerialPrediction PredictSerialRobot(const SerialRobot& robot, const BaseParameters& base,
+                                    const std::vector<double>& values, const SerialRobotLog& log, double half_window) {
+  CheckLog(robot, log);
+  if (values.size() != base.base.size()) throw std::logic_error("PredictSerialRobot: one value per base parameter");
+  const Motion m = Differentiate(robot, log, half_window);
+  const std::vector<Eigen::MatrixXd> rows = BaseRows(robot, base, m);
+  const Eigen::Map<const Eigen::VectorXd> beta(values.data(), static_cast<Eigen::Index>(values.size()));
+  SerialPrediction p;
+  for (std::size_t k : m.sample) p.time.push_back(log.time[k]);
+  for (std::size_t j = 0; j < robot.size(); ++j) {
+    std::vector<double> measured, predicted;
+    for (std::size_t k = 0; k < m.sample.size(); ++k) {
+      measured.push_back(log.torque[j][m.sample[k]]);
+      predicted.push_back(rows[j].row(static_cast<Eigen::Index>(k)).dot(beta));
+    }
+    p.joints.push_back(Statistics(robot.joints[j].name, measured, predicted));
+    p.measured.push_back(std::move(measured));
+    p.predicted.push_back(std::move(predicted));
+  }
+  return p;
+}
+
+}  // namespace driveid

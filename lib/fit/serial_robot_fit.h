@@ -1,0 +1,68 @@
+// Identification of a serial robot's rigid-body model and drives
+// (docs/models.md#serial-robot) from logged joint positions (and rates
+// where logged) and joint torques, by inverse dynamics on its base
+// parameters (fit/base_parameters.h):
+//   tau_i(t_k) = sum_j W_b,ij(q, q', q'') beta_j + e_i(t_k)
+// Rates come from the log or, like accelerations, from the zero-phase
+// local-polynomial differentiator (signal/local_polynomial.h). The joints'
+// noise differs (a base joint's torque is tens of N m, a wrist's a few):
+// each joint's rows are weighted by 1 / its residual std from an
+// unweighted first solve, and the fit core's intervals account for
+// coloured residuals per joint (docs/models.md#identification).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/fit_result.h"
+#include "core/fit_options.h"
+#include "fit/base_parameters.h"
+#include "io/serial_robot_log.h"
+#include "models/serial_robot.h"
+
+namespace driveid {
+
+struct SerialRobotFitOptions {
+  double half_window = 0.05;  ///< differentiator half window [s]
+  FitOptions fit;
+  /// Whether the values can be used; else `error` names the field and the constraint.
+  bool IsValid(std::string* error) const;
+};
+
+/// A joint's torque prediction on the logs it was fitted to (or validated on).
+struct SerialJointStatistics {
+  std::string joint;
+  double rmse = 0.0;                    ///< [N m or N]
+  double fit_percent = 0.0;             ///< 100 (1 - |e| / |tau - mean tau|)
+  double relative_error_percent = 0.0;  ///< 100 |e| / |tau|
+  double weight_std = 0.0;              ///< the residual std its rows were weighted by
+};
+
+struct SerialRobotFitOutput {
+  BaseParameters base;
+  std::vector<std::string> parameter_names;  ///< of the full theta (models/serial_dynamics.h)
+  FitResult fit;                             ///< estimates of the base parameters, named by their lead column
+  std::vector<SerialJointStatistics> joints;
+  double condition_number = 0.0;  ///< of the logs' column-normalised base regressor
+  std::size_t samples = 0;        ///< samples used (valid differentiator windows)
+};
+
+/// Throws InputError for logs that do not fit the robot, IdentificationError
+/// (naming the base parameters) when the logs do not determine them.
+SerialRobotFitOutput FitSerialRobot(const SerialRobot& robot, const std::vector<SerialRobotLog>& logs,
+                                    const SerialRobotFitOptions& options);
+
+/// The base parameters of `robot` (its structure, on random motions).
+BaseParameters SerialBaseParameters(const SerialRobot& robot);
+
+/// Each joint's predicted torque along a log from base-parameter values
+/// (`base.base` lead columns, `values` in that order), and its statistics.
+struct SerialPrediction {
+  std::vector<double> time;
+  std::vector<std::vector<double>> measured, predicted;  ///< [joint][sample]
+  std::vector<SerialJointStatistics> joints;
+};
+SerialPrediction PredictSerialRobot(const SerialRobot& robot, const BaseParameters& base,
+                                    const std::vector<double>& values, const SerialRobotLog& log, double half_window);
+
+}  // namespace driveid

@@ -1,0 +1,34 @@
+// The parameter file's `serial_robot` section (docs/formats.md#serial-robot):
+// which URDF the robot's structure comes from (its path as given and its
+// SHA-256), the differentiator's half window, and the identified base
+// parameters (fit/base_parameters.h), each by its lead column, its
+// combination of the URDF's parameters and its value. The values' std and
+// intervals are the `fit` section's, under the lead column's name.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "io/parameter_sections.h"
+
+namespace driveid {
+
+struct SerialBaseEntry {
+  std::string lead;                                         ///< the lead column's name
+  std::vector<std::pair<std::string, double>> combination;  ///< (column, coefficient), lead first
+  double value = 0.0;
+};
+
+struct SerialRobotSection {
+  static constexpr const char* kSectionName = "serial_robot";
+  std::string urdf;         ///< as given on the command line
+  std::string urdf_sha256;  ///< of its bytes
+  double half_window = 0.0;
+  std::vector<SerialBaseEntry> base;
+};
+
+/// Its reader and writer (registered in io/parameter_file.cc).
+SectionHandler SerialRobotSectionHandler();
+
+}  // namespace driveid

@@ -1,0 +1,97 @@
+#include "workflow/serial_robot_identification.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/option_check.h"
+
+namespace driveid {
+
+bool SerialRobotIdentificationOptions::IsValid(std::string* error) const { return OptionCheck(error).Nested(fit); }
+
+namespace {
+
+// A joint whose torque the model explains this poorly is named in a warning:
+// an unmodelled effect (a cable, a payload, elasticity) or a wrong URDF.
+constexpr double kPoorRelativeErrorPercent = 30.0;
+
+std::string Summary(const SerialRobotIdentification& run) {
+  const SerialRobotFitOutput& r = run.result;
+  std::string out = fmt::format("{} base parameters from {} samples; condition number of the column-normalised base "
+                                "regressor {:.3g}\n",
+                                r.base.base.size(), r.samples, r.condition_number);
+  out += fmt::format("{:<24} {:>12} {:>10} {:>10}\n", "joint", "rmse", "fit %", "rel. err %");
+  for (const auto& j : r.joints) {
+    out += fmt::format("{:<24} {:>12.4g} {:>10.2f} {:>10.2f}\n", j.joint, j.rmse, j.fit_percent, j.relative_error_percent);
+  }
+  out += fmt::format("{:<56} {:>12} {:>10} {:>26}\n", "base parameter", "value", "std", "ci95");
+  for (std::size_t k = 0; k < r.fit.estimates.size(); ++k) {
+    const ParameterEstimate& e = r.fit.estimates[k];
+    out += fmt::format("{:<56} {:>12.5g} {:>10.3g} [{:.5g}, {:.5g}]\n", r.base.names[k], e.value, e.standard_error,
+                       e.ci95_low, e.ci95_high);
+  }
+  if (!r.base.never_moved.empty()) {
+    std::vector<std::string> names;
+    for (std::size_t c : r.base.never_moved) names.push_back(r.parameter_names[c]);
+    out += fmt::format("never reach a joint torque (left out): {}\n", fmt::join(names, ", "));
+  }
+  return out;
+}
+
+}  // namespace
+
+SerialRobotIdentification IdentifySerialRobot(const UrdfRobot& robot, const std::string& urdf_path,
+                                              const std::string& urdf_sha256, const std::vector<SerialRobotLog>& logs,
+                                              const SerialRobotIdentificationOptions& options) {
+  RequireValid(options);
+  SerialRobotIdentification run;
+  run.result = FitSerialRobot(robot.robot, logs, options.fit);
+  SerialRobotFitOutput& r = run.result;
+  for (const std::string& note : robot.notes) r.fit.notes.push_back(note);
+  for (const auto& j : r.joints) {
+    if (j.relative_error_percent > kPoorRelativeErrorPercent) {
+      r.fit.warnings.push_back(fmt::format(
+          "joint {}: the model leaves {:.0f} % of its torque unexplained (relative error; docs/models.md#serial-robot): "
+          "an effect the model lacks (elasticity, a cable, a payload), a wrong URDF, or a torque column in other units",
+          j.joint, j.relative_error_percent));
+    }
+  }
+  run.section.urdf = urdf_path;
+  run.section.urdf_sha256 = urdf_sha256;
+  run.section.half_window = options.fit.half_window;
+  for (std::size_t k = 0; k < r.base.base.size(); ++k) {
+    SerialBaseEntry e;
+    e.lead = r.parameter_names[r.base.base[k]];
+    for (const auto& [column, c] : r.base.combination[k]) e.combination.emplace_back(r.parameter_names[column], c);
+    e.value = r.fit.estimates[k].value;
+    run.section.base.push_back(std::move(e));
+  }
+  run.summary = Summary(run);
+  // Trace and plot: each joint's measured and predicted torque per log.
+  std::vector<double> values;
+  for (const auto& e : r.fit.estimates) values.push_back(e.value);
+  run.trace_csv = "# joint torques [N m or N]: measured and predicted by the base parameters (docs/models.md#serial-robot)\n"
+                  "log,t,joint,tau_measured,tau_model\n";
+  for (std::size_t l = 0; l < logs.size(); ++l) {
+    const SerialPrediction p = PredictSerialRobot(robot.robot, r.base, values, logs[l], options.fit.half_window);
+    for (std::size_t k = 0; k < p.time.size() && options.trace; ++k) {
+      for (std::size_t j = 0; j < robot.robot.size(); ++j) {
+        run.trace_csv += fmt::format("{},{},{},{:.6g},{:.6g}\n", l + 1, p.time[k], robot.robot.joints[j].name,
+                                     p.measured[j][k], p.predicted[j][k]);
+      }
+    }
+    if (l > 0) continue;
+    for (std::size_t j = 0; j < robot.robot.size(); ++j) {
+      std::vector<double> residual(p.time.size());
+      for (std::size_t k = 0; k < residual.size(); ++k) residual[k] = p.measured[j][k] - p.predicted[j][k];
+      run.panels.push_back({fmt::format("{} along {}", robot.robot.joints[j].name, logs[l].path),
+                            "torque",
+                            {{"measured", p.time, p.measured[j], true}, {"model", p.time, p.predicted[j], false},
+                             {"residual", p.time, residual, false, true}}});
+    }
+  }
+  return run;
+}
+
+}  // namespace driveid

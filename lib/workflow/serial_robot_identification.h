@@ -1,0 +1,38 @@
+// A serial robot's identification as `drivetrain-fit robot --urdf` runs it
+// (docs/models.md#serial-robot): the base-parameter fit of all logs, the
+// parameter file's serial_robot section, per-joint statistics, the torque
+// trace and its plot (measured vs model and residuals per joint). The
+// command reads the URDF and the logs, calls this, emits.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "fit/serial_robot_fit.h"
+#include "io/serial_robot_section.h"
+#include "io/urdf_robot.h"
+#include "report/plot.h"
+
+namespace driveid {
+
+struct SerialRobotIdentificationOptions {
+  SerialRobotFitOptions fit;
+  bool trace = false;  ///< fill the trace CSV's rows
+  /// Every bound on these fields (‹field› names the option); see core/option_check.h.
+  bool IsValid(std::string* error) const;
+};
+
+struct SerialRobotIdentification {
+  SerialRobotFitOutput result;
+  SerialRobotSection section;  ///< for the parameter file
+  std::string summary;         ///< per joint and per base parameter, as text
+  std::string trace_csv;       ///< per log, time and joint: measured and model torque
+  std::vector<PlotPanel> panels;
+};
+
+/// `urdf_path` and `urdf_sha256` are recorded in the section.
+SerialRobotIdentification IdentifySerialRobot(const UrdfRobot& robot, const std::string& urdf_path,
+                                              const std::string& urdf_sha256, const std::vector<SerialRobotLog>& logs,
+                                              const SerialRobotIdentificationOptions& options);
+
+}  // namespace driveid
