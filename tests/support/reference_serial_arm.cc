@@ -1,0 +1,188 @@
+#include "support/reference_serial_arm.h"
+
+#include <cmath>
+#include <random>
+
+#include <Eigen/Geometry>
+
+namespace reference {
+namespace {
+
+using Eigen::Matrix3d;
+using Eigen::MatrixXd;
+using Eigen::Vector3d;
+using Eigen::VectorXd;
+
+struct Kinematics {
+  std::vector<Matrix3d> rotation;
+  std::vector<Vector3d> centre;
+  std::vector<MatrixXd> jv, jw;
+};
+
+Kinematics Forward(const Arm& arm, const VectorXd& q) {
+  const std::size_t n = arm.joints.size();
+  Kinematics k;
+  std::vector<Vector3d> origin(n), axis(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const ArmJoint& j = arm.joints[i];
+    const Matrix3d r_parent = j.parent >= 0 ? k.rotation[static_cast<std::size_t>(j.parent)] : Matrix3d::Identity();
+    const Vector3d p_parent = j.parent >= 0 ? origin[static_cast<std::size_t>(j.parent)] : Vector3d::Zero();
+    const Matrix3d frame = r_parent * j.rotation;
+    origin[i] = p_parent + r_parent * j.translation;
+    axis[i] = frame * j.axis;
+    k.rotation.push_back(frame * Eigen::AngleAxisd(q(static_cast<Eigen::Index>(i)), j.axis).toRotationMatrix());
+    k.centre.push_back(origin[i] + k.rotation[i] * j.centre);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    MatrixXd jv = MatrixXd::Zero(3, static_cast<Eigen::Index>(n)), jw = jv;
+    for (int a = static_cast<int>(i); a >= 0; a = arm.joints[static_cast<std::size_t>(a)].parent) {
+      const auto s = static_cast<std::size_t>(a);
+      jw.col(a) = axis[s];
+      jv.col(a) = axis[s].cross(k.centre[i] - origin[s]);
+    }
+    k.jv.push_back(jv);
+    k.jw.push_back(jw);
+  }
+  return k;
+}
+
+MatrixXd MassMatrix(const Arm& arm, const VectorXd& q) {
+  const Kinematics k = Forward(arm, q);
+  const auto n = static_cast<Eigen::Index>(arm.joints.size());
+  MatrixXd m = MatrixXd::Zero(n, n);
+  for (std::size_t i = 0; i < arm.joints.size(); ++i) {
+    const ArmJoint& j = arm.joints[i];
+    const Matrix3d world = k.rotation[i] * j.inertia_at_centre * k.rotation[i].transpose();
+    m += j.mass * k.jv[i].transpose() * k.jv[i] + k.jw[i].transpose() * world * k.jw[i];
+    m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)) += j.armature;
+  }
+  return m;
+}
+
+double Potential(const Arm& arm, const VectorXd& q) {
+  const Kinematics k = Forward(arm, q);
+  double v = 0.0;
+  for (std::size_t i = 0; i < arm.joints.size(); ++i) v -= arm.joints[i].mass * arm.gravity.dot(k.centre[i]);
+  return v;
+}
+
+}  // namespace
+
+Arm ThreeJointArm() {
+  Arm arm;
+  ArmJoint yaw;
+  yaw.name = "yaw";
+  yaw.body = "turret";
+  yaw.translation = Vector3d(0.0, 0.0, 0.3);
+  yaw.mass = 6.0;
+  yaw.centre = Vector3d(0.02, 0.01, 0.08);
+  yaw.inertia_at_centre = Vector3d(0.06, 0.05, 0.04).asDiagonal();
+  yaw.armature = 0.4;
+  yaw.viscous = 3.0;
+  yaw.coulomb = 2.0;
+  yaw.offset = 0.3;
+  ArmJoint shoulder;
+  shoulder.name = "shoulder";
+  shoulder.body = "upper";
+  shoulder.parent = 0;
+  shoulder.translation = Vector3d(0.05, 0.0, 0.12);
+  shoulder.rotation = Eigen::AngleAxisd(M_PI / 2, Vector3d::UnitX()).toRotationMatrix();
+  shoulder.mass = 4.0;
+  shoulder.centre = Vector3d(0.25, 0.0, 0.03);
+  shoulder.inertia_at_centre = Vector3d(0.01, 0.09, 0.09).asDiagonal();
+  shoulder.armature = 0.6;
+  shoulder.viscous = 4.0;
+  shoulder.coulomb = 3.0;
+  shoulder.offset = -0.5;
+  ArmJoint elbow;
+  elbow.name = "elbow";
+  elbow.body = "fore";
+  elbow.parent = 1;
+  elbow.translation = Vector3d(0.5, 0.0, 0.0);
+  elbow.mass = 2.0;
+  elbow.centre = Vector3d(0.2, 0.02, 0.0);
+  elbow.inertia_at_centre = Vector3d(0.005, 0.04, 0.04).asDiagonal();
+  elbow.armature = 0.2;
+  elbow.viscous = 1.5;
+  elbow.coulomb = 1.0;
+  elbow.offset = 0.1;
+  arm.joints = {yaw, shoulder, elbow};
+  return arm;
+}
+
+// tau = M q'' + sum_jk (dM_ij/dq_k - 1/2 dM_jk/dq_i) q'_j q'_k + dV/dq_i + drives.
+VectorXd ArmTorque(const Arm& arm, const VectorXd& q, const VectorXd& qd, const VectorXd& qdd) {
+  const auto n = static_cast<Eigen::Index>(arm.joints.size());
+  const double h = 1e-6;
+  std::vector<MatrixXd> dm(static_cast<std::size_t>(n));
+  VectorXd dv(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    VectorXd up = q, down = q;
+    up(k) += h;
+    down(k) -= h;
+    dm[static_cast<std::size_t>(k)] = (MassMatrix(arm, up) - MassMatrix(arm, down)) / (2.0 * h);
+    dv(k) = (Potential(arm, up) - Potential(arm, down)) / (2.0 * h);
+  }
+  VectorXd tau = MassMatrix(arm, q) * qdd + dv;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    for (Eigen::Index j = 0; j < n; ++j) {
+      for (Eigen::Index k = 0; k < n; ++k) {
+        tau(i) += (dm[static_cast<std::size_t>(k)](i, j) - 0.5 * dm[static_cast<std::size_t>(i)](j, k)) * qd(j) * qd(k);
+      }
+    }
+    const ArmJoint& joint = arm.joints[static_cast<std::size_t>(i)];
+    tau(i) += joint.viscous * qd(i) + joint.coulomb * ((qd(i) > 0) - (qd(i) < 0)) + joint.offset;
+  }
+  return tau;
+}
+
+ArmLog SimulateArm(const Arm& arm, const ArmLogOptions& o) {
+  const std::size_t n = arm.joints.size();
+  std::mt19937 rng(o.seed);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  std::normal_distribution<double> normal;
+  // A Fourier trajectory per joint; its coefficients fixed (seed 99) so that
+  // every log excites the arm alike and only the noise differs.
+  std::mt19937 shape(99);
+  std::uniform_real_distribution<double> coefficient(-1.0, 1.0);
+  const int harmonics = 5;
+  std::vector<std::vector<double>> a(n, std::vector<double>(harmonics)), b = a;
+  for (std::size_t j = 0; j < n; ++j) {
+    for (int l = 0; l < harmonics; ++l) {
+      a[j][static_cast<std::size_t>(l)] = o.amplitude * coefficient(shape) / (l + 1);
+      b[j][static_cast<std::size_t>(l)] = o.amplitude * coefficient(shape) / (l + 1);
+    }
+  }
+  ArmLog log;
+  log.q.assign(n, {});
+  log.tau.assign(n, {});
+  std::vector<double> noise(n, 0.0);
+  const double period = 1.0 / o.rate, count = o.encoder_counts / (2.0 * M_PI);
+  for (int k = 0; k * period <= o.duration; ++k) {
+    const double t = k * period + o.jitter * period * uniform(rng);
+    VectorXd q(static_cast<Eigen::Index>(n)), qd = q, qdd = q;
+    for (std::size_t j = 0; j < n; ++j) {
+      double p = 0.0, v = 0.0, acc = 0.0;
+      for (int l = 0; l < harmonics; ++l) {
+        const double w = 2.0 * M_PI * o.base_frequency * (l + 1);
+        const double al = a[j][static_cast<std::size_t>(l)], bl = b[j][static_cast<std::size_t>(l)];
+        p += al * std::sin(w * t) + bl * (std::cos(w * t) - 1.0);
+        v += w * (al * std::cos(w * t) - bl * std::sin(w * t));
+        acc += -w * w * (al * std::sin(w * t) + bl * std::cos(w * t));
+      }
+      q(static_cast<Eigen::Index>(j)) = p;
+      qd(static_cast<Eigen::Index>(j)) = v;
+      qdd(static_cast<Eigen::Index>(j)) = acc;
+    }
+    const VectorXd tau = ArmTorque(arm, q, qd, qdd);
+    log.t.push_back(std::round(t * 1000.0) / 1000.0);  // stamped to 1 ms
+    for (std::size_t j = 0; j < n; ++j) {
+      noise[j] = o.noise_pole * noise[j] + o.torque_noise * normal(rng);
+      log.q[j].push_back(std::round(q(static_cast<Eigen::Index>(j)) * count) / count);
+      log.tau[j].push_back(tau(static_cast<Eigen::Index>(j)) + noise[j]);
+    }
+  }
+  return log;
+}
+
+}  // namespace reference

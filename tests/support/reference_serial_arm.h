@@ -1,0 +1,60 @@
+// Independent generator of serial-arm logs for tests (docs/models.md#serial-robot):
+// joint torques from the arm's Lagrangian, built from forward kinematics
+// and geometric Jacobians (mass matrix, its numerical derivatives for the
+// Coriolis terms, the potential's gradient for gravity), plus each joint's
+// armature, viscous and Coulomb friction and offset. Logs as a drive
+// writes them: stamps jittered and rounded to 1 ms, encoder angles
+// quantised, torques with coloured (AR(1)) noise. Nothing here uses the
+// library's dynamics.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace reference {
+
+struct ArmJoint {
+  std::string name, body;
+  int parent = -1;
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // joint frame in the parent body's at q = 0
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  // unit, in the joint frame
+  double mass = 1.0;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();                   // in the body frame
+  Eigen::Matrix3d inertia_at_centre = Eigen::Matrix3d::Identity();   // in the body frame
+  double armature = 0.0, viscous = 0.0, coulomb = 0.0, offset = 0.0;
+};
+
+struct Arm {
+  std::vector<ArmJoint> joints;
+  Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81);
+};
+
+/// Base yaw, shoulder and elbow pitch with offsets: a small industrial arm.
+Arm ThreeJointArm();
+
+/// Joint torques (rigid bodies and drives) at q, q', q''.
+Eigen::VectorXd ArmTorque(const Arm& arm, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                          const Eigen::VectorXd& qdd);
+
+struct ArmLogOptions {
+  double duration = 20.0, rate = 200.0;  // [s], [Hz]
+  double base_frequency = 0.1;           // of the Fourier trajectory [Hz], 5 harmonics
+  double amplitude = 0.8;                // [rad]
+  double torque_noise = 0.3;             // innovation std of the AR(1) noise [N m]
+  double noise_pole = 0.8;               // AR(1) coefficient
+  double encoder_counts = 131072.0;      // per turn
+  double jitter = 0.3;                   // of a sample period, uniform +-
+  unsigned seed = 1;
+};
+
+struct ArmLog {
+  std::vector<double> t;
+  std::vector<std::vector<double>> q, tau;  // [joint][sample]
+};
+
+ArmLog SimulateArm(const Arm& arm, const ArmLogOptions& options);
+
+}  // namespace reference
