@@ -31,7 +31,7 @@ CLI::App* SetupRobotCommand(CLI::App& app, RobotOptions& options) {
       ->check(FiniteAbove(0.0));
   AddFitOutputOptions(*command, options.output);
   command->footer(
-      "Examples:\n  drivetrain-fit robot data/robot_triangle.csv --params data/robot_start.yaml -o robot.yaml \\\n"
+      "Example:\n  drivetrain-fit robot data/robot_triangle.csv --params data/robot_start.yaml -o robot.yaml \\\n"
       "      --trace robot_currents.csv --plot fig7.png\n"
       "  drivetrain-fit robot arm_log.csv --urdf arm.urdf --col q1=#2 --col tau1=10*#14 ... -o arm.yaml");
   return command;

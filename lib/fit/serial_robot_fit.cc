@@ -15,7 +15,7 @@
 namespace driveid {
 
 bool SerialRobotFitOptions::IsValid(std::string* error) const {
-  return OptionCheck(error).Require(half_window > 0.0 && std::isfinite(half_window), "‹half_window›", half_window,
+  return OptionCheck(error).Require(half_window > 0.0 && std::isfinite(half_window), "‹window›", half_window,
                                     "half window > 0 s");
 }
 
@@ -159,7 +159,7 @@ SerialRobotFitOutput FitSerialRobot(const SerialRobot& robot, const std::vector<
   }
   if (out.samples * n < 2 * r) {
     throw InputError(fmt::format("{}: {} usable samples for {} base parameters: log more of the trajectory (or a "
-                                 "shorter ‹half_window›)",
+                                 "shorter ‹window›)",
                                  logs.empty() ? std::string("the logs") : logs.front().path, out.samples, r));
   }
   // Unweighted first solve: each joint's residual std sets its weight.

@@ -105,6 +105,9 @@ ColumnPlan PlanColumns(const TableSource& source, const std::vector<std::string>
   std::vector<char>& absent = plan.absent;
   const auto is_column = [&](const std::string& word) { return source.Find(word).has_value(); };
   const auto scalar = [&](const std::string& word) { return source.scalar(word); };
+  std::vector<std::string> missing;
+  std::string first_missing;
+  bool time_missing = false;
   for (std::size_t k = 0; k < required.size(); ++k) {
     const auto alternatives = Alternatives(required[k]);
     bool found = false;
@@ -152,10 +155,20 @@ ColumnPlan PlanColumns(const TableSource& source, const std::vector<std::string>
           if (note.rfind(text + ": skipped", 0) == 0) throw InputError(fmt::format("{}: {}", where, note));
         }
       }
-      throw InputError(fmt::format("{}{}: missing column {}' ({}; map another name with ‹col› {}=COLUMN{})", where,
-                                   source.header_line() > 0 ? fmt::format(":{}", source.header_line()) : "", wanted_all, Offered(source),
-                                   alternatives.front(), time ? ", or give ‹rate› HZ" : ""));
+      // Every missing column is named in one message (a robot's log lacks
+      // several at once); the mapping hint names the first.
+      if (missing.empty()) {
+        first_missing = alternatives.front();
+        time_missing = time;
+      }
+      missing.push_back(wanted_all + "'");
     }
+  }
+  if (!missing.empty()) {
+    throw InputError(fmt::format("{}{}: missing column{} {} ({}; map another name with ‹col› {}=COLUMN{})", where,
+                                 source.header_line() > 0 ? fmt::format(":{}", source.header_line()) : "",
+                                 missing.size() > 1 ? "s" : "", fmt::join(missing, ", "), Offered(source),
+                                 first_missing, time_missing ? ", or give ‹rate› HZ" : ""));
   }
   // Two logical columns may not read one source column.
   for (std::size_t a = 0; a < required.size(); ++a) {

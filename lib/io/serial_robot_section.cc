@@ -92,7 +92,7 @@ void Parse(const std::string& path, const YAML::Node& node, ParameterFile& file)
   }
   if (s.urdf.empty() || s.base.empty() || !(s.half_window > 0.0)) {
     throw InputError(fmt::format("{}: serial_robot: needs urdf, half_window and base (written by drivetrain-fit robot "
-                                 "--urdf)",
+                                 "‹urdf›)",
                                  Where(path, node)));
   }
   file.Set(std::move(s));

@@ -307,7 +307,7 @@ expect 2 "--integrator: cvode not in" -- step good.csv --params start.yaml --int
 EXPECT_OUTPUT=--trace expect 2 "both.yaml has an axis and a drivetrain section: give --model axis or --model step" \
   -- validate both.yaml axis.csv
 EXPECT_OUTPUT=--trace expect 3 "step_fit.yaml: no 'axis' section" -- validate step_fit.yaml axis.csv --model axis
-EXPECT_OUTPUT=--trace expect 3 "axis.csv:[0-9]+: missing column 'tau_motor'" -- validate step_fit.yaml axis.csv
+EXPECT_OUTPUT=--trace expect 3 "axis.csv:[0-9]+: missing columns 'tau_motor', 'tau_link'" -- validate step_fit.yaml axis.csv
 
 # Adequacy (docs/models.md#adequacy): a log with gravity fitted without the
 # gravity terms warns on stderr and in JSON; --strict makes it exit 4 and write nothing.

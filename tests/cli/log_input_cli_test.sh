@@ -90,7 +90,7 @@ expect 2 "--from 6 --to 2: need from < to" -- axis axis.csv --from 6 --to 2
 # Refusals name the file and line, or the option.
 sed '7s/,[^,]*$/,x7/' bare.csv > bad.csv
 expect 3 "bad.csv:7: column #3: not a number: \"x7\"" -- axis bad.csv --col t=#1 --col q=#2 --col tau=#3
-expect 3 "bare.csv: missing column 't' \(the file has no header: name its 3 columns by position" -- axis bare.csv
+expect 3 "bare.csv: missing columns 't', 'q', 'tau' or 'i' \(the file has no header: name its 3 columns by position" -- axis bare.csv
 expect 2 "--col q=#2\*#3: two columns" -- axis bare.csv --col t=#1 --col 'q=#2*#3' --col tau=#1
 expect 2 "--col q=2\*degrees: 'degrees' is neither a column" -- axis bare.csv --col t=#1 --col 'q=2*degrees' --col tau=#3
 # SysId JSON: the four tests are logs; a drivetrain needs a side.

@@ -64,7 +64,7 @@ TEST_CASE("CSV without header: columns by position, detected or forced") {
   LogInputOptions forced = Columns({{"t", "#1"}, {"q", "#2"}, {"tau", "#3"}});
   forced.csv.no_header = true;
   CHECK(ErrorOf("t,q,tau\n0,1,2\n", forced) == "log.csv:1: column #1: not a number: \"t\"");
-  CHECK_THAT(ErrorOf("0,1,2\n1,2,3\n", {}), Catch::StartsWith("log.csv: missing column 't' (the file has no header: "
+  CHECK_THAT(ErrorOf("0,1,2\n1,2,3\n", {}), Catch::StartsWith("log.csv: missing columns 't', 'q', 'tau' or 'i' (the file has no header: "
                                                                 "name its 3 columns by position"));
   CHECK(ErrorOf("0,1,2\n1,2\n", forced) == "log.csv:2: 2 fields, but the first row has 3");
 }
@@ -77,7 +77,7 @@ TEST_CASE("delimiters: semicolon, tab and blanks detected, or given") {
   }
   LogInputOptions semicolon;
   semicolon.csv.delimiter = ';';
-  CHECK_THAT(ErrorOf("t,q,tau\n0,1,2\n", semicolon), Catch::Contains("missing column 't'"));
+  CHECK_THAT(ErrorOf("t,q,tau\n0,1,2\n", semicolon), Catch::Contains("missing columns 't', 'q'"));
 }
 
 TEST_CASE("column expressions: factors, pi, division; refused forms are named") {
@@ -98,7 +98,7 @@ TEST_CASE("column expressions: factors, pi, division; refused forms are named") 
         std::string::npos);
   CHECK(ErrorOf<OptionError>(text, Columns({{"q", "pos_deg"}, {"tau", "2*pos_deg"}})) ==
         "‹col›: 'q' and 'tau' would both read column 'pos_deg' of log.csv");
-  CHECK_THAT(ErrorOf(text, Columns({{"q", "position"}})), Catch::StartsWith("log.csv:1: missing column 'position'"));
+  CHECK_THAT(ErrorOf(text, Columns({{"q", "position"}})), Catch::StartsWith("log.csv:1: missing columns 'position', 'tau' or 'i'"));
 }
 
 TEST_CASE("--rate makes the time base; crops keep [from, to] in log time") {

@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# drivetrain-fit robot --urdf (docs/models.md#serial-robot) end to end on the
+# reference three-joint arm (tests/support/serial_arm_log_main.cc writes its
+# URDF and a log with coloured torque noise, quantised encoders and 1 ms
+# stamps): the parameter file holds the serial_robot section and the fit's
+# estimates, each joint's friction is near the truth, JSON and trace are
+# written; refusals name what is wrong.
+# Usage: serial_robot_cli_test.sh DRIVETRAIN_FIT SERIAL_ARM_LOG SRC
+set -u
+bin="$1"
+writer="$2"
+src="$3"
+program=drivetrain-fit
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work" || exit 1
+source "$src/tests/cli/cli_test_lib.sh"
+"$writer" arm.urdf arm.csv 3 || { echo "FAIL: the reference writer"; exit 1; }
+
+"$bin" robot arm.csv --urdf arm.urdf -o arm.yaml --trace arm_trace.csv > summary.txt 2> err.txt && ok ||
+  fail "robot --urdf: $(cat err.txt)"
+grep -q "^serial_robot:" arm.yaml && grep -q "urdf_sha256: [0-9a-f]\{64\}" arm.yaml && ok || fail "the serial_robot section"
+grep -q "^    viscous_shoulder: {value" arm.yaml && ok || fail "the fit's estimates: $(grep -c value arm.yaml)"
+# Friction of the reference arm: viscous 3, 4, 1.5 N m s/rad; Coulomb 2, 3, 1 N m.
+value() { sed -n "s/^    $1: {value: \([-0-9.e]*\),.*/\1/p" arm.yaml; }
+near() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a > 0.9 * b && a < 1.1 * b) }'; }
+for pair in viscous_yaw:3 viscous_shoulder:4 viscous_elbow:1.5 coulomb_yaw:2 coulomb_shoulder:3 coulomb_elbow:1; do
+  near "$(value "${pair%%:*}")" "${pair##*:}" && ok || fail "${pair%%:*} = $(value "${pair%%:*}"), truth ${pair##*:}"
+done
+grep -q "rel. err %" summary.txt && grep -q "^shoulder " summary.txt && ok || fail "the summary: $(head -5 summary.txt)"
+[ "$(sed -n 3p arm_trace.csv | cut -d, -f3)" = "yaw" ] && ok || fail "the trace: $(head -3 arm_trace.csv)"
+"$bin" robot arm.csv --urdf arm.urdf --json -q > arm.json 2> /dev/null &&
+  python3 -c 'import json,sys; d=json.load(open("arm.json")); sys.exit(0 if d else 1)' 2> /dev/null && ok ||
+  fail "--json"
+
+# Refusals.
+expect 2 "give --urdf .* or --params" -- robot arm.csv
+expect 2 "--params: a serial robot" -- robot arm.csv --urdf arm.urdf --params arm.yaml
+printf '<robot name="x"><link name="a"/>' > bad.urdf
+expect 3 "bad.urdf" -- robot arm.csv --urdf bad.urdf
+sed 's/type="revolute"/type="floating"/' arm.urdf > floating.urdf
+expect 3 "floating.urdf: joint 'yaw' is floating" -- robot arm.csv --urdf floating.urdf
+cut -d, -f1-5 arm.csv > short.csv
+expect 3 "short.csv:1: missing columns .q_elbow. or .q3., .tau_elbow. or .tau3." -- robot short.csv --urdf arm.urdf
+head -50 arm.csv > few.csv
+expect 4 "not identifiable from these logs: .*viscous_yaw" -- robot few.csv --urdf arm.urdf
+expect 2 "--window" -- robot arm.csv --urdf arm.urdf --window 0
+finish
