@@ -1,4 +1,4 @@
-// The parameter file's `serial_robot` section (docs/formats.md#serial-robot):
+// The parameter file's `serial_robot` section (docs/formats.md#the-serial_robot-section):
 // which URDF the robot's structure comes from (its path as given and its
 // SHA-256), the differentiator's half window, and the identified base
 // parameters (fit/base_parameters.h), each by its lead column, its
