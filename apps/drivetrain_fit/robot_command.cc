@@ -44,7 +44,7 @@ void RunSerialRobot(const RobotOptions& options, const std::string& command_line
     throw OptionError("--params: a serial robot (--urdf) starts from its URDF; give --params only for the planar robot");
   }
   CheckFitOutputs(options.output, LogCommandInputs(options.logs, options.urdf, options.input));
-  const std::string urdf_text = ReadFileToString(options.urdf);
+  const std::string urdf_text = ReadUrdfText(options.urdf);
   const UrdfRobot robot = ParseUrdfRobot(options.urdf, urdf_text);
   FitOutputs outputs;
   outputs.provenance.command = command_line;

@@ -12,6 +12,10 @@
 #include "io/joint_log.h"
 #include "io/parameter_file.h"
 #include "io/step_log.h"
+#include "io/serial_robot_log.h"
+#include "io/sha256.h"
+#include "io/urdf_robot.h"
+#include "workflow/serial_robot_validation.h"
 #include "workflow/validation_run.h"
 
 namespace driveid::cli {
@@ -23,14 +27,17 @@ CLI::App* SetupValidateCommand(CLI::App& app, ValidateOptions& options) {
       "from the motor torque) or from an MJCF in MuJoCo, and report fit %, RMSE and residual autocorrelation per log "
       "(docs/models.md#validation, docs/export.md#validation-in-mujoco)");
   command->add_option("params", options.params,
-                      "parameter file with an axis or drivetrain section, or an MJCF (.xml) as `export --to mjcf` "
+                      "parameter file with an axis, drivetrain or serial_robot section, or an MJCF (.xml) as `export --to mjcf` "
                       "writes it, simulated in MuJoCo")
       ->required();
   command->add_option("logs", options.logs, "logs to predict (CSV, MAT, SysId JSON; docs/formats.md#logs)")->required();
   command->add_option("--model", options.model,
-                      "axis or step (default: the parameter file's one model section); joint: an elastic joint's MJCF "
-                      "driven by the motor torque")
-      ->check(CLI::IsMember({"axis", "step", "joint"}));
+                      "axis, step or robot (default: the parameter file's one model section); joint: an elastic "
+                      "joint's MJCF driven by the motor torque")
+      ->check(CLI::IsMember({"axis", "step", "joint", "robot"}));
+  command->add_option("--urdf", options.urdf,
+                      "robot: the URDF (default: the one the file's serial_robot section names; its SHA-256 must "
+                      "match)");
   command->add_option("--step-model", options.step_model, "step: reduced (eq. 16) or full (eqs. 13-14)")
       ->capture_default_str()
       ->check(CLI::IsMember({"reduced", "full"}));
@@ -88,6 +95,9 @@ void RunValidateCommand(const ValidateOptions& options, const std::string& comma
   if (!mjcf) file = ReadParameterFile(options.params);
   const ValidationModel model =
       ChooseValidationModel(file ? &*file : nullptr, mjcf, options.params, options.model);
+  if (!options.urdf.empty() && model != ValidationModel::kSerialRobot) {
+    throw OptionError("--urdf: only a serial robot's parameter file (serial_robot section) is validated with a URDF");
+  }
   if (options.simulate && model != ValidationModel::kAxis) {
     throw OptionError("--simulate: only an axis is simulated by validate --simulate (a drive train always is)");
   }
@@ -104,6 +114,18 @@ void RunValidateCommand(const ValidateOptions& options, const std::string& comma
   } else if (mjcf) {
     const auto logs = load(AxisLogColumns(), [](CsvLog csv) { return MakeAxisLog(std::move(csv), 0.0); });
     run = RunMujocoValidation(logs, options.params, options.joint, options.mujoco_step);
+  } else if (model == ValidationModel::kSerialRobot) {
+    const SerialRobotSection& section = *file->Find<SerialRobotSection>();
+    const std::string urdf = options.urdf.empty() ? section.urdf : options.urdf;
+    const std::string text = ReadUrdfText(urdf);
+    if (!section.urdf_sha256.empty() && Sha256Hex(text) != section.urdf_sha256) {
+      throw InputError(fmt::format("{}: its SHA-256 differs from the one {} was fitted with ({}): another URDF", urdf,
+                                   options.params, section.urdf_sha256));
+    }
+    const SerialRobot robot = ParseUrdfRobot(urdf, text).robot;
+    const auto logs =
+        load(SerialRobotLogColumns(robot), [&](CsvLog csv) { return MakeSerialRobotLog(robot, std::move(csv)); });
+    run = RunSerialRobotValidation(logs, section, robot, options.params);
   } else if (model == ValidationModel::kAxis) {
     const AxisSection& axis = *file->Find<AxisSection>();
     const double k_t = axis.torque_constant.value_or(0.0);

@@ -15,7 +15,8 @@ namespace driveid::cli {
 struct ValidateOptions {
   std::string params;
   std::vector<std::string> logs;
-  std::string model;              ///< "axis" or "step"; "" = from the parameter file's sections
+  std::string model;              ///< "axis", "step", "joint", "robot"; "" = from the parameter file's sections
+  std::string urdf;               ///< a serial robot's URDF instead of the one its file names
   std::string step_model = "reduced";
   LogInputCli input;
   double cutoff = 0.0;

@@ -36,6 +36,9 @@ struct ChannelStatistics {
   double fit_percent = 0.0;
   /// std(y) / RMS(y) of the measured channel (NaN: none measured).
   double variation = std::numeric_limits<double>::quiet_NaN();
+  /// 100 |y - yhat| / |y| (NaN: none measured, or all zero): the error
+  /// relative to the signal itself, as robot identification reports it.
+  double relative_error_percent = std::numeric_limits<double>::quiet_NaN();
   double autocorrelation = 0.0;  ///< lag-1 autocorrelation of the residuals
   int bandwidth = 0;             ///< Newey-West lags used (Andrews' AR(1) rule; 0: none)
   double inflation = 1.0;        ///< std with / without the correlation of residuals (trace ratio, sqrt)

@@ -96,6 +96,7 @@ ChannelStatistics DescribeResiduals(const std::string& name, const double* measu
       square += measured[k] * measured[k];
     }
     stats.variation = square > 0.0 ? std::sqrt(spread / square) : 0.0;
+    if (square > 0.0) stats.relative_error_percent = 100.0 * std::sqrt(ssr / square);
     stats.fit_percent = MeasurementVaries(measured, count) && stats.variation >= kNearlyConstant
                             ? 100.0 * (1.0 - std::sqrt(ssr / spread))
                             : std::nan("");

@@ -8,9 +8,11 @@
 
 #include "core/errors.h"
 #include "core/option_check.h"
+#include "fit/adequacy.h"
 #include "fit/linear_regression.h"
 #include "models/serial_dynamics.h"
 #include "signal/local_polynomial.h"
+#include "signal/resample.h"
 
 namespace driveid {
 
@@ -135,6 +137,131 @@ BaseParameters SerialBaseParameters(const SerialRobot& robot) {
   return FindBaseParameters(w, SerialParameterNames(robot));
 }
 
+namespace {
+
+// The base regressor's rows and the torques of every log, joint by joint.
+struct Rows {
+  std::vector<std::vector<Eigen::MatrixXd>> x;          // [log][joint]: samples x r
+  std::vector<std::vector<std::vector<double>>> tau;    // [joint][log][sample]
+  std::size_t samples = 0;
+};
+
+// `shift`: the torque read that many sample periods later (its timing is
+// known to within a sample: sampled at the stamp, or held since it).
+Rows BuildRows(const SerialRobot& robot, const BaseParameters& base, const std::vector<SerialRobotLog>& logs,
+               double half_window, double shift) {
+  const std::size_t n = robot.size();
+  Rows rows;
+  rows.tau.resize(n);
+  for (const SerialRobotLog& log : logs) {
+    CheckLog(robot, log);
+    const Motion m = Differentiate(robot, log, half_window);
+    rows.x.push_back(BaseRows(robot, base, m));
+    std::vector<double> at;
+    if (shift != 0.0) {
+      const double step = MedianStep(log.time);
+      for (std::size_t k : m.sample) at.push_back(log.time[k] + shift * step);
+    }
+    for (std::size_t j = 0; j < n; ++j) {
+      std::vector<double> t;
+      if (shift != 0.0) {
+        t = InterpolateLinear(log.time, log.torque[j], at);
+      } else {
+        for (std::size_t k : m.sample) t.push_back(log.torque[j][k]);
+      }
+      rows.tau[j].push_back(std::move(t));
+    }
+    rows.samples += m.sample.size();
+  }
+  return rows;
+}
+
+// Least squares on the rows, each joint's weighted by 1 / sigma[j].
+Eigen::VectorXd Solve(const Rows& rows, std::size_t r, const std::vector<double>& sigma) {
+  const std::size_t n = rows.tau.size();
+  Eigen::MatrixXd stacked(static_cast<Eigen::Index>(rows.samples * n), static_cast<Eigen::Index>(r));
+  Eigen::VectorXd target(stacked.rows());
+  Eigen::Index row = 0;
+  for (std::size_t j = 0; j < n; ++j) {
+    for (std::size_t l = 0; l < rows.x.size(); ++l) {
+      const Eigen::MatrixXd& x = rows.x[l][j];
+      stacked.middleRows(row, x.rows()) = x / sigma[j];
+      for (Eigen::Index k = 0; k < x.rows(); ++k) target(row + k) = rows.tau[j][l][static_cast<std::size_t>(k)] / sigma[j];
+      row += x.rows();
+    }
+  }
+  return stacked.colPivHouseholderQr().solve(target);
+}
+
+// Each joint's residual RMS of an unweighted solve: its weight's std.
+std::vector<double> JointNoise(const Rows& rows, std::size_t r) {
+  const std::size_t n = rows.tau.size();
+  const Eigen::VectorXd first = Solve(rows, r, std::vector<double>(n, 1.0));
+  std::vector<double> sigma(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    double e2 = 0.0, t2 = 0.0;
+    for (std::size_t l = 0; l < rows.x.size(); ++l) {
+      const Eigen::VectorXd model = rows.x[l][j] * first;
+      for (Eigen::Index k = 0; k < model.size(); ++k) {
+        const double t = rows.tau[j][l][static_cast<std::size_t>(k)];
+        e2 += (t - model(k)) * (t - model(k));
+        t2 += t * t;
+      }
+    }
+    const double count = static_cast<double>(std::max<std::size_t>(1, rows.samples));
+    sigma[j] = std::max(std::sqrt(e2 / count), 1e-9 * std::sqrt(t2 / count) + 1e-300);
+  }
+  return sigma;
+}
+
+// The processing's share of the error (docs/models.md#serial-robot-identification):
+// the estimates again with the differentiator's half window halved and
+// doubled (two candidates, each a systematic error of sigma 1/sqrt 2) and
+// with the torque read half a sample earlier and later (a timing known to
+// within a sample: uniform, std 1/sqrt 3 of the half-sample response).
+// Added where some estimate moves by more than its std.
+void AddProcessingUncertainty(const SerialRobot& robot, const BaseParameters& base,
+                              const std::vector<SerialRobotLog>& logs, const SerialRobotFitOptions& options,
+                              const std::vector<double>& sigma, FitResult& fit) {
+  const std::size_t r = base.base.size();
+  Eigen::VectorXd theta(static_cast<Eigen::Index>(r));
+  for (std::size_t c = 0; c < r; ++c) theta(static_cast<Eigen::Index>(c)) = fit.estimates[c].value;
+  const auto solve = [&](double half_window, double shift) {
+    return Solve(BuildRows(robot, base, logs, half_window, shift), r, sigma);
+  };
+  struct Systematic {
+    Eigen::VectorXd gradient;
+    double sigma;
+    std::string what;
+  };
+  std::vector<Systematic> errors = {
+      {solve(0.5 * options.half_window, 0.0) - theta, 1.0 / std::sqrt(2.0), "half window halved"},
+      {solve(2.0 * options.half_window, 0.0) - theta, 1.0 / std::sqrt(2.0), "half window doubled"},
+      {0.5 * (solve(options.half_window, 0.5) - solve(options.half_window, -0.5)), 1.0 / std::sqrt(3.0),
+       "torque timing +-1/2 sample"}};
+  bool moves = false;
+  for (const Systematic& e : errors) {
+    for (std::size_t c = 0; c < r; ++c) moves = moves || std::abs(e.gradient(static_cast<Eigen::Index>(c))) > fit.estimates[c].standard_error;
+  }
+  if (!moves) return;
+  const std::vector<ParameterEstimate> before = fit.estimates;
+  for (const Systematic& e : errors) {
+    AddSystematicCovariance(fit, std::vector<double>(e.gradient.data(), e.gradient.data() + e.gradient.size()), e.sigma);
+  }
+  std::vector<std::string> widened;
+  for (std::size_t c = 0; c < r; ++c) {
+    const double factor = before[c].standard_error > 0.0 ? fit.estimates[c].standard_error / before[c].standard_error : 1.0;
+    if (factor > 1.05) widened.push_back(fmt::format("{} x{:.2f}", fit.estimates[c].name, factor));
+  }
+  fit.notes.push_back(fmt::format(
+      "processing: the estimates move with the differentiator's half window ({:.3g} s halved, doubled) and the torque's "
+      "timing (half a sample either way) by more than their std; that spread is in the covariance and the intervals "
+      "(std {})",
+      options.half_window, widened.empty() ? "barely changed" : fmt::format("{}", fmt::join(widened, ", "))));
+}
+
+}  // namespace
+
 SerialRobotFitOutput FitSerialRobot(const SerialRobot& robot, const std::vector<SerialRobotLog>& logs,
                                     const SerialRobotFitOptions& options) {
   RequireValid(options);
@@ -143,48 +270,15 @@ SerialRobotFitOutput FitSerialRobot(const SerialRobot& robot, const std::vector<
   out.parameter_names = SerialParameterNames(robot);
   out.base = SerialBaseParameters(robot);
   const std::size_t r = out.base.base.size();
-  // Rows per joint over all logs, and the measured torques.
-  std::vector<std::vector<Eigen::MatrixXd>> rows;
-  std::vector<std::vector<std::vector<double>>> torque(n);
-  for (const SerialRobotLog& log : logs) {
-    CheckLog(robot, log);
-    const Motion m = Differentiate(robot, log, options.half_window);
-    rows.push_back(BaseRows(robot, out.base, m));
-    for (std::size_t j = 0; j < n; ++j) {
-      std::vector<double> t;
-      for (std::size_t k : m.sample) t.push_back(log.torque[j][k]);
-      torque[j].push_back(std::move(t));
-    }
-    out.samples += m.sample.size();
-  }
+  const Rows rows = BuildRows(robot, out.base, logs, options.half_window, 0.0);
+  out.samples = rows.samples;
   if (out.samples * n < 2 * r) {
     throw InputError(fmt::format("{}: {} usable samples for {} base parameters: log more of the trajectory (or a "
                                  "shorter ‹window›)",
                                  logs.empty() ? std::string("the logs") : logs.front().path, out.samples, r));
   }
-  // Unweighted first solve: each joint's residual std sets its weight.
-  Eigen::MatrixXd stacked(static_cast<Eigen::Index>(out.samples * n), static_cast<Eigen::Index>(r));
-  Eigen::VectorXd target(stacked.rows());
-  Eigen::Index row = 0;
-  for (std::size_t j = 0; j < n; ++j) {
-    for (std::size_t l = 0; l < logs.size(); ++l) {
-      const Eigen::MatrixXd& x = rows[l][j];
-      stacked.middleRows(row, x.rows()) = x;
-      for (Eigen::Index k = 0; k < x.rows(); ++k) target(row + k) = torque[j][l][static_cast<std::size_t>(k)];
-      row += x.rows();
-    }
-  }
-  const Eigen::VectorXd first = stacked.colPivHouseholderQr().solve(target);
-  const Eigen::VectorXd residual = target - stacked * first;
-  std::vector<double> sigma(n);
-  row = 0;
-  for (std::size_t j = 0; j < n; ++j) {
-    const Eigen::Index count = static_cast<Eigen::Index>(out.samples);
-    const double rms = std::sqrt(residual.segment(row, count).squaredNorm() / static_cast<double>(count));
-    const double scale = std::sqrt(target.segment(row, count).squaredNorm() / static_cast<double>(count));
-    sigma[j] = std::max(rms, 1e-9 * scale + 1e-300);
-    row += count;
-  }
+  const std::vector<double> sigma = JointNoise(rows, r);
+  const Eigen::VectorXd first = Solve(rows, r, sigma);
   std::vector<std::string> names;
   for (std::size_t c = 0; c < r; ++c) names.push_back(out.parameter_names[out.base.base[c]]);
   LinearRegression regression(names);
@@ -193,10 +287,10 @@ SerialRobotFitOutput FitSerialRobot(const SerialRobot& robot, const std::vector<
   for (std::size_t j = 0; j < n; ++j) {
     regression.BeginChannel(robot.joints[j].name);
     for (std::size_t l = 0; l < logs.size(); ++l) {
-      const Eigen::MatrixXd& x = rows[l][j];
+      const Eigen::MatrixXd& x = rows.x[l][j];
       for (Eigen::Index k = 0; k < x.rows(); ++k) {
         for (std::size_t c = 0; c < r; ++c) values[c] = x(k, static_cast<Eigen::Index>(c)) / sigma[j];
-        regression.AddRow(values, torque[j][l][static_cast<std::size_t>(k)] / sigma[j]);
+        regression.AddRow(values, rows.tau[j][l][static_cast<std::size_t>(k)] / sigma[j]);
       }
     }
   }
@@ -209,16 +303,15 @@ SerialRobotFitOutput FitSerialRobot(const SerialRobot& robot, const std::vector<
   if (!out.fit.singular_values.empty() && out.fit.singular_values.back() > 0.0) {
     out.condition_number = out.fit.singular_values.front() / out.fit.singular_values.back();
   }
-  std::vector<double> estimate(r);
-  for (std::size_t c = 0; c < r; ++c) estimate[c] = out.fit.estimates[c].value;
+  AddProcessingUncertainty(robot, out.base, logs, options, sigma, out.fit);
+  Eigen::VectorXd estimate(static_cast<Eigen::Index>(r));
+  for (std::size_t c = 0; c < r; ++c) estimate(static_cast<Eigen::Index>(c)) = out.fit.estimates[c].value;
   for (std::size_t j = 0; j < n; ++j) {
     std::vector<double> measured, predicted;
     for (std::size_t l = 0; l < logs.size(); ++l) {
-      const Eigen::MatrixXd& x = rows[l][j];
-      for (Eigen::Index k = 0; k < x.rows(); ++k) {
-        measured.push_back(torque[j][l][static_cast<std::size_t>(k)]);
-        predicted.push_back(x.row(k).dot(Eigen::Map<const Eigen::VectorXd>(estimate.data(), static_cast<Eigen::Index>(r))));
-      }
+      const Eigen::VectorXd model = rows.x[l][j] * estimate;
+      measured.insert(measured.end(), rows.tau[j][l].begin(), rows.tau[j][l].end());
+      predicted.insert(predicted.end(), model.data(), model.data() + model.size());
     }
     out.joints.push_back(Statistics(robot.joints[j].name, measured, predicted));
     out.joints.back().weight_std = sigma[j];

@@ -224,12 +224,14 @@ UrdfRobot ParseUrdfRobot(const std::string& path, const std::string& text) {
   return out;
 }
 
-UrdfRobot ReadUrdfRobot(const std::string& path) {
+std::string ReadUrdfText(const std::string& path) {
   ReadLimits limits;
   limits.max_bytes = std::size_t{64} << 20;
   limits.max_line_bytes = 0;
   limits.max_bytes_hint = "a URDF may be at most 64 MiB";
-  return ParseUrdfRobot(path, ReadFileToString(path, limits));
+  return ReadFileToString(path, limits);
 }
+
+UrdfRobot ReadUrdfRobot(const std::string& path) { return ParseUrdfRobot(path, ReadUrdfText(path)); }
 
 }  // namespace driveid

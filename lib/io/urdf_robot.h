@@ -23,6 +23,8 @@ struct UrdfRobot {
 /// InputError naming the file and what is wrong.
 UrdfRobot ParseUrdfRobot(const std::string& path, const std::string& text);
 
+/// A URDF file's text (at most 64 MiB; InputError naming the file).
+std::string ReadUrdfText(const std::string& path);
 /// Reads and parses a URDF file.
 UrdfRobot ReadUrdfRobot(const std::string& path);
 

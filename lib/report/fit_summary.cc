@@ -181,11 +181,14 @@ Json EstimateSetsJson(const std::vector<EstimateSet>& sets) {
 }  // namespace
 
 std::string FormatValidationTable(const std::vector<ChannelStatistics>& logs) {
-  std::string out = fmt::format("{:<40} {:>8} {:>12} {:>8} {:>8}\n", "validation: log", "samples", "rmse", "fit %",
-                                "lag-1");
+  std::string out = fmt::format("{:<40} {:>8} {:>12} {:>8} {:>10} {:>8}\n", "validation: log", "samples", "rmse",
+                                "fit %", "rel. err %", "lag-1");
   for (const auto& c : logs) {
     const std::string fit = std::isnan(c.fit_percent) ? "n/a" : fmt::format("{:.2f}", c.fit_percent);
-    out += fmt::format("{:<40} {:>8} {:>12.4g} {:>8} {:>8.3f}\n", c.name, c.samples, c.rmse, fit, c.autocorrelation);
+    const std::string relative =
+        std::isnan(c.relative_error_percent) ? "n/a" : fmt::format("{:.2f}", c.relative_error_percent);
+    out += fmt::format("{:<40} {:>8} {:>12.4g} {:>8} {:>10} {:>8.3f}\n", c.name, c.samples, c.rmse, fit, relative,
+                       c.autocorrelation);
   }
   return out;
 }
@@ -197,6 +200,7 @@ Json ValidationJson(const std::vector<ChannelStatistics>& logs) {
                    {"samples", c.samples},
                    {"rmse", c.rmse},
                    {"fit_percent", c.fit_percent},
+                   {"relative_error_percent", c.relative_error_percent},
                    {"autocorrelation", c.autocorrelation}});
   }
   return out;

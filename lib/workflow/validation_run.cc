@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "io/serial_robot_section.h"
 #include "core/option_check.h"
 #include "export/export_target.h"
 #include "models/missing_values.h"
@@ -32,7 +33,13 @@ ValidationModel ChooseValidationModel(const ParameterFile* file, bool mjcf, cons
   }
   const bool axis = file != nullptr && file->Find<AxisSection>() != nullptr;
   const bool drivetrain = file != nullptr && file->Find<DriveTrainSection>() != nullptr;
+  const bool serial = file != nullptr && file->Find<SerialRobotSection>() != nullptr;
   std::string model = requested;
+  if (model.empty() && serial && !axis && !drivetrain) model = "robot";
+  if (model == "robot") {
+    if (!serial) throw InputError(fmt::format("{}: no 'serial_robot' section (written by drivetrain-fit robot ‹urdf›)", path));
+    return ValidationModel::kSerialRobot;
+  }
   if (model.empty()) {
     if (axis && drivetrain) {
       throw OptionError(

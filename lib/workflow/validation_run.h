@@ -20,10 +20,10 @@
 
 namespace driveid {
 
-enum class ValidationModel { kAxis, kStep, kJoint };
+enum class ValidationModel { kAxis, kStep, kJoint, kSerialRobot };
 
-/// The model a validation runs: `requested` ("axis", "step", "joint"; ""
-/// for the file's one model section); an MJCF (`mjcf`) is an axis unless
+/// The model a validation runs: `requested` ("axis", "step", "joint",
+/// "robot" for a serial robot; "" for the file's one model section); an MJCF (`mjcf`) is an axis unless
 /// "joint" is asked for. Throws OptionError for a choice the file cannot
 /// make (two sections, a joint from a parameter file, a step from an MJCF)
 /// and InputError for a section the file lacks or an MJCF without MuJoCo;

@@ -33,6 +33,19 @@ grep -q "rel. err %" summary.txt && grep -q "^shoulder " summary.txt && ok || fa
   python3 -c 'import json,sys; d=json.load(open("arm.json")); sys.exit(0 if d else 1)' 2> /dev/null && ok ||
   fail "--json"
 
+# Validation on another log of the arm, from the parameter file alone.
+"$writer" arm.urdf held_out.csv 11 || fail "the reference writer (seed 11)"
+"$bin" validate arm.yaml held_out.csv > validation.txt 2> err.txt && ok || fail "validate: $(cat err.txt)"
+[ "$(grep -c '^held_out.csv:tau_' validation.txt)" = 3 ] && ok || fail "one row per joint: $(cat validation.txt)"
+awk '/^held_out.csv:tau_/ { if (!($4 > 70 && $5 < 20)) bad = 1 } END { exit bad }' validation.txt && ok ||
+  fail "held-out fit % > 70 (the noise is about the model error) and relative error < 20 %: $(cat validation.txt)"
+"$bin" validate arm.yaml held_out.csv --json > validation.json 2> /dev/null &&
+  python3 -c 'import json,sys; d=json.load(open("validation.json")); v=d["logs"]; sys.exit(0 if len(v) == 3 and all(0 < x["relative_error_percent"] < 20 for x in v) else 1)' &&
+  ok || fail "validate --json: $(head -c 400 validation.json)"
+sed 's/mass value="2"/mass value="2.5"/' arm.urdf > other.urdf
+EXPECT_OUTPUT=--trace expect 3 "other.urdf: its SHA-256 differs" -- validate arm.yaml held_out.csv --urdf other.urdf
+EXPECT_OUTPUT=--trace expect 2 "--urdf: only a serial robot" -- validate "$src/data/axis_example.yaml" held_out.csv --urdf arm.urdf
+
 # Refusals.
 expect 2 "give --urdf .* or --params" -- robot arm.csv
 expect 2 "--params: a serial robot" -- robot arm.csv --urdf arm.urdf --params arm.yaml

@@ -1,0 +1,23 @@
+// `drivetrain-fit validate ARM.yaml LOG...` of a serial robot
+// (docs/models.md#serial-robot-validation): every joint's torque predicted
+// from the parameter file alone — its serial_robot section's base
+// parameters on the structure of the URDF it names — one validated channel
+// per joint and log, with fit %, RMSE and relative error.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "io/serial_robot_log.h"
+#include "io/serial_robot_section.h"
+#include "models/serial_robot.h"
+#include "workflow/validation_run.h"
+
+namespace driveid {
+
+/// Throws InputError naming `path` when the section's base parameters are
+/// not the URDF's (another robot, an edited URDF).
+ValidationRun RunSerialRobotValidation(const std::vector<SerialRobotLog>& logs, const SerialRobotSection& section,
+                                       const SerialRobot& robot, const std::string& path);
+
+}  // namespace driveid
