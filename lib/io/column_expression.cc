@@ -1,6 +1,7 @@
 #include "io/column_expression.h"
 
 #include <charconv>
+#include <cctype>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -25,6 +26,73 @@ std::optional<double> Number(const std::string& word) {
   const auto result = std::from_chars(begin, end, value);
   if (begin == end || result.ec != std::errc() || result.ptr != end || !std::isfinite(value)) return std::nullopt;
   return value;
+}
+
+// One term: a column times or divided by numbers, pi and scalars.
+ColumnTerm ParseTerm(const std::string& option, const std::string& whole,
+                     const std::function<bool(const std::string&)>& is_column,
+                     const std::function<std::optional<double>(const std::string&)>& scalar) {
+  ColumnTerm out;
+  if (is_column(whole)) {
+    out.reference = whole;
+    return out;
+  }
+  // Split at '*' and '/' outside parentheses: factors with their operator.
+  std::vector<std::pair<char, std::string>> factors;
+  char op = '*';
+  int depth = 0;
+  std::string current;
+  for (char c : whole) {
+    if (c == '(') ++depth;
+    if (c == ')') --depth;
+    if (depth == 0 && (c == '*' || c == '/')) {
+      factors.emplace_back(op, Trimmed(current));
+      op = c;
+      current.clear();
+    } else {
+      current += c;
+    }
+  }
+  factors.emplace_back(op, Trimmed(current));
+  for (const auto& [how, word] : factors) {
+    if (word.empty()) {
+      throw OptionError(fmt::format("{}: malformed expression (an operand is missing); expected COLUMN, or COLUMN "
+                                    "multiplied or divided by numbers, pi or scalars, or a sum of such terms "
+                                    "(docs/formats.md)", option));
+    }
+    double value = 0.0;
+    if (const auto number = Number(word)) {
+      value = *number;
+    } else if (word == "pi") {
+      value = M_PI;
+    } else if (is_column(word)) {
+      if (!out.reference.empty()) {
+        throw OptionError(fmt::format("{}: two columns ('{}' and '{}') in one product; a term scales one column",
+                                      option, out.reference, word));
+      }
+      if (how == '/') throw OptionError(fmt::format("{}: the column '{}' may not be a divisor", option, word));
+      out.reference = word;
+      continue;
+    } else if (const auto named = scalar(word)) {
+      value = *named;
+    } else {
+      throw OptionError(fmt::format("{}: '{}' is neither a column of the log, a number, pi, nor a scalar of the file",
+                                    option, word));
+    }
+    if (how == '/') {
+      if (value == 0.0) throw OptionError(fmt::format("{}: division by zero ('{}')", option, word));
+      out.factor /= value;
+    } else {
+      out.factor *= value;
+    }
+  }
+  if (out.reference.empty()) {
+    throw OptionError(fmt::format("{}: no column in the expression (a constant column is not a log)", option));
+  }
+  if (!std::isfinite(out.factor) || out.factor == 0.0) {
+    throw OptionError(fmt::format("{}: the factor is {} (not a finite non-zero number)", option, out.factor));
+  }
+  return out;
 }
 
 }  // namespace
@@ -62,68 +130,58 @@ ColumnExpression ParseColumnExpression(const std::string& option, const std::str
       break;
     }
   }
-  if (!out.operations.empty() && is_column(whole)) {
+  if (is_column(whole)) {
     out.reference = whole;
+    out.terms.push_back({whole, 1.0});
     return out;
   }
-  if (out.operations.empty() && is_column(whole)) {
-    out.reference = whole;
-    return out;
-  }
-  // Split at '*' and '/' outside parentheses: factors with their operator.
-  std::vector<std::pair<char, std::string>> factors;
-  char op = '*';
-  int depth = 0;
-  std::string current;
-  for (char c : whole) {
-    if (c == '(') ++depth;
-    if (c == ')') --depth;
-    if (depth == 0 && (c == '*' || c == '/')) {
-      factors.emplace_back(op, Trimmed(current));
-      op = c;
-      current.clear();
-    } else {
-      current += c;
-    }
-  }
-  factors.emplace_back(op, Trimmed(current));
-  for (const auto& [how, word] : factors) {
-    if (word.empty()) {
-      throw OptionError(fmt::format("{}: malformed expression (an operand is missing); expected COLUMN, or COLUMN "
-                                    "multiplied or divided by numbers, pi or scalars (docs/formats.md)", option));
-    }
-    double value = 0.0;
-    if (const auto number = Number(word)) {
-      value = *number;
-    } else if (word == "pi") {
-      value = M_PI;
-    } else if (is_column(word)) {
-      if (!out.reference.empty()) {
-        throw OptionError(fmt::format("{}: two columns ('{}' and '{}'); an expression scales one column", option,
-                                      out.reference, word));
+  // A sum or difference of scaled columns (a coupled wrist's joint angle,
+  // q6 = #6/32 - #5/45): split at '+' and '-' outside parentheses that are
+  // not a sign (first, or after an operator) nor an exponent's (1e-3).
+  std::vector<std::pair<double, std::string>> terms;
+  {
+    double sign = 1.0;
+    int depth = 0;
+    std::string current;
+    for (std::size_t i = 0; i < whole.size(); ++i) {
+      const char c = whole[i];
+      if (c == '(') ++depth;
+      if (c == ')') --depth;
+      const std::string before = Trimmed(current);
+      const bool exponent = !before.empty() && (before.back() == 'e' || before.back() == 'E') && before.size() >= 2 &&
+                            (std::isdigit(static_cast<unsigned char>(before[before.size() - 2])) ||
+                             before[before.size() - 2] == '.');
+      const bool after_operator = before.empty() || before.back() == '*' || before.back() == '/';
+      if (depth == 0 && (c == '+' || c == '-') && !after_operator && !exponent) {
+        terms.emplace_back(sign, before);
+        sign = c == '-' ? -1.0 : 1.0;
+        current.clear();
+      } else {
+        current += c;
       }
-      if (how == '/') throw OptionError(fmt::format("{}: the column '{}' may not be a divisor", option, word));
-      out.reference = word;
-      continue;
-    } else if (const auto named = scalar(word)) {
-      value = *named;
-    } else {
-      throw OptionError(fmt::format("{}: '{}' is neither a column of the log, a number, pi, nor a scalar of the file",
-                                    option, word));
     }
-    if (how == '/') {
-      if (value == 0.0) throw OptionError(fmt::format("{}: division by zero ('{}')", option, word));
-      out.factor /= value;
-    } else {
-      out.factor *= value;
+    terms.emplace_back(sign, Trimmed(current));
+  }
+  if (terms.size() > kMaxColumnTerms) {
+    throw OptionError(fmt::format("{}: more than {} terms", option, kMaxColumnTerms));
+  }
+  for (auto [sign, term] : terms) {
+    // A leading sign of the first term ("-#2 + #3").
+    if (!term.empty() && (term[0] == '-' || term[0] == '+') && !is_column(term)) {
+      if (term[0] == '-') sign = -sign;
+      term = Trimmed(term.substr(1));
     }
+    ColumnTerm t = ParseTerm(option, term, is_column, scalar);
+    t.factor *= sign;
+    for (const ColumnTerm& other : out.terms) {
+      if (other.reference == t.reference) {
+        throw OptionError(fmt::format("{}: the column '{}' appears twice; combine its factors", option, t.reference));
+      }
+    }
+    out.terms.push_back(t);
   }
-  if (out.reference.empty()) {
-    throw OptionError(fmt::format("{}: no column in the expression (a constant column is not a log)", option));
-  }
-  if (!std::isfinite(out.factor) || out.factor == 0.0) {
-    throw OptionError(fmt::format("{}: the factor is {} (not a finite non-zero number)", option, out.factor));
-  }
+  out.reference = out.terms.front().reference;
+  out.factor = out.terms.front().factor;
   return out;
 }
 

@@ -3,7 +3,8 @@
 // `pi/180*pos_deg`, `pos/32`, `gtau*vir` (gtau a scalar of the MAT file).
 // A factor is a number, `pi`, a scalar of the source, or the one column
 // reference: a header name, a 1-based position `#k`, or a MAT variable path
-// (`rec.pos(1,:)`). The column may not be a divisor. The whole may be
+// (`rec.pos(1,:)`). The column may not be a divisor. Terms of this kind
+// may be added and subtracted (`#6/32 - #5/45`, each column once). The whole may be
 // wrapped in derived-signal functions (applied innermost first, over the
 // log's time base, after crops): `integral(EXPR)` (cumulative trapezoid, 0
 // at the first sample), `derivative(EXPR)` (central differences, one-sided
@@ -17,10 +18,20 @@
 
 namespace driveid {
 
+/// One term of a sum: a source column and the constant it is multiplied by.
+struct ColumnTerm {
+  std::string reference;
+  double factor = 1.0;
+};
+inline constexpr std::size_t kMaxColumnTerms = 8;
+
 struct ColumnExpression {
   std::string text;       ///< as given (recorded in the provenance)
-  std::string reference;  ///< the source column
-  double factor = 1.0;    ///< constant the column is multiplied by
+  std::string reference;  ///< the first term's source column
+  double factor = 1.0;    ///< the first term's factor
+  /// Every term, the first included: the column is their sum (a coupled
+  /// wrist: `#6/32 - #5/45`), at most kMaxColumnTerms.
+  std::vector<ColumnTerm> terms;
   /// Derived-signal functions, innermost first: "integral", "derivative", "detrend".
   std::vector<std::string> operations;
 };

@@ -41,7 +41,9 @@ bool IsPlainWord(const std::string& text) {
   for (const char* function : {"integral(", "derivative(", "detrend("}) {
     if (text.rfind(function, 0) == 0) return false;
   }
-  return text.find_first_of("*/") == std::string::npos;
+  // Products and sums are expressions; a name with a dash that the log has
+  // is still taken whole (ParseColumnExpression checks it first).
+  return text.find_first_of("*/+-") == std::string::npos;
 }
 
 // What the source offers, for messages: the first 12 column names.
@@ -71,7 +73,8 @@ namespace {
 // a time base generated from --rate, or an optional column the log lacks.
 struct ColumnPlan {
   std::vector<ColumnExpression> expressions;
-  std::vector<std::size_t> indices;
+  std::vector<std::size_t> indices;                   // the first term's source column
+  std::vector<std::vector<std::size_t>> more_indices;  // the other terms' (a sum)
   std::vector<char> generated_time, absent;
 };
 
@@ -98,7 +101,8 @@ ColumnPlan PlanColumns(const TableSource& source, const std::vector<std::string>
   plan.expressions.resize(required.size());
   plan.indices.resize(required.size());
   plan.generated_time.assign(required.size(), 0);
-  plan.absent.assign(required.size(), 0);  // an optional column ("?name") the log does not have
+  plan.absent.assign(required.size(), 0);
+  plan.more_indices.assign(required.size(), {});  // an optional column ("?name") the log does not have
   std::vector<ColumnExpression>& expressions = plan.expressions;
   std::vector<std::size_t>& indices = plan.indices;
   std::vector<char>& generated_time = plan.generated_time;
@@ -136,6 +140,9 @@ ColumnPlan PlanColumns(const TableSource& source, const std::vector<std::string>
       }
       expressions[k] = ParseColumnExpression(fmt::format("‹col› {}={}", name, text), text, is_column, scalar);
       indices[k] = *source.Find(expressions[k].reference);
+      for (std::size_t t = 1; t < expressions[k].terms.size(); ++t) {
+        plan.more_indices[k].push_back(*source.Find(expressions[k].terms[t].reference));
+      }
       log.names[k] = name;
       found = true;
       break;
@@ -197,11 +204,16 @@ std::size_t ReadPlannedColumns(const TableSource& source, const std::vector<std:
   const std::vector<char>& absent = plan.absent;
   // Each source column read once; `slot[k]` is logical column k's place in `data`.
   std::vector<std::size_t> to_read, slot(required.size(), 0);
+  const auto slot_of = [&](std::size_t index) {
+    const auto found = std::find(to_read.begin(), to_read.end(), index);
+    if (found == to_read.end()) to_read.push_back(index);
+    return static_cast<std::size_t>(std::find(to_read.begin(), to_read.end(), index) - to_read.begin());
+  };
+  std::vector<std::vector<std::size_t>> more_slots(required.size());
   for (std::size_t k = 0; k < required.size(); ++k) {
     if (generated_time[k] || absent[k]) continue;
-    const auto found = std::find(to_read.begin(), to_read.end(), indices[k]);
-    slot[k] = static_cast<std::size_t>(found - to_read.begin());
-    if (found == to_read.end()) to_read.push_back(indices[k]);
+    slot[k] = slot_of(indices[k]);
+    for (std::size_t index : plan.more_indices[k]) more_slots[k].push_back(slot_of(index));
   }
   TableData data = source.Read(to_read);
   std::size_t rows = 0;
@@ -224,6 +236,22 @@ std::size_t ReadPlannedColumns(const TableSource& source, const std::vector<std:
     const auto lengths = source.column_lengths();
     rows = lengths.empty() ? 0 : lengths.front();
   }
+  // A sum's further terms, taken before any source column is moved out.
+  std::vector<std::vector<double>> more_sum(required.size());
+  for (std::size_t k = 0; k < required.size(); ++k) {
+    if (more_slots[k].empty()) continue;
+    more_sum[k].assign(rows, 0.0);
+    for (std::size_t t = 0; t < more_slots[k].size(); ++t) {
+      const std::vector<double>& column = data.columns[more_slots[k][t]];
+      if (column.size() != rows) {
+        throw InputError(fmt::format("{}: column '{}' has {} values but '{}' has {}: the columns of a log have one "
+                                     "value per sample",
+                                     where, expressions[k].terms[t + 1].reference, column.size(), first_name, rows));
+      }
+      const double factor = expressions[k].terms[t + 1].factor;
+      for (std::size_t i = 0; i < rows; ++i) more_sum[k][i] += factor * column[i];
+    }
+  }
   log.columns.resize(required.size());
   std::vector<int> uses(to_read.size(), 0);
   for (std::size_t k = 0; k < required.size(); ++k) {
@@ -244,8 +272,9 @@ std::size_t ReadPlannedColumns(const TableSource& source, const std::vector<std:
       log.columns[k] = data.columns[slot[k]];
     }
     const ColumnExpression& e = expressions[k];
-    if (e.factor != 1.0) {
+    if (e.factor != 1.0 || !more_sum[k].empty()) {
       for (double& v : log.columns[k]) v *= e.factor;
+      for (std::size_t i = 0; i < more_sum[k].size(); ++i) log.columns[k][i] += more_sum[k][i];
       for (std::size_t i = 0; i < rows; ++i) {
         if (!std::isfinite(log.columns[k][i])) {
           throw InputError(fmt::format("{}: ‹col› {}={}: the value at sample {} overflows", where, log.names[k], e.text,

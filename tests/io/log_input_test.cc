@@ -80,6 +80,28 @@ TEST_CASE("delimiters: semicolon, tab and blanks detected, or given") {
   CHECK_THAT(ErrorOf("t,q,tau\n0,1,2\n", semicolon), Catch::Contains("missing columns 't', 'q'"));
 }
 
+TEST_CASE("column expressions: sums and differences of scaled columns (a coupled wrist)") {
+  // Motor angles m5, m6 of a wrist where motor 5 turns joint 6 too:
+  // q6 = m6/32 - m5/45, the CSV written by hand.
+  const std::string text = "t,m5,m6,tau,dup-name\n0,90,64,1,7\n1,45,32,2,8\n";
+  const auto log = ReadOne("w.csv", text, Columns({{"q", "#3/32 - #2/45"}, {"tau", "2*tau + 1e-3*m5 - -1*#5"}}));
+  CHECK(log.columns[1][0] == Approx(64.0 / 32 - 90.0 / 45));
+  CHECK(log.columns[1][1] == Approx(32.0 / 32 - 45.0 / 45));
+  CHECK(log.columns[2][0] == Approx(2.0 + 0.09 + 7.0));
+  CHECK(log.columns[2][1] == Approx(4.0 + 0.045 + 8.0));
+  const auto leading = ReadOne("w.csv", text, Columns({{"q", "-m5 + m6"}, {"tau", "tau"}}));
+  CHECK(leading.columns[1][0] == Approx(-26.0));
+  // A header with a dash is named whole (inside a sum, by position).
+  const auto whole = ReadOne("w.csv", text, Columns({{"q", "dup-name"}, {"tau", "tau"}}));
+  CHECK(whole.columns[1][1] == 8.0);
+  CHECK(ErrorOf<OptionError>(text, Columns({{"q", "m5 - m5/2"}, {"tau", "tau"}})) ==
+        "‹col› q=m5 - m5/2: the column 'm5' appears twice; combine its factors");
+  CHECK(ErrorOf<OptionError>(text, Columns({{"q", "m5 - 3"}, {"tau", "tau"}})) ==
+        "‹col› q=m5 - 3: no column in the expression (a constant column is not a log)");
+  CHECK(ErrorOf<OptionError>(text, Columns({{"q", "m5 -"}, {"tau", "tau"}})).find("an operand is missing") !=
+        std::string::npos);
+}
+
 TEST_CASE("column expressions: factors, pi, division; refused forms are named") {
   const std::string text = "t,pos_deg,amps\n0,90,1\n1,180,2\n";
   const auto log = ReadOne("e.csv", text, Columns({{"q", "pi/180*pos_deg"}, {"i", "amps / 4"}}));
@@ -87,7 +109,7 @@ TEST_CASE("column expressions: factors, pi, division; refused forms are named") 
   CHECK(log.columns[1][0] == Approx(M_PI / 2));
   CHECK(log.columns[2][1] == 0.5);
   CHECK(ErrorOf<OptionError>(text, Columns({{"q", "pos_deg*amps"}, {"tau", "amps"}})) ==
-        "‹col› q=pos_deg*amps: two columns ('pos_deg' and 'amps'); an expression scales one column");
+        "‹col› q=pos_deg*amps: two columns ('pos_deg' and 'amps') in one product; a term scales one column");
   CHECK(ErrorOf<OptionError>(text, Columns({{"q", "1/pos_deg"}, {"tau", "amps"}})) ==
         "‹col› q=1/pos_deg: the column 'pos_deg' may not be a divisor");
   CHECK(ErrorOf<OptionError>(text, Columns({{"q", "pos_deg/0"}, {"tau", "amps"}})) ==
