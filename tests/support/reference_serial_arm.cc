@@ -1,5 +1,6 @@
 #include "support/reference_serial_arm.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -110,6 +111,35 @@ Arm ThreeJointArm() {
   return arm;
 }
 
+Arm SixJointArm() {
+  Arm arm = ThreeJointArm();
+  const struct {
+    const char* name;
+    const char* body;
+    Vector3d translation, axis, centre;
+    double mass, armature, viscous, coulomb;
+  } wrist[3] = {{"wrist1", "w1", Vector3d(0.45, 0.0, 0.0), Vector3d::UnitZ(), Vector3d(0.0, 0.03, 0.02), 1.2, 0.1, 0.8, 0.5},
+                {"wrist2", "w2", Vector3d(0.0, 0.1, 0.0), Vector3d::UnitY(), Vector3d(0.01, 0.0, 0.04), 0.9, 0.08, 0.6, 0.4},
+                {"wrist3", "w3", Vector3d(0.0, 0.0, 0.1), Vector3d::UnitZ(), Vector3d(0.0, 0.01, 0.03), 0.4, 0.05, 0.5, 0.3}};
+  for (int i = 0; i < 3; ++i) {
+    ArmJoint j;
+    j.name = wrist[i].name;
+    j.body = wrist[i].body;
+    j.parent = static_cast<int>(arm.joints.size()) - 1;
+    j.translation = wrist[i].translation;
+    j.axis = wrist[i].axis;
+    j.mass = wrist[i].mass;
+    j.centre = wrist[i].centre;
+    j.inertia_at_centre = Vector3d(0.004, 0.005, 0.003).asDiagonal() * (1.0 + i);
+    j.armature = wrist[i].armature;
+    j.viscous = wrist[i].viscous;
+    j.coulomb = wrist[i].coulomb;
+    j.offset = 0.05 * (i - 1);
+    arm.joints.push_back(j);
+  }
+  return arm;
+}
+
 // tau = M q'' + sum_jk (dM_ij/dq_k - 1/2 dM_jk/dq_i) q'_j q'_k + dV/dq_i + drives.
 VectorXd ArmTorque(const Arm& arm, const VectorXd& q, const VectorXd& qd, const VectorXd& qdd) {
   const auto n = static_cast<Eigen::Index>(arm.joints.size());
@@ -175,7 +205,10 @@ ArmLog SimulateArm(const Arm& arm, const ArmLogOptions& o) {
       qdd(static_cast<Eigen::Index>(j)) = acc;
     }
     const VectorXd tau = ArmTorque(arm, q, qd, qdd);
-    log.t.push_back(std::round(t * 1000.0) / 1000.0);  // stamped to 1 ms
+    // Stamped to 1 ms (to a tenth of the period above 500 Hz, where 1 ms
+    // would repeat stamps).
+    const double stamp = o.rate <= 500.0 ? 1e-3 : 0.1 / o.rate;
+    log.t.push_back(std::round(t / stamp) * stamp);
     for (std::size_t j = 0; j < n; ++j) {
       noise[j] = o.noise_pole * noise[j] + o.torque_noise * normal(rng);
       log.q[j].push_back(std::round(q(static_cast<Eigen::Index>(j)) * count) / count);

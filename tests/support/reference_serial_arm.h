@@ -34,6 +34,8 @@ struct Arm {
 
 /// Base yaw, shoulder and elbow pitch with offsets: a small industrial arm.
 Arm ThreeJointArm();
+/// The same with a three-axis wrist (pitch, roll, pitch): six joints.
+Arm SixJointArm();
 
 /// Joint torques (rigid bodies and drives) at q, q', q''.
 Eigen::VectorXd ArmTorque(const Arm& arm, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,

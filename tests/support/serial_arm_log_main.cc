@@ -1,7 +1,7 @@
 // Writes the reference three-joint arm (tests/support/reference_serial_arm.h)
 // as a URDF and one of its logs as CSV (t, q_<joint>, tau_<joint>), for the
 // command-line tests of `drivetrain-fit robot --urdf`.
-// Usage: serial_arm_log ARM.urdf LOG.csv [seed]
+// Usage: serial_arm_log ARM.urdf LOG.csv [seed [joints (3 or 6) [rate Hz [duration s]]]]
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -12,10 +12,11 @@
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: serial_arm_log ARM.urdf LOG.csv [seed]\n");
+    std::fprintf(stderr, "usage: serial_arm_log ARM.urdf LOG.csv [seed [joints [rate [duration]]]]\n");
     return 2;
   }
-  const reference::Arm arm = reference::ThreeJointArm();
+  const reference::Arm arm =
+      argc > 4 && std::atoi(argv[4]) == 6 ? reference::SixJointArm() : reference::ThreeJointArm();
   std::ofstream urdf(argv[1]);
   urdf.precision(17);
   urdf << "<?xml version=\"1.0\"?>\n<robot name=\"arm3\">\n  <link name=\"base\"/>\n";
@@ -38,6 +39,8 @@ int main(int argc, char** argv) {
   urdf << "</robot>\n";
   reference::ArmLogOptions o;
   if (argc > 3) o.seed = static_cast<unsigned>(std::atoi(argv[3]));
+  if (argc > 5) o.rate = std::atof(argv[5]);
+  if (argc > 6) o.duration = std::atof(argv[6]);
   const reference::ArmLog log = reference::SimulateArm(arm, o);
   std::ofstream csv(argv[2]);
   csv.precision(10);
