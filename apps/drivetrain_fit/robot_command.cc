@@ -24,6 +24,11 @@ CLI::App* SetupRobotCommand(CLI::App& app, RobotOptions& options) {
       ->required();
   command->add_option("--urdf", options.urdf, "the serial robot's URDF (docs/formats.md#urdf)");
   command->add_option("--params", options.params, "parameter file with a planar_robot section (without --urdf)");
+  command->add_option("--prior-weight", options.prior_weight,
+                      "--urdf: weight of the URDF's inertials in the physically consistent fit, relative to one std "
+                      "of the data (docs/models.md#physical-consistency)")
+      ->capture_default_str()
+      ->check(FiniteAbove(0.0));
   AddFreeOption(*command, options.free, FreeOptionHelp(PlanarRobotParameterTable(), "robot"));
   AddLogInputOptions(*command, options.input, "theta1=#2");
   command->add_option("--window", options.window,
@@ -55,6 +60,7 @@ void RunSerialRobot(const RobotOptions& options, const std::string& command_line
                                              [&](CsvLog csv) { return MakeSerialRobotLog(robot.robot, std::move(csv)); });
   SerialRobotIdentificationOptions run_options;
   run_options.fit.half_window = options.window > 0.0 ? options.window : 0.05;
+  run_options.prior_weight = options.prior_weight;
   SetProgress(run_options.fit.fit, options.output.verbose, options.output.max_seconds);
   run_options.trace = !options.output.trace.empty();
   const SerialRobotIdentification run =

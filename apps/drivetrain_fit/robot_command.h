@@ -16,6 +16,7 @@ struct RobotOptions {
   std::vector<std::string> logs;
   std::string params;
   std::string urdf;  ///< a serial robot (docs/models.md#serial-robot) instead of the planar one
+  double prior_weight = 1e-4;
   std::vector<std::string> free = FitParameterKeys(PlanarRobotParameterTable(), "robot", true);
   LogInputCli input;
   double window = 0.0;  ///< 0: 0.005 s (planar robot), 0.05 s (--urdf)

@@ -1,5 +1,6 @@
 #include "io/serial_robot_section.h"
 
+#include <algorithm>
 #include <cctype>
 
 #include <fmt/format.h>
@@ -66,6 +67,72 @@ SerialBaseEntry ParseEntry(const std::string& path, const YAML::Node& node, std:
   return e;
 }
 
+constexpr const char* kDriveKeys[4] = {"armature", "viscous", "coulomb", "offset"};
+
+std::vector<SerialBodyEntry> ParseBodies(const std::string& path, const YAML::Node& node) {
+  if (!node.IsSequence()) throw InputError(fmt::format("{}: serial_robot.bodies: expected a list", Where(path, node)));
+  std::vector<SerialBodyEntry> out;
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string name = fmt::format("serial_robot.bodies[{}]", i);
+    CheckMapping(path, name, node[i]);
+    SerialBodyEntry e;
+    std::size_t found = 0;
+    for (const auto& item : node[i]) {
+      const std::string key = item.first.Scalar();
+      if (key == "link") {
+        e.link = Text(path, name + ".link", item.second);
+        continue;
+      }
+      const auto& names = InertialParameterNames();
+      const auto at = std::find(names.begin(), names.end(), key);
+      if (at == names.end()) {
+        throw InputError(fmt::format("{}: {}.{}: unknown key (known: link, m, mx, my, mz, Ixx, Ixy, Ixz, Iyy, Iyz, Izz)",
+                                     Where(path, item.first), name, key));
+      }
+      e.parameters[static_cast<std::size_t>(at - names.begin())] = ParseNumber(path, name + "." + key, item.second);
+      ++found;
+    }
+    if (e.link.empty() || found != kInertialParameters) {
+      throw InputError(fmt::format("{}: {}: needs link and all 10 parameters", Where(path, node[i]), name));
+    }
+    out.push_back(e);
+  }
+  return out;
+}
+
+std::vector<SerialDriveEntry> ParseDrives(const std::string& path, const YAML::Node& node) {
+  if (!node.IsSequence()) throw InputError(fmt::format("{}: serial_robot.drives: expected a list", Where(path, node)));
+  std::vector<SerialDriveEntry> out;
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string name = fmt::format("serial_robot.drives[{}]", i);
+    CheckMapping(path, name, node[i]);
+    SerialDriveEntry e;
+    std::size_t found = 0;
+    for (const auto& item : node[i]) {
+      const std::string key = item.first.Scalar();
+      double* slot = key == kDriveKeys[0]   ? &e.drive.armature
+                     : key == kDriveKeys[1] ? &e.drive.viscous
+                     : key == kDriveKeys[2] ? &e.drive.coulomb
+                     : key == kDriveKeys[3] ? &e.drive.offset
+                                            : nullptr;
+      if (key == "joint") {
+        e.joint = Text(path, name + ".joint", item.second);
+      } else if (slot != nullptr) {
+        *slot = ParseNumber(path, name + "." + key, item.second);
+        ++found;
+      } else {
+        throw InputError(fmt::format("{}: {}.{}: unknown key (known: joint, armature, viscous, coulomb, offset)",
+                                     Where(path, item.first), name, key));
+      }
+    }
+    if (e.joint.empty() || found != 4) {
+      throw InputError(fmt::format("{}: {}: needs joint, armature, viscous, coulomb and offset", Where(path, node[i]), name));
+    }
+    out.push_back(e);
+  }
+  return out;
+}
+
 void Parse(const std::string& path, const YAML::Node& node, ParameterFile& file) {
   CheckMapping(path, "serial_robot", node);
   SerialRobotSection s;
@@ -80,13 +147,17 @@ void Parse(const std::string& path, const YAML::Node& node, ParameterFile& file)
       if (!(s.half_window > 0.0)) {
         throw InputError(fmt::format("{}: serial_robot.half_window: must be > 0 s", Where(path, item.second)));
       }
+    } else if (key == "bodies") {
+      s.bodies = ParseBodies(path, item.second);
+    } else if (key == "drives") {
+      s.drives = ParseDrives(path, item.second);
     } else if (key == "base") {
       if (!item.second.IsSequence()) {
         throw InputError(fmt::format("{}: serial_robot.base: expected a list", Where(path, item.second)));
       }
       for (std::size_t i = 0; i < item.second.size(); ++i) s.base.push_back(ParseEntry(path, item.second[i], i));
     } else {
-      throw InputError(fmt::format("{}: serial_robot.{}: unknown key (known: urdf, urdf_sha256, half_window, base)",
+      throw InputError(fmt::format("{}: serial_robot.{}: unknown key (known: urdf, urdf_sha256, half_window, base, bodies, drives)",
                                    Where(path, item.first), key));
     }
   }
@@ -112,6 +183,29 @@ std::string Format(const ParameterFile& file) {
                          Number(Writable("serial_robot.base.combination", e.combination[i].second)));
     }
     out += fmt::format("}}\n      value: {}\n", Number(Writable("serial_robot.base.value", e.value)));
+  }
+  if (!s.bodies.empty()) {
+    out += "  bodies:  # physically consistent (docs/models.md#physical-consistency), in each body's frame\n";
+    for (const SerialBodyEntry& b : s.bodies) {
+      out += fmt::format("    - {{link: {}", Key(b.link));
+      for (std::size_t k = 0; k < kInertialParameters; ++k) {
+        out += fmt::format(", {}: {}", InertialParameterNames()[k],
+                           Number(Writable("serial_robot.bodies." + std::string(InertialParameterNames()[k]),
+                                           b.parameters[k])));
+      }
+      out += "}\n";
+    }
+  }
+  if (!s.drives.empty()) {
+    out += "  drives:\n";
+    for (const SerialDriveEntry& d : s.drives) {
+      const double values[4] = {d.drive.armature, d.drive.viscous, d.drive.coulomb, d.drive.offset};
+      out += fmt::format("    - {{joint: {}", Key(d.joint));
+      for (int k = 0; k < 4; ++k) {
+        out += fmt::format(", {}: {}", kDriveKeys[k], Number(Writable(std::string("serial_robot.drives.") + kDriveKeys[k], values[k])));
+      }
+      out += "}\n";
+    }
   }
   return out;
 }

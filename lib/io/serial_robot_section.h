@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "io/parameter_sections.h"
+#include "models/serial_robot.h"
 
 namespace driveid {
 
@@ -20,12 +21,29 @@ struct SerialBaseEntry {
   double value = 0.0;
 };
 
+/// A body's physically consistent inertial parameters (the 10 standard
+/// ones in its frame, models/serial_robot.h), named by its link.
+struct SerialBodyEntry {
+  std::string link;
+  InertialParameters parameters{};
+};
+
+/// A joint's drive as the consistent fit left it.
+struct SerialDriveEntry {
+  std::string joint;
+  SerialDriveParameters drive;
+};
+
 struct SerialRobotSection {
   static constexpr const char* kSectionName = "serial_robot";
   std::string urdf;         ///< as given on the command line
   std::string urdf_sha256;  ///< of its bytes
   double half_window = 0.0;
   std::vector<SerialBaseEntry> base;
+  /// The consistent parameters (docs/models.md#physical-consistency): every
+  /// body and drive, whose base combinations are the values above.
+  std::vector<SerialBodyEntry> bodies;
+  std::vector<SerialDriveEntry> drives;
 };
 
 /// Its reader and writer (registered in io/parameter_file.cc).

@@ -8,13 +8,49 @@
 
 namespace driveid {
 
-bool SerialRobotIdentificationOptions::IsValid(std::string* error) const { return OptionCheck(error).Nested(fit); }
+bool SerialRobotIdentificationOptions::IsValid(std::string* error) const {
+  return OptionCheck(error).Nested(fit).Require(prior_weight > 0.0 && std::isfinite(prior_weight), "‹prior_weight›",
+                                                prior_weight, "weight > 0");
+}
 
 namespace {
 
 // A joint whose torque the model explains this poorly is named in a warning:
 // an unmodelled effect (a cable, a payload, elasticity) or a wrong URDF.
 constexpr double kPoorRelativeErrorPercent = 30.0;
+// A consistent estimate this many std from the unconstrained one: the
+// constraint binds, which the data alone would not do by chance.
+constexpr double kBindingShift = 2.0;
+
+// The consistent parameters replace the estimates; each interval moves with
+// its estimate (its width is the data's).
+void UseConsistent(SerialRobotIdentification& run) {
+  FitResult& fit = run.result.fit;
+  const ConsistentParameters& c = run.consistent;
+  if (!c.converged) {
+    fit.warnings.push_back(fmt::format("physical consistency: the consistent fit did not converge ({}); the values are "
+                                       "its last iterate (docs/models.md#physical-consistency)",
+                                       c.termination));
+  }
+  if (c.largest_shift > kBindingShift) {
+    fit.warnings.push_back(fmt::format(
+        "physical consistency: the unconstrained estimates lie outside the physically consistent set (chi^2 {:.3g}); "
+        "the consistent ones reported differ by up to {:.2g} std ({}): a model term the robot has and the model lacks, "
+        "a wrong URDF structure, or a torque column in other units (docs/models.md#physical-consistency)",
+        c.chi2, c.largest_shift, c.largest_shift_name));
+  } else {
+    fit.notes.push_back(fmt::format("physical consistency: the consistent parameters are within {:.2g} std of the "
+                                    "unconstrained estimates (chi^2 {:.3g}); they are the ones reported",
+                                    c.largest_shift, c.chi2));
+  }
+  for (std::size_t k = 0; k < fit.estimates.size(); ++k) {
+    ParameterEstimate& e = fit.estimates[k];
+    const double shift = c.base[k] - e.value;
+    e.value = c.base[k];
+    e.ci95_low += shift;
+    e.ci95_high += shift;
+  }
+}
 
 std::string Summary(const SerialRobotIdentification& run) {
   const SerialRobotFitOutput& r = run.result;
@@ -36,6 +72,7 @@ std::string Summary(const SerialRobotIdentification& run) {
     for (std::size_t c : r.base.never_moved) names.push_back(r.parameter_names[c]);
     out += fmt::format("never reach a joint torque (left out): {}\n", fmt::join(names, ", "));
   }
+  for (const std::string& note : r.fit.notes) out += "note: " + note + "\n";
   return out;
 }
 
@@ -56,6 +93,12 @@ SerialRobotIdentification IdentifySerialRobot(const UrdfRobot& robot, const std:
           "an effect the model lacks (elasticity, a cable, a payload), a wrong URDF, or a torque column in other units",
           j.joint, j.relative_error_percent));
     }
+  }
+  run.consistent = FitConsistentParameters(robot.robot, r.base, r.fit, options.prior_weight);
+  UseConsistent(run);
+  for (std::size_t j = 0; j < robot.robot.size(); ++j) {
+    run.section.bodies.push_back({robot.robot.joints[j].body, run.consistent.bodies[j]});
+    run.section.drives.push_back({robot.robot.joints[j].name, run.consistent.drives[j]});
   }
   run.section.urdf = urdf_path;
   run.section.urdf_sha256 = urdf_sha256;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "fit/consistent_parameters.h"
 #include "fit/serial_robot_fit.h"
 #include "io/serial_robot_section.h"
 #include "io/urdf_robot.h"
@@ -17,13 +18,17 @@ namespace driveid {
 
 struct SerialRobotIdentificationOptions {
   SerialRobotFitOptions fit;
+  /// The URDF prior's weight in the consistent fit, relative to one std of
+  /// the data (docs/models.md#physical-consistency).
+  double prior_weight = 1e-4;
   bool trace = false;  ///< fill the trace CSV's rows
   /// Every bound on these fields (‹field› names the option); see core/option_check.h.
   bool IsValid(std::string* error) const;
 };
 
 struct SerialRobotIdentification {
-  SerialRobotFitOutput result;
+  SerialRobotFitOutput result;  ///< its estimates the consistent ones (intervals moved with them)
+  ConsistentParameters consistent;
   SerialRobotSection section;  ///< for the parameter file
   std::string summary;         ///< per joint and per base parameter, as text
   std::string trace_csv;       ///< per log, time and joint: measured and model torque

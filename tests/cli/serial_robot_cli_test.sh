@@ -23,10 +23,16 @@ grep -q "^serial_robot:" arm.yaml && grep -q "urdf_sha256: [0-9a-f]\{64\}" arm.y
 grep -q "^    viscous_shoulder: {value" arm.yaml && ok || fail "the fit's estimates: $(grep -c value arm.yaml)"
 # Friction of the reference arm: viscous 3, 4, 1.5 N m s/rad; Coulomb 2, 3, 1 N m.
 value() { sed -n "s/^    $1: {value: \([-0-9.e]*\),.*/\1/p" arm.yaml; }
-near() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a > 0.9 * b && a < 1.1 * b) }'; }
+std_of() { sed -n "s/^    $1: {value: [-0-9.e]*, std: \([-0-9.e]*\),.*/\1/p" arm.yaml; }
+# Within 3 std of the truth, and the std below 10 % of it.
+near() { awk -v a="$1" -v s="$2" -v b="$3" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= 3 * s && s < 0.1 * b) }'; }
 for pair in viscous_yaw:3 viscous_shoulder:4 viscous_elbow:1.5 coulomb_yaw:2 coulomb_shoulder:3 coulomb_elbow:1; do
-  near "$(value "${pair%%:*}")" "${pair##*:}" && ok || fail "${pair%%:*} = $(value "${pair%%:*}"), truth ${pair##*:}"
+  key=${pair%%:*}
+  near "$(value "$key")" "$(std_of "$key")" "${pair##*:}" && ok ||
+    fail "$key = $(value "$key") +- $(std_of "$key"), truth ${pair##*:}"
 done
+grep -q "^  bodies:" arm.yaml && grep -q "^    - {joint: elbow, armature: " arm.yaml && ok || fail "the consistent bodies and drives"
+grep -q "^note: physical consistency" summary.txt && ok || fail "the consistency note: $(grep note summary.txt)"
 grep -q "rel. err %" summary.txt && grep -q "^shoulder " summary.txt && ok || fail "the summary: $(head -5 summary.txt)"
 [ "$(sed -n 3p arm_trace.csv | cut -d, -f3)" = "yaw" ] && ok || fail "the trace: $(head -3 arm_trace.csv)"
 "$bin" robot arm.csv --urdf arm.urdf --json -q > arm.json 2> /dev/null &&

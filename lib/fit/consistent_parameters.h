@@ -1,0 +1,41 @@
+// Physically consistent parameters of a serial robot from its base-parameter
+// fit (docs/models.md#physical-consistency). For a linear least-squares fit
+// the data's cost about the estimate beta_hat is exactly
+//   (beta - beta_hat)^T C^-1 (beta - beta_hat)   (C its covariance),
+// so the consistent fit needs no rows: every body's 10 parameters in the
+// log-Cholesky form (models/pseudo_inertia.h, physical by construction),
+// every drive's armature, viscous and Coulomb >= 0, beta = R theta
+// (fit/base_parameters.h), and a weak prior towards the URDF's inertials
+// (and zero drives) that only settles what the logs do not determine.
+// Ceres solves it. Reported: how far the unconstrained estimate lay from the
+// consistent set (its cost, in chi^2 units, and the largest shift of a base
+// parameter in its std).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/fit_result.h"
+#include "fit/base_parameters.h"
+#include "models/serial_robot.h"
+
+namespace driveid {
+
+struct ConsistentParameters {
+  std::vector<InertialParameters> bodies;      ///< per joint's body, physical
+  std::vector<SerialDriveParameters> drives;   ///< per joint
+  std::vector<double> base;                    ///< beta = R theta of these, per base parameter
+  double chi2 = 0.0;          ///< (beta - beta_hat)^T C^-1 (beta - beta_hat)
+  double largest_shift = 0.0; ///< max |beta_j - beta_hat_j| / std_j
+  std::string largest_shift_name;
+  bool converged = false;
+  int iterations = 0;
+  std::string termination;  ///< the solver's reason for stopping
+};
+
+/// `fit`: the base-parameter fit (estimates in `base` order, covariance);
+/// `prior_weight`: the prior's weight relative to one std of the data (> 0).
+ConsistentParameters FitConsistentParameters(const SerialRobot& robot, const BaseParameters& base,
+                                             const FitResult& fit, double prior_weight);
+
+}  // namespace driveid
