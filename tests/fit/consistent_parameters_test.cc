@@ -10,35 +10,20 @@
 #include "models/pseudo_inertia.h"
 #include "models/serial_dynamics.h"
 #include "support/reference_serial_arm.h"
+#include "support/serial_arm_robot.h"
 
 using namespace driveid;
 
 namespace {
 
-SerialRobot ToRobot(const reference::Arm& arm) {
-  SerialRobot robot;
-  robot.gravity = arm.gravity;
-  for (const auto& j : arm.joints) {
-    SerialJoint joint;
-    joint.name = j.name;
-    joint.body = j.body;
-    joint.parent = j.parent;
-    joint.origin.rotation = j.rotation;
-    joint.origin.translation = j.translation;
-    joint.axis = j.axis;
-    robot.joints.push_back(joint);
-    // The "URDF" values the prior pulls towards: 20 % off the truth.
-    robot.bodies.push_back(InertialFromCentre(1.2 * j.mass, 0.9 * j.centre, 1.2 * j.inertia_at_centre));
-  }
-  return robot;
-}
+// The "URDF" values the prior pulls towards: 20 % off the truth.
+SerialRobot ToRobot(const reference::Arm& arm) { return driveid::testing::ToSerialRobot(arm, nullptr, 1.2, 0.9); }
 
 SerialRobotFitOutput Fit(const SerialRobot& robot, const reference::Arm& arm) {
   reference::ArmLogOptions o;
   o.seed = 4;
   const reference::ArmLog a = reference::SimulateArm(arm, o);
-  SerialRobotLog log{"arm.csv", a.t, a.q, std::vector<std::vector<double>>(a.q.size()), a.tau};
-  return FitSerialRobot(robot, {log}, {});
+  return FitSerialRobot(robot, {driveid::testing::ToSerialLog(a)}, {});
 }
 
 }  // namespace

@@ -12,52 +12,24 @@
 #include "fit/serial_robot_fit.h"
 #include "models/serial_dynamics.h"
 #include "support/reference_serial_arm.h"
+#include "support/serial_arm_robot.h"
 
 using namespace driveid;
 
-namespace {
-
-SerialRobot ToRobot(const reference::Arm& arm, std::vector<SerialDriveParameters>* drives) {
-  SerialRobot robot;
-  robot.gravity = arm.gravity;
-  for (const auto& j : arm.joints) {
-    SerialJoint joint;
-    joint.name = j.name;
-    joint.body = j.body;
-    joint.parent = j.parent;
-    joint.origin.rotation = j.rotation;
-    joint.origin.translation = j.translation;
-    joint.axis = j.axis;
-    robot.joints.push_back(joint);
-    robot.bodies.push_back(InertialFromCentre(j.mass, j.centre, j.inertia_at_centre));
-    drives->push_back({j.armature, j.viscous, j.coulomb, j.offset});
-  }
-  return robot;
-}
-
-SerialRobotLog ToLog(const reference::ArmLog& a) {
-  SerialRobotLog log;
-  log.path = "arm.csv";
-  log.time = a.t;
-  log.position = a.q;
-  log.torque = a.tau;
-  log.rate.assign(a.q.size(), {});
-  return log;
-}
-
-}  // namespace
+using driveid::testing::ToSerialLog;
+using driveid::testing::ToSerialRobot;
 
 TEST_CASE("serial robot: base-parameter intervals hold the truth over seeds, from both sides") {
   const reference::Arm arm = reference::ThreeJointArm();
   std::vector<SerialDriveParameters> drives;
-  const SerialRobot robot = ToRobot(arm, &drives);
+  const SerialRobot robot = ToSerialRobot(arm, &drives);
   const Eigen::VectorXd theta = SerialParameterVector(robot, drives);
   int inside = 0, below = 0, above = 0, total = 0;
   const int seeds = 40;
   for (int seed = 1; seed <= seeds; ++seed) {
     reference::ArmLogOptions o;
     o.seed = static_cast<unsigned>(seed);
-    const SerialRobotFitOutput out = FitSerialRobot(robot, {ToLog(reference::SimulateArm(arm, o))}, {});
+    const SerialRobotFitOutput out = FitSerialRobot(robot, {ToSerialLog(reference::SimulateArm(arm, o))}, {});
     const Eigen::VectorXd truth = out.base.regroup * theta;
     for (std::size_t k = 0; k < out.fit.estimates.size(); ++k) {
       const ParameterEstimate& e = out.fit.estimates[k];
@@ -83,11 +55,11 @@ TEST_CASE("serial robot: base-parameter intervals hold the truth over seeds, fro
 TEST_CASE("serial robot: friction and offsets per joint recovered inside their intervals") {
   const reference::Arm arm = reference::ThreeJointArm();
   std::vector<SerialDriveParameters> drives;
-  const SerialRobot robot = ToRobot(arm, &drives);
+  const SerialRobot robot = ToSerialRobot(arm, &drives);
   reference::ArmLogOptions o;
   o.seed = 7;
   o.duration = 40.0;
-  const SerialRobotFitOutput out = FitSerialRobot(robot, {ToLog(reference::SimulateArm(arm, o))}, {});
+  const SerialRobotFitOutput out = FitSerialRobot(robot, {ToSerialLog(reference::SimulateArm(arm, o))}, {});
   const auto estimate = [&](const std::string& name) {
     for (const auto& e : out.fit.estimates) {
       if (e.name == name) return e;
