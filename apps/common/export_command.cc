@@ -14,6 +14,7 @@
 #include "export/parameter_export.h"
 #include "io/atomic_file.h"
 #include "io/parameter_file.h"
+#include "io/serial_robot_section.h"
 
 namespace driveid::cli {
 namespace {
@@ -23,27 +24,32 @@ struct ExportCommandOptions {
   std::string target;
   std::string joint = "axis";
   std::string output;
+  std::string urdf;
 };
 
 ExportCommandOptions export_options;
 
 CLI::App* SetupExportCommand(CLI::App& parent, ExportCommandOptions& options) {
   CLI::App* command = parent.add_subcommand(
-      "export", "Write a fitted axis' parameters for MuJoCo (MJCF), URDF, WPILib Java or C++, a C header or JSON, or an "
-                "elastic joint's for MJCF, URDF or a C header, with std and provenance in comments; what a target "
+      "export", "Write a fitted axis' parameters for MuJoCo (MJCF), URDF, WPILib Java or C++, a C header or JSON, an "
+                "elastic joint's for MJCF, URDF or a C header, or a serial robot's for URDF or MJCF, with std and provenance in comments; what a target "
                 "cannot hold is said in the file (docs/export.md)");
   command->add_option("params", options.params,
-                      "parameter file with an axis and a feedforward section (drivetrain-fit axis -o), or a joint "
-                      "section (drivetrain-fit joint -o)")
+                      "parameter file with an axis and a feedforward section (drivetrain-fit axis -o), a joint "
+                      "section (drivetrain-fit joint -o) or a serial_robot section (drivetrain-fit robot --urdf -o)")
       ->required();
   command->add_option("--to", options.target, ListExportTargets())->required()->check(CLI::IsMember(ExportTargetNames()));
   command->add_option("--joint", options.joint,
                       "joint name in MJCF/URDF, class prefix in Java, namespace prefix in C++, macro prefix in C (letters, digits, _)")
       ->capture_default_str();
+  command->add_option("--urdf", options.urdf,
+                      "serial robot: the URDF it was fitted on (default: the one its serial_robot section names; its "
+                      "SHA-256 must match)");
   command->add_option("-o,--output", options.output, "file to write (default: stdout); written atomically");
   command->footer("Example:\n  drivetrain-fit axis data/axis_steps.csv -o axis.yaml\n"
                   "  drivetrain-fit export axis.yaml --to mjcf --joint shoulder -o shoulder.xml\n"
-                  "  drivetrain-fit export data/joint_example_truth.yaml --to mjcf --joint elbow -o elbow.xml");
+                  "  drivetrain-fit export data/joint_example_truth.yaml --to mjcf --joint elbow -o elbow.xml\n"
+                  "  drivetrain-fit export arm.yaml --to urdf -o arm_identified.urdf   # a robot --urdf fit");
   return command;
 }
 
@@ -71,9 +77,13 @@ void RunExportCommand(const ExportCommandOptions& options, const std::string& co
   export_opts.joint = options.joint;
   export_opts.source = options.params;
   export_opts.command = command_line;
+  export_opts.urdf = options.urdf;
   RequireValid(export_opts);
-  CheckDistinctFiles({options.params}, {{"-o", options.output}});
+  CheckDistinctFiles({options.params, options.urdf}, {{"-o", options.output}});
   const ParameterFile file = ReadParameterFile(options.params);
+  if (const SerialRobotSection* robot = file.Find<SerialRobotSection>(); robot != nullptr && options.urdf.empty()) {
+    CheckDistinctFiles({robot->urdf}, {{"-o", options.output}});
+  }
   const std::string text = ExportParameters(file, ParseExportTarget(options.target), export_opts);
   if (options.output.empty()) WriteStdout(text);
   else WriteFileAtomically(options.output, ShowFlags(text));

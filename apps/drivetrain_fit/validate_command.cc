@@ -13,8 +13,6 @@
 #include "io/parameter_file.h"
 #include "io/step_log.h"
 #include "io/serial_robot_log.h"
-#include "io/sha256.h"
-#include "io/urdf_robot.h"
 #include "workflow/serial_robot_validation.h"
 #include "workflow/validation_run.h"
 
@@ -33,7 +31,8 @@ CLI::App* SetupValidateCommand(CLI::App& app, ValidateOptions& options) {
   command->add_option("logs", options.logs, "logs to predict (CSV, MAT, SysId JSON; docs/formats.md#logs)")->required();
   command->add_option("--model", options.model,
                       "axis, step or robot (default: the parameter file's one model section); joint: an elastic "
-                      "joint's MJCF driven by the motor torque")
+                      "joint's MJCF driven by the motor torque; robot with an MJCF: every joint's torque by MuJoCo's "
+                      "inverse dynamics")
       ->check(CLI::IsMember({"axis", "step", "joint", "robot"}));
   command->add_option("--urdf", options.urdf,
                       "robot: the URDF (default: the one the file's serial_robot section names; its SHA-256 must "
@@ -67,12 +66,17 @@ CLI::App* SetupValidateCommand(CLI::App& app, ValidateOptions& options) {
                       "MJCF: largest MuJoCo time step [s] (docs/export.md#validation-in-mujoco)")
       ->capture_default_str()
       ->check(FiniteAbove(0.0));
+  command->add_option("--window", options.window,
+                      "robot from an MJCF: the differentiator's half window [s] (default 0.05, as robot --urdf; a "
+                      "parameter file uses its own)")
+      ->check(FiniteAbove(0.0));
   AddValidationOutputOptions(*command, options.output);
   command->footer(
       "Example:\n  drivetrain-fit axis train.csv -o axis_fit.yaml\n"
       "  drivetrain-fit validate axis_fit.yaml held_out.csv --plot validation.png\n"
       "  drivetrain-fit export axis_fit.yaml --to mjcf -o axis.xml\n"
-      "  drivetrain-fit validate axis.xml held_out.csv   # in MuJoCo; compare: validate axis_fit.yaml --simulate");
+      "  drivetrain-fit validate axis.xml held_out.csv   # in MuJoCo; compare: validate axis_fit.yaml --simulate\n"
+      "  drivetrain-fit export arm.yaml --to mjcf -o arm.xml && drivetrain-fit validate arm.xml arm_log.csv --model robot");
   return command;
 }
 
@@ -95,8 +99,12 @@ void RunValidateCommand(const ValidateOptions& options, const std::string& comma
   if (!mjcf) file = ReadParameterFile(options.params);
   const ValidationModel model =
       ChooseValidationModel(file ? &*file : nullptr, mjcf, options.params, options.model);
+  if (!options.urdf.empty() && mjcf) throw OptionError("--urdf: an MJCF holds its robot's structure itself");
   if (!options.urdf.empty() && model != ValidationModel::kSerialRobot) {
     throw OptionError("--urdf: only a serial robot's parameter file (serial_robot section) is validated with a URDF");
+  }
+  if (options.window > 0.0 && !(mjcf && model == ValidationModel::kSerialRobot)) {
+    throw OptionError("--window: only a robot's MJCF is differentiated with it (a parameter file uses its own)");
   }
   if (options.simulate && model != ValidationModel::kAxis) {
     throw OptionError("--simulate: only an axis is simulated by validate --simulate (a drive train always is)");
@@ -108,7 +116,13 @@ void RunValidateCommand(const ValidateOptions& options, const std::string& comma
     return LoadLogs<Log>(options.logs, options.input, options.output, provenance, columns, make);
   };
   ValidationRun run;
-  if (mjcf && model == ValidationModel::kJoint) {
+  if (mjcf && model == ValidationModel::kSerialRobot) {
+    const SerialRobot robot = MjcfJoints(options.params);
+    const auto logs =
+        load(SerialRobotLogColumns(robot), [&](CsvLog csv) { return MakeSerialRobotLog(robot, std::move(csv)); });
+    const double window = options.window > 0.0 ? options.window : DefaultSerialHalfWindow();
+    run = RunMujocoSerialValidation(logs, options.params, robot, window);
+  } else if (mjcf && model == ValidationModel::kJoint) {
     const auto logs = load(JointLogColumns(), [](CsvLog csv) { return MakeJointLog(std::move(csv), 0.0); });
     run = RunMujocoJointValidation(logs, options.params, options.joint, options.mujoco_step);
   } else if (mjcf) {
@@ -116,13 +130,7 @@ void RunValidateCommand(const ValidateOptions& options, const std::string& comma
     run = RunMujocoValidation(logs, options.params, options.joint, options.mujoco_step);
   } else if (model == ValidationModel::kSerialRobot) {
     const SerialRobotSection& section = *file->Find<SerialRobotSection>();
-    const std::string urdf = options.urdf.empty() ? section.urdf : options.urdf;
-    const std::string text = ReadUrdfText(urdf);
-    if (!section.urdf_sha256.empty() && Sha256Hex(text) != section.urdf_sha256) {
-      throw InputError(fmt::format("{}: its SHA-256 differs from the one {} was fitted with ({}): another URDF", urdf,
-                                   options.params, section.urdf_sha256));
-    }
-    const SerialRobot robot = ParseUrdfRobot(urdf, text).robot;
+    const SerialRobot robot = ReadSectionUrdf(section, options.urdf, options.params).robot;
     const auto logs =
         load(SerialRobotLogColumns(robot), [&](CsvLog csv) { return MakeSerialRobotLog(robot, std::move(csv)); });
     run = RunSerialRobotValidation(logs, section, robot, options.params);

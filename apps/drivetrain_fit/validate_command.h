@@ -25,6 +25,7 @@ struct ValidateOptions {
   bool simulate = false;          ///< axis: position by simulation instead of torque by inverse dynamics
   std::string joint = "axis";     ///< MJCF: the joint driven by the logged effort
   double mujoco_step = 1e-3;      ///< MJCF: largest MuJoCo time step [s]
+  double window = 0.0;            ///< robot MJCF: differentiator half window [s] (0: the fit's default)
   FitOutputOptions output;        ///< --plot, --trace, --json, -q, --max-log-size (no -o)
 };
 

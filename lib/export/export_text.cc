@@ -66,6 +66,20 @@ std::string WithStd(const ParameterFile& file, const std::string& name, double v
   return fmt::format("{} = {:.6g} {} (not fitted)", name, value, unit);
 }
 
+std::string XmlAttribute(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
 std::string CodeCommentText(const std::string& text) {
   std::string out;
   for (char c : text) {

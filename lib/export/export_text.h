@@ -15,6 +15,7 @@ struct ExportOptions {
   std::string joint = "axis";  ///< joint / identifier name: [A-Za-z_][A-Za-z0-9_]*, at most 64 characters
   std::string source;          ///< the parameter file's path, for provenance comments
   std::string command;         ///< the command line, for provenance comments
+  std::string urdf;            ///< a serial robot's URDF (default: the path its serial_robot section names)
   /// The joint name's bound (‹joint›; see core/option_check.h).
   bool IsValid(std::string* error) const;
 };
@@ -37,6 +38,9 @@ std::string CommentText(const std::string& text);
 /// for a backslash), "*/" broken as "* /" and "/*" as "/ *", "--" kept (a command line stays
 /// one that can be pasted back), at most 300 characters.
 std::string CodeCommentText(const std::string& text);
+
+/// `text` inside a double-quoted XML attribute: &, <, >, " escaped.
+std::string XmlAttribute(const std::string& text);
 
 /// All 17 significant digits.
 std::string Number(double value);

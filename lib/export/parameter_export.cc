@@ -9,9 +9,11 @@
 
 #include "core/errors.h"
 #include "core/option_check.h"
+#include "io/serial_robot_section.h"
 #include "export/export_text.h"
 #include "export/feedback_export.h"
 #include "export/joint_export.h"
+#include "export/serial_robot_export.h"
 #include "export/wpilib_export.h"
 #include "models/axis.h"
 #include "models/axis_term.h"
@@ -39,7 +41,7 @@ AxisView ViewAxis(const ParameterFile& file) {
   const AxisSection* section = file.Find<AxisSection>();
   if (!section) {
     throw InputError("no 'axis' or 'joint' section: export takes the parameter file of an axis or an elastic-joint "
-                     "fit; the drive train, robot and C-drive have no export target yet (docs/export.md)");
+                     "fit; a serial robot (serial_robot section) exports to urdf and mjcf; the drive train, planar robot and C-drive have no export target yet (docs/export.md)");
   }
   AxisView v;
   const AxisSection& a = *section;
@@ -230,6 +232,7 @@ std::string ExportParameters(const ParameterFile& file, ExportTarget target, con
                                  "export it to {} (docs/export.md#c-drive)",
                                  ListExportTargets({ExportTarget::kCHeader, ExportTarget::kJson})));
   }
+  if (file.Find<SerialRobotSection>() != nullptr) return ExportSerialRobot(file, target, options);
   const JointSection* joint = file.Find<JointSection>();
   if (joint != nullptr && file.Find<AxisSection>() == nullptr) return ExportJoint(*joint, file, target, options);
   switch (target) {

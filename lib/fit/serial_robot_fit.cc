@@ -27,6 +27,8 @@ namespace {
 // outnumber the columns several times, so only true identities survive.
 constexpr int kStructureSamples = 8;
 constexpr unsigned kStructureSeed = 20260528u;
+// A joint slower than this fraction of its fastest stands still (AtStandstill).
+constexpr double kStandstillFraction = 0.01;
 
 void CheckLog(const SerialRobot& robot, const SerialRobotLog& log) {
   const std::size_t n = robot.size(), samples = log.time.size();
@@ -43,13 +45,10 @@ void CheckLog(const SerialRobot& robot, const SerialRobotLog& log) {
   }
 }
 
-// q, q', q'' at the samples where every joint's differentiator window is centred.
-struct Motion {
-  std::vector<std::size_t> sample;
-  std::vector<Eigen::VectorXd> q, qd, qdd;
-};
+}  // namespace
 
-Motion Differentiate(const SerialRobot& robot, const SerialRobotLog& log, double half_window) {
+SerialMotion DifferentiateSerialLog(const SerialRobot& robot, const SerialRobotLog& log, double half_window) {
+  CheckLog(robot, log);
   const std::size_t n = robot.size(), samples = log.time.size();
   std::vector<SignalDerivatives> position(n), rate(n);
   std::vector<char> valid(samples, 1);
@@ -59,7 +58,7 @@ Motion Differentiate(const SerialRobot& robot, const SerialRobotLog& log, double
     if (logged) rate[j] = EstimateDerivatives(log.time, log.rate[j], half_window);
     for (std::size_t k = 0; k < samples; ++k) valid[k] = valid[k] && position[j].valid[k] && (!logged || rate[j].valid[k]);
   }
-  Motion m;
+  SerialMotion m;
   for (std::size_t k = 0; k < samples; ++k) {
     if (!valid[k]) continue;
     Eigen::VectorXd q(static_cast<Eigen::Index>(n)), qd = q, qdd = q;
@@ -73,6 +72,7 @@ Motion Differentiate(const SerialRobot& robot, const SerialRobotLog& log, double
       qdd(i) = logged ? rate[j].rate[k] : position[j].acceleration[k];
     }
     m.sample.push_back(k);
+    m.time.push_back(log.time[k]);
     m.q.push_back(q);
     m.qd.push_back(qd);
     m.qdd.push_back(qdd);
@@ -80,8 +80,10 @@ Motion Differentiate(const SerialRobot& robot, const SerialRobotLog& log, double
   return m;
 }
 
+namespace {
+
 // The base regressor's rows per joint along a motion.
-std::vector<Eigen::MatrixXd> BaseRows(const SerialRobot& robot, const BaseParameters& base, const Motion& m) {
+std::vector<Eigen::MatrixXd> BaseRows(const SerialRobot& robot, const BaseParameters& base, const SerialMotion& m) {
   const std::size_t n = robot.size(), r = base.base.size();
   std::vector<Eigen::MatrixXd> rows(n, Eigen::MatrixXd(static_cast<Eigen::Index>(m.sample.size()), static_cast<Eigen::Index>(r)));
   Eigen::MatrixXd y(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(kSerialColumnsPerJoint * n));
@@ -146,17 +148,45 @@ struct Rows {
   std::size_t samples = 0;
 };
 
+// Joint j's samples at standstill: slower than kStandstillFraction of its
+// fastest. There a drive sticks — static friction holds any torque up to
+// its breakaway, a position loop dithers about a stop, a harmonic drive's
+// friction passes smoothly through zero — which the model's tau_c sgn q'
+// cannot describe; on the closed-loop arm of the tests such rows biased
+// viscous friction by +10 % and Coulomb by -7 % (docs/models.md#serial-robot-identification).
+// The joint's rows there are left out (its torque row only).
+std::vector<char> AtStandstill(const SerialMotion& m, std::size_t j) {
+  const auto i = static_cast<Eigen::Index>(j);
+  double fastest = 0.0;
+  for (const Eigen::VectorXd& v : m.qd) fastest = std::max(fastest, std::abs(v(i)));
+  std::vector<char> slow(m.sample.size(), 0);
+  for (std::size_t k = 0; k < slow.size(); ++k) slow[k] = std::abs(m.qd[k](i)) < kStandstillFraction * fastest;
+  return slow;
+}
+
+// Drops the rows and torques where `drop` is set.
+void KeepMoving(const std::vector<char>& drop, Eigen::MatrixXd& x, std::vector<double>& tau) {
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < drop.size(); ++k) {
+    if (drop[k]) continue;
+    x.row(static_cast<Eigen::Index>(kept)) = x.row(static_cast<Eigen::Index>(k));
+    tau[kept++] = tau[k];
+  }
+  x.conservativeResize(static_cast<Eigen::Index>(kept), Eigen::NoChange);
+  tau.resize(kept);
+}
+
 // `shift`: the torque read that many sample periods later (its timing is
 // known to within a sample: sampled at the stamp, or held since it).
+// Each joint's rows at its standstill are left out (AtStandstill).
 Rows BuildRows(const SerialRobot& robot, const BaseParameters& base, const std::vector<SerialRobotLog>& logs,
                double half_window, double shift) {
   const std::size_t n = robot.size();
   Rows rows;
   rows.tau.resize(n);
   for (const SerialRobotLog& log : logs) {
-    CheckLog(robot, log);
-    const Motion m = Differentiate(robot, log, half_window);
-    rows.x.push_back(BaseRows(robot, base, m));
+    const SerialMotion m = DifferentiateSerialLog(robot, log, half_window);
+    std::vector<Eigen::MatrixXd> x = BaseRows(robot, base, m);
     std::vector<double> at;
     if (shift != 0.0) {
       const double step = MedianStep(log.time);
@@ -169,8 +199,10 @@ Rows BuildRows(const SerialRobot& robot, const BaseParameters& base, const std::
       } else {
         for (std::size_t k : m.sample) t.push_back(log.torque[j][k]);
       }
+      KeepMoving(AtStandstill(m, j), x[j], t);
       rows.tau[j].push_back(std::move(t));
     }
+    rows.x.push_back(std::move(x));
     rows.samples += m.sample.size();
   }
   return rows;
@@ -213,15 +245,17 @@ std::vector<double> JointNoise(const Rows& rows, std::size_t r) {
   std::vector<double> sigma(n);
   for (std::size_t j = 0; j < n; ++j) {
     double e2 = 0.0, t2 = 0.0;
+    std::size_t used = 0;
     for (std::size_t l = 0; l < rows.x.size(); ++l) {
       const Eigen::VectorXd model = rows.x[l][j] * first;
+      used += static_cast<std::size_t>(model.size());
       for (Eigen::Index k = 0; k < model.size(); ++k) {
         const double t = rows.tau[j][l][static_cast<std::size_t>(k)];
         e2 += (t - model(k)) * (t - model(k));
         t2 += t * t;
       }
     }
-    const double count = static_cast<double>(std::max<std::size_t>(1, rows.samples));
+    const double count = static_cast<double>(std::max<std::size_t>(1, used));
     sigma[j] = std::max(std::sqrt(e2 / count), 1e-9 * std::sqrt(t2 / count) + 1e-300);
   }
   return sigma;
@@ -313,20 +347,27 @@ SerialRobotFitOutput FitSerialRobot(const SerialRobot& robot, const std::vector<
     free.push_back({names[c], v, -std::numeric_limits<double>::infinity(), std::abs(v) > 0.0 ? std::abs(v) : 1.0});
   }
   out.fit = regression.FitAndRelease(free, {}, options.fit);
+  // The channels' residuals were weighted by 1 / sigma_j: their rmse back in
+  // the joint's unit [N m or N] (fit %, relative error and lag-1 are ratios).
+  for (std::size_t j = 0; j < n && j < out.fit.channels.size(); ++j) out.fit.channels[j].rmse *= sigma[j];
   if (!out.fit.singular_values.empty() && out.fit.singular_values.back() > 0.0) {
     out.condition_number = out.fit.singular_values.front() / out.fit.singular_values.back();
   }
   AddProcessingUncertainty(robot, out.base, logs, options, sigma, out.fit);
-  Eigen::VectorXd estimate(static_cast<Eigen::Index>(r));
-  for (std::size_t c = 0; c < r; ++c) estimate(static_cast<Eigen::Index>(c)) = out.fit.estimates[c].value;
-  for (std::size_t j = 0; j < n; ++j) {
-    std::vector<double> measured, predicted;
-    for (std::size_t l = 0; l < logs.size(); ++l) {
-      const Eigen::VectorXd model = rows.x[l][j] * estimate;
-      measured.insert(measured.end(), rows.tau[j][l].begin(), rows.tau[j][l].end());
-      predicted.insert(predicted.end(), model.data(), model.data() + model.size());
+  // Each joint's statistics over every sample, standstill included: what
+  // `validate` reports for the same log.
+  std::vector<double> fitted;
+  for (const ParameterEstimate& e : out.fit.estimates) fitted.push_back(e.value);
+  std::vector<std::vector<double>> measured(n), predicted(n);
+  for (const SerialRobotLog& log : logs) {
+    const SerialPrediction p = PredictSerialRobot(robot, out.base, fitted, log, options.half_window);
+    for (std::size_t j = 0; j < n; ++j) {
+      measured[j].insert(measured[j].end(), p.measured[j].begin(), p.measured[j].end());
+      predicted[j].insert(predicted[j].end(), p.predicted[j].begin(), p.predicted[j].end());
     }
-    out.joints.push_back(Statistics(robot.joints[j].name, measured, predicted));
+  }
+  for (std::size_t j = 0; j < n; ++j) {
+    out.joints.push_back(Statistics(robot.joints[j].name, measured[j], predicted[j]));
     out.joints.back().weight_std = sigma[j];
   }
   return out;
@@ -334,13 +375,12 @@ SerialRobotFitOutput FitSerialRobot(const SerialRobot& robot, const std::vector<
 
 SerialPrediction PredictSerialRobot(const SerialRobot& robot, const BaseParameters& base,
                                     const std::vector<double>& values, const SerialRobotLog& log, double half_window) {
-  CheckLog(robot, log);
   if (values.size() != base.base.size()) throw std::logic_error("PredictSerialRobot: one value per base parameter");
-  const Motion m = Differentiate(robot, log, half_window);
+  const SerialMotion m = DifferentiateSerialLog(robot, log, half_window);
   const std::vector<Eigen::MatrixXd> rows = BaseRows(robot, base, m);
   const Eigen::Map<const Eigen::VectorXd> beta(values.data(), static_cast<Eigen::Index>(values.size()));
   SerialPrediction p;
-  for (std::size_t k : m.sample) p.time.push_back(log.time[k]);
+  p.time = m.time;
   for (std::size_t j = 0; j < robot.size(); ++j) {
     std::vector<double> measured, predicted;
     for (std::size_t k = 0; k < m.sample.size(); ++k) {

@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "core/fit_result.h"
 #include "core/fit_options.h"
 #include "fit/base_parameters.h"
@@ -51,6 +53,16 @@ struct SerialRobotFitOutput {
 /// (naming the base parameters) when the logs do not determine them.
 SerialRobotFitOutput FitSerialRobot(const SerialRobot& robot, const std::vector<SerialRobotLog>& logs,
                                     const SerialRobotFitOptions& options);
+
+/// A log's q, q', q'' at the samples where every joint's differentiator
+/// window (half width `half_window` [s]) is centred: rates as logged where
+/// logged. InputError for a log that does not fit the robot.
+struct SerialMotion {
+  std::vector<std::size_t> sample;  ///< index into the log
+  std::vector<double> time;         ///< [s]
+  std::vector<Eigen::VectorXd> q, qd, qdd;
+};
+SerialMotion DifferentiateSerialLog(const SerialRobot& robot, const SerialRobotLog& log, double half_window);
 
 /// The base parameters of `robot` (its structure, on random motions).
 BaseParameters SerialBaseParameters(const SerialRobot& robot);

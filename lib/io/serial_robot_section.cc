@@ -8,6 +8,8 @@
 
 #include "core/errors.h"
 #include "io/parameter_file.h"
+#include "io/sha256.h"
+#include "io/urdf_robot.h"
 
 namespace driveid {
 namespace {
@@ -211,6 +213,18 @@ std::string Format(const ParameterFile& file) {
 }
 
 }  // namespace
+
+SectionUrdf ReadSectionUrdf(const SerialRobotSection& section, const std::string& given, const std::string& params_path) {
+  SectionUrdf out;
+  out.path = given.empty() ? section.urdf : given;
+  out.text = ReadUrdfText(out.path);
+  if (!section.urdf_sha256.empty() && Sha256Hex(out.text) != section.urdf_sha256) {
+    throw InputError(fmt::format("{}: its SHA-256 differs from the one {} was fitted with ({}): another URDF", out.path,
+                                 params_path, section.urdf_sha256));
+  }
+  out.robot = ParseUrdfRobot(out.path, out.text).robot;
+  return out;
+}
 
 SectionHandler SerialRobotSectionHandler() {
   return {SerialRobotSection::kSectionName,

@@ -46,6 +46,15 @@ struct SerialRobotSection {
   std::vector<SerialDriveEntry> drives;
 };
 
+/// The URDF a section was fitted on: `given` when not empty, else the path
+/// the section names; its text and robot. InputError when its SHA-256 is
+/// not the section's (naming both files).
+struct SectionUrdf {
+  std::string path, text;
+  SerialRobot robot;
+};
+SectionUrdf ReadSectionUrdf(const SerialRobotSection& section, const std::string& given, const std::string& params_path);
+
 /// Its reader and writer (registered in io/parameter_file.cc).
 SectionHandler SerialRobotSectionHandler();
 

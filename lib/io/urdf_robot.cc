@@ -172,7 +172,11 @@ UrdfRobot ParseUrdfRobot(const std::string& path, const std::string& text) {
       if (own[0] > 0.0) on_base.push_back(link.name);
     } else {
       Add(out.robot.bodies[static_cast<std::size_t>(here.body)], TransformInertial(own, here.in_body));
-      if (link.name != out.robot.joints[static_cast<std::size_t>(here.body)].body) merged.push_back(link.name);
+      SerialJoint& mover = out.robot.joints[static_cast<std::size_t>(here.body)];
+      if (link.name != mover.body) {
+        merged.push_back(link.name);
+        mover.carried.push_back(link.name);
+      }
     }
     std::vector<urdf::JointConstSharedPtr> children(link.child_joints.begin(), link.child_joints.end());
     std::sort(children.begin(), children.end(), [&](const auto& a, const auto& b) {

@@ -61,6 +61,7 @@ struct SerialJoint {
   double velocity_limit = std::numeric_limits<double>::infinity();  ///< [rad/s or m/s]
   double effort_limit = std::numeric_limits<double>::infinity();    ///< [N m or N]
   std::string body;  ///< name of the link it moves (the first, if links were merged)
+  std::vector<std::string> carried;  ///< the links merged into its body through fixed joints
 };
 
 struct SerialRobot {

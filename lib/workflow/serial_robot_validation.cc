@@ -8,6 +8,7 @@
 #include "fit/adequacy.h"
 #include "fit/serial_robot_fit.h"
 #include "models/serial_dynamics.h"
+#include "sim/mujoco_inverse.h"
 
 namespace driveid {
 namespace {
@@ -39,6 +40,19 @@ std::vector<double> MatchedValues(const SerialRobotSection& section, const BaseP
   return values;
 }
 
+ValidatedLog Validated(const std::string& path, const std::string& joint, const std::vector<double>& time,
+                       std::vector<double> measured, std::vector<double> model) {
+  ValidatedLog v;
+  v.time = time;
+  v.measured = std::move(measured);
+  v.model = std::move(model);
+  std::vector<double> residual(v.time.size());
+  for (std::size_t k = 0; k < residual.size(); ++k) residual[k] = v.measured[k] - v.model[k];
+  v.stats = DescribeResiduals(fmt::format("{}:tau_{}", path, joint), v.measured.data(), residual.data(),
+                              static_cast<int>(residual.size()));
+  return v;
+}
+
 }  // namespace
 
 ValidationRun RunSerialRobotValidation(const std::vector<SerialRobotLog>& logs, const SerialRobotSection& section,
@@ -52,15 +66,45 @@ ValidationRun RunSerialRobotValidation(const std::vector<SerialRobotLog>& logs, 
   for (const SerialRobotLog& log : logs) {
     const SerialPrediction p = PredictSerialRobot(robot, base, values, log, section.half_window);
     for (std::size_t j = 0; j < robot.size(); ++j) {
-      ValidatedLog v;
-      v.time = p.time;
-      v.measured = p.measured[j];
-      v.model = p.predicted[j];
-      std::vector<double> residual(v.time.size());
-      for (std::size_t k = 0; k < residual.size(); ++k) residual[k] = v.measured[k] - v.model[k];
-      v.stats = DescribeResiduals(fmt::format("{}:tau_{}", log.path, robot.joints[j].name), v.measured.data(),
-                                  residual.data(), static_cast<int>(residual.size()));
-      run.logs.push_back(std::move(v));
+      run.logs.push_back(Validated(log.path, robot.joints[j].name, p.time, p.measured[j], p.predicted[j]));
+    }
+  }
+  RequireValidated(run.logs);
+  return run;
+}
+
+SerialRobot MjcfJoints(const std::string& mjcf) {
+  SerialRobot robot;
+  for (const std::string& name : MujocoJointNames(mjcf)) {
+    SerialJoint joint;
+    joint.name = name;
+    robot.joints.push_back(joint);
+  }
+  robot.bodies.resize(robot.joints.size());
+  return robot;
+}
+
+double DefaultSerialHalfWindow() { return SerialRobotFitOptions{}.half_window; }
+
+ValidationRun RunMujocoSerialValidation(const std::vector<SerialRobotLog>& logs, const std::string& mjcf,
+                                        const SerialRobot& joints, double half_window) {
+  std::vector<std::string> names;
+  for (const SerialJoint& j : joints.joints) names.push_back(j.name);
+  ValidationRun run;
+  run.title = "serial robot validation in MuJoCo: joint torques predicted from the MJCF";
+  run.unit = "torque [N m or N]";
+  for (const SerialRobotLog& log : logs) {
+    const SerialMotion m = DifferentiateSerialLog(joints, log, half_window);
+    if (m.sample.empty()) {
+      throw InputError(fmt::format("{}: shorter than the differentiator's window ({} s each side)", log.path, half_window));
+    }
+    MujocoInverseResponse r = MujocoInverseDynamics(mjcf, names, m.q, m.qd, m.qdd);
+    run.method = fmt::format("serial robot in MuJoCo {}: each joint's control by MuJoCo's inverse dynamics "
+                             "(mj_inverse) of the logged motion (docs/export.md#validation-in-mujoco)", r.library);
+    for (std::size_t j = 0; j < names.size(); ++j) {
+      std::vector<double> measured;
+      for (std::size_t k : m.sample) measured.push_back(log.torque[j][k]);
+      run.logs.push_back(Validated(log.path, names[j], m.time, std::move(measured), std::move(r.control[j])));
     }
   }
   RequireValidated(run.logs);

@@ -20,4 +20,16 @@ namespace driveid {
 ValidationRun RunSerialRobotValidation(const std::vector<SerialRobotLog>& logs, const SerialRobotSection& section,
                                        const SerialRobot& robot, const std::string& path);
 
+/// The MJCF's hinge and slide joints as a robot's joints (names only: what
+/// a log's columns need), in the model's order.
+SerialRobot MjcfJoints(const std::string& mjcf);
+/// The differentiator's half window [s] a robot --urdf fit uses by default.
+double DefaultSerialHalfWindow();
+
+/// The same from an MJCF in MuJoCo (sim/mujoco_inverse.h): `joints` names
+/// the MJCF's joints (the logs' columns), the logs differentiated as a fit
+/// with half window `half_window` [s] does.
+ValidationRun RunMujocoSerialValidation(const std::vector<SerialRobotLog>& logs, const std::string& mjcf,
+                                        const SerialRobot& joints, double half_window);
+
 }  // namespace driveid

@@ -24,11 +24,12 @@ bool AxisValidationOptions::IsValid(std::string* error) const {
 ValidationModel ChooseValidationModel(const ParameterFile* file, bool mjcf, const std::string& path,
                                       const std::string& requested) {
   if (mjcf) {
-    if (!requested.empty() && requested != "axis" && requested != "joint") {
-      throw OptionError(fmt::format("‹model› {}: an MJCF is validated as an axis or an elastic joint", requested));
+    if (!requested.empty() && requested != "axis" && requested != "joint" && requested != "robot") {
+      throw OptionError(fmt::format("‹model› {}: an MJCF is validated as an axis, an elastic joint or a robot", requested));
     }
     std::string why;
     if (!MujocoAvailable(&why)) throw InputError(fmt::format("{}: {}", path, why));
+    if (requested == "robot") return ValidationModel::kSerialRobot;
     return requested == "joint" ? ValidationModel::kJoint : ValidationModel::kAxis;
   }
   const bool axis = file != nullptr && file->Find<AxisSection>() != nullptr;

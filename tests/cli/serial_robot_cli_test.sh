@@ -5,11 +5,14 @@
 # stamps): the parameter file holds the serial_robot section and the fit's
 # estimates, each joint's friction is near the truth, JSON and trace are
 # written; refusals name what is wrong.
-# Usage: serial_robot_cli_test.sh DRIVETRAIN_FIT SERIAL_ARM_LOG SRC
+# The identified arm exported as URDF and MJCF, and the MJCF validated in
+# MuJoCo (where the build has it) alike the parameter file.
+# Usage: serial_robot_cli_test.sh DRIVETRAIN_FIT SERIAL_ARM_LOG SRC [HAVE_MUJOCO]
 set -u
 bin="$1"
 writer="$2"
 src="$3"
+mujoco="${4:-OFF}"
 program=drivetrain-fit
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -51,6 +54,41 @@ awk '/^held_out.csv:tau_/ { if (!($4 > 70 && $5 < 20)) bad = 1 } END { exit bad 
 sed 's/mass value="2"/mass value="2.5"/' arm.urdf > other.urdf
 EXPECT_OUTPUT=--trace expect 3 "other.urdf: its SHA-256 differs" -- validate arm.yaml held_out.csv --urdf other.urdf
 EXPECT_OUTPUT=--trace expect 2 "--urdf: only a serial robot" -- validate "$src/data/axis_example.yaml" held_out.csv --urdf arm.urdf
+
+# Exports of the identified arm: the URDF reads back as a robot and is fitted
+# on; the MJCF, in MuJoCo, predicts the held-out torques as the file does.
+"$bin" export arm.yaml --to urdf -o identified.urdf 2> err.txt && grep -q '<dynamics damping=' identified.urdf && ok ||
+  fail "export --to urdf: $(cat err.txt)"
+"$bin" robot arm.csv --urdf identified.urdf -q -o refit.yaml 2> err.txt && ok || fail "fit on the exported URDF: $(cat err.txt)"
+"$bin" export arm.yaml --to mjcf -o identified.xml 2> err.txt && grep -q 'frictionloss=' identified.xml && ok ||
+  fail "export --to mjcf: $(cat err.txt)"
+cp arm.urdf kept.urdf
+"$bin" export arm.yaml --to urdf -o arm.urdf 2> err.txt; [ $? = 2 ] && grep -q "arm.urdf: is an input" err.txt &&
+  cmp -s arm.urdf kept.urdf && ok || fail "export over the fitted-on URDF: $(cat err.txt)"
+expect 3 "a serial robot exports to urdf or mjcf" -- export arm.yaml --to wpilib-java
+if [ "$mujoco" = ON ]; then
+  "$bin" validate identified.xml held_out.csv --model robot > mujoco.txt 2> err.txt && ok ||
+    fail "validate the MJCF in MuJoCo: $(cat err.txt)"
+  # Each joint's relative error within 10 % (relative) of the parameter file's.
+  paste <(grep '^held_out.csv:tau_' validation.txt) <(grep '^held_out.csv:tau_' mujoco.txt) |
+    awk '{ if ($5 <= 0 || $11 > 1.1 * $5 || $11 < 0.9 * $5) bad = 1 } END { exit bad }' && ok ||
+    fail "MuJoCo's prediction differs from the file's: $(cat validation.txt mujoco.txt)"
+  EXPECT_OUTPUT=--trace expect 2 "--urdf: an MJCF holds" -- validate identified.xml held_out.csv --model robot --urdf arm.urdf
+  EXPECT_OUTPUT=--trace expect 2 "--window: only a robot's MJCF" -- validate arm.yaml held_out.csv --window 0.1
+fi
+
+# The next experiment: a designed trajectory within the URDF's limits.
+"$bin" design robot --params arm.yaml --duration 20 --rate 200 --evaluations 300 -o next.csv > design.txt 2> err.txt &&
+  ok || fail "design robot: $(cat err.txt)"
+[ "$(grep -v '^#' next.csv | head -1)" = "t,q_yaw,qd_yaw,qdd_yaw,q_shoulder,qd_shoulder,qdd_shoulder,q_elbow,qd_elbow,qdd_elbow" ] &&
+  [ "$(grep -vc '^#' next.csv)" = 4002 ] && ok || fail "the trajectory CSV: $(head -4 next.csv)"
+awk -F, '!/^[#t]/ { for (c = 2; c <= NF; c += 3) if ($c < -3 || $c > 3 || $(c+1) > 3 || $(c+1) < -3) bad = 1 } END { exit bad }' next.csv &&
+  ok || fail "the URDF's position and velocity limits (3 rad, 3 rad/s)"
+grep -q "^condition number of the column-normalised base regressor: " design.txt && grep -q "^yaw " design.txt && ok ||
+  fail "the design's summary: $(head -5 design.txt)"
+expect 2 "give --urdf .* or --params" -- design robot --duration 10
+expect 2 "--noise: without a prior fit .--params. give" -- design robot --urdf arm.urdf --duration 10
+expect 2 "--noise: 2 values for 3 joints" -- design robot --urdf arm.urdf --duration 10 --noise 1,2
 
 # Refusals.
 expect 2 "give --urdf .* or --params" -- robot arm.csv

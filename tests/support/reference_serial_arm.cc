@@ -166,36 +166,33 @@ VectorXd ArmTorque(const Arm& arm, const VectorXd& q, const VectorXd& qd, const 
   return tau;
 }
 
-ArmLog SimulateArm(const Arm& arm, const ArmLogOptions& o) {
-  const std::size_t n = arm.joints.size();
-  std::mt19937 rng(o.seed);
-  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  std::normal_distribution<double> normal;
-  // A Fourier trajectory per joint; its coefficients fixed (seed 99) so that
-  // every log excites the arm alike and only the noise differs.
-  std::mt19937 shape(99);
-  std::uniform_real_distribution<double> coefficient(-1.0, 1.0);
-  const int harmonics = 5;
-  std::vector<std::vector<double>> a(n, std::vector<double>(harmonics)), b = a;
-  for (std::size_t j = 0; j < n; ++j) {
-    for (int l = 0; l < harmonics; ++l) {
-      a[j][static_cast<std::size_t>(l)] = o.amplitude * coefficient(shape) / (l + 1);
-      b[j][static_cast<std::size_t>(l)] = o.amplitude * coefficient(shape) / (l + 1);
+namespace {
+
+// The built-in reference: a Fourier trajectory per joint whose
+// coefficients are fixed (seed 99), so every log excites the arm alike and
+// only the noise differs; or the options' own trajectory.
+class Reference {
+ public:
+  Reference(std::size_t joints, const ArmLogOptions& o) : o_(o), a_(joints, std::vector<double>(kHarmonics)), b_(a_) {
+    std::mt19937 shape(99);
+    std::uniform_real_distribution<double> coefficient(-1.0, 1.0);
+    for (std::size_t j = 0; j < joints; ++j) {
+      for (int l = 0; l < kHarmonics; ++l) {
+        a_[j][static_cast<std::size_t>(l)] = o.amplitude * coefficient(shape) / (l + 1);
+        b_[j][static_cast<std::size_t>(l)] = o.amplitude * coefficient(shape) / (l + 1);
+      }
     }
   }
-  ArmLog log;
-  log.q.assign(n, {});
-  log.tau.assign(n, {});
-  std::vector<double> noise(n, 0.0);
-  const double period = 1.0 / o.rate, count = o.encoder_counts / (2.0 * M_PI);
-  for (int k = 0; k * period <= o.duration; ++k) {
-    const double t = k * period + o.jitter * period * uniform(rng);
-    VectorXd q(static_cast<Eigen::Index>(n)), qd = q, qdd = q;
-    for (std::size_t j = 0; j < n; ++j) {
+  void At(double t, VectorXd& q, VectorXd& qd, VectorXd& qdd) const {
+    if (o_.trajectory) {
+      o_.trajectory(t, q, qd, qdd);
+      return;
+    }
+    for (std::size_t j = 0; j < a_.size(); ++j) {
       double p = 0.0, v = 0.0, acc = 0.0;
-      for (int l = 0; l < harmonics; ++l) {
-        const double w = 2.0 * M_PI * o.base_frequency * (l + 1);
-        const double al = a[j][static_cast<std::size_t>(l)], bl = b[j][static_cast<std::size_t>(l)];
+      for (int l = 0; l < kHarmonics; ++l) {
+        const double w = 2.0 * M_PI * o_.base_frequency * (l + 1);
+        const double al = a_[j][static_cast<std::size_t>(l)], bl = b_[j][static_cast<std::size_t>(l)];
         p += al * std::sin(w * t) + bl * (std::cos(w * t) - 1.0);
         v += w * (al * std::cos(w * t) - bl * std::sin(w * t));
         acc += -w * w * (al * std::sin(w * t) + bl * std::cos(w * t));
@@ -204,15 +201,107 @@ ArmLog SimulateArm(const Arm& arm, const ArmLogOptions& o) {
       qd(static_cast<Eigen::Index>(j)) = v;
       qdd(static_cast<Eigen::Index>(j)) = acc;
     }
+  }
+
+ private:
+  static constexpr int kHarmonics = 5;
+  const ArmLogOptions& o_;
+  std::vector<std::vector<double>> a_, b_;
+};
+
+// Stamped to 1 ms (to a tenth of the period above 500 Hz, where 1 ms would repeat stamps).
+double Stamp(double t, double rate) {
+  const double stamp = rate <= 500.0 ? 1e-3 : 0.1 / rate;
+  return std::round(t / stamp) * stamp;
+}
+
+}  // namespace
+
+ArmLog SimulateArm(const Arm& arm, const ArmLogOptions& o) {
+  const std::size_t n = arm.joints.size();
+  std::mt19937 rng(o.seed);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  std::normal_distribution<double> normal;
+  const Reference reference(n, o);
+  ArmLog log;
+  log.q.assign(n, {});
+  log.tau.assign(n, {});
+  std::vector<double> noise(n, 0.0);
+  const double period = 1.0 / o.rate, count = o.encoder_counts / (2.0 * M_PI);
+  for (int k = 0; k * period <= o.duration; ++k) {
+    const double t = k * period + o.jitter * period * uniform(rng);
+    VectorXd q(static_cast<Eigen::Index>(n)), qd = q, qdd = q;
+    reference.At(t, q, qd, qdd);
     const VectorXd tau = ArmTorque(arm, q, qd, qdd);
-    // Stamped to 1 ms (to a tenth of the period above 500 Hz, where 1 ms
-    // would repeat stamps).
-    const double stamp = o.rate <= 500.0 ? 1e-3 : 0.1 / o.rate;
-    log.t.push_back(std::round(t / stamp) * stamp);
+    log.t.push_back(Stamp(t, o.rate));
     for (std::size_t j = 0; j < n; ++j) {
       noise[j] = o.noise_pole * noise[j] + o.torque_noise * normal(rng);
       log.q[j].push_back(std::round(q(static_cast<Eigen::Index>(j)) * count) / count);
       log.tau[j].push_back(tau(static_cast<Eigen::Index>(j)) + noise[j]);
+    }
+  }
+  return log;
+}
+
+ArmLog SimulateArmClosedLoop(const Arm& arm, const ArmLogOptions& o, const ClosedLoopOptions& loop) {
+  const std::size_t n = arm.joints.size();
+  const auto size = static_cast<Eigen::Index>(n);
+  std::mt19937 rng(o.seed);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  std::normal_distribution<double> normal;
+  const Reference reference(n, o);
+  Arm model = arm;  // the controller's model: masses and inertias off, no friction
+  for (ArmJoint& j : model.joints) {
+    j.mass *= loop.model_scale;
+    j.inertia_at_centre *= loop.model_scale;
+    j.armature *= loop.model_scale;
+    j.viscous = j.coulomb = j.offset = 0.0;
+  }
+  VectorXd q(size), qd(size), qdd(size), qr(size), qdr(size), qddr(size);
+  reference.At(0.0, q, qd, qdd);
+  const VectorXd inertia = MassMatrix(arm, q).diagonal();
+  const double w = 2.0 * M_PI * loop.bandwidth, h = 1.0 / loop.control_rate / loop.substeps;
+  const VectorXd kp = inertia * w * w, kd = inertia * 2.0 * loop.damping * w;
+  // q'' = M(q)^-1 (u - (C q' + g + friction)(q, q')): ArmTorque at q'' = 0 is the rest.
+  const auto accel = [&](const VectorXd& x, const VectorXd& v, const VectorXd& u) -> VectorXd {
+    return MassMatrix(arm, x).ldlt().solve(u - ArmTorque(arm, x, v, VectorXd::Zero(size)));
+  };
+  const double count = o.encoder_counts / (2.0 * M_PI);
+  const auto encoder = [&](const VectorXd& x) {
+    VectorXd m(size);
+    for (Eigen::Index j = 0; j < size; ++j) m(j) = std::round(x(j) * count) / count;
+    return m;
+  };
+  const long per_log = std::max(1L, std::lround(loop.control_rate / o.rate));
+  ArmLog log;
+  log.q.assign(n, {});
+  log.tau.assign(n, {});
+  std::vector<double> noise(n, 0.0);
+  VectorXd measured = encoder(q), previous = measured;
+  for (long tick = 0; static_cast<double>(tick) / loop.control_rate <= o.duration; ++tick) {
+    const double t = static_cast<double>(tick) / loop.control_rate;
+    reference.At(t, qr, qdr, qddr);
+    measured = encoder(q);
+    const VectorXd rate = (measured - previous) * loop.control_rate;
+    previous = measured;
+    const VectorXd u = ArmTorque(model, qr, qdr, qddr) + kp.cwiseProduct(qr - measured) + kd.cwiseProduct(qdr - rate);
+    if (tick % per_log == 0) {
+      log.t.push_back(Stamp(t + o.jitter / o.rate * uniform(rng), o.rate));
+      for (std::size_t j = 0; j < n; ++j) {
+        noise[j] = o.noise_pole * noise[j] + o.torque_noise * normal(rng);
+        log.q[j].push_back(measured(static_cast<Eigen::Index>(j)));
+        log.tau[j].push_back(u(static_cast<Eigen::Index>(j)) + noise[j]);
+      }
+    }
+    VectorXd applied = u;
+    for (Eigen::Index j = 0; j < size; ++j) applied(j) += loop.disturbance * normal(rng);
+    for (int s = 0; s < loop.substeps; ++s) {  // RK4 under the held torque
+      const VectorXd a1 = accel(q, qd, applied);
+      const VectorXd a2 = accel(q + 0.5 * h * qd, qd + 0.5 * h * a1, applied);
+      const VectorXd a3 = accel(q + 0.5 * h * (qd + 0.5 * h * a1), qd + 0.5 * h * a2, applied);
+      const VectorXd a4 = accel(q + h * (qd + 0.5 * h * a2), qd + h * a3, applied);
+      q += h * qd + h * h / 6.0 * (a1 + a2 + a3);
+      qd += h / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4);
     }
   }
   return log;

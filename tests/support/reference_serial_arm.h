@@ -8,6 +8,7 @@
 // library's dynamics.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,9 @@ struct ArmLogOptions {
   double encoder_counts = 131072.0;      // per turn
   double jitter = 0.3;                   // of a sample period, uniform +-
   unsigned seed = 1;
+  /// The trajectory q, q', q'' at t, in place of the built-in Fourier one
+  /// (e.g. a designed trajectory under test).
+  std::function<void(double t, Eigen::VectorXd& q, Eigen::VectorXd& qd, Eigen::VectorXd& qdd)> trajectory;
 };
 
 struct ArmLog {
@@ -58,5 +62,26 @@ struct ArmLog {
 };
 
 ArmLog SimulateArm(const Arm& arm, const ArmLogOptions& options);
+
+/// A controller closing the loop, as robots are identified in practice: at
+/// `control_rate` the drive reads its quantised encoder (rate by backward
+/// difference) and commands
+///   u = tau_model(q_r, q_r', q_r'') + K_p (q_r - q_m) + K_d (q_r' - q_m'),
+/// the feed-forward from a model whose masses and inertias are
+/// `model_scale` of the truth (and no friction), K_p = J w^2, K_d = 2 zeta J w
+/// per joint (J its inertia at the start, w = 2 pi `bandwidth`). The arm
+/// integrates (RK4, `substeps` per tick) under u plus an unlogged white
+/// disturbance of std `disturbance`; the log holds the commanded u plus the
+/// AR(1) sensor noise of ArmLogOptions, the encoder angles and the jittered
+/// stamps, at ArmLogOptions::rate (a divisor of control_rate).
+struct ClosedLoopOptions {
+  double control_rate = 1000.0;  // [Hz]
+  int substeps = 2;
+  double bandwidth = 4.0;        // [Hz]
+  double damping = 0.8;          // zeta
+  double model_scale = 0.85;
+  double disturbance = 0.05;     // [N m]
+};
+ArmLog SimulateArmClosedLoop(const Arm& arm, const ArmLogOptions& options, const ClosedLoopOptions& loop);
 
 }  // namespace reference

@@ -6,8 +6,7 @@
 #include <cstdlib>
 #include <fstream>
 
-#include <Eigen/Geometry>
-
+#include "support/reference_arm_urdf.h"
 #include "support/reference_serial_arm.h"
 
 int main(int argc, char** argv) {
@@ -18,25 +17,7 @@ int main(int argc, char** argv) {
   const reference::Arm arm =
       argc > 4 && std::atoi(argv[4]) == 6 ? reference::SixJointArm() : reference::ThreeJointArm();
   std::ofstream urdf(argv[1]);
-  urdf.precision(17);
-  urdf << "<?xml version=\"1.0\"?>\n<robot name=\"arm3\">\n  <link name=\"base\"/>\n";
-  for (const auto& j : arm.joints) {
-    const Eigen::Matrix3d& i = j.inertia_at_centre;
-    urdf << "  <link name=\"" << j.body << "\">\n    <inertial><origin xyz=\"" << j.centre.x() << ' ' << j.centre.y()
-         << ' ' << j.centre.z() << "\" rpy=\"0 0 0\"/><mass value=\"" << j.mass << "\"/>\n      <inertia ixx=\""
-         << i(0, 0) << "\" ixy=\"" << i(0, 1) << "\" ixz=\"" << i(0, 2) << "\" iyy=\"" << i(1, 1) << "\" iyz=\""
-         << i(1, 2) << "\" izz=\"" << i(2, 2) << "\"/></inertial>\n  </link>\n";
-  }
-  for (const auto& j : arm.joints) {
-    const Eigen::Vector3d ypr = j.rotation.eulerAngles(2, 1, 0);
-    const std::string parent = j.parent < 0 ? "base" : arm.joints[static_cast<std::size_t>(j.parent)].body;
-    urdf << "  <joint name=\"" << j.name << "\" type=\"revolute\">\n    <parent link=\"" << parent
-         << "\"/><child link=\"" << j.body << "\"/>\n    <origin xyz=\"" << j.translation.x() << ' '
-         << j.translation.y() << ' ' << j.translation.z() << "\" rpy=\"" << ypr(2) << ' ' << ypr(1) << ' ' << ypr(0)
-         << "\"/>\n    <axis xyz=\"" << j.axis.x() << ' ' << j.axis.y() << ' ' << j.axis.z()
-         << "\"/>\n    <limit lower=\"-3\" upper=\"3\" effort=\"200\" velocity=\"3\"/>\n  </joint>\n";
-  }
-  urdf << "</robot>\n";
+  urdf << reference::ArmUrdf(arm);
   reference::ArmLogOptions o;
   if (argc > 3) o.seed = static_cast<unsigned>(std::atoi(argv[3]));
   if (argc > 5) o.rate = std::atof(argv[5]);
