@@ -10,6 +10,7 @@
 #include "core/errors.h"
 #include "io/atomic_file.h"
 #include "io/parameter_file.h"
+#include "io/robot_coupling_section.h"
 #include "io/serial_robot_section.h"
 #include "io/urdf_robot.h"
 #include "workflow/robot_excitation_design.h"
@@ -81,7 +82,7 @@ void Run(const DesignRobotOptions& o, const std::string& command_line) {
     const SerialRobotSection* section = file->Find<SerialRobotSection>();
     if (!section) throw InputError(o.params + ": no 'serial_robot' section (drivetrain-fit robot --urdf -o)");
     CheckDistinctFiles({section->urdf}, {{"-o", o.output}, {"--plot", o.plot}});
-    robot = ReadSectionUrdf(*section, o.urdf, o.params).robot;
+    robot = WithCoupling(ReadSectionUrdf(*section, o.urdf, o.params).robot, *file, o.params);
   } else {
     robot = ReadUrdfRobot(o.urdf).robot;
   }

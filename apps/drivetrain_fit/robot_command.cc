@@ -1,11 +1,14 @@
 #include "drivetrain_fit/robot_command.h"
 
+#include <optional>
+
 #include <fmt/format.h>
 
 #include "common/command_registry.h"
 #include "core/errors.h"
 #include "io/csv_log.h"
 #include "io/parameter_file.h"
+#include "io/robot_coupling_section.h"
 #include "io/serial_robot_log.h"
 #include "io/sha256.h"
 #include "io/urdf_robot.h"
@@ -23,7 +26,9 @@ CLI::App* SetupRobotCommand(CLI::App& app, RobotOptions& options) {
                       "q1..qN), optionally qd_<joint>, and tau_<joint>; else t, theta1..3, i1..3")
       ->required();
   command->add_option("--urdf", options.urdf, "the serial robot's URDF (docs/formats.md#urdf)");
-  command->add_option("--params", options.params, "parameter file with a planar_robot section (without --urdf)");
+  command->add_option("--params", options.params,
+                      "parameter file with a planar_robot section (without --urdf), or with --urdf a robot section: "
+                      "the coupling of a wrist's drives (docs/models.md#coupled-drives)");
   command->add_option("--prior-weight", options.prior_weight,
                       "--urdf: weight of the URDF's inertials in the physically consistent fit, relative to one std "
                       "of the data (docs/models.md#physical-consistency)")
@@ -45,12 +50,22 @@ CLI::App* SetupRobotCommand(CLI::App& app, RobotOptions& options) {
 namespace {
 
 void RunSerialRobot(const RobotOptions& options, const std::string& command_line) {
-  if (!options.params.empty()) {
-    throw OptionError("--params: a serial robot (--urdf) starts from its URDF; give --params only for the planar robot");
-  }
-  CheckFitOutputs(options.output, LogCommandInputs(options.logs, options.urdf, options.input));
+  std::vector<std::string> inputs = LogCommandInputs(options.logs, options.urdf, options.input);
+  if (!options.params.empty()) inputs.push_back(options.params);
+  CheckFitOutputs(options.output, inputs);
   const std::string urdf_text = ReadUrdfText(options.urdf);
-  const UrdfRobot robot = ParseUrdfRobot(options.urdf, urdf_text);
+  UrdfRobot robot = ParseUrdfRobot(options.urdf, urdf_text);
+  std::optional<RobotCouplingSection> coupling;
+  if (!options.params.empty()) {
+    const ParameterFile given = ReadParameterFile(options.params);
+    const RobotCouplingSection* section = given.Find<RobotCouplingSection>();
+    if (section == nullptr) {
+      throw OptionError(fmt::format("--params {}: with --urdf a file with a robot section (the drives' coupling, "
+                                    "docs/formats.md#the-robot-section)", options.params));
+    }
+    robot.robot = WithCoupling(std::move(robot.robot), given, options.params);
+    coupling = *section;
+  }
   FitOutputs outputs;
   outputs.provenance.command = command_line;
   outputs.provenance.version = DRIVEID_VERSION;
@@ -67,6 +82,7 @@ void RunSerialRobot(const RobotOptions& options, const std::string& command_line
       IdentifySerialRobot(robot, options.urdf, Sha256Hex(urdf_text), logs, run_options);
   ParameterFile file;
   file.Set(run.section);
+  if (coupling) file.Set(*coupling);
   outputs.fit = run.result.fit;
   outputs.parameter_file = FormatParameterFile(file, &outputs.fit, &outputs.provenance);
   outputs.trace_csv = run.trace_csv;

@@ -11,6 +11,7 @@
 #include "io/axis_log.h"
 #include "io/joint_log.h"
 #include "io/parameter_file.h"
+#include "io/robot_coupling_section.h"
 #include "io/step_log.h"
 #include "io/serial_robot_log.h"
 #include "workflow/serial_robot_validation.h"
@@ -130,7 +131,7 @@ void RunValidateCommand(const ValidateOptions& options, const std::string& comma
     run = RunMujocoValidation(logs, options.params, options.joint, options.mujoco_step);
   } else if (model == ValidationModel::kSerialRobot) {
     const SerialRobotSection& section = *file->Find<SerialRobotSection>();
-    const SerialRobot robot = ReadSectionUrdf(section, options.urdf, options.params).robot;
+    const SerialRobot robot = WithCoupling(ReadSectionUrdf(section, options.urdf, options.params).robot, *file, options.params);
     const auto logs =
         load(SerialRobotLogColumns(robot), [&](CsvLog csv) { return MakeSerialRobotLog(robot, std::move(csv)); });
     run = RunSerialRobotValidation(logs, section, robot, options.params);

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "io/robot_coupling_section.h"
 #include "io/serial_robot_section.h"
 #include "io/urdf_rewrite.h"
 #include "models/serial_robot.h"
@@ -29,6 +30,11 @@ IdentifiedArm Identified(const ParameterFile& file, const ExportOptions& o) {
   if (s.bodies.empty() || s.drives.empty()) {
     throw InputError(fmt::format("{}: serial_robot has no bodies and drives (the physically consistent parameters, "
                                  "docs/models.md#physical-consistency): refit with drivetrain-fit robot ‹urdf›",
+                                 o.source));
+  }
+  if (file.Find<RobotCouplingSection>() != nullptr) {
+    throw InputError(fmt::format("{}: the robot's drives are coupled (robot.coupling): URDF and MJCF hold a joint's own "
+                                 "armature and friction, not a motor's that turns two joints; not exported yet",
                                  o.source));
   }
   SectionUrdf urdf = ReadSectionUrdf(s, o.urdf, o.source);

@@ -1,7 +1,9 @@
 #include "io/serial_robot_section.h"
+#include "io/robot_coupling_section.h"
 #include "io/parameter_file.h"
 
 #include <algorithm>
+#include <cctype>
 #include <array>
 #include <charconv>
 #include <functional>
@@ -70,6 +72,23 @@ void CheckMapping(const std::string& path, const std::string& name, const YAML::
 }
 
 std::string Number(double value) { return fmt::format("{}", value); }
+
+std::string YamlName(const std::string& name) {
+  bool plain = !name.empty();
+  for (char c : name) plain = plain && (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.');
+  if (plain) return name;
+  std::string quoted = "\"";
+  for (char c : name) {
+    if (c == '"' || c == '\\') quoted += '\\';
+    quoted += c;
+  }
+  return quoted + "\"";
+}
+
+std::string ParseText(const std::string& path, const std::string& name, const YAML::Node& node) {
+  if (!node.IsScalar()) throw InputError(fmt::format("{}: {}: expected text", Where(path, node), name));
+  return node.Scalar();
+}
 
 // A value as the reader will accept it (ParseNumber): finite, 0 or within
 // 1e-100 <= |v| <= 1e100; else nothing is written.
@@ -338,6 +357,7 @@ std::vector<SectionHandler>& Sections() {
       MakeSection(FrequencyResponseTable, "docs/models.md#frequency-response: measured by drivetrain-fit frf",
                   {"band_hz", "method"}, ParseFrequencyResponseKey, FormatFrequencyResponseKeys),
       SerialRobotSectionHandler(),
+      RobotCouplingSectionHandler(),
   };
   return sections;
 }

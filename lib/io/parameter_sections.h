@@ -32,6 +32,11 @@ double ParseStandardError(const std::string& path, const std::string& name, cons
 void CheckMapping(const std::string& path, const std::string& name, const YAML::Node& node);
 /// A number as written (shortest round trip).
 std::string Number(double value);
+/// A name (a URDF's link or joint) as a YAML key or list item: plain for
+/// letters, digits, '_', '-', '.', else double-quoted.
+std::string YamlName(const std::string& name);
+/// A scalar's text; InputError naming `name` else.
+std::string ParseText(const std::string& path, const std::string& name, const YAML::Node& node);
 /// The value if the reader will accept it; OutputError naming `name` else.
 double Writable(const std::string& name, double value);
 

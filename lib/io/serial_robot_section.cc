@@ -20,23 +20,10 @@ using section_io::ParseNumber;
 using section_io::Where;
 using section_io::Writable;
 
-// Names of columns are the URDF's link and joint names with a prefix: no
-// quoting needed for letters, digits, '_', '-', '.'; anything else quoted.
-std::string Key(const std::string& name) {
-  bool plain = !name.empty();
-  for (char c : name) plain = plain && (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.');
-  if (plain) return name;
-  std::string quoted = "\"";
-  for (char c : name) {
-    if (c == '"' || c == '\\') quoted += '\\';
-    quoted += c;
-  }
-  return quoted + "\"";
-}
+std::string Key(const std::string& name) { return section_io::YamlName(name); }
 
 std::string Text(const std::string& path, const std::string& name, const YAML::Node& node) {
-  if (!node.IsScalar()) throw InputError(fmt::format("{}: {}: expected text", Where(path, node), name));
-  return node.Scalar();
+  return section_io::ParseText(path, name, node);
 }
 
 SerialBaseEntry ParseEntry(const std::string& path, const YAML::Node& node, std::size_t index) {

@@ -157,12 +157,35 @@ void CalcSerialRegressor(const SerialRobot& robot, const Eigen::VectorXd& q, con
       k = static_cast<std::size_t>(joint.parent);
     }
     const Eigen::Index ii = static_cast<Eigen::Index>(i);
-    const double v = qd(ii);
-    y(ii, column + kSerialArmature) = qdd(ii);
-    y(ii, column + kSerialViscous) = v;
-    y(ii, column + kSerialCoulomb) = static_cast<double>((v > 0.0) - (v < 0.0));
-    y(ii, column + kSerialOffset) = 1.0;
+    if (robot.coupling.size() == 0) {
+      const double v = qd(ii);
+      y(ii, column + kSerialArmature) = qdd(ii);
+      y(ii, column + kSerialViscous) = v;
+      y(ii, column + kSerialCoulomb) = static_cast<double>((v > 0.0) - (v < 0.0));
+      y(ii, column + kSerialOffset) = 1.0;
+    } else {
+      // Motor i turns at (R q')_i; its torque reaches the joints as R_i^T.
+      const Eigen::VectorXd to_joints = robot.coupling.row(ii).transpose();
+      const double v = robot.coupling.row(ii).dot(qd);
+      y.col(column + kSerialArmature) = to_joints * robot.coupling.row(ii).dot(qdd);
+      y.col(column + kSerialViscous) = to_joints * v;
+      y.col(column + kSerialCoulomb) = to_joints * static_cast<double>((v > 0.0) - (v < 0.0));
+      y.col(column + kSerialOffset) = to_joints;
+    }
   }
+}
+
+Eigen::MatrixXd SerialCouplingMatrix(std::size_t joints, const std::vector<std::size_t>& coupled,
+                                     const Eigen::MatrixXd& block) {
+  const auto n = static_cast<Eigen::Index>(joints);
+  Eigen::MatrixXd r = Eigen::MatrixXd::Identity(n, n);
+  for (std::size_t a = 0; a < coupled.size(); ++a) {
+    for (std::size_t b = 0; b < coupled.size(); ++b) {
+      r(static_cast<Eigen::Index>(coupled[a]), static_cast<Eigen::Index>(coupled[b])) =
+          block(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
+    }
+  }
+  return r;
 }
 
 std::vector<std::string> SerialParameterNames(const SerialRobot& robot) {

@@ -38,9 +38,17 @@ inline constexpr std::size_t kSerialColumnsPerJoint = 14;
 enum SerialDriveColumn { kSerialArmature = 10, kSerialViscous, kSerialCoulomb, kSerialOffset };
 
 /// The regressor Y (n x 14 n) with tau = Y theta, theta stacked joint by
-/// joint as above. `y` must be n x 14 n; it is overwritten.
+/// joint as above. `y` must be n x 14 n; it is overwritten. With a coupling
+/// R (SerialRobot::coupling, motor angles theta_m = R q), drive i is motor
+/// i's: its columns are R_i^T times (R q'')_i, (R q')_i, sgn (R q')_i and 1
+/// (docs/models.md#coupled-drives).
 void CalcSerialRegressor(const SerialRobot& robot, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                          const Eigen::VectorXd& qdd, Eigen::Ref<Eigen::MatrixXd> y);
+
+/// The n x n coupling R: the identity but for `block` (k x k) on the rows and
+/// columns `coupled` (joint indices).
+Eigen::MatrixXd SerialCouplingMatrix(std::size_t joints, const std::vector<std::size_t>& coupled,
+                                     const Eigen::MatrixXd& block);
 
 /// The names of the regressor's columns: m_<body> .. Izz_<body>,
 /// armature_<joint>, viscous_<joint>, coulomb_<joint>, offset_<joint>.

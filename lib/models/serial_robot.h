@@ -16,6 +16,10 @@
 // (rotor inertia times the gear ratio squared), viscous b [N m s/rad],
 // Coulomb friction tau_c [N m] and an offset tau_0 [N m]:
 //   tau_i = (rigid-body torque)_i + J_a q_i'' + b q_i' + tau_c sgn q_i' + tau_0.
+// Coupled drives (a wrist where one motor turns two joints): motor angles
+// theta = R q, and drive k acts on motor k:
+//   tau = (rigid-body torque) + R^T (J_a R q'' + b R q' + tau_c sgn(R q') + tau_0),
+// the products element-wise per motor (docs/models.md#coupled-drives).
 #pragma once
 
 #include <array>
@@ -69,6 +73,10 @@ struct SerialRobot {
   std::vector<SerialJoint> joints;              ///< movable joints, each after its parent
   std::vector<InertialParameters> bodies;       ///< per joint: the body it moves, in its frame
   Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81);  ///< in the base frame [m/s^2]
+  /// Motor angles = coupling q (n x n, invertible; empty: each joint its own
+  /// motor, the drive referred to the joint). With it, drive i is motor
+  /// i's, referred to its own angle (docs/models.md#coupled-drives).
+  Eigen::MatrixXd coupling;
   std::size_t size() const { return joints.size(); }
 };
 

@@ -90,9 +90,24 @@ expect 2 "give --urdf .* or --params" -- design robot --duration 10
 expect 2 "--noise: without a prior fit .--params. give" -- design robot --urdf arm.urdf --duration 10
 expect 2 "--noise: 2 values for 3 joints" -- design robot --urdf arm.urdf --duration 10 --noise 1,2
 
+# Coupled drives (a robot section given with --params): kept in the output,
+# applied by validate, refused by the exports.
+printf 'robot:\n  coupling:\n    joints: [shoulder, elbow]\n    matrix: [[1, 0], [0.5, 1]]\n' > coupling.yaml
+"$bin" robot arm.csv --urdf arm.urdf --params coupling.yaml -q -o coupled.yaml 2> err.txt &&
+  grep -q "^robot:" coupled.yaml && grep -q "joints: \[shoulder, elbow\]" coupled.yaml && ok ||
+  fail "robot --params coupling.yaml: $(cat err.txt)"
+"$bin" validate coupled.yaml held_out.csv -q > /dev/null 2> err.txt && ok || fail "validate the coupled fit: $(cat err.txt)"
+expect 3 "coupled.yaml: the robot's drives are coupled" -- export coupled.yaml --to mjcf
+printf 'robot:\n  coupling:\n    joints: [shoulder, elbow]\n    matrix: [[1, 2], [0.5, 1]]\n' > singular.yaml
+expect 3 "singular.yaml: robot.coupling: the matrix is singular" -- robot arm.csv --urdf arm.urdf --params singular.yaml
+printf 'robot:\n  coupling:\n    joints: [shoulder, wrist]\n    matrix: [[1, 0], [0, 1]]\n' > unknown.yaml
+expect 3 "no movable joint 'wrist'" -- robot arm.csv --urdf arm.urdf --params unknown.yaml
+printf 'robot:\n  coupling:\n    joints: [shoulder, elbow]\n    matrix: [[1, 0]]\n' > short.yaml
+expect 3 "short.yaml:3:.*square matrix" -- robot arm.csv --urdf arm.urdf --params short.yaml
+expect 2 "--params .*: with --urdf a file with a robot section" -- robot arm.csv --urdf arm.urdf --params arm.yaml
+
 # Refusals.
 expect 2 "give --urdf .* or --params" -- robot arm.csv
-expect 2 "--params: a serial robot" -- robot arm.csv --urdf arm.urdf --params arm.yaml
 printf '<robot name="x"><link name="a"/>' > bad.urdf
 expect 3 "bad.urdf" -- robot arm.csv --urdf bad.urdf
 sed 's/type="revolute"/type="floating"/' arm.urdf > floating.urdf

@@ -7,6 +7,7 @@
 // each joint's friction is recovered; and in closed loop (a drive's PD with
 // a model feed-forward, stick-slip at reversals, an unlogged disturbance).
 #include <cmath>
+#include <random>
 
 #include <catch2/catch.hpp>
 
@@ -119,4 +120,42 @@ TEST_CASE("serial robot: in closed loop (a drive's PD and model feed-forward, an
   INFO("coverage " << coverage << " over " << total << " intervals");
   CHECK(coverage >= 0.88);
   CHECK(coverage <= 0.995);
+}
+
+TEST_CASE("serial robot: a coupled wrist (one motor turns two joints) — regressor and the coupled motor's friction") {
+  // Six joints; motor 6 turns at q6 - 0.6 q5 (a wrist's differential):
+  // its friction acts on that rate and reaches both joints.
+  reference::Arm arm = reference::SixJointArm();
+  arm.coupling = Eigen::MatrixXd::Identity(6, 6);
+  arm.coupling(5, 4) = -0.6;
+  std::vector<SerialDriveParameters> drives;
+  const SerialRobot robot = ToSerialRobot(arm, &drives);
+  const Eigen::VectorXd theta = SerialParameterVector(robot, drives);
+  Eigen::MatrixXd y(6, 6 * kSerialColumnsPerJoint);
+  std::mt19937 rng(3);
+  std::normal_distribution<double> normal;
+  for (int trial = 0; trial < 5; ++trial) {
+    Eigen::VectorXd q(6), qd(6), qdd(6);
+    for (int j = 0; j < 6; ++j) {
+      q(j) = normal(rng);
+      qd(j) = normal(rng);
+      qdd(j) = normal(rng);
+    }
+    CalcSerialRegressor(robot, q, qd, qdd, y);
+    const Eigen::VectorXd want = reference::ArmTorque(arm, q, qd, qdd);
+    CHECK((y * theta - want).cwiseAbs().maxCoeff() < 1e-5 * (1.0 + want.cwiseAbs().maxCoeff()));
+  }
+  reference::ArmLogOptions o;
+  o.seed = 5;
+  const SerialRobotFitOutput out = FitSerialRobot(robot, {ToSerialLog(reference::SimulateArm(arm, o))}, {});
+  const Eigen::VectorXd truth = out.base.regroup * theta;
+  int checked = 0;
+  for (std::size_t k = 0; k < out.fit.estimates.size(); ++k) {
+    const ParameterEstimate& e = out.fit.estimates[k];
+    if (e.name.rfind("viscous_", 0) != 0 && e.name.rfind("coulomb_", 0) != 0) continue;
+    INFO(e.name << " = " << e.value << " +- " << e.standard_error << ", truth " << truth(static_cast<Eigen::Index>(k)));
+    CHECK(std::abs(e.value - truth(static_cast<Eigen::Index>(k))) < 4.0 * e.standard_error);
+    ++checked;
+  }
+  CHECK(checked == 12);
 }

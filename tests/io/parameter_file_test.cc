@@ -116,7 +116,7 @@ TEST_CASE("bad parameter files name file, line, column and key") {
   CHECK_THAT(ErrorOf("drivetrain: [1, 2\n"), Catch::Contains("invalid YAML"));
   CHECK(ErrorOf("") == "p.yaml: empty parameter file");
   CHECK(ErrorOf("drivetrian:\n  n_g: 80\n") ==
-        "p.yaml:1:1: drivetrian: unknown section (known: drivetrain, planar_robot, axis, cdrive, joint, frf, serial_robot, feedforward, feedback, fit)");
+        "p.yaml:1:1: drivetrian: unknown section (known: drivetrain, planar_robot, axis, cdrive, joint, frf, serial_robot, robot, feedforward, feedback, fit)");
   CHECK(ErrorOf("drivetrain:\n  n_g: 80\n  n_g: 81\n") == "p.yaml:3:3: drivetrain.n_g: key appears twice");
   CHECK(ErrorOf("- 1\n- 2\n") == "p.yaml:1:1: parameter file: expected a mapping of keys");
   CHECK_THAT(ErrorOf(std::string(kValid) + "  tau_c2: [1]\n"), Catch::Contains("unknown key"));
@@ -173,7 +173,7 @@ TEST_CASE("fuzzer regression: a file with only a fit section has no model to use
   // Found by tests/fuzz/parameter_file_fuzzer: accepted, but formatted to a
   // comment-only file that reads back as empty.
   CHECK(ErrorOf("fit:\n  command: \"x\"\n  converged: true\n") ==
-        "p.yaml: no model section (drivetrain, planar_robot, axis, cdrive, joint, frf, serial_robot)");
+        "p.yaml: no model section (drivetrain, planar_robot, axis, cdrive, joint, frf, serial_robot, robot)");
 }
 
 TEST_CASE("fuzzer regression: an axis section with every value empty reads back after formatting") {

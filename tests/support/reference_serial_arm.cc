@@ -47,6 +47,12 @@ Kinematics Forward(const Arm& arm, const VectorXd& q) {
   return k;
 }
 
+// Motor angles per joint angle: the coupling, or the identity.
+MatrixXd Motors(const Arm& arm) {
+  const auto n = static_cast<Eigen::Index>(arm.joints.size());
+  return arm.coupling.size() == 0 ? MatrixXd(MatrixXd::Identity(n, n)) : arm.coupling;
+}
+
 MatrixXd MassMatrix(const Arm& arm, const VectorXd& q) {
   const Kinematics k = Forward(arm, q);
   const auto n = static_cast<Eigen::Index>(arm.joints.size());
@@ -55,8 +61,11 @@ MatrixXd MassMatrix(const Arm& arm, const VectorXd& q) {
     const ArmJoint& j = arm.joints[i];
     const Matrix3d world = k.rotation[i] * j.inertia_at_centre * k.rotation[i].transpose();
     m += j.mass * k.jv[i].transpose() * k.jv[i] + k.jw[i].transpose() * world * k.jw[i];
-    m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)) += j.armature;
   }
+  const MatrixXd r = Motors(arm);
+  VectorXd armature(n);
+  for (Eigen::Index i = 0; i < n; ++i) armature(i) = arm.joints[static_cast<std::size_t>(i)].armature;
+  m += r.transpose() * armature.asDiagonal() * r;
   return m;
 }
 
@@ -160,9 +169,17 @@ VectorXd ArmTorque(const Arm& arm, const VectorXd& q, const VectorXd& qd, const 
         tau(i) += (dm[static_cast<std::size_t>(k)](i, j) - 0.5 * dm[static_cast<std::size_t>(i)](j, k)) * qd(j) * qd(k);
       }
     }
-    const ArmJoint& joint = arm.joints[static_cast<std::size_t>(i)];
-    tau(i) += joint.viscous * qd(i) + joint.coulomb * ((qd(i) > 0) - (qd(i) < 0)) + joint.offset;
   }
+  // The motors' friction and offsets, each on its own rate, back to the joints.
+  const MatrixXd r = Motors(arm);
+  const VectorXd motor_rate = r * qd;
+  VectorXd motor(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const ArmJoint& joint = arm.joints[static_cast<std::size_t>(i)];
+    const double v = motor_rate(i);
+    motor(i) = joint.viscous * v + joint.coulomb * ((v > 0) - (v < 0)) + joint.offset;
+  }
+  tau += r.transpose() * motor;
   return tau;
 }
 

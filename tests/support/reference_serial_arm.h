@@ -31,6 +31,10 @@ struct ArmJoint {
 struct Arm {
   std::vector<ArmJoint> joints;
   Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81);
+  // Motor angles = coupling q (empty: each joint its own motor). Joint k's
+  // armature, viscous, Coulomb and offset are then motor k's, and the
+  // drives add R^T (J R q'' + b R q' + c sgn(R q') + offset) per motor.
+  Eigen::MatrixXd coupling;
 };
 
 /// Base yaw, shoulder and elbow pitch with offsets: a small industrial arm.

@@ -28,6 +28,7 @@ inline SerialRobot ToSerialRobot(const reference::Arm& arm, std::vector<SerialDr
     robot.bodies.push_back(InertialFromCentre(scale * j.mass, centre_scale * j.centre, scale * j.inertia_at_centre));
     if (drives != nullptr) drives->push_back({j.armature, j.viscous, j.coulomb, j.offset});
   }
+  robot.coupling = arm.coupling;
   return robot;
 }
 
