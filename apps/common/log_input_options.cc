@@ -62,7 +62,8 @@ void AddLogInputOptions(CLI::App& command, LogInputCli& options, const std::stri
   if (command.get_option_no_throw("--joint") == nullptr) {
     command.add_option("--joint", options.joints,
                        "ROS bag: the joint whose position, velocity and effort are q, qd and tau (repeat for several: "
-                       "their messages make the rows; map them with --col q_motor=NAME.position ...)");
+                       "their messages make the rows; map them with --col q_motor=NAME.position ...); all: every "
+                       "joint as q_<joint>, qd_<joint>, tau_<joint> (robot --urdf)");
   }
   command.add_option("--joint-motor", options.joint_motor,
                      "ROS bag, elastic joint: the joint whose position, velocity and effort are q_motor, qd_motor and tau");

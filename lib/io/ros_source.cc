@@ -31,7 +31,11 @@ namespace {
 constexpr const char* kJointState = "sensor_msgs/msg/JointState";
 
 // The joints whose values are kept: those asked for, in order.
+// `‹joint› all`: every joint that every message carries (a serial robot's).
+bool AllJointsAsked(const SysIdFormat& format) { return format.joints.size() == 1 && format.joints.front() == "all"; }
+
 std::vector<std::string> JointsAsked(const SysIdFormat& format) {
+  if (AllJointsAsked(format)) return {};
   std::vector<std::string> joints = format.joints;
   for (const std::string* j : {&format.joint_motor, &format.joint_link}) {
     if (!j->empty() && std::find(joints.begin(), joints.end(), *j) == joints.end()) joints.push_back(*j);
@@ -93,9 +97,9 @@ std::unique_ptr<TableSource> JointTable(const std::string& path, const std::stri
   for (const auto& [name, count] : rows.joints_seen()) all.push_back(name);
   const std::vector<std::string> asked = JointsAsked(format);
   for (const auto& j : asked) ChooseName(all, j, "joint", "joint", path + " " + topic);
-  if (asked.empty() && all.size() > 1 && !format.catalog) {
+  if (asked.empty() && all.size() > 1 && !format.catalog && !AllJointsAsked(format)) {
     throw OptionError(fmt::format("{}: topic {} carries {} joints ({}): give ‹joint› NAME (repeat it for several, and "
-                                  "map them with ‹col› q_motor=NAME.position ...)",
+                                  "map them with ‹col› q_motor=NAME.position ...), or ‹joint› all for a serial robot",
                                   path, topic, all.size(), fmt::join(all, ", ")));
   }
   std::vector<std::string> joints = asked;
@@ -143,6 +147,9 @@ std::unique_ptr<TableSource> JointTable(const std::string& path, const std::stri
       names.push_back(column);
       columns.push_back(Reordered(rows.values[slot][f], order));
       if (joints.size() == 1) defaults[logical] = column;
+      // ‹joint› all, a serial robot's columns (io/serial_robot_log.h): q_J,
+      // qd_J, tau_J (not otherwise: tau_link is an elastic joint's shaft torque).
+      if (AllJointsAsked(format)) defaults[logical + "_" + j] = column;
       // The elastic joint: the motor joint's effort is the motor torque.
       if (j == format.joint_motor) defaults[logical == "tau" ? "tau" : logical + "_motor"] = column;
       if (j == format.joint_link && logical != "tau") defaults[logical + "_link"] = column;

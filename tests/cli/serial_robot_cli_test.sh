@@ -106,6 +106,17 @@ printf 'robot:\n  coupling:\n    joints: [shoulder, elbow]\n    matrix: [[1, 0]]
 expect 3 "short.yaml:3:.*square matrix" -- robot arm.csv --urdf arm.urdf --params short.yaml
 expect 2 "--params .*: with --urdf a file with a robot section" -- robot arm.csv --urdf arm.urdf --params arm.yaml
 
+# A ROS 2 bag of the arm (every joint in each JointState message; the
+# tests' own writer): --joint all reads q_<joint>, tau_<joint> by name, and
+# the fit is the CSV's to the last digit.
+if python3 -c 'import sqlite3' 2> /dev/null; then
+  python3 "$src/tests/support/rosbag2_writer.py" arm.csv arm.db3 --arm || fail "the bag writer"
+  "$bin" robot arm.db3 --urdf arm.urdf --joint all -q -o bag.yaml 2> err.txt && ok || fail "robot BAG --joint all: $(cat err.txt)"
+  [ "$(grep -A40 '^  estimates:' bag.yaml | grep value)" = "$(grep -A40 '^  estimates:' arm.yaml | grep value)" ] && ok ||
+    fail "the bag's fit differs from the CSV's"
+  expect 2 "carries 3 joints .*--joint all for a serial robot" -- robot arm.db3 --urdf arm.urdf
+fi
+
 # Refusals.
 expect 2 "give --urdf .* or --params" -- robot arm.csv
 printf '<robot name="x"><link name="a"/>' > bad.urdf

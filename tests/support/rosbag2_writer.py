@@ -21,6 +21,9 @@ usage: rosbag2_writer.py LOG.csv OUT [--elastic] [--old-schema] [--folder] [--mc
   second JointState topic /gripper/joint_states;
   --elastic: LOG.csv is an elastic joint's (t, q_motor, q_link, tau): the
   joints "motor" (q_motor, effort tau) and "link" (q_link, effort 0).
+  --arm: LOG.csv is a serial arm's (t, q_<joint>, tau_<joint> per joint, as
+  tests/support/serial_arm_log_main.cc writes it): one message per row
+  naming every joint, its position and effort (velocity empty).
 """
 import csv
 import os
@@ -241,17 +244,40 @@ def write_elastic(out, rows):
     db.close()
 
 
+def write_arm(out, header, rows):
+    """A serial arm's log as a db3 of JointState messages, every joint in each."""
+    joints = [name[2:] for name in header[1::2]]
+    if os.path.exists(out):
+        os.remove(out)
+    db = sqlite3.connect(out)
+    db.execute("CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL, "
+               "serialization_format TEXT NOT NULL, offered_qos_profiles TEXT NOT NULL, type_description_hash TEXT NOT NULL)")
+    db.execute("CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL, timestamp INTEGER NOT NULL, "
+               "data BLOB NOT NULL)")
+    db.execute("INSERT INTO topics VALUES (1, '/joint_states', 'sensor_msgs/msg/JointState', 'cdr', '', '')")
+    db.executemany("INSERT INTO messages (topic_id, timestamp, data) VALUES (1, ?, ?)",
+                   [(round(r[0] * 1e9) + 2_000_000,
+                     joint_state(round(r[0] * 1e9), joints, list(r[1::2]), [], list(r[2::2]))) for r in rows])
+    db.commit()
+    db.close()
+
+
 def main():
     source, out = sys.argv[1], sys.argv[2]
     old = "--old-schema" in sys.argv
     folder = "--folder" in sys.argv
     rng = random.Random(7)
     rows = []
+    header = []
     with open(source) as f:
         for row in csv.reader(line for line in f if not line.startswith("#")):
             if row[0] == "t":
+                header = row
                 continue
             rows.append(tuple(float(x) for x in row))
+    if "--arm" in sys.argv:
+        write_arm(out, header, rows)
+        return
     if "--elastic" in sys.argv:
         write_elastic(out, rows)
         return
