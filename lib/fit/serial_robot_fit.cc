@@ -145,6 +145,10 @@ namespace {
 struct Rows {
   std::vector<std::vector<Eigen::MatrixXd>> x;          // [log][joint]: samples x r
   std::vector<std::vector<std::vector<double>>> tau;    // [joint][log][sample]
+  std::vector<std::vector<std::vector<double>>> at;     // [joint][log][sample]: its time [s]
+  // The rows left out at standstill, for the statistics over every sample.
+  std::vector<std::vector<Eigen::MatrixXd>> dropped_x;        // [log][joint]
+  std::vector<std::vector<std::vector<double>>> dropped_tau;  // [joint][log]
   std::size_t samples = 0;
 };
 
@@ -164,45 +168,50 @@ std::vector<char> AtStandstill(const SerialMotion& m, std::size_t j) {
   return slow;
 }
 
-// Drops the rows and torques where `drop` is set.
-void KeepMoving(const std::vector<char>& drop, Eigen::MatrixXd& x, std::vector<double>& tau) {
-  std::size_t kept = 0;
+// Moves the rows, torques and times where `drop` is set to `dropped_x`
+// and `dropped_tau`, keeping the others in order.
+void KeepMoving(const std::vector<char>& drop, Eigen::MatrixXd& x, std::vector<double>& tau, std::vector<double>& at,
+                Eigen::MatrixXd& dropped_x, std::vector<double>& dropped_tau) {
+  std::size_t kept = 0, count = 0;
+  for (char d : drop) count += d != 0;
+  dropped_x.resize(static_cast<Eigen::Index>(count), x.cols());
+  dropped_tau.clear();
   for (std::size_t k = 0; k < drop.size(); ++k) {
-    if (drop[k]) continue;
+    if (drop[k]) {
+      dropped_x.row(static_cast<Eigen::Index>(dropped_tau.size())) = x.row(static_cast<Eigen::Index>(k));
+      dropped_tau.push_back(tau[k]);
+      continue;
+    }
     x.row(static_cast<Eigen::Index>(kept)) = x.row(static_cast<Eigen::Index>(k));
+    at[kept] = at[k];
     tau[kept++] = tau[k];
   }
   x.conservativeResize(static_cast<Eigen::Index>(kept), Eigen::NoChange);
   tau.resize(kept);
+  at.resize(kept);
 }
 
-// `shift`: the torque read that many sample periods later (its timing is
-// known to within a sample: sampled at the stamp, or held since it).
 // Each joint's rows at its standstill are left out (AtStandstill).
 Rows BuildRows(const SerialRobot& robot, const BaseParameters& base, const std::vector<SerialRobotLog>& logs,
-               double half_window, double shift) {
+               double half_window) {
   const std::size_t n = robot.size();
   Rows rows;
   rows.tau.resize(n);
+  rows.at.resize(n);
+  rows.dropped_tau.resize(n);
   for (const SerialRobotLog& log : logs) {
     const SerialMotion m = DifferentiateSerialLog(robot, log, half_window);
-    std::vector<Eigen::MatrixXd> x = BaseRows(robot, base, m);
-    std::vector<double> at;
-    if (shift != 0.0) {
-      const double step = MedianStep(log.time);
-      for (std::size_t k : m.sample) at.push_back(log.time[k] + shift * step);
-    }
+    std::vector<Eigen::MatrixXd> x = BaseRows(robot, base, m), dropped(n);
     for (std::size_t j = 0; j < n; ++j) {
-      std::vector<double> t;
-      if (shift != 0.0) {
-        t = InterpolateLinear(log.time, log.torque[j], at);
-      } else {
-        for (std::size_t k : m.sample) t.push_back(log.torque[j][k]);
-      }
-      KeepMoving(AtStandstill(m, j), x[j], t);
+      std::vector<double> at = m.time, t, dropped_tau;
+      for (std::size_t k : m.sample) t.push_back(log.torque[j][k]);
+      KeepMoving(AtStandstill(m, j), x[j], t, at, dropped[j], dropped_tau);
       rows.tau[j].push_back(std::move(t));
+      rows.at[j].push_back(std::move(at));
+      rows.dropped_tau[j].push_back(std::move(dropped_tau));
     }
     rows.x.push_back(std::move(x));
+    rows.dropped_x.push_back(std::move(dropped));
     rows.samples += m.sample.size();
   }
   return rows;
@@ -215,7 +224,10 @@ Rows BuildRows(const SerialRobot& robot, const BaseParameters& base, const std::
 // independent on random motions), so the squared condition number costs
 // no digits that matter. A direction the logs do not excite is caught by
 // the fit core's identifiability check afterwards.
-Eigen::VectorXd Solve(const Rows& rows, std::size_t r, const std::vector<double>& sigma) {
+// `torques`: in place of rows.tau (the same rows read at other times).
+Eigen::VectorXd Solve(const Rows& rows, std::size_t r, const std::vector<double>& sigma,
+                      const std::vector<std::vector<std::vector<double>>>* torques = nullptr) {
+  const auto& taus = torques != nullptr ? *torques : rows.tau;
   const auto p = static_cast<Eigen::Index>(r);
   Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(p, p);
   Eigen::VectorXd right = Eigen::VectorXd::Zero(p);
@@ -223,7 +235,7 @@ Eigen::VectorXd Solve(const Rows& rows, std::size_t r, const std::vector<double>
     const double w = 1.0 / (sigma[j] * sigma[j]);
     for (std::size_t l = 0; l < rows.x.size(); ++l) {
       const Eigen::MatrixXd& x = rows.x[l][j];
-      const Eigen::Map<const Eigen::VectorXd> tau(rows.tau[j][l].data(), static_cast<Eigen::Index>(rows.tau[j][l].size()));
+      const Eigen::Map<const Eigen::VectorXd> tau(taus[j][l].data(), static_cast<Eigen::Index>(taus[j][l].size()));
       normal.selfadjointView<Eigen::Lower>().rankUpdate(x.transpose(), w);
       right += w * (x.transpose() * tau);
     }
@@ -261,20 +273,38 @@ std::vector<double> JointNoise(const Rows& rows, std::size_t r) {
   return sigma;
 }
 
+// The rows' torques read `shift` sample periods later (the torque's timing
+// is known to within a sample: sampled at the stamp, or held since it).
+std::vector<std::vector<std::vector<double>>> ShiftedTorques(const Rows& rows, const std::vector<SerialRobotLog>& logs,
+                                                              double shift) {
+  std::vector<std::vector<std::vector<double>>> out(rows.at.size());
+  for (std::size_t l = 0; l < logs.size(); ++l) {
+    const double step = shift * MedianStep(logs[l].time);
+    for (std::size_t j = 0; j < rows.at.size(); ++j) {
+      std::vector<double> at = rows.at[j][l];
+      for (double& t : at) t += step;
+      out[j].push_back(InterpolateLinear(logs[l].time, logs[l].torque[j], at));
+    }
+  }
+  return out;
+}
+
 // The processing's share of the error (docs/models.md#serial-robot-identification):
 // the estimates again with the differentiator's half window halved and
 // doubled (two candidates, each a systematic error of sigma 1/sqrt 2) and
 // with the torque read half a sample earlier and later (a timing known to
 // within a sample: uniform, std 1/sqrt 3 of the half-sample response).
 // Added where some estimate moves by more than its std.
-void AddProcessingUncertainty(const SerialRobot& robot, const BaseParameters& base,
+void AddProcessingUncertainty(const SerialRobot& robot, const BaseParameters& base, const Rows& nominal,
                               const std::vector<SerialRobotLog>& logs, const SerialRobotFitOptions& options,
                               const std::vector<double>& sigma, FitResult& fit) {
   const std::size_t r = base.base.size();
   Eigen::VectorXd theta(static_cast<Eigen::Index>(r));
   for (std::size_t c = 0; c < r; ++c) theta(static_cast<Eigen::Index>(c)) = fit.estimates[c].value;
-  const auto solve = [&](double half_window, double shift) {
-    return Solve(BuildRows(robot, base, logs, half_window, shift), r, sigma);
+  const auto window = [&](double half_window) { return Solve(BuildRows(robot, base, logs, half_window), r, sigma); };
+  const auto timing = [&](double shift) {
+    const auto torques = ShiftedTorques(nominal, logs, shift);
+    return Solve(nominal, r, sigma, &torques);
   };
   struct Systematic {
     Eigen::VectorXd gradient;
@@ -282,10 +312,9 @@ void AddProcessingUncertainty(const SerialRobot& robot, const BaseParameters& ba
     std::string what;
   };
   std::vector<Systematic> errors = {
-      {solve(0.5 * options.half_window, 0.0) - theta, 1.0 / std::sqrt(2.0), "half window halved"},
-      {solve(2.0 * options.half_window, 0.0) - theta, 1.0 / std::sqrt(2.0), "half window doubled"},
-      {0.5 * (solve(options.half_window, 0.5) - solve(options.half_window, -0.5)), 1.0 / std::sqrt(3.0),
-       "torque timing +-1/2 sample"}};
+      {window(0.5 * options.half_window) - theta, 1.0 / std::sqrt(2.0), "half window halved"},
+      {window(2.0 * options.half_window) - theta, 1.0 / std::sqrt(2.0), "half window doubled"},
+      {0.5 * (timing(0.5) - timing(-0.5)), 1.0 / std::sqrt(3.0), "torque timing +-1/2 sample"}};
   bool moves = false;
   for (const Systematic& e : errors) {
     for (std::size_t c = 0; c < r; ++c) moves = moves || std::abs(e.gradient(static_cast<Eigen::Index>(c))) > fit.estimates[c].standard_error;
@@ -317,7 +346,7 @@ SerialRobotFitOutput FitSerialRobot(const SerialRobot& robot, const std::vector<
   out.parameter_names = SerialParameterNames(robot);
   out.base = SerialBaseParameters(robot);
   const std::size_t r = out.base.base.size();
-  const Rows rows = BuildRows(robot, out.base, logs, options.half_window, 0.0);
+  const Rows rows = BuildRows(robot, out.base, logs, options.half_window);
   out.samples = rows.samples;
   if (out.samples * n < 2 * r) {
     throw InputError(fmt::format("{}: {} usable samples for {} base parameters: log more of the trajectory (or a "
@@ -353,17 +382,19 @@ SerialRobotFitOutput FitSerialRobot(const SerialRobot& robot, const std::vector<
   if (!out.fit.singular_values.empty() && out.fit.singular_values.back() > 0.0) {
     out.condition_number = out.fit.singular_values.front() / out.fit.singular_values.back();
   }
-  AddProcessingUncertainty(robot, out.base, logs, options, sigma, out.fit);
+  AddProcessingUncertainty(robot, out.base, rows, logs, options, sigma, out.fit);
   // Each joint's statistics over every sample, standstill included: what
   // `validate` reports for the same log.
-  std::vector<double> fitted;
-  for (const ParameterEstimate& e : out.fit.estimates) fitted.push_back(e.value);
+  Eigen::VectorXd fitted(static_cast<Eigen::Index>(r));
+  for (std::size_t c = 0; c < r; ++c) fitted(static_cast<Eigen::Index>(c)) = out.fit.estimates[c].value;
   std::vector<std::vector<double>> measured(n), predicted(n);
-  for (const SerialRobotLog& log : logs) {
-    const SerialPrediction p = PredictSerialRobot(robot, out.base, fitted, log, options.half_window);
-    for (std::size_t j = 0; j < n; ++j) {
-      measured[j].insert(measured[j].end(), p.measured[j].begin(), p.measured[j].end());
-      predicted[j].insert(predicted[j].end(), p.predicted[j].begin(), p.predicted[j].end());
+  for (std::size_t j = 0; j < n; ++j) {
+    for (std::size_t l = 0; l < logs.size(); ++l) {
+      for (const auto& [x, tau] : {std::pair{&rows.x[l][j], &rows.tau[j][l]}, std::pair{&rows.dropped_x[l][j], &rows.dropped_tau[j][l]}}) {
+        const Eigen::VectorXd model = *x * fitted;
+        measured[j].insert(measured[j].end(), tau->begin(), tau->end());
+        predicted[j].insert(predicted[j].end(), model.data(), model.data() + model.size());
+      }
     }
   }
   for (std::size_t j = 0; j < n; ++j) {
