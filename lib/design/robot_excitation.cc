@@ -310,9 +310,11 @@ void Predict(const Problem& p, const Candidate& c, const std::vector<double>& fi
 }
 
 RobotDesignJoint DesignedJoint(const std::string& name, const Candidate& c, std::size_t j, const std::vector<double>& fine,
-                               double peak_torque) {
+                               double peak_torque, const JointLimits& limits) {
   RobotDesignJoint joint;
   joint.name = name;
+  joint.rate_limit = limits.rate;
+  joint.torque_limit = limits.torque;
   joint.reference = c.reference[j];
   joint.start = c.start[j];
   joint.binding = c.binding[j];
@@ -358,7 +360,7 @@ RobotDesign DesignRobotExcitation(const SerialRobot& robot, const Eigen::VectorX
     for (auto& ref : c.reference) ref = ScaledReference(ref, 0.98);
   }
   Predict(p, c, fine, samples, design);
-  for (std::size_t j = 0; j < n; ++j) design.joints.push_back(DesignedJoint(robot.joints[j].name, c, j, fine, peaks[j]));
+  for (std::size_t j = 0; j < n; ++j) design.joints.push_back(DesignedJoint(robot.joints[j].name, c, j, fine, peaks[j], p.limits[j]));
   return design;
 }
 

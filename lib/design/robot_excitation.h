@@ -60,6 +60,7 @@ struct RobotDesignJoint {
   double start = 0.0;           ///< start (and end) pose [rad or m]
   std::string binding;          ///< the limit that sets its amplitude
   double lowest = 0.0, highest = 0.0, peak_rate = 0.0, peak_acceleration = 0.0, peak_torque = 0.0;
+  double rate_limit = 0.0, torque_limit = 0.0;  ///< the limits applied (infinite: none)
 };
 
 struct RobotDesign {

@@ -118,7 +118,7 @@ int JointActuator(const mjModel* m, int joint, const std::string& name) {
 }
 
 std::string RunMujocoChild(const std::function<void()>& child, const ChildLimits& limits, const std::string& where,
-                           std::size_t payload_bytes, std::string* version) {
+                           std::size_t payload_bytes, std::string* version, bool exact) {
   ChildLimits bounded = limits;
   bounded.max_output_bytes = payload_bytes + 4096;
   const ChildOutcome outcome = RunInChild(child, bounded);
@@ -137,9 +137,10 @@ std::string RunMujocoChild(const std::function<void()>& child, const ChildLimits
                                                      : "failed"));
   }
   const std::size_t version_length = static_cast<unsigned char>(r[1]);
-  if (r.size() != 2 + version_length + payload_bytes) {
-    throw InputError(fmt::format("{}: the MuJoCo process replied {} bytes, not {}", where, r.size(),
-                                 2 + version_length + payload_bytes));
+  const std::size_t expected = 2 + version_length + payload_bytes;
+  if (exact ? r.size() != expected : (r.size() < 2 + version_length || r.size() > expected)) {
+    throw InputError(fmt::format("{}: the MuJoCo process replied {} bytes, {} {}", where, r.size(),
+                                 exact ? "not" : "more than", expected));
   }
   *version = r.substr(2, version_length);
   return r.substr(2 + version_length);

@@ -50,11 +50,11 @@ int JointActuator(const mjModel* m, int joint, const std::string& name);
 
 /// Parent side: runs `child` (which ends in ReplyError or ReplyResult)
 /// with `limits`, and returns the result's payload (`version` set), which
-/// must be `payload_bytes` long. Throws InputError starting with `where`
+/// must be `payload_bytes` long (with `exact` false: at most that long). Throws InputError starting with `where`
 /// for a child that failed, timed out or replied an error, except an error
 /// starting with "unstable", thrown as IdentificationError.
 std::string RunMujocoChild(const std::function<void()>& child, const ChildLimits& limits, const std::string& where,
-                           std::size_t payload_bytes, std::string* version);
+                           std::size_t payload_bytes, std::string* version, bool exact = true);
 
 }  // namespace driveid::mujoco_child
 #endif

@@ -99,17 +99,9 @@ std::vector<std::string> MujocoJointNames(const std::string& path) {
   limits.seconds = 60;
   limits.address_space_bytes = 4.0 * (1 << 30);
   // The names' bytes are not known in advance: at most kMaxJoints of 256.
-  ChildLimits names = limits;
-  names.max_output_bytes = kMaxJoints * 257 + 4096;
-  const ChildOutcome outcome = RunInChild([&] { NamesInChild(path); }, names);
-  const std::string& r = outcome.output;
-  if (!r.empty() && r[0] == 'E') throw InputError(fmt::format("{}: {}", path, r.substr(1, 2000)));
-  if (!outcome.exited || outcome.exit_code != 0 || r.size() < 2 || r[0] != 'R' ||
-      r.size() < 2 + static_cast<std::size_t>(static_cast<unsigned char>(r[1]))) {
-    throw InputError(fmt::format("{}: the MuJoCo process failed", path));
-  }
+  std::string version;
+  const std::string list = RunMujocoChild([&] { NamesInChild(path); }, limits, path, kMaxJoints * 257, &version, false);
   std::vector<std::string> out;
-  const std::string list = r.substr(2 + static_cast<unsigned char>(r[1]));
   for (std::size_t at = 0; at < list.size();) {
     const std::size_t end = list.find('\0', at);
     if (end == std::string::npos) break;

@@ -75,7 +75,7 @@ std::string Oneline(std::string text) {
 
 std::string Limit(double value) { return std::isfinite(value) ? fmt::format("{:.4g}", value) : "-"; }
 
-std::string FormatDesign(const SerialRobot& robot, const RobotDesign& d, const RobotDesignOptions& o,
+std::string FormatDesign(const RobotDesign& d, const RobotDesignOptions& o,
                          const std::vector<std::string>& base_names, const std::vector<double>& prior,
                          const std::vector<double>& noise) {
   std::string out = fmt::format(
@@ -86,13 +86,9 @@ std::string FormatDesign(const SerialRobot& robot, const RobotDesign& d, const R
                      "highest", "|qd| max", "limit", "|qdd| max", "|tau| max", "limit", "noise", "binding");
   for (std::size_t j = 0; j < d.joints.size(); ++j) {
     const RobotDesignJoint& r = d.joints[j];
-    const SerialJoint& limits = robot.joints[j];
     out += fmt::format("{:<16} {:>9.4g} {:>9.4g} {:>9.4g} {:>9.4g} {:>8} {:>9.4g} {:>9.4g} {:>8} {:>8.3g}  {}\n", r.name,
-                       r.start, r.lowest, r.highest, r.peak_rate,
-                       Limit(o.max_rate > 0.0 ? std::min(o.max_rate, limits.velocity_limit) : limits.velocity_limit),
-                       r.peak_acceleration, r.peak_torque,
-                       Limit(o.max_torque > 0.0 ? std::min(o.max_torque, limits.effort_limit) : limits.effort_limit),
-                       noise[j], r.binding);
+                       r.start, r.lowest, r.highest, r.peak_rate, Limit(r.rate_limit), r.peak_acceleration,
+                       r.peak_torque, Limit(r.torque_limit), noise[j], r.binding);
   }
   out += fmt::format("condition number of the column-normalised base regressor: {:.4g}\n", d.condition_number);
   out += fmt::format("{:>4} {:>12} {:>12} {:>10}  {}\n", "base", "prior", "pred. std", "std/|prior|", "combination");
@@ -115,7 +111,7 @@ ExcitationDesignRun DesignRobotRun(const SerialRobot& robot, const RobotDesignOp
   const Eigen::VectorXd beta = base.regroup * theta;
   const std::vector<double> prior(beta.data(), beta.data() + beta.size());
   ExcitationDesignRun out;
-  out.printed = FormatDesign(robot, d, design, base.names, prior, noise);
+  out.printed = FormatDesign(d, design, base.names, prior, noise);
   const SampledRobotTrajectory t = SampleRobotTrajectory(d, design.rate, design.duration);
   if (r.csv) {
     std::string csv = "# serial robot trajectory (docs/formats.md#robot-trajectories) designed by: " +

@@ -227,8 +227,8 @@ def write_ros1(out, messages, kind):
         stream.write(f)
 
 
-def write_elastic(out, rows):
-    """An elastic joint's log as a db3 of JointState messages (motor, link)."""
+def write_joint_states_db3(out, messages):
+    """A db3 with one /joint_states topic: `messages` are (receive_ns, CDR data)."""
     if os.path.exists(out):
         os.remove(out)
     db = sqlite3.connect(out)
@@ -237,29 +237,24 @@ def write_elastic(out, rows):
     db.execute("CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL, timestamp INTEGER NOT NULL, "
                "data BLOB NOT NULL)")
     db.execute("INSERT INTO topics VALUES (1, '/joint_states', 'sensor_msgs/msg/JointState', 'cdr', '', '')")
-    db.executemany("INSERT INTO messages (topic_id, timestamp, data) VALUES (1, ?, ?)",
-                   [(round(t * 1e9) + 2_000_000, joint_state(round(t * 1e9), ["motor", "link"], [qm, ql], [], [tau, 0.0]))
-                    for t, qm, ql, tau in rows])
+    db.executemany("INSERT INTO messages (topic_id, timestamp, data) VALUES (1, ?, ?)", messages)
     db.commit()
     db.close()
+
+
+def write_elastic(out, rows):
+    """An elastic joint's log as a db3 of JointState messages (motor, link)."""
+    write_joint_states_db3(out, [(round(t * 1e9) + 2_000_000,
+                                  joint_state(round(t * 1e9), ["motor", "link"], [qm, ql], [], [tau, 0.0]))
+                                 for t, qm, ql, tau in rows])
 
 
 def write_arm(out, header, rows):
     """A serial arm's log as a db3 of JointState messages, every joint in each."""
     joints = [name[2:] for name in header[1::2]]
-    if os.path.exists(out):
-        os.remove(out)
-    db = sqlite3.connect(out)
-    db.execute("CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL, "
-               "serialization_format TEXT NOT NULL, offered_qos_profiles TEXT NOT NULL, type_description_hash TEXT NOT NULL)")
-    db.execute("CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL, timestamp INTEGER NOT NULL, "
-               "data BLOB NOT NULL)")
-    db.execute("INSERT INTO topics VALUES (1, '/joint_states', 'sensor_msgs/msg/JointState', 'cdr', '', '')")
-    db.executemany("INSERT INTO messages (topic_id, timestamp, data) VALUES (1, ?, ?)",
-                   [(round(r[0] * 1e9) + 2_000_000,
-                     joint_state(round(r[0] * 1e9), joints, list(r[1::2]), [], list(r[2::2]))) for r in rows])
-    db.commit()
-    db.close()
+    write_joint_states_db3(out, [(round(r[0] * 1e9) + 2_000_000,
+                                  joint_state(round(r[0] * 1e9), joints, list(r[1::2]), [], list(r[2::2])))
+                                 for r in rows])
 
 
 def main():
