@@ -34,7 +34,23 @@ CLI::App* SetupRobotCommand(CLI::App& app, RobotOptions& options) {
                       "of the data (docs/models.md#physical-consistency)")
       ->capture_default_str()
       ->check(FiniteAbove(0.0));
-  AddFreeOption(*command, options.free, FreeOptionHelp(PlanarRobotParameterTable(), "robot"));
+  command
+      ->add_option_function<std::vector<std::string>>(
+          "--per-direction",
+          [&options](const std::vector<std::string>& texts) {
+            for (const std::string& text : texts) {
+              for (auto& name : SplitNames(text, EmptyNames::kRefuse)) options.per_direction.push_back(std::move(name));
+            }
+          },
+          "--urdf: joints (comma-separated, or all) whose viscous friction is fitted per direction, b+- = viscous +- "
+          "viscous_asymmetry (Coulomb friction per direction is Coulomb and the offset; docs/models.md#serial-robot)")
+      ->type_name("JOINTS");
+  AddFreeOption(*command, options.free,
+                FreeOptionHelp(PlanarRobotParameterTable(), "robot") +
+                    "; with --urdf: base parameters by their lead's name (Izz_link1, viscous_joint2), 'bodies' or "
+                    "'drives' (default all): the others are held at the URDF's inertials and <dynamics> "
+                    "(docs/models.md#serial-robot-identification)");
+  options.free_option = command->get_option("--free");
   AddLogInputOptions(*command, options.input, "theta1=#2");
   command->add_option("--window", options.window,
                       "half window of the zero-phase differentiator [s] (default 0.005 planar, 0.05 with --urdf)")
@@ -76,6 +92,8 @@ void RunSerialRobot(const RobotOptions& options, const std::string& command_line
   SerialRobotIdentificationOptions run_options;
   run_options.fit.half_window = options.window > 0.0 ? options.window : 0.05;
   run_options.prior_weight = options.prior_weight;
+  run_options.viscous_per_direction = options.per_direction;
+  if (options.free_option != nullptr && options.free_option->count() > 0) run_options.fit.free = options.free;
   SetProgress(run_options.fit.fit, options.output.verbose, options.output.max_seconds);
   run_options.trace = !options.output.trace.empty();
   const SerialRobotIdentification run =
@@ -95,6 +113,7 @@ void RunSerialRobot(const RobotOptions& options, const std::string& command_line
 
 void RunRobotCommand(const RobotOptions& options, const std::string& command_line) {
   if (!options.urdf.empty()) return RunSerialRobot(options, command_line);
+  if (!options.per_direction.empty()) throw OptionError("--per-direction: only with --urdf (a serial robot)");
   if (options.params.empty()) throw OptionError("robot: give --urdf (a serial robot) or --params (the planar robot)");
   CheckFitOutputs(options.output, LogCommandInputs(options.logs, options.params, options.input));
   const ParameterFile start = ReadParameterFile(options.params);

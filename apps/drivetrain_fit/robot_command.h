@@ -17,7 +17,9 @@ struct RobotOptions {
   std::string params;
   std::string urdf;  ///< a serial robot (docs/models.md#serial-robot) instead of the planar one
   double prior_weight = 1e-4;
+  std::vector<std::string> per_direction;  ///< --urdf: joints with viscous friction per direction
   std::vector<std::string> free = FitParameterKeys(PlanarRobotParameterTable(), "robot", true);
+  const CLI::Option* free_option = nullptr;  ///< whether --free was given (with --urdf its default is all)
   LogInputCli input;
   double window = 0.0;  ///< 0: 0.005 s (planar robot), 0.05 s (--urdf)
   FitOutputOptions output;

@@ -338,7 +338,7 @@ RobotDesign DesignRobotExcitation(const SerialRobot& robot, const Eigen::VectorX
   RequireValid(options);
   const std::size_t n = robot.size();
   if (noise.size() != n || static_cast<std::size_t>(theta.size()) != kSerialColumnsPerJoint * n || base_columns.empty()) {
-    throw std::logic_error("DesignRobotExcitation: one noise per joint, 14 parameters per joint, base columns");
+    throw std::logic_error("DesignRobotExcitation: one noise per joint, kSerialColumnsPerJoint parameters per joint, base columns");
   }
   const double period = options.period > 0.0 ? options.period : options.duration / std::ceil(options.duration / 10.0);
   Problem p = MakeProblem(robot, theta, base_columns, noise, options, period);

@@ -56,6 +56,11 @@ IdentifiedArm Identified(const ParameterFile& file, const ExportOptions& o) {
     if (!(p[0] > 0.0)) throw InputError(fmt::format("{}: body {} has mass {}: not a body a simulator takes", o.source, joint.body, p[0]));
     arm.robot.bodies[j] = p;
     arm.drives[j] = s.drives[j].drive;
+    if (s.drives[j].drive.viscous_asymmetry != 0.0) {
+      throw InputError(fmt::format("{}: joint {}'s viscous friction differs per direction (viscous_asymmetry {:.4g}): "
+                                   "URDF and MJCF hold one damping per joint; refit without ‹per_direction› to export",
+                                   o.source, joint.name, s.drives[j].drive.viscous_asymmetry));
+    }
   }
   return arm;
 }
@@ -123,6 +128,13 @@ std::string Triple(const Eigen::Vector3d& v) { return Number(v.x()) + " " + Numb
 
 std::string ExportMjcf(const IdentifiedArm& arm, const ExportOptions& o) {
   const SerialRobot& r = arm.robot;
+  for (const SerialJoint& j : r.joints) {
+    if (j.mimic >= 0) {
+      throw InputError(fmt::format("{}: joint '{}' mimics '{}': an MJCF of mimic joints (an equality constraint, no "
+                                   "actuator of its own) is not exported yet; export to urdf",
+                                   o.source, j.name, r.joints[static_cast<std::size_t>(j.mimic)].name));
+    }
+  }
   std::string out = fmt::format("<mujoco model=\"{}\">\n", XmlAttribute(r.name.empty() ? "driveid_robot" : r.name));
   out += Provenance(o, "  <!--", " -->");
   out += "  <!-- bodies from " + CommentText(arm.urdf_path) +

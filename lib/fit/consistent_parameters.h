@@ -17,6 +17,7 @@
 
 #include "core/fit_result.h"
 #include "fit/base_parameters.h"
+#include "fit/serial_robot_fit.h"
 #include "models/serial_robot.h"
 
 namespace driveid {
@@ -25,17 +26,26 @@ struct ConsistentParameters {
   std::vector<InertialParameters> bodies;      ///< per joint's body, physical
   std::vector<SerialDriveParameters> drives;   ///< per joint
   std::vector<double> base;                    ///< beta = R theta of these, per base parameter
-  double chi2 = 0.0;          ///< (beta - beta_hat)^T C^-1 (beta - beta_hat)
-  double largest_shift = 0.0; ///< max |beta_j - beta_hat_j| / std_j
+  double chi2 = 0.0;          ///< (beta - beta_hat)^T C^-1 (beta - beta_hat) over the free ones
+  double largest_shift = 0.0; ///< max |beta_j - beta_hat_j| / std_j over the free ones
   std::string largest_shift_name;
   bool converged = false;
   int iterations = 0;
   std::string termination;  ///< the solver's reason for stopping
 };
 
-/// `fit`: the base-parameter fit (estimates in `base` order, covariance);
-/// `prior_weight`: the prior's weight relative to one std of the data (> 0).
-ConsistentParameters FitConsistentParameters(const SerialRobot& robot, const BaseParameters& base,
-                                             const FitResult& fit, double prior_weight);
+/// The prior: the URDF's inertials (the robot's bodies) and its drives,
+/// weighted by `weight` relative to one std of the data.
+struct ConsistentPrior {
+  double weight = 1e-4;                       ///< > 0
+  std::vector<SerialDriveParameters> drives;  ///< per joint (empty: zero drives)
+  /// Whether the values can be used; else `error` names the field and the constraint.
+  bool IsValid(std::string* error) const;
+};
+
+/// `fit`: the base-parameter fit (its free estimates and covariance); the
+/// held base parameters (fit.held) are kept at their values (to 1e-4 of them).
+ConsistentParameters FitConsistentParameters(const SerialRobot& robot, const SerialRobotFitOutput& fit,
+                                             const ConsistentPrior& prior);
 
 }  // namespace driveid

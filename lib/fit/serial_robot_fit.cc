@@ -1,7 +1,9 @@
 #include "fit/serial_robot_fit.h"
 
 #include <cmath>
+#include <algorithm>
 #include <random>
+#include <tuple>
 
 #include <Eigen/QR>
 #include <fmt/format.h>
@@ -31,7 +33,8 @@ constexpr unsigned kStructureSeed = 20260528u;
 constexpr double kStandstillFraction = 0.01;
 
 void CheckLog(const SerialRobot& robot, const SerialRobotLog& log) {
-  const std::size_t n = robot.size(), samples = log.time.size();
+  const std::vector<std::string> names = SerialCoordinateNames(robot);
+  const std::size_t n = names.size(), samples = log.time.size();
   if (log.position.size() != n || log.torque.size() != n || (!log.rate.empty() && log.rate.size() != n)) {
     throw InputError(fmt::format("{}: the log has {} joints' columns, the robot {} joints", log.path,
                                  log.position.size(), n));
@@ -39,8 +42,7 @@ void CheckLog(const SerialRobot& robot, const SerialRobotLog& log) {
   for (std::size_t j = 0; j < n; ++j) {
     const bool rate_ok = log.rate.empty() || log.rate[j].empty() || log.rate[j].size() == samples;
     if (log.position[j].size() != samples || log.torque[j].size() != samples || !rate_ok) {
-      throw InputError(fmt::format("{}: joint {}'s columns differ in length from the time column", log.path,
-                                   robot.joints[j].name));
+      throw InputError(fmt::format("{}: joint {}'s columns differ in length from the time column", log.path, names[j]));
     }
   }
 }
@@ -49,7 +51,7 @@ void CheckLog(const SerialRobot& robot, const SerialRobotLog& log) {
 
 SerialMotion DifferentiateSerialLog(const SerialRobot& robot, const SerialRobotLog& log, double half_window) {
   CheckLog(robot, log);
-  const std::size_t n = robot.size(), samples = log.time.size();
+  const std::size_t n = log.position.size(), samples = log.time.size();
   std::vector<SignalDerivatives> position(n), rate(n);
   std::vector<char> valid(samples, 1);
   for (std::size_t j = 0; j < n; ++j) {
@@ -84,11 +86,11 @@ namespace {
 
 // The base regressor's rows per joint along a motion.
 std::vector<Eigen::MatrixXd> BaseRows(const SerialRobot& robot, const BaseParameters& base, const SerialMotion& m) {
-  const std::size_t n = robot.size(), r = base.base.size();
+  const std::size_t n = SerialCoordinates(robot).size(), r = base.base.size();
   std::vector<Eigen::MatrixXd> rows(n, Eigen::MatrixXd(static_cast<Eigen::Index>(m.sample.size()), static_cast<Eigen::Index>(r)));
-  Eigen::MatrixXd y(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(kSerialColumnsPerJoint * n));
+  Eigen::MatrixXd y(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(kSerialColumnsPerJoint * robot.size()));
   for (std::size_t k = 0; k < m.sample.size(); ++k) {
-    CalcSerialRegressor(robot, m.q[k], m.qd[k], m.qdd[k], y);
+    CalcSerialCoordinateRegressor(robot, m.q[k], m.qd[k], m.qdd[k], y);
     for (std::size_t j = 0; j < n; ++j) {
       for (std::size_t c = 0; c < r; ++c) {
         rows[j](static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(c)) =
@@ -120,8 +122,10 @@ SerialJointStatistics Statistics(const std::string& joint, const std::vector<dou
 }  // namespace
 
 BaseParameters SerialBaseParameters(const SerialRobot& robot) {
-  const auto n = static_cast<Eigen::Index>(robot.size());
-  const auto columns = static_cast<Eigen::Index>(kSerialColumnsPerJoint) * n;
+  // Random motions of the coordinates (mimic joints follow their leaders).
+  const std::vector<std::size_t> coordinates = SerialCoordinates(robot);
+  const auto n = static_cast<Eigen::Index>(coordinates.size());
+  const auto columns = static_cast<Eigen::Index>(kSerialColumnsPerJoint * robot.size());
   const int samples = std::max(20, static_cast<int>(kStructureSamples * columns / std::max<Eigen::Index>(1, n)));
   std::mt19937 rng(kStructureSeed);
   std::normal_distribution<double> normal;
@@ -130,11 +134,12 @@ BaseParameters SerialBaseParameters(const SerialRobot& robot) {
   for (int s = 0; s < samples; ++s) {
     Eigen::VectorXd q(n), qd(n), qdd(n);
     for (Eigen::Index i = 0; i < n; ++i) {
-      q(i) = robot.joints[static_cast<std::size_t>(i)].type == SerialJointType::kRevolute ? angle(rng) : normal(rng);
+      const SerialJoint& joint = robot.joints[coordinates[static_cast<std::size_t>(i)]];
+      q(i) = joint.type == SerialJointType::kRevolute ? angle(rng) : normal(rng);
       qd(i) = normal(rng);
       qdd(i) = normal(rng);
     }
-    CalcSerialRegressor(robot, q, qd, qdd, w.middleRows(s * n, n));
+    CalcSerialCoordinateRegressor(robot, q, qd, qdd, w.middleRows(s * n, n));
   }
   return FindBaseParameters(w, SerialParameterNames(robot));
 }
@@ -149,7 +154,17 @@ struct Rows {
   // The rows left out at standstill, for the statistics over every sample.
   std::vector<std::vector<Eigen::MatrixXd>> dropped_x;        // [log][joint]
   std::vector<std::vector<std::vector<double>>> dropped_tau;  // [joint][log]
+  // The held base parameters' torque (Selection), at the kept and dropped rows.
+  std::vector<std::vector<std::vector<double>>> known, dropped_known;  // [joint][log][sample]
   std::size_t samples = 0;
+};
+
+// The base parameters estimated (indices into base) and the values of the
+// others (zero at the free ones), whose torque is known.
+struct Selection {
+  std::vector<std::size_t> free;
+  Eigen::VectorXd held;
+  bool all() const { return free.size() == static_cast<std::size_t>(held.size()); }
 };
 
 // Joint j's samples at standstill: slower than kStandstillFraction of its
@@ -170,48 +185,73 @@ std::vector<char> AtStandstill(const SerialMotion& m, std::size_t j) {
 
 // Moves the rows, torques and times where `drop` is set to `dropped_x`
 // and `dropped_tau`, keeping the others in order.
-void KeepMoving(const std::vector<char>& drop, Eigen::MatrixXd& x, std::vector<double>& tau, std::vector<double>& at,
-                Eigen::MatrixXd& dropped_x, std::vector<double>& dropped_tau) {
+struct JointRows {
+  Eigen::MatrixXd x;
+  std::vector<double> tau, at, known;
+};
+void KeepMoving(const std::vector<char>& drop, JointRows& rows, JointRows& dropped) {
   std::size_t kept = 0, count = 0;
   for (char d : drop) count += d != 0;
-  dropped_x.resize(static_cast<Eigen::Index>(count), x.cols());
-  dropped_tau.clear();
+  dropped.x.resize(static_cast<Eigen::Index>(count), rows.x.cols());
   for (std::size_t k = 0; k < drop.size(); ++k) {
     if (drop[k]) {
-      dropped_x.row(static_cast<Eigen::Index>(dropped_tau.size())) = x.row(static_cast<Eigen::Index>(k));
-      dropped_tau.push_back(tau[k]);
+      dropped.x.row(static_cast<Eigen::Index>(dropped.tau.size())) = rows.x.row(static_cast<Eigen::Index>(k));
+      dropped.tau.push_back(rows.tau[k]);
+      dropped.known.push_back(rows.known[k]);
       continue;
     }
-    x.row(static_cast<Eigen::Index>(kept)) = x.row(static_cast<Eigen::Index>(k));
-    at[kept] = at[k];
-    tau[kept++] = tau[k];
+    rows.x.row(static_cast<Eigen::Index>(kept)) = rows.x.row(static_cast<Eigen::Index>(k));
+    rows.at[kept] = rows.at[k];
+    rows.known[kept] = rows.known[k];
+    rows.tau[kept++] = rows.tau[k];
   }
-  x.conservativeResize(static_cast<Eigen::Index>(kept), Eigen::NoChange);
-  tau.resize(kept);
-  at.resize(kept);
+  rows.x.conservativeResize(static_cast<Eigen::Index>(kept), Eigen::NoChange);
+  rows.tau.resize(kept);
+  rows.at.resize(kept);
+  rows.known.resize(kept);
+}
+
+// A joint's rows on the free base parameters, the held ones' torque known.
+JointRows SplitHeld(const Eigen::MatrixXd& full, const Selection& selection) {
+  JointRows out;
+  const Eigen::VectorXd known = full * selection.held;
+  out.known.assign(known.data(), known.data() + known.size());
+  if (selection.all()) {
+    out.x = full;
+    return out;
+  }
+  out.x.resize(full.rows(), static_cast<Eigen::Index>(selection.free.size()));
+  for (std::size_t c = 0; c < selection.free.size(); ++c) {
+    out.x.col(static_cast<Eigen::Index>(c)) = full.col(static_cast<Eigen::Index>(selection.free[c]));
+  }
+  return out;
 }
 
 // Each joint's rows at its standstill are left out (AtStandstill).
-Rows BuildRows(const SerialRobot& robot, const BaseParameters& base, const std::vector<SerialRobotLog>& logs,
-               double half_window) {
-  const std::size_t n = robot.size();
+Rows BuildRows(const SerialRobot& robot, const BaseParameters& base, const Selection& selection,
+               const std::vector<SerialRobotLog>& logs, double half_window) {
+  const std::size_t n = SerialCoordinates(robot).size();
   Rows rows;
-  rows.tau.resize(n);
-  rows.at.resize(n);
-  rows.dropped_tau.resize(n);
+  for (auto* v : {&rows.tau, &rows.at, &rows.dropped_tau, &rows.known, &rows.dropped_known}) v->resize(n);
   for (const SerialRobotLog& log : logs) {
     const SerialMotion m = DifferentiateSerialLog(robot, log, half_window);
-    std::vector<Eigen::MatrixXd> x = BaseRows(robot, base, m), dropped(n);
+    const std::vector<Eigen::MatrixXd> full = BaseRows(robot, base, m);
+    std::vector<Eigen::MatrixXd> x(n), dropped_x(n);
     for (std::size_t j = 0; j < n; ++j) {
-      std::vector<double> at = m.time, t, dropped_tau;
-      for (std::size_t k : m.sample) t.push_back(log.torque[j][k]);
-      KeepMoving(AtStandstill(m, j), x[j], t, at, dropped[j], dropped_tau);
-      rows.tau[j].push_back(std::move(t));
-      rows.at[j].push_back(std::move(at));
-      rows.dropped_tau[j].push_back(std::move(dropped_tau));
+      JointRows kept = SplitHeld(full[j], selection), dropped;
+      kept.at = m.time;
+      for (std::size_t k : m.sample) kept.tau.push_back(log.torque[j][k]);
+      KeepMoving(AtStandstill(m, j), kept, dropped);
+      x[j] = std::move(kept.x);
+      dropped_x[j] = std::move(dropped.x);
+      rows.tau[j].push_back(std::move(kept.tau));
+      rows.at[j].push_back(std::move(kept.at));
+      rows.known[j].push_back(std::move(kept.known));
+      rows.dropped_tau[j].push_back(std::move(dropped.tau));
+      rows.dropped_known[j].push_back(std::move(dropped.known));
     }
     rows.x.push_back(std::move(x));
-    rows.dropped_x.push_back(std::move(dropped));
+    rows.dropped_x.push_back(std::move(dropped_x));
     rows.samples += m.sample.size();
   }
   return rows;
@@ -235,7 +275,9 @@ Eigen::VectorXd Solve(const Rows& rows, std::size_t r, const std::vector<double>
     const double w = 1.0 / (sigma[j] * sigma[j]);
     for (std::size_t l = 0; l < rows.x.size(); ++l) {
       const Eigen::MatrixXd& x = rows.x[l][j];
-      const Eigen::Map<const Eigen::VectorXd> tau(taus[j][l].data(), static_cast<Eigen::Index>(taus[j][l].size()));
+      const auto size = static_cast<Eigen::Index>(taus[j][l].size());
+      const Eigen::VectorXd tau = Eigen::Map<const Eigen::VectorXd>(taus[j][l].data(), size) -
+                                  Eigen::Map<const Eigen::VectorXd>(rows.known[j][l].data(), size);
       normal.selfadjointView<Eigen::Lower>().rankUpdate(x.transpose(), w);
       right += w * (x.transpose() * tau);
     }
@@ -262,7 +304,7 @@ std::vector<double> JointNoise(const Rows& rows, std::size_t r) {
       const Eigen::VectorXd model = rows.x[l][j] * first;
       used += static_cast<std::size_t>(model.size());
       for (Eigen::Index k = 0; k < model.size(); ++k) {
-        const double t = rows.tau[j][l][static_cast<std::size_t>(k)];
+        const double t = rows.tau[j][l][static_cast<std::size_t>(k)] - rows.known[j][l][static_cast<std::size_t>(k)];
         e2 += (t - model(k)) * (t - model(k));
         t2 += t * t;
       }
@@ -295,13 +337,13 @@ std::vector<std::vector<std::vector<double>>> ShiftedTorques(const Rows& rows, c
 // with the torque read half a sample earlier and later (a timing known to
 // within a sample: uniform, std 1/sqrt 3 of the half-sample response).
 // Added where some estimate moves by more than its std.
-void AddProcessingUncertainty(const SerialRobot& robot, const BaseParameters& base, const Rows& nominal,
-                              const std::vector<SerialRobotLog>& logs, const SerialRobotFitOptions& options,
-                              const std::vector<double>& sigma, FitResult& fit) {
-  const std::size_t r = base.base.size();
+void AddProcessingUncertainty(const SerialRobot& robot, const BaseParameters& base, const Selection& selection,
+                              const Rows& nominal, const std::vector<SerialRobotLog>& logs,
+                              const SerialRobotFitOptions& options, const std::vector<double>& sigma, FitResult& fit) {
+  const std::size_t r = selection.free.size();
   Eigen::VectorXd theta(static_cast<Eigen::Index>(r));
   for (std::size_t c = 0; c < r; ++c) theta(static_cast<Eigen::Index>(c)) = fit.estimates[c].value;
-  const auto window = [&](double half_window) { return Solve(BuildRows(robot, base, logs, half_window), r, sigma); };
+  const auto window = [&](double half_window) { return Solve(BuildRows(robot, base, selection, logs, half_window), r, sigma); };
   const auto timing = [&](double shift) {
     const auto torques = ShiftedTorques(nominal, logs, shift);
     return Solve(nominal, r, sigma, &torques);
@@ -338,15 +380,87 @@ void AddProcessingUncertainty(const SerialRobot& robot, const BaseParameters& ba
 
 }  // namespace
 
+std::vector<std::size_t> SelectSerialBaseParameters(const BaseParameters& base,
+                                                    const std::vector<std::string>& parameter_names,
+                                                    const std::vector<std::string>& names) {
+  std::vector<char> chosen(base.base.size(), names.empty() ? 1 : 0);
+  for (const std::string& name : names) {
+    bool found = false;
+    for (std::size_t k = 0; k < base.base.size(); ++k) {
+      const bool drive = base.base[k] % kSerialColumnsPerJoint >= kInertialParameters;
+      if (parameter_names[base.base[k]] == name || (name == "drives" && drive) || (name == "bodies" && !drive)) {
+        chosen[k] = 1;
+        found = true;
+      }
+    }
+    if (found) continue;
+    for (std::size_t k = 0; k < base.combination.size(); ++k) {
+      for (const auto& [column, c] : base.combination[k]) {
+        if (parameter_names[column] == name) {
+          throw OptionError(fmt::format("‹free›: '{}' is not a base parameter itself but part of '{}': name that "
+                                        "one (docs/models.md#serial-robot-identification)",
+                                        name, base.names[k]));
+        }
+      }
+    }
+    throw OptionError(fmt::format("‹free›: '{}' is no base parameter of this robot: give a base parameter's lead "
+                                  "(the first name of each in the summary), 'bodies' or 'drives'",
+                                  name));
+  }
+  std::vector<std::size_t> out;
+  for (std::size_t k = 0; k < chosen.size(); ++k) {
+    if (chosen[k]) out.push_back(k);
+  }
+  return out;
+}
+
+std::vector<double> SerialRobotFitOutput::BaseValues() const {
+  std::vector<double> values = held;
+  for (std::size_t c = 0; c < free.size() && c < fit.estimates.size(); ++c) values[free[c]] = fit.estimates[c].value;
+  return values;
+}
+
+namespace {
+
+// The free base parameters and the held ones' prior values (beta = R theta_prior).
+Selection SelectFree(const SerialRobot& robot, const SerialRobotFitOptions& options, const SerialRobotFitOutput& out) {
+  if (!options.prior_drives.empty() && options.prior_drives.size() != robot.size()) {
+    throw std::logic_error("FitSerialRobot: one prior drive per joint");
+  }
+  Selection selection;
+  selection.free = SelectSerialBaseParameters(out.base, out.parameter_names, options.free);
+  const Eigen::VectorXd prior = out.base.regroup * SerialParameterVector(robot, options.prior_drives);
+  selection.held = prior;
+  for (std::size_t k : selection.free) selection.held(static_cast<Eigen::Index>(k)) = 0.0;
+  return selection;
+}
+
+// Rethrows the fit core's refusal of base parameters the logs do not
+// determine with what to do about it.
+[[noreturn]] void RefuseUnexcited(const IdentificationError& e) {
+  throw IdentificationError(fmt::format("{}; to hold what the trajectory cannot excite at the URDF's values, list the "
+                                        "others in ‹free›, or design a trajectory that excites them (design robot)",
+                                        e.what()));
+}
+
+}  // namespace
+
 SerialRobotFitOutput FitSerialRobot(const SerialRobot& robot, const std::vector<SerialRobotLog>& logs,
                                     const SerialRobotFitOptions& options) {
   RequireValid(options);
-  const std::size_t n = robot.size();
+  const std::vector<std::string> joint_names = SerialCoordinateNames(robot);
+  const std::size_t n = joint_names.size();
   SerialRobotFitOutput out;
   out.parameter_names = SerialParameterNames(robot);
   out.base = SerialBaseParameters(robot);
-  const std::size_t r = out.base.base.size();
-  const Rows rows = BuildRows(robot, out.base, logs, options.half_window);
+  const Selection selection = SelectFree(robot, options, out);
+  out.free = selection.free;
+  out.held.assign(out.base.base.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t k = 0; k < out.held.size(); ++k) {
+    if (std::find(out.free.begin(), out.free.end(), k) == out.free.end()) out.held[k] = selection.held(static_cast<Eigen::Index>(k));
+  }
+  const std::size_t r = selection.free.size();
+  const Rows rows = BuildRows(robot, out.base, selection, logs, options.half_window);
   out.samples = rows.samples;
   if (out.samples * n < 2 * r) {
     throw InputError(fmt::format("{}: {} usable samples for {} base parameters: log more of the trajectory (or a "
@@ -356,17 +470,18 @@ SerialRobotFitOutput FitSerialRobot(const SerialRobot& robot, const std::vector<
   const std::vector<double> sigma = JointNoise(rows, r);
   const Eigen::VectorXd first = Solve(rows, r, sigma);
   std::vector<std::string> names;
-  for (std::size_t c = 0; c < r; ++c) names.push_back(out.parameter_names[out.base.base[c]]);
+  for (std::size_t k : selection.free) names.push_back(out.parameter_names[out.base.base[k]]);
   LinearRegression regression(names);
   regression.Reserve(out.samples * n);
   std::vector<double> values(r);
   for (std::size_t j = 0; j < n; ++j) {
-    regression.BeginChannel(robot.joints[j].name);
+    regression.BeginChannel(joint_names[j]);
     for (std::size_t l = 0; l < logs.size(); ++l) {
       const Eigen::MatrixXd& x = rows.x[l][j];
       for (Eigen::Index k = 0; k < x.rows(); ++k) {
         for (std::size_t c = 0; c < r; ++c) values[c] = x(k, static_cast<Eigen::Index>(c)) / sigma[j];
-        regression.AddRow(values, rows.tau[j][l][static_cast<std::size_t>(k)] / sigma[j]);
+        const auto row = static_cast<std::size_t>(k);
+        regression.AddRow(values, rows.tau[j][l][row] / sigma[j], rows.known[j][l][row] / sigma[j]);
       }
     }
   }
@@ -375,14 +490,27 @@ SerialRobotFitOutput FitSerialRobot(const SerialRobot& robot, const std::vector<
     const double v = first(static_cast<Eigen::Index>(c));
     free.push_back({names[c], v, -std::numeric_limits<double>::infinity(), std::abs(v) > 0.0 ? std::abs(v) : 1.0});
   }
-  out.fit = regression.FitAndRelease(free, {}, options.fit);
+  try {
+    out.fit = regression.FitAndRelease(free, {}, options.fit);
+  } catch (const IdentificationError& e) {
+    RefuseUnexcited(e);
+  }
   // The channels' residuals were weighted by 1 / sigma_j: their rmse back in
   // the joint's unit [N m or N] (fit %, relative error and lag-1 are ratios).
   for (std::size_t j = 0; j < n && j < out.fit.channels.size(); ++j) out.fit.channels[j].rmse *= sigma[j];
   if (!out.fit.singular_values.empty() && out.fit.singular_values.back() > 0.0) {
     out.condition_number = out.fit.singular_values.front() / out.fit.singular_values.back();
   }
-  AddProcessingUncertainty(robot, out.base, rows, logs, options, sigma, out.fit);
+  AddProcessingUncertainty(robot, out.base, selection, rows, logs, options, sigma, out.fit);
+  if (!selection.all()) {
+    std::vector<std::string> held;
+    for (std::size_t k = 0; k < out.held.size(); ++k) {
+      if (!std::isnan(out.held[k])) held.push_back(out.parameter_names[out.base.base[k]]);
+    }
+    out.fit.notes.push_back(fmt::format("held at the prior (the URDF's inertials and <dynamics>), not estimated: {}; "
+                                        "the intervals take them as exact",
+                                        fmt::join(held, ", ")));
+  }
   // Each joint's statistics over every sample, standstill included: what
   // `validate` reports for the same log.
   Eigen::VectorXd fitted(static_cast<Eigen::Index>(r));
@@ -390,15 +518,16 @@ SerialRobotFitOutput FitSerialRobot(const SerialRobot& robot, const std::vector<
   std::vector<std::vector<double>> measured(n), predicted(n);
   for (std::size_t j = 0; j < n; ++j) {
     for (std::size_t l = 0; l < logs.size(); ++l) {
-      for (const auto& [x, tau] : {std::pair{&rows.x[l][j], &rows.tau[j][l]}, std::pair{&rows.dropped_x[l][j], &rows.dropped_tau[j][l]}}) {
+      for (const auto& [x, tau, known] : {std::tuple{&rows.x[l][j], &rows.tau[j][l], &rows.known[j][l]},
+                                          std::tuple{&rows.dropped_x[l][j], &rows.dropped_tau[j][l], &rows.dropped_known[j][l]}}) {
         const Eigen::VectorXd model = *x * fitted;
         measured[j].insert(measured[j].end(), tau->begin(), tau->end());
-        predicted[j].insert(predicted[j].end(), model.data(), model.data() + model.size());
+        for (Eigen::Index k = 0; k < model.size(); ++k) predicted[j].push_back(model(k) + (*known)[static_cast<std::size_t>(k)]);
       }
     }
   }
   for (std::size_t j = 0; j < n; ++j) {
-    out.joints.push_back(Statistics(robot.joints[j].name, measured[j], predicted[j]));
+    out.joints.push_back(Statistics(joint_names[j], measured[j], predicted[j]));
     out.joints.back().weight_std = sigma[j];
   }
   return out;
@@ -412,13 +541,14 @@ SerialPrediction PredictSerialRobot(const SerialRobot& robot, const BaseParamete
   const Eigen::Map<const Eigen::VectorXd> beta(values.data(), static_cast<Eigen::Index>(values.size()));
   SerialPrediction p;
   p.time = m.time;
-  for (std::size_t j = 0; j < robot.size(); ++j) {
+  const std::vector<std::string> names = SerialCoordinateNames(robot);
+  for (std::size_t j = 0; j < names.size(); ++j) {
     std::vector<double> measured, predicted;
     for (std::size_t k = 0; k < m.sample.size(); ++k) {
       measured.push_back(log.torque[j][m.sample[k]]);
       predicted.push_back(rows[j].row(static_cast<Eigen::Index>(k)).dot(beta));
     }
-    p.joints.push_back(Statistics(robot.joints[j].name, measured, predicted));
+    p.joints.push_back(Statistics(names[j], measured, predicted));
     p.measured.push_back(std::move(measured));
     p.predicted.push_back(std::move(predicted));
   }

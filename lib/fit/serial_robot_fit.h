@@ -27,6 +27,14 @@ namespace driveid {
 struct SerialRobotFitOptions {
   double half_window = 0.05;  ///< differentiator half window [s]
   FitOptions fit;
+  /// The base parameters to estimate (empty: all): each by its lead's name
+  /// (`Izz_link1`, `viscous_joint_2`), or `bodies` / `drives` for every one
+  /// led by an inertial / a drive column. The others are held at the prior's
+  /// value, beta = R theta_prior (docs/models.md#serial-robot-identification).
+  std::vector<std::string> free;
+  /// The prior's drives per joint (the URDF's <dynamics>; empty: zero), its
+  /// bodies the robot's inertials.
+  std::vector<SerialDriveParameters> prior_drives;
   /// Whether the values can be used; else `error` names the field and the constraint.
   bool IsValid(std::string* error) const;
 };
@@ -43,11 +51,22 @@ struct SerialJointStatistics {
 struct SerialRobotFitOutput {
   BaseParameters base;
   std::vector<std::string> parameter_names;  ///< of the full theta (models/serial_dynamics.h)
-  FitResult fit;                             ///< estimates of the base parameters, named by their lead column
+  FitResult fit;                             ///< estimates of the free base parameters, named by their lead column
+  std::vector<std::size_t> free;             ///< the estimated base parameters (indices into base), fit's order
+  std::vector<double> held;                  ///< per base parameter: its prior value where held, NaN where free
   std::vector<SerialJointStatistics> joints;
   double condition_number = 0.0;  ///< of the logs' column-normalised base regressor
   std::size_t samples = 0;        ///< samples used (valid differentiator windows)
+  /// Every base parameter's value: its estimate where free, else held.
+  std::vector<double> BaseValues() const;
 };
+
+/// The base parameters `names` select (SerialRobotFitOptions::free; empty:
+/// all), in base order. OptionError naming an unknown name or a parameter
+/// that is not a base parameter's lead (and the one it belongs to).
+std::vector<std::size_t> SelectSerialBaseParameters(const BaseParameters& base,
+                                                    const std::vector<std::string>& parameter_names,
+                                                    const std::vector<std::string>& names);
 
 /// Throws InputError for logs that do not fit the robot, IdentificationError
 /// (naming the base parameters) when the logs do not determine them.

@@ -96,6 +96,13 @@ std::string Format(const ParameterFile& file) {
 SerialRobot WithCoupling(SerialRobot robot, const ParameterFile& file, const std::string& path) {
   const RobotCouplingSection* s = file.Find<RobotCouplingSection>();
   if (s == nullptr) return robot;
+  for (const SerialJoint& j : robot.joints) {
+    if (j.mimic >= 0) {
+      throw InputError(fmt::format("{}: robot.coupling with a mimic joint ('{}'): coupled drives of a robot with mimic "
+                                   "joints are not supported",
+                                   path, j.name));
+    }
+  }
   std::vector<std::size_t> coupled;
   for (const std::string& name : s->joints) {
     const auto it = std::find_if(robot.joints.begin(), robot.joints.end(), [&](const SerialJoint& j) { return j.name == name; });

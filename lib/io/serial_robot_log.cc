@@ -3,13 +3,15 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "models/serial_dynamics.h"
 
 namespace driveid {
 
 std::vector<std::string> SerialRobotLogColumns(const SerialRobot& robot) {
   std::vector<std::string> columns = {"t"};
-  for (std::size_t j = 0; j < robot.size(); ++j) {
-    const std::string& name = robot.joints[j].name;
+  const std::vector<std::string> names = SerialCoordinateNames(robot);
+  for (std::size_t j = 0; j < names.size(); ++j) {
+    const std::string& name = names[j];
     columns.push_back(fmt::format("q_{}|q{}", name, j + 1));
     columns.push_back(fmt::format("?qd_{}|qd{}", name, j + 1));
     columns.push_back(fmt::format("tau_{}|tau{}", name, j + 1));
@@ -18,7 +20,7 @@ std::vector<std::string> SerialRobotLogColumns(const SerialRobot& robot) {
 }
 
 SerialRobotLog MakeSerialRobotLog(const SerialRobot& robot, CsvLog csv) {
-  const std::size_t n = robot.size();
+  const std::size_t n = SerialCoordinates(robot).size();
   if (csv.columns.size() != 1 + 3 * n) {
     throw std::logic_error("MakeSerialRobotLog: the columns of SerialRobotLogColumns are expected");
   }

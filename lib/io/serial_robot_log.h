@@ -1,5 +1,6 @@
 // Logs of a serial robot (docs/formats.md#serial-robot-logs): the time and,
-// per movable joint of its URDF, q_<joint> (or q<k>, k from 1 in the
+// per movable joint of its URDF that mimics none (models/serial_dynamics.h
+// SerialCoordinates: a mimic joint follows its leader), q_<joint> (or q<k>, k from 1 in the
 // robot's order), optionally qd_<joint> (or qd<k>) and tau_<joint> (or
 // tau<k>) [rad, rad/s, N m; m, m/s, N for a prismatic joint].
 #pragma once
@@ -12,7 +13,7 @@
 
 namespace driveid {
 
-/// A log of every movable joint (robot order): positions [rad or m],
+/// A log of every coordinate joint (robot order): positions [rad or m],
 /// rates where logged (empty per joint otherwise) and torques [N m or N].
 struct SerialRobotLog {
   std::string path;

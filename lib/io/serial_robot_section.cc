@@ -106,11 +106,15 @@ std::vector<SerialDriveEntry> ParseDrives(const std::string& path, const YAML::N
                                             : nullptr;
       if (key == "joint") {
         e.joint = Text(path, name + ".joint", item.second);
+      } else if (key == "viscous_asymmetry") {
+        e.drive.viscous_asymmetry = ParseNumber(path, name + "." + key, item.second);
+        e.viscous_per_direction = true;
       } else if (slot != nullptr) {
         *slot = ParseNumber(path, name + "." + key, item.second);
         ++found;
       } else {
-        throw InputError(fmt::format("{}: {}.{}: unknown key (known: joint, armature, viscous, coulomb, offset)",
+        throw InputError(fmt::format("{}: {}.{}: unknown key (known: joint, armature, viscous, coulomb, offset, "
+                                     "viscous_asymmetry)",
                                      Where(path, item.first), name, key));
       }
     }
@@ -193,6 +197,10 @@ std::string Format(const ParameterFile& file) {
       for (int k = 0; k < 4; ++k) {
         out += fmt::format(", {}: {}", kDriveKeys[k], Number(Writable(std::string("serial_robot.drives.") + kDriveKeys[k], values[k])));
       }
+      if (d.viscous_per_direction) {
+        out += fmt::format(", viscous_asymmetry: {}",
+                           Number(Writable("serial_robot.drives.viscous_asymmetry", d.drive.viscous_asymmetry)));
+      }
       out += "}\n";
     }
   }
@@ -210,6 +218,16 @@ SectionUrdf ReadSectionUrdf(const SerialRobotSection& section, const std::string
                                  params_path, section.urdf_sha256));
   }
   out.robot = ParseUrdfRobot(out.path, out.text).robot;
+  for (const SerialDriveEntry& d : section.drives) {
+    if (!d.viscous_per_direction) continue;
+    const auto joint = std::find_if(out.robot.joints.begin(), out.robot.joints.end(),
+                                    [&](const SerialJoint& j) { return j.name == d.joint; });
+    if (joint == out.robot.joints.end()) {
+      throw InputError(fmt::format("{}: serial_robot.drives names joint '{}', which {} has not", params_path, d.joint,
+                                   out.path));
+    }
+    joint->viscous_per_direction = true;
+  }
   return out;
 }
 

@@ -32,6 +32,9 @@ struct SerialBodyEntry {
 struct SerialDriveEntry {
   std::string joint;
   SerialDriveParameters drive;
+  /// Fitted with viscous friction per direction: `viscous_asymmetry` written
+  /// and read (SerialJoint::viscous_per_direction).
+  bool viscous_per_direction = false;
 };
 
 struct SerialRobotSection {
@@ -47,8 +50,9 @@ struct SerialRobotSection {
 };
 
 /// The URDF a section was fitted on: `given` when not empty, else the path
-/// the section names; its text and robot. InputError when its SHA-256 is
-/// not the section's (naming both files).
+/// the section names; its text and robot, its joints' viscous friction per
+/// direction as the section's drives were fitted. InputError when its
+/// SHA-256 is not the section's (naming both files).
 struct SectionUrdf {
   std::string path, text;
   SerialRobot robot;

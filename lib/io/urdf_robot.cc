@@ -112,6 +112,60 @@ SerialJoint MakeJoint(const std::string& path, const urdf::Joint& j, const Place
   return joint;
 }
 
+// Each mimic joint's leader (through mimics of mimics: q = m1 (m2 q_l + o2)
+// + o1), multiplier and offset; InputError for a leader that is no movable
+// joint, a cycle, or a multiplier that is zero or not finite.
+void ResolveMimics(const std::string& path, const std::vector<std::pair<std::size_t, urdf::JointMimicSharedPtr>>& mimics,
+                   SerialRobot& robot) {
+  std::map<std::string, std::size_t> index;
+  for (std::size_t j = 0; j < robot.size(); ++j) index[robot.joints[j].name] = j;
+  std::map<std::size_t, std::pair<std::size_t, urdf::JointMimicSharedPtr>> direct;
+  for (const auto& [joint, mimic] : mimics) {
+    const auto leader = index.find(mimic->joint_name);
+    if (leader == index.end()) {
+      throw InputError(fmt::format("{}: joint '{}' mimics '{}', which is no revolute, continuous or prismatic joint of "
+                                   "the robot", path, robot.joints[joint].name, mimic->joint_name));
+    }
+    if (!std::isfinite(mimic->multiplier) || mimic->multiplier == 0.0 || !std::isfinite(mimic->offset)) {
+      throw InputError(fmt::format("{}: joint '{}': its <mimic> multiplier must be finite and nonzero, its offset finite",
+                                   path, robot.joints[joint].name));
+    }
+    direct[joint] = {leader->second, mimic};
+  }
+  for (const auto& [joint, first] : direct) {
+    double multiplier = 1.0, offset = 0.0;
+    std::size_t at = joint;
+    for (std::size_t steps = 0; direct.count(at) != 0; ++steps) {
+      if (steps > direct.size()) {
+        throw InputError(fmt::format("{}: joint '{}': its <mimic> chain returns to itself", path, robot.joints[joint].name));
+      }
+      const auto& [leader, mimic] = direct.at(at);
+      offset += multiplier * mimic->offset;
+      multiplier *= mimic->multiplier;
+      at = leader;
+    }
+    SerialJoint& j = robot.joints[joint];
+    j.mimic = static_cast<int>(at);
+    j.mimic_multiplier = multiplier;
+    j.mimic_offset = offset;
+  }
+}
+
+// A joint's <dynamics damping friction> as its drive's viscous and Coulomb
+// friction (zero where absent).
+SerialDriveParameters JointDynamics(const std::string& path, const urdf::Joint& j) {
+  SerialDriveParameters d;
+  if (!j.dynamics) return d;
+  if (!std::isfinite(j.dynamics->damping) || !std::isfinite(j.dynamics->friction) || j.dynamics->damping < 0.0 ||
+      j.dynamics->friction < 0.0) {
+    throw InputError(fmt::format("{}: joint '{}': its <dynamics> damping and friction must be finite and >= 0", path,
+                                 j.name));
+  }
+  d.viscous = j.dynamics->damping;
+  d.coulomb = j.dynamics->friction;
+  return d;
+}
+
 // Each joint's position among the file's <joint> elements: liburdfdom keeps
 // a link's children in the order of their names, the user wrote them in
 // this one.
@@ -166,6 +220,7 @@ UrdfRobot ParseUrdfRobot(const std::string& path, const std::string& text) {
     Placed parent;
   };
   std::vector<Pending> stack;
+  std::vector<std::pair<std::size_t, urdf::JointMimicSharedPtr>> mimics;
   const auto visit = [&](const urdf::Link& link, const Placed& here) {
     const InertialParameters own = LinkInertial(path, link);
     if (here.body < 0) {
@@ -191,11 +246,6 @@ UrdfRobot ParseUrdfRobot(const std::string& path, const std::string& text) {
     const urdf::Joint& j = *next.joint;
     const urdf::LinkConstSharedPtr child = model->getLink(j.child_link_name);
     if (!child) throw InputError(fmt::format("{}: joint '{}' names no link '{}'", path, j.name, j.child_link_name));
-    if (j.mimic) {
-      throw InputError(fmt::format("{}: joint '{}' mimics '{}': mimic joints are not supported (remove the mimic and "
-                                   "log the joint, or fix it)",
-                                   path, j.name, j.mimic->joint_name));
-    }
     Placed placed;
     switch (j.type) {
       case urdf::Joint::FIXED:
@@ -207,6 +257,8 @@ UrdfRobot ParseUrdfRobot(const std::string& path, const std::string& text) {
       case urdf::Joint::PRISMATIC:
         out.robot.joints.push_back(MakeJoint(path, j, next.parent));
         out.robot.bodies.push_back({});
+        out.drives.push_back(JointDynamics(path, j));
+        if (j.mimic) mimics.push_back({out.robot.joints.size() - 1, j.mimic});
         placed = {static_cast<int>(out.robot.joints.size()) - 1, RigidTransform{}};
         break;
       default:
@@ -217,6 +269,7 @@ UrdfRobot ParseUrdfRobot(const std::string& path, const std::string& text) {
     visit(*child, placed);
   }
   if (out.robot.joints.empty()) throw InputError(fmt::format("{}: the URDF has no revolute or prismatic joint", path));
+  ResolveMimics(path, mimics, out.robot);
   if (!on_base.empty()) {
     out.notes.push_back(fmt::format("{}: link(s) {} fixed to the base do not move: their inertials are left out", path,
                                     fmt::join(on_base, ", ")));

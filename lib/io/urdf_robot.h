@@ -3,7 +3,9 @@
 // become the robot's joints, in a tree from the root link; links carried by
 // fixed joints merge into the body that moves them (their inertials added in
 // its frame); links fixed to the root do not move and are left out (noted).
-// Floating and planar joints, and mimic joints, are refused by name.
+// A <mimic> joint follows its leader, q = multiplier q_leader + offset
+// (SerialJoint::mimic; a mimic of a mimic resolved to the first leader).
+// Floating and planar joints are refused by name.
 // Meshes, visuals and collisions are ignored.
 #pragma once
 
@@ -16,6 +18,9 @@ namespace driveid {
 
 struct UrdfRobot {
   SerialRobot robot;
+  /// Per joint: its <dynamics damping friction> as viscous and Coulomb
+  /// friction (zero where absent), the prior of the drives' fit.
+  std::vector<SerialDriveParameters> drives;
   std::vector<std::string> notes;  ///< merged and left-out links
 };
 

@@ -130,7 +130,7 @@ void CalcSerialRegressor(const SerialRobot& robot, const Eigen::VectorXd& q, con
   const std::size_t n = robot.size();
   const auto rows = static_cast<Eigen::Index>(n);
   if (y.rows() != rows || y.cols() != static_cast<Eigen::Index>(kSerialColumnsPerJoint * n)) {
-    throw std::logic_error("CalcSerialRegressor: y must be n x 14 n");
+    throw std::logic_error("CalcSerialRegressor: y must be n x 15 n");
   }
   y.setZero();
   const std::vector<BodyMotion> m = OutwardPass(robot, q, qd, qdd);
@@ -163,6 +163,7 @@ void CalcSerialRegressor(const SerialRobot& robot, const Eigen::VectorXd& q, con
       y(ii, column + kSerialViscous) = v;
       y(ii, column + kSerialCoulomb) = static_cast<double>((v > 0.0) - (v < 0.0));
       y(ii, column + kSerialOffset) = 1.0;
+      if (robot.joints[i].viscous_per_direction) y(ii, column + kSerialViscousAsymmetry) = std::abs(v);
     } else {
       // Motor i turns at (R q')_i; its torque reaches the joints as R_i^T.
       const Eigen::VectorXd to_joints = robot.coupling.row(ii).transpose();
@@ -171,6 +172,7 @@ void CalcSerialRegressor(const SerialRobot& robot, const Eigen::VectorXd& q, con
       y.col(column + kSerialViscous) = to_joints * v;
       y.col(column + kSerialCoulomb) = to_joints * static_cast<double>((v > 0.0) - (v < 0.0));
       y.col(column + kSerialOffset) = to_joints;
+      if (robot.joints[i].viscous_per_direction) y.col(column + kSerialViscousAsymmetry) = to_joints * std::abs(v);
     }
   }
 }
@@ -188,11 +190,85 @@ Eigen::MatrixXd SerialCouplingMatrix(std::size_t joints, const std::vector<std::
   return r;
 }
 
+std::vector<std::size_t> SerialCoordinates(const SerialRobot& robot) {
+  std::vector<std::size_t> out;
+  for (std::size_t j = 0; j < robot.size(); ++j) {
+    if (robot.joints[j].mimic < 0) out.push_back(j);
+  }
+  return out;
+}
+
+std::vector<std::string> SerialCoordinateNames(const SerialRobot& robot) {
+  std::vector<std::string> names;
+  for (std::size_t j : SerialCoordinates(robot)) names.push_back(robot.joints[j].name);
+  return names;
+}
+
+namespace {
+
+// G: each joint's q per coordinate (n x m), and the offsets o (q = G q_c + o).
+struct MimicMap {
+  Eigen::MatrixXd g;
+  Eigen::VectorXd offset;
+};
+
+MimicMap MakeMimicMap(const SerialRobot& robot) {
+  const std::vector<std::size_t> coordinates = SerialCoordinates(robot);
+  const auto n = static_cast<Eigen::Index>(robot.size());
+  MimicMap map{Eigen::MatrixXd::Zero(n, static_cast<Eigen::Index>(coordinates.size())), Eigen::VectorXd::Zero(n)};
+  std::vector<Eigen::Index> column(robot.size(), -1);
+  for (std::size_t c = 0; c < coordinates.size(); ++c) {
+    column[coordinates[c]] = static_cast<Eigen::Index>(c);
+    map.g(static_cast<Eigen::Index>(coordinates[c]), static_cast<Eigen::Index>(c)) = 1.0;
+  }
+  for (std::size_t j = 0; j < robot.size(); ++j) {
+    const SerialJoint& joint = robot.joints[j];
+    if (joint.mimic < 0) continue;
+    const auto leader = static_cast<std::size_t>(joint.mimic);
+    if (leader >= robot.size() || column[leader] < 0) {
+      throw std::logic_error("SerialRobot: a mimic joint's leader must be a joint that mimics none");
+    }
+    map.g(static_cast<Eigen::Index>(j), column[leader]) = joint.mimic_multiplier;
+    map.offset(static_cast<Eigen::Index>(j)) = joint.mimic_offset;
+  }
+  return map;
+}
+
+}  // namespace
+
+void ExpandSerialMotion(const SerialRobot& robot, const Eigen::VectorXd& q_c, const Eigen::VectorXd& qd_c,
+                        const Eigen::VectorXd& qdd_c, Eigen::VectorXd& q, Eigen::VectorXd& qd, Eigen::VectorXd& qdd) {
+  const MimicMap map = MakeMimicMap(robot);
+  if (q_c.size() != map.g.cols() || qd_c.size() != map.g.cols() || qdd_c.size() != map.g.cols()) {
+    throw std::logic_error("ExpandSerialMotion: one value per coordinate");
+  }
+  q = map.g * q_c + map.offset;
+  qd = map.g * qd_c;
+  qdd = map.g * qdd_c;
+}
+
+void CalcSerialCoordinateRegressor(const SerialRobot& robot, const Eigen::VectorXd& q_c, const Eigen::VectorXd& qd_c,
+                                   const Eigen::VectorXd& qdd_c, Eigen::Ref<Eigen::MatrixXd> y) {
+  if (static_cast<std::size_t>(q_c.size()) == robot.size()) {
+    CalcSerialRegressor(robot, q_c, qd_c, qdd_c, y);
+    return;
+  }
+  const MimicMap map = MakeMimicMap(robot);
+  if (y.rows() != map.g.cols() || y.cols() != static_cast<Eigen::Index>(kSerialColumnsPerJoint * robot.size())) {
+    throw std::logic_error("CalcSerialCoordinateRegressor: y must be m x 15 n");
+  }
+  Eigen::VectorXd q, qd, qdd;
+  ExpandSerialMotion(robot, q_c, qd_c, qdd_c, q, qd, qdd);
+  Eigen::MatrixXd full(static_cast<Eigen::Index>(robot.size()), y.cols());
+  CalcSerialRegressor(robot, q, qd, qdd, full);
+  y.noalias() = map.g.transpose() * full;
+}
+
 std::vector<std::string> SerialParameterNames(const SerialRobot& robot) {
   std::vector<std::string> names;
   for (const SerialJoint& joint : robot.joints) {
     for (const char* p : InertialParameterNames()) names.push_back(std::string(p) + "_" + joint.body);
-    for (const char* d : {"armature_", "viscous_", "coulomb_", "offset_"}) names.push_back(d + joint.name);
+    for (const char* d : {"armature_", "viscous_", "coulomb_", "offset_", "viscous_asymmetry_"}) names.push_back(d + joint.name);
   }
   return names;
 }
@@ -208,6 +284,7 @@ Eigen::VectorXd SerialParameterVector(const SerialRobot& robot, const std::vecto
     theta(c + kSerialViscous) = drives[i].viscous;
     theta(c + kSerialCoulomb) = drives[i].coulomb;
     theta(c + kSerialOffset) = drives[i].offset;
+    theta(c + kSerialViscousAsymmetry) = drives[i].viscous_asymmetry;
   }
   return theta;
 }

@@ -33,17 +33,35 @@ Eigen::VectorXd CalcSerialRigidTorque(const SerialRobot& robot, const std::vecto
                                       const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd);
 
 /// Columns per joint of the full regressor: its body's 10 inertial
-/// parameters, then armature, viscous, Coulomb and offset of its drive.
-inline constexpr std::size_t kSerialColumnsPerJoint = 14;
-enum SerialDriveColumn { kSerialArmature = 10, kSerialViscous, kSerialCoulomb, kSerialOffset };
+/// parameters, then armature, viscous, Coulomb, offset and viscous
+/// asymmetry of its drive (the last |q'| where the joint asks for viscous
+/// friction per direction, else zero: never reaching a torque).
+inline constexpr std::size_t kSerialColumnsPerJoint = 15;
+enum SerialDriveColumn { kSerialArmature = 10, kSerialViscous, kSerialCoulomb, kSerialOffset, kSerialViscousAsymmetry };
 
-/// The regressor Y (n x 14 n) with tau = Y theta, theta stacked joint by
-/// joint as above. `y` must be n x 14 n; it is overwritten. With a coupling
+/// The regressor Y (n x 15 n) with tau = Y theta, theta stacked joint by
+/// joint as above. `y` must be n x 15 n; it is overwritten. With a coupling
 /// R (SerialRobot::coupling, motor angles theta_m = R q), drive i is motor
-/// i's: its columns are R_i^T times (R q'')_i, (R q')_i, sgn (R q')_i and 1
-/// (docs/models.md#coupled-drives).
+/// i's: its columns are R_i^T times (R q'')_i, (R q')_i, sgn (R q')_i, 1
+/// and |R q'|_i (docs/models.md#coupled-drives).
 void CalcSerialRegressor(const SerialRobot& robot, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                          const Eigen::VectorXd& qdd, Eigen::Ref<Eigen::MatrixXd> y);
+
+/// The robot's coordinates: the joints that mimic none (indices, in order).
+/// A robot without mimic joints has every joint a coordinate.
+std::vector<std::size_t> SerialCoordinates(const SerialRobot& robot);
+/// Their joints' names: a log's torque channels.
+std::vector<std::string> SerialCoordinateNames(const SerialRobot& robot);
+/// Every joint's q, q', q'' (robot.size()) from the coordinates' (each
+/// SerialCoordinates(robot).size()): q = G q_c + o, q' = G q_c', q'' = G q_c''.
+void ExpandSerialMotion(const SerialRobot& robot, const Eigen::VectorXd& q_c, const Eigen::VectorXd& qd_c,
+                        const Eigen::VectorXd& qdd_c, Eigen::VectorXd& q, Eigen::VectorXd& qd, Eigen::VectorXd& qdd);
+/// The regressor in the coordinates, G^T Y at the expanded motion (virtual
+/// work: a mimic joint's torque reaches its leader times its multiplier),
+/// m x 15 n for m coordinates (`y` that size; overwritten). Without mimic
+/// joints it is CalcSerialRegressor.
+void CalcSerialCoordinateRegressor(const SerialRobot& robot, const Eigen::VectorXd& q_c, const Eigen::VectorXd& qd_c,
+                                   const Eigen::VectorXd& qdd_c, Eigen::Ref<Eigen::MatrixXd> y);
 
 /// The n x n coupling R: the identity but for `block` (k x k) on the rows and
 /// columns `coupled` (joint indices).
@@ -51,7 +69,8 @@ Eigen::MatrixXd SerialCouplingMatrix(std::size_t joints, const std::vector<std::
                                      const Eigen::MatrixXd& block);
 
 /// The names of the regressor's columns: m_<body> .. Izz_<body>,
-/// armature_<joint>, viscous_<joint>, coulomb_<joint>, offset_<joint>.
+/// armature_<joint>, viscous_<joint>, coulomb_<joint>, offset_<joint>,
+/// viscous_asymmetry_<joint>.
 std::vector<std::string> SerialParameterNames(const SerialRobot& robot);
 /// theta of the robot's own inertials and the given drives (zero drives when empty).
 Eigen::VectorXd SerialParameterVector(const SerialRobot& robot, const std::vector<SerialDriveParameters>& drives);

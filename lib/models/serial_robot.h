@@ -15,7 +15,12 @@
 // Per joint, the drive (referred to the joint): armature J_a [kg m^2 or kg]
 // (rotor inertia times the gear ratio squared), viscous b [N m s/rad],
 // Coulomb friction tau_c [N m] and an offset tau_0 [N m]:
-//   tau_i = (rigid-body torque)_i + J_a q_i'' + b q_i' + tau_c sgn q_i' + tau_0.
+//   tau_i = (rigid-body torque)_i + J_a q_i'' + b q_i' + tau_c sgn q_i' + tau_0,
+// and where asked (SerialJoint::viscous_per_direction) viscous friction per
+// direction, b+ = b + d for q_i' > 0 and b- = b - d below, i.e. + d |q_i'|
+// (d the viscous asymmetry [N m s/rad]). Coulomb friction per direction,
+// tau_c+ [q' > 0] - tau_c- [q' < 0], is tau_c sgn q' plus an offset while
+// the joint moves: the offset (docs/models.md#serial-robot).
 // Coupled drives (a wrist where one motor turns two joints): motor angles
 // theta = R q, and drive k acts on motor k:
 //   tau = (rigid-body torque) + R^T (J_a R q'' + b R q' + tau_c sgn(R q') + tau_0),
@@ -66,6 +71,14 @@ struct SerialJoint {
   double effort_limit = std::numeric_limits<double>::infinity();    ///< [N m or N]
   std::string body;  ///< name of the link it moves (the first, if links were merged)
   std::vector<std::string> carried;  ///< the links merged into its body through fixed joints
+  /// Its drive's viscous friction per direction (the d |q'| term above;
+  /// with a coupling, motor i's: d |(R q')_i|).
+  bool viscous_per_direction = false;
+  /// A mimic joint (URDF <mimic>): q = mimic_multiplier q_leader +
+  /// mimic_offset, `mimic` the leader's index (a joint that mimics none);
+  /// -1: a coordinate of its own (docs/models.md#mimic-joints).
+  int mimic = -1;
+  double mimic_multiplier = 1.0, mimic_offset = 0.0;
 };
 
 struct SerialRobot {
@@ -83,6 +96,7 @@ struct SerialRobot {
 /// Per joint drive parameters (the equation above).
 struct SerialDriveParameters {
   double armature = 0.0, viscous = 0.0, coulomb = 0.0, offset = 0.0;
+  double viscous_asymmetry = 0.0;  ///< d: b+ = viscous + d, b- = viscous - d [N m s/rad or N s/m]
 };
 
 }  // namespace driveid

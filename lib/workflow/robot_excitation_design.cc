@@ -104,6 +104,13 @@ std::string FormatDesign(const RobotDesign& d, const RobotDesignOptions& o,
 ExcitationDesignRun DesignRobotRun(const SerialRobot& robot, const RobotDesignOptions& design,
                                    const RobotDesignRequest& r) {
   RequireValid(r);
+  for (const SerialJoint& j : robot.joints) {
+    if (j.mimic >= 0) {
+      throw InputError(fmt::format("joint '{}' mimics '{}': designing a robot's excitation with mimic joints is not "
+                                   "supported (their limits would bind through their leaders')",
+                                   j.name, robot.joints[static_cast<std::size_t>(j.mimic)].name));
+    }
+  }
   const Eigen::VectorXd theta = PriorTheta(robot, r);
   const std::vector<double> noise = JointNoise(robot, r);
   const BaseParameters base = SerialBaseParameters(robot);

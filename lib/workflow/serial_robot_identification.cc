@@ -4,7 +4,9 @@
 
 #include <fmt/format.h>
 
+#include "core/errors.h"
 #include "core/option_check.h"
+#include "models/serial_dynamics.h"
 
 namespace driveid {
 
@@ -45,14 +47,55 @@ void UseConsistent(SerialRobotIdentification& run) {
   }
   for (std::size_t k = 0; k < fit.estimates.size(); ++k) {
     ParameterEstimate& e = fit.estimates[k];
-    const double shift = c.base[k] - e.value;
-    e.value = c.base[k];
+    const double shift = c.base[run.result.free[k]] - e.value;
+    e.value += shift;
     e.ci95_low += shift;
     e.ci95_high += shift;
   }
 }
 
-std::string Summary(const SerialRobotIdentification& run) {
+UrdfRobot WithViscousPerDirection(UrdfRobot robot, const std::vector<std::string>& joints) {
+  for (const std::string& name : joints) {
+    bool found = false;
+    for (SerialJoint& j : robot.robot.joints) {
+      if (name == "all" || j.name == name) j.viscous_per_direction = found = true;
+    }
+    if (!found) {
+      std::vector<std::string> names;
+      for (const SerialJoint& j : robot.robot.joints) names.push_back(j.name);
+      throw OptionError(fmt::format("‹per_direction›: the robot has no joint '{}' (its joints: {}, or all)", name,
+                                    fmt::join(names, ", ")));
+    }
+  }
+  return robot;
+}
+
+// Viscous friction per direction, b+- = viscous +- viscous_asymmetry, of
+// the joints that ask for it where both are base parameters of their own.
+std::string PerDirectionLines(const SerialRobot& robot, const SerialRobotFitOutput& r) {
+  const auto find = [&](const std::string& name) {
+    for (std::size_t c = 0; c < r.free.size(); ++c) {
+      if (r.fit.estimates[c].name == name && r.base.combination[r.free[c]].size() == 1) return c;
+    }
+    return r.free.size();
+  };
+  std::string out;
+  const std::size_t p = r.free.size();
+  for (const SerialJoint& j : robot.joints) {
+    const std::size_t b = find("viscous_" + j.name), d = find("viscous_asymmetry_" + j.name);
+    if (!j.viscous_per_direction || b == p || d == p) continue;
+    const double vb = r.fit.covariance[b * p + b], vd = r.fit.covariance[d * p + d], cbd = r.fit.covariance[b * p + d];
+    for (const int sign : {1, -1}) {
+      out += fmt::format("{:<56} {:>12.5g} {:>10.3g}\n", fmt::format("viscous_{}_{} (viscous {} viscous_asymmetry)",
+                                                                      sign > 0 ? "pos" : "neg", j.name, sign > 0 ? "+" : "-"),
+                         r.fit.estimates[b].value + sign * r.fit.estimates[d].value,
+                         std::sqrt(std::max(0.0, vb + vd + 2.0 * sign * cbd)));
+    }
+  }
+  return out;
+}
+
+std::string Summary(const SerialRobot& robot, const SerialRobotIdentification& run) {
   const SerialRobotFitOutput& r = run.result;
   std::string out = fmt::format("{} base parameters from {} samples; condition number of the column-normalised base "
                                 "regressor {:.3g}\n",
@@ -62,14 +105,21 @@ std::string Summary(const SerialRobotIdentification& run) {
     out += fmt::format("{:<24} {:>12.4g} {:>10.2f} {:>10.2f}\n", j.joint, j.rmse, j.fit_percent, j.relative_error_percent);
   }
   out += fmt::format("{:<56} {:>12} {:>10} {:>26}\n", "base parameter", "value", "std", "ci95");
-  for (std::size_t k = 0; k < r.fit.estimates.size(); ++k) {
-    const ParameterEstimate& e = r.fit.estimates[k];
-    out += fmt::format("{:<56} {:>12.5g} {:>10.3g} [{:.5g}, {:.5g}]\n", r.base.names[k], e.value, e.standard_error,
-                       e.ci95_low, e.ci95_high);
+  for (std::size_t c = 0; c < r.fit.estimates.size(); ++c) {
+    const ParameterEstimate& e = r.fit.estimates[c];
+    out += fmt::format("{:<56} {:>12.5g} {:>10.3g} [{:.5g}, {:.5g}]\n", r.base.names[r.free[c]], e.value,
+                       e.standard_error, e.ci95_low, e.ci95_high);
   }
-  if (!r.base.never_moved.empty()) {
-    std::vector<std::string> names;
-    for (std::size_t c : r.base.never_moved) names.push_back(r.parameter_names[c]);
+  for (std::size_t k = 0; k < r.held.size(); ++k) {
+    if (!std::isnan(r.held[k])) out += fmt::format("{:<56} {:>12.5g} {:>10} (the URDF's)\n", r.base.names[k], r.held[k], "held");
+  }
+  out += PerDirectionLines(robot, r);
+  std::vector<std::string> names;
+  for (std::size_t c : r.base.never_moved) {
+    // A viscous asymmetry not asked for is no parameter of the model.
+    if (c % kSerialColumnsPerJoint != kSerialViscousAsymmetry) names.push_back(r.parameter_names[c]);
+  }
+  if (!names.empty()) {
     out += fmt::format("never reach a joint torque (left out): {}\n", fmt::join(names, ", "));
   }
   for (const std::string& note : r.fit.notes) out += "note: " + note + "\n";
@@ -78,12 +128,15 @@ std::string Summary(const SerialRobotIdentification& run) {
 
 }  // namespace
 
-SerialRobotIdentification IdentifySerialRobot(const UrdfRobot& robot, const std::string& urdf_path,
+SerialRobotIdentification IdentifySerialRobot(const UrdfRobot& urdf, const std::string& urdf_path,
                                               const std::string& urdf_sha256, const std::vector<SerialRobotLog>& logs,
                                               const SerialRobotIdentificationOptions& options) {
   RequireValid(options);
+  const UrdfRobot robot = WithViscousPerDirection(urdf, options.viscous_per_direction);
   SerialRobotIdentification run;
-  run.result = FitSerialRobot(robot.robot, logs, options.fit);
+  SerialRobotFitOptions fit_options = options.fit;
+  fit_options.prior_drives = robot.drives;
+  run.result = FitSerialRobot(robot.robot, logs, fit_options);
   SerialRobotFitOutput& r = run.result;
   for (const std::string& note : robot.notes) r.fit.notes.push_back(note);
   for (const auto& j : r.joints) {
@@ -94,11 +147,12 @@ SerialRobotIdentification IdentifySerialRobot(const UrdfRobot& robot, const std:
           j.joint, j.relative_error_percent));
     }
   }
-  run.consistent = FitConsistentParameters(robot.robot, r.base, r.fit, options.prior_weight);
+  run.consistent = FitConsistentParameters(robot.robot, r, ConsistentPrior{options.prior_weight, robot.drives});
   UseConsistent(run);
   for (std::size_t j = 0; j < robot.robot.size(); ++j) {
     run.section.bodies.push_back({robot.robot.joints[j].body, run.consistent.bodies[j]});
-    run.section.drives.push_back({robot.robot.joints[j].name, run.consistent.drives[j]});
+    run.section.drives.push_back(
+        {robot.robot.joints[j].name, run.consistent.drives[j], robot.robot.joints[j].viscous_per_direction});
   }
   run.section.urdf = urdf_path;
   run.section.urdf_sha256 = urdf_sha256;
@@ -107,28 +161,27 @@ SerialRobotIdentification IdentifySerialRobot(const UrdfRobot& robot, const std:
     SerialBaseEntry e;
     e.lead = r.parameter_names[r.base.base[k]];
     for (const auto& [column, c] : r.base.combination[k]) e.combination.emplace_back(r.parameter_names[column], c);
-    e.value = r.fit.estimates[k].value;
+    e.value = std::isnan(r.held[k]) ? run.consistent.base[k] : r.held[k];
     run.section.base.push_back(std::move(e));
   }
-  run.summary = Summary(run);
+  run.summary = Summary(robot.robot, run);
   // Trace and plot: each joint's measured and predicted torque per log.
-  std::vector<double> values;
-  for (const auto& e : r.fit.estimates) values.push_back(e.value);
+  const std::vector<double> values = r.BaseValues();
   run.trace_csv = "# joint torques [N m or N]: measured and predicted by the base parameters (docs/models.md#serial-robot)\n"
                   "log,t,joint,tau_measured,tau_model\n";
   for (std::size_t l = 0; l < logs.size(); ++l) {
     const SerialPrediction p = PredictSerialRobot(robot.robot, r.base, values, logs[l], options.fit.half_window);
     for (std::size_t k = 0; k < p.time.size() && options.trace; ++k) {
-      for (std::size_t j = 0; j < robot.robot.size(); ++j) {
-        run.trace_csv += fmt::format("{},{},{},{:.6g},{:.6g}\n", l + 1, p.time[k], robot.robot.joints[j].name,
+      for (std::size_t j = 0; j < p.joints.size(); ++j) {
+        run.trace_csv += fmt::format("{},{},{},{:.6g},{:.6g}\n", l + 1, p.time[k], p.joints[j].joint,
                                      p.measured[j][k], p.predicted[j][k]);
       }
     }
     if (l > 0) continue;
-    for (std::size_t j = 0; j < robot.robot.size(); ++j) {
+    for (std::size_t j = 0; j < p.joints.size(); ++j) {
       std::vector<double> residual(p.time.size());
       for (std::size_t k = 0; k < residual.size(); ++k) residual[k] = p.measured[j][k] - p.predicted[j][k];
-      run.panels.push_back({fmt::format("{} along {}", robot.robot.joints[j].name, logs[l].path),
+      run.panels.push_back({fmt::format("{} along {}", p.joints[j].joint, logs[l].path),
                             "torque",
                             {{"measured", p.time, p.measured[j], true}, {"model", p.time, p.predicted[j], false},
                              {"residual", p.time, residual, false, true}}});

@@ -21,6 +21,9 @@ struct SerialRobotIdentificationOptions {
   /// The URDF prior's weight in the consistent fit, relative to one std of
   /// the data (docs/models.md#physical-consistency).
   double prior_weight = 1e-4;
+  /// Joints whose viscous friction is fitted per direction (SerialJoint::
+  /// viscous_per_direction), by name, or "all".
+  std::vector<std::string> viscous_per_direction;
   bool trace = false;  ///< fill the trace CSV's rows
   /// Every bound on these fields (‹field› names the option); see core/option_check.h.
   bool IsValid(std::string* error) const;
@@ -35,8 +38,9 @@ struct SerialRobotIdentification {
   std::vector<PlotPanel> panels;
 };
 
-/// `urdf_path` and `urdf_sha256` are recorded in the section.
-SerialRobotIdentification IdentifySerialRobot(const UrdfRobot& robot, const std::string& urdf_path,
+/// `urdf_path` and `urdf_sha256` are recorded in the section. OptionError
+/// for a joint name in ‹per_direction› the robot has not.
+SerialRobotIdentification IdentifySerialRobot(const UrdfRobot& urdf, const std::string& urdf_path,
                                               const std::string& urdf_sha256, const std::vector<SerialRobotLog>& logs,
                                               const SerialRobotIdentificationOptions& options);
 

@@ -65,8 +65,8 @@ ValidationRun RunSerialRobotValidation(const std::vector<SerialRobotLog>& logs, 
   run.unit = "torque [N m or N]";
   for (const SerialRobotLog& log : logs) {
     const SerialPrediction p = PredictSerialRobot(robot, base, values, log, section.half_window);
-    for (std::size_t j = 0; j < robot.size(); ++j) {
-      run.logs.push_back(Validated(log.path, robot.joints[j].name, p.time, p.measured[j], p.predicted[j]));
+    for (std::size_t j = 0; j < p.joints.size(); ++j) {
+      run.logs.push_back(Validated(log.path, p.joints[j].joint, p.time, p.measured[j], p.predicted[j]));
     }
   }
   RequireValidated(run.logs);

@@ -42,6 +42,41 @@ grep -q "rel. err %" summary.txt && grep -q "^shoulder " summary.txt && ok || fa
   python3 -c 'import json,sys; d=json.load(open("arm.json")); sys.exit(0 if d else 1)' 2> /dev/null && ok ||
   fail "--json"
 
+# --free: the drives alone, the bodies held at the URDF's inertials (here
+# the truth); friction as near as before; a name that is no base parameter
+# is refused by name.
+"$bin" robot arm.csv --urdf arm.urdf --free drives -o drives.yaml > drives.txt 2> err.txt && ok ||
+  fail "robot --free drives: $(cat err.txt)"
+grep -q "held (the URDF's)" drives.txt && grep -q "^note: held at the prior" drives.txt && ok ||
+  fail "the held base parameters in the summary: $(cat drives.txt)"
+[ "$(grep -c "^    [A-Za-z_]*: {value" drives.yaml)" -lt "$(grep -c "^    [A-Za-z_]*: {value" arm.yaml)" ] && ok ||
+  fail "fewer estimates with --free drives"
+for pair in viscous_shoulder:4 coulomb_elbow:1; do
+  key=${pair%%:*}
+  v=$(sed -n "s/^    $key: {value: \([-0-9.e]*\),.*/\1/p" drives.yaml)
+  s=$(sed -n "s/^    $key: {value: [-0-9.e]*, std: \([-0-9.e]*\),.*/\1/p" drives.yaml)
+  shown=$(awk -v k="$key" '$1 == k { print $2 }' drives.txt)
+  near "$v" "$s" "${pair##*:}" && awk -v a="$shown" -v b="$v" 'BEGIN { exit !(a - b < 1e-3 * b && b - a < 1e-3 * b) }' && ok ||
+    fail "--free drives: $key = $v +- $s, truth ${pair##*:}: $(grep "^$key " drives.txt)"
+done
+expect 2 "'no_such' is no base parameter" -- robot arm.csv --urdf arm.urdf --free no_such
+
+# --per-direction: the shoulder's viscous friction per direction (the
+# reference arm's is 4 both ways: the asymmetry within 3 std of 0); the file
+# keeps it, validate predicts with it, the exports refuse it by joint.
+"$bin" robot arm.csv --urdf arm.urdf --per-direction shoulder -o directional.yaml > directional.txt 2> err.txt && ok ||
+  fail "robot --per-direction: $(cat err.txt)"
+grep -q "^viscous_pos_shoulder " directional.txt && grep -q "^viscous_neg_shoulder " directional.txt && ok ||
+  fail "viscous per direction in the summary: $(grep viscous directional.txt)"
+grep -q "^    - {joint: shoulder, .*viscous_asymmetry: " directional.yaml && ! grep -q "joint: yaw, .*viscous_asymmetry" directional.yaml &&
+  ok || fail "viscous_asymmetry of the shoulder's drive only: $(grep 'joint:' directional.yaml)"
+v=$(sed -n "s/^    viscous_asymmetry_shoulder: {value: \([-0-9.e]*\),.*/\1/p" directional.yaml)
+s=$(sed -n "s/^    viscous_asymmetry_shoulder: {value: [-0-9.e]*, std: \([-0-9.e]*\),.*/\1/p" directional.yaml)
+awk -v a="$v" -v s="$s" 'BEGIN { if (a < 0) a = -a; exit !(s > 0 && a <= 3 * s) }' && ok || fail "asymmetry $v +- $s, truth 0"
+"$bin" validate directional.yaml arm.csv > /dev/null 2> err.txt && ok || fail "validate a per-direction fit: $(cat err.txt)"
+expect 3 "shoulder's viscous friction differs per direction" -- export directional.yaml --to urdf
+expect 2 "--per-direction: the robot has no joint 'knee'" -- robot arm.csv --urdf arm.urdf --per-direction knee
+
 # Validation on another log of the arm, from the parameter file alone.
 "$writer" arm.urdf held_out.csv 11 || fail "the reference writer (seed 11)"
 "$bin" validate arm.yaml held_out.csv > validation.txt 2> err.txt && ok || fail "validate: $(cat err.txt)"

@@ -5,6 +5,7 @@
 // back and the shift is reported.
 #include <catch2/catch.hpp>
 
+#include "core/errors.h"
 #include "fit/consistent_parameters.h"
 #include "fit/serial_robot_fit.h"
 #include "models/pseudo_inertia.h"
@@ -32,7 +33,7 @@ TEST_CASE("consistent parameters: physical bodies, base parameters within their 
   const reference::Arm arm = reference::ThreeJointArm();
   const SerialRobot robot = ToRobot(arm);
   const SerialRobotFitOutput out = Fit(robot, arm);
-  const ConsistentParameters c = FitConsistentParameters(robot, out.base, out.fit, 1e-4);
+  const ConsistentParameters c = FitConsistentParameters(robot, out, ConsistentPrior{});
   INFO(c.iterations << " iterations: " << c.termination);
   CHECK(c.converged);
   REQUIRE(c.bodies.size() == 3);
@@ -58,9 +59,102 @@ TEST_CASE("consistent parameters: an unphysical estimate is pulled back and the 
   }
   REQUIRE(k < out.base.base.size());
   out.fit.estimates[k].value = -0.5;  // an inertia about the elbow axis below zero
-  const ConsistentParameters c = FitConsistentParameters(robot, out.base, out.fit, 1e-4);
+  const ConsistentParameters c = FitConsistentParameters(robot, out, ConsistentPrior{});
   for (const auto& b : c.bodies) CHECK(PseudoInertiaMargin(b) >= -1e-12);
   CHECK(c.base[k] > 0.0);
   INFO("largest shift " << c.largest_shift << " std (" << c.largest_shift_name << "), Izz_fore -> " << c.base[k]);
   CHECK(c.largest_shift > 2.0);  // the warning's threshold (workflow/serial_robot_identification.cc)
+}
+
+namespace {
+
+// Joints yaw and shoulder on sums of sines; the elbow held at 0.3 rad by its
+// drive (a joint the experiment left out).
+reference::ArmLogOptions ElbowAtRest() {
+  reference::ArmLogOptions o;
+  o.seed = 11;
+  o.trajectory = [](double t, Eigen::VectorXd& q, Eigen::VectorXd& qd, Eigen::VectorXd& qdd) {
+    q = Eigen::VectorXd::Zero(3);
+    qd = q;
+    qdd = q;
+    const double f[2][2] = {{0.1, 0.37}, {0.13, 0.29}}, a[2][2] = {{0.8, 0.3}, {0.6, 0.25}};
+    for (int j = 0; j < 2; ++j) {
+      for (int h = 0; h < 2; ++h) {
+        const double w = 2.0 * M_PI * f[j][h];
+        q(j) += a[j][h] * std::sin(w * t);
+        qd(j) += a[j][h] * w * std::cos(w * t);
+        qdd(j) -= a[j][h] * w * w * std::sin(w * t);
+      }
+    }
+    q(2) = 0.3;
+  };
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("held base parameters: an unexcited joint is refused with what to do; held at the prior it fits") {
+  const reference::Arm arm = reference::ThreeJointArm();
+  std::vector<SerialDriveParameters> drives;
+  const SerialRobot robot = driveid::testing::ToSerialRobot(arm, &drives);
+  const SerialRobotLog log = driveid::testing::ToSerialLog(reference::SimulateArm(arm, ElbowAtRest()));
+  std::string refusal;
+  try {
+    FitSerialRobot(robot, {log}, {});
+  } catch (const IdentificationError& e) {
+    refusal = e.what();
+  }
+  INFO(refusal);
+  REQUIRE(refusal.find("‹free›") != std::string::npos);
+  // Every base parameter but those of the resting elbow's drive:
+  // held at the prior (here the truth), the rest estimated.
+  SerialRobotFitOptions options;
+  options.prior_drives = drives;
+  const BaseParameters base = SerialBaseParameters(robot);
+  const std::vector<std::string> names = SerialParameterNames(robot);
+  for (std::size_t k = 0; k < base.base.size(); ++k) {
+    const std::string& lead = names[base.base[k]];
+    if (lead.find("elbow") == std::string::npos) options.free.push_back(lead);
+  }
+  const SerialRobotFitOutput out = FitSerialRobot(robot, {log}, options);
+  REQUIRE(out.fit.estimates.size() == options.free.size());
+  CHECK(out.free.size() < out.base.base.size());
+  const Eigen::VectorXd truth = out.base.regroup * SerialParameterVector(robot, drives);
+  int inside = 0;
+  for (std::size_t c = 0; c < out.free.size(); ++c) {
+    const ParameterEstimate& e = out.fit.estimates[c];
+    const double t = truth(static_cast<Eigen::Index>(out.free[c])), z = (e.value - t) / e.standard_error;
+    INFO(e.name << " " << e.value << " +- " << e.standard_error << " truth " << t);
+    CHECK(std::abs(z) < 4.0);
+    inside += e.ci95_low <= t && t <= e.ci95_high;
+  }
+  CHECK(inside >= static_cast<int>(out.free.size()) - 2);
+  // The consistent fit keeps the held ones at their values.
+  const ConsistentParameters c = FitConsistentParameters(robot, out, ConsistentPrior{1e-4, drives});
+  const std::vector<double> values = out.BaseValues();
+  for (std::size_t k = 0; k < out.held.size(); ++k) {
+    if (std::isnan(out.held[k])) continue;
+    INFO(out.base.names[k]);
+    CHECK(c.base[k] == Approx(out.held[k]).epsilon(1e-3).margin(1e-6));
+    CHECK(values[k] == out.held[k]);
+  }
+}
+
+TEST_CASE("held base parameters: a name that is no base parameter is refused by name") {
+  const reference::Arm arm = reference::ThreeJointArm();
+  const SerialRobot robot = ToRobot(arm);
+  const SerialRobotLog log = driveid::testing::ToSerialLog(reference::SimulateArm(arm, {}));
+  SerialRobotFitOptions options;
+  options.free = {"no_such"};
+  CHECK_THROWS_WITH(FitSerialRobot(robot, {log}, options), Catch::Contains("'no_such'"));
+  // A parameter folded into another base parameter names that one.
+  const BaseParameters base = SerialBaseParameters(robot);
+  const std::vector<std::string> names = SerialParameterNames(robot);
+  std::string folded;
+  for (const auto& combination : base.combination) {
+    if (combination.size() > 1) folded = names[combination[1].first];
+  }
+  REQUIRE_FALSE(folded.empty());
+  options.free = {folded};
+  CHECK_THROWS_AS(FitSerialRobot(robot, {log}, options), OptionError);
 }

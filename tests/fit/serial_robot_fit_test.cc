@@ -83,6 +83,35 @@ TEST_CASE("serial robot: friction and offsets per joint recovered inside their i
   for (const auto& j : out.joints) CHECK(j.relative_error_percent < 20.0);
 }
 
+TEST_CASE("serial robot: viscous friction per direction where asked, recovered inside its interval") {
+  // The shoulder's drive: 5 N m s/rad forwards, 3 backwards.
+  reference::Arm arm = reference::ThreeJointArm();
+  arm.joints[1].viscous = 5.0;
+  arm.joints[1].viscous_backwards = 3.0;
+  SerialRobot robot = ToSerialRobot(arm);
+  robot.joints[1].viscous_per_direction = true;
+  reference::ArmLogOptions o;
+  o.seed = 12;
+  o.duration = 40.0;
+  const SerialRobotFitOutput out = FitSerialRobot(robot, {ToSerialLog(reference::SimulateArm(arm, o))}, {});
+  const auto estimate = [&](const std::string& name) {
+    for (const auto& e : out.fit.estimates) {
+      if (e.name == name) return e;
+    }
+    FAIL("no estimate " << name);
+    return ParameterEstimate{};
+  };
+  // b = (b+ + b-) / 2 = 4, d = (b+ - b-) / 2 = 1.
+  for (const auto& [key, truth] : {std::pair<std::string, double>{"viscous_shoulder", 4.0}, {"viscous_asymmetry_shoulder", 1.0}}) {
+    const ParameterEstimate e = estimate(key);
+    INFO(key << " = " << e.value << " +- " << e.standard_error << ", truth " << truth);
+    CHECK(std::abs(e.value - truth) <= 4.0 * e.standard_error);
+    CHECK(e.standard_error < 0.2 * truth);
+  }
+  // Only where asked: the other joints have no asymmetry.
+  for (const auto& e : out.fit.estimates) CHECK(e.name.find("viscous_asymmetry_yaw") == std::string::npos);
+}
+
 TEST_CASE("serial robot: in closed loop (a drive's PD and model feed-forward, an unlogged disturbance) the intervals hold") {
   // The logged torque is the controller's command, the motion the arm's
   // response to it and to a disturbance the log does not see

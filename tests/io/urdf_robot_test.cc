@@ -117,7 +117,11 @@ TEST_CASE("URDF refusals name the file and what is wrong") {
   refused("<robot name='x'><link name='a'/>", "not a URDF");
   refused("not xml at all", "not a URDF");
   refused(Replace(kArm, "type=\"continuous\"", "type=\"floating\""), "elbow");
-  refused(Replace(kArm, "<axis xyz=\"0 0 1\"/>", "<axis xyz=\"0 0 1\"/><mimic joint=\"shoulder\"/>"), "mimic");
+  refused(Replace(kArm, "<axis xyz=\"0 0 1\"/>", "<axis xyz=\"0 0 1\"/><mimic joint=\"flange\"/>"), "flange");
+  refused(Replace(kArm, "<axis xyz=\"0 0 1\"/>", "<axis xyz=\"0 0 1\"/><mimic joint=\"shoulder\" multiplier=\"0\"/>"),
+          "multiplier");
+  refused(Replace(kArm, "<axis xyz=\"0 0 1\"/>", "<axis xyz=\"0 0 1\"/><mimic joint=\"elbow\"/>"), "returns to itself");
+  refused(Replace(kArm, "<axis xyz=\"0 0 1\"/>", "<axis xyz=\"0 0 1\"/><dynamics damping=\"-1\"/>"), "dynamics");
   refused(Replace(kArm, "<mass value=\"1.3\"/>", "<mass value=\"nan\"/>"), "lower");
   refused(Replace(kArm, "<mass value=\"1.3\"/>", "<mass value=\"-1.3\"/>"), "lower");
   refused(Replace(kArm, "<axis xyz=\"0 0 2\"/>", "<axis xyz=\"0 0 0\"/>"), "shoulder");
@@ -127,4 +131,34 @@ TEST_CASE("URDF refusals name the file and what is wrong") {
   refused("<robot name='x'><link name='a'/><link name='b'/><joint name='j' type='fixed'><parent link='a'/>"
           "<child link='b'/></joint></robot>",
           "no revolute");
+}
+
+TEST_CASE("URDF: a mimic joint follows its leader (through a mimic of a mimic); <dynamics> is the prior's friction") {
+  // The elbow follows the shoulder at -2 q + 0.1; the rail the elbow at
+  // 0.5 q - 0.2: q_rail = -q_shoulder + 0.05 - 0.2.
+  std::string text = Replace(kArm, "<axis xyz=\"0 0 1\"/>",
+                             "<axis xyz=\"0 0 1\"/><mimic joint=\"shoulder\" multiplier=\"-2\" offset=\"0.1\"/>"
+                             "<dynamics damping=\"0.4\" friction=\"0.2\"/>");
+  text = Replace(text, "<axis xyz=\"1 0 0\"/>", "<axis xyz=\"1 0 0\"/><mimic joint=\"elbow\" multiplier=\"0.5\" offset=\"-0.2\"/>");
+  const UrdfRobot r = ParseUrdfRobot("mimic.urdf", text);
+  REQUIRE(r.robot.size() == 3);
+  CHECK(SerialCoordinateNames(r.robot) == std::vector<std::string>{"shoulder"});
+  const SerialJoint& elbow = r.robot.joints[1];
+  const SerialJoint& rail = r.robot.joints[2];
+  CHECK(elbow.mimic == 0);
+  CHECK(elbow.mimic_multiplier == -2.0);
+  CHECK(elbow.mimic_offset == Approx(0.1));
+  CHECK(rail.mimic == 0);
+  CHECK(rail.mimic_multiplier == Approx(-1.0));
+  CHECK(rail.mimic_offset == Approx(0.05 - 0.2));
+  CHECK(r.drives[1].viscous == 0.4);
+  CHECK(r.drives[1].coulomb == 0.2);
+  CHECK(r.drives[0].viscous == 0.0);
+  Eigen::VectorXd q, qd, qdd;
+  ExpandSerialMotion(r.robot, Eigen::VectorXd::Constant(1, 0.3), Eigen::VectorXd::Constant(1, 2.0),
+                     Eigen::VectorXd::Constant(1, -1.0), q, qd, qdd);
+  CHECK(q(1) == Approx(-0.5));
+  CHECK(q(2) == Approx(-0.3 - 0.15));
+  CHECK(qd(2) == Approx(-2.0));
+  CHECK(qdd(1) == Approx(2.0));
 }

@@ -171,16 +171,21 @@ TEST_CASE("serial RNEA equals the Lagrangian of a four-joint arm (revolute, pris
 }
 
 TEST_CASE("serial regressor times the parameters is the RNEA torque plus the drives") {
-  const SerialRobot robot = FourJointArm();
+  SerialRobot robot = FourJointArm();
   std::vector<SerialDriveParameters> drives = {{0.3, 1.1, 0.7, -0.2}, {0.5, 2.0, 1.4, 0.1},
                                                {0.05, 4.0, 3.0, 0.5}, {0.1, 0.4, 0.2, 0.0}};
+  // The second joint's viscous friction per direction: 2.6 forwards, 1.4 back.
+  robot.joints[1].viscous_per_direction = true;
+  drives[1].viscous_asymmetry = 0.6;
+  const double forwards[4] = {1.1, 2.6, 4.0, 0.4}, backwards[4] = {1.1, 1.4, 4.0, 0.4};
   const VectorXd theta = SerialParameterVector(robot, drives);
-  REQUIRE(SerialParameterNames(robot).size() == 56);
+  REQUIRE(SerialParameterNames(robot).size() == 60);
   CHECK(SerialParameterNames(robot)[10] == "armature_j1");
-  CHECK(SerialParameterNames(robot)[14] == "m_link2");
+  CHECK(SerialParameterNames(robot)[14] == "viscous_asymmetry_j1");
+  CHECK(SerialParameterNames(robot)[15] == "m_link2");
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-2.0, 2.0);
-  Eigen::MatrixXd y(4, 56);
+  Eigen::MatrixXd y(4, 60);
   for (int trial = 0; trial < 20; ++trial) {
     VectorXd q(4), qd(4), qdd(4);
     for (int i = 0; i < 4; ++i) {
@@ -192,9 +197,12 @@ TEST_CASE("serial regressor times the parameters is the RNEA torque plus the dri
     VectorXd expected = CalcSerialRigidTorque(robot, robot.bodies, q, qd, qdd);
     for (int i = 0; i < 4; ++i) {
       const auto& d = drives[static_cast<std::size_t>(i)];
-      expected(i) += d.armature * qdd(i) + d.viscous * qd(i) + d.coulomb * ((qd(i) > 0) - (qd(i) < 0)) + d.offset;
+      const double b = qd(i) > 0.0 ? forwards[i] : backwards[i];
+      expected(i) += d.armature * qdd(i) + b * qd(i) + d.coulomb * ((qd(i) > 0) - (qd(i) < 0)) + d.offset;
     }
     CHECK((y * theta - expected).norm() <= 1e-10 * (1.0 + expected.norm()));
+    // Joints that do not ask for it have no asymmetry column.
+    CHECK(y.col(3 * 15 - 1).norm() == 0.0);
   }
 }
 
@@ -266,4 +274,40 @@ TEST_CASE("inertial parameters moved between frames keep mass, centre and inerti
   const Vector3d centre = t.rotation * Vector3d(0.1, -0.2, 0.3) + t.translation;
   const InertialParameters expected = InertialFromCentre(2.5, centre, t.rotation * inertia * t.rotation.transpose());
   for (std::size_t k = 0; k < kInertialParameters; ++k) CHECK(moved[k] == Approx(expected[k]).margin(1e-12));
+}
+
+TEST_CASE("serial coordinates: with a mimic joint the power q_c' . tau_c is the rate of the arm's energy") {
+  // Joint 3 follows joint 2 at -0.7 q_2 + 0.3 (a linkage): three coordinates.
+  SerialRobot robot = FourJointArm();
+  robot.joints[2].mimic = 1;
+  robot.joints[2].mimic_multiplier = -0.7;
+  robot.joints[2].mimic_offset = 0.3;
+  REQUIRE(SerialCoordinates(robot) == std::vector<std::size_t>{0, 1, 3});
+  VectorXd qc(3), qdc(3), qddc(3);
+  qc << 0.3, -0.7, 1.1;
+  qdc << 0.9, -0.4, -1.2;
+  qddc << -0.5, 0.8, 0.2;
+  // The full motion written out here, independently of ExpandSerialMotion.
+  const auto full = [](const VectorXd& c, double offset) {
+    VectorXd q(4);
+    q << c(0), c(1), -0.7 * c(1) + offset, c(2);
+    return q;
+  };
+  const auto energy = [&](double t) {
+    const VectorXd qt = full(qc + qdc * t + 0.5 * qddc * t * t, 0.3), vt = full(qdc + qddc * t, 0.0);
+    return 0.5 * vt.dot(MassMatrix(robot, qt) * vt) + Potential(robot, qt);
+  };
+  const double h = 1e-5;
+  const double rate = (energy(h) - energy(-h)) / (2.0 * h);
+  Eigen::MatrixXd y(3, 60);
+  CalcSerialCoordinateRegressor(robot, qc, qdc, qddc, y);
+  const VectorXd tau = y * SerialParameterVector(robot, {});
+  CHECK(qdc.dot(tau) == Approx(rate).epsilon(1e-7));
+  // A mimic joint's drive acts through its multiplier: viscous b on its own
+  // rate -0.7 q_2' reaches joint 2 as -0.7 b (-0.7 q_2').
+  std::vector<SerialDriveParameters> drives(4);
+  drives[2].viscous = 2.0;
+  const VectorXd with = y * SerialParameterVector(robot, drives);
+  CHECK(with(1) - tau(1) == Approx(0.49 * 2.0 * qdc(1)));
+  CHECK(with(0) == Approx(tau(0)));
 }

@@ -177,7 +177,8 @@ VectorXd ArmTorque(const Arm& arm, const VectorXd& q, const VectorXd& qd, const 
   for (Eigen::Index i = 0; i < n; ++i) {
     const ArmJoint& joint = arm.joints[static_cast<std::size_t>(i)];
     const double v = motor_rate(i);
-    motor(i) = joint.viscous * v + joint.coulomb * ((v > 0) - (v < 0)) + joint.offset;
+    const double b = v < 0.0 && !std::isnan(joint.viscous_backwards) ? joint.viscous_backwards : joint.viscous;
+    motor(i) = b * v + joint.coulomb * ((v > 0) - (v < 0)) + joint.offset;
   }
   tau += r.transpose() * motor;
   return tau;

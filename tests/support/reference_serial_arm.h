@@ -9,6 +9,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,9 @@ struct ArmJoint {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();                   // in the body frame
   Eigen::Matrix3d inertia_at_centre = Eigen::Matrix3d::Identity();   // in the body frame
   double armature = 0.0, viscous = 0.0, coulomb = 0.0, offset = 0.0;
+  // Viscous friction while the motor turns backwards (NaN: `viscous`, the
+  // same both ways).
+  double viscous_backwards = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct Arm {
