@@ -101,6 +101,7 @@ LogInputOptions MakeLogInputOptions(const LogInputCli& options) {
   out.sysid.test = options.test;
   out.sysid.topic = options.topic;
   out.sysid.joints = options.joints;
+  out.sysid.every_joint = options.every_joint;
   out.sysid.time = options.time;
   out.sysid.joint_motor = options.joint_motor;
   out.sysid.joint_link = options.joint_link;

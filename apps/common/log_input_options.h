@@ -32,6 +32,7 @@ struct LogInputCli {
   std::string mechanism, motor, test;  ///< WPILog SysIdRoutine: --mechanism, --motor, --test
   std::string topic;                   ///< ROS bags: --topic, --joint (repeated), --time header|receive
   std::vector<std::string> joints;
+  bool every_joint = false;  ///< not a flag: a serial robot's command reads every joint of a bag by default
   std::string time = "header";
   std::string joint_motor, joint_link;  ///< ROS bags, an elastic joint: --joint-motor, --joint-link
 };

@@ -32,7 +32,10 @@ constexpr const char* kJointState = "sensor_msgs/msg/JointState";
 
 // The joints whose values are kept: those asked for, in order.
 // `‹joint› all`: every joint that every message carries (a serial robot's).
-bool AllJointsAsked(const SysIdFormat& format) { return format.joints.size() == 1 && format.joints.front() == "all"; }
+bool AllJointsAsked(const SysIdFormat& format) {
+  return (format.joints.size() == 1 && format.joints.front() == "all") ||
+         (format.every_joint && format.joints.empty() && format.joint_motor.empty() && format.joint_link.empty());
+}
 
 std::vector<std::string> JointsAsked(const SysIdFormat& format) {
   if (AllJointsAsked(format)) return {};

@@ -129,6 +129,9 @@ struct SysIdFormat {
   /// "receive" (the bag's receive times).
   std::string topic;
   std::vector<std::string> joints;
+  /// A serial robot's bag: with no `joints`, every joint every message
+  /// carries (as `joints` = {"all"}) instead of a refusal to choose.
+  bool every_joint = false;
   std::string time = "header";
   /// An elastic joint's two encoders in a bag: q_motor, qd_motor, tau from
   /// the motor joint, q_link, qd_link from the link joint (its effort is a

@@ -77,6 +77,18 @@ awk -v a="$v" -v s="$s" 'BEGIN { if (a < 0) a = -a; exit !(s > 0 && a <= 3 * s) 
 expect 3 "shoulder's viscous friction differs per direction" -- export directional.yaml --to urdf
 expect 2 "--per-direction: the robot has no joint 'knee'" -- robot arm.csv --urdf arm.urdf --per-direction knee
 
+# A <mimic> elbow (following the shoulder): the log's elbow columns are not
+# read (the fit's physics is tests/fit/serial_robot_fit_test.cc); the
+# exported URDF keeps the mimic, the MJCF and the design refuse it by name.
+awk '/<joint name="elbow"/ { print; getline; print; print "    <mimic joint=\"shoulder\" multiplier=\"-1\" offset=\"0.5\"/>"; next } { print }' arm.urdf > mimic.urdf
+"$bin" robot arm.csv --urdf mimic.urdf -o mimic.yaml > mimic.txt 2> err.txt && ok || fail "robot with a mimic joint: $(cat err.txt)"
+grep -q "^yaw " mimic.txt && grep -q "^shoulder " mimic.txt && ! grep -q "^elbow " mimic.txt && ok ||
+  fail "two coordinates in the summary: $(head -6 mimic.txt)"
+"$bin" export mimic.yaml --to urdf -o mimic_identified.urdf 2> err.txt && grep -q '<mimic joint="shoulder"' mimic_identified.urdf && ok ||
+  fail "the exported URDF keeps the mimic: $(cat err.txt)"
+expect 3 "joint 'elbow' mimics 'shoulder'" -- export mimic.yaml --to mjcf
+expect 3 "joint 'elbow' mimics 'shoulder'" -- design robot --urdf mimic.urdf --params mimic.yaml --duration 10
+
 # Validation on another log of the arm, from the parameter file alone.
 "$writer" arm.urdf held_out.csv 11 || fail "the reference writer (seed 11)"
 "$bin" validate arm.yaml held_out.csv > validation.txt 2> err.txt && ok || fail "validate: $(cat err.txt)"
@@ -149,7 +161,14 @@ if python3 -c 'import sqlite3' 2> /dev/null; then
   "$bin" robot arm.db3 --urdf arm.urdf --joint all -q -o bag.yaml 2> err.txt && ok || fail "robot BAG --joint all: $(cat err.txt)"
   [ "$(grep -A40 '^  estimates:' bag.yaml | grep value)" = "$(grep -A40 '^  estimates:' arm.yaml | grep value)" ] && ok ||
     fail "the bag's fit differs from the CSV's"
-  expect 2 "carries 3 joints .*--joint all for a serial robot" -- robot arm.db3 --urdf arm.urdf
+  "$bin" robot arm.db3 --urdf arm.urdf -q -o bag_default.yaml 2> err.txt && cmp -s <(grep -A40 '^  estimates:' bag.yaml) <(grep -A40 '^  estimates:' bag_default.yaml) &&
+    ok || fail "robot BAG --urdf reads every joint by default: $(cat err.txt)"
+  expect 2 "carries 3 joints .*--joint all for a serial robot" -- axis arm.db3
+  # validate reads a serial robot's bag by joint name without being told.
+  "$bin" validate arm.yaml arm.db3 > bag_validation.txt 2> err.txt && "$bin" validate arm.yaml arm.csv > csv_validation.txt &&
+    [ "$(grep -c ':tau_' bag_validation.txt)" = 3 ] &&
+    [ "$(awk '/:tau_/ { print $2, $3, $4, $5 }' bag_validation.txt)" = "$(awk '/:tau_/ { print $2, $3, $4, $5 }' csv_validation.txt)" ] &&
+    ok || fail "validate arm.yaml BAG equals the CSV's: $(cat err.txt bag_validation.txt csv_validation.txt)"
 fi
 
 # Refusals.

@@ -112,6 +112,61 @@ TEST_CASE("serial robot: viscous friction per direction where asked, recovered i
   for (const auto& e : out.fit.estimates) CHECK(e.name.find("viscous_asymmetry_yaw") == std::string::npos);
 }
 
+TEST_CASE("serial robot: a mimic joint (a parallelogram elbow) is fitted from its leader's torque") {
+  // The elbow follows the shoulder, q_elbow = 0.5 - q_shoulder (a linkage):
+  // two coordinates. The arm's torques come from its independent
+  // Lagrangian for all three joints; the linkage carries the elbow's to
+  // the shoulder by virtual work, tau_shoulder - tau_elbow, and the log
+  // holds the coordinates alone.
+  const reference::Arm arm = reference::ThreeJointArm();
+  std::vector<SerialDriveParameters> drives;
+  SerialRobot robot = ToSerialRobot(arm, &drives);
+  robot.joints[2].mimic = 1;
+  robot.joints[2].mimic_multiplier = -1.0;
+  robot.joints[2].mimic_offset = 0.5;
+  const Eigen::VectorXd theta = SerialParameterVector(robot, drives);
+  int inside = 0, total = 0;
+  double worst = 0.0;
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    reference::ArmLogOptions o;
+    o.seed = seed;
+    o.duration = 30.0;
+    o.trajectory = [](double t, Eigen::VectorXd& q, Eigen::VectorXd& qd, Eigen::VectorXd& qdd) {
+      q = Eigen::VectorXd::Zero(3);
+      qd = q;
+      qdd = q;
+      const double f[2][3] = {{0.1, 0.23, 0.37}, {0.13, 0.29, 0.41}}, a[2][3] = {{0.8, 0.3, 0.15}, {0.5, 0.25, 0.1}};
+      for (int j = 0; j < 2; ++j) {
+        for (int h = 0; h < 3; ++h) {
+          const double w = 2.0 * M_PI * f[j][h];
+          q(j) += a[j][h] * std::sin(w * t);
+          qd(j) += a[j][h] * w * std::cos(w * t);
+          qdd(j) -= a[j][h] * w * w * std::sin(w * t);
+        }
+      }
+      q(2) = 0.5 - q(1);
+      qd(2) = -qd(1);
+      qdd(2) = -qdd(1);
+    };
+    const reference::ArmLog a = reference::SimulateArm(arm, o);
+    SerialRobotLog log{"mimic.csv", a.t, {a.q[0], a.q[1]}, {{}, {}}, {a.tau[0], a.tau[1]}};
+    for (std::size_t k = 0; k < log.time.size(); ++k) log.torque[1][k] -= a.tau[2][k];
+    const SerialRobotFitOutput out = FitSerialRobot(robot, {log}, {});
+    REQUIRE(out.joints.size() == 2);
+    const Eigen::VectorXd truth = out.base.regroup * theta;
+    for (std::size_t c = 0; c < out.free.size(); ++c) {
+      const ParameterEstimate& e = out.fit.estimates[c];
+      const double t = truth(static_cast<Eigen::Index>(out.free[c]));
+      worst = std::max(worst, std::abs(e.value - t) / e.standard_error);
+      inside += e.ci95_low <= t && t <= e.ci95_high;
+      ++total;
+    }
+  }
+  INFO(inside << " of " << total << " intervals hold the truth; worst " << worst << " std");
+  CHECK(inside >= 0.85 * total);
+  CHECK(worst < 4.5);
+}
+
 TEST_CASE("serial robot: in closed loop (a drive's PD and model feed-forward, an unlogged disturbance) the intervals hold") {
   // The logged torque is the controller's command, the motion the arm's
   // response to it and to a disturbance the log does not see
