@@ -16,6 +16,7 @@ option(DRIVEID_STATIC_DEPS "Link Ceres's dependencies, yaml-cpp and libcrypto st
 
 function(driveid_static_deps)
   set(DRIVEID_YAML_LIB yaml-cpp PARENT_SCOPE)
+  set(DRIVEID_CRYPTO_LIB OpenSSL::Crypto PARENT_SCOPE)
   if(NOT DRIVEID_STATIC_DEPS OR DRIVEID_SANITIZE OR DRIVEID_FUZZ)
     return()
   endif()
@@ -49,16 +50,41 @@ function(driveid_static_deps)
   set(deps "-Wl,--start-group" ${archives} "-Wl,-Bstatic" -lgfortran -lquadmath -lgomp "-Wl,-Bdynamic"
            "-Wl,--end-group" ${DRIVEID_SHARED_unwind} ${DRIVEID_SHARED_metis} Threads::Threads ${CMAKE_DL_LIBS}
            Eigen3::Eigen)
-  set_property(TARGET Ceres::ceres PROPERTY INTERFACE_LINK_LIBRARIES "${deps}")
+  # A shared object (the Python module, python/) cannot take these archives
+  # (libgfortran.a, libgflags.a are not position-independent): a target
+  # with the property DRIVEID_SHARED_DEPS links Debian's shared libraries,
+  # chosen per linked target by a generator expression.
+  set(shared_case "$<BOOL:$<TARGET_PROPERTY:DRIVEID_SHARED_DEPS>>")
+  get_target_property(shared_deps Ceres::ceres INTERFACE_LINK_LIBRARIES)
+  set(chosen)
+  foreach(item IN LISTS deps)
+    list(APPEND chosen "$<$<NOT:${shared_case}>:${item}>")
+  endforeach()
+  foreach(item IN LISTS shared_deps)
+    list(APPEND chosen "$<${shared_case}:${item}>")
+  endforeach()
+  set_property(TARGET Ceres::ceres PROPERTY INTERFACE_LINK_LIBRARIES "${chosen}")
   # yaml-cpp and libcrypto: the same archives as in the group above.
   add_library(driveid_yaml_static INTERFACE IMPORTED GLOBAL)
-  set_property(TARGET driveid_yaml_static PROPERTY INTERFACE_LINK_LIBRARIES ${DRIVEID_STATIC_yaml-cpp})
   get_target_property(yaml_includes yaml-cpp INTERFACE_INCLUDE_DIRECTORIES)
   if(yaml_includes)
     set_property(TARGET driveid_yaml_static PROPERTY INTERFACE_INCLUDE_DIRECTORIES ${yaml_includes})
   endif()
+  set_property(TARGET driveid_yaml_static PROPERTY INTERFACE_LINK_LIBRARIES
+               "$<$<NOT:${shared_case}>:${DRIVEID_STATIC_yaml-cpp}>" "$<${shared_case}:yaml-cpp>")
   set(DRIVEID_YAML_LIB driveid_yaml_static PARENT_SCOPE)
-  set_property(TARGET OpenSSL::Crypto PROPERTY IMPORTED_LOCATION ${DRIVEID_STATIC_crypto})
-  set_property(TARGET OpenSSL::Crypto APPEND PROPERTY INTERFACE_LINK_LIBRARIES Threads::Threads ${CMAKE_DL_LIBS})
+  get_target_property(crypto_shared OpenSSL::Crypto IMPORTED_LOCATION)
+  if(NOT crypto_shared)
+    get_target_property(crypto_shared OpenSSL::Crypto IMPORTED_LOCATION_RELEASE)
+  endif()
+  add_library(driveid_crypto INTERFACE IMPORTED GLOBAL)
+  get_target_property(crypto_includes OpenSSL::Crypto INTERFACE_INCLUDE_DIRECTORIES)
+  if(crypto_includes)
+    set_property(TARGET driveid_crypto PROPERTY INTERFACE_INCLUDE_DIRECTORIES ${crypto_includes})
+  endif()
+  set_property(TARGET driveid_crypto PROPERTY INTERFACE_LINK_LIBRARIES
+               "$<$<NOT:${shared_case}>:${DRIVEID_STATIC_crypto};Threads::Threads;${CMAKE_DL_LIBS}>"
+               "$<${shared_case}:${crypto_shared}>")
+  set(DRIVEID_CRYPTO_LIB driveid_crypto PARENT_SCOPE)
   message(STATUS "Static dependencies: Ceres's, yaml-cpp's and libcrypto's archives (scripts/benchmark: start-up)")
 endfunction()

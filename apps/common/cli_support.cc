@@ -459,7 +459,9 @@ class Heartbeat {
   void Running(bool on) {
     const std::lock_guard<std::mutex> lock(mutex_);
     active_ += on ? 1 : -1;
-    if (on && start_ == 0.0) start_ = last_line_ = MonotonicSeconds();
+    // A run that starts when none runs starts the clock (the Python module
+    // runs one command after another in one process).
+    if (on && active_ == 1) start_ = last_line_ = MonotonicSeconds();
     if (!thread_.joinable()) thread_ = std::thread([this] { Loop(); });
   }
   /// A line was printed (an iteration's); `iteration`, `cost` for the next beat.
@@ -473,10 +475,6 @@ class Heartbeat {
     const std::lock_guard<std::mutex> lock(mutex_);
     iteration_ = iteration;
     cost_ = cost;
-  }
-  double Elapsed() {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    return start_ == 0.0 ? 0.0 : MonotonicSeconds() - start_;
   }
 
  private:
@@ -521,8 +519,9 @@ void SetProgress(FitOptions& fit, bool verbose, double max_seconds) {
   // A long fit says it is alive: a line every 2 s after the first 2 s (and
   // the heartbeat's every 5 s inside a long evaluation).
   auto next = std::make_shared<double>(2.0);
-  fit.progress = [next](const FitIteration& it) {
-    const double elapsed = TheHeartbeat().Elapsed();
+  const double begin = MonotonicSeconds();
+  fit.progress = [next, begin](const FitIteration& it) {
+    const double elapsed = MonotonicSeconds() - begin;
     if (elapsed < *next) {
       TheHeartbeat().Saw(it.iteration, it.cost);
       return;

@@ -56,25 +56,31 @@ CLI::App* SetupAxisCommand(CLI::App& app, AxisOptions& options) {
   return command;
 }
 
-void RunAxisCommand(const AxisOptions& options, const std::string& command_line) {
-  CheckFitOutputs(options.output, LogCommandInputs(options.logs, options.params, options.input, options.validate));
+AxisCommandResult ComputeAxisCommand(const AxisOptions& options, const std::string& command_line,
+                                     std::vector<CsvLog> given) {
   ParameterFile start;
   if (!options.params.empty()) start = ReadParameterFile(options.params);
   AxisSection section = start.Find<AxisSection>() ? *start.Find<AxisSection>() : AxisSection{};
   section.linear = section.linear || options.linear;
 
-  FitOutputs outputs;
+  AxisCommandResult result;
+  FitOutputs& outputs = result.outputs;
   outputs.provenance.command = command_line;
   outputs.provenance.version = DRIVEID_VERSION;
   std::vector<std::string> sysid_units;  // per log: the SysId file's units, "" for other logs
   std::vector<std::string> mechanisms;   // per log: the SysId file's test
   const auto make = [&](CsvLog csv) { return MakeAxisLog(std::move(csv), section.torque_constant.value_or(0.0)); };
-  const auto logs = LoadLogs<AxisLog>(options.logs, options.input, options.output, outputs.provenance, AxisLogColumns(),
-                                        [&](CsvLog csv) {
-                                          sysid_units.push_back(csv.format == "sysid" || csv.format == "wpilog" ? csv.units : "");
-                                          mechanisms.push_back(csv.mechanism);
-                                          return make(std::move(csv));
-                                        });
+  const auto take = [&](CsvLog csv) {
+    sysid_units.push_back(csv.format == "sysid" || csv.format == "wpilog" ? csv.units : "");
+    mechanisms.push_back(csv.mechanism);
+    return make(std::move(csv));
+  };
+  std::vector<AxisLog> logs;
+  if (given.empty()) {
+    logs = LoadLogs<AxisLog>(options.logs, options.input, options.output, outputs.provenance, AxisLogColumns(), take);
+  } else {
+    for (CsvLog& csv : given) logs.push_back(take(std::move(csv)));
+  }
   AxisIdentificationOptions fit_options;
   TakeSysIdDeclarations(sysid_units, mechanisms, fit_options);
   fit_options.method = options.method == "oe"     ? AxisMethod::kOutputError
@@ -108,10 +114,17 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
   outputs.parameter_file = FormatParameterFile(fitted, &outputs.fit, &outputs.provenance, run.derived);
   outputs.trace_csv = run.trace_csv;
   if (!options.output.plot.empty()) outputs.plot_panels = MakeFitPanels(run.series, run.labels);
-  EmitFitOutputs(options.output, outputs);
+  result.summary = run.summary;
+  return result;
+}
+
+void RunAxisCommand(const AxisOptions& options, const std::string& command_line) {
+  CheckFitOutputs(options.output, LogCommandInputs(options.logs, options.params, options.input, options.validate));
+  const AxisCommandResult result = ComputeAxisCommand(options, command_line);
+  EmitFitOutputs(options.output, result.outputs);
   if (!options.output.quiet && !options.output.json) {
     std::FILE* summary = options.output.output.empty() ? stderr : stdout;
-    for (const auto& line : run.summary) WriteText(summary, line + "\n");
+    for (const auto& line : result.summary) WriteText(summary, line + "\n");
   }
 }
 

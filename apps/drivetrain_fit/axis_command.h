@@ -8,6 +8,7 @@
 
 #include "common/cli_support.h"
 #include "common/log_input_options.h"
+#include "io/csv_log.h"
 #include "models/axis.h"
 
 namespace driveid::cli {
@@ -28,5 +29,16 @@ struct AxisOptions {
 
 CLI::App* SetupAxisCommand(CLI::App& app, AxisOptions& options);
 void RunAxisCommand(const AxisOptions& options, const std::string& command_line);
+
+/// What `axis` computes before it emits, for the command and the Python
+/// module alike: the outputs and the summary lines printed after the table.
+struct AxisCommandResult {
+  FitOutputs outputs;
+  std::vector<std::string> summary;
+};
+/// `given`: logs already in memory, each with AxisLogColumns()' columns (the
+/// Python module's arrays), read in place of options.logs when not empty.
+AxisCommandResult ComputeAxisCommand(const AxisOptions& options, const std::string& command_line,
+                                     std::vector<CsvLog> given = {});
 
 }  // namespace driveid::cli

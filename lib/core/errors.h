@@ -5,6 +5,8 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace driveid {
 
@@ -34,7 +36,13 @@ class OptionError : public std::runtime_error {
 /// not converged, integrator failure. Exit code 4.
 class IdentificationError : public std::runtime_error {
  public:
-  explicit IdentificationError(const std::string& message) : std::runtime_error(message) {}
+  explicit IdentificationError(const std::string& message, std::vector<std::string> parameters = {})
+      : std::runtime_error(message), parameters_(std::move(parameters)) {}
+  /// The parameters the data do not determine, where the refusal names them.
+  const std::vector<std::string>& parameters() const { return parameters_; }
+
+ private:
+  std::vector<std::string> parameters_;
 };
 
 }  // namespace driveid

@@ -13,7 +13,7 @@ namespace driveid {
 
 void RequireDetermined(FitResult& fit, const std::vector<std::string>& nonnegative, double max_relative_std,
                        const std::vector<std::string>& context, const std::map<std::string, double>& start_values) {
-  std::vector<std::string> undetermined;
+  std::vector<std::string> undetermined, names;
   for (auto& e : fit.estimates) {
     if (std::find(nonnegative.begin(), nonnegative.end(), e.name) == nonnegative.end()) continue;
     if (e.standard_error <= max_relative_std * std::abs(e.value)) continue;
@@ -46,12 +46,14 @@ void RequireDetermined(FitResult& fit, const std::vector<std::string>& nonnegati
       }
       continue;
     }
+    names.push_back(e.name);
     undetermined.push_back(e.value != 0.0 ? fmt::format("{} = {:.4g} +- {:.2g} (relative std {:.0f} %)", e.name,
                                                         e.value, e.standard_error,
                                                         100.0 * e.standard_error / std::abs(e.value))
                                           : fmt::format("{} = 0 +- {:.2g} (at its bound 0)", e.name, e.standard_error));
   }
   if (undetermined.empty()) return;
+
   std::string message = fmt::format(
       "not identifiable: {}: the logs do not determine {} (robust relative std above {:.0f} %, docs/models.md#adequacy): "
       "fix {} in ‹params› and leave {} out of ‹free›, or log motion that excites {}",
@@ -59,7 +61,7 @@ void RequireDetermined(FitResult& fit, const std::vector<std::string>& nonnegati
       undetermined.size() > 1 ? "them" : "it", undetermined.size() > 1 ? "them" : "it",
       undetermined.size() > 1 ? "them" : "it");
   for (const auto& c : context) message += "\n  warning: " + c;
-  throw IdentificationError(message);
+  throw IdentificationError(message, names);
 }
 
 bool MeasurementVaries(const double* measured, int count) {

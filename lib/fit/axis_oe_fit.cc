@@ -272,6 +272,7 @@ FitResult FitFromPlateau(OeLogs& prepared, const OeDesign& d, AxisOeResiduals& r
   }
   std::optional<FitResult> best;
   std::string first_failure;
+  std::vector<std::string> first_parameters;
   for (double factor : {1.0, 0.25, 4.0}) {
     std::vector<FitParameter> from = parameters;
     from[vs].initial *= factor;
@@ -279,10 +280,13 @@ FitResult FitFromPlateau(OeLogs& prepared, const OeDesign& d, AxisOeResiduals& r
       FitResult fit = FitLeastSquares(residuals, from, channels, fit_options);
       if (!best || fit.cost < best->cost) best = std::move(fit);
     } catch (const IdentificationError& e) {
-      if (first_failure.empty()) first_failure = e.what();
+      if (first_failure.empty()) {
+        first_failure = e.what();
+        first_parameters = e.parameters();
+      }
     }
   }
-  if (!best) throw IdentificationError(first_failure);
+  if (!best) throw IdentificationError(first_failure, first_parameters);
   return std::move(*best);
 }
 

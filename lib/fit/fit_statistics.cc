@@ -182,7 +182,7 @@ std::vector<double> RequireIdentifiable(const std::vector<JacobianBlock>& blocks
     const std::string advice = options.advice(involved);
     if (!advice.empty()) message += "; " + advice;
   }
-  throw IdentificationError(message);
+  throw IdentificationError(message, involved);
 }
 
 namespace {

@@ -441,7 +441,8 @@ Selection SelectFree(const SerialRobot& robot, const SerialRobotFitOptions& opti
 [[noreturn]] void RefuseUnexcited(const IdentificationError& e) {
   throw IdentificationError(fmt::format("{}; to hold what the trajectory cannot excite at the URDF's values, list the "
                                         "others in ‹free›, or design a trajectory that excites them (design robot)",
-                                        e.what()));
+                                        e.what()),
+                            e.parameters());
 }
 
 }  // namespace
