@@ -21,6 +21,19 @@ using namespace driveid;
 using driveid::testing::ToSerialLog;
 using driveid::testing::ToSerialRobot;
 
+namespace {
+
+// The fit's estimate named `name` (the test fails without one).
+ParameterEstimate EstimateNamed(const SerialRobotFitOutput& out, const std::string& name) {
+  for (const auto& e : out.fit.estimates) {
+    if (e.name == name) return e;
+  }
+  FAIL("no estimate " << name);
+  return ParameterEstimate{};
+}
+
+}  // namespace
+
 TEST_CASE("serial robot: base-parameter intervals hold the truth over seeds, from both sides") {
   const reference::Arm arm = reference::ThreeJointArm();
   std::vector<SerialDriveParameters> drives;
@@ -62,13 +75,7 @@ TEST_CASE("serial robot: friction and offsets per joint recovered inside their i
   o.seed = 7;
   o.duration = 40.0;
   const SerialRobotFitOutput out = FitSerialRobot(robot, {ToSerialLog(reference::SimulateArm(arm, o))}, {});
-  const auto estimate = [&](const std::string& name) {
-    for (const auto& e : out.fit.estimates) {
-      if (e.name == name) return e;
-    }
-    FAIL("no estimate " << name);
-    return ParameterEstimate{};
-  };
+  const auto estimate = [&](const std::string& name) { return EstimateNamed(out, name); };
   for (std::size_t j = 0; j < robot.size(); ++j) {
     const std::string& joint = robot.joints[j].name;
     for (const auto& [key, truth] : {std::pair<std::string, double>{"viscous_" + joint, drives[j].viscous},
@@ -94,13 +101,7 @@ TEST_CASE("serial robot: viscous friction per direction where asked, recovered i
   o.seed = 12;
   o.duration = 40.0;
   const SerialRobotFitOutput out = FitSerialRobot(robot, {ToSerialLog(reference::SimulateArm(arm, o))}, {});
-  const auto estimate = [&](const std::string& name) {
-    for (const auto& e : out.fit.estimates) {
-      if (e.name == name) return e;
-    }
-    FAIL("no estimate " << name);
-    return ParameterEstimate{};
-  };
+  const auto estimate = [&](const std::string& name) { return EstimateNamed(out, name); };
   // b = (b+ + b-) / 2 = 4, d = (b+ - b-) / 2 = 1.
   for (const auto& [key, truth] : {std::pair<std::string, double>{"viscous_shoulder", 4.0}, {"viscous_asymmetry_shoulder", 1.0}}) {
     const ParameterEstimate e = estimate(key);
