@@ -1,10 +1,11 @@
-// The C++ side of the Python module driveid (docs/python.md): each function
-// takes the command's options as a dict (keys named as its flags, without
-// dashes) and returns what the command computed as plain Python values; the
-// package (python/driveid/__init__.py) turns them into objects and raises
-// the exceptions. The computation is the command's own function
-// (apps/drivetrain_fit/axis_command.h ComputeAxisCommand), so the numbers
-// are the command line's to the last bit. The GIL is released while it runs.
+// The C++ side of the Python module driveid (docs/python.md): `run` runs a
+// command of the tools in-process (apps/common/in_process.h) from the
+// arguments the package (python/driveid/__init__.py) makes of its keyword
+// arguments, with numpy arrays as logs in memory, and returns what the
+// command printed and its fits' outputs as plain Python values; the package
+// turns them into objects and raises the exceptions. The parsing, checks
+// and computation are the command's own, so the numbers are the command
+// line's to the last bit. The GIL is released while it runs.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -15,6 +16,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "common/in_process.h"
 #include "core/errors.h"
 #include "drivetrain_fit/axis_command.h"
 #include "io/axis_log.h"
@@ -57,77 +59,6 @@ std::vector<double> TakeArray(const std::string& name, const py::handle& value, 
   return out;
 }
 
-// A log from arrays, with the columns a command requests ("a|b" one of
-// them, "?a" optional) in its order, as the readers would deliver it.
-CsvLog ArraysLog(const std::string& name, const py::dict& arrays, const std::vector<std::string>& request) {
-  CsvLog log;
-  log.path = name;
-  const std::size_t length = arrays.contains("t") ? TakeArray("t", arrays["t"], 0).size() : 0;
-  for (const std::string& entry : request) {
-    const bool optional = !entry.empty() && entry[0] == '?';
-    const std::string names = optional ? entry.substr(1) : entry;
-    std::vector<std::string> alternatives;
-    for (std::size_t at = 0;;) {
-      const std::size_t bar = names.find('|', at);
-      alternatives.push_back(names.substr(at, bar == std::string::npos ? std::string::npos : bar - at));
-      if (bar == std::string::npos) break;
-      at = bar + 1;
-    }
-    std::string chosen;
-    for (const std::string& a : alternatives) {
-      if (arrays.contains(a) && !arrays[py::str(a)].is_none()) {
-        chosen = a;
-        break;
-      }
-    }
-    if (chosen.empty() && !optional) throw Failure{3, name + ": no " + names + " array given", {}};
-    log.names.push_back(chosen.empty() ? alternatives.front() : chosen);
-    log.columns.push_back(chosen.empty() ? std::vector<double>{} : TakeArray(chosen, arrays[py::str(chosen)], length));
-  }
-  for (std::size_t k = 1; k < log.columns.front().size(); ++k) {
-    if (!(log.columns.front()[k] > log.columns.front()[k - 1])) {
-      throw Failure{3, name + ": t does not increase at sample " + std::to_string(k + 1), {}};
-    }
-  }
-  return log;
-}
-
-std::vector<std::string> Strings(const py::dict& options, const char* key) {
-  if (!options.contains(key) || options[key].is_none()) return {};
-  return options[key].cast<std::vector<std::string>>();
-}
-
-// The command's options from the dict: only the keys given replace the
-// command's defaults (those of its option struct, which are the flags').
-cli::AxisOptions AxisOptionsOf(const py::dict& o) {
-  cli::AxisOptions options;
-  options.logs = Strings(o, "logs");
-  if (o.contains("params") && !o["params"].is_none()) options.params = o["params"].cast<std::string>();
-  if (o.contains("free") && !o["free"].is_none()) options.free = Strings(o, "free");
-  if (o.contains("method")) options.method = o["method"].cast<std::string>();
-  if (options.method != "auto" && options.method != "idim" && options.method != "oe") {
-    throw Failure{2, "method: " + options.method + " not in {auto, idim, oe}", {}};
-  }
-  if (o.contains("cutoff") && !o["cutoff"].is_none()) {
-    options.cutoff = o["cutoff"].cast<double>();
-    if (!(options.cutoff > 0.0) || !std::isfinite(options.cutoff)) throw Failure{2, "cutoff: must be a finite number > 0", {}};
-  }
-  if (o.contains("decimation")) {
-    options.decimation = o["decimation"].cast<int>();
-    if (options.decimation < 1 || options.decimation > 1000) throw Failure{2, "decimation: must be in [1, 1000]", {}};
-  }
-  if (o.contains("torque_timing")) {
-    options.torque_timing = o["torque_timing"].cast<std::string>();
-    const std::string problem = cli::TorqueTimingText()(options.torque_timing);
-    if (!problem.empty()) throw Failure{2, "torque_timing: " + problem, {}};
-  }
-  if (o.contains("linear")) options.linear = o["linear"].cast<bool>();
-  options.validate = Strings(o, "validate");
-  for (const std::string& c : Strings(o, "col")) options.input.columns.push_back(c);
-  if (o.contains("trace") && o["trace"].cast<bool>()) options.output.trace = "python";
-  return options;
-}
-
 py::dict Estimates(const FitResult& fit) {
   py::list estimates;
   for (const ParameterEstimate& e : fit.estimates) {
@@ -164,58 +95,101 @@ py::dict Estimates(const FitResult& fit) {
   return out;
 }
 
-// Runs `compute` without the GIL, mapping the library's errors to the
-// command's exit codes (apps/common/cli_support.cc RunMain).
-template <class Compute>
-auto Guarded(Compute compute) -> decltype(compute()) {
-  try {
-    py::gil_scoped_release release;
-    return compute();
-  } catch (const cli::GateFailed& e) {
-    throw Failure{1, cli::ShowFlags(e.message), {}};
-  } catch (const OptionError& e) {
-    throw Failure{2, cli::ShowFlags(e.what()), {}};
-  } catch (const InputError& e) {
-    throw Failure{3, cli::ShowFlags(e.what()), {}};
-  } catch (const OutputError& e) {
-    throw Failure{3, cli::ShowFlags(e.what()), {}};
-  } catch (const IdentificationError& e) {
-    throw Failure{4, cli::ShowFlags(e.what()), e.parameters()};
-  }
-}
-
 py::dict Failed(const Failure& f) {
   py::dict out;
   out["error"] = py::make_tuple(f.code, f.message, f.parameters);
   return out;
 }
 
-py::dict Axis(const py::dict& options, const py::object& arrays, const std::string& name,
-              const std::string& command_line) {
+// One fit's outputs as the package's Fit takes them (the table as the
+// command prints it, its own summary where it has one).
+py::dict FitDict(const cli::FitOutputs& outputs) {
+  py::dict out = Estimates(outputs.fit);
+  out["method"] = outputs.provenance.model;
+  out["parameter_file"] = cli::ShowFlags(outputs.parameter_file);
+  out["table"] = cli::ShowFlags(outputs.summary ? *outputs.summary : FormatFitTable(outputs.fit, outputs.provenance));
+  out["trace_csv"] = outputs.trace_csv;
+  return out;
+}
+
+// Logs in memory: [(name, {column: array})], each column checked by name.
+std::vector<cli::GivenLog> GivenLogs(const py::object& logs) {
+  std::vector<cli::GivenLog> given;
+  if (logs.is_none()) return given;
+  for (const py::handle& entry : logs.cast<py::list>()) {
+    const auto pair = entry.cast<py::tuple>();
+    cli::GivenLog log;
+    log.name = pair[0].cast<std::string>();
+    const auto columns = pair[1].cast<py::dict>();
+    const std::size_t length = columns.contains("t") ? TakeArray("t", columns["t"], 0).size() : 0;
+    for (const auto& [key, value] : columns) {
+      log.names.push_back(key.cast<std::string>());
+      log.columns.push_back(TakeArray(log.names.back(), value, length));
+    }
+    if (length == 0 && !log.columns.empty()) {
+      for (std::size_t k = 1; k < log.columns.size(); ++k) {
+        if (log.columns[k].size() != log.columns[0].size()) {
+          throw Failure{3, log.names[k] + ": " + std::to_string(log.columns[k].size()) + " values, " + log.names[0] +
+                               " has " + std::to_string(log.columns[0].size()), {}};
+        }
+      }
+    }
+    given.push_back(std::move(log));
+  }
+  return given;
+}
+
+// Runs `tool args` in-process (apps/common/in_process.h) without the GIL:
+// {code, message, parameters, out, fits}. Standard error goes to
+// `progress(line)` when it is callable, else to this process's stderr.
+py::dict Run(const std::string& tool, const std::vector<std::string>& args, const std::string& command_line,
+             const py::object& logs, const py::object& progress) {
+  cli::InProcessResult r;
   try {
-    const cli::AxisOptions axis = AxisOptionsOf(options);
-    std::vector<CsvLog> given;
-    if (!arrays.is_none()) given.push_back(ArraysLog(name, arrays.cast<py::dict>(), AxisLogColumns()));
-    if (given.empty() && axis.logs.empty()) throw Failure{2, "logs: give log paths or arrays (t=, q=, tau=)", {}};
-    const cli::AxisCommandResult r = Guarded([&] { return cli::ComputeAxisCommand(axis, command_line, std::move(given)); });
-    py::dict out = Estimates(r.outputs.fit);
-    out["method"] = r.outputs.provenance.model;
-    out["parameter_file"] = cli::ShowFlags(r.outputs.parameter_file);
-    std::string table = FormatFitTable(r.outputs.fit, r.outputs.provenance);
-    for (const std::string& line : r.summary) table += line + "\n";
-    out["table"] = cli::ShowFlags(table);
-    out["trace_csv"] = r.outputs.trace_csv;
-    return out;
+    const std::vector<cli::GivenLog> given = GivenLogs(logs);
+    std::function<void(const std::string&)> err;
+    if (!progress.is_none()) {
+      // By address: copying a Python object needs the GIL, and the function
+      // is copied where the GIL is released.
+      const py::object* callback = &progress;
+      err = [callback](const std::string& line) {
+        py::gil_scoped_acquire gil;
+        try {
+          (*callback)(line);
+        } catch (py::error_already_set& e) {
+          e.discard_as_unraisable("driveid progress callback");
+        }
+      };
+    }
+    py::gil_scoped_release release;
+    r = cli::RunInProcess(tool, args, command_line, given, err);
   } catch (const Failure& f) {
     return Failed(f);
   }
+  py::dict out;
+  if (r.code != cli::kSuccess) out["error"] = py::make_tuple(r.code, r.message, r.parameters);
+  out["out"] = py::bytes(r.out);
+  py::list fits;
+  for (const cli::FitOutputs& fit : r.fits) fits.append(FitDict(fit));
+  out["fits"] = fits;
+  return out;
 }
 
-// The library's own time for the same call (scripts/benchmark: the
-// module's overhead is a call's time minus this), median of `repeats`.
-double AxisLibrarySeconds(const py::dict& options, const py::dict& arrays, const std::string& name, int repeats) {
-  const cli::AxisOptions axis = AxisOptionsOf(options);
-  const CsvLog log = ArraysLog(name, arrays, AxisLogColumns());
+// The library's own time for `axis ARGS` on the given log (scripts/benchmark:
+// the module's overhead is a call's time minus this), median of `repeats`:
+// ComputeAxisCommand on the log already read, as the command calls it.
+double AxisLibrarySeconds(const std::vector<std::string>& args, const py::object& logs, int repeats) {
+  const std::vector<cli::GivenLog> given = GivenLogs(logs);
+  cli::AxisOptions axis;
+  CLI::App app;
+  cli::SetupAxisCommand(app, axis);
+  std::vector<std::string> reversed(args.rbegin(), args.rend());
+  app.parse(reversed);
+  std::vector<DataFileRecord> records;
+  CsvLog log;
+  const cli::GivenLogsScope scope(given);
+  cli::ReadGivenLog(given.at(0).name, AxisLogColumns(), cli::MakeLogInputOptions(axis.input), records,
+                    [&](CsvLog csv) { log = std::move(csv); });
   std::vector<double> seconds;
   py::gil_scoped_release release;
   for (int k = 0; k < std::max(1, repeats); ++k) {
@@ -233,8 +207,8 @@ double AxisLibrarySeconds(const py::dict& options, const py::dict& arrays, const
 PYBIND11_MODULE(_driveid, m) {
   m.doc() = "driveid's C++ side; use the package driveid (docs/python.md)";
   m.attr("version") = DRIVEID_VERSION;
-  m.def("axis", &driveid::python::Axis, py::arg("options"), py::arg("arrays"), py::arg("name"), py::arg("command_line"),
-        "drivetrain-fit axis: options as a dict, arrays (t, q, tau or i, qd, tau_known) or None");
-  m.def("axis_library_seconds", &driveid::python::AxisLibrarySeconds, py::arg("options"), py::arg("arrays"),
-        py::arg("name"), py::arg("repeats"), "the library's median time for axis on these arrays (benchmark)");
+  m.def("run", &driveid::python::Run, py::arg("tool"), py::arg("args"), py::arg("command_line"), py::arg("logs"),
+        py::arg("progress"), "a command in-process: its code, message, standard output and fits");
+  m.def("axis_library_seconds", &driveid::python::AxisLibrarySeconds, py::arg("args"), py::arg("logs"),
+        py::arg("repeats"), "the library's median time for axis ARGS on the given log (benchmark)");
 }

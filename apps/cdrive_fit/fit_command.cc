@@ -78,15 +78,12 @@ void RunCDriveFitCommand(const CDriveFitCommandOptions& options, const std::stri
 }
 
 namespace {
-CDriveFitCommandOptions friction_options, inertia_options;
-const bool kFriction = RegisterCommand(
-    {"cdrive-fit", "", 10,
-     [](CLI::App& parent) { return SetupCDriveFitCommand(parent, friction_options, CDriveFitKind::kFriction); },
-     [](const std::string& line) { RunCDriveFitCommand(friction_options, line); }});
-const bool kInertia = RegisterCommand(
-    {"cdrive-fit", "", 20,
-     [](CLI::App& parent) { return SetupCDriveFitCommand(parent, inertia_options, CDriveFitKind::kInertia); },
-     [](const std::string& line) { RunCDriveFitCommand(inertia_options, line); }});
+const bool kFriction = RegisterCommand(Command<CDriveFitCommandOptions>(
+    "cdrive-fit", "", 10, [](CLI::App& parent, CDriveFitCommandOptions& o) { return SetupCDriveFitCommand(parent, o, CDriveFitKind::kFriction); },
+    [](const CDriveFitCommandOptions& o, const std::string& line) { RunCDriveFitCommand(o, line); }));
+const bool kInertia = RegisterCommand(Command<CDriveFitCommandOptions>(
+    "cdrive-fit", "", 20, [](CLI::App& parent, CDriveFitCommandOptions& o) { return SetupCDriveFitCommand(parent, o, CDriveFitKind::kInertia); },
+    [](const CDriveFitCommandOptions& o, const std::string& line) { RunCDriveFitCommand(o, line); }));
 }  // namespace
 
 }  // namespace driveid::cli

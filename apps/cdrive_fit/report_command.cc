@@ -39,10 +39,9 @@ void RunCDriveReportCommand(const CDriveReportOptions& options) {
 }
 
 namespace {
-CDriveReportOptions report_options;
-const bool kRegistered = RegisterCommand({"cdrive-fit", "", 30,
-                                          [](CLI::App& parent) { return SetupCDriveReportCommand(parent, report_options); },
-                                          [](const std::string&) { RunCDriveReportCommand(report_options); }});
+const bool kRegistered = RegisterCommand(Command<CDriveReportOptions>(
+    "cdrive-fit", "", 30, [](CLI::App& parent, CDriveReportOptions& o) { return SetupCDriveReportCommand(parent, o); },
+    [](const CDriveReportOptions& o, const std::string&) { RunCDriveReportCommand(o); }));
 }  // namespace
 
 }  // namespace driveid::cli

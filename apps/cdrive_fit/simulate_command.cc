@@ -66,10 +66,9 @@ void RunCDriveSimulateCommand(const CDriveSimulateOptions& options, const std::s
 }
 
 namespace {
-CDriveSimulateOptions simulate_options;
-const bool kRegistered = RegisterCommand(
-    {"cdrive-fit", "", 40, [](CLI::App& parent) { return SetupCDriveSimulateCommand(parent, simulate_options); },
-     [](const std::string& line) { RunCDriveSimulateCommand(simulate_options, line); }});
+const bool kRegistered = RegisterCommand(Command<CDriveSimulateOptions>(
+    "cdrive-fit", "", 40, [](CLI::App& parent, CDriveSimulateOptions& o) { return SetupCDriveSimulateCommand(parent, o); },
+    [](const CDriveSimulateOptions& o, const std::string& line) { RunCDriveSimulateCommand(o, line); }));
 }  // namespace
 
 }  // namespace driveid::cli

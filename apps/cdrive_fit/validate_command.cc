@@ -74,10 +74,9 @@ void RunCDriveValidate(const CDriveValidateOptions& options, const std::string& 
   EmitValidation(options.output, {"cdrive-fit", command_line, run.method, run.title, run.unit}, run.logs);
 }
 
-CDriveValidateOptions validate_options;
-const bool kRegistered = RegisterCommand({"cdrive-fit", "", 25,
-                                          [](CLI::App& parent) { return SetupCDriveValidate(parent, validate_options); },
-                                          [](const std::string& line) { RunCDriveValidate(validate_options, line); }});
+const bool kRegistered = RegisterCommand(Command<CDriveValidateOptions>(
+    "cdrive-fit", "", 25, [](CLI::App& parent, CDriveValidateOptions& o) { return SetupCDriveValidate(parent, o); },
+    [](const CDriveValidateOptions& o, const std::string& line) { RunCDriveValidate(o, line); }));
 
 }  // namespace
 }  // namespace driveid::cli

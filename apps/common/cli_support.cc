@@ -35,6 +35,14 @@
 namespace driveid::cli {
 namespace {
 
+thread_local StreamCapture* capture = nullptr;
+
+// A line of the standard error: to the capture's sink when one is set.
+void Say(const std::string& text) {
+  if (capture != nullptr && capture->err) capture->err(text);
+  else std::fputs(text.c_str(), stderr);
+}
+
 // One line: newlines in a message become "; ".
 std::string OneLine(std::string text) {
   while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
@@ -75,6 +83,8 @@ void InstallSignalCleanup() {
   }
 }
 
+}  // namespace
+
 // Every option of `app` and of its subcommands that collects a list takes
 // one value per flag (the flag is repeated for more), so that `--col a=b
 // log.csv` leaves log.csv to the positional arguments.
@@ -86,7 +96,6 @@ void OneValuePerFlag(CLI::App& app) {
   for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) OneValuePerFlag(*command);
 }
 
-}  // namespace
 
 int RunMain(CLI::App& app, int argc, char** argv, const std::function<void()>& dispatch) {
   const std::string program = app.get_name();
@@ -110,30 +119,33 @@ int RunMain(CLI::App& app, int argc, char** argv, const std::function<void()>& d
   try {
     dispatch();
     return kSuccess;
+  } catch (...) {
+    const Refusal refusal = CurrentRefusal();
+    if (!refusal.message.empty()) Fail(program, refusal.message);
+    return refusal.code;
+  }
+}
+
+Refusal CurrentRefusal() {
+  try {
+    throw;
   } catch (const GateFailed& e) {
-    if (!e.message.empty()) Fail(program, e.message);
-    return kGateFailed;
+    return {kGateFailed, e.message, {}};
   } catch (const InputError& e) {
-    Fail(program, e.what());
-    return kInvalidInput;
+    return {kInvalidInput, e.what(), {}};
   } catch (const IdentificationError& e) {
-    Fail(program, e.what());
-    return kIdentificationFailed;
+    return {kIdentificationFailed, e.what(), e.parameters()};
   } catch (const OutputError& e) {
-    Fail(program, e.what());
-    return kInvalidInput;
+    return {kInvalidInput, e.what(), {}};
   } catch (const OptionError& e) {
-    Fail(program, e.what());
-    return kUsage;
+    return {kUsage, e.what(), {}};
   } catch (const std::bad_alloc&) {
     // The input's size met the memory this process may use (ulimit -v, a
     // container's limit): a limit of the machine, not a bug.
-    Fail(program, "out of memory: the inputs need more memory than this process may use (ulimit -v); "
-                  "crop or split the logs, or raise the limit");
-    return kInvalidInput;
+    return {kInvalidInput, "out of memory: the inputs need more memory than this process may use (ulimit -v); "
+                           "crop or split the logs, or raise the limit", {}};
   } catch (const std::exception& e) {
-    Fail(program, std::string("internal error: ") + e.what());
-    return kInternal;
+    return {kInternal, std::string("internal error: ") + e.what(), {}};
   }
 }
 
@@ -190,7 +202,15 @@ std::string Printable(std::string text) {
   return out;
 }
 
-void WriteText(std::FILE* stream, const std::string& text) { std::fputs(Printable(ShowFlags(text)).c_str(), stream); }
+void WriteText(std::FILE* stream, const std::string& text) {
+  std::string shown = Printable(ShowFlags(text));
+  if (capture == nullptr) std::fputs(shown.c_str(), stream);
+  else if (stream == stdout) capture->out += shown;
+  else Say(shown);
+}
+
+CaptureStreams::CaptureStreams(StreamCapture& into) : previous_(capture) { capture = &into; }
+CaptureStreams::~CaptureStreams() { capture = previous_; }
 
 void WriteStdout(const std::string& text) {
   // A simulated log can be hundreds of MB: copied only when it holds a mark.
@@ -202,6 +222,10 @@ void WriteStdout(const std::string& text) {
   });
   if (marked || control) shown = Printable(marked ? ShowFlags(text) : text);
   const std::string& out = marked || control ? shown : text;
+  if (capture != nullptr) {
+    capture->out += out;
+    return;
+  }
   if (std::fwrite(out.data(), 1, out.size(), stdout) != out.size() || std::fflush(stdout) != 0 ||
       std::ferror(stdout)) {
     throw OutputError("standard output: write error");
@@ -409,6 +433,7 @@ void EmitFitOutputs(const FitOutputOptions& options, const FitOutputs& outputs) 
                                           outputs.fit.warnings.size(), outputs.fit.warnings.size() > 1 ? "s" : "",
                                           fmt::join(outputs.fit.warnings, "; ")));
   }
+  if (capture != nullptr) capture->fits.push_back(outputs);
   // On stderr once: the summary table lists them when it goes there itself.
   const bool table_on_stderr = options.output.empty() && !options.quiet && !options.json;
   if (!table_on_stderr) {
@@ -510,8 +535,8 @@ void SetProgress(FitOptions& fit, bool verbose, double max_seconds) {
   fit.running = [](bool on) { TheHeartbeat().Running(on); };
   if (verbose) {
     fit.progress = [](const FitIteration& it) {
-      std::fprintf(stderr, "iteration %3d  cost %.9e  |gradient| %.3e  |step| %.3e\n", it.iteration, it.cost,
-                   it.gradient_norm, it.step_norm);
+      Say(fmt::format("iteration {:3d}  cost {:.9e}  |gradient| {:.3e}  |step| {:.3e}\n", it.iteration, it.cost,
+                      it.gradient_norm, it.step_norm));
       TheHeartbeat().Said(it.iteration, it.cost);
     };
     return;
@@ -527,7 +552,7 @@ void SetProgress(FitOptions& fit, bool verbose, double max_seconds) {
       return;
     }
     *next = elapsed + 2.0;
-    std::fprintf(stderr, "fitting: %.0f s, iteration %d, cost %.6e\n", elapsed, it.iteration, it.cost);
+    Say(fmt::format("fitting: {:.0f} s, iteration {}, cost {:.6e}\n", elapsed, it.iteration, it.cost));
     TheHeartbeat().Said(it.iteration, it.cost);
   };
 }

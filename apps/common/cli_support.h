@@ -33,6 +33,20 @@ struct GateFailed {
 /// codes with a one-line message "program: ..." on stderr.
 int RunMain(CLI::App& app, int argc, char** argv, const std::function<void()>& dispatch);
 
+/// The exit code, message and (an identification refusal's) parameters of
+/// the exception being handled: call inside a catch block. Exceptions not
+/// derived from std::exception propagate.
+struct Refusal {
+  int code;
+  std::string message;
+  std::vector<std::string> parameters;
+};
+Refusal CurrentRefusal();
+
+/// Every option that collects a list takes one value per flag (repeat the
+/// flag for more), so that `--col a=b log.csv` leaves log.csv positional.
+void OneValuePerFlag(CLI::App& app);
+
 /// The exact command line, shell-quoted where needed (for provenance).
 std::string CommandLine(int argc, char** argv);
 
@@ -112,6 +126,29 @@ struct FitOutputs {
 /// parameter file (atomically), and prints the summary (table or JSON) on
 /// stdout, or on stderr when the parameter file itself goes to stdout.
 void EmitFitOutputs(const FitOutputOptions& options, const FitOutputs& outputs);
+
+/// What a command run in-process (apps/common/in_process.h) writes: its
+/// standard output and the outputs of its fits (each EmitFitOutputs call's);
+/// its standard error (warnings, progress lines) goes to `err` line by line.
+struct StreamCapture {
+  std::string out;
+  std::vector<FitOutputs> fits;
+  std::function<void(const std::string&)> err;
+};
+
+/// While it lives, this thread's WriteStdout, WriteText, progress lines and
+/// EmitFitOutputs calls go to `capture` as well as (files) or instead of
+/// (the standard streams) where the command line sends them.
+class CaptureStreams {
+ public:
+  explicit CaptureStreams(StreamCapture& capture);
+  ~CaptureStreams();
+  CaptureStreams(const CaptureStreams&) = delete;
+  CaptureStreams& operator=(const CaptureStreams&) = delete;
+
+ private:
+  StreamCapture* previous_;
+};
 
 /// Help text of --free from a model's table: the parameters the fit can
 /// estimate (with `extra` names such as a per-log offset) and its default set.

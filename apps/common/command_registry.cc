@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <vector>
 
@@ -53,10 +54,11 @@ std::function<void(const std::string&)> SetupCommands(CLI::App& app, const std::
   }
   std::stable_sort(top.begin(), top.end(), [](const Entry& a, const Entry& b) { return a.order < b.order; });
 
-  auto declared = std::make_shared<std::vector<std::pair<CLI::App*, const CommandRegistration*>>>();
+  using Run = std::function<void(const std::string&)>;
+  auto declared = std::make_shared<std::vector<std::pair<CLI::App*, Run>>>();
   for (const auto& entry : top) {
     if (entry.command != nullptr) {
-      declared->emplace_back(entry.command->setup(app), entry.command);
+      declared->push_back(entry.command->declare(app));
       continue;
     }
     CLI::App* parent = app.add_subcommand(entry.group->name, entry.group->description);
@@ -67,7 +69,7 @@ std::function<void(const std::string&)> SetupCommands(CLI::App& app, const std::
     }
     std::stable_sort(members.begin(), members.end(),
                      [](const CommandRegistration* a, const CommandRegistration* b) { return a->order < b->order; });
-    for (const auto* command : members) declared->emplace_back(command->setup(*parent), command);
+    for (const auto* command : members) declared->push_back(command->declare(*parent));
   }
   for (const auto& command : Commands()) {
     if (command.tool != tool || command.group.empty()) continue;
@@ -76,10 +78,54 @@ std::function<void(const std::string&)> SetupCommands(CLI::App& app, const std::
     if (!grouped) throw std::logic_error("command registered in an undeclared group: " + command.group);
   }
   return [declared](const std::string& command_line) {
-    for (const auto& [subcommand, registration] : *declared) {
-      if (*subcommand) registration->run(command_line);
+    for (const auto& [subcommand, run] : *declared) {
+      if (*subcommand) run(command_line);
     }
   };
+}
+
+namespace {
+
+// Each registration of `tool` with its subcommand's name, found once by
+// declaring it on a scratch parent.
+const std::vector<std::pair<const CommandRegistration*, std::string>>& NamedCommands(const std::string& tool) {
+  static std::mutex mutex;
+  static std::map<std::string, std::vector<std::pair<const CommandRegistration*, std::string>>> named;
+  const std::lock_guard<std::mutex> lock(mutex);
+  auto found = named.find(tool);
+  if (found == named.end()) {
+    std::vector<std::pair<const CommandRegistration*, std::string>> list;
+    for (const auto& command : Commands()) {
+      if (command.tool != tool) continue;
+      CLI::App scratch;
+      list.emplace_back(&command, command.declare(scratch).first->get_name());
+    }
+    found = named.emplace(tool, std::move(list)).first;
+  }
+  return found->second;
+}
+
+}  // namespace
+
+std::function<void(const std::string&)> SetupCommand(CLI::App& app, const std::string& tool,
+                                                     const std::vector<std::string>& words) {
+  for (const auto& [command, name] : NamedCommands(tool)) {
+    CLI::App* parent = &app;
+    if (!command->group.empty()) {
+      if (words.size() < 2 || words[0] != command->group || words[1] != name) continue;
+      for (const auto& group : Groups()) {
+        if (group.tool == tool && group.name == command->group) parent = app.add_subcommand(group.name, group.description);
+      }
+      parent->require_subcommand(1);
+    } else if (words.empty() || words[0] != name) {
+      continue;
+    }
+    auto declared = command->declare(*parent);
+    return [declared](const std::string& command_line) {
+      if (*declared.first) declared.second(command_line);
+    };
+  }
+  return SetupCommands(app, tool);
 }
 
 }  // namespace driveid::cli

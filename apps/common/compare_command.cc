@@ -101,13 +101,12 @@ void RunCompare(const CompareOptions& o) {
   }
 }
 
-CompareOptions compare_options;
-const bool kDrivetrain = RegisterCommand({"drivetrain-fit", "", 55,
-                                          [](CLI::App& parent) { return SetupCompare(parent, compare_options); },
-                                          [](const std::string&) { RunCompare(compare_options); }});
-const bool kCDrive = RegisterCommand({"cdrive-fit", "", 55,
-                                      [](CLI::App& parent) { return SetupCompare(parent, compare_options); },
-                                      [](const std::string&) { RunCompare(compare_options); }});
+const bool kDrivetrain = RegisterCommand(Command<CompareOptions>(
+    "drivetrain-fit", "", 55, [](CLI::App& parent, CompareOptions& o) { return SetupCompare(parent, o); },
+    [](const CompareOptions& o, const std::string&) { RunCompare(o); }));
+const bool kCDrive = RegisterCommand(Command<CompareOptions>(
+    "cdrive-fit", "", 55, [](CLI::App& parent, CompareOptions& o) { return SetupCompare(parent, o); },
+    [](const CompareOptions& o, const std::string&) { RunCompare(o); }));
 
 }  // namespace
 }  // namespace driveid::cli

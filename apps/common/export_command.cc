@@ -27,7 +27,6 @@ struct ExportCommandOptions {
   std::string urdf;
 };
 
-ExportCommandOptions export_options;
 
 CLI::App* SetupExportCommand(CLI::App& parent, ExportCommandOptions& options) {
   CLI::App* command = parent.add_subcommand(
@@ -89,12 +88,12 @@ void RunExportCommand(const ExportCommandOptions& options, const std::string& co
   else WriteFileAtomically(options.output, ShowFlags(text));
 }
 
-const bool kDrivetrain = RegisterCommand({"drivetrain-fit", "", 55,
-                                          [](CLI::App& parent) { return SetupExportCommand(parent, export_options); },
-                                          [](const std::string& line) { RunExportCommand(export_options, line); }});
-const bool kCDrive = RegisterCommand({"cdrive-fit", "", 55,
-                                      [](CLI::App& parent) { return SetupCDriveExportCommand(parent, export_options); },
-                                      [](const std::string& line) { RunExportCommand(export_options, line); }});
+const bool kDrivetrain = RegisterCommand(Command<ExportCommandOptions>(
+    "drivetrain-fit", "", 55, [](CLI::App& parent, ExportCommandOptions& o) { return SetupExportCommand(parent, o); },
+    [](const ExportCommandOptions& o, const std::string& line) { RunExportCommand(o, line); }));
+const bool kCDrive = RegisterCommand(Command<ExportCommandOptions>(
+    "cdrive-fit", "", 55, [](CLI::App& parent, ExportCommandOptions& o) { return SetupCDriveExportCommand(parent, o); },
+    [](const ExportCommandOptions& o, const std::string& line) { RunExportCommand(o, line); }));
 
 }  // namespace
 }  // namespace driveid::cli

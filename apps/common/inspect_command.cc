@@ -70,13 +70,12 @@ void RunInspect(const InspectOptions& options) {
   WriteStdout(options.json ? DumpJson(json) : text_out);
 }
 
-InspectOptions inspect_options;
-const bool kDrivetrain = RegisterCommand({"drivetrain-fit", "", 5,
-                                          [](CLI::App& parent) { return SetupInspect(parent, inspect_options); },
-                                          [](const std::string&) { RunInspect(inspect_options); }});
-const bool kCDrive = RegisterCommand({"cdrive-fit", "", 5,
-                                      [](CLI::App& parent) { return SetupInspect(parent, inspect_options); },
-                                      [](const std::string&) { RunInspect(inspect_options); }});
+const bool kDrivetrain = RegisterCommand(Command<InspectOptions>(
+    "drivetrain-fit", "", 5, [](CLI::App& parent, InspectOptions& o) { return SetupInspect(parent, o); },
+    [](const InspectOptions& o, const std::string&) { RunInspect(o); }));
+const bool kCDrive = RegisterCommand(Command<InspectOptions>(
+    "cdrive-fit", "", 5, [](CLI::App& parent, InspectOptions& o) { return SetupInspect(parent, o); },
+    [](const InspectOptions& o, const std::string&) { RunInspect(o); }));
 
 }  // namespace
 }  // namespace driveid::cli

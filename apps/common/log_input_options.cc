@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "core/option_check.h"
+#include "io/sha256.h"
 #include "io/table_source.h"
 
 namespace driveid::cli {
@@ -162,6 +163,38 @@ void ShowReaderWarnings(const std::vector<DataFileRecord>& records, std::size_t 
       WriteText(stderr, line);
     }
   }
+}
+
+namespace {
+thread_local const std::vector<GivenLog>* given_logs = nullptr;
+}  // namespace
+
+GivenLogsScope::GivenLogsScope(const std::vector<GivenLog>& logs) : previous_(given_logs) { given_logs = &logs; }
+GivenLogsScope::~GivenLogsScope() { given_logs = previous_; }
+
+bool HasGivenLogs() { return given_logs != nullptr; }
+
+bool ReadGivenLog(const std::string& path, const std::vector<std::string>& columns, const LogInputOptions& options,
+                  std::vector<DataFileRecord>& records, const std::function<void(CsvLog)>& take) {
+  if (given_logs == nullptr) return false;
+  const auto given = std::find_if(given_logs->begin(), given_logs->end(), [&](const GivenLog& g) { return g.name == path; });
+  if (given == given_logs->end()) return false;
+  // The record's SHA-256 is of the values as the file of a run would hold
+  // them: the names, then each column's doubles in their bytes.
+  std::string bytes;
+  for (std::size_t k = 0; k < given->names.size(); ++k) {
+    bytes += given->names[k] + '\n';
+    bytes.append(reinterpret_cast<const char*>(given->columns[k].data()), given->columns[k].size() * sizeof(double));
+  }
+  MemorySourceParts parts;
+  parts.path = given->name;
+  parts.format = "arrays";
+  parts.names = given->names;
+  parts.columns = given->columns;
+  CsvLog csv = ReadLogColumns(*MakeMemorySource(std::move(parts)), columns, options);
+  records.push_back({path, Sha256Hex(bytes), static_cast<int>(csv.rows()), csv.segment, csv.notes});
+  take(std::move(csv));
+  return true;
 }
 
 }  // namespace driveid::cli

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,36 @@ ReadLimits LogReadLimits(double max_log_gib);
 /// in records[first..], each once, naming its file.
 void ShowReaderWarnings(const std::vector<DataFileRecord>& records, std::size_t first);
 
+/// A log in memory (the Python module's arrays, docs/python.md), read under
+/// `name` as a file with these columns would be: --col, --from, --to and
+/// --rate apply, and its record holds the SHA-256 of its values.
+struct GivenLog {
+  std::string name;
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> columns;
+};
+
+/// While it lives, this thread's LoadLogs reads a log path equal to a given
+/// log's name from memory instead of from a file.
+class GivenLogsScope {
+ public:
+  explicit GivenLogsScope(const std::vector<GivenLog>& logs);
+  ~GivenLogsScope();
+  GivenLogsScope(const GivenLogsScope&) = delete;
+  GivenLogsScope& operator=(const GivenLogsScope&) = delete;
+
+ private:
+  const std::vector<GivenLog>* previous_;
+};
+
+/// Whether a GivenLogsScope is alive on this thread.
+bool HasGivenLogs();
+
+/// Reads the given log named `path` with `columns` (as ReadLogColumns),
+/// appends its record and hands it to `take`; false when none has that name.
+bool ReadGivenLog(const std::string& path, const std::vector<std::string>& columns, const LogInputOptions& options,
+                  std::vector<DataFileRecord>& records, const std::function<void(CsvLog)>& take);
+
 /// Reads each log once (at most --max-log-size bytes; joined files too),
 /// makes its logs with `make(CsvLog)` (a SysId file gives several) and
 /// records each one's provenance (file, SHA-256, samples, segment, notes).
@@ -83,8 +114,19 @@ std::vector<Log> LoadLogs(const std::vector<std::string>& paths, const LogInputC
   options.time_column = time_column;
   std::vector<Log> logs;
   const std::size_t first_record = provenance.data.size();
-  ReadLogFiles(LogFileRequests(input, paths), columns, options, LogReadLimits(output.max_log_gib), transpose, provenance.data,
-               [&](CsvLog csv) { logs.push_back(make(std::move(csv))); });
+  const std::function<void(CsvLog)> take = [&](CsvLog csv) { logs.push_back(make(std::move(csv))); };
+  const auto read = [&](const std::vector<std::string>& files) {
+    ReadLogFiles(LogFileRequests(input, files), columns, options, LogReadLimits(output.max_log_gib), transpose,
+                 provenance.data, take);
+  };
+  if (!HasGivenLogs()) {
+    read(paths);
+  } else {
+    if (!input.join.empty()) throw OptionError("--join joins files: not with logs given as arrays");
+    for (const std::string& path : paths) {
+      if (!ReadGivenLog(path, columns, options, provenance.data, take)) read({path});
+    }
+  }
   ShowReaderWarnings(provenance.data, first_record);
   return logs;
 }

@@ -129,10 +129,9 @@ void RunAxisCommand(const AxisOptions& options, const std::string& command_line)
 }
 
 namespace {
-AxisOptions axis_options;
-const bool kRegistered = RegisterCommand({"drivetrain-fit", "", 20,
-                                          [](CLI::App& parent) { return SetupAxisCommand(parent, axis_options); },
-                                          [](const std::string& line) { RunAxisCommand(axis_options, line); }});
+const bool kRegistered = RegisterCommand(Command<AxisOptions>(
+    "drivetrain-fit", "", 20, [](CLI::App& parent, AxisOptions& o) { return SetupAxisCommand(parent, o); },
+    [](const AxisOptions& o, const std::string& line) { RunAxisCommand(o, line); }));
 }  // namespace
 
 }  // namespace driveid::cli

@@ -81,11 +81,11 @@ void Run(const DesignAxisOptions& o, const std::string& command_line) {
   WriteFilesAtomically(files, [&] { WriteStdout(run.printed); });
 }
 
-DesignAxisOptions options;
 const bool kGroup = RegisterGroup("drivetrain-fit", "design", 42,
                                   "Design the next experiment: excitation that minimises the fit's std within limits");
-const bool kAxis = RegisterCommand({"drivetrain-fit", "design", 1, [](CLI::App& parent) { return Setup(parent, options); },
-                                    [](const std::string& line) { Run(options, line); }});
+const bool kAxis = RegisterCommand(Command<DesignAxisOptions>(
+    "drivetrain-fit", "design", 1, [](CLI::App& parent, DesignAxisOptions& o) { return Setup(parent, o); },
+    [](const DesignAxisOptions& o, const std::string& line) { Run(o, line); }));
 
 }  // namespace
 }  // namespace driveid::cli

@@ -88,9 +88,9 @@ void Run(const DesignJointOptions& o, const std::string& command_line) {
   WriteFilesAtomically(files, [&] { WriteStdout(run.printed); });
 }
 
-DesignJointOptions options;
-const bool kJoint = RegisterCommand({"drivetrain-fit", "design", 2, [](CLI::App& parent) { return Setup(parent, options); },
-                                     [](const std::string& line) { Run(options, line); }});
+const bool kJoint = RegisterCommand(Command<DesignJointOptions>(
+    "drivetrain-fit", "design", 2, [](CLI::App& parent, DesignJointOptions& o) { return Setup(parent, o); },
+    [](const DesignJointOptions& o, const std::string& line) { Run(o, line); }));
 
 }  // namespace
 }  // namespace driveid::cli

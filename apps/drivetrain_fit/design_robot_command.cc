@@ -100,9 +100,9 @@ void Run(const DesignRobotOptions& o, const std::string& command_line) {
   WriteFilesAtomically(files, [&] { WriteStdout(run.printed); });
 }
 
-DesignRobotOptions options;
-const bool kRobot = RegisterCommand({"drivetrain-fit", "design", 3, [](CLI::App& parent) { return Setup(parent, options); },
-                                     [](const std::string& line) { Run(options, line); }});
+const bool kRobot = RegisterCommand(Command<DesignRobotOptions>(
+    "drivetrain-fit", "design", 3, [](CLI::App& parent, DesignRobotOptions& o) { return Setup(parent, o); },
+    [](const DesignRobotOptions& o, const std::string& line) { Run(o, line); }));
 
 }  // namespace
 }  // namespace driveid::cli

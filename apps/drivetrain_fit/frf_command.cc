@@ -203,9 +203,9 @@ void Emit(const FrfCliOptions& o, const ParameterFile& start, const JointSection
   EmitFitOutputs(o.out, outputs);
 }
 
-FrfCliOptions frf_options;
-const bool kRegistered = RegisterCommand({"drivetrain-fit", "", 27, [](CLI::App& parent) { return Setup(parent, frf_options); },
-                                          [](const std::string& line) { Run(frf_options, line); }});
+const bool kRegistered = RegisterCommand(Command<FrfCliOptions>(
+    "drivetrain-fit", "", 27, [](CLI::App& parent, FrfCliOptions& o) { return Setup(parent, o); },
+    [](const FrfCliOptions& o, const std::string& line) { Run(o, line); }));
 
 }  // namespace
 }  // namespace driveid::cli

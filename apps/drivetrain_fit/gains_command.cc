@@ -147,10 +147,9 @@ void Run(GainsOptions o) {
   Emit(o, file, {d.controller, d.notes, d.warnings, {}, {{"plant", AxisGainsPlantJson(d)}}, FormatAxisGainsPlant(d)});
 }
 
-GainsOptions gains_options;
-const bool kRegistered = RegisterCommand({"drivetrain-fit", "", 45,
-                                          [](CLI::App& parent) { return Setup(parent, gains_options); },
-                                          [](const std::string&) { Run(gains_options); }});
+const bool kRegistered = RegisterCommand(Command<GainsOptions>(
+    "drivetrain-fit", "", 45, [](CLI::App& parent, GainsOptions& o) { return Setup(parent, o); },
+    [](const GainsOptions& o, const std::string&) { Run(o); }));
 }  // namespace
 
 }  // namespace driveid::cli

@@ -106,10 +106,9 @@ void RunJointCommand(const JointOptions& options, const std::string& command_lin
 }
 
 namespace {
-JointOptions joint_options;
-const bool kRegistered = RegisterCommand({"drivetrain-fit", "", 25,
-                                          [](CLI::App& parent) { return SetupJointCommand(parent, joint_options); },
-                                          [](const std::string& line) { RunJointCommand(joint_options, line); }});
+const bool kRegistered = RegisterCommand(Command<JointOptions>(
+    "drivetrain-fit", "", 25, [](CLI::App& parent, JointOptions& o) { return SetupJointCommand(parent, o); },
+    [](const JointOptions& o, const std::string& line) { RunJointCommand(o, line); }));
 }  // namespace
 
 }  // namespace driveid::cli

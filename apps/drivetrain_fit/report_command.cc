@@ -47,10 +47,9 @@ void RunReportCommand(const ReportOptions& options) {
 }
 
 namespace {
-ReportOptions report_options;
-const bool kRegistered = RegisterCommand({"drivetrain-fit", "", 50,
-                                          [](CLI::App& parent) { return SetupReportCommand(parent, report_options); },
-                                          [](const std::string&) { RunReportCommand(report_options); }});
+const bool kRegistered = RegisterCommand(Command<ReportOptions>(
+    "drivetrain-fit", "", 50, [](CLI::App& parent, ReportOptions& o) { return SetupReportCommand(parent, o); },
+    [](const ReportOptions& o, const std::string&) { RunReportCommand(o); }));
 }  // namespace
 
 }  // namespace driveid::cli

@@ -143,10 +143,9 @@ void RunRobotCommand(const RobotOptions& options, const std::string& command_lin
 }
 
 namespace {
-RobotOptions robot_options;
-const bool kRegistered = RegisterCommand({"drivetrain-fit", "", 30,
-                                          [](CLI::App& parent) { return SetupRobotCommand(parent, robot_options); },
-                                          [](const std::string& line) { RunRobotCommand(robot_options, line); }});
+const bool kRegistered = RegisterCommand(Command<RobotOptions>(
+    "drivetrain-fit", "", 30, [](CLI::App& parent, RobotOptions& o) { return SetupRobotCommand(parent, o); },
+    [](const RobotOptions& o, const std::string& line) { RunRobotCommand(o, line); }));
 }  // namespace
 
 }  // namespace driveid::cli

@@ -163,23 +163,19 @@ void RunSimulateJointCommand(const SimulateJointOptions& o, const std::string& c
 }
 
 namespace {
-SimulateJointOptions joint_options;
-const bool kJoint = RegisterCommand({"drivetrain-fit", "simulate", 4,
-                                     [](CLI::App& parent) { return SetupSimulateJointCommand(parent, joint_options); },
-                                     [](const std::string& line) { RunSimulateJointCommand(joint_options, line); }});
-SimulateStepOptions step_options;
-SimulateAxisOptions axis_options;
-SimulateRobotOptions robot_options;
+const bool kJoint = RegisterCommand(Command<SimulateJointOptions>(
+    "drivetrain-fit", "simulate", 4, [](CLI::App& parent, SimulateJointOptions& o) { return SetupSimulateJointCommand(parent, o); },
+    [](const SimulateJointOptions& o, const std::string& line) { RunSimulateJointCommand(o, line); }));
 const bool kGroup = RegisterGroup("drivetrain-fit", "simulate", 40, "Write synthetic logs in the input format");
-const bool kStep = RegisterCommand({"drivetrain-fit", "simulate", 1,
-                                    [](CLI::App& parent) { return SetupSimulateStepCommand(parent, step_options); },
-                                    [](const std::string& line) { RunSimulateStepCommand(step_options, line); }});
-const bool kAxis = RegisterCommand({"drivetrain-fit", "simulate", 2,
-                                    [](CLI::App& parent) { return SetupSimulateAxisCommand(parent, axis_options); },
-                                    [](const std::string& line) { RunSimulateAxisCommand(axis_options, line); }});
-const bool kRobot = RegisterCommand({"drivetrain-fit", "simulate", 3,
-                                     [](CLI::App& parent) { return SetupSimulateRobotCommand(parent, robot_options); },
-                                     [](const std::string& line) { RunSimulateRobotCommand(robot_options, line); }});
+const bool kStep = RegisterCommand(Command<SimulateStepOptions>(
+    "drivetrain-fit", "simulate", 1, [](CLI::App& parent, SimulateStepOptions& o) { return SetupSimulateStepCommand(parent, o); },
+    [](const SimulateStepOptions& o, const std::string& line) { RunSimulateStepCommand(o, line); }));
+const bool kAxis = RegisterCommand(Command<SimulateAxisOptions>(
+    "drivetrain-fit", "simulate", 2, [](CLI::App& parent, SimulateAxisOptions& o) { return SetupSimulateAxisCommand(parent, o); },
+    [](const SimulateAxisOptions& o, const std::string& line) { RunSimulateAxisCommand(o, line); }));
+const bool kRobot = RegisterCommand(Command<SimulateRobotOptions>(
+    "drivetrain-fit", "simulate", 3, [](CLI::App& parent, SimulateRobotOptions& o) { return SetupSimulateRobotCommand(parent, o); },
+    [](const SimulateRobotOptions& o, const std::string& line) { RunSimulateRobotCommand(o, line); }));
 }  // namespace
 
 }  // namespace driveid::cli

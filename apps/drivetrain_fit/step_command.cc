@@ -85,10 +85,9 @@ void RunStepCommand(const StepOptions& options, const std::string& command_line)
 }
 
 namespace {
-StepOptions step_options;
-const bool kRegistered = RegisterCommand({"drivetrain-fit", "", 10,
-                                          [](CLI::App& parent) { return SetupStepCommand(parent, step_options); },
-                                          [](const std::string& line) { RunStepCommand(step_options, line); }});
+const bool kRegistered = RegisterCommand(Command<StepOptions>(
+    "drivetrain-fit", "", 10, [](CLI::App& parent, StepOptions& o) { return SetupStepCommand(parent, o); },
+    [](const StepOptions& o, const std::string& line) { RunStepCommand(o, line); }));
 }  // namespace
 
 }  // namespace driveid::cli

@@ -161,10 +161,9 @@ void RunValidateCommand(const ValidateOptions& options, const std::string& comma
 }
 
 namespace {
-ValidateOptions validate_options;
-const bool kRegistered = RegisterCommand({"drivetrain-fit", "", 45,
-                                          [](CLI::App& parent) { return SetupValidateCommand(parent, validate_options); },
-                                          [](const std::string& line) { RunValidateCommand(validate_options, line); }});
+const bool kRegistered = RegisterCommand(Command<ValidateOptions>(
+    "drivetrain-fit", "", 45, [](CLI::App& parent, ValidateOptions& o) { return SetupValidateCommand(parent, o); },
+    [](const ValidateOptions& o, const std::string& line) { RunValidateCommand(o, line); }));
 }  // namespace
 
 }  // namespace driveid::cli

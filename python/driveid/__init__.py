@@ -9,8 +9,9 @@ CSV, MAT, SysId JSON, .wpilog, ROS bags, MCAP), numpy float arrays
 (``data=df, col={"t": "time", ...}``). Refusals raise exceptions that
 mirror the command's exit codes.
 
-This round the module offers ``axis``; the other commands are not in it
-yet (docs/python.md lists what is).
+Each function runs its command in-process (the same parsing, checks and
+computation as the tool, apps/common/in_process.h), with its outputs
+captured rather than printed.
 """
 
 import json
@@ -21,7 +22,10 @@ import tempfile
 from . import _driveid
 
 __version__ = _driveid.version
-__all__ = ["axis", "Fit", "Estimate", "Error", "UsageError", "InputError", "IdentificationError", "GateFailed"]
+__all__ = ["axis", "joint", "step", "frf", "robot", "cdrive_friction", "cdrive_inertia", "cdrive_validate",
+           "cdrive_simulate", "validate", "gains", "design_axis", "design_joint", "design_robot", "compare", "report",
+           "export", "simulate_axis", "simulate_step", "simulate_joint", "simulate_robot", "Fit", "Estimate", "Result",
+           "Error", "UsageError", "InputError", "IdentificationError", "GateFailed"]
 
 
 class Error(Exception):
@@ -175,36 +179,12 @@ class Fit:
         return self._raw["table"]
 
 
-def _names(value):
-    if value is None:
-        return None
-    if isinstance(value, str):
-        return [v for v in value.split(",")]
-    return [str(v) for v in value]
-
-
 def _paths(value):
     if value is None:
         return []
     if isinstance(value, (str, os.PathLike)):
         return [os.fspath(value)]
     return [os.fspath(v) for v in value]
-
-
-def _columns(data, col, names):
-    """The arrays named `names` from a DataFrame or mapping, through `col` (logical name -> its column)."""
-    col = dict(col or {})
-    out = {}
-    for name in names:
-        key = col.get(name, name)
-        try:
-            column = data[key]
-        except (KeyError, IndexError):
-            if name in col:
-                raise InputError("data: no column %r (col[%r])" % (key, name)) from None
-            continue
-        out[name] = column.to_numpy() if hasattr(column, "to_numpy") else column
-    return out
 
 
 class _Params:
@@ -231,59 +211,256 @@ class _Params:
             os.unlink(self._temporary)
 
 
-def _command_line(command, logs, options):
-    words = ["driveid." + command] + list(logs)
-    for key, value in options.items():
-        if value is None or key in ("logs",):
-            continue
-        flag = "--" + key.replace("_", "-")
-        if isinstance(value, bool):
-            if value:
-                words.append(flag)
-        elif isinstance(value, list):
-            for v in value:
-                words += [flag, str(v)]
-        else:
-            words += [flag, str(value)]
-    return " ".join(shlex.quote(w) for w in words)
+# --- the commands, run in-process -------------------------------------------
 
 
-_AXIS_ARRAYS = ("t", "q", "qd", "tau", "i", "tau_known")
+class Result:
+    """What a command that fits nothing computed (gains, design, validate, compare, report, export, simulate).
 
-
-def axis(logs=None, *, t=None, q=None, tau=None, i=None, qd=None, tau_known=None, data=None, col=None, name="arrays",
-         params=None, free=None, method=None, linear=None, cutoff=None, decimation=None, torque_timing=None,
-         validate=None, trace=True):
-    """``drivetrain-fit axis``: inertia, friction, offset (and gravity) of a rigid axis (docs/models.md#axis).
-
-    logs: path(s) of axis logs; or arrays t, q, tau (or i with axis.k_t in params), optional qd and
-    tau_known; or data (a DataFrame or dict of columns) with col mapping the logical names to its
-    columns. col with paths: {"q": "pi/180*#2", ...} as --col. name: the arrays' log name in messages.
-    params: a parameter file path or a dict with an ``axis`` section. free, method, linear, cutoff,
-    decimation, torque_timing, validate: as the flags. Returns a Fit.
+    ``text`` is what the command prints (``repr`` shows it); ``data`` its
+    ``--json`` summary (json=True; validate's by default) or, for gains, the
+    parameter file it writes read as a dict; ``log`` the CSV it writes as
+    numpy arrays per column (simulate: the log; design: the reference); ``parameter_file`` the text ``-o`` writes (None if it
+    writes none); ``to_yaml(path)`` writes it; ``to_dict()`` is ``data``.
     """
+
+    def __init__(self, command, text, data, parameter_file, warnings):
+        self.command = command
+        self.text = text
+        self.data = data
+        self.parameter_file = parameter_file
+        self.warnings = warnings
+        self._log = None
+
+    @property
+    def log(self):
+        if self._log is None and self.parameter_file is not None and self.command.startswith(("simulate", "cdrive_sim", "design")):
+            self._log = _csv_columns(self.parameter_file)
+        return self._log
+
+    def to_yaml(self, path):
+        if self.parameter_file is None:
+            raise UsageError("%s writes no parameter file" % self.command)
+        _write_atomically(path, self.parameter_file)
+
+    def to_dict(self):
+        return self.data
+
+    def __repr__(self):
+        return self.text
+
+
+class Gains(Result):
+    """``gains``: the feedback section (``data["feedback"]``) and the command's table."""
+
+
+class Design(Result):
+    """``design ...``: the designed excitation's parameter file and the command's table."""
+
+
+class Validation(Result):
+    """``validate``: per-log fit %, RMSE and lag-1 (``data`` is the command's JSON summary)."""
+
+
+def _csv_columns(text):
+    import numpy
+
+    lines = [line for line in text.splitlines() if line and not line.startswith("#")]
+    if not lines:
+        return {}
+    header = lines[0].split(",")
+    rows = [line.split(",") for line in lines[1:]]
+    out = {}
+    for k, name in enumerate(header):
+        column = [row[k] if k < len(row) else "" for row in rows]
+        try:
+            out[name] = numpy.array(column, dtype=float)
+        except ValueError:
+            out[name] = numpy.array(column)
+    return out
+
+
+def _write_atomically(path, text):
+    path = os.fspath(path)
+    if os.path.lexists(path) and not os.path.isfile(path):
+        raise InputError("%s: not a regular file: it is not written over" % path)
+    fd, temporary = tempfile.mkstemp(prefix=".driveid-", dir=os.path.dirname(os.path.abspath(path)))
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as f:
+            f.write(text)
+        os.replace(temporary, path)
+    except BaseException:
+        os.unlink(temporary)
+        raise
+
+
+def _is_array(value):
+    return hasattr(value, "__array__") and not isinstance(value, (str, bytes))
+
+
+def _flag_words(key, value):
+    key = key.rstrip("_") or key  # from_= is --from (Python reserves from)
+    flag = ("-" if len(key) == 1 else "--") + key.replace("_", "-")
+    if value is None or value is False:
+        return []
+    if value is True:
+        return [flag]
+    if isinstance(value, (list, tuple)):
+        words = []
+        for v in value:
+            words += [flag, os.fspath(v) if isinstance(v, os.PathLike) else str(v)]
+        return words
+    return [flag, os.fspath(value) if isinstance(value, os.PathLike) else str(value)]
+
+
+def _frame_columns(data):
+    """Every numeric column of a DataFrame or mapping, as float arrays under its own name."""
+    import numpy
+
+    out = {}
+    keys = list(data.columns) if hasattr(data, "columns") else list(data.keys())
+    for key in keys:
+        column = data[key]
+        column = column.to_numpy() if hasattr(column, "to_numpy") else numpy.asarray(column)
+        if column.dtype.kind in "iuf" and column.ndim == 1:
+            out[str(key)] = numpy.ascontiguousarray(column, dtype=float)
+    return out
+
+
+class _Scratch:
+    """A temporary folder for outputs made only when one is asked for (a call's overhead stays small)."""
+
+    def __init__(self):
+        self._folder = None
+
+    def path(self, name):
+        if self._folder is None:
+            self._folder = tempfile.TemporaryDirectory(prefix="driveid-")
+        return os.path.join(self._folder.name, name)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        if self._folder is not None:
+            self._folder.cleanup()
+
+
+def _run_command(function, tool, words, kind, logs, kwargs, progress):
+    """Runs ``tool words... ARGS`` in-process; ``kind``: fit, result, gains, design, validation, simulate."""
+    kwargs = dict(kwargs)
+    name = kwargs.pop("name", "arrays")
+    data = kwargs.pop("data", None)
+    col = kwargs.pop("col", None)
+    params = kwargs.pop("params", None)
+    trace = kwargs.get("trace")
+    if trace is True or trace is False:
+        kwargs.pop("trace")
     paths = _paths(logs)
-    arrays = None
-    given = {"t": t, "q": q, "tau": tau, "i": i, "qd": qd, "tau_known": tau_known}
-    if data is not None:
-        if paths or any(v is not None for v in given.values()):
-            raise UsageError("data: give data=, arrays or log paths, not several")
-        arrays = _columns(data, col, _AXIS_ARRAYS)
-        col = None
-    elif any(v is not None for v in given.values()):
+    arrays = {k: kwargs.pop(k) for k in [k for k, v in kwargs.items() if _is_array(v)]}
+    given = None
+    if data is not None or arrays:
+        if data is not None and arrays:
+            raise UsageError("data: give data= or arrays, not both")
         if paths:
             raise UsageError("logs: give log paths or arrays, not both")
-        arrays = {k: v for k, v in given.items() if v is not None}
-    options = {"logs": paths, "free": _names(free), "method": method, "linear": linear, "cutoff": cutoff,
-               "decimation": decimation, "torque_timing": torque_timing, "validate": _paths(validate) or None,
-               "col": ["%s=%s" % (k, v) for k, v in (col or {}).items()] or None}
-    options = {k: v for k, v in options.items() if v is not None}
-    with _Params(params) as params_path:
-        if params_path is not None:
-            options["params"] = params_path
-        command_line = _command_line("axis", paths, {k: v for k, v in options.items() if k != "logs"})
-        options["trace"] = bool(trace)
-        raw = _driveid.axis(options, arrays, name, command_line)
-    if "error" in raw:
-        _raise(raw["error"])
-    return Fit(raw)
+        given = [(name, arrays if data is None else _frame_columns(data))]
+        paths = [name]
+        length = len(next(iter(given[0][1].values()), ()))
+        for key, value in kwargs.items():
+            if isinstance(value, (list, tuple)) and len(value) == length and all(isinstance(v, (int, float)) for v in value):
+                raise UsageError("%s: expected a numpy float array (numpy.asarray(x, dtype=float))" % key)
+    elif logs is not None and not paths:
+        raise UsageError("logs: no log given")
+    args = list(words)
+    options = []
+    for key, value in (col or {}).items():
+        options += ["--col", "%s=%s" % (key, value)]
+    for key, value in kwargs.items():
+        options += _flag_words(key, value)
+    with _Scratch() as scratch, _Params(params) as params_path:
+        if params_path is not None and kind == "validation":  # validate PARAMS LOGS...
+            paths = [params_path] + paths
+        elif params_path is not None:
+            options += ["--params", params_path]
+        shown = ["driveid." + function] + paths + options
+        command_line = " ".join(shlex.quote(w) for w in shown)
+        extra = []
+        output = None
+        if kind == "fit":
+            extra = ["-q"]
+            if trace is True:  # the trace in memory only: computed, written where it is dropped
+                extra += ["--trace", scratch.path("trace.csv")]
+        elif kind in ("gains", "design", "simulate", "result-o") and "output" not in kwargs and "o" not in kwargs:
+            output = scratch.path("output")
+            extra = ["-o", output]
+        elif kind == "validation" and "json" not in kwargs:
+            extra = ["--json"]
+        raw = _driveid.run(tool, args + options + extra + ["--"] + paths, command_line, given, progress)
+        if "error" in raw:
+            _raise(raw["error"])
+        text = raw["out"].decode("utf-8", "replace")
+        if kind == "fit":
+            fits = [Fit(f) for f in raw["fits"]]
+            if not fits:
+                raise Error("%s: the command computed no fit" % function)
+            return fits[-1] if len(fits) == 1 else fits
+        written = None
+        if output is not None and os.path.exists(output):
+            with open(output, encoding="utf-8") as f:
+                written = f.read()
+    data_out = None
+    warnings = []
+    if text.lstrip().startswith("{"):
+        data_out = json.loads(text)
+    elif written is not None and kind == "gains":
+        import yaml  # Debian's python3-yaml, imported where used
+
+        data_out = yaml.safe_load(written)
+    if isinstance(data_out, dict):
+        warnings = list(data_out.get("warnings", []) or [])
+    cls = {"gains": Gains, "design": Design, "validation": Validation}.get(kind, Result)
+    return cls(function, text, data_out, written, warnings)
+
+
+def _command(function, tool, words, kind, doc):
+    def call(logs=None, *, progress=None, **kwargs):
+        return _run_command(function, tool, words, kind, logs, kwargs, progress)
+
+    call.__name__ = function
+    call.__qualname__ = function
+    call.__doc__ = doc + """
+
+    logs: log path(s), read by the command's readers; or float numpy arrays named as the log's
+    columns (t=, q=, tau=, ...); or data= (a DataFrame or mapping of columns) with col= (logical
+    name -> its column or a --col expression). params: a parameter file path or a dict. Every other
+    keyword is the flag of the same name (torque_timing= is --torque-timing; True for a flag; a
+    list repeats it). trace=True (fits): Fit.trace holds the --trace columns; a path writes them
+    there as well. progress: a callable taking each line the command writes on stderr
+    (warnings, progress), else they go to stderr. docs/python.md.
+    """
+    return call
+
+
+_FIT = "fit"
+axis = _command("axis", "drivetrain-fit", ["axis"], _FIT, "``drivetrain-fit axis``: inertia, friction, offset (and gravity) of a rigid axis (docs/models.md#axis): arrays t, q, tau (or i with axis.k_t in params), optional qd. Returns a Fit.")
+joint = _command("joint", "drivetrain-fit", ["joint"], _FIT, "``drivetrain-fit joint``: an elastic joint's parameters (docs/models.md#joint). Returns a Fit.")
+step = _command("step", "drivetrain-fit", ["step"], _FIT, "``drivetrain-fit step``: the drive train from step responses (docs/models.md). Returns a Fit.")
+frf = _command("frf", "drivetrain-fit", ["frf"], _FIT, "``drivetrain-fit frf``: the elastic joint from a measured frequency response. Returns a Fit.")
+robot = _command("robot", "drivetrain-fit", ["robot"], _FIT, "``drivetrain-fit robot``: the planar robot's or, with urdf=, a serial arm's rigid-body model. Returns a Fit.")
+cdrive_friction = _command("cdrive_friction", "cdrive-fit", ["friction"], _FIT, "``cdrive-fit friction``: the C-drive's dissipation beta, gamma, delta, eta. Returns a Fit.")
+cdrive_inertia = _command("cdrive_inertia", "cdrive-fit", ["inertia"], _FIT, "``cdrive-fit inertia``: the C-drive's inertia matrix. Returns a Fit.")
+validate = _command("validate", "drivetrain-fit", ["validate"], "validation", "``drivetrain-fit validate``: a parameter file's prediction of held-out logs. Returns a Validation.")
+cdrive_validate = _command("cdrive_validate", "cdrive-fit", ["validate"], "validation", "``cdrive-fit validate``: the C-drive parameters' prediction of held-out logs. Returns a Validation.")
+gains = _command("gains", "drivetrain-fit", ["gains"], "gains", "``drivetrain-fit gains``: feedback gains from a parameter file (docs/models.md#feedback-gains). Returns Gains.")
+design_axis = _command("design_axis", "drivetrain-fit", ["design", "axis"], "design", "``drivetrain-fit design axis``: the next experiment for an axis. Returns a Design.")
+design_joint = _command("design_joint", "drivetrain-fit", ["design", "joint"], "design", "``drivetrain-fit design joint``: the next experiment for an elastic joint. Returns a Design.")
+design_robot = _command("design_robot", "drivetrain-fit", ["design", "robot"], "design", "``drivetrain-fit design robot``: the next experiment for a serial arm. Returns a Design.")
+compare = _command("compare", "drivetrain-fit", ["compare"], "result", "``drivetrain-fit compare``: drift between two parameter files (GateFailed on drift). Returns a Result.")
+report = _command("report", "drivetrain-fit", ["report"], "result", "``drivetrain-fit report``: the derived quantities of a parameter file. Returns a Result.")
+export = _command("export", "drivetrain-fit", ["export"], "result-o", "``drivetrain-fit export``: MJCF, URDF or WPILib constants from a parameter file. Returns a Result.")
+simulate_axis = _command("simulate_axis", "drivetrain-fit", ["simulate", "axis"], "simulate", "``drivetrain-fit simulate axis``: a synthetic axis log. Returns a Result with .log.")
+simulate_step = _command("simulate_step", "drivetrain-fit", ["simulate", "step"], "simulate", "``drivetrain-fit simulate step``: synthetic step logs. Returns a Result with .log.")
+simulate_joint = _command("simulate_joint", "drivetrain-fit", ["simulate", "joint"], "simulate", "``drivetrain-fit simulate joint``: a synthetic elastic-joint log. Returns a Result with .log.")
+simulate_robot = _command("simulate_robot", "drivetrain-fit", ["simulate", "robot"], "simulate", "``drivetrain-fit simulate robot``: a synthetic robot log. Returns a Result with .log.")
+cdrive_simulate = _command("cdrive_simulate", "cdrive-fit", ["simulate"], "simulate", "``cdrive-fit simulate``: a closed-loop C-drive simulation. Returns a Result with .log.")

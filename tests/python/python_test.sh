@@ -9,8 +9,8 @@ bin="$1"
 build="$2"
 src="$3"
 python=/usr/bin/python3
-if ! "$python" -c 'import pytest, numpy' 2> /dev/null; then
-  echo "SKIP: /usr/bin/python3 has no pytest or numpy (scripts/setup installs python3-pytest, python3-numpy)"
+if ! "$python" -c 'import pytest, numpy, yaml' 2> /dev/null; then
+  echo "SKIP: /usr/bin/python3 has no pytest, numpy or yaml (scripts/setup installs python3-pytest, python3-numpy, python3-yaml)"
   exit 77
 fi
 work=$(mktemp -d)
