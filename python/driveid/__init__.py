@@ -239,9 +239,12 @@ class Result:
         return self._log
 
     def to_yaml(self, path):
+        """Writes the file the command's -o writes (a parameter file, a log, a reference, an export) atomically."""
         if self.parameter_file is None:
-            raise UsageError("%s writes no parameter file" % self.command)
+            raise UsageError("%s writes no file" % self.command)
         _write_atomically(path, self.parameter_file)
+
+    save = to_yaml
 
     def to_dict(self):
         return self.data
@@ -259,7 +262,18 @@ class Design(Result):
 
 
 class Validation(Result):
-    """``validate``: per-log fit %, RMSE and lag-1 (``data`` is the command's JSON summary)."""
+    """``validate``: per-log fit %, RMSE and lag-1 (``data`` is the command's JSON summary; ``repr`` a table of it)."""
+
+    def __repr__(self):
+        if not isinstance(self.data, dict) or "logs" not in self.data:
+            return self.text
+        lines = ["%s" % self.data.get("model", ""), "%-40s %8s %10s %12s %8s" % ("log", "samples", "fit %", "RMSE", "lag-1")]
+        for log in self.data["logs"]:
+            lines.append("%-40s %8s %10.3f %12.4g %8.3f" % (log.get("log", ""), log.get("samples", ""),
+                                                           log.get("fit_percent") or float("nan"),
+                                                           log.get("rmse") or float("nan"),
+                                                           log.get("autocorrelation") or float("nan")))
+        return "\n".join(lines) + "\n"
 
 
 def _csv_columns(text):

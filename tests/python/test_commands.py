@@ -166,6 +166,7 @@ def test_printed_outputs_equal_the_tools(tmp_path):
     validation = driveid.validate(str(cli_log), params=prior)
     expected = json.loads(tool("drivetrain-fit", "validate", prior, str(cli_log), "--json").stdout)
     assert dict(validation.data, command="") == dict(expected, command="")  # all but the command line
+    assert "fit %" in repr(validation) and str(cli_log) in repr(validation)
 
 
 def test_exceptions_mirror_the_exit_codes(tmp_path):
