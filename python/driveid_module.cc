@@ -35,10 +35,10 @@ struct Failure {
   std::vector<std::string> parameters;
 };
 
-// Array arguments are refused by name: not a 1-D float array (exit 2 as a
-// usage error), a length other than t's, a value that is not finite, a
-// time that does not increase (exit 3 as bad input).
-std::vector<double> TakeArray(const std::string& name, const py::handle& value, std::size_t length) {
+// An array argument, refused by name when it is not a 1-D float array
+// (exit 2 as a usage error) or holds a value that is not finite (exit 3 as
+// bad input); GivenLogs checks the lengths, the reader the time's order.
+std::vector<double> TakeArray(const std::string& name, const py::handle& value) {
   if (!py::isinstance<py::array>(value)) {
     throw Failure{2, name + ": expected a numpy float array (numpy.asarray(x, dtype=float))", {}};
   }
@@ -49,9 +49,6 @@ std::vector<double> TakeArray(const std::string& name, const py::handle& value, 
   if (array.ndim() != 1) throw Failure{2, name + ": expected a 1-D array", {}};
   const auto doubles = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(array);
   const auto n = static_cast<std::size_t>(doubles.size());
-  if (length != 0 && n != length) {
-    throw Failure{3, name + ": " + std::to_string(n) + " values, t has " + std::to_string(length), {}};
-  }
   std::vector<double> out(doubles.data(), doubles.data() + n);
   for (std::size_t k = 0; k < n; ++k) {
     if (!std::isfinite(out[k])) throw Failure{3, name + "[" + std::to_string(k) + "]: not a finite number", {}};
@@ -120,18 +117,18 @@ std::vector<cli::GivenLog> GivenLogs(const py::object& logs) {
     const auto pair = entry.cast<py::tuple>();
     cli::GivenLog log;
     log.name = pair[0].cast<std::string>();
-    const auto columns = pair[1].cast<py::dict>();
-    const std::size_t length = columns.contains("t") ? TakeArray("t", columns["t"], 0).size() : 0;
-    for (const auto& [key, value] : columns) {
+    for (const auto& [key, value] : pair[1].cast<py::dict>()) {
       log.names.push_back(key.cast<std::string>());
-      log.columns.push_back(TakeArray(log.names.back(), value, length));
+      log.columns.push_back(TakeArray(log.names.back(), value));
     }
-    if (length == 0 && !log.columns.empty()) {
-      for (std::size_t k = 1; k < log.columns.size(); ++k) {
-        if (log.columns[k].size() != log.columns[0].size()) {
-          throw Failure{3, log.names[k] + ": " + std::to_string(log.columns[k].size()) + " values, " + log.names[0] +
-                               " has " + std::to_string(log.columns[0].size()), {}};
-        }
+    // Every column as long as t (or, without t, as the first).
+    const auto t = std::find(log.names.begin(), log.names.end(), "t");
+    const std::size_t reference = t == log.names.end() ? 0 : static_cast<std::size_t>(t - log.names.begin());
+    for (std::size_t k = 0; k < log.columns.size(); ++k) {
+      const std::size_t n = log.columns[k].size(), length = log.columns[reference].size();
+      if (n != length) {
+        throw Failure{3, log.names[k] + ": " + std::to_string(n) + " values, " + log.names[reference] + " has " +
+                             std::to_string(length), {}};
       }
     }
     given.push_back(std::move(log));

@@ -133,35 +133,12 @@ class Fit:
         if not text:
             return None
         if self._trace is None:
-            import numpy
-
-            lines = [line for line in text.splitlines() if line and not line.startswith("#")]
-            header = lines[0].split(",")
-            rows = [line.split(",") for line in lines[1:]]
-            trace = {}
-            for k, name in enumerate(header):
-                column = [row[k] for row in rows]
-                try:
-                    trace[name] = numpy.array(column, dtype=float)
-                except ValueError:
-                    trace[name] = numpy.array(column)
-            self._trace = trace
+            self._trace = _csv_columns(text)
         return self._trace
 
     def to_yaml(self, path):
         """Writes the parameter file atomically (a regular file or a new one; never renamed over anything else)."""
-        path = os.fspath(path)
-        if os.path.lexists(path) and not os.path.isfile(path):
-            raise InputError("%s: not a regular file: the parameter file is not written over it" % path)
-        directory = os.path.dirname(os.path.abspath(path))
-        fd, temporary = tempfile.mkstemp(prefix=".driveid-", dir=directory)
-        try:
-            with os.fdopen(fd, "w", encoding="utf-8") as f:
-                f.write(self.parameter_file)
-            os.replace(temporary, path)
-        except BaseException:
-            os.unlink(temporary)
-            raise
+        _write_atomically(path, self.parameter_file)
 
     def to_dict(self):
         return {
@@ -297,7 +274,7 @@ def _csv_columns(text):
 def _write_atomically(path, text):
     path = os.fspath(path)
     if os.path.lexists(path) and not os.path.isfile(path):
-        raise InputError("%s: not a regular file: it is not written over" % path)
+        raise InputError("%s: not a regular file: it is not written over" % path)  # nor renamed over
     fd, temporary = tempfile.mkstemp(prefix=".driveid-", dir=os.path.dirname(os.path.abspath(path)))
     try:
         with os.fdopen(fd, "w", encoding="utf-8") as f:
