@@ -17,7 +17,7 @@ option(DRIVEID_STATIC_DEPS "Link Ceres's dependencies, yaml-cpp and libcrypto st
 function(driveid_static_deps)
   set(DRIVEID_YAML_LIB yaml-cpp PARENT_SCOPE)
   set(DRIVEID_CRYPTO_LIB OpenSSL::Crypto PARENT_SCOPE)
-  if(NOT DRIVEID_STATIC_DEPS OR DRIVEID_SANITIZE OR DRIVEID_FUZZ)
+  if(NOT DRIVEID_STATIC_DEPS OR DRIVEID_SANITIZE)
     return()
   endif()
   set(archives)

@@ -9,6 +9,7 @@
 // recorded, and a FIFO works too; the copy has no name (nothing is left
 // behind by a killed process, nothing is swept).
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <cstdint>
 #include <charconv>
@@ -27,14 +28,13 @@
 #include "io/child_process.h"
 #include "io/hdf5_length_check.h"
 #include "io/mat_reply.h"
-#if defined(DRIVEID_MAT_READER_IN_CHILD)
-#include "io/mat_reader.h"
-#endif
 #include "io/table_source.h"
 #include "io/temporary_files.h"
 
 namespace driveid {
 namespace {
+
+std::atomic<MatReaderInChild> mat_reader_in_child{nullptr};  // ReadMatFilesInForkedChild
 
 // The reader process (io/mat_reader.h): beside the running tool (the build
 // tree's apps/, an installation's bin/ when built so), in the installation's
@@ -235,12 +235,10 @@ class MatSource : public TableSource {
     limits.max_output_bytes = kMaxMatElements * 8 + (std::size_t{64} << 20);
     const ChildOutcome outcome = RunInChild(
         [&] {
-#if defined(DRIVEID_MAT_READER_IN_CHILD)
-          // The fuzzing build: the forked child reads the file itself (an
-          // exec per input would slow the log-reader fuzzer tenfold).
-          (void)arguments;
-          ::_exit(WriteMatReaderReply(STDOUT_FILENO, MatReaderReply(path_, file)) ? 0 : 1);
-#endif
+          // A program that links the reader (the fuzzers): the forked child reads the file itself.
+          if (const MatReaderInChild in_child = mat_reader_in_child.load()) {
+            ::_exit(in_child(STDOUT_FILENO, path_, file) ? 0 : 1);
+          }
           ::fcntl(copy, F_SETFD, 0);  // the reader inherits the copy (this process's flag only)
           ::execv(reader.c_str(), const_cast<char* const*>(arguments));
           // Not started: say so through the pipe.
@@ -294,5 +292,7 @@ class MatSource : public TableSource {
 std::unique_ptr<TableSource> OpenMatSource(const std::string& path, const std::string& text) {
   return std::make_unique<MatSource>(path, text);
 }
+
+void ReadMatFilesInForkedChild(MatReaderInChild reader) { mat_reader_in_child.store(reader); }
 
 }  // namespace driveid

@@ -154,6 +154,15 @@ std::vector<std::unique_ptr<TableSource>> OpenTableSources(const std::string& pa
 std::unique_ptr<TableSource> OpenCsvSource(const std::string& path, const std::string& text, const CsvFormat& format);
 /// The MAT reader alone (v5 and v7.3 through libmatio).
 std::unique_ptr<TableSource> OpenMatSource(const std::string& path, const std::string& text);
+/// Reads the MAT file `file` (named `path` in messages) and writes the
+/// reader's reply (io/mat_reply.h) to `fd`; false if it could not.
+using MatReaderInChild = bool (*)(int fd, const std::string& path, const std::string& file);
+/// Where a MAT file is read: by default the reader process
+/// driveid-mat-reader (io/mat_reader.h), exec'd in the forked child. A
+/// program that links the reader itself (the fuzzers: an exec per input
+/// would slow them tenfold) may have the forked child call `reader`
+/// instead, with the same limits. Set once, before any MAT file is read.
+void ReadMatFilesInForkedChild(MatReaderInChild reader);
 /// The WPILog reader alone: a SysIdRoutine's tests, or with
 /// SysIdFormat::catalog one source listing the log's entries.
 std::vector<std::unique_ptr<TableSource>> OpenWpilogSources(const std::string& path, const std::string& text,

@@ -34,6 +34,13 @@ expect() {
   fi
 }
 
+# sanitized: true when $bin was built with AddressSanitizer, whose shadow
+# memory cannot be reserved under a `ulimit -v` cap (gcc links the runtime
+# as libasan.so, clang into the tool itself, which then exports __asan_init).
+sanitized() {
+  ldd "$bin" 2> /dev/null | grep -q libasan || nm -D "$bin" 2> /dev/null | grep -q " __asan_init$"
+}
+
 finish() {
   # Nothing the tests made (outputs, messages kept in files) shows the
   # library's option marks instead of the flags.

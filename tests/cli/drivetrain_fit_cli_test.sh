@@ -128,7 +128,7 @@ expect 3 "column 'tau_link' would be inf" -- simulate step --params paper.yaml -
 # Endless or odd inputs fail fast (limits enforced while reading), never fill memory.
 # (Memory capped with ulimit -v, except under AddressSanitizer, whose shadow
 # memory cannot be reserved under such a cap.)
-( ldd "$bin" 2> /dev/null | grep -q libasan || ulimit -v 4000000
+( sanitized || ulimit -v 4000000
   failed=0
   # Binary data is refused at its first bytes (issue 55: /dev/urandom, whose
   # newlines kept every line short, was buffered to 4 GiB before its refusal).
@@ -173,7 +173,7 @@ cat good.csv | "$bin" step /dev/stdin --params start.yaml -q -o from_pipe.yaml 2
 # Output error that the machine cannot hold is refused up front with its
 # size and what to do (issue 36: a 10 M-row log ended in bad_alloc after
 # 8 GB): 1.5 M samples under a 1.5 GB cap (not under AddressSanitizer).
-if ! ldd "$bin" 2> /dev/null | grep -q libasan; then
+if ! sanitized; then
   awk 'BEGIN { print "t,q_motor,q_link,tau"; for (i = 0; i < 1500000; ++i) printf "%.4f,%.6f,%.6f,%.4f\n", i / 1000, 0.001 * i, 0.0001 * i, sin(i / 50) }' \
     > long_joint.csv
   printf 'joint:\n  gear_ratio: 10\n  motor_inertia: 0.5\n  link_inertia: 1.5\n  stiffness: 2000\n' > long_joint.yaml

@@ -208,7 +208,7 @@ awk 'BEGIN { srand(1); n = 100000; printf "{\"test\": \"Simple\", \"units\": \"R
     for (k = 0; k < n; k++) printf "%s[%.4f, %.6f, %.6f, %.6f]", (k ? ", " : ""), k * 0.005, 1 + rand(), k * 0.001, 0.2 + rand() * 0.01
     printf "]" }
   printf "}\n" }' > big_sysid.json
-if ldd "$bin" 2> /dev/null | grep -q libasan; then
+if sanitized; then
   echo "skipped: SysId memory under AddressSanitizer (its shadow memory needs the address space)"
 else
   ( ulimit -v 120000; "$bin" inspect big_sysid.json > big_inspect.txt 2> stderr.txt ) &&

@@ -1,0 +1,36 @@
+# Precompiled third-party headers (CMake's target_precompile_headers): each
+# heavy header (Eigen, fmt, Catch2, CLI11 and the standard library around
+# them) is parsed once per target instead of once per file. Only headers of
+# other projects go in, so a file still has to include what it uses of this
+# project's layers (the layering test and the layers' include roots see
+# every include as before).
+#
+# driveid_precompile(TARGET HEADER...)         a target's own precompiled header
+# driveid_precompile_reuse(TARGET FROM)        the precompiled header of FROM (same flags)
+option(DRIVEID_PCH "Precompile the third-party headers" ON)
+
+set(DRIVEID_PCH_STD <algorithm> <cmath> <functional> <map> <memory> <optional> <string> <vector>)
+
+function(driveid_precompile target)
+  if(DRIVEID_PCH)
+    target_precompile_headers(${target} PRIVATE ${ARGN})
+  endif()
+endfunction()
+
+function(driveid_precompile_reuse target from)
+  if(DRIVEID_PCH)
+    target_precompile_headers(${target} REUSE_FROM ${from})
+  endif()
+endfunction()
+
+# ccache caches compilations that use a precompiled header when told that
+# its macros and time stamps may be taken as given (its manual, "Precompiled
+# headers"); clang then must not write the header's time stamp into it.
+if(DRIVEID_PCH AND CMAKE_CXX_COMPILER_LAUNCHER MATCHES "ccache")
+  set(CMAKE_CXX_COMPILER_LAUNCHER ${CMAKE_COMMAND} -E env
+      CCACHE_SLOPPINESS=pch_defines,time_macros,include_file_mtime,include_file_ctime ${CMAKE_CXX_COMPILER_LAUNCHER}
+)
+  if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    add_compile_options("$<$<COMPILE_LANGUAGE:CXX>:SHELL:-Xclang -fno-pch-timestamp>")
+  endif()
+endif()

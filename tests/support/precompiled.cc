@@ -1,0 +1,2 @@
+// The translation unit that makes the tests' precompiled header
+// (cmake/DriveidTest.cmake: driveid_test_pch); it defines nothing.
