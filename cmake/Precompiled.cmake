@@ -23,14 +23,8 @@ function(driveid_precompile_reuse target from)
   endif()
 endfunction()
 
-# ccache caches compilations that use a precompiled header when told that
-# its macros and time stamps may be taken as given (its manual, "Precompiled
-# headers"); clang then must not write the header's time stamp into it.
-if(DRIVEID_PCH AND CMAKE_CXX_COMPILER_LAUNCHER MATCHES "ccache")
-  set(CMAKE_CXX_COMPILER_LAUNCHER ${CMAKE_COMMAND} -E env
-      CCACHE_SLOPPINESS=pch_defines,time_macros,include_file_mtime,include_file_ctime ${CMAKE_CXX_COMPILER_LAUNCHER}
-)
-  if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
-    add_compile_options("$<$<COMPILE_LANGUAGE:CXX>:SHELL:-Xclang -fno-pch-timestamp>")
-  endif()
+# ccache (CMakeLists.txt) caches a compilation that uses a precompiled
+# header only if clang writes no time stamp into the header.
+if(DRIVEID_PCH AND CMAKE_CXX_COMPILER_LAUNCHER MATCHES "ccache" AND CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+  add_compile_options("$<$<COMPILE_LANGUAGE:CXX>:SHELL:-Xclang -fno-pch-timestamp>")
 endif()
