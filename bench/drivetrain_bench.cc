@@ -11,11 +11,11 @@
 #include <string>
 #include <vector>
 
-#include "fit/axis_fit.h"
-#include "fit/cdrive_fit.h"
-#include "fit/robot_fit.h"
-#include "fit/step_fit.h"
-#include "io/csv_log.h"
+#include "fit/axis/axis_fit.h"
+#include "fit/cdrive/cdrive_fit.h"
+#include "fit/robot/robot_fit.h"
+#include "fit/step/step_fit.h"
+#include "logs/log_input.h"
 #include "sim/axis_experiment.h"
 #include "sim/cdrive_closed_loop.h"
 #include "sim/robot_experiment.h"

@@ -19,7 +19,7 @@
 #include "common/in_process.h"
 #include "core/errors.h"
 #include "drivetrain_fit/axis_command.h"
-#include "io/axis_log.h"
+#include "logs/axis_log.h"
 #include "report/fit_summary.h"
 
 namespace py = pybind11;

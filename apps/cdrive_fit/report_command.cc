@@ -7,7 +7,7 @@
 #include "common/cli_support.h"
 #include "common/command_registry.h"
 #include "core/errors.h"
-#include "io/parameter_file.h"
+#include "params/parameter_file.h"
 #include "report/cdrive_report.h"
 #include "report/feedforward_report.h"
 

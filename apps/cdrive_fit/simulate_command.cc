@@ -6,8 +6,8 @@
 
 #include "common/cli_support.h"
 #include "common/command_registry.h"
-#include "io/atomic_file.h"
-#include "io/parameter_file.h"
+#include "system/atomic_file.h"
+#include "params/parameter_file.h"
 #include "report/json.h"
 #include "report/plot.h"
 #include "workflow/cdrive_simulation.h"

@@ -12,8 +12,8 @@
 #include "common/log_input_options.h"
 #include "common/validation_output.h"
 #include "core/errors.h"
-#include "io/cdrive_log.h"
-#include "io/parameter_file.h"
+#include "logs/cdrive_log.h"
+#include "params/parameter_file.h"
 #include "models/missing_values.h"
 #include "workflow/validation_run.h"
 

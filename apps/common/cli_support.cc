@@ -28,8 +28,8 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
-#include "io/atomic_file.h"
-#include "io/temporary_files.h"
+#include "system/atomic_file.h"
+#include "system/temporary_files.h"
 #include "report/fit_summary.h"
 
 namespace driveid::cli {

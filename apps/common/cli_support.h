@@ -14,7 +14,7 @@
 #include "core/errors.h"
 #include "core/fit_options.h"
 #include "core/fit_result.h"
-#include "io/csv_log.h"
+#include "logs/csv_log.h"
 #include "models/parameter_table.h"
 #include "report/plot.h"
 

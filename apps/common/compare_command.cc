@@ -12,8 +12,8 @@
 #include "common/cli_support.h"
 #include "common/command_registry.h"
 #include "core/errors.h"
-#include "io/atomic_file.h"
-#include "io/parameter_file.h"
+#include "system/atomic_file.h"
+#include "params/parameter_file.h"
 #include "report/parameter_comparison.h"
 #include "workflow/drift_comparison.h"
 

@@ -12,9 +12,9 @@
 #include "common/command_registry.h"
 #include "core/option_check.h"
 #include "export/parameter_export.h"
-#include "io/atomic_file.h"
-#include "io/parameter_file.h"
-#include "io/serial_robot_section.h"
+#include "system/atomic_file.h"
+#include "params/parameter_file.h"
+#include "params/serial_robot_section.h"
 
 namespace driveid::cli {
 namespace {

@@ -11,7 +11,7 @@
 #include "common/cli_support.h"
 #include "common/command_registry.h"
 #include "common/log_input_options.h"
-#include "io/log_files.h"
+#include "logs/log_files.h"
 #include "workflow/log_inspection.h"
 
 namespace driveid::cli {

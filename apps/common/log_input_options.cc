@@ -4,8 +4,9 @@
 #include <cstring>
 
 #include "core/option_check.h"
-#include "io/sha256.h"
-#include "io/table_source.h"
+#include "system/sha256.h"
+#include "logs/log_format.h"
+#include "logs/table_source.h"
 
 namespace driveid::cli {
 
@@ -146,7 +147,7 @@ std::vector<LogFileRequest> LogFileRequests(const LogInputCli& options, const st
 
 ReadLimits LogReadLimits(double max_log_gib) {
   ReadLimits limits;
-  limits.lines_unless_structured = true;  // logs may be JSON or MAT
+  limits.structured = IsStructuredLog;  // logs may be JSON, MAT or bags
   limits.max_bytes = static_cast<std::size_t>(max_log_gib * 1073741824.0);
   limits.max_bytes_hint = fmt::format("a log may be at most {} GiB (raise with --max-log-size)", max_log_gib);
   return limits;

@@ -12,9 +12,9 @@
 #include <fmt/format.h>
 
 #include "common/cli_support.h"
-#include "io/csv_log.h"
-#include "io/log_files.h"
-#include "io/log_input.h"
+#include "logs/csv_log.h"
+#include "logs/log_files.h"
+#include "logs/log_input.h"
 
 namespace driveid::cli {
 
@@ -34,7 +34,7 @@ struct LogInputCli {
   std::string topic;                   ///< ROS bags: --topic, --joint (repeated), --time header|receive
   std::vector<std::string> joints;
   bool every_joint = false;  ///< not a flag: a serial robot's command reads every joint of a bag by default
-  std::string time = "header";
+  std::string time = kDefaultBagTime;
   std::string joint_motor, joint_link;  ///< ROS bags, an elastic joint: --joint-motor, --joint-link
 };
 
@@ -64,7 +64,7 @@ std::vector<LogFileRequest> LogFileRequests(const LogInputCli& options, const st
 /// joined file), no line limit for JSON, MAT and HDF5 files.
 ReadLimits LogReadLimits(double max_log_gib);
 
-/// Prints on stderr the readers' warnings (io/table_source.h kReaderWarning)
+/// Prints on stderr the readers' warnings (logs/table_source.h kReaderWarning)
 /// in records[first..], each once, naming its file.
 void ShowReaderWarnings(const std::vector<DataFileRecord>& records, std::size_t first);
 
@@ -103,8 +103,8 @@ bool ReadGivenLog(const std::string& path, const std::vector<std::string>& colum
 /// records each one's provenance (file, SHA-256, samples, segment, notes).
 /// Refuses (exit 2) a file whose contents were given already. The column
 /// `time_column` must increase strictly (a frequency for a measured response).
-/// `transpose`: the files hold one signal per row (io/transpose_table.h).
-/// The reading is io/log_files.h ReadLogFiles'.
+/// `transpose`: the files hold one signal per row (logs/transpose_table.h).
+/// The reading is logs/log_files.h ReadLogFiles'.
 template <typename Log, typename Make>
 std::vector<Log> LoadLogs(const std::vector<std::string>& paths, const LogInputCli& input,
                           const FitOutputOptions& output, FitProvenance& provenance,

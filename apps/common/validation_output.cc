@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "io/atomic_file.h"
+#include "system/atomic_file.h"
 #include "report/fit_summary.h"
 #include "report/plot.h"
 #include "workflow/validation_run.h"

@@ -7,8 +7,8 @@
 
 #include "common/command_registry.h"
 #include "core/errors.h"
-#include "io/csv_log.h"
-#include "io/parameter_file.h"
+#include "logs/csv_log.h"
+#include "params/parameter_file.h"
 #include "workflow/axis_identification.h"
 
 namespace driveid::cli {

@@ -8,7 +8,8 @@
 
 #include "common/cli_support.h"
 #include "common/log_input_options.h"
-#include "io/csv_log.h"
+#include "workflow/axis_identification.h"
+#include "logs/csv_log.h"
 #include "models/axis.h"
 
 namespace driveid::cli {
@@ -20,7 +21,7 @@ struct AxisOptions {
   LogInputCli input;
   std::string method = "auto";  ///< auto, idim, oe
   double cutoff = 0.0;
-  int decimation = 10;
+  int decimation = kAxisDecimation;
   std::string torque_timing = "auto";
   std::vector<std::string> validate;  ///< held-out logs predicted by the fit
   bool linear = false;                ///< q in m, forces in N (or axis.linear in --params)

@@ -8,11 +8,12 @@
 #include "common/cli_support.h"
 #include "common/command_registry.h"
 #include "core/errors.h"
-#include "io/atomic_file.h"
-#include "io/parameter_file.h"
-#include "io/robot_coupling_section.h"
-#include "io/serial_robot_section.h"
-#include "io/urdf_robot.h"
+#include "system/atomic_file.h"
+#include "params/parameter_file.h"
+#include "params/robot_coupling_section.h"
+#include "params/serial_robot_section.h"
+#include "robot_description/urdf_robot.h"
+#include "workflow/serial_robot_description.h"
 #include "workflow/robot_excitation_design.h"
 
 namespace driveid::cli {
@@ -79,10 +80,10 @@ void Run(const DesignRobotOptions& o, const std::string& command_line) {
   SerialRobot robot;
   if (!o.params.empty()) {
     file = ReadParameterFile(o.params);
-    const SerialRobotSection* section = file->Find<SerialRobotSection>();
-    if (!section) throw InputError(o.params + ": no 'serial_robot' section (drivetrain-fit robot --urdf -o)");
-    CheckDistinctFiles({section->urdf}, {{"-o", o.output}, {"--plot", o.plot}});
-    robot = WithCoupling(ReadSectionUrdf(*section, o.urdf, o.params).robot, *file, o.params);
+    if (const SerialRobotSection* section = file->Find<SerialRobotSection>()) {
+      CheckDistinctFiles({section->urdf}, {{"-o", o.output}, {"--plot", o.plot}});
+    }
+    robot = RobotOfParameterFile(*file, o.params, o.urdf);
   } else {
     robot = ReadUrdfRobot(o.urdf).robot;
   }

@@ -10,7 +10,7 @@
 #include "common/command_registry.h"
 #include "common/log_input_options.h"
 #include "core/errors.h"
-#include "io/parameter_file.h"
+#include "params/parameter_file.h"
 #include "workflow/frequency_response_run.h"
 
 namespace driveid::cli {

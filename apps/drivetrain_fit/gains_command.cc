@@ -11,8 +11,8 @@
 #include "common/cli_support.h"
 #include "common/command_registry.h"
 #include "core/errors.h"
-#include "io/atomic_file.h"
-#include "io/parameter_file.h"
+#include "system/atomic_file.h"
+#include "params/parameter_file.h"
 #include "workflow/feedback_design.h"
 
 namespace driveid::cli {

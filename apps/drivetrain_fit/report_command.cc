@@ -6,7 +6,7 @@
 
 #include "common/cli_support.h"
 #include "common/command_registry.h"
-#include "io/parameter_file.h"
+#include "params/parameter_file.h"
 #include "workflow/parameter_report.h"
 
 namespace driveid::cli {

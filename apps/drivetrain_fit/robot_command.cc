@@ -6,12 +6,13 @@
 
 #include "common/command_registry.h"
 #include "core/errors.h"
-#include "io/csv_log.h"
-#include "io/parameter_file.h"
-#include "io/robot_coupling_section.h"
-#include "io/serial_robot_log.h"
-#include "io/sha256.h"
-#include "io/urdf_robot.h"
+#include "logs/csv_log.h"
+#include "params/parameter_file.h"
+#include "params/robot_coupling_section.h"
+#include "logs/serial_robot_log.h"
+#include "system/sha256.h"
+#include "robot_description/urdf_robot.h"
+#include "workflow/serial_robot_description.h"
 #include "workflow/robot_identification.h"
 #include "workflow/serial_robot_identification.h"
 
@@ -69,19 +70,10 @@ void RunSerialRobot(const RobotOptions& options, const std::string& command_line
   std::vector<std::string> inputs = LogCommandInputs(options.logs, options.urdf, options.input);
   if (!options.params.empty()) inputs.push_back(options.params);
   CheckFitOutputs(options.output, inputs);
-  const std::string urdf_text = ReadUrdfText(options.urdf);
-  UrdfRobot robot = ParseUrdfRobot(options.urdf, urdf_text);
-  std::optional<RobotCouplingSection> coupling;
-  if (!options.params.empty()) {
-    const ParameterFile given = ReadParameterFile(options.params);
-    const RobotCouplingSection* section = given.Find<RobotCouplingSection>();
-    if (section == nullptr) {
-      throw OptionError(fmt::format("--params {}: with --urdf a file with a robot section (the drives' coupling, "
-                                    "docs/formats.md#the-robot-section)", options.params));
-    }
-    robot.robot = WithCoupling(std::move(robot.robot), given, options.params);
-    coupling = *section;
-  }
+  const RobotToIdentify arm = ReadRobotToIdentify(options.urdf, options.params);
+  const UrdfRobot& robot = arm.robot;
+  const std::optional<RobotCouplingSection>& coupling = arm.coupling;
+  const std::string& urdf_text = arm.urdf_text;
   FitOutputs outputs;
   outputs.provenance.command = command_line;
   outputs.provenance.version = DRIVEID_VERSION;

@@ -9,6 +9,7 @@
 #include "common/cli_support.h"
 #include "common/log_input_options.h"
 #include "models/planar_robot.h"
+#include "workflow/serial_robot_identification.h"
 
 namespace driveid::cli {
 
@@ -16,7 +17,7 @@ struct RobotOptions {
   std::vector<std::string> logs;
   std::string params;
   std::string urdf;  ///< a serial robot (docs/models.md#serial-robot) instead of the planar one
-  double prior_weight = 1e-4;
+  double prior_weight = kConsistentPriorWeight;
   std::vector<std::string> per_direction;  ///< --urdf: joints with viscous friction per direction
   std::vector<std::string> free = FitParameterKeys(PlanarRobotParameterTable(), "robot", true);
   const CLI::Option* free_option = nullptr;  ///< whether --free was given (with --urdf its default is all)

@@ -8,12 +8,13 @@
 #include "common/command_registry.h"
 #include "common/validation_output.h"
 #include "core/errors.h"
-#include "io/axis_log.h"
-#include "io/joint_log.h"
-#include "io/parameter_file.h"
-#include "io/robot_coupling_section.h"
-#include "io/step_log.h"
-#include "io/serial_robot_log.h"
+#include "logs/axis_log.h"
+#include "logs/joint_log.h"
+#include "params/parameter_file.h"
+#include "params/robot_coupling_section.h"
+#include "logs/step_log.h"
+#include "logs/serial_robot_log.h"
+#include "workflow/serial_robot_description.h"
 #include "workflow/serial_robot_validation.h"
 #include "workflow/validation_run.h"
 
@@ -135,7 +136,7 @@ void RunValidateCommand(const ValidateOptions& options, const std::string& comma
     run = RunMujocoValidation(logs, options.params, options.joint, options.mujoco_step);
   } else if (model == ValidationModel::kSerialRobot) {
     const SerialRobotSection& section = *file->Find<SerialRobotSection>();
-    const SerialRobot robot = WithCoupling(ReadSectionUrdf(section, options.urdf, options.params).robot, *file, options.params);
+    const SerialRobot robot = RobotOfParameterFile(*file, options.params, options.urdf);
     const auto logs =
         load(SerialRobotLogColumns(robot), [&](CsvLog csv) { return MakeSerialRobotLog(robot, std::move(csv)); });
     run = RunSerialRobotValidation(logs, section, robot, options.params);

@@ -9,6 +9,7 @@
 
 #include "common/cli_support.h"
 #include "common/log_input_options.h"
+#include "workflow/axis_identification.h"
 
 namespace driveid::cli {
 
@@ -20,7 +21,7 @@ struct ValidateOptions {
   std::string step_model = "reduced";
   LogInputCli input;
   double cutoff = 0.0;
-  int decimation = 10;
+  int decimation = kAxisDecimation;
   std::string torque_timing = "file";
   bool simulate = false;          ///< axis: position by simulation instead of torque by inverse dynamics
   std::string joint = "axis";     ///< MJCF: the joint driven by the logged effort

@@ -1,7 +1,7 @@
 // The record of a fitted parameter, `{value, std, ci95}` (docs/formats.md#parameter-files):
 // its fields declared once, here, and visited by every archive that writes
 // or reads it — the parameter file's YAML writer and reader
-// (io/parameter_file.cc) and the JSON summary (report/fit_summary.cc) — in
+// (params/parameter_file.cc) and the JSON summary (report/fit_summary.cc) — in
 // the manner of Drake's Serialize(Archive*). A field added here is written,
 // read back and accepted by all of them.
 #pragma once

@@ -1,4 +1,4 @@
-// The options of a least-squares fit (fit/least_squares.h solves it): plain
+// The options of a least-squares fit (fit/core/least_squares.h solves it): plain
 // types every fit and the tools share — the iteration limit, the
 // identifiability threshold, the progress callback, the wall-clock limit,
 // the large-problem policy and the error clusters.

@@ -21,7 +21,7 @@ struct ParameterEstimate {
 };
 
 /// The suffix of an inverse-dynamics fit's torque channel, named after its
-/// log ("log.csv:tau"; fit/axis_rows.h, the design's noise).
+/// log ("log.csv:tau"; fit/axis/axis_rows.h, the design's noise).
 inline constexpr char kTorqueChannelSuffix[] = ":tau";
 
 /// Goodness of fit of one measured channel (e.g. tau_link of one log).

@@ -1,6 +1,6 @@
 // The `fit` section of a parameter file (docs/formats.md#parameter-files):
 // its keys declared once, in the order the parameter file writes them. The
-// writer (io/parameter_file.cc FormatParameterFile) and the JSON summary
+// writer (params/parameter_file.cc FormatParameterFile) and the JSON summary
 // (report/fit_summary.cc FitJson) walk this table and switch on the key, so
 // a key added here is written by both (the compiler names a switch that
 // misses it); the reader (ParseParameterFile) accepts these keys and no

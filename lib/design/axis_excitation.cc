@@ -185,7 +185,7 @@ Eigen::MatrixXd Information(const Kinematics& k, double s, const DesignProblem& 
   const std::size_t n = p.terms.size();
   std::vector<double> sum(n * n, 0.0), phi(n);
   // The fit leaves out the samples within its filter's reach of a slow one
-  // (fit/axis_rows.cc BuildAxisRows): the same on the periodic grid.
+  // (fit/axis/axis_rows.cc BuildAxisRows): the same on the periodic grid.
   const std::size_t m = k.q.size();
   const double min_rate = 0.01 * s * MaxAbs(k.qd);
   std::vector<char> left_out(m, 0);

@@ -1,7 +1,7 @@
 // Excitation design for a rigid axis (docs/models.md#excitation-design): a
 // periodic position reference (design/fourier_reference.h) that the axis's
 // position loop follows, chosen so that the inverse-dynamics fit
-// (fit/axis_fit.h) of its log determines the free parameters best while
+// (fit/axis/axis_fit.h) of its log determines the free parameters best while
 // every limit holds along the whole reference.
 //
 // Prediction. The fit regresses tau = phi(q, q', q'')' p on samples
@@ -45,7 +45,7 @@ inline constexpr double kTorqueMargin = 0.95;
 inline constexpr double kDesignDecimation = 10.0;
 inline constexpr double kDesignDecimationBand = 0.8;
 /// The fit leaves out this many decimations' samples on each side of a
-/// sample slower than 1 % of the largest rate at the band cutoff (fit/axis_rows.h
+/// sample slower than 1 % of the largest rate at the band cutoff (fit/axis/axis_rows.h
 /// AxisExclusionReach; tests/design/axis_excitation_test.cc checks they agree).
 inline constexpr int kDesignExclusionDecimations = 4;
 

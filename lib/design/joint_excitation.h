@@ -1,6 +1,6 @@
 // Excitation design for the elastic joint (docs/models.md#joint-excitation-design):
 // a periodic torque multisine injected at the motor whose line powers make
-// the frequency-response fit (fit/frequency_response_fit.h, `frf --fit
+// the frequency-response fit (fit/frf/frequency_response_fit.h, `frf --fit
 // two-mass`) of its log determine the free parameters best, within the
 // torque and motor-speed limits.
 //

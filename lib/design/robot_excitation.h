@@ -2,7 +2,7 @@
 // one periodic Fourier trajectory per joint (design/fourier_reference.h,
 // Swevers et al. 1997: lines 1..K of f_0 = 1 / period, starting and ending
 // at rest at a start pose), chosen so that the fit of its log
-// (fit/serial_robot_fit.h) determines the base parameters best while every
+// (fit/robot/serial_robot_fit.h) determines the base parameters best while every
 // joint stays within its limits along the whole trajectory.
 //
 // Prediction. The fit regresses joint j's torque on the base regressor's

@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "io/parameter_file.h"
+#include "params/parameter_file.h"
 
 namespace driveid {
 

@@ -9,7 +9,7 @@
 
 #include "core/errors.h"
 #include "core/option_check.h"
-#include "io/serial_robot_section.h"
+#include "params/serial_robot_section.h"
 #include "export/export_text.h"
 #include "export/feedback_export.h"
 #include "export/joint_export.h"

@@ -22,7 +22,7 @@
 
 #include "export/export_target.h"
 #include "export/export_text.h"
-#include "io/parameter_file.h"
+#include "params/parameter_file.h"
 
 namespace driveid {
 

@@ -7,9 +7,9 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
-#include "io/robot_coupling_section.h"
-#include "io/serial_robot_section.h"
-#include "io/urdf_rewrite.h"
+#include "params/robot_coupling_section.h"
+#include "params/serial_robot_section.h"
+#include "robot_description/urdf_rewrite.h"
 #include "models/serial_robot.h"
 
 namespace driveid {

@@ -6,7 +6,7 @@
 //   J_l theta_l'' = k (theta_m - theta_l) + d (theta_m' - theta_l')
 //                   - b_l theta_l' - c_l sgn(theta_l') - g_c cos theta_l - g_s sin theta_l
 // Units: kg m^2, N m/rad, N m s/rad, N m, rad (link side).
-// The identification (fit/joint_fit.h) uses the motor equation and the sum
+// The identification (fit/joint/joint_fit.h) uses the motor equation and the sum
 // of both (the spring cancels), each with the measured tau_m as its target:
 //   motor: tau_m = J_m theta_m'' + k D + d D' + b_m theta_m' + c_m sgn theta_m' + tau_0
 //   total: tau_m = J_m theta_m'' + J_l theta_l'' + b_m theta_m' + c_m sgn theta_m'

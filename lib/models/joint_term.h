@@ -4,7 +4,7 @@
 // parameter, from the motor mass and from the link mass, and what a
 // shaft-torque sensor in the elastic element reads of it. From these columns
 // the registry (models/joint_terms.cc) builds everything the tools use:
-//   - the identification's three equations (fit/joint_fit.h):
+//   - the identification's three equations (fit/joint/joint_fit.h):
 //       motor:  tau_m    = sum_i p_i phi_i^motor
 //       total:  tau_m    = sum_i p_i (phi_i^motor + phi_i^link)
 //       sensor: tau_link = sum_i p_i phi_i^sensor

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "design/axis_excitation.h"
-#include "io/axis_reference.h"
+#include "logs/axis_reference.h"
 #include "report/json.h"
 #include "report/plot.h"
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "fit/frf_analysis.h"
+#include "fit/frf/frf_analysis.h"
 #include "report/json.h"
 #include "report/plot.h"
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "design/joint_excitation.h"
-#include "io/torque_reference.h"
+#include "logs/torque_reference.h"
 #include "report/json.h"
 #include "report/plot.h"
 

@@ -8,7 +8,7 @@
 
 #include <string>
 
-#include "io/parameter_file.h"
+#include "params/parameter_file.h"
 #include "report/json.h"
 
 namespace driveid {

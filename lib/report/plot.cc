@@ -17,8 +17,8 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
-#include "io/child_process.h"
-#include "io/temporary_files.h"
+#include "system/child_process.h"
+#include "system/temporary_files.h"
 
 extern char** environ;
 
@@ -122,7 +122,7 @@ std::string GnuplotScript(const std::vector<PlotPanel>& panels, const std::strin
   return script;
 }
 
-// An unnamed file (io/temporary_files.h) that a child reaches as
+// An unnamed file (system/temporary_files.h) that a child reaches as
 // /proc/self/fd/N; closed when this object goes.
 class UnnamedFile {
  public:

@@ -3,15 +3,15 @@
 // noise; positions are quantised like an encoder.
 //   multisine: q = A (0.6 sin(2 pi 0.3 t) + 0.3 sin(2 pi 1.1 t + 1) + 0.1 sin(2 pi 2.3 t + 2))
 //   constant:  q = speed t (constant rate: friction only)
-//   reference: q, q', q'' of a reference file (io/axis_reference.h) at its
+//   reference: q, q', q'' of a reference file (logs/axis_reference.h) at its
 //              own times (`design axis` writes one); rate and duration unused
 #pragma once
 
 #include <cstdint>
 #include <string>
 
-#include "io/axis_log.h"
-#include "io/axis_reference.h"
+#include "logs/axis_log.h"
+#include "logs/axis_reference.h"
 #include "models/axis.h"
 
 namespace driveid {

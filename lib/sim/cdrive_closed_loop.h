@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "control/cdrive_control_settings.h"
-#include "io/cdrive_log.h"
+#include "logs/cdrive_log.h"
 #include "models/cdrive.h"
 #include "sim/motion_program.h"
 

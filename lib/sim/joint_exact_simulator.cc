@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "sim/joint_exact_simulator.h"
-#include "sim/joint_simulator.h"
+#include "sim/joint_response.h"
 #include "sim/switched_linear_exact.h"
 
 namespace driveid {

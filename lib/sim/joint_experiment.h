@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "io/joint_log.h"
+#include "logs/joint_log.h"
 #include "models/joint.h"
 
 namespace driveid {
@@ -28,7 +28,7 @@ struct JointExperiment {
   std::uint64_t seed = 1;
   int substeps = 10;
   /// The "reference" excitation: torque samples at `rate`, repeated over
-  /// the duration (`design joint` writes them; io/torque_reference.h).
+  /// the duration (`design joint` writes them; logs/torque_reference.h).
   std::vector<double> reference;
 };
 

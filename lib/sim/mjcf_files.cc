@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
-#include "io/csv_log.h"
+#include "logs/csv_log.h"
 
 namespace driveid {
 namespace {

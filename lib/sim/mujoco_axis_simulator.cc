@@ -10,7 +10,7 @@
 
 #include "core/errors.h"
 #include "core/option_check.h"
-#include "io/child_process.h"
+#include "system/child_process.h"
 #include "sim/mjcf_files.h"
 
 #include "sim/mujoco_child.h"

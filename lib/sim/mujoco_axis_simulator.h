@@ -10,7 +10,7 @@
 // solref 0.02 s by default, so 1 ms is ten times inside; joint damping is
 // implicit in its Euler integrator).
 // MuJoCo ends its process on an error, and its XML parser trusts the file:
-// it runs in a child process (io/child_process.h) that loads libmujoco with
+// it runs in a child process (system/child_process.h) that loads libmujoco with
 // dlopen, so a tool that does not simulate in MuJoCo never maps it.
 #pragma once
 

@@ -11,7 +11,7 @@
 
 #include <mujoco/mujoco.h>
 
-#include "io/child_process.h"
+#include "system/child_process.h"
 
 namespace driveid::mujoco_child {
 

@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
-#include "io/child_process.h"
+#include "system/child_process.h"
 #include "sim/mjcf_files.h"
 #include "sim/mujoco_axis_simulator.h"
 #include "sim/mujoco_child.h"

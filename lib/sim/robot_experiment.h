@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "io/robot_log.h"
+#include "logs/robot_log.h"
 #include "models/planar_robot.h"
 
 namespace driveid {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "io/step_log.h"
+#include "logs/step_log.h"
 #include "models/drivetrain.h"
 
 namespace driveid {

@@ -8,9 +8,9 @@
 
 #include "core/errors.h"
 #include "core/option_check.h"
-#include "fit/axis_fit.h"
-#include "fit/axis_oe_fit.h"
-#include "fit/validation.h"
+#include "fit/axis/axis_fit.h"
+#include "fit/axis/axis_oe_fit.h"
+#include "fit/validation/validation.h"
 #include "models/axis_term.h"
 #include "models/feedforward.h"
 #include "workflow/axis_feedforward.h"

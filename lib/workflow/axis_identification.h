@@ -10,10 +10,11 @@
 #include <vector>
 
 #include "core/fit_result.h"
-#include "fit/axis_rows.h"
-#include "fit/least_squares.h"
-#include "io/axis_log.h"
-#include "io/parameter_file.h"
+#include "fit/axis/axis_fit.h"
+#include "fit/axis/axis_rows.h"
+#include "fit/core/least_squares.h"
+#include "logs/axis_log.h"
+#include "params/parameter_file.h"
 #include "models/axis.h"
 #include "report/plot.h"
 
@@ -30,8 +31,8 @@ struct AxisIdentificationOptions {
   AxisMethod method = AxisMethod::kAuto;
   std::vector<std::string> free = FitParameterKeys(AxisParameterTable(), "axis", true);
   double cutoff = 0.0;  ///< inverse dynamics: position low-pass [Hz], 0: from the data
-  int decimation = 10;  ///< inverse dynamics: parallel decimation factor
-  AxisTorqueTiming torque_timing = AxisTorqueTiming::kFromData;  ///< inverse dynamics (fit/axis_rows.h)
+  int decimation = kAxisDecimation;  ///< inverse dynamics: parallel decimation factor
+  AxisTorqueTiming torque_timing = AxisTorqueTiming::kFromData;  ///< inverse dynamics (fit/axis/axis_rows.h)
   double torque_delay = 0.0;  ///< kDelayed: when the torque acts after its stamp [samples]
   FitOptions fit;       ///< progress callback
   bool trace = false;   ///< build the trace CSV

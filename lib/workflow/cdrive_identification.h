@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "core/fit_result.h"
-#include "fit/cdrive_fit.h"
-#include "io/cdrive_log.h"
-#include "io/parameter_file.h"
+#include "fit/cdrive/cdrive_fit.h"
+#include "logs/cdrive_log.h"
+#include "params/parameter_file.h"
 #include "models/feedforward.h"
 #include "report/plot.h"
 

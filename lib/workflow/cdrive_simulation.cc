@@ -6,7 +6,7 @@
 
 #include "core/errors.h"
 #include "core/option_check.h"
-#include "io/cdrive_log.h"
+#include "logs/cdrive_log.h"
 #include "models/missing_values.h"
 #include "sim/cdrive_closed_loop.h"
 

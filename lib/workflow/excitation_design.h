@@ -9,7 +9,7 @@
 
 #include "design/axis_excitation.h"
 #include "design/joint_excitation.h"
-#include "io/parameter_file.h"
+#include "params/parameter_file.h"
 #include "report/plot.h"
 
 namespace driveid {

@@ -10,7 +10,7 @@
 
 #include "control/feedback_gains.h"
 #include "control/speed_loop.h"
-#include "io/parameter_file.h"
+#include "params/parameter_file.h"
 #include "models/feedback.h"
 #include "report/feedback_report.h"
 #include "report/json.h"

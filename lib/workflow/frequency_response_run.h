@@ -1,4 +1,4 @@
-// `drivetrain-fit frf` around its one library call (fit/frf_analysis.h):
+// `drivetrain-fit frf` around its one library call (fit/frf/frf_analysis.h):
 // the names of the response's quantities, a measured response brought to
 // Hz, linear magnitude and radians, a log's columns made the analysis'
 // signals, and the parameter file the run writes
@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "fit/frf_analysis.h"
-#include "io/csv_log.h"
-#include "io/parameter_file.h"
+#include "fit/frf/frf_analysis.h"
+#include "logs/csv_log.h"
+#include "params/parameter_file.h"
 #include "report/plot.h"
 
 namespace driveid {

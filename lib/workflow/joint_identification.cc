@@ -9,10 +9,10 @@
 
 #include "core/errors.h"
 #include "core/option_check.h"
-#include "fit/adequacy.h"
-#include "fit/joint_fit.h"
-#include "fit/joint_mismatch.h"
-#include "fit/joint_oe_fit.h"
+#include "fit/core/adequacy.h"
+#include "fit/joint/joint_fit.h"
+#include "fit/joint/joint_mismatch.h"
+#include "fit/joint/joint_oe_fit.h"
 #include "report/fit_summary.h"
 
 namespace driveid {

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "core/fit_result.h"
-#include "fit/least_squares.h"
-#include "io/joint_log.h"
+#include "fit/core/least_squares.h"
+#include "logs/joint_log.h"
 #include "models/joint.h"
 #include "report/plot.h"
 

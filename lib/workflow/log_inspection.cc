@@ -8,6 +8,7 @@
 
 #include "core/errors.h"
 #include "core/order_statistics.h"
+#include "logs/log_format.h"
 
 namespace driveid {
 namespace {
@@ -98,13 +99,15 @@ InspectedLog InspectLog(const TableSource& source, const LogInputOptions& option
 
 std::string FormatLogInspection(const InspectedLog& log) {
   std::string out = fmt::format("{}{} ({})\n", log.path, log.segment.empty() ? "" : " [" + log.segment + "]", log.format);
-  const bool catalog = (log.format == "wpilog" || log.format == "rosbag") && log.segment.empty();
+  // What the format says of its catalog (a WPILog's entries, a bag's topics) or variables (logs/log_format.h).
+  const LogFormat* format = FindLogFormatOfSource(log.format);
+  const LogFormatCatalog listing = format != nullptr ? format->catalog : LogFormatCatalog{};
+  const bool catalog = !listing.summary.empty() && log.segment.empty();
   if (log.has_time) {
     out += fmt::format("  {} samples, t = {:.6g} .. {:.6g} s ({:.6g} s), rate {:.6g} Hz, jitter {:.3g} % of the step\n",
                        log.rows, log.start, log.end, log.end - log.start, log.rate, 100.0 * log.jitter);
   } else if (catalog) {
-    out += log.format == "wpilog" ? "  the log's entries; a SysIdRoutine's tests follow as the sources a fit reads\n"
-                                  : "  the bag's topics; a JointState topic follows as the source a fit reads\n";
+    out += "  " + listing.summary + "\n";
   } else {
     out += fmt::format("  {} rows; not readable as a fit would read it: {}\n", log.rows, log.time_problem);
   }
@@ -112,12 +115,8 @@ std::string FormatLogInspection(const InspectedLog& log) {
   if (!log.variables.empty()) {
     std::size_t width = 8;
     for (const auto& v : log.variables) width = std::max(width, std::min<std::size_t>(v.name.size(), 48));
-    const bool bag = log.format == "rosbag";
-    out += fmt::format("  {:<{}} {:>13}  {}\n", !catalog ? "variable" : bag ? "topic" : "entry", width,
-                       !catalog ? "size" : bag ? "messages" : "records",
-                       !catalog ? "address (‹col› NAME=...)"
-                       : bag    ? "type (serialisation), messages, mean rate over the span"
-                                : "type, records, span, mean rate over the span, metadata");
+    const LogFormatCatalog heading = catalog ? listing : LogFormatCatalog{};
+    out += fmt::format("  {:<{}} {:>13}  {}\n", heading.item, width, heading.count, heading.description);
     for (const auto& v : log.variables) {
       out += fmt::format("  {:<{}} {:>13}  {}\n", v.name, width, fmt::format("{} x {}", v.rows, v.cols), v.address);
     }

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "io/log_input.h"
-#include "io/table_source.h"
+#include "logs/log_input.h"
+#include "logs/table_source.h"
 #include "report/json.h"
 
 namespace driveid {

@@ -9,7 +9,7 @@
 #include <optional>
 #include <string>
 
-#include "io/parameter_file.h"
+#include "params/parameter_file.h"
 #include "models/planar_robot.h"
 #include "report/json.h"
 

@@ -6,8 +6,8 @@
 
 #include "core/errors.h"
 #include "core/option_check.h"
-#include "fit/serial_robot_fit.h"
-#include "io/serial_robot_section.h"
+#include "fit/robot/serial_robot_fit.h"
+#include "params/serial_robot_section.h"
 #include "models/serial_dynamics.h"
 
 namespace driveid {

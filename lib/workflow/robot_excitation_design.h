@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "design/robot_excitation.h"
-#include "io/parameter_file.h"
+#include "params/parameter_file.h"
 #include "models/serial_robot.h"
 #include "workflow/excitation_design.h"
 

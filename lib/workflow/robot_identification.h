@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "core/fit_result.h"
-#include "fit/robot_fit.h"
-#include "io/robot_log.h"
+#include "fit/robot/robot_fit.h"
+#include "logs/robot_log.h"
 #include "models/planar_robot.h"
 #include "report/plot.h"
 

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "fit/consistent_parameters.h"
-#include "fit/serial_robot_fit.h"
-#include "io/serial_robot_section.h"
-#include "io/urdf_robot.h"
+#include "fit/robot/consistent_parameters.h"
+#include "fit/robot/serial_robot_fit.h"
+#include "params/serial_robot_section.h"
+#include "robot_description/urdf_robot.h"
 #include "report/plot.h"
 
 namespace driveid {
@@ -20,7 +20,7 @@ struct SerialRobotIdentificationOptions {
   SerialRobotFitOptions fit;
   /// The URDF prior's weight in the consistent fit, relative to one std of
   /// the data (docs/models.md#physical-consistency).
-  double prior_weight = 1e-4;
+  double prior_weight = kConsistentPriorWeight;
   /// Joints whose viscous friction is fitted per direction (SerialJoint::
   /// viscous_per_direction), by name, or "all".
   std::vector<std::string> viscous_per_direction;

@@ -5,8 +5,8 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
-#include "fit/adequacy.h"
-#include "fit/serial_robot_fit.h"
+#include "fit/core/adequacy.h"
+#include "fit/robot/serial_robot_fit.h"
 #include "models/serial_dynamics.h"
 #include "sim/mujoco_inverse.h"
 

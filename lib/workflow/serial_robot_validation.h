@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "io/serial_robot_log.h"
-#include "io/serial_robot_section.h"
+#include "logs/serial_robot_log.h"
+#include "params/serial_robot_section.h"
 #include "models/serial_robot.h"
 #include "workflow/validation_run.h"
 

@@ -9,7 +9,7 @@
 
 #include "core/errors.h"
 #include "core/order_statistics.h"
-#include "fit/adequacy.h"
+#include "fit/core/adequacy.h"
 #include "signal/held_samples.h"
 #include "signal/resample.h"
 

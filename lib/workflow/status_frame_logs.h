@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "core/fit_result.h"
-#include "fit/axis_oe_fit.h"
-#include "io/axis_log.h"
+#include "fit/axis/axis_oe_fit.h"
+#include "logs/axis_log.h"
 
 namespace driveid {
 
@@ -50,7 +50,7 @@ std::vector<AxisLog> MeasuredRows(const std::vector<AxisLog>& logs);
 ///   effort h^2/12) and of its stamps' scatter (the steps' robust std,
 ///   squared); the gradient from fits with that log moved +-h/2;
 /// - a quantised effort (its levels multiples of one quantum q) held in
-///   steps (fit/axis_oe_fit.h IsTorqueStepLog): the step's level is known to
+///   steps (fit/axis/axis_oe_fit.h IsTorqueStepLog): the step's level is known to
 ///   +-q/2 (std q / sqrt(12)); the gradient from fits with that log's effort
 ///   moved +-q/2 (a ramp crosses many levels: its errors average out).
 /// The fits start from `fitted`, without per-log fits. Returns what was

@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "core/option_check.h"
-#include "fit/validation.h"
+#include "fit/validation/validation.h"
 
 namespace driveid {
 

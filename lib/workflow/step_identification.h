@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "core/fit_result.h"
-#include "fit/step_fit.h"
-#include "io/step_log.h"
+#include "fit/step/step_fit.h"
+#include "logs/step_log.h"
 #include "models/drivetrain.h"
 #include "report/plot.h"
 

@@ -5,12 +5,12 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
-#include "io/axis_log.h"
-#include "io/axis_reference.h"
-#include "io/joint_log.h"
-#include "io/robot_log.h"
-#include "io/step_log.h"
-#include "io/torque_reference.h"
+#include "logs/axis_log.h"
+#include "logs/axis_reference.h"
+#include "logs/joint_log.h"
+#include "logs/robot_log.h"
+#include "logs/step_log.h"
+#include "logs/torque_reference.h"
 #include "models/missing_values.h"
 
 namespace driveid {

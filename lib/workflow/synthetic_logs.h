@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "io/parameter_file.h"
+#include "params/parameter_file.h"
 #include "sim/axis_experiment.h"
 #include "sim/joint_experiment.h"
 #include "sim/robot_experiment.h"

@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
-#include "io/serial_robot_section.h"
+#include "params/serial_robot_section.h"
 #include "core/option_check.h"
 #include "export/export_target.h"
 #include "models/missing_values.h"

@@ -8,13 +8,14 @@
 #include <string>
 #include <vector>
 
-#include "fit/cdrive_fit.h"
-#include "fit/validation.h"
-#include "io/axis_log.h"
-#include "io/cdrive_log.h"
-#include "io/joint_log.h"
-#include "io/parameter_file.h"
-#include "io/step_log.h"
+#include "fit/axis/axis_fit.h"
+#include "fit/cdrive/cdrive_fit.h"
+#include "fit/validation/validation.h"
+#include "logs/axis_log.h"
+#include "logs/cdrive_log.h"
+#include "logs/joint_log.h"
+#include "params/parameter_file.h"
+#include "logs/step_log.h"
 #include "models/drivetrain.h"
 #include "report/plot.h"
 
@@ -42,8 +43,8 @@ struct ValidationRun {
 struct AxisValidationOptions {
   bool simulate = false;  ///< simulate the position from the torque (else inverse dynamics of the torque)
   double cutoff = 0.0;    ///< inverse dynamics: position low-pass [Hz]; 0: the candidate that predicts best
-  int decimation = 10;
-  AxisTorqueTiming torque_timing = AxisTorqueTiming::kSampled;  ///< inverse dynamics (fit/axis_rows.h; not kFromData)
+  int decimation = kAxisDecimation;
+  AxisTorqueTiming torque_timing = AxisTorqueTiming::kSampled;  ///< inverse dynamics (fit/axis/axis_rows.h; not kFromData)
   double torque_delay = 0.0;  ///< kDelayed: when the torque acts after its stamp [samples]
   /// Take the timing the fit recorded (axis.torque_delay) when the file has it.
   bool timing_from_file = false;

@@ -13,7 +13,7 @@
 #include "design/axis_excitation.h"
 #include "design/fourier_reference.h"
 #include "design/nelder_mead.h"
-#include "fit/axis_rows.h"
+#include "fit/axis/axis_rows.h"
 
 using namespace driveid;
 
@@ -68,7 +68,7 @@ TEST_CASE("the designed reference keeps the limits, and its predicted covariance
   }
   // The fit leaves out 4 decimations (40 ms at 1 kHz) on each side of a
   // slow sample at the band cutoff a designed log's fit takes
-  // (fit/axis_rows.h AxisExclusionReach); the reference repeats over the 20 s.
+  // (fit/axis/axis_rows.h AxisExclusionReach); the reference repeats over the 20 s.
   for (const double rate : {500.0, 1000.0, 4000.0}) {
     CHECK(kDesignExclusionDecimations * 10 == AxisExclusionReach(rate, AxisDecimatedBand(rate, 10), 10));
   }

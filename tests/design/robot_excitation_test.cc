@@ -12,7 +12,7 @@
 
 #include "core/errors.h"
 #include "design/robot_excitation.h"
-#include "fit/serial_robot_fit.h"
+#include "fit/robot/serial_robot_fit.h"
 #include "models/serial_dynamics.h"
 #include "support/reference_serial_arm.h"
 #include "support/serial_arm_robot.h"

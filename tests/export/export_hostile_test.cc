@@ -11,7 +11,7 @@
 #include "export/export_target.h"
 #include "export/export_text.h"
 #include "export/parameter_export.h"
-#include "io/parameter_file.h"
+#include "params/parameter_file.h"
 
 using namespace driveid;
 

@@ -11,7 +11,7 @@
 
 #include "core/errors.h"
 #include "export/joint_export.h"
-#include "io/parameter_file.h"
+#include "params/parameter_file.h"
 #include "models/joint.h"
 
 namespace driveid {

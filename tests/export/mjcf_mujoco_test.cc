@@ -14,7 +14,7 @@
 
 #include "core/errors.h"
 #include "export/parameter_export.h"
-#include "io/parameter_file.h"
+#include "params/parameter_file.h"
 #include "sim/mujoco_axis_simulator.h"
 
 using namespace driveid;

@@ -1,14 +1,14 @@
 // Between-log disagreement (docs/models.md#adequacy): Cochran's Q and the
 // random-effects widening of the joint interval, against hand-computed
 // values.
-#include "fit/adequacy.h"
+#include "fit/core/adequacy.h"
 
 #include <cmath>
 
 #include <catch2/catch.hpp>
 
 #include "core/errors.h"
-#include "fit/fit_statistics.h"
+#include "fit/core/fit_statistics.h"
 
 using namespace driveid;
 

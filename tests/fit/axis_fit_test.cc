@@ -1,6 +1,6 @@
 // Axis IDIM-LS (docs/models.md#axis): recovery from synthetic logs, constant-rate logs
 // identify friction only, the zero-phase filter has no lag.
-#include "fit/axis_fit.h"
+#include "fit/axis/axis_fit.h"
 
 #include <algorithm>
 #include <cmath>

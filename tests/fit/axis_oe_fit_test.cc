@@ -1,7 +1,7 @@
 // Output-error axis fit (docs/models.md#axis-output-error): the simulator's
 // sensitivities against finite differences, recovery from torque steps made
 // by the test's own generator, refusals by name.
-#include "fit/axis_oe_fit.h"
+#include "fit/axis/axis_oe_fit.h"
 
 #include <cmath>
 #include <random>

@@ -1,4 +1,4 @@
-// Base parameters (fit/base_parameters.h): the regrouped model reproduces
+// Base parameters (fit/core/base_parameters.h): the regrouped model reproduces
 // the full one on new motions, their count is the regressor's rank (by
 // SVD), and a planar two-link arm regroups as Khalil's rules say:
 //   ZZ1R = Izz_1 + armature_1 + l1^2 m_2,  MX1R = mx_1 + l1 m_2.
@@ -8,7 +8,7 @@
 #include <Eigen/SVD>
 #include <catch2/catch.hpp>
 
-#include "fit/base_parameters.h"
+#include "fit/core/base_parameters.h"
 #include "models/serial_dynamics.h"
 
 using namespace driveid;
@@ -108,4 +108,48 @@ TEST_CASE("base parameters reproduce the full model on new motions; their count 
   for (std::size_t k = 0; k < base.base.size(); ++k) wb.col(static_cast<Eigen::Index>(k)) = fresh.col(static_cast<Eigen::Index>(base.base[k]));
   const Eigen::VectorXd full = fresh * theta, regrouped = wb * (base.regroup * theta);
   CHECK((full - regrouped).norm() <= 1e-9 * full.norm());
+}
+
+// The tolerances that decide a dependent and a never-moved column, at the
+// columns' own scale: a column whose part outside the earlier columns' span
+// is 1e-5 of its norm is a direction of its own, one at 1e-7 is their
+// combination (FindBaseParameters' tolerance 1e-6 lies between); a column
+// 1e-10 of the largest moves, one 1e-14 never does (1e-12 between).
+TEST_CASE("a column at the dependency tolerance: kept above it, regrouped below it, zero below the zero tolerance") {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> normal;
+  const Eigen::Index rows = 40;
+  Eigen::MatrixXd a(rows, 2);
+  for (Eigen::Index i = 0; i < rows; ++i) a.row(i) << normal(rng), normal(rng);
+  // A unit direction orthogonal to a's columns.
+  Eigen::VectorXd e(rows);
+  for (Eigen::Index i = 0; i < rows; ++i) e(i) = normal(rng);
+  const Eigen::MatrixXd q = a.householderQr().householderQ() * Eigen::MatrixXd::Identity(rows, 2);
+  e -= q * (q.transpose() * e);
+  e.normalize();
+  const Eigen::VectorXd combination = 0.6 * a.col(0) - 0.8 * a.col(1);
+  const auto with_outside = [&](double fraction) {
+    Eigen::MatrixXd w(rows, 3);
+    w << a, combination + fraction * combination.norm() * e;
+    return w;
+  };
+  const std::vector<std::string> names = {"a", "b", "c"};
+  SECTION("1e-5 outside the span: a base parameter of its own") {
+    const BaseParameters base = FindBaseParameters(with_outside(1e-5), names);
+    CHECK(base.base == std::vector<std::size_t>{0, 1, 2});
+  }
+  SECTION("1e-7 outside the span: regrouped into the others") {
+    const BaseParameters base = FindBaseParameters(with_outside(1e-7), names);
+    CHECK(base.base == std::vector<std::size_t>{0, 1});
+    REQUIRE(base.regroup.rows() == 2);
+    CHECK(base.regroup(0, 2) == Approx(0.6).margin(1e-6));
+    CHECK(base.regroup(1, 2) == Approx(-0.8).margin(1e-6));
+  }
+  SECTION("a column 1e-10 of the largest moves; 1e-14 never does") {
+    Eigen::MatrixXd w(rows, 3);
+    w << a, 1e-10 * a.col(0).norm() * e;
+    CHECK(FindBaseParameters(w, names).never_moved.empty());
+    w.col(2) = 1e-14 * a.col(0).norm() * e;
+    CHECK(FindBaseParameters(w, names).never_moved == std::vector<std::size_t>{2});
+  }
 }

@@ -15,11 +15,11 @@
 
 #include <catch2/catch.hpp>
 
-#include "fit/axis_fit.h"
-#include "fit/axis_oe_fit.h"
-#include "fit/joint_fit.h"
-#include "fit/joint_oe_fit.h"
-#include "fit/step_fit.h"
+#include "fit/axis/axis_fit.h"
+#include "fit/axis/axis_oe_fit.h"
+#include "fit/joint/joint_fit.h"
+#include "fit/joint/joint_oe_fit.h"
+#include "fit/step/step_fit.h"
 #include "support/paper000.h"
 #include "support/reference_drivetrain.h"
 #include "support/friction_joint_cases.h"

@@ -1,7 +1,7 @@
 // C-drive identification against logs of the independent generator with the
 // Table I values (docs/reproduction.md): friction from slow programs within 3 %, inertia
 // from fast programs within 5 %, refusals naming what cannot be determined.
-#include "fit/cdrive_fit.h"
+#include "fit/cdrive/cdrive_fit.h"
 
 #include <cmath>
 

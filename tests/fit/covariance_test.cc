@@ -1,9 +1,9 @@
-// fit/covariance.h: the prewhitened long-run covariance. Its G makes the
+// fit/core/covariance.h: the prewhitened long-run covariance. Its G makes the
 // score identity sum_t J_t r_t = sum_s G_s u_s exact (u_t = r_t - rho
 // r_(t-1), rho the prewhitening one); for a constant regressor and AR(1) errors of innovation
 // variance s^2 it is the closed-form long-run variance n s^2 / (1 - rho)^2;
 // for white errors it is the plain sum of squares.
-#include "fit/covariance.h"
+#include "fit/core/covariance.h"
 
 #include <cmath>
 #include <random>

@@ -7,8 +7,8 @@
 #include <catch2/catch.hpp>
 
 #include "core/errors.h"
-#include "fit/frequency_response_fit.h"
-#include "fit/response_features.h"
+#include "fit/frf/frequency_response_fit.h"
+#include "fit/frf/response_features.h"
 #include "signal/frequency_response.h"
 #include "support/reference_two_mass.h"
 

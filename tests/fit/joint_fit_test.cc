@@ -1,7 +1,7 @@
 // Elastic joint (docs/models.md#elastic-joint): recovery of a two-mass joint
 // from the test's own generator (RK4, smooth Coulomb), intervals that cover
 // the truth over seeds under correlated torque noise, refusals by name.
-#include "fit/joint_fit.h"
+#include "fit/joint/joint_fit.h"
 
 #include <cmath>
 #include <random>

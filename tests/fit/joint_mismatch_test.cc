@@ -1,4 +1,4 @@
-// What the two-mass model lacks, named (fit/joint_mismatch.h): logs from the
+// What the two-mass model lacks, named (fit/joint/joint_mismatch.h): logs from the
 // independent closed-loop friction-joint generator
 // (tests/support/reference_joint_friction.cc) with gear backlash, a
 // hardening spring or torque ripple at the 6th order of the motor's
@@ -8,7 +8,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "fit/joint_fit.h"
+#include "fit/joint/joint_fit.h"
 #include "support/friction_joint_cases.h"
 
 using namespace driveid;

@@ -2,7 +2,7 @@
 // sensitivities against finite differences through stick-slip events,
 // recovery of a closed-loop joint with sticking motor friction from the
 // test's own generator (tests/support/reference_joint_friction.h), refusals.
-#include "fit/joint_oe_fit.h"
+#include "fit/joint/joint_oe_fit.h"
 
 #include <array>
 #include <cmath>
@@ -11,9 +11,9 @@
 #include <catch2/catch.hpp>
 
 #include "core/errors.h"
-#include "fit/joint_fit.h"
-#include "fit/fit_statistics.h"
-#include "fit/joint_oe_segments.h"
+#include "fit/joint/joint_fit.h"
+#include "fit/core/fit_statistics.h"
+#include "fit/joint/joint_oe_segments.h"
 #include "sim/joint_simulator.h"
 #include "support/friction_joint_cases.h"
 

@@ -1,7 +1,7 @@
 // The fit core: a model that cannot be evaluated is reported with its
 // reason and the parameter values, so the user sees why (e.g. CVODES's
 // message), not only that it failed.
-#include "fit/least_squares.h"
+#include "fit/core/least_squares.h"
 
 #include <cmath>
 #include <random>
@@ -11,7 +11,7 @@
 #include <catch2/catch.hpp>
 
 #include "core/errors.h"
-#include "fit/fit_statistics.h"
+#include "fit/core/fit_statistics.h"
 
 using namespace driveid;
 

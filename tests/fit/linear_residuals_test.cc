@@ -1,5 +1,5 @@
 // The linear model y = X p of the inverse-dynamics fits
-// (fit/linear_residuals.h): residuals and Jacobian read from chosen columns
+// (fit/core/linear_residuals.h): residuals and Jacobian read from chosen columns
 // of a row-major design, the same in row ranges as whole, and the fit core
 // on it landing on the least-squares solution of the normal equations.
 #include <cmath>
@@ -9,8 +9,8 @@
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
 
-#include "fit/least_squares.h"
-#include "fit/linear_residuals.h"
+#include "fit/core/least_squares.h"
+#include "fit/core/linear_residuals.h"
 
 namespace driveid {
 namespace {

@@ -1,11 +1,11 @@
-// fit/omitted_terms.h: the robust Wald test of a term the fit left out.
+// fit/core/omitted_terms.h: the robust Wald test of a term the fit left out.
 // Under "absent" (white errors, the term's coefficient 0) W is chi^2(1):
 // its mean over seeds is near 1 and it exceeds the 0.999 quantile almost
 // never; with the term present it is reported missing, its coefficient
 // recovered, its share of the residual sum of squares near the closed form
 // c^2 var(z~) / (c^2 var(z~) + s^2); a column the fit already spans is
 // dropped (dof 0).
-#include "fit/omitted_terms.h"
+#include "fit/core/omitted_terms.h"
 
 #include <cmath>
 #include <random>

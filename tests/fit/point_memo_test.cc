@@ -1,11 +1,11 @@
-// The fit core's one memo (fit/point_memo.h): a point is held only when it
+// The fit core's one memo (fit/core/point_memo.h): a point is held only when it
 // is the same bit for bit, split between shared and own parameters.
 #include <cmath>
 #include <vector>
 
 #include <catch2/catch.hpp>
 
-#include "fit/point_memo.h"
+#include "fit/core/point_memo.h"
 
 namespace driveid {
 namespace {

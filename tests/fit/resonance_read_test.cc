@@ -1,4 +1,4 @@
-// What a read resonance must be (fit/response_features.h): a maximum of |H|
+// What a read resonance must be (fit/frf/response_features.h): a maximum of |H|
 // whose phase turns down by 90 degrees or more, inside the band and a bin
 // away from 0.8 x Nyquist. Responses written here from their closed forms
 // (a rigid joint behind a delay, a lead corner, a filter's edge) and a
@@ -10,7 +10,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "fit/response_features.h"
+#include "fit/frf/response_features.h"
 #include "signal/frequency_response.h"
 #include "support/reference_two_mass.h"
 

@@ -1,7 +1,7 @@
 // Robot rigid-body identification (docs/models.md#planar-robot): recovery from the triangle with
 // prestress, encoder quantisation and current noise; the prestress has no
 // influence; the current prediction matches the motion part of the current.
-#include "fit/robot_fit.h"
+#include "fit/robot/robot_fit.h"
 #include "sim/robot_experiment.h"
 
 #include <cmath>

@@ -5,7 +5,7 @@
 // residuals are large and every term matters. The full model integrates the
 // undamped link mode throughout, so its differences need a step well above
 // the integrator's tolerance (1e-7 relative), as in drivetrain_simulator_test.
-#include "fit/scaled_cost.h"
+#include "fit/core/scaled_cost.h"
 
 #include <cmath>
 #include <random>
@@ -15,7 +15,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "fit/step_fit.h"
+#include "fit/step/step_fit.h"
 #include "sim/drivetrain_simulator.h"
 #include "support/paper000.h"
 #include "support/reference_drivetrain.h"

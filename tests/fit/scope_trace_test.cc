@@ -12,8 +12,8 @@
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
-#include "io/csv_log.h"
-#include "io/log_input.h"
+#include "logs/csv_log.h"
+#include "logs/log_input.h"
 #include "support/reference_scope_trace.h"
 #include "workflow/joint_identification.h"
 

@@ -1,4 +1,4 @@
-// The serial robot's identification (fit/serial_robot_fit.h) on logs of an
+// The serial robot's identification (fit/robot/serial_robot_fit.h) on logs of an
 // independent three-joint arm (tests/support/reference_serial_arm.h): the
 // base parameters' 95 % intervals hold the truth at their promised rate
 // over noise seeds (coloured torque noise, quantised encoders, jittered
@@ -11,7 +11,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "fit/serial_robot_fit.h"
+#include "fit/robot/serial_robot_fit.h"
 #include "models/serial_dynamics.h"
 #include "support/reference_serial_arm.h"
 #include "support/serial_arm_robot.h"

@@ -1,7 +1,7 @@
 // Recovery: logs from the independent reference implementation with the
 // paper's values (docs/models.md#drive-train), fit from starting values off by 2-5x; the truth
 // must lie within the stated tolerance and inside the reported 95 % interval.
-#include "fit/step_fit.h"
+#include "fit/step/step_fit.h"
 
 #include <cmath>
 #include <random>

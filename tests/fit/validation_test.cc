@@ -1,13 +1,13 @@
 // Validation (docs/models.md#validation): logs predicted from parameters,
 // against logs from generators written independently of the library.
-#include "fit/validation.h"
+#include "fit/validation/validation.h"
 
 #include <cmath>
 #include <random>
 
 #include <catch2/catch.hpp>
 
-#include "fit/axis_fit.h"
+#include "fit/axis/axis_fit.h"
 #include "support/paper000.h"
 #include "support/reference_drivetrain.h"
 

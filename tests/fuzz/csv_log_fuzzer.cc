@@ -5,7 +5,7 @@
 #include <string>
 
 #include "core/errors.h"
-#include "io/csv_log.h"
+#include "logs/log_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -9,8 +9,12 @@
 #include <cstdint>
 #include <string>
 
+#include "logs/log_format.h"
+#include "logs/formats/wpilog_source.h"
+#include "logs/formats/sysid_source.h"
+#include "logs/formats/mat_source.h"
 #include "core/errors.h"
-#include "io/log_input.h"
+#include "logs/log_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return 0;
@@ -39,8 +43,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         format.joints = {"axis"};
         format.topic = "/joint_states";
         format.motor = "leader";
-        const auto open = data[0] % 5 == 3 ? driveid::OpenWpilogSources : driveid::OpenRosBagSources;
-        for (const auto& source : open("fuzz.log", text, format)) {
+        // The bag readers by the bag's magic, the SQLite reader for any other bytes.
+        const driveid::LogFormat& sniffed = driveid::SniffLogFormat(text);
+        const driveid::LogFormat* bag = &sniffed;
+        if (sniffed.source != "rosbag") {
+          for (const auto& f : driveid::LogFormats()) {
+            if (f.name == "rosbag2-sqlite3") bag = &f;
+          }
+        }
+        const auto sources = data[0] % 5 == 3 ? driveid::OpenWpilogSources("fuzz.log", text, format)
+                                              : bag->open("fuzz.log", text, {}, format);
+        for (const auto& source : sources) {
           if (source->column_names().empty()) continue;  // the catalog
           driveid::ReadLogColumns(*source, {"t", "q", "tau|i"}, options);
         }

@@ -1,11 +1,12 @@
 // Linked into every fuzzer: a MAT file (whichever reader meets one) is read
-// in the forked child by the reader linked here (io/mat_reader.h), not by
+// in the forked child by the reader linked here (logs/formats/mat_reader.h), not by
 // the reader process: an exec per input would slow the fuzzers tenfold.
-// The child has the limits of the reader process (io/mat_source.cc).
+// The child has the limits of the reader process (logs/formats/mat_source.cc).
 #include <string>
 
-#include "io/mat_reader.h"
-#include "io/table_source.h"
+#include "logs/formats/mat_source.h"
+#include "logs/formats/mat_reader.h"
+#include "logs/table_source.h"
 
 namespace {
 

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "core/errors.h"
-#include "io/parameter_file.h"
+#include "params/parameter_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

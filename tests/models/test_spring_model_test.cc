@@ -9,8 +9,8 @@
 #include <catch2/catch.hpp>
 
 #include "core/errors.h"
-#include "fit/linear_regression.h"
-#include "io/parameter_file.h"
+#include "fit/core/linear_regression.h"
+#include "params/parameter_file.h"
 #include "support/test_spring_model.h"
 
 using namespace driveid;

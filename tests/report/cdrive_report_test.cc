@@ -9,7 +9,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "io/parameter_file.h"
+#include "params/parameter_file.h"
 
 using namespace driveid;
 

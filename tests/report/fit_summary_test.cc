@@ -8,7 +8,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "fit/adequacy.h"
+#include "fit/core/adequacy.h"
 
 using namespace driveid;
 

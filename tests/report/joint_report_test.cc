@@ -10,7 +10,7 @@
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
 
-#include "io/parameter_file.h"
+#include "params/parameter_file.h"
 #include "models/frequency_response.h"
 #include "report/joint_report.h"
 

@@ -12,7 +12,7 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "io/parameter_file.h"
+#include "params/parameter_file.h"
 
 using namespace driveid;
 

@@ -7,7 +7,7 @@
 #include "support/paper001.h"
 
 #include "control/cdrive_controller.h"
-#include "fit/cdrive_fit.h"
+#include "fit/cdrive/cdrive_fit.h"
 #include "sim/cdrive_closed_loop.h"
 #include "sim/cdrive_plant.h"
 

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "io/joint_log.h"
+#include "logs/joint_log.h"
 #include "models/joint.h"
 #include "support/reference_joint_friction.h"
 

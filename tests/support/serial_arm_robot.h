@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "io/serial_robot_log.h"
+#include "logs/serial_robot_log.h"
 #include "models/serial_robot.h"
 #include "support/reference_serial_arm.h"
 

@@ -7,7 +7,7 @@
 
 #include <optional>
 
-#include "io/parameter_sections.h"
+#include "params/parameter_sections.h"
 #include "models/parameter_table.h"
 
 namespace driveid::testing {

@@ -2,13 +2,15 @@
 // variables and struct fields with sizes and addresses, columns on request;
 // a log that cannot be read as a fit would read it says why, not "no time
 // base" when the time base is fine.
+#include "logs/formats/mat_source.h"
+#include "logs/formats/csv_source.h"
 #include "workflow/log_inspection.h"
 
 #include <string>
 
 #include <catch2/catch.hpp>
 
-#include "io/table_source.h"
+#include "logs/table_source.h"
 #include "support/mat_fixture.h"
 
 using namespace driveid;

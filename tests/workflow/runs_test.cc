@@ -10,10 +10,10 @@
 #include <catch2/catch.hpp>
 
 #include "core/errors.h"
-#include "io/cdrive_log.h"
-#include "io/csv_log.h"
-#include "io/parameter_file.h"
-#include "io/robot_log.h"
+#include "logs/cdrive_log.h"
+#include "logs/csv_log.h"
+#include "params/parameter_file.h"
+#include "logs/robot_log.h"
 #include "workflow/cdrive_compensation.h"
 #include "workflow/cdrive_identification.h"
 #include "workflow/cdrive_simulation.h"

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <string>
 
-#include "io/parameter_file.h"
+#include "params/parameter_file.h"
 #include "workflow/feedback_design.h"
 
 using namespace driveid;

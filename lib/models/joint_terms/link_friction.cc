@@ -2,7 +2,7 @@
 // elastic element: b_l theta_l' + c_l sgn(theta_l'). Only the total equation
 // sees it (the motor's does not reach past the spring). The output-error
 // simulation does not hold the link's Coulomb part and refuses it by name
-// (fit/joint_oe_fit.h).
+// (fit/joint/joint_oe_fit.h).
 #include <memory>
 
 #include "models/joint.h"

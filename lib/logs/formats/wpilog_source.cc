@@ -1,0 +1,372 @@
+// A WPILib SysIdRoutine recorded in a DataLog (logs/formats/wpilog.h; docs/formats.md#wpilog):
+// the string entry `sysid-test-state-<mechanism>` (quasistatic-forward,
+// quasistatic-reverse, dynamic-forward, dynamic-reverse, none) splits the
+// tests; the motor's entries `voltage-<motor>-<mechanism>`,
+// `position-<motor>-<mechanism>`, `velocity-<motor>-<mechanism>` carry its
+// samples, each at its own time, units in the entries' metadata. Each test
+// is one source with the columns t, voltage, position, velocity: t are the
+// voltage records' times, position and velocity are interpolated linearly
+// to them, as SysId does. A test run more than once gives its last complete
+// run. Without a routine, `inspect` still lists the entries (a catalog).
+#include "logs/formats/wpilog_source.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "core/errors.h"
+#include "core/order_statistics.h"
+#include "logs/formats/wpilog.h"
+#include "logs/log_format.h"
+#include "logs/table_source.h"
+
+namespace driveid {
+namespace {
+
+constexpr std::string_view kStatePrefix = "sysid-test-state-";
+const char* const kTests[] = {"quasistatic-forward", "quasistatic-reverse", "dynamic-forward", "dynamic-reverse"};
+
+bool StartsWith(const std::string& text, std::string_view prefix) { return text.compare(0, prefix.size(), prefix) == 0; }
+bool EndsWith(const std::string& text, const std::string& suffix) {
+  return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// The unit a parameter file and the feed-forward take for WPILib's unit name.
+std::string PositionUnit(const std::string& metadata) {
+  static const std::map<std::string, std::string> kNames = {
+      {"Meter", "Meters"},   {"Meters", "Meters"},     {"Rotation", "Rotations"}, {"Rotations", "Rotations"},
+      {"Radian", "Radians"}, {"Radians", "Radians"},   {"Degree", "Degrees"},     {"Degrees", "Degrees"},
+      {"Foot", "Feet"},      {"Feet", "Feet"},         {"Inch", "Inches"},        {"Inches", "Inches"},
+      {"Millimeter", "mm"},  {"Millimeters", "mm"}};
+  const auto found = kNames.find(metadata);
+  return found == kNames.end() ? metadata : found->second;
+}
+
+// Samples of one entry (all Starts of its name), sorted by time.
+struct Series {
+  std::vector<double> t_us, value;
+};
+
+// One contiguous run of a test state: [begin, end) in µs; complete when a
+// later state record ended it.
+struct Run {
+  std::int64_t begin = 0, end = 0;
+  bool complete = false;
+};
+
+// A value interpolated linearly at `t` from a sorted series that spans it.
+double Interpolate(const Series& s, double t) {
+  const auto next = std::upper_bound(s.t_us.begin(), s.t_us.end(), t);
+  const std::size_t k = static_cast<std::size_t>(next - s.t_us.begin());
+  if (k == 0) return s.value.front();
+  if (k == s.t_us.size()) return s.value.back();
+  const double t0 = s.t_us[k - 1], t1 = s.t_us[k];
+  const double w = t1 > t0 ? (t - t0) / (t1 - t0) : 0.0;
+  return s.value[k - 1] + w * (s.value[k] - s.value[k - 1]);
+}
+
+// The runs of each test state, from the state records in time order.
+std::map<std::string, std::vector<Run>> StateRuns(const std::vector<std::pair<std::int64_t, std::string>>& states,
+                                                  std::int64_t log_end) {
+  std::map<std::string, std::vector<Run>> runs;
+  std::string current;
+  for (const auto& [t, state] : states) {
+    if (state == current) continue;
+    if (!current.empty() && current != "none") {
+      runs[current].back().end = t;
+      runs[current].back().complete = true;
+    }
+    current = state;
+    if (current != "none") runs[current].push_back({t, log_end + 1, false});
+  }
+  return runs;
+}
+
+
+std::string EntrySummary(const WpilogEntry& e) {
+  const double span = static_cast<double>(e.last_us - e.first_us) * 1e-6;
+  std::string out = fmt::format("{}, {} records", e.type, e.records);
+  if (e.records > 0) out += fmt::format(", {:.3f} .. {:.3f} s", static_cast<double>(e.first_us) * 1e-6, static_cast<double>(e.last_us) * 1e-6);
+  if (e.records > 1 && span > 0.0) out += fmt::format(", {:.3g} Hz", static_cast<double>(e.records - 1) / span);
+  if (!e.metadata.empty()) out += fmt::format(", metadata '{}'", e.metadata.substr(0, 80));
+  if (e.negative_records > 0) out += fmt::format(", {} with negative times left out", e.negative_records);
+  return out;
+}
+
+// What one routine offers: its motors and the state entry's records.
+struct Routine {
+  std::string mechanism;
+  std::vector<std::string> motors;
+};
+
+std::vector<Routine> FindRoutines(const WpilogIndex& index) {
+  std::vector<Routine> out;
+  std::set<std::string> seen;
+  for (const auto& e : index.entries) {
+    if (!StartsWith(e.name, kStatePrefix) || e.type != "string") continue;
+    const std::string mechanism = e.name.substr(kStatePrefix.size());
+    if (!seen.insert(mechanism).second) continue;
+    Routine routine{mechanism, {}};
+    std::set<std::string> motors;
+    for (const auto& v : index.entries) {
+      const std::string suffix = "-" + mechanism;
+      if (!StartsWith(v.name, "voltage-") || !EndsWith(v.name, suffix) || v.name.size() <= 8 + suffix.size()) continue;
+      const std::string motor = v.name.substr(8, v.name.size() - 8 - suffix.size());
+      const auto has = [&](const std::string& kind) {
+        return std::any_of(index.entries.begin(), index.entries.end(),
+                           [&](const WpilogEntry& x) { return x.name == kind + "-" + motor + suffix; });
+      };
+      if (has("position") && has("velocity") && motors.insert(motor).second) routine.motors.push_back(motor);
+    }
+    out.push_back(std::move(routine));
+  }
+  return out;
+}
+
+// The routine's records: the state entry's strings and the motor's three
+// numeric series, sorted by time.
+struct RoutineData {
+  std::vector<std::pair<std::int64_t, std::string>> states;
+  Series voltage, position, velocity;
+  std::string position_unit, velocity_unit, voltage_unit;
+  std::int64_t log_end = 0;
+};
+
+RoutineData ReadRoutine(const std::string& path, const std::string& text, const std::string& mechanism,
+                        const std::string& motor) {
+  RoutineData data;
+  const std::string state_name = std::string(kStatePrefix) + mechanism;
+  const std::string suffix = "-" + motor + "-" + mechanism;
+  const WpilogIndex index = ReadWpilog(path, text, [&](const WpilogRecord& r) {
+    data.log_end = std::max(data.log_end, r.timestamp_us);
+    const WpilogEntry& e = *r.entry;
+    if (e.name == state_name) {
+      data.states.emplace_back(r.timestamp_us, std::string(r.payload));
+      return;
+    }
+    Series* series = e.name == "voltage" + suffix    ? &data.voltage
+                     : e.name == "position" + suffix ? &data.position
+                     : e.name == "velocity" + suffix ? &data.velocity
+                                                     : nullptr;
+    if (series == nullptr) return;
+    double value = 0.0;
+    if (!WpilogNumber(e.type, r.payload, value)) {
+      throw InputError(fmt::format("{}: record at offset {} of '{}' ({}): not a number of that type", path, r.offset,
+                                   e.name, e.type));
+    }
+    if (!std::isfinite(value)) {
+      throw InputError(fmt::format("{}: record at offset {} of '{}': {} is not a finite number", path, r.offset, e.name, value));
+    }
+    series->t_us.push_back(static_cast<double>(r.timestamp_us));
+    series->value.push_back(value);
+  });
+  for (const auto& e : index.entries) {
+    if (e.name == "voltage" + suffix) data.voltage_unit = e.metadata;
+    if (e.name == "position" + suffix) data.position_unit = e.metadata;
+    if (e.name == "velocity" + suffix) data.velocity_unit = e.metadata;
+  }
+  std::stable_sort(data.states.begin(), data.states.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (Series* s : {&data.voltage, &data.position, &data.velocity}) {
+    std::vector<std::size_t> order(s->t_us.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return s->t_us[a] < s->t_us[b]; });
+    Series sorted;
+    for (std::size_t i : order) {
+      sorted.t_us.push_back(s->t_us[i]);
+      sorted.value.push_back(s->value[i]);
+    }
+    *s = std::move(sorted);
+  }
+  return data;
+}
+
+// One test's columns from its chosen run; notes say what was taken.
+std::vector<std::vector<double>> TestColumns(const RoutineData& data, const Run& run, std::vector<std::string>& notes) {
+  std::vector<std::vector<double>> columns(4);
+  std::vector<double> lags;
+  std::size_t outside = 0, repeated = 0;
+  const double lo = std::max(data.position.t_us.front(), data.velocity.t_us.front());
+  const double hi = std::min(data.position.t_us.back(), data.velocity.t_us.back());
+  for (std::size_t k = 0; k < data.voltage.t_us.size(); ++k) {
+    const double t = data.voltage.t_us[k];
+    if (t < static_cast<double>(run.begin) || t >= static_cast<double>(run.end)) continue;
+    if (t < lo || t > hi) {
+      ++outside;
+      continue;
+    }
+    if (!columns[0].empty() && t * 1e-6 <= columns[0].back()) {
+      ++repeated;
+      continue;
+    }
+    columns[0].push_back(t * 1e-6);
+    columns[1].push_back(data.voltage.value[k]);
+    columns[2].push_back(Interpolate(data.position, t));
+    columns[3].push_back(Interpolate(data.velocity, t));
+    const auto next = std::lower_bound(data.position.t_us.begin(), data.position.t_us.end(), t);
+    if (next != data.position.t_us.end()) lags.push_back(*next - t);
+  }
+  if (!lags.empty()) {
+    notes.push_back(fmt::format("time base: the voltage records; position and velocity interpolated linearly to their "
+                                "times (as SysId does); the position was logged a median {:.0f} µs after the voltage",
+                                Median(lags)));
+  }
+  if (outside > 0) notes.push_back(fmt::format("{} voltage records outside the position's and velocity's span left out", outside));
+  if (repeated > 0) notes.push_back(fmt::format("{} voltage records at a repeated time left out", repeated));
+  return columns;
+}
+
+std::string MechanismOf(const std::string& test) {
+  if (test == "arm") return "Arm";
+  if (test == "elevator") return "Elevator";
+  return "Simple";
+}
+
+std::vector<std::unique_ptr<TableSource>> RoutineSources(const std::string& path, const std::string& text,
+                                                         const std::string& mechanism, const std::string& motor,
+                                                         const SysIdFormat& format) {
+  const RoutineData data = ReadRoutine(path, text, mechanism, motor);
+  if (data.voltage.t_us.empty() || data.position.t_us.empty() || data.velocity.t_us.empty()) {
+    throw InputError(fmt::format("{}: motor '{}' of SysIdRoutine '{}' has no voltage, position or velocity records", path,
+                                 motor, mechanism));
+  }
+  const std::string unit = PositionUnit(data.position_unit);
+  std::vector<std::string> common = {fmt::format(
+      "WPILog SysIdRoutine '{}', motor '{}': voltage in '{}', position in '{}' (read as {}), velocity in '{}'", mechanism,
+      motor, data.voltage_unit, data.position_unit, unit.empty() ? "no unit" : unit, data.velocity_unit)};
+  if (!data.velocity_unit.empty() && data.velocity_unit != data.position_unit + " per Second") {
+    common.push_back(fmt::format("{} the velocity's unit '{}' is not the position's '{}' per second", kReaderWarning,
+                                 data.velocity_unit, data.position_unit));
+  }
+  const auto runs = StateRuns(data.states, data.log_end);
+  struct Taken {
+    std::string test;
+    std::vector<std::vector<double>> columns;
+    std::vector<std::string> notes;
+  };
+  std::vector<Taken> taken;
+  std::vector<std::string> missing;
+  for (const char* test : kTests) {
+    const auto found = runs.find(test);
+    if (found == runs.end()) {
+      missing.push_back(test);
+      continue;
+    }
+    const std::vector<Run>& all = found->second;
+    auto chosen = std::find_if(all.rbegin(), all.rend(), [](const Run& r) { return r.complete; });
+    std::vector<std::string> notes = common;
+    if (chosen == all.rend()) {
+      chosen = all.rbegin();
+      notes.push_back(fmt::format("{} the test never ended before the log did: its last run is taken as it stands",
+                                  kReaderWarning));
+    }
+    const std::size_t number = static_cast<std::size_t>(all.rend() - chosen);
+    const double end = chosen->complete ? static_cast<double>(chosen->end) * 1e-6 : static_cast<double>(data.log_end) * 1e-6;
+    notes.push_back(fmt::format("test {}: run {} of {} ({:.3f} .. {:.3f} s){}", test, number, all.size(),
+                                static_cast<double>(chosen->begin) * 1e-6, end,
+                                all.size() > 1 ? "; the test ran more than once: its last complete run is used" : ""));
+    auto columns = TestColumns(data, *chosen, notes);
+    if (columns[0].size() < 2) {
+      missing.push_back(fmt::format("{} ({} samples)", test, columns[0].size()));
+      continue;
+    }
+    taken.push_back({test, std::move(columns), std::move(notes)});
+  }
+  if (taken.empty()) {
+    throw InputError(fmt::format("{}: SysIdRoutine '{}' holds no test with samples of motor '{}'", path, mechanism, motor));
+  }
+  std::vector<std::unique_ptr<TableSource>> out;
+  for (auto& t : taken) {
+    if (!missing.empty()) t.notes.push_back(fmt::format("{} no test {} in the log", kReaderWarning, fmt::join(missing, ", ")));
+    out.push_back(MakeMemorySource({path, t.test, "wpilog", unit, MechanismOf(format.test), {"t", "voltage", "position", "velocity"},
+                                    std::move(t.columns), std::move(t.notes), SysIdDefaults(), {}}));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::unique_ptr<TableSource>> OpenWpilogSources(const std::string& path, const std::string& text,
+                                                            const SysIdFormat& format) {
+  const WpilogIndex index = ReadWpilog(path, text);
+  const std::vector<Routine> routines = FindRoutines(index);
+  std::vector<std::string> mechanisms;
+  for (const auto& r : routines) mechanisms.push_back(r.mechanism);
+  if (format.catalog) {
+    std::vector<SourceVariable> variables;
+    for (const auto& e : index.entries) variables.push_back({e.name, e.records, 1, EntrySummary(e)});
+    std::vector<std::string> notes = {fmt::format("WPILog version {}.{}, {} entries, {} records{}", index.version >> 8,
+                                                  index.version & 0xff, index.entries.size(), index.records,
+                                                  index.orphan_records > 0
+                                                      ? fmt::format(", {} of no started entry", index.orphan_records)
+                                                      : "")};
+    for (const auto& r : routines) {
+      notes.push_back(fmt::format("SysIdRoutine '{}' (‹mechanism›): motors {} (‹motor›)", r.mechanism,
+                                  r.motors.empty() ? std::string("none") : fmt::format("{}", fmt::join(r.motors, ", "))));
+    }
+    if (routines.empty()) notes.push_back("no SysIdRoutine (no string entry sysid-test-state-<mechanism>)");
+    for (const auto& r : routines) {
+      const RoutineData data = ReadRoutine(path, text, r.mechanism, "");
+      for (const auto& [test, runs] : StateRuns(data.states, data.log_end)) {
+        std::vector<std::string> spans;
+        for (const Run& run : runs) {
+          spans.push_back(fmt::format("{:.3f} .. {:.3f} s{}", static_cast<double>(run.begin) * 1e-6,
+                                      static_cast<double>(run.complete ? run.end : data.log_end) * 1e-6,
+                                      run.complete ? "" : " (not ended)"));
+        }
+        notes.push_back(fmt::format("'{}' test {}: {} run{} ({})", r.mechanism, test, runs.size(), runs.size() > 1 ? "s" : "",
+                                    fmt::join(spans, ", ")));
+      }
+    }
+    std::vector<std::unique_ptr<TableSource>> out;
+    out.push_back(MakeMemorySource({path, "", "wpilog", "", "", {}, {}, std::move(notes), {}, std::move(variables)}));
+    // The tests as a fit would read them, when the routine and motor are clear.
+    try {
+      const std::string mechanism = ChooseName(mechanisms, format.mechanism, "SysIdRoutine", "mechanism", path);
+      const Routine& routine =
+          *std::find_if(routines.begin(), routines.end(), [&](const Routine& r) { return r.mechanism == mechanism; });
+      const std::string motor = ChooseName(routine.motors, format.motor, "motor", "motor", path);
+      for (auto& source : RoutineSources(path, text, mechanism, motor, format)) out.push_back(std::move(source));
+    } catch (const OptionError&) {
+    }
+    return out;
+  }
+  if (routines.empty()) {
+    throw InputError(fmt::format("{}: a WPILib DataLog without a SysIdRoutine (no string entry "
+                                 "sysid-test-state-<mechanism>); inspect lists its {} entries",
+                                 path, index.entries.size()));
+  }
+  const std::string mechanism = ChooseName(mechanisms, format.mechanism, "SysIdRoutine", "mechanism", path);
+  const Routine& routine = *std::find_if(routines.begin(), routines.end(), [&](const Routine& r) { return r.mechanism == mechanism; });
+  if (routine.motors.empty()) {
+    throw InputError(fmt::format("{}: SysIdRoutine '{}' has no motor with voltage-, position- and velocity- entries", path,
+                                 mechanism));
+  }
+  const std::string motor = ChooseName(routine.motors, format.motor, "motor", "motor", path);
+  return RoutineSources(path, text, mechanism, motor, format);
+}
+
+DRIVEID_LOG_FORMAT(wpilog_source) {
+  LogFormat format;
+  format.name = "wpilog";
+  format.source = "wpilog";
+  format.kind = "a WPILog";
+  format.sniff = LooksLikeWpilog;
+  format.structured = true;
+  const std::string refusal = "‹{option}›: {path} is no WPILog; ‹{option}› chooses in a SysIdRoutine's .wpilog";
+  for (const char* option : {"mechanism", "motor", "test"}) {
+    format.options.push_back(option);
+    format.declared.push_back({option, refusal});
+  }
+  format.catalog = {"the log's entries; a SysIdRoutine's tests follow as the sources a fit reads", "entry", "records",
+                    "type, records, span, mean rate over the span, metadata"};
+  format.open = [](const std::string& path, const std::string& text, const CsvFormat&, const SysIdFormat& sysid) {
+    return OpenWpilogSources(path, text, sysid);
+  };
+  return format;
+}
+
+}  // namespace driveid

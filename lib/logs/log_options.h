@@ -1,0 +1,31 @@
+// The options every log is read with (`--col`, the formats' own, `--rate`,
+// `--from/--to`, the time column), apart from the reading itself
+// (logs/log_input.h) so that the time join can take them too.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+
+#include "logs/table_source.h"
+
+namespace driveid {
+
+/// A log column whose largest magnitude exceeds this (or is below the
+/// smallest, other than all zeros) is refused: a fit could not square it.
+inline constexpr double kLargestLogMagnitude = 1e150;
+inline constexpr double kSmallestLogMagnitude = 1e-150;
+
+struct LogInputOptions {
+  /// Logical column name -> expression (`--col NAME=EXPR`).
+  std::map<std::string, std::string> columns;
+  CsvFormat csv;
+  SysIdFormat sysid;
+  double rate = 0.0;  ///< --rate [Hz]: samples at this rate from t = 0 (0: the time column)
+  std::optional<double> from, to;  ///< --from, --to [s]: crop in the log's time
+  std::string time_column = "t";   ///< strictly increasing
+  /// Every bound on these fields (‹field› names the option); see core/option_check.h.
+  bool IsValid(std::string* error) const;
+};
+
+}  // namespace driveid
