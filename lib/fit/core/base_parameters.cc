@@ -37,8 +37,10 @@ BaseParameters FindBaseParameters(const Eigen::MatrixXd& w, const std::vector<st
   Eigen::MatrixXd wb(w.rows(), r), wd(w.rows(), static_cast<Eigen::Index>(dependent.size()));
   for (Eigen::Index k = 0; k < r; ++k) wb.col(k) = w.col(static_cast<Eigen::Index>(out.base[static_cast<std::size_t>(k)]));
   for (std::size_t k = 0; k < dependent.size(); ++k) wd.col(static_cast<Eigen::Index>(k)) = w.col(static_cast<Eigen::Index>(dependent[k]));
-  // W_d = W_b B, exactly up to rounding: B by least squares on W_b.
-  const Eigen::MatrixXd b = wb.colPivHouseholderQr().solve(wd);
+  // W_d = W_b B, exactly up to rounding: B by least squares on W_b (none
+  // to solve for when every column is a base parameter: Eigen's solve of an
+  // empty right-hand side offsets a null pointer).
+  const Eigen::MatrixXd b = dependent.empty() ? Eigen::MatrixXd(r, 0) : Eigen::MatrixXd(wb.colPivHouseholderQr().solve(wd));
   out.regroup = Eigen::MatrixXd::Zero(r, p);
   out.combination.resize(out.base.size());
   for (Eigen::Index k = 0; k < r; ++k) {
