@@ -46,14 +46,14 @@ CLI::App* SetupInspect(CLI::App& app, InspectOptions& options) {
 void RunInspect(const InspectOptions& options) {
   const ReadLimits limits = LogReadLimits(options.max_log_gib);
   LogInputOptions input = MakeLogInputOptions(options.input);
-  input.sysid.catalog = true;  // a WPILog lists its entries, routines and motors
+  input.selection.catalog = true;  // a WPILog lists its entries, routines and motors
   std::string text_out;
   Json json = Json::array();
   for (std::size_t i = 0; i < options.logs.size(); ++i) {
     const LogFileBytes file = ReadLogFile(options.logs[i], limits, false);
     const std::string& text = file.text;
     LogInputOptions file_input = input;
-    file_input.sysid.stream_file = file.stream_file;
+    file_input.selection.stream_file = file.stream_file;
     std::string join_text;
     std::vector<JoinedFile> joins;
     const std::string join_path = JoinFor(options.input, i, options.logs.size());

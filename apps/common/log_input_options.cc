@@ -49,29 +49,29 @@ void AddLogInputOptions(CLI::App& command, LogInputCli& options, const std::stri
   command.add_option("--join-align", options.join_align,
                      "with --join-time: find the shift (and a clock-rate difference) by cross-correlating a channel "
                      "both files record, LOG_COLUMN=JOINED_COLUMN (e.g. speed=#2)");
-  command.add_option("--side", options.side, "SysId Drivetrain files: left, right or both (two logs per test)")
+  command.add_option("--side", options.selection.sysid.side, "SysId Drivetrain files: left, right or both (two logs per test)")
       ->check(CLI::IsMember({"left", "right", "both"}));
-  command.add_option("--mechanism", options.mechanism,
+  command.add_option("--mechanism", options.selection.wpilog.mechanism,
                      "WPILog: the SysIdRoutine (its sysid-test-state-NAME entry) when the log holds several "
                      "(docs/formats.md#wpilog)");
-  command.add_option("--motor", options.motor,
+  command.add_option("--motor", options.selection.wpilog.motor,
                      "WPILog: the motor of the SysIdRoutine (its voltage-MOTOR-... entries) when it logs several");
-  command.add_option("--test", options.test, "WPILog: the mechanism SysId would be told: simple (default), arm, elevator")
+  command.add_option("--test", options.selection.wpilog.test, "WPILog: the mechanism SysId would be told: simple (default), arm, elevator")
       ->check(CLI::IsMember({"simple", "arm", "elevator"}));
-  command.add_option("--topic", options.topic,
+  command.add_option("--topic", options.selection.bag.topic,
                      "ROS bag: the sensor_msgs/JointState topic when the bag has several (docs/formats.md#ros-bags)");
   // `validate` names an MJCF joint with --joint; there a bag's joint is a --col.
   if (command.get_option_no_throw("--joint") == nullptr) {
-    command.add_option("--joint", options.joints,
+    command.add_option("--joint", options.selection.bag.joints,
                        "ROS bag: the joint whose position, velocity and effort are q, qd and tau (repeat for several: "
                        "their messages make the rows; map them with --col q_motor=NAME.position ...); all: every "
                        "joint as q_<joint>, qd_<joint>, tau_<joint> (robot --urdf)");
   }
-  command.add_option("--joint-motor", options.joint_motor,
+  command.add_option("--joint-motor", options.selection.bag.joint_motor,
                      "ROS bag, elastic joint: the joint whose position, velocity and effort are q_motor, qd_motor and tau");
-  command.add_option("--joint-link", options.joint_link,
+  command.add_option("--joint-link", options.selection.bag.joint_link,
                      "ROS bag, elastic joint: the joint whose position and velocity are q_link and qd_link");
-  command.add_option("--time", options.time,
+  command.add_option("--time", options.selection.bag.time,
                      "ROS bag: the time base, header (the messages' stamps, default) or receive (the bag's times)")
       ->check(CLI::IsMember({"header", "receive"}));
 }
@@ -97,16 +97,7 @@ LogInputOptions MakeLogInputOptions(const LogInputCli& options) {
   const std::string& d = options.delimiter;
   out.csv.delimiter = d == "comma" || d == "," ? ',' : d == "semicolon" || d == ";" ? ';' : d == "tab" ? '\t'
                       : d == "space" ? ' ' : 0;
-  out.sysid.side = options.side;
-  out.sysid.mechanism = options.mechanism;
-  out.sysid.motor = options.motor;
-  out.sysid.test = options.test;
-  out.sysid.topic = options.topic;
-  out.sysid.joints = options.joints;
-  out.sysid.every_joint = options.every_joint;
-  out.sysid.time = options.time;
-  out.sysid.joint_motor = options.joint_motor;
-  out.sysid.joint_link = options.joint_link;
+  out.selection = options.selection;
   out.rate = options.rate;
   if (std::isfinite(options.from)) out.from = options.from;
   if (std::isfinite(options.to)) out.to = options.to;

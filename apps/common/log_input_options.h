@@ -29,13 +29,12 @@ struct LogInputCli {
   std::string join_time;                ///< --join-time EXPR: join by time
   std::vector<double> join_shift;       ///< --join-shift S: once, or once per log
   std::string join_align;               ///< --join-align A=B
-  std::string side;
-  std::string mechanism, motor, test;  ///< WPILog SysIdRoutine: --mechanism, --motor, --test
-  std::string topic;                   ///< ROS bags: --topic, --joint (repeated), --time header|receive
-  std::vector<std::string> joints;
-  bool every_joint = false;  ///< not a flag: a serial robot's command reads every joint of a bag by default
-  std::string time = kDefaultBagTime;
-  std::string joint_motor, joint_link;  ///< ROS bags, an elastic joint: --joint-motor, --joint-link
+  /// --side (SysId JSON); --mechanism, --motor, --test (WPILog); --topic,
+  /// --joint (repeated), --time, --joint-motor, --joint-link (ROS bags),
+  /// bound to the readers' own options as they are (logs/log_selection.h).
+  /// bag.every_joint is not a flag: a serial robot's command reads every
+  /// joint of a bag by default.
+  LogSelection selection;
 };
 
 /// Every input file of a command reading logs: the logs, the parameter file,

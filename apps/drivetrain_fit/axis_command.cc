@@ -18,7 +18,7 @@ CLI::App* SetupAxisCommand(CLI::App& app, AxisOptions& options) {
       "axis", "Inertia, viscous and Coulomb friction and offset of a rigid axis by inverse dynamics (IDIM-LS) or output error (docs/models.md#axis)");
   command->add_option("logs", options.logs, "axis logs (CSV, MAT, SysId JSON; docs/formats.md#logs) with t, q and tau (or i with axis.k_t), optional qd")->required();
   command->add_option("--params", options.params, "parameter file with an axis section (start values, k_t, n_g)");
-  AddFreeOption(*command, options.free,
+  AddFreeOption(*command, options.fit.free,
                 FreeOptionHelp(AxisParameterTable(), "axis", " (rotary units; on a linear axis, --linear: kg, N s/m, N, m/s)"));
   AddLogInputOptions(*command, options.input, "q=pi/180*#2, tau=10*#14");
   command->add_option("--validate", options.validate,
@@ -34,10 +34,10 @@ CLI::App* SetupAxisCommand(CLI::App& app, AxisOptions& options) {
                     "a linear axis: q in m, forces in N; units kg, N s/m, N in every output, no cos q / sin q gravity "
                     "(the weight is a constant force: the offset). Also axis.linear: true in --params, and SysId logs "
                     "in Meters, Feet or Inches (docs/models.md#axis)");
-  command->add_option("--cutoff", options.cutoff,
+  command->add_option("--cutoff", options.fit.cutoff,
                       "position low-pass cutoff [Hz] (default: from the data, docs/models.md#axis-cutoff-from-the-data)")
       ->check(FiniteAbove(0.0));
-  command->add_option("--decimation", options.decimation, "parallel decimation factor")
+  command->add_option("--decimation", options.fit.decimation, "parallel decimation factor")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
   command->add_option("--torque-timing", options.torque_timing,
@@ -90,15 +90,13 @@ AxisCommandResult ComputeAxisCommand(const AxisOptions& options, const std::stri
   if (output_error && !options.validate.empty()) {
     throw OptionError("--validate predicts by inverse dynamics: use it with --method idim");
   }
-  if (output_error && options.cutoff > 0.0) {
+  if (output_error && options.fit.cutoff > 0.0) {
     throw OptionError("--cutoff applies to --method idim only");
   }
-  fit_options.free = options.free;
-  fit_options.cutoff = options.cutoff;
-  fit_options.decimation = options.decimation;
-  fit_options.torque_timing = ParseAxisTorqueTiming(options.torque_timing, fit_options.torque_delay);
+  fit_options.axis = options.fit;
+  fit_options.axis.torque_timing = ParseAxisTorqueTiming(options.torque_timing, fit_options.axis.torque_delay);
   fit_options.trace = !options.output.trace.empty();
-  SetProgress(fit_options.fit, options.output.verbose, options.output.max_seconds);
+  SetProgress(fit_options.axis.fit, options.output.verbose, options.output.max_seconds);
   std::vector<AxisLog> validation;
   if (!options.validate.empty()) {
     FitProvenance held_out;

@@ -17,11 +17,11 @@ namespace driveid::cli {
 struct AxisOptions {
   std::vector<std::string> logs;
   std::string params;
-  std::vector<std::string> free = FitParameterKeys(AxisParameterTable(), "axis", true);
   LogInputCli input;
   std::string method = "auto";  ///< auto, idim, oe
-  double cutoff = 0.0;
-  int decimation = kAxisDecimation;
+  /// --free, --cutoff, --decimation: the fit's own options, handed down as
+  /// they are (the torque timing and progress are set from the flags below).
+  AxisFitOptions fit = AxisFitOptionsFromData();
   std::string torque_timing = "auto";
   std::vector<std::string> validate;  ///< held-out logs predicted by the fit
   bool linear = false;                ///< q in m, forces in N (or axis.linear in --params)

@@ -79,7 +79,7 @@ void RunSerialRobot(const RobotOptions& options, const std::string& command_line
   outputs.provenance.version = DRIVEID_VERSION;
   outputs.provenance.model = "serial robot from a URDF, rigid bodies and drives, base parameters (docs/models.md#serial-robot)";
   LogInputCli input = options.input;
-  input.every_joint = true;  // a bag's JointState topic by joint name, as ‹joint› all
+  input.selection.bag.every_joint = true;  // a bag's JointState topic by joint name, as ‹joint› all
   const auto logs = LoadLogs<SerialRobotLog>(options.logs, input, options.output, outputs.provenance,
                                              SerialRobotLogColumns(robot.robot),
                                              [&](CsvLog csv) { return MakeSerialRobotLog(robot.robot, std::move(csv)); });

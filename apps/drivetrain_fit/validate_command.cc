@@ -116,7 +116,7 @@ void RunValidateCommand(const ValidateOptions& options, const std::string& comma
   // A serial robot's bag holds every joint by name (robot --urdf's
   // --joint all; validate's --joint is an MJCF's).
   LogInputCli input = options.input;
-  input.every_joint = model == ValidationModel::kSerialRobot;
+  input.selection.bag.every_joint = model == ValidationModel::kSerialRobot;
   const auto load = [&](const std::vector<std::string>& columns, auto make) {
     using Log = decltype(make(CsvLog{}));
     return LoadLogs<Log>(options.logs, input, options.output, provenance, columns, make);

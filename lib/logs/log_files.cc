@@ -43,7 +43,7 @@ void ReadLogFiles(const std::vector<LogFileRequest>& files, const std::vector<st
     const std::string& hash = raw.sha256;
     const std::string text = transpose ? TransposeTable(path, raw.text) : raw.text;
     LogInputOptions file_options = options;
-    file_options.sysid.stream_file = raw.stream_file;
+    file_options.selection.stream_file = raw.stream_file;
     for (const auto& [earlier_hash, earlier] : seen) {
       if (earlier_hash == hash) {
         throw OptionError(fmt::format("{}: the same data as {} (sha256 {}): give each log once", path, earlier,

@@ -72,10 +72,10 @@ std::string ResolveLogPath(const std::string& path) {
 bool IsStructuredLog(std::string_view first_chunk) { return SniffLogFormat(first_chunk).structured; }
 
 std::vector<std::unique_ptr<TableSource>> OpenTableSources(const std::string& path, const std::string& text,
-                                                           const CsvFormat& csv, const SysIdFormat& sysid) {
+                                                           const CsvFormat& csv, const LogSelection& selection) {
   const LogFormat& format = SniffLogFormat(std::string_view(text).substr(0, kLogSniffBytes));
   // An option of another format is refused by name, not ignored.
-  for (const auto& [option, value] : GivenSelectionOptions(sysid)) {
+  for (const auto& [option, value] : GivenSelectionOptions(selection)) {
     if (std::find(format.options.begin(), format.options.end(), option) != format.options.end()) continue;
     for (const LogFormat& owner : LogFormats()) {
       for (const LogFormatOption& declared : owner.declared) {
@@ -86,23 +86,23 @@ std::vector<std::unique_ptr<TableSource>> OpenTableSources(const std::string& pa
     }
     throw std::logic_error("OpenTableSources: option '" + option + "' declared by no log format");
   }
-  return format.open(path, text, csv, sysid);
+  return format.open(path, text, csv, selection);
 }
 
-std::vector<std::pair<std::string, std::string>> GivenSelectionOptions(const SysIdFormat& sysid) {
+std::vector<std::pair<std::string, std::string>> GivenSelectionOptions(const LogSelection& selection) {
   std::vector<std::pair<std::string, std::string>> given;
   const auto text = [&](const char* name, const std::string& value) {
     if (!value.empty()) given.emplace_back(name, value);
   };
-  text("mechanism", sysid.mechanism);
-  text("motor", sysid.motor);
-  text("test", sysid.test);
-  text("topic", sysid.topic);
-  if (!sysid.joints.empty()) given.emplace_back("joint", fmt::format("{}", fmt::join(sysid.joints, ",")));
-  text("joint_motor", sysid.joint_motor);
-  text("joint_link", sysid.joint_link);
-  if (sysid.time != kDefaultBagTime) given.emplace_back("time", sysid.time);
-  text("side", sysid.side);
+  text("mechanism", selection.wpilog.mechanism);
+  text("motor", selection.wpilog.motor);
+  text("test", selection.wpilog.test);
+  text("topic", selection.bag.topic);
+  if (!selection.bag.joints.empty()) given.emplace_back("joint", fmt::format("{}", fmt::join(selection.bag.joints, ",")));
+  text("joint_motor", selection.bag.joint_motor);
+  text("joint_link", selection.bag.joint_link);
+  if (selection.bag.time != kDefaultBagTime) given.emplace_back("time", selection.bag.time);
+  text("side", selection.sysid.side);
   return given;
 }
 

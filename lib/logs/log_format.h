@@ -21,7 +21,7 @@
 
 namespace driveid {
 
-/// A selection option of the structured readers (a SysIdFormat field, by
+/// A selection option of the structured readers (a LogSelection field, by
 /// its option name: "motor", "topic", "side", ...). `refusal` is what a file
 /// of a format that does not take it is told: a fmt string with {option},
 /// {value}, {path} and {kind} (the file's format, as "a CSV file" says it).
@@ -39,7 +39,7 @@ struct LogFormatCatalog {
 };
 
 using OpenLogFormat = std::function<std::vector<std::unique_ptr<TableSource>>(
-    const std::string& path, const std::string& text, const CsvFormat& csv, const SysIdFormat& sysid)>;
+    const std::string& path, const std::string& text, const CsvFormat& csv, const LogSelection& selection)>;
 
 struct LogFormat {
   std::string name;    ///< its registration's name ("wpilog", "mcap", ...)
@@ -76,7 +76,7 @@ inline constexpr std::size_t kLogSniffBytes = 4096;
 /// (OptionError) with its declaring format's refusal. Throws
 /// InputError naming the file.
 std::vector<std::unique_ptr<TableSource>> OpenTableSources(const std::string& path, const std::string& text,
-                                                           const CsvFormat& csv, const SysIdFormat& sysid);
+                                                           const CsvFormat& csv, const LogSelection& selection);
 
 /// The file a log path names: itself, or for a folder the file the format
 /// kept as folders finds in it (InputError when it finds none).
@@ -86,7 +86,7 @@ bool IsStructuredLog(std::string_view first_chunk);
 
 /// The options of `sysid` that are set, with their values as given, in the
 /// order the refusals are checked.
-std::vector<std::pair<std::string, std::string>> GivenSelectionOptions(const SysIdFormat& sysid);
+std::vector<std::pair<std::string, std::string>> GivenSelectionOptions(const LogSelection& selection);
 
 /// Defines the registration of the format listed as `name` in DRIVEID_LOG_FORMATS.
 #define DRIVEID_LOG_FORMAT(name) ::driveid::LogFormat MakeLogFormat_##name()

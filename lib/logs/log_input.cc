@@ -386,9 +386,9 @@ std::vector<std::unique_ptr<TableSource>> OpenLogSources(const std::string& path
                                                          const std::vector<JoinedFile>& joins,
                                                          const LogInputOptions& options) {
   RequireValid(options);
-  auto sources = OpenTableSources(path, text, options.csv, options.sysid);
+  auto sources = OpenTableSources(path, text, options.csv, options.selection);
   for (const auto& join : joins) {
-    auto joined = OpenTableSources(join.path, *join.text, options.csv, SysIdFormat{});
+    auto joined = OpenTableSources(join.path, *join.text, options.csv, LogSelection{});
     if (joined.size() != 1 || sources.size() != 1) {
       throw OptionError(fmt::format("‹join› {}: only single-table files (CSV, MAT) can be joined", join.path));
     }

@@ -20,7 +20,7 @@ struct LogInputOptions {
   /// Logical column name -> expression (`--col NAME=EXPR`).
   std::map<std::string, std::string> columns;
   CsvFormat csv;
-  SysIdFormat sysid;
+  LogSelection selection;
   double rate = 0.0;  ///< --rate [Hz]: samples at this rate from t = 0 (0: the time column)
   std::optional<double> from, to;  ///< --from, --to [s]: crop in the log's time
   std::string time_column = "t";   ///< strictly increasing

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "logs/log_selection.h"
+
 namespace driveid {
 
 /// A source's note that the user must see (printed by the tools on
@@ -113,38 +115,6 @@ struct CsvFormat {
   bool no_header = false;  ///< the first row is data (also detected: a first row of numbers)
   std::size_t skip_rows = 0;  ///< lines skipped before the header (a drive export's preamble), kept as comments
   std::size_t max_line_bytes = 1 << 20;
-};
-
-/// A bag's time base by default: the messages' header stamps (the other is
-/// "receive", the bag's receive times).
-inline constexpr const char* kDefaultBagTime = "header";
-
-/// Options of the structured readers: SysId JSON, WPILog, ROS bags.
-struct SysIdFormat {
-  std::string side;  ///< "left", "right" or "both" for the Drivetrain layout
-  /// WPILog SysIdRoutine logs (docs/formats.md#wpilog): the routine (the
-  /// `sysid-test-state-<mechanism>` entry) and motor, "" when the log has one;
-  /// the mechanism: "" or "simple", "arm", "elevator".
-  std::string mechanism, motor, test;
-  bool catalog = false;  ///< `inspect`: a WPILog or bag also gives its entries or topics
-  /// ROS bags (docs/formats.md#ros-bags): the JointState topic ("" when the
-  /// bag has one), the joints whose columns are q, qd, tau by default and
-  /// whose messages make the rows, and the time: "header" (the stamps) or
-  /// "receive" (the bag's receive times).
-  std::string topic;
-  std::vector<std::string> joints;
-  /// A serial robot's bag: with no `joints`, every joint every message
-  /// carries (as `joints` = {"all"}) instead of a refusal to choose.
-  bool every_joint = false;
-  std::string time = kDefaultBagTime;
-  /// An elastic joint's two encoders in a bag: q_motor, qd_motor, tau from
-  /// the motor joint, q_link, qd_link from the link joint (its effort is a
-  /// column, J.effort, not tau_link by default).
-  std::string joint_motor, joint_link;
-  /// A bag on a regular file (logs/log_files.h ReadLogFile): read from this
-  /// path piece by piece, `text` holding its first bytes only; "" reads the
-  /// bag from `text`.
-  std::string stream_file;
 };
 
 }  // namespace driveid

@@ -75,6 +75,9 @@ using AxisTable = ParameterTable<AxisSection, AxisParameters>;
 /// registered terms' rows (the linear terms', then the settings k_t, n_g
 /// and torque_delay, then the nonlinear terms'); models/axis_terms.cc.
 const AxisTable& AxisParameterTable();
+/// The key of the axis parameter in `member` ("coulomb"): code names a
+/// parameter by its member, not by a restated string.
+inline std::string AxisKey(double AxisParameters::*member) { return KeyOf(AxisParameterTable(), member); }
 
 /// The unit of an axis parameter (the table's, rotary) on a rotary or a
 /// linear axis: kg m^2 -> kg, N m s/rad -> N s/m, N m -> N, rad/s -> m/s,

@@ -10,6 +10,8 @@
 
 #include <fmt/format.h>
 
+#include "core/registered_objects.h"
+
 namespace driveid {
 
 // The factories of the terms lib/CMakeLists.txt lists in DRIVEID_AXIS_TERMS
@@ -43,8 +45,7 @@ AxisTable SettingRows() {
 }
 
 struct Registry {
-  std::vector<std::unique_ptr<AxisTerm>> owned;
-  std::vector<const AxisTerm*> terms;
+  RegisteredObjects<AxisTerm> terms;
   AxisTable table;
   std::vector<std::size_t> row_of;  // table row of parameter j
   std::vector<AxisTermParameter> parameters;
@@ -53,10 +54,7 @@ struct Registry {
 
 Registry Build() {
   Registry r;
-  for (const MakeTerm make : kRegistered) {
-    r.owned.push_back(make());
-    r.terms.push_back(r.owned.back().get());
-  }
+  r.terms = MakeRegisteredObjects(kRegistered);
   int slot = 0;
   const auto add = [&](const AxisTerm& term) {
     const std::size_t first = r.parameters.size();
@@ -71,12 +69,12 @@ Registry Build() {
       r.parameters.push_back({&term, i++, first});
     }
   };
-  for (const AxisTerm* term : r.terms) {
+  for (const AxisTerm* term : r.terms.list) {
     if (term->linear()) add(*term);
   }
   r.linear = r.parameters.size();
   for (const AxisRow& row : SettingRows()) r.table.push_back(row);
-  for (const AxisTerm* term : r.terms) {
+  for (const AxisTerm* term : r.terms.list) {
     if (!term->linear()) add(*term);
   }
   return r;
@@ -90,7 +88,7 @@ const Registry& TheRegistry() {
 }  // namespace
 
 const AxisTable& AxisParameterTable() { return TheRegistry().table; }
-const std::vector<const AxisTerm*>& AxisTerms() { return TheRegistry().terms; }
+const std::vector<const AxisTerm*>& AxisTerms() { return TheRegistry().terms.list; }
 std::size_t AxisLinearCount() { return TheRegistry().linear; }
 std::size_t AxisParameterCount() { return TheRegistry().parameters.size(); }
 const AxisRow& AxisTermRow(std::size_t j) { return TheRegistry().table.at(TheRegistry().row_of.at(j)); }

@@ -7,6 +7,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "core/registered_objects.h"
 #include "models/joint.h"
 #include "models/joint_term.h"
 
@@ -26,8 +27,7 @@ const MakeTerm kRegistered[] = {
 #undef DRIVEID_REGISTERED_JOINT_TERM
 
 struct Registry {
-  std::vector<std::unique_ptr<JointModelTerm>> owned;
-  std::vector<const JointModelTerm*> terms;
+  RegisteredObjects<JointModelTerm> terms;
   ParameterTable<JointSection, JointParameters> table;
   std::vector<JointTermParameter> parameters;  // per model parameter, table order
   std::vector<std::size_t> linear;
@@ -58,11 +58,8 @@ JointLinearDynamics Partial(const JointTermParameter& tp) {
 
 Registry Build() {
   Registry r;
-  for (const MakeTerm make : kRegistered) {
-    r.owned.push_back(make());
-    r.terms.push_back(r.owned.back().get());
-  }
-  for (const JointModelTerm* term : r.terms) {
+  r.terms = MakeRegisteredObjects(kRegistered);
+  for (const JointModelTerm* term : r.terms.list) {
     std::size_t i = 0;
     for (const JointRow& row : term->Rows()) {
       r.table.push_back(row);
@@ -94,7 +91,7 @@ const Registry& TheRegistry() {
 }  // namespace
 
 const ParameterTable<JointSection, JointParameters>& JointParameterTable() { return TheRegistry().table; }
-const std::vector<const JointModelTerm*>& JointTerms() { return TheRegistry().terms; }
+const std::vector<const JointModelTerm*>& JointTerms() { return TheRegistry().terms.list; }
 const JointTermParameter& JointParameterTerm(std::size_t j) { return TheRegistry().parameters.at(j); }
 const std::vector<std::size_t>& JointLinearParameters() { return TheRegistry().linear; }
 JointLinearDynamics JointLinearPartial(std::size_t j) { return TheRegistry().partials.at(j); }

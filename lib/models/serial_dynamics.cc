@@ -157,22 +157,21 @@ void CalcSerialRegressor(const SerialRobot& robot, const Eigen::VectorXd& q, con
       k = static_cast<std::size_t>(joint.parent);
     }
     const Eigen::Index ii = static_cast<Eigen::Index>(i);
-    if (robot.coupling.size() == 0) {
-      const double v = qd(ii);
-      y(ii, column + kSerialArmature) = qdd(ii);
-      y(ii, column + kSerialViscous) = v;
-      y(ii, column + kSerialCoulomb) = static_cast<double>((v > 0.0) - (v < 0.0));
-      y(ii, column + kSerialOffset) = 1.0;
-      if (robot.joints[i].viscous_per_direction) y(ii, column + kSerialViscousAsymmetry) = std::abs(v);
-    } else {
-      // Motor i turns at (R q')_i; its torque reaches the joints as R_i^T.
-      const Eigen::VectorXd to_joints = robot.coupling.row(ii).transpose();
-      const double v = robot.coupling.row(ii).dot(qd);
-      y.col(column + kSerialArmature) = to_joints * robot.coupling.row(ii).dot(qdd);
-      y.col(column + kSerialViscous) = to_joints * v;
-      y.col(column + kSerialCoulomb) = to_joints * static_cast<double>((v > 0.0) - (v < 0.0));
-      y.col(column + kSerialOffset) = to_joints;
-      if (robot.joints[i].viscous_per_direction) y.col(column + kSerialViscousAsymmetry) = to_joints * std::abs(v);
+    const std::vector<const SerialDriveTerm*>& terms = SerialDriveTerms();
+    const bool coupled = robot.coupling.size() != 0;
+    // The drive's motion: the joint's, or motor i's at (R q')_i, whose
+    // torque reaches the joints as R_i^T.
+    const double v = coupled ? robot.coupling.row(ii).dot(qd) : qd(ii);
+    const double acc = coupled ? robot.coupling.row(ii).dot(qdd) : qdd(ii);
+    for (std::size_t k = 0; k < terms.size(); ++k) {
+      if (!terms[k]->Asked(robot.joints[i])) continue;
+      const double phi = terms[k]->Column(acc, v);
+      const Eigen::Index at = column + static_cast<Eigen::Index>(SerialDriveColumn(k));
+      if (coupled) {
+        y.col(at) = robot.coupling.row(ii).transpose() * phi;
+      } else {
+        y(ii, at) = phi;
+      }
     }
   }
 }
@@ -268,7 +267,7 @@ std::vector<std::string> SerialParameterNames(const SerialRobot& robot) {
   std::vector<std::string> names;
   for (const SerialJoint& joint : robot.joints) {
     for (const char* p : InertialParameterNames()) names.push_back(std::string(p) + "_" + joint.body);
-    for (const char* d : {"armature_", "viscous_", "coulomb_", "offset_", "viscous_asymmetry_"}) names.push_back(d + joint.name);
+    for (const SerialDriveTerm* term : SerialDriveTerms()) names.push_back(std::string(term->key()) + "_" + joint.name);
   }
   return names;
 }
@@ -280,11 +279,10 @@ Eigen::VectorXd SerialParameterVector(const SerialRobot& robot, const std::vecto
     const auto c = static_cast<Eigen::Index>(kSerialColumnsPerJoint * i);
     for (std::size_t k = 0; k < kInertialParameters; ++k) theta(c + static_cast<Eigen::Index>(k)) = robot.bodies[i][k];
     if (drives.empty()) continue;
-    theta(c + kSerialArmature) = drives[i].armature;
-    theta(c + kSerialViscous) = drives[i].viscous;
-    theta(c + kSerialCoulomb) = drives[i].coulomb;
-    theta(c + kSerialOffset) = drives[i].offset;
-    theta(c + kSerialViscousAsymmetry) = drives[i].viscous_asymmetry;
+    const std::vector<const SerialDriveTerm*>& terms = SerialDriveTerms();
+    for (std::size_t k = 0; k < terms.size(); ++k) {
+      theta(c + static_cast<Eigen::Index>(SerialDriveColumn(k))) = drives[i].*(terms[k]->member());
+    }
   }
   return theta;
 }

@@ -23,6 +23,7 @@
 
 #include <Eigen/Core>
 
+#include "models/serial_drive_term.h"
 #include "models/serial_robot.h"
 
 namespace driveid {
@@ -33,11 +34,13 @@ Eigen::VectorXd CalcSerialRigidTorque(const SerialRobot& robot, const std::vecto
                                       const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd);
 
 /// Columns per joint of the full regressor: its body's 10 inertial
-/// parameters, then armature, viscous, Coulomb, offset and viscous
-/// asymmetry of its drive (the last |q'| where the joint asks for viscous
-/// friction per direction, else zero: never reaching a torque).
-inline constexpr std::size_t kSerialColumnsPerJoint = 15;
-enum SerialDriveColumn { kSerialArmature = 10, kSerialViscous, kSerialCoulomb, kSerialOffset, kSerialViscousAsymmetry };
+/// parameters, then its drive's terms (models/serial_drive_term.h: armature,
+/// viscous, Coulomb, offset and viscous asymmetry, the last |q'| where the
+/// joint asks for viscous friction per direction, else zero: never reaching
+/// a torque).
+inline constexpr std::size_t kSerialColumnsPerJoint = kInertialParameters + kSerialDriveTerms;
+/// The column of drive term k (SerialDriveTerms() order) within a joint's.
+inline constexpr std::size_t SerialDriveColumn(std::size_t k) { return kInertialParameters + k; }
 
 /// The regressor Y (n x 15 n) with tau = Y theta, theta stacked joint by
 /// joint as above. `y` must be n x 15 n; it is overwritten. With a coupling
@@ -68,9 +71,8 @@ void CalcSerialCoordinateRegressor(const SerialRobot& robot, const Eigen::Vector
 Eigen::MatrixXd SerialCouplingMatrix(std::size_t joints, const std::vector<std::size_t>& coupled,
                                      const Eigen::MatrixXd& block);
 
-/// The names of the regressor's columns: m_<body> .. Izz_<body>,
-/// armature_<joint>, viscous_<joint>, coulomb_<joint>, offset_<joint>,
-/// viscous_asymmetry_<joint>.
+/// The names of the regressor's columns: m_<body> .. Izz_<body>, then each
+/// drive term's <key>_<joint> (armature_<joint> .. viscous_asymmetry_<joint>).
 std::vector<std::string> SerialParameterNames(const SerialRobot& robot);
 /// theta of the robot's own inertials and the given drives (zero drives when empty).
 Eigen::VectorXd SerialParameterVector(const SerialRobot& robot, const std::vector<SerialDriveParameters>& drives);

@@ -4,9 +4,11 @@
 #include <cctype>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <yaml-cpp/yaml.h>
 
 #include "core/errors.h"
+#include "models/serial_drive_term.h"
 #include "params/parameter_file.h"
 #include "system/sha256.h"
 #include "robot_description/urdf_robot.h"
@@ -56,8 +58,6 @@ SerialBaseEntry ParseEntry(const std::string& path, const YAML::Node& node, std:
   return e;
 }
 
-constexpr const char* kDriveKeys[4] = {"armature", "viscous", "coulomb", "offset"};
-
 std::vector<SerialBodyEntry> ParseBodies(const std::string& path, const YAML::Node& node) {
   if (!node.IsSequence()) throw InputError(fmt::format("{}: serial_robot.bodies: expected a list", Where(path, node)));
   std::vector<SerialBodyEntry> out;
@@ -89,8 +89,20 @@ std::vector<SerialBodyEntry> ParseBodies(const std::string& path, const YAML::No
   return out;
 }
 
+// The drive terms' keys, those every joint has first ("armature, viscous,
+// coulomb and offset"), for messages.
+std::string DriveKeys(bool only_always) {
+  std::vector<std::string> keys;
+  for (const SerialDriveTerm* term : SerialDriveTerms()) {
+    if (term->always() || !only_always) keys.emplace_back(term->key());
+  }
+  if (only_always && keys.size() > 1) return fmt::format("{} and {}", fmt::join(keys.begin(), keys.end() - 1, ", "), keys.back());
+  return fmt::format("{}", fmt::join(keys, ", "));
+}
+
 std::vector<SerialDriveEntry> ParseDrives(const std::string& path, const YAML::Node& node) {
   if (!node.IsSequence()) throw InputError(fmt::format("{}: serial_robot.drives: expected a list", Where(path, node)));
+  const std::vector<const SerialDriveTerm*>& terms = SerialDriveTerms();
   std::vector<SerialDriveEntry> out;
   for (std::size_t i = 0; i < node.size(); ++i) {
     const std::string name = fmt::format("serial_robot.drives[{}]", i);
@@ -99,27 +111,26 @@ std::vector<SerialDriveEntry> ParseDrives(const std::string& path, const YAML::N
     std::size_t found = 0;
     for (const auto& item : node[i]) {
       const std::string key = item.first.Scalar();
-      double* slot = key == kDriveKeys[0]   ? &e.drive.armature
-                     : key == kDriveKeys[1] ? &e.drive.viscous
-                     : key == kDriveKeys[2] ? &e.drive.coulomb
-                     : key == kDriveKeys[3] ? &e.drive.offset
-                                            : nullptr;
       if (key == "joint") {
         e.joint = Text(path, name + ".joint", item.second);
-      } else if (key == "viscous_asymmetry") {
-        e.drive.viscous_asymmetry = ParseNumber(path, name + "." + key, item.second);
-        e.viscous_per_direction = true;
-      } else if (slot != nullptr) {
-        *slot = ParseNumber(path, name + "." + key, item.second);
+        continue;
+      }
+      const auto term = std::find_if(terms.begin(), terms.end(), [&](const SerialDriveTerm* t) { return key == t->key(); });
+      if (term == terms.end()) {
+        throw InputError(fmt::format("{}: {}.{}: unknown key (known: joint, {})", Where(path, item.first), name, key,
+                                     DriveKeys(false)));
+      }
+      e.drive.*((*term)->member()) = ParseNumber(path, name + "." + key, item.second);
+      if ((*term)->always()) {
         ++found;
       } else {
-        throw InputError(fmt::format("{}: {}.{}: unknown key (known: joint, armature, viscous, coulomb, offset, "
-                                     "viscous_asymmetry)",
-                                     Where(path, item.first), name, key));
+        if (std::find(e.asked.begin(), e.asked.end(), key) == e.asked.end()) e.asked.push_back(key);
       }
     }
-    if (e.joint.empty() || found != 4) {
-      throw InputError(fmt::format("{}: {}: needs joint, armature, viscous, coulomb and offset", Where(path, node[i]), name));
+    std::size_t always = 0;
+    for (const SerialDriveTerm* term : terms) always += term->always() ? 1 : 0;
+    if (e.joint.empty() || found != always) {
+      throw InputError(fmt::format("{}: {}: needs joint, {}", Where(path, node[i]), name, DriveKeys(true)));
     }
     out.push_back(e);
   }
@@ -192,14 +203,11 @@ std::string Format(const ParameterFile& file) {
   if (!s.drives.empty()) {
     out += "  drives:\n";
     for (const SerialDriveEntry& d : s.drives) {
-      const double values[4] = {d.drive.armature, d.drive.viscous, d.drive.coulomb, d.drive.offset};
       out += fmt::format("    - {{joint: {}", Key(d.joint));
-      for (int k = 0; k < 4; ++k) {
-        out += fmt::format(", {}: {}", kDriveKeys[k], Number(Writable(std::string("serial_robot.drives.") + kDriveKeys[k], values[k])));
-      }
-      if (d.viscous_per_direction) {
-        out += fmt::format(", viscous_asymmetry: {}",
-                           Number(Writable("serial_robot.drives.viscous_asymmetry", d.drive.viscous_asymmetry)));
+      for (const SerialDriveTerm* term : SerialDriveTerms()) {
+        if (!term->always() && std::find(d.asked.begin(), d.asked.end(), term->key()) == d.asked.end()) continue;
+        out += fmt::format(", {}: {}", term->key(),
+                           Number(Writable(std::string("serial_robot.drives.") + term->key(), d.drive.*(term->member()))));
       }
       out += "}\n";
     }
@@ -219,14 +227,16 @@ SectionUrdf ReadSectionUrdf(const SerialRobotSection& section, const std::string
   }
   out.robot = ParseUrdfRobot(out.path, out.text).robot;
   for (const SerialDriveEntry& d : section.drives) {
-    if (!d.viscous_per_direction) continue;
+    if (d.asked.empty()) continue;
     const auto joint = std::find_if(out.robot.joints.begin(), out.robot.joints.end(),
                                     [&](const SerialJoint& j) { return j.name == d.joint; });
     if (joint == out.robot.joints.end()) {
       throw InputError(fmt::format("{}: serial_robot.drives names joint '{}', which {} has not", params_path, d.joint,
                                    out.path));
     }
-    joint->viscous_per_direction = true;
+    for (const SerialDriveTerm* term : SerialDriveTerms()) {
+      if (std::find(d.asked.begin(), d.asked.end(), term->key()) != d.asked.end()) term->Ask(*joint);
+    }
   }
   return out;
 }

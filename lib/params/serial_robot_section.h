@@ -33,9 +33,10 @@ struct SerialBodyEntry {
 struct SerialDriveEntry {
   std::string joint;
   SerialDriveParameters drive;
-  /// Fitted with viscous friction per direction: `viscous_asymmetry` written
-  /// and read (SerialJoint::viscous_per_direction).
-  bool viscous_per_direction = false;
+  /// The keys of the drive terms not in every joint's model
+  /// (SerialDriveTerm::always) that this joint was fitted with, which are
+  /// written and read (`viscous_asymmetry`: SerialJoint::viscous_per_direction).
+  std::vector<std::string> asked;
 };
 
 struct SerialRobotSection {
@@ -52,7 +53,7 @@ struct SerialRobotSection {
 
 /// The URDF a section was fitted on: `given` when not empty, else the path
 /// the section names; its text and robot, its joints' viscous friction per
-/// direction as the section's drives were fitted. InputError when its
+/// direction (each drive term) as the section's drives were fitted. InputError when its
 /// SHA-256 is not the section's (naming both files).
 struct SectionUrdf {
   std::string path, text;

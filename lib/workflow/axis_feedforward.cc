@@ -26,11 +26,9 @@ double PropagateStandardError(const FitResult& fit, const std::vector<std::pair<
 
 namespace {
 
-std::string Key(double AxisParameters::*member) { return KeyOf(AxisParameterTable(), member); }
-
 bool Estimated(const FitResult& fit, double AxisParameters::*member) {
   return std::any_of(fit.estimates.begin(), fit.estimates.end(),
-                     [&](const ParameterEstimate& e) { return e.name == Key(member); });
+                     [&](const ParameterEstimate& e) { return e.name == AxisKey(member); });
 }
 
 }  // namespace
@@ -45,26 +43,26 @@ Feedforward CalcAxisFeedforward(const AxisParameters& p, const FitResult& fit, c
         {key, value, PropagateStandardError(fit, gradient), FeedforwardUnit(key, effort_unit, position_unit)});
   };
   if (used(&P::coulomb_pos) || used(&P::coulomb_neg)) {
-    add("Ks_forward", p.coulomb + p.coulomb_pos, {{Key(&P::coulomb), 1.0}, {Key(&P::coulomb_pos), 1.0}});
-    add("Ks_backward", p.coulomb + p.coulomb_neg, {{Key(&P::coulomb), 1.0}, {Key(&P::coulomb_neg), 1.0}});
+    add("Ks_forward", p.coulomb + p.coulomb_pos, {{AxisKey(&P::coulomb), 1.0}, {AxisKey(&P::coulomb_pos), 1.0}});
+    add("Ks_backward", p.coulomb + p.coulomb_neg, {{AxisKey(&P::coulomb), 1.0}, {AxisKey(&P::coulomb_neg), 1.0}});
   } else {
-    add("Ks", p.coulomb, {{Key(&P::coulomb), 1.0}});
+    add("Ks", p.coulomb, {{AxisKey(&P::coulomb), 1.0}});
   }
   if (used(&P::viscous_pos) || used(&P::viscous_neg)) {
-    add("Kv_forward", p.viscous + p.viscous_pos, {{Key(&P::viscous), 1.0}, {Key(&P::viscous_pos), 1.0}});
-    add("Kv_backward", p.viscous + p.viscous_neg, {{Key(&P::viscous), 1.0}, {Key(&P::viscous_neg), 1.0}});
+    add("Kv_forward", p.viscous + p.viscous_pos, {{AxisKey(&P::viscous), 1.0}, {AxisKey(&P::viscous_pos), 1.0}});
+    add("Kv_backward", p.viscous + p.viscous_neg, {{AxisKey(&P::viscous), 1.0}, {AxisKey(&P::viscous_neg), 1.0}});
   } else {
-    add("Kv", p.viscous, {{Key(&P::viscous), 1.0}});
+    add("Kv", p.viscous, {{AxisKey(&P::viscous), 1.0}});
   }
-  if (with_inertia) add("Ka", p.inertia, {{Key(&P::inertia), 1.0}});
+  if (with_inertia) add("Ka", p.inertia, {{AxisKey(&P::inertia), 1.0}});
   if (used(&P::gravity_cos) || used(&P::gravity_sin)) {
     // Kg cos(q - Kg_angle) = Kg cos(Kg_angle) cos q + Kg sin(Kg_angle) sin q.
     const double gc = p.gravity_cos, gs = p.gravity_sin, kg = std::hypot(gc, gs);
     const double k2 = kg > 0.0 ? kg * kg : 1.0;
-    add("Kg", kg, {{Key(&P::gravity_cos), kg > 0.0 ? gc / kg : 0.0}, {Key(&P::gravity_sin), kg > 0.0 ? gs / kg : 0.0}});
-    add("Kg_angle", std::atan2(gs, gc), {{Key(&P::gravity_cos), -gs / k2}, {Key(&P::gravity_sin), gc / k2}});
+    add("Kg", kg, {{AxisKey(&P::gravity_cos), kg > 0.0 ? gc / kg : 0.0}, {AxisKey(&P::gravity_sin), kg > 0.0 ? gs / kg : 0.0}});
+    add("Kg_angle", std::atan2(gs, gc), {{AxisKey(&P::gravity_cos), -gs / k2}, {AxisKey(&P::gravity_sin), gc / k2}});
   }
-  if (used(&P::offset)) add("offset", p.offset, {{Key(&P::offset), 1.0}});
+  if (used(&P::offset)) add("offset", p.offset, {{AxisKey(&P::offset), 1.0}});
   return out;
 }
 

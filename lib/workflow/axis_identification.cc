@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/name_list.h"
 #include "core/option_check.h"
 #include "fit/axis/axis_fit.h"
 #include "fit/axis/axis_oe_fit.h"
@@ -19,29 +20,13 @@
 namespace driveid {
 
 bool AxisIdentificationOptions::IsValid(std::string* error) const {
-  return OptionCheck(error)
-      .Require(NotNegative(cutoff), "‹cutoff›", cutoff, "cutoff > 0 Hz (0: from the data)")
-      .Require(decimation >= 1, "‹decimation›", decimation, ">= 1")
-      .Nested(fit);
+  return OptionCheck(error).Nested(axis).Nested(axis.fit);
 }
 namespace {
 
-std::string Key(double AxisParameters::*member) { return KeyOf(AxisParameterTable(), member); }
-
-bool Contains(const std::vector<std::string>& keys, const std::string& key) {
-  return std::find(keys.begin(), keys.end(), key) != keys.end();
-}
-
 void FitByInverseDynamics(const std::vector<AxisLog>& logs, const AxisIdentificationOptions& options,
                           const std::vector<AxisLog>& validation, AxisIdentification& run) {
-  AxisFitOptions fit_options;
-  fit_options.free = options.free;
-  fit_options.cutoff = options.cutoff;
-  fit_options.decimation = options.decimation;
-  fit_options.torque_timing = options.torque_timing;
-  fit_options.torque_delay = options.torque_delay;
-  fit_options.fit = options.fit;
-  const AxisFitOutput result = FitAxis(logs, run.section, fit_options);
+  const AxisFitOutput result = FitAxis(logs, run.section, options.axis);
   // The reading, recorded for validate: as a delay in samples.
   run.section.torque_delay = result.torque_timing == AxisTorqueTiming::kDelayed ? result.torque_delay
                              : result.torque_timing == AxisTorqueTiming::kHeld  ? 0.5
@@ -68,7 +53,7 @@ void FitByInverseDynamics(const std::vector<AxisLog>& logs, const AxisIdentifica
     s.model.push_back(result.model[k]);
   }
   for (const auto& v :
-       ValidateAxis(validation, result.params, result.cutoff, options.decimation, result.torque_timing,
+       ValidateAxis(validation, result.params, result.cutoff, options.axis.decimation, result.torque_timing,
                     AxisReach::kAtCutoff, result.torque_delay)) {
     run.fit.validation.push_back(v.stats);
   }
@@ -108,7 +93,7 @@ std::optional<AxisParameters> OutputErrorStart(const std::vector<AxisLog>& logs,
   } catch (const std::exception&) {
     refused = std::current_exception();
   }
-  const bool inertia_free = Contains(free, Key(&AxisParameters::inertia));
+  const bool inertia_free = Contains(free, AxisKey(&AxisParameters::inertia));
   if (!initial && refused && inertia_free && !(section.inertia.value_or(0.0) > 0.0)) std::rethrow_exception(refused);
   return initial;
 }
@@ -121,14 +106,14 @@ void FitByOutputError(const std::vector<AxisLog>& logs, const std::vector<AxisLo
                       AxisIdentification& run) {
   std::optional<AxisParameters> initial;
   try {
-    initial = OutputErrorStart(measured, run.section, options.free);
+    initial = OutputErrorStart(measured, run.section, options.axis.free);
   } catch (const IdentificationError&) {
     if (&logged == &measured) throw;
   }
-  if (!initial && &logged != &measured) initial = OutputErrorStart(logged, run.section, options.free);
+  if (!initial && &logged != &measured) initial = OutputErrorStart(logged, run.section, options.axis.free);
   AxisOeOptions oe_options;
-  oe_options.free = options.free;
-  oe_options.fit = options.fit;
+  oe_options.free = options.axis.free;
+  oe_options.fit = options.axis.fit;
   const AxisOeOutput result = FitAxisOutputError(logs, run.section, initial ? &*initial : nullptr, oe_options);
   run.params = result.params;
   run.fit = result.fit;
@@ -170,7 +155,7 @@ void Interpret(const AxisIdentificationOptions& options, AxisIdentification& run
   if (run.section.gear_ratio) {
     double viscous_std = 0.0;
     for (const auto& e : run.fit.estimates) {
-      if (e.name == Key(&AxisParameters::viscous)) viscous_std = e.standard_error;
+      if (e.name == AxisKey(&AxisParameters::viscous)) viscous_std = e.standard_error;
     }
     const double n2 = *run.section.gear_ratio * *run.section.gear_ratio;
     run.derived.push_back({"d_g", run.params.viscous / n2, viscous_std / n2,
@@ -179,7 +164,7 @@ void Interpret(const AxisIdentificationOptions& options, AxisIdentification& run
   }
   const bool with_inertia = run.section.inertia.value_or(0.0) > 0.0 ||
                             std::any_of(run.fit.estimates.begin(), run.fit.estimates.end(), [](const auto& e) {
-                              return e.name == Key(&AxisParameters::inertia);
+                              return e.name == AxisKey(&AxisParameters::inertia);
                             });
   run.feedforward = CalcAxisFeedforward(run.params, run.fit, sysid ? "V" : (linear ? "N" : "N m"),
                                         sysid ? options.sysid_unit : (linear ? "m" : "rad"), with_inertia);
@@ -199,7 +184,7 @@ std::string MechanismFreeSet(const AxisIdentificationOptions& options, const Axi
                                   "record it so, or give ‹free› without gravity_cos, gravity_sin",
                                   options.sysid_unit));
   }
-  for (const std::string& key : {Key(&AxisParameters::gravity_cos), Key(&AxisParameters::gravity_sin)}) {
+  for (const std::string& key : {AxisKey(&AxisParameters::gravity_cos), AxisKey(&AxisParameters::gravity_sin)}) {
     if (!Contains(free, key)) free.push_back(key);
   }
   return "SysId Arm test: gravity Kg cos(q - Kg_angle) fitted (gravity_cos, gravity_sin added to the default free set)";
@@ -283,7 +268,7 @@ AxisIdentification IdentifyOn(const std::vector<AxisLog>& logged, const std::vec
                                   "length (m); fit it as a rotary axis, or log the position in a length",
                                   options.sysid_unit));
   }
-  const std::string mechanism = MechanismFreeSet(requested, run.section, options.free);
+  const std::string mechanism = MechanismFreeSet(requested, run.section, options.axis.free);
   std::string reason = "asked for";
   run.method = ChooseAxisMethod(measured, options.method, &reason);
   if (options.method == AxisMethod::kAuto && frames.held_logs + frames.held_rates > 0) {
@@ -295,8 +280,8 @@ AxisIdentification IdentifyOn(const std::vector<AxisLog>& logged, const std::vec
     FitByOutputError(logs, measured, logged, options, run);
     if (frames.held_logs + frames.held_rates > 0) {
       AxisOeOptions oe_options;
-      oe_options.free = options.free;
-      oe_options.fit = options.fit;
+      oe_options.free = options.axis.free;
+      oe_options.fit = options.axis.fit;
       const std::string budget = AddStatusFrameBudget(logged, run.section, run.params, oe_options, run.fit);
       if (!budget.empty()) run.summary.push_back(budget);
     }

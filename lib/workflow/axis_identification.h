@@ -29,12 +29,11 @@ AxisMethod ChooseAxisMethod(const std::vector<AxisLog>& logs, AxisMethod request
 
 struct AxisIdentificationOptions {
   AxisMethod method = AxisMethod::kAuto;
-  std::vector<std::string> free = FitParameterKeys(AxisParameterTable(), "axis", true);
-  double cutoff = 0.0;  ///< inverse dynamics: position low-pass [Hz], 0: from the data
-  int decimation = kAxisDecimation;  ///< inverse dynamics: parallel decimation factor
-  AxisTorqueTiming torque_timing = AxisTorqueTiming::kFromData;  ///< inverse dynamics (fit/axis/axis_rows.h)
-  double torque_delay = 0.0;  ///< kDelayed: when the torque acts after its stamp [samples]
-  FitOptions fit;       ///< progress callback
+  /// The fit's options, passed down as they are: the free set and the
+  /// progress callback (axis.fit) for either method, the processing (cutoff,
+  /// decimation, torque timing, by default from the data) for inverse
+  /// dynamics.
+  AxisFitOptions axis = AxisFitOptionsFromData();
   bool trace = false;   ///< build the trace CSV
   /// The SysId files' position unit when every log is a SysId file in one
   /// unit (estimates, feed-forward in volts and that unit), else "".

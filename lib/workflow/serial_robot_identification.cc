@@ -1,6 +1,7 @@
 #include "workflow/serial_robot_identification.h"
 
 #include <cmath>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -116,8 +117,13 @@ std::string Summary(const SerialRobot& robot, const SerialRobotIdentification& r
   out += PerDirectionLines(robot, r);
   std::vector<std::string> names;
   for (std::size_t c : r.base.never_moved) {
-    // A viscous asymmetry not asked for is no parameter of the model.
-    if (c % kSerialColumnsPerJoint != kSerialViscousAsymmetry) names.push_back(r.parameter_names[c]);
+    // A drive term the joint does not ask for is no parameter of the model.
+    const std::size_t within = c % kSerialColumnsPerJoint;
+    if (within >= kInertialParameters &&
+        !SerialDriveTerms()[within - kInertialParameters]->Asked(robot.joints[c / kSerialColumnsPerJoint])) {
+      continue;
+    }
+    names.push_back(r.parameter_names[c]);
   }
   if (!names.empty()) {
     out += fmt::format("never reach a joint torque (left out): {}\n", fmt::join(names, ", "));
@@ -151,8 +157,11 @@ SerialRobotIdentification IdentifySerialRobot(const UrdfRobot& urdf, const std::
   UseConsistent(run);
   for (std::size_t j = 0; j < robot.robot.size(); ++j) {
     run.section.bodies.push_back({robot.robot.joints[j].body, run.consistent.bodies[j]});
-    run.section.drives.push_back(
-        {robot.robot.joints[j].name, run.consistent.drives[j], robot.robot.joints[j].viscous_per_direction});
+    SerialDriveEntry drive{robot.robot.joints[j].name, run.consistent.drives[j], {}};
+    for (const SerialDriveTerm* term : SerialDriveTerms()) {
+      if (!term->always() && term->Asked(robot.robot.joints[j])) drive.asked.emplace_back(term->key());
+    }
+    run.section.drives.push_back(std::move(drive));
   }
   run.section.urdf = urdf_path;
   run.section.urdf_sha256 = urdf_sha256;

@@ -127,7 +127,7 @@ TEST_CASE("every options struct refuses a value outside its bounds, by field") {
                            "‹period› = -0.5: violated constraint: period >= 0 s (0: detected)");
   CheckRefusal<FrfOptions>([](auto& o) { o.two_mass.hold_rate = -1.0; },
                            "hold_rate = -1: violated constraint: rate >= 0 Hz (0: continuous)");
-  CheckRefusal<AxisIdentificationOptions>([](auto& o) { o.decimation = 0; },
+  CheckRefusal<AxisIdentificationOptions>([](auto& o) { o.axis.decimation = 0; },
                                           "‹decimation› = 0: violated constraint: >= 1");
   CheckRefusal<JointIdentificationOptions>([](auto& o) { o.cutoff = -3.0; },
                                            "‹cutoff› = -3: violated constraint: cutoff > 0 Hz (0: rate / 40)");

@@ -29,8 +29,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         break;
       }
       case 1: {
-        driveid::SysIdFormat sides;
-        sides.side = "both";
+        driveid::LogSelection sides;
+        sides.sysid.side = "both";
         for (const auto& source : driveid::OpenSysIdSources("fuzz.json", text, sides)) {
           driveid::ReadLogColumns(*source, {"t", "q", "tau|i"}, options);
         }
@@ -38,11 +38,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       }
       case 3:
       case 4: {
-        driveid::SysIdFormat format;
+        driveid::LogSelection format;
         format.catalog = true;
-        format.joints = {"axis"};
-        format.topic = "/joint_states";
-        format.motor = "leader";
+        format.bag.joints = {"axis"};
+        format.bag.topic = "/joint_states";
+        format.wpilog.motor = "leader";
         // The bag readers by the bag's magic, the SQLite reader for any other bytes.
         const driveid::LogFormat& sniffed = driveid::SniffLogFormat(text);
         const driveid::LogFormat* bag = &sniffed;

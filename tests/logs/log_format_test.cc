@@ -55,22 +55,22 @@ TEST_CASE("log formats: each registered once, told from its first bytes, CSV las
 
 TEST_CASE("log formats: an option of another format is refused by name, with its owner's words") {
   const std::string csv = "t,q,tau\n0,0,0\n1,1,1\n";
-  SysIdFormat sysid;
-  sysid.motor = "left";
-  CHECK_THROWS_WITH(OpenTableSources("a.csv", csv, {}, sysid),
+  LogSelection selection;
+  selection.wpilog.motor = "left";
+  CHECK_THROWS_WITH(OpenTableSources("a.csv", csv, {}, selection),
                     "‹motor›: a.csv is no WPILog; ‹motor› chooses in a SysIdRoutine's .wpilog");
-  sysid = {};
-  sysid.time = "receive";
-  CHECK_THROWS_WITH(OpenTableSources("a.csv", csv, {}, sysid),
+  selection = {};
+  selection.bag.time = "receive";
+  CHECK_THROWS_WITH(OpenTableSources("a.csv", csv, {}, selection),
                     "‹time›: a.csv is no ROS bag; ‹time› chooses in a bag's JointState topic");
-  sysid = {};
-  sysid.side = "left";
-  CHECK_THROWS_WITH(OpenTableSources("a.csv", csv, {}, sysid),
+  selection = {};
+  selection.sysid.side = "left";
+  CHECK_THROWS_WITH(OpenTableSources("a.csv", csv, {}, selection),
                     "‹side› left: a.csv is a CSV file; ‹side› applies to SysId Drivetrain files");
-  CHECK_THROWS_AS(OpenTableSources("x.wpilog", std::string("WPILOG\x00\x01", 8), {}, sysid),
+  CHECK_THROWS_AS(OpenTableSources("x.wpilog", std::string("WPILOG\x00\x01", 8), {}, selection),
                   OptionError);
-  sysid = {};
-  const auto sources = OpenTableSources("a.csv", csv, {}, sysid);
+  selection = {};
+  const auto sources = OpenTableSources("a.csv", csv, {}, selection);
   REQUIRE(sources.size() == 1);
   CHECK(sources.front()->format() == "csv");
 }

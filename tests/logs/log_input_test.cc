@@ -295,7 +295,7 @@ TEST_CASE("SysId JSON: four tests as logs, positions in units, sides of a drivet
     "fast-forward": [[0, 1, 2, 10, 20, 0, 0, 0, 0], [1, 1, 2, 11, 21, 1, 1, 0, 0]],
     "fast-backward": [[0, 1, 2, 10, 20, 0, 0, 0, 0], [1, 1, 2, 11, 21, 1, 1, 0, 0]]})";
   LogInputOptions both;
-  both.sysid.side = "both";
+  both.selection.sysid.side = "both";
   const auto sides = ReadLogs("d.json", drive, {}, kAxis, both);
   REQUIRE(sides.size() == 8);
   CHECK(sides[1].segment == "slow-forward/right");

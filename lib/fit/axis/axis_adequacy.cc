@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "core/name_list.h"
 #include "fit/axis/axis_rows.h"
 #include "fit/core/adequacy.h"
 #include "fit/core/omitted_terms.h"
@@ -13,12 +14,6 @@
 
 namespace driveid {
 namespace {
-
-std::string Key(double AxisParameters::*member) { return KeyOf(AxisParameterTable(), member); }
-
-bool Contains(const std::vector<std::string>& names, const std::string& name) {
-  return std::find(names.begin(), names.end(), name) != names.end();
-}
 
 std::vector<std::string> WithFree(const std::vector<std::string>& free, const std::vector<std::string>& more) {
   std::vector<std::string> all = free;
@@ -31,14 +26,14 @@ std::vector<std::string> WithFree(const std::vector<std::string>& free, const st
 // The free set with the direction-dependent terms in place of coulomb,
 // viscous and offset (an offset and both Coulomb directions are collinear).
 std::vector<std::string> DirectionFree(const std::vector<std::string>& free) {
-  const std::string coulomb = Key(&AxisParameters::coulomb), viscous = Key(&AxisParameters::viscous),
-                    offset = Key(&AxisParameters::offset);
+  const std::string coulomb = AxisKey(&AxisParameters::coulomb), viscous = AxisKey(&AxisParameters::viscous),
+                    offset = AxisKey(&AxisParameters::offset);
   std::vector<std::string> kept;
   for (const auto& f : free) {
     if (f != coulomb && f != viscous && f != offset) kept.push_back(f);
   }
-  return WithFree(kept, {Key(&AxisParameters::coulomb_pos), Key(&AxisParameters::coulomb_neg),
-                         Key(&AxisParameters::viscous_pos), Key(&AxisParameters::viscous_neg)});
+  return WithFree(kept, {AxisKey(&AxisParameters::coulomb_pos), AxisKey(&AxisParameters::coulomb_neg),
+                         AxisKey(&AxisParameters::viscous_pos), AxisKey(&AxisParameters::viscous_neg)});
 }
 
 // Advice to free more terms is tried before it is given: the fit with
@@ -93,8 +88,8 @@ std::vector<std::string> CheckAxisAdequacy(const LinearRegression& regression, c
     return fmt::format("explain {:.0f} % of the residual; robust Wald {:.3g} > {:.3g}", 100.0 * t.share, t.wald,
                        t.critical);
   };
-  const std::string gravity_cos = Key(&AxisParameters::gravity_cos), gravity_sin = Key(&AxisParameters::gravity_sin);
-  const std::string inertia = Key(&AxisParameters::inertia);
+  const std::string gravity_cos = AxisKey(&AxisParameters::gravity_cos), gravity_sin = AxisKey(&AxisParameters::gravity_sin);
+  const std::string inertia = AxisKey(&AxisParameters::inertia);
   if (!linear && !Contains(free, gravity_cos) && !Contains(free, gravity_sin)) {
     const auto t = TestOmittedTerm(regression, free, values, "gravity", {gravity_cos, gravity_sin});
     if (t.missing) {
@@ -126,11 +121,11 @@ std::vector<std::string> CheckAxisAdequacy(const LinearRegression& regression, c
   const auto direction = TestOmittedTerm(regression, free, values, "direction", {kAxisAbsRateColumn});
   if (direction.missing) {
     const auto trial = DirectionFree(free);
-    const std::vector<std::string> replaced = {Key(&AxisParameters::coulomb), Key(&AxisParameters::viscous),
-                                               Key(&AxisParameters::offset)};
+    const std::vector<std::string> replaced = {AxisKey(&AxisParameters::coulomb), AxisKey(&AxisParameters::viscous),
+                                               AxisKey(&AxisParameters::offset)};
     const std::string why_not =
         TryFreeing(regression, trial, values, replaced,
-                   {Key(&AxisParameters::coulomb_pos), Key(&AxisParameters::coulomb_neg)});
+                   {AxisKey(&AxisParameters::coulomb_pos), AxisKey(&AxisParameters::coulomb_neg)});
     warnings.push_back(
         why_not.empty()
             ? fmt::format("direction-dependent friction: the residual follows |q'| ({}): friction differs between "

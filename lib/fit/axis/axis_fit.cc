@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/name_list.h"
 #include "core/option_check.h"
 #include "core/order_statistics.h"
 #include "fit/core/adequacy.h"
@@ -45,12 +46,6 @@ namespace {
 
 // The regressor columns: the linear parameters, in index order.
 const AxisRow& Column(std::size_t j) { return AxisTermRow(j); }
-
-std::string Key(double AxisParameters::*member) { return KeyOf(AxisParameterTable(), member); }
-
-bool Contains(const std::vector<std::string>& names, const std::string& name) {
-  return std::find(names.begin(), names.end(), name) != names.end();
-}
 
 }  // namespace
 
@@ -297,7 +292,7 @@ std::vector<ResolvedAxisTerm> ResolveAxisTerms(const AxisSection& start, const s
   // A linear axis has no angle: its weight is a constant force, the offset.
   if (start.linear) {
     for (const auto member : {&AxisParameters::gravity_cos, &AxisParameters::gravity_sin}) {
-      const std::string key = Key(member);
+      const std::string key = AxisKey(member);
       const auto given = SectionValue(*FindParameter(AxisParameterTable(), key), start);
       if (Contains(free, key)) {
         throw OptionError(fmt::format("‹free› {}: a linear axis (axis.linear, ‹linear›) has no cos q / sin q "
@@ -324,8 +319,8 @@ std::vector<ResolvedAxisTerm> ResolveAxisTerms(const AxisSection& start, const s
   }
   // Both Coulomb directions span the offset where the axis never rests: an
   // offset not given is then 0 (the fit refuses it by name if it is free).
-  if (Contains(free, Key(&AxisParameters::coulomb_pos)) && Contains(free, Key(&AxisParameters::coulomb_neg))) {
-    replaced.push_back(Key(&AxisParameters::offset));
+  if (Contains(free, AxisKey(&AxisParameters::coulomb_pos)) && Contains(free, AxisKey(&AxisParameters::coulomb_neg))) {
+    replaced.push_back(AxisKey(&AxisParameters::offset));
   }
   std::vector<ResolvedAxisTerm> terms;
   std::vector<const ParameterSpec*> needed;
@@ -444,10 +439,10 @@ AxisFitOutput FitAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& s
   FitOptions fit_options = options.fit;
   if (!fit_options.advice) {
     fit_options.advice = [](const std::vector<std::string>& involved) -> std::string {
-      if (Contains(involved, Key(&AxisParameters::inertia))) {
+      if (Contains(involved, AxisKey(&AxisParameters::inertia))) {
         return "the log has no acceleration content: fit friction alone with ‹free› viscous,coulomb,offset";
       }
-      if (Contains(involved, Key(&AxisParameters::coulomb)) && Contains(involved, Key(&AxisParameters::offset))) {
+      if (Contains(involved, AxisKey(&AxisParameters::coulomb)) && Contains(involved, AxisKey(&AxisParameters::offset))) {
         return "coulomb and offset need motion in both directions";
       }
       return "";

@@ -65,6 +65,13 @@ struct AxisFitOptions {
   /// Whether the values can be used; else `error` names the field and the constraint.
   bool IsValid(std::string* error) const;
 };
+/// The defaults with the torque's timing found from the data (kFromData):
+/// what the identification runs by default (workflow/axis_identification.h).
+inline AxisFitOptions AxisFitOptionsFromData() {
+  AxisFitOptions o;
+  o.torque_timing = AxisTorqueTiming::kFromData;
+  return o;
+}
 
 struct AxisFitOutput {
   AxisParameters params;

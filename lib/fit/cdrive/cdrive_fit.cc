@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/name_list.h"
 #include "core/option_check.h"
 #include "fit/core/linear_regression.h"
 #include "logs/csv_log.h"
@@ -28,10 +29,6 @@ std::vector<const CDriveRow*> FitRows(const char* fit) {
     if (row.spec.InFit(fit)) rows.push_back(&row);
   }
   return rows;
-}
-
-bool Contains(const std::vector<std::string>& names, const std::string& name) {
-  return std::find(names.begin(), names.end(), name) != names.end();
 }
 
 std::string Key(double CDriveParameters::*member) { return KeyOf(CDriveParameterTable(), member); }

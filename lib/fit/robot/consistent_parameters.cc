@@ -1,5 +1,6 @@
 #include "fit/robot/consistent_parameters.h"
 
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -13,8 +14,22 @@
 namespace driveid {
 namespace {
 
-// A drive's block: armature, viscous, Coulomb (each >= 0), offset, viscous asymmetry.
-constexpr int kBodyBlock = 10, kDriveBlock = 5;
+// A body's block: its 10 inertial parameters, in log-Cholesky form; a
+// drive's: its terms' values (models/serial_drive_term.h), the nonnegative
+// ones bounded at 0.
+constexpr int kBodyBlock = static_cast<int>(kInertialParameters), kDriveBlock = static_cast<int>(kSerialDriveTerms);
+using DriveBlock = std::array<double, kDriveBlock>;
+
+DriveBlock DriveValues(const SerialDriveParameters& d) {
+  DriveBlock out{};
+  for (std::size_t k = 0; k < kSerialDriveTerms; ++k) out[k] = d.*(SerialDriveTerms()[k]->member());
+  return out;
+}
+SerialDriveParameters DriveOfValues(const DriveBlock& values) {
+  SerialDriveParameters d;
+  for (std::size_t k = 0; k < kSerialDriveTerms; ++k) d.*(SerialDriveTerms()[k]->member()) = values[k];
+  return d;
+}
 
 // A trial step that overflows exp() is refused (false: Ceres shrinks the
 // step) instead of handing Ceres non-finite values, which it would report.
@@ -82,7 +97,7 @@ struct BodyPrior {
 };
 
 struct DrivePrior {
-  std::array<double, kDriveBlock> prior;
+  DriveBlock prior;
   double weight;
   template <class T>
   bool operator()(const T* drive, T* residual) const {
@@ -193,18 +208,17 @@ ConsistentParameters FitConsistentParameters(const SerialRobot& robot, const Ser
   double total_mass = 0.0;
   for (const auto& b : robot.bodies) total_mass += std::max(b[0], 0.0);
   std::vector<std::array<double, kBodyBlock>> bodies(n);
-  std::vector<std::array<double, kDriveBlock>> drives(n);
+  std::vector<DriveBlock> drives(n);
   for (std::size_t j = 0; j < n; ++j) {
     bodies[j] = LogCholeskyFromInertial(robot.bodies[j]);
-    const SerialDriveParameters d = prior.drives.empty() ? SerialDriveParameters{} : prior.drives[j];
-    drives[j] = {d.armature, d.viscous, d.coulomb, d.offset, d.viscous_asymmetry};
+    drives[j] = DriveValues(prior.drives.empty() ? SerialDriveParameters{} : prior.drives[j]);
   }
   // Drives that lead a base parameter start at its estimate (>= 0 where bounded).
   for (std::size_t k = 0; k < base.base.size(); ++k) {
     const std::size_t column = base.base[k], joint = column / kSerialColumnsPerJoint, c = column % kSerialColumnsPerJoint;
     if (c < kInertialParameters) continue;
-    const double v = values[k];
-    drives[joint][c - kInertialParameters] = c - kInertialParameters >= 3 ? v : std::max(v, 0.0);
+    const std::size_t term = c - kInertialParameters;
+    drives[joint][term] = SerialDriveTerms()[term]->nonnegative() ? std::max(values[k], 0.0) : values[k];
   }
   ceres::Problem problem;
   std::vector<double*> blocks;
@@ -229,11 +243,15 @@ ConsistentParameters FitConsistentParameters(const SerialRobot& robot, const Ser
     problem.AddResidualBlock(new ceres::AutoDiffCostFunction<BodyPrior, kBodyBlock, kBodyBlock>(
                                  new BodyPrior{robot.bodies[j], PriorScale(robot.bodies[j], total_mass), w}),
                              nullptr, bodies[j].data());
-    const SerialDriveParameters d = prior.drives.empty() ? SerialDriveParameters{} : prior.drives[j];
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<DrivePrior, kDriveBlock, kDriveBlock>(
-                                 new DrivePrior{{d.armature, d.viscous, d.coulomb, d.offset, d.viscous_asymmetry}, w}),
-                             nullptr, drives[j].data());
-    for (int c = 0; c < 3; ++c) problem.SetParameterLowerBound(drives[j].data(), c, 0.0);
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<DrivePrior, kDriveBlock, kDriveBlock>(
+            new DrivePrior{DriveValues(prior.drives.empty() ? SerialDriveParameters{} : prior.drives[j]), w}),
+        nullptr, drives[j].data());
+    for (int c = 0; c < kDriveBlock; ++c) {
+      if (SerialDriveTerms()[static_cast<std::size_t>(c)]->nonnegative()) {
+        problem.SetParameterLowerBound(drives[j].data(), c, 0.0);
+      }
+    }
   }
   const ceres::Solver::Options options = SolverOptions();
   ceres::Solver::Summary summary;
@@ -248,7 +266,7 @@ ConsistentParameters FitConsistentParameters(const SerialRobot& robot, const Ser
     InertialParameters pi{};
     InertialFromLogCholesky(bodies[j].data(), pi.data());
     out.bodies.push_back(pi);
-    out.drives.push_back({drives[j][0], drives[j][1], drives[j][2], drives[j][3], drives[j][4]});
+    out.drives.push_back(DriveOfValues(drives[j]));
     const auto column = static_cast<Eigen::Index>(kSerialColumnsPerJoint * j);
     for (int c = 0; c < kBodyBlock; ++c) theta(column + c) = pi[static_cast<std::size_t>(c)];
     for (int c = 0; c < kDriveBlock; ++c) theta(column + kBodyBlock + c) = drives[j][static_cast<std::size_t>(c)];

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/name_list.h"
 #include "core/option_check.h"
 #include "core/order_statistics.h"
 #include "fit/core/linear_regression.h"
@@ -28,10 +29,6 @@ const ParameterRow<PlanarRobotSection, PlanarRobotParameters>& Column(std::size_
     return out;
   }();
   return *rows.at(j);
-}
-
-bool Contains(const std::vector<std::string>& names, const std::string& name) {
-  return std::find(names.begin(), names.end(), name) != names.end();
 }
 
 // Kinematic quantities of one sample.

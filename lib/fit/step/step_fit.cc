@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.h"
+#include "core/name_list.h"
 #include "core/option_check.h"
 #include "fit/step/step_residuals.h"
 #include "logs/csv_log.h"
@@ -27,10 +28,6 @@ std::vector<DriveTrainParameter> AllParameters() {
   std::vector<DriveTrainParameter> all;
   for (int e = 0; e < kDriveTrainParameterCount; ++e) all.push_back(static_cast<DriveTrainParameter>(e));
   return all;
-}
-
-bool Contains(const std::vector<std::string>& names, const std::string& name) {
-  return std::find(names.begin(), names.end(), name) != names.end();
 }
 
 // Model-specific advice for a non-identifiable set (docs/models.md#drive-train identifiability).

@@ -278,7 +278,7 @@ DRIVEID_LOG_FORMAT(csv_source) {
   format.source = "csv";
   format.kind = "a CSV file";
   format.sniff = [](std::string_view) { return true; };
-  format.open = [](const std::string& path, const std::string& text, const CsvFormat& csv, const SysIdFormat&) {
+  format.open = [](const std::string& path, const std::string& text, const CsvFormat& csv, const LogSelection&) {
     std::vector<std::unique_ptr<TableSource>> out;
     out.push_back(OpenCsvSource(path, text, csv));
     return out;

@@ -319,7 +319,7 @@ DRIVEID_LOG_FORMAT(mat_source) {
   format.kind = "a MAT file";
   format.sniff = LooksLikeMat;
   format.structured = true;
-  format.open = [](const std::string& path, const std::string& text, const CsvFormat&, const SysIdFormat&) {
+  format.open = [](const std::string& path, const std::string& text, const CsvFormat&, const LogSelection&) {
     if (std::string_view(text).substr(0, kHdf5Magic.size()) == kHdf5Magic) {
       throw InputError(fmt::format("{}: an HDF5 file without a MAT header: not a MAT v7.3 file", path));
     }

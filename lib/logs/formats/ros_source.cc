@@ -30,15 +30,15 @@ constexpr const char* kJointState = "sensor_msgs/msg/JointState";
 
 // The joints whose values are kept: those asked for, in order.
 // `‹joint› all`: every joint that every message carries (a serial robot's).
-bool AllJointsAsked(const SysIdFormat& format) {
-  return (format.joints.size() == 1 && format.joints.front() == "all") ||
-         (format.every_joint && format.joints.empty() && format.joint_motor.empty() && format.joint_link.empty());
+bool AllJointsAsked(const LogSelection& format) {
+  return (format.bag.joints.size() == 1 && format.bag.joints.front() == "all") ||
+         (format.bag.every_joint && format.bag.joints.empty() && format.bag.joint_motor.empty() && format.bag.joint_link.empty());
 }
 
-std::vector<std::string> JointsAsked(const SysIdFormat& format) {
+std::vector<std::string> JointsAsked(const LogSelection& format) {
   if (AllJointsAsked(format)) return {};
-  std::vector<std::string> joints = format.joints;
-  for (const std::string* j : {&format.joint_motor, &format.joint_link}) {
+  std::vector<std::string> joints = format.bag.joints;
+  for (const std::string* j : {&format.bag.joint_motor, &format.bag.joint_link}) {
     if (!j->empty() && std::find(joints.begin(), joints.end(), *j) == joints.end()) joints.push_back(*j);
   }
   return joints;
@@ -93,7 +93,7 @@ std::vector<double> Reordered(std::vector<double>& values, const std::vector<std
 
 // The table of the kept joints (all joints of every message when none was asked for).
 std::unique_ptr<TableSource> JointTable(const std::string& path, const std::string& topic, JointStateRows rows,
-                                        const SysIdFormat& format, std::vector<std::string> notes) {
+                                        const LogSelection& format, std::vector<std::string> notes) {
   std::vector<std::string> all;
   for (const auto& [name, count] : rows.joints_seen()) all.push_back(name);
   const std::vector<std::string> asked = JointsAsked(format);
@@ -113,7 +113,7 @@ std::unique_ptr<TableSource> JointTable(const std::string& path, const std::stri
   if (rows.without() > 0) {
     notes.push_back(fmt::format("{} {} messages without {} left out", kReaderWarning, rows.without(), fmt::join(joints, ", ")));
   }
-  const bool receive = format.time == "receive";
+  const bool receive = format.bag.time == "receive";
   const std::vector<std::size_t> order = RowOrder(receive ? rows.receive_ns : rows.stamp_ns, receive, notes);
   const std::size_t n = order.empty() ? rows.stamp_ns.size() : order.size();
   const auto row = [&](std::size_t i) { return order.empty() ? i : order[i]; };
@@ -152,8 +152,8 @@ std::unique_ptr<TableSource> JointTable(const std::string& path, const std::stri
       // qd_J, tau_J (not otherwise: tau_link is an elastic joint's shaft torque).
       if (AllJointsAsked(format)) defaults[logical + "_" + j] = column;
       // The elastic joint: the motor joint's effort is the motor torque.
-      if (j == format.joint_motor) defaults[logical == "tau" ? "tau" : logical + "_motor"] = column;
-      if (j == format.joint_link && logical != "tau") defaults[logical + "_link"] = column;
+      if (j == format.bag.joint_motor) defaults[logical == "tau" ? "tau" : logical + "_motor"] = column;
+      if (j == format.bag.joint_link && logical != "tau") defaults[logical + "_link"] = column;
     }
   }
   return MakeMemorySource({path, topic, "rosbag", "", "", std::move(names), std::move(columns), std::move(notes),
@@ -165,9 +165,9 @@ std::unique_ptr<TableSource> JointTable(const std::string& path, const std::stri
 // catalog lists them, else left undecoded.
 class Sinks {
  public:
-  explicit Sinks(const SysIdFormat& format) : format_(format) {}
+  explicit Sinks(const LogSelection& format) : format_(format) {}
   JointStateRows* operator()(const std::string& topic) {
-    const bool chosen = format_.topic.empty() ? rows_.empty() : topic == format_.topic;
+    const bool chosen = format_.bag.topic.empty() ? rows_.empty() : topic == format_.bag.topic;
     if (!chosen && !format_.catalog) return nullptr;
     auto& slot = rows_[topic];
     slot = std::make_unique<JointStateRows>(chosen ? JointsAsked(format_) : std::vector<std::string>{}, chosen);
@@ -181,7 +181,7 @@ class Sinks {
   const std::string& chosen() const { return chosen_; }
 
  private:
-  const SysIdFormat& format_;
+  const LogSelection& format_;
   std::map<std::string, std::unique_ptr<JointStateRows>> rows_;
   std::string chosen_;
 };
@@ -189,7 +189,7 @@ class Sinks {
 }  // namespace
 
 std::vector<std::unique_ptr<TableSource>> OpenRosBagSources(const std::string& path, const std::string& text,
-                                                            const SysIdFormat& format, const BagContainer& container) {
+                                                            const LogSelection& format, const BagContainer& container) {
   std::unique_ptr<ByteSource> bytes;
   if (!format.stream_file.empty()) bytes = OpenFileBytes(format.stream_file);
   if (!bytes) bytes = MemoryBytes(path, text);
@@ -229,12 +229,12 @@ std::vector<std::unique_ptr<TableSource>> OpenRosBagSources(const std::string& p
     }
     out.push_back(MakeMemorySource({path, "", "rosbag", "", "", {}, {}, std::move(notes), {}, std::move(variables)}));
     try {
-      out.push_back(table(ChooseName(joint_topics, format.topic, "JointState topic", "topic", path)));
+      out.push_back(table(ChooseName(joint_topics, format.bag.topic, "JointState topic", "topic", path)));
     } catch (const OptionError&) {
     }
     return out;
   }
-  out.push_back(table(ChooseName(joint_topics, format.topic, "JointState topic", "topic", path)));
+  out.push_back(table(ChooseName(joint_topics, format.bag.topic, "JointState topic", "topic", path)));
   return out;
 }
 
@@ -254,8 +254,8 @@ LogFormat BagLogFormat(std::string name, std::function<bool(std::string_view hea
   format.catalog = {"the bag's topics; a JointState topic follows as the source a fit reads", "topic", "messages",
                     "type (serialisation), messages, mean rate over the span"};
   format.open = [container = std::move(container)](const std::string& path, const std::string& text, const CsvFormat&,
-                                                   const SysIdFormat& sysid) {
-    return OpenRosBagSources(path, text, sysid, container);
+                                                   const LogSelection& selection) {
+    return OpenRosBagSources(path, text, selection, container);
   };
   return format;
 }

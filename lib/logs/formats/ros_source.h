@@ -1,7 +1,7 @@
 // A ROS bag's JointState topic as a table (docs/formats.md#ros-bags), for
 // every bag container alike: the container's reader (rosbag2 SQLite3,
 // rosbag2 MCAP, ROS 1) hands each JointState message to the rows its topic
-// keeps, and this makes the table, or with SysIdFormat::catalog the list of
+// keeps, and this makes the table, or with LogSelection::catalog the list of
 // topics. Each container registers itself through BagLogFormat.
 #pragma once
 
@@ -27,11 +27,11 @@ struct BagContainer {
   std::function<std::vector<std::string>(ByteSource& bytes)> file_notes;
 };
 
-/// The bag's JointState topic (the one of SysIdFormat::topic, or the only
+/// The bag's JointState topic (the one of LogSelection::topic, or the only
 /// one), or with catalog its topics then that topic when one can be chosen.
-/// Read from SysIdFormat::stream_file when given, else from `text`.
+/// Read from LogSelection::stream_file when given, else from `text`.
 std::vector<std::unique_ptr<TableSource>> OpenRosBagSources(const std::string& path, const std::string& text,
-                                                            const SysIdFormat& format, const BagContainer& container);
+                                                            const LogSelection& format, const BagContainer& container);
 
 /// The registration of a bag container: the bags' options, catalog and
 /// streaming, its `name`, how it is told from its first bytes, its reader.

@@ -165,7 +165,7 @@ class SysIdHandler : public nlohmann::json_sax<nlohmann::json> {
 }  // namespace
 
 std::vector<std::unique_ptr<TableSource>> OpenSysIdSources(const std::string& path, const std::string& text,
-                                                           const SysIdFormat& format) {
+                                                           const LogSelection& format) {
   SysIdDocument doc;
   SysIdHandler handler(path, doc);
   try {
@@ -193,11 +193,11 @@ std::vector<std::unique_ptr<TableSource>> OpenSysIdSources(const std::string& pa
 
   std::vector<std::string> sides = {""};
   if (drivetrain) {
-    if (format.side == "left" || format.side == "right") sides = {format.side};
-    else if (format.side == "both") sides = {"left", "right"};
+    if (format.sysid.side == "left" || format.sysid.side == "right") sides = {format.sysid.side};
+    else if (format.sysid.side == "both") sides = {"left", "right"};
     else throw OptionError(fmt::format("{}: a SysId Drivetrain file: give ‹side› left, right or both", path));
-  } else if (!format.side.empty()) {
-    throw OptionError(fmt::format("‹side› {}: {} is a SysId '{}' file with one side", format.side, path, layout));
+  } else if (!format.sysid.side.empty()) {
+    throw OptionError(fmt::format("‹side› {}: {} is a SysId '{}' file with one side", format.sysid.side, path, layout));
   }
   const std::size_t width = drivetrain ? 9 : 4;
   std::vector<std::unique_ptr<TableSource>> out;
@@ -269,8 +269,8 @@ DRIVEID_LOG_FORMAT(sysid_source) {
   format.structured = true;  // SysId writes one long line
   format.options = {"side"};
   format.declared = {{"side", "‹{option}› {value}: {path} is {kind}; ‹{option}› applies to SysId Drivetrain files"}};
-  format.open = [](const std::string& path, const std::string& text, const CsvFormat&, const SysIdFormat& sysid) {
-    return OpenSysIdSources(path, text, sysid);
+  format.open = [](const std::string& path, const std::string& text, const CsvFormat&, const LogSelection& selection) {
+    return OpenSysIdSources(path, text, selection);
   };
   return format;
 }

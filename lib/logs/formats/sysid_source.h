@@ -12,6 +12,6 @@ namespace driveid {
 
 /// The SysId JSON reader alone.
 std::vector<std::unique_ptr<TableSource>> OpenSysIdSources(const std::string& path, const std::string& text,
-                                                           const SysIdFormat& format);
+                                                           const LogSelection& format);
 
 }  // namespace driveid

@@ -227,7 +227,7 @@ std::string MechanismOf(const std::string& test) {
 
 std::vector<std::unique_ptr<TableSource>> RoutineSources(const std::string& path, const std::string& text,
                                                          const std::string& mechanism, const std::string& motor,
-                                                         const SysIdFormat& format) {
+                                                         const LogSelection& format) {
   const RoutineData data = ReadRoutine(path, text, mechanism, motor);
   if (data.voltage.t_us.empty() || data.position.t_us.empty() || data.velocity.t_us.empty()) {
     throw InputError(fmt::format("{}: motor '{}' of SysIdRoutine '{}' has no voltage, position or velocity records", path,
@@ -281,7 +281,7 @@ std::vector<std::unique_ptr<TableSource>> RoutineSources(const std::string& path
   std::vector<std::unique_ptr<TableSource>> out;
   for (auto& t : taken) {
     if (!missing.empty()) t.notes.push_back(fmt::format("{} no test {} in the log", kReaderWarning, fmt::join(missing, ", ")));
-    out.push_back(MakeMemorySource({path, t.test, "wpilog", unit, MechanismOf(format.test), {"t", "voltage", "position", "velocity"},
+    out.push_back(MakeMemorySource({path, t.test, "wpilog", unit, MechanismOf(format.wpilog.test), {"t", "voltage", "position", "velocity"},
                                     std::move(t.columns), std::move(t.notes), SysIdDefaults(), {}}));
   }
   return out;
@@ -290,7 +290,7 @@ std::vector<std::unique_ptr<TableSource>> RoutineSources(const std::string& path
 }  // namespace
 
 std::vector<std::unique_ptr<TableSource>> OpenWpilogSources(const std::string& path, const std::string& text,
-                                                            const SysIdFormat& format) {
+                                                            const LogSelection& format) {
   const WpilogIndex index = ReadWpilog(path, text);
   const std::vector<Routine> routines = FindRoutines(index);
   std::vector<std::string> mechanisms;
@@ -325,10 +325,10 @@ std::vector<std::unique_ptr<TableSource>> OpenWpilogSources(const std::string& p
     out.push_back(MakeMemorySource({path, "", "wpilog", "", "", {}, {}, std::move(notes), {}, std::move(variables)}));
     // The tests as a fit would read them, when the routine and motor are clear.
     try {
-      const std::string mechanism = ChooseName(mechanisms, format.mechanism, "SysIdRoutine", "mechanism", path);
+      const std::string mechanism = ChooseName(mechanisms, format.wpilog.mechanism, "SysIdRoutine", "mechanism", path);
       const Routine& routine =
           *std::find_if(routines.begin(), routines.end(), [&](const Routine& r) { return r.mechanism == mechanism; });
-      const std::string motor = ChooseName(routine.motors, format.motor, "motor", "motor", path);
+      const std::string motor = ChooseName(routine.motors, format.wpilog.motor, "motor", "motor", path);
       for (auto& source : RoutineSources(path, text, mechanism, motor, format)) out.push_back(std::move(source));
     } catch (const OptionError&) {
     }
@@ -339,13 +339,13 @@ std::vector<std::unique_ptr<TableSource>> OpenWpilogSources(const std::string& p
                                  "sysid-test-state-<mechanism>); inspect lists its {} entries",
                                  path, index.entries.size()));
   }
-  const std::string mechanism = ChooseName(mechanisms, format.mechanism, "SysIdRoutine", "mechanism", path);
+  const std::string mechanism = ChooseName(mechanisms, format.wpilog.mechanism, "SysIdRoutine", "mechanism", path);
   const Routine& routine = *std::find_if(routines.begin(), routines.end(), [&](const Routine& r) { return r.mechanism == mechanism; });
   if (routine.motors.empty()) {
     throw InputError(fmt::format("{}: SysIdRoutine '{}' has no motor with voltage-, position- and velocity- entries", path,
                                  mechanism));
   }
-  const std::string motor = ChooseName(routine.motors, format.motor, "motor", "motor", path);
+  const std::string motor = ChooseName(routine.motors, format.wpilog.motor, "motor", "motor", path);
   return RoutineSources(path, text, mechanism, motor, format);
 }
 
@@ -363,8 +363,8 @@ DRIVEID_LOG_FORMAT(wpilog_source) {
   }
   format.catalog = {"the log's entries; a SysIdRoutine's tests follow as the sources a fit reads", "entry", "records",
                     "type, records, span, mean rate over the span, metadata"};
-  format.open = [](const std::string& path, const std::string& text, const CsvFormat&, const SysIdFormat& sysid) {
-    return OpenWpilogSources(path, text, sysid);
+  format.open = [](const std::string& path, const std::string& text, const CsvFormat&, const LogSelection& selection) {
+    return OpenWpilogSources(path, text, selection);
   };
   return format;
 }

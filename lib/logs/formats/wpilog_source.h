@@ -12,8 +12,8 @@
 namespace driveid {
 
 /// The WPILog reader alone: a SysIdRoutine's tests, or with
-/// SysIdFormat::catalog one source listing the log's entries.
+/// LogSelection::catalog one source listing the log's entries.
 std::vector<std::unique_ptr<TableSource>> OpenWpilogSources(const std::string& path, const std::string& text,
-                                                            const SysIdFormat& format);
+                                                            const LogSelection& format);
 
 }  // namespace driveid
