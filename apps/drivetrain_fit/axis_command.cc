@@ -37,9 +37,10 @@ CLI::App* SetupAxisCommand(CLI::App& app, AxisOptions& options) {
   command->add_option("--cutoff", options.fit.cutoff,
                       "position low-pass cutoff [Hz] (default: from the data, docs/models.md#axis-cutoff-from-the-data)")
       ->check(FiniteAbove(0.0));
-  command->add_option("--decimation", options.fit.decimation, "parallel decimation factor")
+  command->add_option("--decimation", options.fit.decimation,
+                      "parallel decimation factor (0: from the logs' rate and length, docs/models.md#axis-decimation)")
       ->capture_default_str()
-      ->check(CLI::Range(1, 1000));
+      ->check(CLI::Range(0, 1000));
   command->add_option("--torque-timing", options.torque_timing,
                       "idim: when the logged torque acts. sampled: at its sample's instant (a measured current); "
                       "held: the command the drive holds until the next sample, as output error simulates it; a "

@@ -52,9 +52,11 @@ CLI::App* SetupValidateCommand(CLI::App& app, ValidateOptions& options) {
                       "axis: position low-pass cutoff [Hz] (default: the candidate that predicts best, "
                       "docs/models.md#axis-cutoff-from-the-data)")
       ->check(FiniteAbove(0.0));
-  command->add_option("--decimation", options.decimation, "axis: parallel decimation factor")
+  command->add_option("--decimation", options.decimation,
+                      "axis: parallel decimation factor (0: from the logs' rate and length, "
+                      "docs/models.md#axis-decimation)")
       ->capture_default_str()
-      ->check(CLI::Range(1, 1000));
+      ->check(CLI::Range(0, 1000));
   command->add_option("--torque-timing", options.torque_timing,
                       "axis: when the logged torque acts: file (the fit's reading, axis.torque_delay; sampled when "
                       "the file has none), sampled, held, or a delay in samples from -1 to 1 "

@@ -21,7 +21,7 @@ struct ValidateOptions {
   std::string step_model = "reduced";
   LogInputCli input;
   double cutoff = 0.0;
-  int decimation = kAxisDecimation;
+  int decimation = kAxisDecimationFromLogs;
   std::string torque_timing = "file";
   bool simulate = false;          ///< axis: position by simulation instead of torque by inverse dynamics
   std::string joint = "axis";     ///< MJCF: the joint driven by the logged effort

@@ -53,7 +53,7 @@ void FitByInverseDynamics(const std::vector<AxisLog>& logs, const AxisIdentifica
     s.model.push_back(result.model[k]);
   }
   for (const auto& v :
-       ValidateAxis(validation, result.params, result.cutoff, options.axis.decimation, result.torque_timing,
+       ValidateAxis(validation, result.params, result.cutoff, result.decimation, result.torque_timing,
                     AxisReach::kAtCutoff, result.torque_delay)) {
     run.fit.validation.push_back(v.stats);
   }
@@ -62,6 +62,7 @@ void FitByInverseDynamics(const std::vector<AxisLog>& logs, const AxisIdentifica
                                     "{:.3g} 1/s",
                                     result.relative_error_percent, result.samples_used, result.acceleration_content));
   run.summary.push_back(fmt::format("position cutoff {:.4g} Hz ({})", result.cutoff, result.cutoff_rule));
+  run.summary.push_back(fmt::format("decimation {} ({})", result.decimation, result.decimation_rule));
   run.summary.push_back(fmt::format("torque timing {} ({})",
                                     DescribeAxisTorqueTiming(result.torque_timing, result.torque_delay),
                                     result.timing_rule));

@@ -14,7 +14,7 @@ namespace driveid {
 bool AxisValidationOptions::IsValid(std::string* error) const {
   return OptionCheck(error)
       .Require(NotNegative(cutoff), "‹cutoff›", cutoff, "cutoff > 0 Hz (0: the candidate that predicts best)")
-      .Require(decimation >= 1, "‹decimation›", decimation, ">= 1")
+      .Require(decimation >= 0, "‹decimation›", decimation, ">= 1 (0: from the logs)")
       .Require(torque_timing != AxisTorqueTiming::kFromData,
                "‹torque_timing› auto: a validation takes the timing the fit chose (the file's, sampled, held or a "
                "delay)")
@@ -82,9 +82,11 @@ ValidationRun RunAxisValidation(const std::vector<AxisLog>& logs, const AxisSect
   } else if (options.timing_from_file) {
     source = "the file records none";
   }
+  const int decimation =
+      options.decimation == kAxisDecimationFromLogs ? ChooseAxisDecimation(logs, nullptr) : options.decimation;
   const double cutoff = options.cutoff > 0.0 ? options.cutoff
-                                             : ChooseAxisValidationCutoff(logs, params, options.decimation, timing, delay);
-  return {ValidateAxis(logs, params, cutoff, options.decimation, timing, AxisReach::kAtCutoff, delay),
+                                             : ChooseAxisValidationCutoff(logs, params, decimation, timing, delay);
+  return {ValidateAxis(logs, params, cutoff, decimation, timing, AxisReach::kAtCutoff, delay),
           fmt::format("axis inverse dynamics, position cutoff {:.4g} Hz ({}), torque {} ({})", cutoff,
                       options.cutoff > 0.0 ? "given" : "the candidate that predicts best",
                       DescribeAxisTorqueTiming(timing, delay), source),

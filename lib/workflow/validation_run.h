@@ -43,7 +43,7 @@ struct ValidationRun {
 struct AxisValidationOptions {
   bool simulate = false;  ///< simulate the position from the torque (else inverse dynamics of the torque)
   double cutoff = 0.0;    ///< inverse dynamics: position low-pass [Hz]; 0: the candidate that predicts best
-  int decimation = kAxisDecimation;
+  int decimation = kAxisDecimationFromLogs;  ///< 0: ChooseAxisDecimation on the logs validated
   AxisTorqueTiming torque_timing = AxisTorqueTiming::kSampled;  ///< inverse dynamics (fit/axis/axis_rows.h; not kFromData)
   double torque_delay = 0.0;  ///< kDelayed: when the torque acts after its stamp [samples]
   /// Take the timing the fit recorded (axis.torque_delay) when the file has it.

@@ -587,3 +587,70 @@ TEST_CASE("torque delay: a number spells kDelayed; its rows are the held rows mo
   }
   CHECK(compared > 100);
 }
+
+namespace {
+
+// A jittered-stamp log written here, in closed form (not by lib/sim): two
+// sines, tau = J q'' + b q' + tau_c sgn q', moving at both ends.
+AxisLog JitteredSineLog(double rate, double duration, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> jitter(-0.1 / rate, 0.1 / rate);
+  std::normal_distribution<double> noise(0.0, 0.1);
+  AxisLog log{"jittered.csv", {}, {}, {}, {}};
+  const double w1 = 2.0 * M_PI * 0.7, w2 = 2.0 * M_PI * 1.9;
+  for (int k = 0; k < static_cast<int>(duration * rate); ++k) {
+    const double t = 0.3 + k / rate + jitter(rng);
+    const double q = 0.8 * std::sin(w1 * t) + 0.2 * std::sin(w2 * t);
+    const double qd = 0.8 * w1 * std::cos(w1 * t) + 0.2 * w2 * std::cos(w2 * t);
+    const double qdd = -0.8 * w1 * w1 * std::sin(w1 * t) - 0.2 * w2 * w2 * std::sin(w2 * t);
+    log.time.push_back(t);
+    log.position.push_back(q);
+    log.force.push_back(0.3 * qdd + 2.5 * qd + 0.25 * ((qd > 0) - (qd < 0)) + noise(rng));
+  }
+  return log;
+}
+
+AxisLog StampsOnly(double rate, int samples) {
+  AxisLog log{"stamps.csv", {}, {}, {}, {}};
+  for (int k = 0; k < samples; ++k) log.time.push_back(k / rate);
+  log.position.assign(log.time.size(), 0.0);
+  log.force.assign(log.time.size(), 0.0);
+  return log;
+}
+
+}  // namespace
+
+TEST_CASE("axis decimation from the logs: every sample at 50 Hz, every 2nd at 200 Hz, every 10th at 1 kHz") {
+  std::string rule;
+  CHECK(ChooseAxisDecimation({StampsOnly(50.0, 300)}, &rule) == 1);
+  CHECK(rule.find("50 Hz") != std::string::npos);
+  CHECK(ChooseAxisDecimation({StampsOnly(200.0, 2000)}, nullptr) == 2);
+  CHECK(ChooseAxisDecimation({StampsOnly(1000.0, 10000)}, nullptr) == 10);
+  CHECK(ChooseAxisDecimation({StampsOnly(5000.0, 50000)}, nullptr) == kAxisDecimation);
+  // The lowest rate decides; the shortest log keeps at least 40 rows.
+  CHECK(ChooseAxisDecimation({StampsOnly(1000.0, 10000), StampsOnly(200.0, 2000)}, nullptr) == 2);
+  CHECK(ChooseAxisDecimation({StampsOnly(1000.0, 10000), StampsOnly(1000.0, 120)}, &rule) == 3);
+  CHECK(rule.find("120 samples") != std::string::npos);
+}
+
+TEST_CASE("axis: a jittered 50 Hz log keeps every sample, resampled onto its mean step") {
+  // Stamps that jitter about 20 ms (a DataLog's loop) are resampled onto the
+  // mean step (a note says so) and take the constant-rate path: every sample
+  // a row, each interval holding the truth.
+  for (unsigned seed : {1u, 2u, 3u}) {
+    const AxisFitOutput out = FitAxis({JitteredSineLog(50.0, 20.0, seed)}, AxisSection{}, {});
+    CHECK(out.decimation == 1);
+    CHECK(std::any_of(out.fit.notes.begin(), out.fit.notes.end(),
+                      [](const std::string& n) { return n.find("resampled") != std::string::npos; }));
+    CHECK(out.method.find("irregular") == std::string::npos);
+    for (const auto& [key, truth] : {std::pair{"inertia", 0.3}, {"viscous", 2.5}, {"coulomb", 0.25}}) {
+      const std::string name = key;
+      const auto e = std::find_if(out.fit.estimates.begin(), out.fit.estimates.end(),
+                                  [&name](const ParameterEstimate& p) { return p.name == name; });
+      REQUIRE(e != out.fit.estimates.end());
+      INFO(name << " " << e->value << " [" << e->ci95_low << ", " << e->ci95_high << "] seed " << seed);
+      CHECK(e->ci95_low <= truth);
+      CHECK(truth <= e->ci95_high);
+    }
+  }
+}

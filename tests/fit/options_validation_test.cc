@@ -34,9 +34,11 @@ TEST_CASE("options structs validate themselves, naming the field and the constra
   std::string error;
   AxisFitOptions axis;
   CHECK(axis.IsValid(&error));
-  axis.decimation = 0;
+  axis.decimation = kAxisDecimationFromLogs;  // 0: chosen from the logs
+  CHECK(axis.IsValid(&error));
+  axis.decimation = -1;
   CHECK_FALSE(axis.IsValid(&error));
-  CHECK(error == "‹decimation› = 0: violated constraint: >= 1");
+  CHECK(error == "‹decimation› = -1: violated constraint: >= 1 (0: from the logs)");
   axis.decimation = 10;
   axis.cutoff = -1.0;
   CHECK_FALSE(axis.IsValid(&error));
@@ -72,9 +74,9 @@ TEST_CASE("a fit refuses invalid options with their own message") {
   AxisLog log{"a.csv", {0.0, 0.1, 0.2}, {0.0, 0.1, 0.2}, {1.0, 1.0, 1.0}, {}};
   AxisFitOptions axis;
   axis.cutoff = 5.0;
-  axis.decimation = 0;
+  axis.decimation = -2;
   CHECK_THROWS_AS(FitAxis({log}, AxisSection{}, axis), OptionError);
-  CHECK_THROWS_WITH(FitAxis({log}, AxisSection{}, axis), "‹decimation› = 0: violated constraint: >= 1");
+  CHECK_THROWS_WITH(FitAxis({log}, AxisSection{}, axis), "‹decimation› = -2: violated constraint: >= 1 (0: from the logs)");
   CDriveFitOptions cdrive;
   cdrive.half_window = -1.0;
   CDriveLog c{"c.csv", {0.0, 0.1}, {0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
@@ -127,8 +129,8 @@ TEST_CASE("every options struct refuses a value outside its bounds, by field") {
                            "‹period› = -0.5: violated constraint: period >= 0 s (0: detected)");
   CheckRefusal<FrfOptions>([](auto& o) { o.two_mass.hold_rate = -1.0; },
                            "hold_rate = -1: violated constraint: rate >= 0 Hz (0: continuous)");
-  CheckRefusal<AxisIdentificationOptions>([](auto& o) { o.axis.decimation = 0; },
-                                          "‹decimation› = 0: violated constraint: >= 1");
+  CheckRefusal<AxisIdentificationOptions>([](auto& o) { o.axis.decimation = -1; },
+                                          "‹decimation› = -1: violated constraint: >= 1 (0: from the logs)");
   CheckRefusal<JointIdentificationOptions>([](auto& o) { o.cutoff = -3.0; },
                                            "‹cutoff› = -3: violated constraint: cutoff > 0 Hz (0: rate / 40)");
   CheckRefusal<StepIdentificationOptions>([](auto& o) { o.fit.fit.max_iterations = 0; },

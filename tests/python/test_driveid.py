@@ -100,7 +100,7 @@ def test_usage_errors_carry_the_commands_text(log):
         driveid.axis(str(log), method="bogus")
     assert e.value.exit_code == 2
     with pytest.raises(driveid.UsageError, match="decimation"):
-        driveid.axis(str(log), decimation=0)
+        driveid.axis(str(log), decimation=-1)
     with pytest.raises(driveid.UsageError, match="free"):
         driveid.axis(str(log), free="inertia,nonsense")
     cli = run("axis", str(log), "--free", "inertia,nonsense", check=False)

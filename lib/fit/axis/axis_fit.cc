@@ -21,6 +21,8 @@
 #include "fit/core/omitted_terms.h"
 #include "logs/csv_log.h"
 #include "models/missing_values.h"
+#include "signal/butterworth.h"
+#include "signal/resample.h"
 #include "models/axis_term.h"
 #include "signal/butterworth.h"
 #include "signal/local_polynomial.h"
@@ -28,8 +30,8 @@
 namespace driveid {
 
 bool AxisFitOptions::IsValid(std::string* error) const {
-  if (decimation < 1) {
-    *error = ViolatedConstraint("‹decimation›", decimation, ">= 1");
+  if (decimation < 0) {
+    *error = ViolatedConstraint("‹decimation›", decimation, ">= 1 (0: from the logs)");
   } else if (!(cutoff >= 0.0) || !std::isfinite(cutoff)) {
     *error = ViolatedConstraint("‹cutoff›", cutoff, "cutoff > 0 Hz (0: from the data)");
   } else if (!(min_rate_fraction >= 0.0 && min_rate_fraction < 1.0)) {
@@ -218,15 +220,78 @@ void AddTimingCovariance(const std::vector<AxisLog>& logs, const AxisSection& st
 
 }  // namespace
 
-double ChooseAxisCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options) {
-  AxisRowCache cache;
-  return ChooseCutoff(logs, start, options, &cache);
+std::vector<AxisLog> UniformAxisLogs(const std::vector<AxisLog>& logs, std::vector<std::string>* notes) {
+  std::vector<AxisLog> out = logs;
+  for (AxisLog& log : out) {
+    const std::size_t n = log.time.size();
+    if (n < 3 || !log.measured.empty() || ConstantRate(log.time) > 0.0) continue;
+    const double step = (log.time.back() - log.time.front()) / static_cast<double>(n - 1);
+    // Only where every sample is kept (below 2 x kAxisDecimatedRate): there
+    // the local polynomial's window spans too few samples; faster logs keep
+    // the irregular path, whose decimated rows it serves.
+    if (!(step > 0.0) || !std::isfinite(step) || !(1.0 / step < 2.0 * kAxisDecimatedRate)) continue;
+    std::size_t off = 0;
+    bool gap = false;
+    for (std::size_t k = 1; k < n; ++k) {
+      const double dt = log.time[k] - log.time[k - 1];
+      if (!(dt > 0.0) || dt > 2.5 * step) gap = true;
+      if (std::abs(dt - step) > 0.5 * step) ++off;
+    }
+    if (gap || static_cast<double>(off) > 0.05 * static_cast<double>(n - 1)) continue;
+    const double rate = 1.0 / step;
+    for (auto* v : {&log.position, &log.force, &log.rate}) {
+      if (!v->empty()) *v = ResampleLinear(log.time, *v, rate, n);
+    }
+    const double first = log.time.front();
+    for (std::size_t k = 0; k < n; ++k) log.time[k] = first + static_cast<double>(k) * step;
+    if (notes) {
+      notes->push_back(fmt::format("{}: time stamps jitter about {:.4g} ms: resampled onto that step by linear "
+                                   "interpolation (docs/models.md#axis-decimation)",
+                                   log.path, 1e3 * step));
+    }
+  }
+  return out;
 }
 
-AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options) {
-  if (logs.empty()) throw OptionError("no logs given");
+int ChooseAxisDecimation(const std::vector<AxisLog>& logs, std::string* rule) {
+  const double rate = AxisSamplingRate(logs);
+  std::size_t shortest = 0;
+  for (std::size_t i = 0; i < logs.size(); ++i) {
+    if (logs[i].time.size() < logs[shortest].time.size()) shortest = i;
+  }
+  const std::size_t samples = logs.empty() ? 0 : logs[shortest].time.size();
+  const int by_rate = std::isfinite(rate) && rate > 0.0
+                          ? std::clamp(static_cast<int>(std::floor(rate / kAxisDecimatedRate)), 1, kAxisDecimation)
+                          : kAxisDecimation;
+  const int by_length = std::max(1, static_cast<int>(samples / static_cast<std::size_t>(kAxisRowsPerLog)));
+  const int decimation = std::min(by_rate, by_length);
+  if (rule) {
+    *rule = by_length < by_rate
+                ? fmt::format("from the logs: the shortest ({}, {} samples) keeps at least {} rows", logs[shortest].path,
+                              samples, kAxisRowsPerLog)
+                : fmt::format("from the logs: their rate {:.4g} Hz decimated to no less than {:g} Hz (at most every "
+                              "{}th sample)",
+                              rate, kAxisDecimatedRate, kAxisDecimation);
+  }
+  return decimation;
+}
+
+double ChooseAxisCutoff(const std::vector<AxisLog>& given, const AxisSection& start, const AxisFitOptions& options) {
+  const std::vector<AxisLog> logs = UniformAxisLogs(given, nullptr);
+  AxisRowCache cache;
+  AxisFitOptions o = options;
+  if (o.decimation == kAxisDecimationFromLogs) o.decimation = ChooseAxisDecimation(logs, nullptr);
+  return ChooseCutoff(logs, start, o, &cache);
+}
+
+AxisFitOutput FitAxis(const std::vector<AxisLog>& given, const AxisSection& start, const AxisFitOptions& options) {
+  if (given.empty()) throw OptionError("no logs given");
+  std::vector<std::string> resampled;
+  const std::vector<AxisLog> logs = UniformAxisLogs(given, &resampled);
   AxisFitOptions central = options;
   central.sensitivity = false;
+  std::string decimation_rule = "given (‹decimation›)";
+  if (central.decimation == kAxisDecimationFromLogs) central.decimation = ChooseAxisDecimation(logs, &decimation_rule);
   CheckFreeNames(AxisParameterTable(), "axis", options.free);
   AxisRowCache cache;
   std::string timing_rule = "given (‹torque-timing›)";
@@ -237,9 +302,14 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
     // longer shapes the band the rows keep: at or below it, its attenuation
     // of q'' next to the unfiltered torque favours the held reading on
     // sampled logs. Then the cutoff with that timing.
+    // Judged on rows decimated by kAxisDecimation unless the decimation was
+    // given (the readings' residuals separate there; the fit then keeps the
+    // decimation chosen for the logs).
     AxisFitOptions judged = central;
+    if (options.decimation == kAxisDecimationFromLogs) judged.decimation = kAxisDecimation;
     const double rate = AxisSamplingRate(logs);
-    judged.cutoff = std::max(options.cutoff, std::min(2.0 * AxisDecimatedBand(rate, options.decimation), 0.4 * rate));
+    judged.cutoff =
+        std::max(options.cutoff, std::min(2.0 * AxisDecimatedBand(rate, judged.decimation), AxisHighestCutoff(logs)));
     timing = EstimateTorqueDelay(logs, start, judged, &cache);
     central.torque_timing = AxisTorqueTiming::kDelayed;
     central.torque_delay = timing.delay;
@@ -250,6 +320,9 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
   out.torque_timing = central.torque_timing;
   out.torque_delay = central.torque_delay;
   out.timing_rule = timing_rule;
+  out.decimation = central.decimation;
+  out.decimation_rule = decimation_rule;
+  for (const std::string& note : resampled) out.fit.notes.push_back(note);
   out.cutoff_rule = options.cutoff > 0.0
                         ? "given (‹cutoff›)"
                         : "from the data: of 5, 10, 20, ... x the motion frequency RMS(q')/(2 pi RMS(q)) up to the "
@@ -257,12 +330,11 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& logs, const AxisSection& start
                           "smaller";
   if (!options.sensitivity) return out;
   // The same fit at half and at twice the cutoff (twice: if below Nyquist).
-  const double rate = AxisSamplingRate(logs);
   for (const double factor : {0.5, 2.0}) {
     AxisFitOptions other = central;
     other.cutoff = factor * central.cutoff;
     other.per_log = false;
-    if (!(other.cutoff < 0.4 * rate)) continue;
+    if (!(other.cutoff <= AxisHighestCutoff(logs))) continue;
     EstimateSet entry{fmt::format("cutoff {:.3g} Hz", other.cutoff), {}, "", other.cutoff};
     try {
       entry.estimates = FitAtCutoff(logs, start, other, &cache, AtCutoff::kScore).fit.estimates;
@@ -341,8 +413,15 @@ std::vector<ResolvedAxisTerm> ResolveAxisTerms(const AxisSection& start, const s
   return terms;
 }
 
-AxisFitOutput FitAxisAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options) {
-  return FitAtCutoff(logs, start, options, nullptr, AtCutoff::kFull);
+AxisFitOutput FitAxisAtCutoff(const std::vector<AxisLog>& given, const AxisSection& start, const AxisFitOptions& options) {
+  const std::vector<AxisLog> logs = UniformAxisLogs(given, nullptr);
+  AxisFitOptions o = options;
+  std::string rule = "given (‹decimation›)";
+  if (o.decimation == kAxisDecimationFromLogs) o.decimation = ChooseAxisDecimation(logs, &rule);
+  AxisFitOutput out = FitAtCutoff(logs, start, o, nullptr, AtCutoff::kFull);
+  out.decimation = o.decimation;
+  out.decimation_rule = rule;
+  return out;
 }
 
 namespace {

@@ -46,16 +46,24 @@ namespace driveid {
 /// and says what it gives right after it (workflow/axis_identification.cc).
 inline constexpr const char* kAxisOutputErrorAdvice = "‹method› oe, which does not differentiate";
 
-/// The axis fit's default decimation after its parallel filtering: every
-/// 10th sample kept (docs/models.md#axis), declared once for the fit, the
-/// workflow and the tools.
+/// The axis fit's largest default decimation after its parallel filtering:
+/// every 10th sample kept of a kHz log (docs/models.md#axis-decimation),
+/// declared once for the fit, the workflow and the tools.
 inline constexpr int kAxisDecimation = 10;
+/// The decimation by default: chosen from the logs (ChooseAxisDecimation).
+inline constexpr int kAxisDecimationFromLogs = 0;
+/// ChooseAxisDecimation keeps the decimated rate at or above this [Hz]...
+inline constexpr double kAxisDecimatedRate = 100.0;
+/// ... and at least this many rows of the shortest log.
+inline constexpr int kAxisRowsPerLog = 40;
 
 struct AxisFitOptions {
   std::vector<std::string> free = FitParameterKeys(AxisParameterTable(), "axis", true);
   double cutoff = 0.0;                ///< position low-pass [Hz]; 0 = ChooseAxisCutoff
   bool sensitivity = true;            ///< also fit at half and twice the cutoff
-  int decimation = kAxisDecimation;   ///< keep every n-th sample after parallel filtering
+  /// Keep every n-th sample after parallel filtering; kAxisDecimationFromLogs:
+  /// ChooseAxisDecimation.
+  int decimation = kAxisDecimationFromLogs;
   AxisTorqueTiming torque_timing = AxisTorqueTiming::kSampled;  ///< fit/axis/axis_rows.h; kFromData: FitAxis estimates
   double torque_delay = 0.0;          ///< kDelayed: when the torque acts after its stamp [samples, -1 .. 1]
   double min_rate_fraction = 0.01;    ///< exclude |q'| below this fraction of max |q'|
@@ -81,6 +89,8 @@ struct AxisFitOutput {
   std::string method;                   ///< how rates were obtained
   double cutoff = 0.0;
   std::string cutoff_rule;                        ///< how the cutoff was chosen
+  int decimation = 1;                             ///< the decimation used
+  std::string decimation_rule;                    ///< how it was chosen
   AxisTorqueTiming torque_timing = AxisTorqueTiming::kSampled;  ///< the reading used (never kFromData)
   double torque_delay = 0.0;      ///< kDelayed: the delay used [samples]
   std::string timing_rule;                        ///< how it was chosen
@@ -97,6 +107,22 @@ struct AxisFitOutput {
 /// a mean squared torque residual 5 % smaller (rate / 40 for logs that do
 /// not move; docs/models.md#axis-cutoff-from-the-data).
 double ChooseAxisCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options);
+
+/// The default decimation (docs/models.md#axis-decimation): the largest
+/// factor up to kAxisDecimation that keeps the logs' lowest rate at or above
+/// kAxisDecimatedRate once decimated and kAxisRowsPerLog rows of the
+/// shortest log: every sample of a 50 Hz SysIdRoutine log, every 2nd of a
+/// 200 Hz SysId file, every 10th of a kHz log. `rule` says which bound set it.
+int ChooseAxisDecimation(const std::vector<AxisLog>& logs, std::string* rule);
+
+/// Logs slower than 2 x kAxisDecimatedRate whose stamps jitter about a
+/// constant step (a DataLog's 20 ms loop: every interval below 2.5 mean
+/// steps, no more than 5 % of them off it by more than half), resampled
+/// onto that step by linear interpolation, so
+/// that the parallel filter and central differences apply; logs with gaps
+/// or measured-row flags are kept as they are (local polynomials). `notes`
+/// says which were resampled (docs/models.md#axis-decimation).
+std::vector<AxisLog> UniformAxisLogs(const std::vector<AxisLog>& logs, std::vector<std::string>* notes);
 
 /// One model parameter of a fit: free (with its start value) or fixed.
 struct ResolvedAxisTerm {

@@ -116,6 +116,12 @@ double AxisSamplingRate(const std::vector<AxisLog>& logs) {
 
 double AxisDecimatedBand(double rate, int decimation) { return 0.8 * rate / (2.0 * std::max(1, decimation)); }
 
+double AxisHighestCutoff(const std::vector<AxisLog>& logs) {
+  const bool irregular =
+      std::any_of(logs.begin(), logs.end(), [](const AxisLog& log) { return !(ConstantRate(log.time) > 0.0); });
+  return (irregular ? kAxisIrregularCutoffShare : 0.4) * AxisSamplingRate(logs);
+}
+
 std::vector<double> AxisCutoffCandidates(const std::vector<AxisLog>& logs, int decimation) {
   const double rate = AxisSamplingRate(logs);
   if (!std::isfinite(rate) || !(rate > 0.0)) return {};
@@ -123,7 +129,7 @@ std::vector<double> AxisCutoffCandidates(const std::vector<AxisLog>& logs, int d
   if (!(motion > 0.0) || !std::isfinite(motion)) return {rate / 40.0};
   // No higher than the band the decimated samples keep (the parallel
   // decimation filter's cutoff): above it only noise would change.
-  const double top = AxisDecimatedBand(rate, decimation);
+  const double top = std::min(AxisDecimatedBand(rate, decimation), AxisHighestCutoff(logs));
   std::vector<double> candidates;
   for (double c = kCutoffPerMotionFrequency * motion; c < top && candidates.size() < 12; c *= 2.0) {
     candidates.push_back(c);
@@ -149,15 +155,32 @@ int AxisShortestReach(double rate, int decimation) {
   return (rate > 0.0 ? kAxisExclusionDecimations : kAxisExclusionDecimationsIrregular) * std::max(1, decimation);
 }
 
-int AxisRowReach(double rate, double cutoff, int decimation, AxisReach reach) {
-  return AxisExclusionReach(rate, reach == AxisReach::kAtBand ? AxisDecimatedBand(rate, decimation) : cutoff,
-                            decimation);
+int AxisRowReach(double rate, double cutoff, int decimation, AxisReach reach, double mean_rate) {
+  const int reached =
+      AxisExclusionReach(rate, reach == AxisReach::kAtBand ? AxisDecimatedBand(rate, decimation) : cutoff, decimation);
+  if (rate > 0.0 || !(mean_rate > 0.0) || !std::isfinite(mean_rate)) return reached;
+  const double position_cutoff = cutoff > 0.0 ? cutoff : mean_rate / 40.0;
+  const int step = std::max(1, decimation);
+  const int window = static_cast<int>(std::min(std::ceil(0.5 / position_cutoff * mean_rate) + 1.0, 1e6));
+  return std::max(reached, (window + step - 1) / step * step);
 }
+
+namespace {
+
+double MeanRate(const std::vector<double>& time) {
+  return time.size() < 2 || !(time.back() > time.front())
+             ? 0.0
+             : static_cast<double>(time.size() - 1) / (time.back() - time.front());
+}
+
+}  // namespace
 
 std::vector<int> AxisRowReaches(const std::vector<AxisLog>& logs, double cutoff, int decimation, AxisReach reach) {
   std::vector<int> reaches;
   reaches.reserve(logs.size());
-  for (const auto& log : logs) reaches.push_back(AxisRowReach(ConstantRate(log.time), cutoff, decimation, reach));
+  for (const auto& log : logs) {
+    reaches.push_back(AxisRowReach(ConstantRate(log.time), cutoff, decimation, reach, MeanRate(log.time)));
+  }
   return reaches;
 }
 
@@ -316,6 +339,29 @@ std::size_t MedianMotionStretch(const std::vector<char>& slow) {
 
 }  // namespace
 
+namespace {
+
+// For each sample the nearest one whose derivatives are valid (itself if
+// valid; 0 when none is).
+std::vector<std::size_t> NearestValid(const std::vector<char>& valid) {
+  const std::size_t n = valid.size();
+  std::vector<std::size_t> nearest(n, n);
+  std::size_t last = n;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (valid[k]) last = k;
+    nearest[k] = last;
+  }
+  last = n;
+  for (std::size_t k = n; k-- > 0;) {
+    if (valid[k]) last = k;
+    if (last < n && (nearest[k] == n || last - k < k - nearest[k])) nearest[k] = last;
+  }
+  for (std::size_t& k : nearest) k = k == n ? 0 : k;
+  return nearest;
+}
+
+}  // namespace
+
 AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int decimation, double min_rate_fraction,
                        const std::vector<std::string>& column_names, AxisTorqueTiming timing, AxisReach reach_at,
                        double torque_delay) {
@@ -343,21 +389,30 @@ AxisRows BuildAxisRows(const std::vector<AxisLog>& logs, double cutoff, int deci
       if (d.valid[k]) max_rate = std::max(max_rate, std::abs(d.rate[k]));
     }
     const double min_rate = min_rate_fraction * max_rate;
-    // The sample whose derivatives stand for k: invalid ends hold their neighbours.
-    const auto derived = [&](std::size_t k) { return d.valid[k] ? k : (k == 0 ? 1 : n - 2); };
+    // The sample whose derivatives stand for k: an invalid one (an end the
+    // differentiator's window does not cover: one sample at a constant rate,
+    // half a local-polynomial window on irregular stamps; or a sample in a
+    // gap) holds the nearest valid one's. The invalid stretches at the ends
+    // count as slow, so that rows keep the reach from them; an invalid
+    // sample inside is no row.
+    const std::vector<std::size_t> nearest = NearestValid(d.valid);
+    const auto derived = [&](std::size_t k) { return nearest[k]; };
     std::vector<char> slow(n, 0);
     for (std::size_t k = 0; k < n; ++k) slow[k] = std::abs(d.rate[derived(k)]) < min_rate;
+    for (std::size_t k = 0; k < n && !d.valid[k]; ++k) slow[k] = 1;
+    for (std::size_t k = n; k-- > 0 && !d.valid[k];) slow[k] = 1;
     // A kept sample must be clear of slow samples by the filters' reach,
     // but the reach takes at most kAxisExclusionShareOfMotion of a typical
     // stretch of motion from each end (no less than the shortest reach).
-    int reach = AxisRowReach(d.rate_hz, cutoff, decimation, reach_at);
+    int reach = AxisRowReach(d.rate_hz, cutoff, decimation, reach_at, MeanRate(log.time));
     const std::size_t stretch = MedianMotionStretch(slow);
     if (stretch > 0) {
       const int step = std::max(1, decimation);
       const int share = static_cast<int>(kAxisExclusionShareOfMotion * static_cast<double>(stretch)) / step * step;
       reach = std::min(reach, std::max(AxisShortestReach(d.rate_hz, step), share));
     }
-    const std::vector<std::size_t> kept = ClearSamples(slow, static_cast<std::size_t>(std::max(1, reach)), decimation);
+    std::vector<std::size_t> kept = ClearSamples(slow, static_cast<std::size_t>(std::max(1, reach)), decimation);
+    kept.erase(std::remove_if(kept.begin(), kept.end(), [&](std::size_t k) { return !d.valid[k]; }), kept.end());
     // Full-rate columns, one at a time (memory: one column besides the log):
     // the model's regressors (CalcAxisRegressors), then |q'| and t - t_mid.
     // Low-passed before decimation.

@@ -43,6 +43,12 @@ double AxisMotionFrequency(const std::vector<AxisLog>& logs);
 
 /// The lowest sampling rate of the logs [Hz] (the mean rate where irregular).
 double AxisSamplingRate(const std::vector<AxisLog>& logs);
+/// The highest position cutoff the logs' differentiation can use [Hz]: 0.4 x
+/// the rate at a constant rate; on irregular stamps (a DataLog's jittered
+/// 50 Hz) kAxisIrregularCutoffShare of the mean rate, so that the local
+/// quadratic's window (half 0.5 / cutoff) holds 2.5 samples a side.
+double AxisHighestCutoff(const std::vector<AxisLog>& logs);
+inline constexpr double kAxisIrregularCutoffShare = 0.2;
 
 /// The band the decimated samples keep [Hz]: the parallel decimation
 /// filter's cutoff, 0.8 x rate / (2 x decimation) (decimation below 1 counts as 1).
@@ -119,8 +125,11 @@ constexpr double kAxisExclusionLowestCutoff = 0.5;
 enum class AxisReach { kAtCutoff, kAtBand };
 /// The reach [samples] BuildAxisRows starts from on a log sampled at `rate`
 /// [Hz] (0: irregular), before the share-of-motion cap: AxisExclusionReach
-/// at `cutoff` (kAtCutoff) or at the decimated band (kAtBand).
-int AxisRowReach(double rate, double cutoff, int decimation, AxisReach reach);
+/// at `cutoff` (kAtCutoff) or at the decimated band (kAtBand). On an
+/// irregular log (mean rate `mean_rate`) at least the local quadratic's half
+/// window, 0.5 / cutoff, in samples plus one (whole decimations): a row no
+/// nearer a reversal, a gap or an end than the window the rates came from.
+int AxisRowReach(double rate, double cutoff, int decimation, AxisReach reach, double mean_rate = 0.0);
 /// AxisRowReach of each log (its rate as the rows read it): two row builds
 /// at one cutoff and timing whose reaches agree build the same rows.
 std::vector<int> AxisRowReaches(const std::vector<AxisLog>& logs, double cutoff, int decimation, AxisReach reach);

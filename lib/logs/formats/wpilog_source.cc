@@ -6,7 +6,8 @@
 // samples, each at its own time, units in the entries' metadata. Each test
 // is one source with the columns t, voltage, position, velocity: t are the
 // voltage records' times, position and velocity are interpolated linearly
-// to them, as SysId does. A test run more than once gives its last complete
+// to them, as SysId does, from their records within the same run (a voltage
+// record without one on either side is left out, and said). A test run more than once gives its last complete
 // run. Without a routine, `inspect` still lists the entries (a catalog).
 #include "logs/formats/wpilog_source.h"
 
@@ -66,6 +67,22 @@ double Interpolate(const Series& s, double t) {
   const double t0 = s.t_us[k - 1], t1 = s.t_us[k];
   const double w = t1 > t0 ? (t - t0) / (t1 - t0) : 0.0;
   return s.value[k - 1] + w * (s.value[k] - s.value[k - 1]);
+}
+
+// The same, only from the samples within [lo, hi) (a test's run): false
+// where a neighbour lies outside, as between two runs, when the routine
+// logs only while a test runs and a straight line would join the last run's
+// end to this one's start.
+bool InterpolateWithin(const Series& s, double t, double lo, double hi, double* value) {
+  const auto next = std::lower_bound(s.t_us.begin(), s.t_us.end(), t);
+  const std::size_t k = static_cast<std::size_t>(next - s.t_us.begin());
+  if (k < s.t_us.size() && s.t_us[k] == t) {
+    *value = s.value[k];
+    return s.t_us[k] >= lo && s.t_us[k] < hi;
+  }
+  if (k == 0 || k == s.t_us.size() || s.t_us[k - 1] < lo || s.t_us[k] >= hi) return false;
+  *value = Interpolate(s, t);
+  return true;
 }
 
 // The runs of each test state, from the state records in time order.
@@ -188,7 +205,7 @@ RoutineData ReadRoutine(const std::string& path, const std::string& text, const 
 std::vector<std::vector<double>> TestColumns(const RoutineData& data, const Run& run, std::vector<std::string>& notes) {
   std::vector<std::vector<double>> columns(4);
   std::vector<double> lags;
-  std::size_t outside = 0, repeated = 0;
+  std::size_t outside = 0, repeated = 0, unbracketed = 0;
   const double lo = std::max(data.position.t_us.front(), data.velocity.t_us.front());
   const double hi = std::min(data.position.t_us.back(), data.velocity.t_us.back());
   for (std::size_t k = 0; k < data.voltage.t_us.size(); ++k) {
@@ -202,10 +219,17 @@ std::vector<std::vector<double>> TestColumns(const RoutineData& data, const Run&
       ++repeated;
       continue;
     }
+    double position = 0.0, velocity = 0.0;
+    const auto begin = static_cast<double>(run.begin), end = static_cast<double>(run.end);
+    if (!InterpolateWithin(data.position, t, begin, end, &position) ||
+        !InterpolateWithin(data.velocity, t, begin, end, &velocity)) {
+      ++unbracketed;
+      continue;
+    }
     columns[0].push_back(t * 1e-6);
     columns[1].push_back(data.voltage.value[k]);
-    columns[2].push_back(Interpolate(data.position, t));
-    columns[3].push_back(Interpolate(data.velocity, t));
+    columns[2].push_back(position);
+    columns[3].push_back(velocity);
     const auto next = std::lower_bound(data.position.t_us.begin(), data.position.t_us.end(), t);
     if (next != data.position.t_us.end()) lags.push_back(*next - t);
   }
@@ -216,6 +240,11 @@ std::vector<std::vector<double>> TestColumns(const RoutineData& data, const Run&
   }
   if (outside > 0) notes.push_back(fmt::format("{} voltage records outside the position's and velocity's span left out", outside));
   if (repeated > 0) notes.push_back(fmt::format("{} voltage records at a repeated time left out", repeated));
+  if (unbracketed > 0) {
+    notes.push_back(fmt::format("{} voltage records without a position and velocity record of the same run on either "
+                                "side left out (not interpolated across the gap between runs)",
+                                unbracketed));
+  }
   return columns;
 }
 
