@@ -56,11 +56,13 @@ CLI::App* Setup(CLI::App& app, GainsOptions& o) {
                       "drive's delay from torque command to measured speed [s] (default: the file's fitted delay, "
                       "frf --free ...,delay), to which the loop adds 1.5 periods")
       ->check(FiniteAtLeast(0.0));
-  command->add_option("--max-position-error", o.axis.max_position_error, "LQR state cost: position error tolerated")
-      ->capture_default_str()
+  command->add_option("--max-position-error", o.axis.max_position_error,
+                      "LQR state cost: position error tolerated (default: as SysId: 0.1 on a fit in volts, as its GUI "
+                      "sets it on loading data; else 1)")
       ->check(FiniteAbove(0.0));
-  command->add_option("--max-velocity-error", o.axis.max_velocity_error, "LQR state cost: velocity error tolerated")
-      ->capture_default_str()
+  command->add_option("--max-velocity-error", o.axis.max_velocity_error,
+                      "LQR state cost: velocity error tolerated (default: as SysId: (12 V - Ks) / (4 Kv) on a fit in "
+                      "volts, as its GUI sets it on loading data; else 1.5)")
       ->check(FiniteAbove(0.0));
   command->add_option("--max-effort", o.axis.max_effort, "LQR effort cost: effort at those errors (V for SysId)")
       ->capture_default_str()

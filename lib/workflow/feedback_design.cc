@@ -3,8 +3,10 @@
 #include <cmath>
 #include <stdexcept>
 #include <tuple>
+#include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "control/feedback_gains.h"
 #include "core/errors.h"
@@ -19,8 +21,8 @@ bool AxisGainsOptions::IsValid(std::string* error) const {
                "‹loop›: velocity or position for an axis (speed: an elastic joint's section)")
       .Require(!period || Positive(*period), "‹period›", period.value_or(0.0), "period > 0 s")
       .Require(!delay || NotNegative(*delay), "‹delay›", delay.value_or(0.0), "delay >= 0 s")
-      .Require(Positive(max_position_error), "‹max_position_error›", max_position_error, "> 0")
-      .Require(Positive(max_velocity_error), "‹max_velocity_error›", max_velocity_error, "> 0")
+      .Require(NotNegative(max_position_error), "‹max_position_error›", max_position_error, "> 0 (0: SysId's)")
+      .Require(NotNegative(max_velocity_error), "‹max_velocity_error›", max_velocity_error, "> 0 (0: SysId's)")
       .Require(Positive(max_effort), "‹max_effort›", max_effort, "> 0")
       .Require(NotNegative(conversion), "‹conversion›", conversion, "> 0 (0: from the preset's unit)")
       .Require(!kv || Finite(*kv), "‹kv›", kv.value_or(0.0), "finite")
@@ -47,6 +49,7 @@ void TakeFromFile(const ParameterFile& file, const std::string& path, AxisGainsD
     d.ka_std = ka->standard_error;
     // Kv = b and Ka = J (models/feedforward.h): their correlation is the fit's.
     d.correlation = file.FitCorrelation("viscous", "inertia");
+    if (const FeedforwardGain* ks = export_text::Gain(ff, "Ks")) d.ks = ks->value;
     d.controller.effort_unit = ff.effort_unit;
     d.controller.position_unit = ff.position_unit;
     d.kv_source = fmt::format("{} feed-forward (Kv, Ka with std{})", path,
@@ -68,12 +71,39 @@ void TakeFromFile(const ParameterFile& file, const std::string& path, AxisGainsD
   d.kv_source = fmt::format("{} axis section (Kv = viscous, Ka = inertia; no std: the section carries none)", path);
 }
 
-LqrSettings Settings(const AxisGainsOptions& o, const ControllerPreset& preset) {
+// The weights not given, as SysId sets them: on data in volts (a fit's Kv
+// and Ks) as its GUI does on loading data, else its settings' defaults.
+void SysIdWeights(const AxisGainsOptions& o, bool loop_position, AxisGainsDesign& d, double& qp, double& qv) {
+  qp = o.max_position_error;
+  qv = o.max_velocity_error;
+  const bool volts = d.controller.effort_unit.empty() || d.controller.effort_unit == "V";
+  const bool loaded = d.ks.has_value() && volts && !o.kv && d.kv > 0.0 && kSysIdBatteryVolts - *d.ks > 0.0;
+  if (qv > 0.0 && (qp > 0.0 || !loop_position)) return;
+  std::vector<std::string> set;
+  if (!(qv > 0.0)) {
+    qv = loaded ? (kSysIdBatteryVolts - *d.ks) / (4.0 * d.kv) : kSysIdMaxVelocityError;
+    set.push_back(loaded ? fmt::format("max velocity error (12 V - Ks) / (4 Kv) = {:.5g}", qv)
+                         : fmt::format("max velocity error {:g}", qv));
+  }
+  if (!(qp > 0.0)) {
+    qp = loaded ? kSysIdLoadedPositionError : kSysIdMaxPositionError;
+    if (loop_position) set.push_back(fmt::format("max position error {:g}", qp));
+  }
+  d.notes.push_back(fmt::format(
+      "LQR weights as SysId{}: {}, max effort {:g} (‹max-velocity-error›, ‹max-position-error›, ‹max-effort› set "
+      "them)",
+      loaded ? "'s GUI sets them on loading data (allwpilib sysid/src/main/native/cpp/view/Analyzer.cpp, "
+               "ConfigParamsOnFileSelect)"
+             : " uses them with no data loaded (its settings' defaults: no fit in volts with Ks here)",
+      fmt::join(set, ", "), o.max_effort));
+}
+
+LqrSettings Settings(const AxisGainsOptions& o, const ControllerPreset& preset, double qp, double qv) {
   LqrSettings s;
   s.period = o.period.value_or(preset.period);
   s.delay = o.delay.value_or(preset.delay);
-  s.max_position_error = o.max_position_error;
-  s.max_velocity_error = o.max_velocity_error;
+  s.max_position_error = qp;
+  s.max_velocity_error = qv;
   s.max_effort = o.max_effort;
   if (!(s.period > 0.0) || !(s.delay >= 0.0) || !(s.max_position_error > 0.0) || !(s.max_velocity_error > 0.0) ||
       !(s.max_effort > 0.0) || !(o.conversion >= 0.0)) {
@@ -148,7 +178,9 @@ AxisGainsDesign DesignAxisGains(const ParameterFile* file, const std::string& pa
   }
   GainRequest request;
   request.loop = o.loop == "velocity" ? FeedbackLoop::kVelocity : FeedbackLoop::kPosition;
-  request.lqr = Settings(o, *preset);
+  double qp = 0.0, qv = 0.0;
+  SysIdWeights(o, request.loop == FeedbackLoop::kPosition, d, qp, qv);
+  request.lqr = Settings(o, *preset, qp, qv);
   request.output_factor = preset->output_factor;
   request.velocity_time_factor = preset->velocity_time_factor;
   request.normalized = preset->normalized;
@@ -187,8 +219,8 @@ AxisGainsDesign DesignAxisGains(const ParameterFile* file, const std::string& pa
   if (request.loop == FeedbackLoop::kPosition) c.values.push_back({kGainKd, g.value.kd, g.standard_error.kd});
   c.values.push_back({"period", request.lqr.period, 0.0});
   c.values.push_back({"delay", request.lqr.delay, 0.0});
-  if (request.loop == FeedbackLoop::kPosition) c.values.push_back({"max_position_error", o.max_position_error, 0.0});
-  c.values.push_back({"max_velocity_error", o.max_velocity_error, 0.0});
+  if (request.loop == FeedbackLoop::kPosition) c.values.push_back({"max_position_error", qp, 0.0});
+  c.values.push_back({"max_velocity_error", qv, 0.0});
   c.values.push_back({"max_effort", o.max_effort, 0.0});
   c.values.push_back({"conversion", conversion, 0.0});
   if (d.ka < 1e-7 && request.loop == FeedbackLoop::kVelocity) {

@@ -23,8 +23,10 @@ struct AxisGainsOptions {
   std::string preset = "wpilib";  ///< control/feedback_gains.h ControllerPresets()
   std::optional<double> period;   ///< [s], else the preset's
   std::optional<double> delay;    ///< [s], else the preset's (velocity measurement delay)
-  double max_position_error = 1.0;
-  double max_velocity_error = 1.5;
+  /// The LQR's weights [position unit, position unit/s, effort unit]; 0:
+  /// SysIdWeights (as SysId's GUI sets them, docs/models.md#feedback-gains).
+  double max_position_error = 0.0;
+  double max_velocity_error = 0.0;
   double max_effort = 7.0;
   /// Controller position units per parameter-file position unit; 0: from
   /// the preset's unit (rotations from an angle unit; 1 for wpilib).
@@ -35,10 +37,21 @@ struct AxisGainsOptions {
   bool IsValid(std::string* error) const;
 };
 
+/// SysId's LQR weights. Its settings' defaults (sysid/analysis/AnalysisManager.h,
+/// `LQRParameters lqr{1, 1.5, 7}`): what it uses with no data loaded, and
+/// driveid with Kv and Ka given by hand. On loading data its GUI replaces the
+/// first two (allwpilib sysid/src/main/native/cpp/view/Analyzer.cpp,
+/// Analyzer::ConfigParamsOnFileSelect): the maximum position error 0.1 of
+/// the data's unit, and the maximum velocity error a quarter of the top
+/// speed, (12 V - Ks) / (4 Kv); driveid does the same for a fit in volts.
+inline constexpr double kSysIdMaxPositionError = 1.0, kSysIdMaxVelocityError = 1.5, kSysIdMaxEffort = 7.0;
+inline constexpr double kSysIdLoadedPositionError = 0.1, kSysIdBatteryVolts = 12.0;
+
 struct AxisGainsDesign {
   FeedbackController controller;
   std::string kv_source;          ///< where Kv and Ka came from, for the report
   double kv = 0.0, kv_std = 0.0, ka = 0.0, ka_std = 0.0, correlation = 0.0;
+  std::optional<double> ks;       ///< the file's Ks (feed-forward section), for SysId's weights
   std::vector<std::string> notes;
   std::vector<std::string> warnings;  ///< e.g. a gain the delay makes useless
 };
