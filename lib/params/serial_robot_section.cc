@@ -103,6 +103,8 @@ std::string DriveKeys(bool only_always) {
 std::vector<SerialDriveEntry> ParseDrives(const std::string& path, const YAML::Node& node) {
   if (!node.IsSequence()) throw InputError(fmt::format("{}: serial_robot.drives: expected a list", Where(path, node)));
   const std::vector<const SerialDriveTerm*>& terms = SerialDriveTerms();
+  const auto always = static_cast<std::size_t>(
+      std::count_if(terms.begin(), terms.end(), [](const SerialDriveTerm* t) { return t->always(); }));
   std::vector<SerialDriveEntry> out;
   for (std::size_t i = 0; i < node.size(); ++i) {
     const std::string name = fmt::format("serial_robot.drives[{}]", i);
@@ -127,8 +129,6 @@ std::vector<SerialDriveEntry> ParseDrives(const std::string& path, const YAML::N
         if (std::find(e.asked.begin(), e.asked.end(), key) == e.asked.end()) e.asked.push_back(key);
       }
     }
-    std::size_t always = 0;
-    for (const SerialDriveTerm* term : terms) always += term->always() ? 1 : 0;
     if (e.joint.empty() || found != always) {
       throw InputError(fmt::format("{}: {}: needs joint, {}", Where(path, node[i]), name, DriveKeys(true)));
     }

@@ -82,8 +82,7 @@ ValidationRun RunAxisValidation(const std::vector<AxisLog>& logs, const AxisSect
   } else if (options.timing_from_file) {
     source = "the file records none";
   }
-  const int decimation =
-      options.decimation == kAxisDecimationFromLogs ? ChooseAxisDecimation(logs, nullptr) : options.decimation;
+  const int decimation = AxisDecimationFor(logs, options.decimation, nullptr);
   const double cutoff = options.cutoff > 0.0 ? options.cutoff
                                              : ChooseAxisValidationCutoff(logs, params, decimation, timing, delay);
   return {ValidateAxis(logs, params, cutoff, decimation, timing, AxisReach::kAtCutoff, delay),

@@ -21,7 +21,6 @@
 #include "fit/core/omitted_terms.h"
 #include "logs/csv_log.h"
 #include "models/missing_values.h"
-#include "signal/butterworth.h"
 #include "signal/resample.h"
 #include "models/axis_term.h"
 #include "signal/butterworth.h"
@@ -220,24 +219,39 @@ void AddTimingCovariance(const std::vector<AxisLog>& logs, const AxisSection& st
 
 }  // namespace
 
-std::vector<AxisLog> UniformAxisLogs(const std::vector<AxisLog>& logs, std::vector<std::string>* notes) {
-  std::vector<AxisLog> out = logs;
-  for (AxisLog& log : out) {
+namespace {
+
+// Whether UniformAxisLogs resamples `log`, and onto which step [s].
+bool JittersAboutStep(const AxisLog& log, double* step_out) {
+  const std::size_t n = log.time.size();
+  if (n < 3 || !log.measured.empty() || ConstantRate(log.time) > 0.0) return false;
+  const double step = (log.time.back() - log.time.front()) / static_cast<double>(n - 1);
+  // Only where every sample is kept (below 2 x kAxisDecimatedRate): there
+  // the local polynomial's window spans too few samples; faster logs keep
+  // the irregular path, whose decimated rows it serves.
+  if (!(step > 0.0) || !std::isfinite(step) || !(1.0 / step < 2.0 * kAxisDecimatedRate)) return false;
+  std::size_t off = 0;
+  for (std::size_t k = 1; k < n; ++k) {
+    const double dt = log.time[k] - log.time[k - 1];
+    if (!(dt > 0.0) || dt > 2.5 * step) return false;
+    if (std::abs(dt - step) > 0.5 * step) ++off;
+  }
+  *step_out = step;
+  return !(static_cast<double>(off) > 0.05 * static_cast<double>(n - 1));
+}
+
+}  // namespace
+
+const std::vector<AxisLog>& UniformAxisLogs(const std::vector<AxisLog>& logs, std::vector<AxisLog>& storage,
+                                            std::vector<std::string>* notes) {
+  double step = 0.0;
+  if (std::none_of(logs.begin(), logs.end(), [&](const AxisLog& log) { return JittersAboutStep(log, &step); })) {
+    return logs;
+  }
+  storage = logs;
+  for (AxisLog& log : storage) {
     const std::size_t n = log.time.size();
-    if (n < 3 || !log.measured.empty() || ConstantRate(log.time) > 0.0) continue;
-    const double step = (log.time.back() - log.time.front()) / static_cast<double>(n - 1);
-    // Only where every sample is kept (below 2 x kAxisDecimatedRate): there
-    // the local polynomial's window spans too few samples; faster logs keep
-    // the irregular path, whose decimated rows it serves.
-    if (!(step > 0.0) || !std::isfinite(step) || !(1.0 / step < 2.0 * kAxisDecimatedRate)) continue;
-    std::size_t off = 0;
-    bool gap = false;
-    for (std::size_t k = 1; k < n; ++k) {
-      const double dt = log.time[k] - log.time[k - 1];
-      if (!(dt > 0.0) || dt > 2.5 * step) gap = true;
-      if (std::abs(dt - step) > 0.5 * step) ++off;
-    }
-    if (gap || static_cast<double>(off) > 0.05 * static_cast<double>(n - 1)) continue;
+    if (!JittersAboutStep(log, &step)) continue;
     const double rate = 1.0 / step;
     for (auto* v : {&log.position, &log.force, &log.rate}) {
       if (!v->empty()) *v = ResampleLinear(log.time, *v, rate, n);
@@ -250,7 +264,7 @@ std::vector<AxisLog> UniformAxisLogs(const std::vector<AxisLog>& logs, std::vect
                                    log.path, 1e3 * step));
     }
   }
-  return out;
+  return storage;
 }
 
 int ChooseAxisDecimation(const std::vector<AxisLog>& logs, std::string* rule) {
@@ -276,22 +290,32 @@ int ChooseAxisDecimation(const std::vector<AxisLog>& logs, std::string* rule) {
   return decimation;
 }
 
+int AxisDecimationFor(const std::vector<AxisLog>& logs, int requested, std::string* rule) {
+  if (requested != kAxisDecimationFromLogs) {
+    if (rule) *rule = "given (‹decimation›)";
+    return requested;
+  }
+  return ChooseAxisDecimation(logs, rule);
+}
+
 double ChooseAxisCutoff(const std::vector<AxisLog>& given, const AxisSection& start, const AxisFitOptions& options) {
-  const std::vector<AxisLog> logs = UniformAxisLogs(given, nullptr);
+  std::vector<AxisLog> storage;
+  const std::vector<AxisLog>& logs = UniformAxisLogs(given, storage, nullptr);
   AxisRowCache cache;
   AxisFitOptions o = options;
-  if (o.decimation == kAxisDecimationFromLogs) o.decimation = ChooseAxisDecimation(logs, nullptr);
+  o.decimation = AxisDecimationFor(logs, options.decimation, nullptr);
   return ChooseCutoff(logs, start, o, &cache);
 }
 
 AxisFitOutput FitAxis(const std::vector<AxisLog>& given, const AxisSection& start, const AxisFitOptions& options) {
   if (given.empty()) throw OptionError("no logs given");
   std::vector<std::string> resampled;
-  const std::vector<AxisLog> logs = UniformAxisLogs(given, &resampled);
+  std::vector<AxisLog> storage;
+  const std::vector<AxisLog>& logs = UniformAxisLogs(given, storage, &resampled);
   AxisFitOptions central = options;
   central.sensitivity = false;
-  std::string decimation_rule = "given (‹decimation›)";
-  if (central.decimation == kAxisDecimationFromLogs) central.decimation = ChooseAxisDecimation(logs, &decimation_rule);
+  std::string decimation_rule;
+  central.decimation = AxisDecimationFor(logs, options.decimation, &decimation_rule);
   CheckFreeNames(AxisParameterTable(), "axis", options.free);
   AxisRowCache cache;
   std::string timing_rule = "given (‹torque-timing›)";
@@ -414,10 +438,11 @@ std::vector<ResolvedAxisTerm> ResolveAxisTerms(const AxisSection& start, const s
 }
 
 AxisFitOutput FitAxisAtCutoff(const std::vector<AxisLog>& given, const AxisSection& start, const AxisFitOptions& options) {
-  const std::vector<AxisLog> logs = UniformAxisLogs(given, nullptr);
+  std::vector<AxisLog> storage;
+  const std::vector<AxisLog>& logs = UniformAxisLogs(given, storage, nullptr);
   AxisFitOptions o = options;
-  std::string rule = "given (‹decimation›)";
-  if (o.decimation == kAxisDecimationFromLogs) o.decimation = ChooseAxisDecimation(logs, &rule);
+  std::string rule;
+  o.decimation = AxisDecimationFor(logs, options.decimation, &rule);
   AxisFitOutput out = FitAtCutoff(logs, start, o, nullptr, AtCutoff::kFull);
   out.decimation = o.decimation;
   out.decimation_rule = rule;

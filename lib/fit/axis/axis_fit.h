@@ -114,6 +114,8 @@ double ChooseAxisCutoff(const std::vector<AxisLog>& logs, const AxisSection& sta
 /// shortest log: every sample of a 50 Hz SysIdRoutine log, every 2nd of a
 /// 200 Hz SysId file, every 10th of a kHz log. `rule` says which bound set it.
 int ChooseAxisDecimation(const std::vector<AxisLog>& logs, std::string* rule);
+/// `requested` when given (> 0; `rule` "given"), else ChooseAxisDecimation.
+int AxisDecimationFor(const std::vector<AxisLog>& logs, int requested, std::string* rule);
 
 /// Logs slower than 2 x kAxisDecimatedRate whose stamps jitter about a
 /// constant step (a DataLog's 20 ms loop: every interval below 2.5 mean
@@ -121,8 +123,10 @@ int ChooseAxisDecimation(const std::vector<AxisLog>& logs, std::string* rule);
 /// onto that step by linear interpolation, so
 /// that the parallel filter and central differences apply; logs with gaps
 /// or measured-row flags are kept as they are (local polynomials). `notes`
-/// says which were resampled (docs/models.md#axis-decimation).
-std::vector<AxisLog> UniformAxisLogs(const std::vector<AxisLog>& logs, std::vector<std::string>* notes);
+/// says which were resampled (docs/models.md#axis-decimation). Returns
+/// `logs` itself when none is resampled (no copy), else `storage` filled.
+const std::vector<AxisLog>& UniformAxisLogs(const std::vector<AxisLog>& logs, std::vector<AxisLog>& storage,
+                                            std::vector<std::string>* notes);
 
 /// One model parameter of a fit: free (with its start value) or fixed.
 struct ResolvedAxisTerm {

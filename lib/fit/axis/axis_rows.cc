@@ -14,6 +14,16 @@
 #include "signal/local_polynomial.h"
 
 namespace driveid {
+namespace {
+
+// The mean rate of the stamps [Hz] (0 for fewer than 2 or no span).
+double MeanRate(const std::vector<double>& time) {
+  return time.size() < 2 || !(time.back() > time.front())
+             ? 0.0
+             : static_cast<double>(time.size() - 1) / (time.back() - time.front());
+}
+
+}  // namespace
 
 AxisDerivatives DifferentiateAxisLog(const AxisLog& log, double cutoff_request, AxisPositionFilter filter) {
   AxisDerivatives d;
@@ -51,8 +61,7 @@ AxisDerivatives DifferentiateAxisLog(const AxisLog& log, double cutoff_request, 
     }
   } else {
     // Irregular sampling: local quadratic fits on the time stamps.
-    const double span = log.time.back() - log.time.front();
-    const double mean_rate = static_cast<double>(n - 1) / span;
+    const double mean_rate = MeanRate(log.time);
     const double cutoff = cutoff_request > 0.0 ? cutoff_request : mean_rate / 40.0;
     if (!log.rate.empty()) {
       const SignalDerivatives s = EstimateDerivatives(log.time, log.rate, 0.5 / cutoff);
@@ -164,16 +173,6 @@ int AxisRowReach(double rate, double cutoff, int decimation, AxisReach reach, do
   const int window = static_cast<int>(std::min(std::ceil(0.5 / position_cutoff * mean_rate) + 1.0, 1e6));
   return std::max(reached, (window + step - 1) / step * step);
 }
-
-namespace {
-
-double MeanRate(const std::vector<double>& time) {
-  return time.size() < 2 || !(time.back() > time.front())
-             ? 0.0
-             : static_cast<double>(time.size() - 1) / (time.back() - time.front());
-}
-
-}  // namespace
 
 std::vector<int> AxisRowReaches(const std::vector<AxisLog>& logs, double cutoff, int decimation, AxisReach reach) {
   std::vector<int> reaches;
@@ -336,10 +335,6 @@ std::size_t MedianMotionStretch(const std::vector<char>& slow) {
                    stretches.end());
   return stretches[stretches.size() / 2];
 }
-
-}  // namespace
-
-namespace {
 
 // For each sample the nearest one whose derivatives are valid (itself if
 // valid; 0 when none is).
