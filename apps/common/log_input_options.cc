@@ -58,6 +58,15 @@ void AddLogInputOptions(CLI::App& command, LogInputCli& options, const std::stri
                      "WPILog: the motor of the SysIdRoutine (its voltage-MOTOR-... entries) when it logs several");
   command.add_option("--test", options.selection.wpilog.test, "WPILog: the mechanism SysId would be told: simple (default), arm, elevator")
       ->check(CLI::IsMember({"simple", "arm", "elevator"}));
+  command.add_option("--unit", options.unit,
+                     "the unit of the position column q (e.g. Rotations, Meters, Radians) where the log declares "
+                     "none, or a --col q rescales the position the log declares in another");
+  command.add_option("--entry", options.entries,
+                     "WPILog of any origin (RobotPy, hand-written logging): ROLE=NAME for ROLE voltage, position, "
+                     "velocity and (optional) state, a string entry of SysId's state names; without state the tests "
+                     "are found from the voltage (docs/formats.md#wpilog)")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->allow_extra_args(false);
   command.add_option("--topic", options.selection.bag.topic,
                      "ROS bag: the sensor_msgs/JointState topic when the bag has several (docs/formats.md#ros-bags)");
   // `validate` names an MJCF joint with --joint; there a bag's joint is a --col.
@@ -98,7 +107,9 @@ LogInputOptions MakeLogInputOptions(const LogInputCli& options) {
   out.csv.delimiter = d == "comma" || d == "," ? ',' : d == "semicolon" || d == ";" ? ';' : d == "tab" ? '\t'
                       : d == "space" ? ' ' : 0;
   out.selection = options.selection;
+  for (const auto& entry : options.entries) SetWpilogEntry(out.selection.wpilog.entries, entry);
   out.rate = options.rate;
+  out.position_unit = options.unit;
   if (std::isfinite(options.from)) out.from = options.from;
   if (std::isfinite(options.to)) out.to = options.to;
   RequireValid(out);

@@ -35,6 +35,8 @@ struct LogInputCli {
   /// bag.every_joint is not a flag: a serial robot's command reads every
   /// joint of a bag by default.
   LogSelection selection;
+  std::string unit;                  ///< --unit: the position's unit
+  std::vector<std::string> entries;  ///< --entry ROLE=NAME (WPILog), into selection.wpilog.entries
 };
 
 /// Every input file of a command reading logs: the logs, the parameter file,

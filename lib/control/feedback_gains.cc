@@ -200,7 +200,11 @@ std::string FeedbackGainUnit(const FeedbackController& f, const std::string& key
   const bool own_units = !preset || (preset->output_factor == 1.0 && preset->velocity_time_factor == 1.0);
   const std::string effort = own_units ? f.effort_unit : std::string("output (") + f.preset + ")";
   const std::string position = f.position_unit;
-  if (f.loop == "velocity" && key == kGainKp) return fmt::format("{} s/{}", effort, position);
+  // The controller's rate unit: per second, per 100 ms (Phoenix 5), per
+  // minute (REV): a velocity gain is output per (position per that time).
+  const double per = preset ? preset->velocity_time_factor : 1.0;
+  const std::string time = per == 1.0 ? "s" : per == 60.0 ? "min" : per == 0.1 ? "(100 ms)" : fmt::format("({:g} s)", per);
+  if (f.loop == "velocity" && key == kGainKp) return fmt::format("{} {}/{}", effort, time, position);
   if (f.loop == "position" && key == kGainKp) return fmt::format("{}/{}", effort, position);
   if (f.loop == "position" && key == kGainKd) {
     return preset && !preset->normalized ? fmt::format("{} period/{}", effort, position)

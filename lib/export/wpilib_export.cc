@@ -30,7 +30,9 @@ Plan MakePlan(const WpilibAxis& axis) {
   Plan p;
   const FeedforwardGain* offset = Gain(ff, "offset");
   p.arm = Gain(ff, "Kg") && !axis.linear;
-  p.elevator = axis.linear && offset && offset->value != 0.0;
+  // A linear axis's offset is an elevator's kG unless the logs were a SysId
+  // "simple" test (a drive, a flywheel on a belt): there it is an offset.
+  p.elevator = axis.linear && offset && offset->value != 0.0 && ff.mechanism != "simple";
   p.type = p.arm ? "ArmFeedforward" : p.elevator ? "ElevatorFeedforward" : "SimpleMotorFeedforward";
   if (p.arm) p.notes.push_back("ArmFeedforward measures the angle from horizontal: pass q - kGAngle.");
   if (!p.arm && !p.elevator && offset && offset->value != 0.0) {

@@ -97,6 +97,15 @@ std::vector<std::pair<std::string, std::string>> GivenSelectionOptions(const Log
   text("mechanism", selection.wpilog.mechanism);
   text("motor", selection.wpilog.motor);
   text("test", selection.wpilog.test);
+  if (selection.wpilog.entries.Any()) {
+    const WpilogEntries& e = selection.wpilog.entries;
+    std::vector<std::string> named;
+    for (const auto& [role, name] : {std::pair<const char*, const std::string*>{"voltage", &e.voltage},
+                                     {"position", &e.position}, {"velocity", &e.velocity}, {"state", &e.state}}) {
+      if (!name->empty()) named.push_back(fmt::format("{}={}", role, *name));
+    }
+    given.emplace_back("entry", fmt::format("{}", fmt::join(named, ",")));
+  }
   text("topic", selection.bag.topic);
   if (!selection.bag.joints.empty()) given.emplace_back("joint", fmt::format("{}", fmt::join(selection.bag.joints, ",")));
   text("joint_motor", selection.bag.joint_motor);

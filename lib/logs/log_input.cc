@@ -357,6 +357,27 @@ void CheckMagnitudes(const std::vector<std::string>& required, const std::string
   }
 }
 
+// The position's unit: the one given (‹unit›), else the log's. A ‹col› q
+// that is not one of the log's columns as it stands (a scale, a sum, an
+// offset) on a log that declares its unit is refused without ‹unit›: the
+// numbers would change under the log's label (and a gain in V s/Meters would
+// be per something else).
+std::string PositionUnit(const TableSource& source, const std::vector<std::string>& required,
+                         const LogInputOptions& options, const std::string& where) {
+  const std::string declared = source.units();
+  if (!options.position_unit.empty()) return options.position_unit;
+  const auto q = options.columns.find("q");
+  if (declared.empty() || q == options.columns.end() ||
+      std::find(required.begin(), required.end(), "q") == required.end()) {
+    return declared;
+  }
+  const auto names = source.column_names();
+  if (std::find(names.begin(), names.end(), q->second) != names.end()) return declared;
+  throw OptionError(fmt::format("{}: ‹col› q={} changes the position the log declares in '{}': name the unit of the "
+                                "result with ‹unit› (e.g. ‹unit› Rotations; and scale qd alike)",
+                                where, q->second, declared));
+}
+
 }  // namespace
 
 CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>& required,
@@ -368,7 +389,7 @@ CsvLog ReadLogColumns(const TableSource& source, const std::vector<std::string>&
   log.path = source.path();
   log.segment = source.segment();
   log.format = source.format();
-  log.units = source.units();
+  log.units = PositionUnit(source, required, options, where);
   log.mechanism = source.mechanism();
   log.names = required;
   ColumnPlan plan = PlanColumns(source, required, options, where, log);

@@ -24,6 +24,11 @@ struct LogInputOptions {
   double rate = 0.0;  ///< --rate [Hz]: samples at this rate from t = 0 (0: the time column)
   std::optional<double> from, to;  ///< --from, --to [s]: crop in the log's time
   std::string time_column = "t";   ///< strictly increasing
+  /// ‹unit›: the unit of the position column q ("" = the log's own, as its
+  /// reader declares it: SysId's `units`, a WPILog entry's metadata). A log
+  /// that declares a unit and a ‹col› q that rescales the position need it:
+  /// the label would not follow the numbers.
+  std::string position_unit;
   /// Every bound on these fields (‹field› names the option); see core/option_check.h.
   bool IsValid(std::string* error) const;
 };

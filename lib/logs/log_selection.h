@@ -20,11 +20,29 @@ struct SysIdSelection {
   std::string side;  ///< "left", "right" or "both" for the Drivetrain layout
 };
 
-/// A WPILib DataLog of SysIdRoutine (docs/formats.md#wpilog): the routine
+/// A WPILog's entries named by the user (`--entry ROLE=NAME`: RobotPy's
+/// and hand-written logs): the voltage, position and velocity entries, and
+/// optionally the string entry of SysId's test states ("" = the tests are
+/// found from the voltage).
+struct WpilogEntries {
+  std::string voltage, position, velocity, state;
+  bool Any() const { return !voltage.empty() || !position.empty() || !velocity.empty() || !state.empty(); }
+};
+
+/// The roles `--entry` takes, in WpilogEntries' order.
+inline constexpr const char* kWpilogEntryRoles[] = {"voltage", "position", "velocity", "state"};
+
+/// Takes one `--entry ROLE=NAME` into `entries`; OptionError for an
+/// unknown role, an empty name or a role given twice.
+void SetWpilogEntry(WpilogEntries& entries, const std::string& given);
+
+/// A WPILib DataLog of SysId data (docs/formats.md#wpilog): the routine
 /// (the `sysid-test-state-<mechanism>` entry) and motor, "" when the log has
-/// one; the mechanism: "" or "simple", "arm", "elevator"; the test.
+/// one; the mechanism: "" or "simple", "arm", "elevator"; the test; the
+/// entries when named by the user.
 struct WpilogSelection {
   std::string mechanism, motor, test;
+  WpilogEntries entries;
 };
 
 /// A ROS bag (docs/formats.md#ros-bags): the JointState topic ("" when the

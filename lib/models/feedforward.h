@@ -101,6 +101,10 @@ struct Feedforward {
   std::string effort_unit;    ///< unit of u: "V", "N m", "N"
   std::string position_unit;  ///< unit of q: "rad", "m", SysId's "Meters", ...
   std::vector<FeedforwardGain> gains;
+  /// SysId's analysis type of the logs it was fitted from ("simple",
+  /// "elevator", "arm"), "" when they declared none: which WPILib class the
+  /// gains belong in (a drive's offset is no elevator's kG).
+  std::string mechanism;
 };
 
 }  // namespace driveid

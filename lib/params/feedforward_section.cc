@@ -23,6 +23,15 @@ Feedforward ParseFeedforward(const std::string& path, const YAML::Node& node) {
   for (const auto& item : node) {
     const std::string key = item.first.Scalar();
     const std::string name = "feedforward." + key;
+    if (key == "mechanism") {
+      const std::string value = item.second.IsScalar() ? item.second.Scalar() : std::string();
+      if (value != "simple" && value != "elevator" && value != "arm") {
+        throw InputError(fmt::format("{}: {}: expected simple, elevator or arm (SysId's analysis type)",
+                                     Where(path, item.second), name));
+      }
+      out.mechanism = value;
+      continue;
+    }
     if (key == "effort_unit" || key == "position_unit" || key == "law") {
       if (!item.second.IsScalar()) throw InputError(fmt::format("{}: {}: expected a name", Where(path, item.second), name));
       const std::string value = item.second.Scalar();
@@ -43,7 +52,7 @@ Feedforward ParseFeedforward(const std::string& path, const YAML::Node& node) {
       continue;
     }
     if (std::find(kFeedforwardKeys.begin(), kFeedforwardKeys.end(), key) == kFeedforwardKeys.end()) {
-      throw InputError(fmt::format("{}: {}: unknown key (known: law, effort_unit, position_unit, {})",
+      throw InputError(fmt::format("{}: {}: unknown key (known: law, effort_unit, position_unit, mechanism, {})",
                                    Where(path, item.first), name, fmt::join(kFeedforwardKeys, ", ")));
     }
     CheckKeys(path, name, item.second, {"value", "std"});
@@ -76,6 +85,7 @@ std::string FormatFeedforward(const Feedforward& f) {
             "docs/models.md#feed-forward\n";
   out += fmt::format("  law: {}\n  effort_unit: {}\n  position_unit: {}\n", f.law, Quoted(f.effort_unit),
                      Quoted(f.position_unit));
+  if (!f.mechanism.empty()) out += fmt::format("  mechanism: {}  # SysId's analysis type of the logs\n", f.mechanism);
   for (const auto& g : f.gains) {
     const std::string name = "feedforward." + g.key;
     out += fmt::format("  {}: {{value: {}, std: {}}}  # {}\n", g.key, Number(Writable(name, g.value)),

@@ -24,11 +24,14 @@ double FitPercentOrder(const ChannelStatistics& c) { return std::isnan(c.fit_per
 // A line per channel; beyond kListedChannels the ranges over all channels
 // and the channels of the lowest fit and the most correlated residuals.
 std::string FormatChannelLines(const std::vector<ChannelStatistics>& channels) {
+  // R^2 = 1 - SSR/SST = 1 - (1 - fit/100)^2 (SysId reports R^2 and RMSE per test).
   const auto line = [](const ChannelStatistics& c) {
-    return fmt::format("{}: {} samples, rmse {:.4g}, fit {}, residual lag-1 autocorrelation {:.3f}, std x {:.2f} "
+    const double unexplained = 1.0 - c.fit_percent / 100.0;
+    return fmt::format("{}: {} samples, rmse {:.4g}, fit {}{}, residual lag-1 autocorrelation {:.3f}, std x {:.2f} "
                        "for it ({} lags)\n",
-                       c.name, c.samples, c.rmse, FitPercentText(c.fit_percent, c.variation), c.autocorrelation, c.inflation,
-                       c.bandwidth);
+                       c.name, c.samples, c.rmse, FitPercentText(c.fit_percent, c.variation),
+                       std::isnan(c.fit_percent) ? std::string() : fmt::format(" (R^2 {:.4f})", 1.0 - unexplained * unexplained),
+                       c.autocorrelation, c.inflation, c.bandwidth);
   };
   std::string out;
   if (channels.size() <= kListedChannels) {

@@ -1,15 +1,19 @@
 #include "workflow/axis_identification.h"
 
 #include <algorithm>
+#include <cmath>
 #include <exception>
 #include <optional>
 
 #include <fmt/format.h>
 
+#include "core/clipped_text.h"
 #include "core/errors.h"
 #include "core/name_list.h"
 #include "core/option_check.h"
+#include "fit/axis/axis_adequacy.h"
 #include "fit/axis/axis_fit.h"
+#include "fit/core/adequacy.h"
 #include "fit/axis/axis_oe_fit.h"
 #include "fit/validation/validation.h"
 #include "models/axis_term.h"
@@ -169,6 +173,11 @@ void Interpret(const AxisIdentificationOptions& options, AxisIdentification& run
                             });
   run.feedforward = CalcAxisFeedforward(run.params, run.fit, sysid ? "V" : (linear ? "N" : "N m"),
                                         sysid ? options.sysid_unit : (linear ? "m" : "rad"), with_inertia);
+  for (const char* mechanism : {"Simple", "Elevator", "Arm"}) {
+    if (sysid && options.sysid_mechanism == mechanism) {
+      run.feedforward.mechanism = options.sysid_mechanism == "Simple" ? "simple" : options.sysid_mechanism == "Elevator" ? "elevator" : "arm";
+    }
+  }
 }
 
 // SysId's test type says which gravity the mechanism carries: an Arm's
@@ -217,7 +226,7 @@ void TryOutputErrorAdvice(const std::vector<AxisLog>& logs, const std::vector<Ax
         FitByOutputError(logs, measured, measured, options, trial);
         oe = std::move(trial);
       } catch (const std::exception& e) {
-        failure = std::string(e.what()).substr(0, 160);
+        failure = ClippedText(e.what(), 160);
       }
     }
     const std::string name = warning.substr(12, warning.find(' ', 12) - 12);
@@ -285,6 +294,9 @@ AxisIdentification IdentifyOn(const std::vector<AxisLog>& logged, const std::vec
       oe_options.fit = options.axis.fit;
       const std::string budget = AddStatusFrameBudget(logged, run.section, run.params, oe_options, run.fit);
       if (!budget.empty()) run.summary.push_back(budget);
+      // The rule once more on the widened covariance (a widened std may
+      // leave an estimate bounded only, or say nothing).
+      DecideAxisDetermined(run.fit, kMaxRelativeStd, -1.0);
     }
   } else {
     FitByInverseDynamics(measured, options, MeasuredRows(validation), run);
@@ -329,14 +341,57 @@ std::string StatusFrameWarning(const StatusFrameRetiming& frames, std::size_t lo
       "output error at the frames was not used ({}), so the rows were fitted as logged: each value was measured up to a "
       "frame before the rows that repeat it, the rates lag the effort, which biases Ka and Ks by more than their std "
       "(docs/models.md#status-frames); log the position at the device's rate, or take these as approximate",
-      frames.held_logs + frames.held_rates, logs, 1e3 * frames.frame_period, why.substr(0, 200));
+      frames.held_logs + frames.held_rates, logs, 1e3 * frames.frame_period, ClippedText(why, 200));
 }
+
+// A SysId Arm test logged in Rotations or Degrees (SysIdRoutine logs an
+// angular mechanism in rotations): the gravity term is cos q of q in
+// radians, so the logs are converted, q and q' times 2 pi (pi / 180), and the
+// gains are per radian, as WPILib's ArmFeedforward takes them (Ks, Kg, the
+// offset unchanged; Kv, Ka divided by the factor). Returns the factor, 1
+// when there is nothing to convert.
+double ArmRadiansPer(const AxisIdentificationOptions& options) {
+  if (options.sysid_mechanism != "Arm") return 1.0;
+  if (options.sysid_unit == "Rotations") return 2.0 * M_PI;
+  if (options.sysid_unit == "Degrees") return M_PI / 180.0;
+  return 1.0;
+}
+
+std::vector<AxisLog> InRadians(std::vector<AxisLog> logs, double factor) {
+  for (auto& log : logs) {
+    for (double& q : log.position) q *= factor;
+    for (double& v : log.rate) v *= factor;
+    log.start_rate *= factor;
+  }
+  return logs;
+}
+
+AxisIdentification IdentifyAxisAsGiven(const std::vector<AxisLog>& logged, const AxisSection& section,
+                                       const AxisIdentificationOptions& requested, const std::vector<AxisLog>& held_out);
 
 }  // namespace
 
 AxisIdentification IdentifyAxis(const std::vector<AxisLog>& logged, const AxisSection& section,
                                 const AxisIdentificationOptions& requested, const std::vector<AxisLog>& held_out) {
   RequireValid(requested);
+  const double factor = ArmRadiansPer(requested);
+  if (factor == 1.0) return IdentifyAxisAsGiven(logged, section, requested, held_out);
+  AxisIdentificationOptions in_radians = requested;
+  in_radians.sysid_unit = "Radians";
+  AxisIdentification run =
+      IdentifyAxisAsGiven(InRadians(logged, factor), section, in_radians, InRadians(held_out, factor));
+  run.summary.push_back(fmt::format("SysId Arm test logged in {}: converted to Radians (q and q' x {:.6g}) for the "
+                                    "gravity term cos q; Kv and Ka are per radian, as WPILib's ArmFeedforward takes "
+                                    "them (multiply by {:.6g} for per {})",
+                                    requested.sysid_unit, factor, factor,
+                                    requested.sysid_unit == "Rotations" ? "rotation" : "degree"));
+  return run;
+}
+
+namespace {
+
+AxisIdentification IdentifyAxisAsGiven(const std::vector<AxisLog>& logged, const AxisSection& section,
+                                       const AxisIdentificationOptions& requested, const std::vector<AxisLog>& held_out) {
   std::vector<AxisLog> logs = logged, validation = held_out;
   const StatusFrameRetiming frames = RetimeStatusFrames(logs);
   RetimeStatusFrames(validation);
@@ -355,6 +410,8 @@ AxisIdentification IdentifyAxis(const std::vector<AxisLog>& logged, const AxisSe
   run.fit.warnings.push_back(StatusFrameWarning(frames, logged.size(), why));
   return run;
 }
+
+}  // namespace
 
 void TakeSysIdDeclarations(const std::vector<std::string>& units, const std::vector<std::string>& mechanisms,
                            AxisIdentificationOptions& options) {

@@ -140,7 +140,8 @@ void ControllerUnits(const AxisGainsOptions& o, const ControllerPreset& preset, 
   throw OptionError(
       native == "rotation"
           ? fmt::format("‹preset› {} works in rotations, and the file's position unit is '{}': give ‹conversion› "
-                        "(rotations per {}, e.g. 1 / the wheel's circumference for metres)",
+                        "(motor rotations per {}: for metres, the gear ratio / the wheel's circumference, e.g. 6.75 / (pi x "
+                        "0.1016 m) = 21.15 for a 6.75:1 drive on 4 in wheels)",
                         preset.name, shown, shown)
           : fmt::format("‹preset› {} works in the sensor's units: give ‹conversion› (sensor units per {}, e.g. "
                         "2048 per rotation for a Talon FX's integrated sensor, 4096 for a CTRE Mag Encoder)",

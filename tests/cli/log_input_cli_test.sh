@@ -116,8 +116,27 @@ cp sysid.yaml sysid_first.yaml
 sed 's/"Simple"/"Arm"/' sysid.json > arm.json
 "$bin" axis arm.json -o arm.yaml > arm.txt 2>&1 && grep -q "^    gravity_cos: {value: " arm.yaml && grep -q "^  Kg: {value: " arm.yaml &&
   grep -q "SysId Arm test: gravity Kg cos(q - Kg_angle) fitted" arm.txt && ok || fail "SysId Arm: $(cat arm.txt)"
-sed 's/"Simple"/"Arm"/; s/"units": "Radians"/"units": "Rotations"/' sysid.json > arm_rotations.json
-expect 2 "a SysId Arm test in 'Rotations': the gravity term cos q needs the angle in Radians" -- axis arm_rotations.json
+# An Arm test logged in Rotations (what SysIdRoutine writes) is converted
+# to Radians, not refused: its gains equal those of the same test logged in
+# Radians (to the 12 digits the JSON holds), with a note.
+arm_json() {  # UNITS ROTATIONS_PER_RADIAN_OF_THE_CSV UNITS_PER_ROTATION
+  awk -F, -v units="$1" -v r="$2" -v per="$3" 'NR > 1 && !/^#/ { n++; t[n] = $1; q[n] = $2; u[n] = $3 }
+    END { for (k = 1; k <= n; k++) { a = k > 1 ? k - 1 : k; b = k < n ? k + 1 : k
+            s = s (k > 1 ? ", " : "") sprintf("[%s, %s, %.12g, %.12g]", t[k], u[k], q[k] / r, (q[b] - q[a]) / (t[b] - t[a]) / r) }
+          printf "{\"test\": \"Arm\", \"units\": \"%s\", \"unitsPerRotation\": %s, \"slow-forward\": [%s], \"slow-backward\": [%s], \"fast-forward\": [%s], \"fast-backward\": [%s]}\n", units, per, s, s, s, s }' \
+    <(grep -v '^#' axis.csv)
+}
+arm_json Radians 6.283185307179586 6.283185307179586 > arm_radians.json  # SysId JSON holds rotations
+arm_json Rotations 6.283185307179586 1 > arm_rotations.json
+"$bin" axis arm_radians.json -q -o arm_radians.yaml 2> /dev/null || fail "SysId Arm in Radians"
+"$bin" axis arm_rotations.json -o arm_rotations.yaml > arm_rotations.txt 2>&1 &&
+  grep -q "SysId Arm test logged in Rotations: converted to Radians (q and q' x 6.28319)" arm_rotations.txt &&
+  grep -q '^  position_unit: "Radians"' arm_rotations.yaml && ok || fail "SysId Arm in Rotations: $(head -c 600 arm_rotations.txt)"
+for key in Kv Ka Kg Ks; do
+  a=$(sed -n "s/^  $key: {value: \([^,]*\),.*/\1/p" arm_radians.yaml); b=$(sed -n "s/^  $key: {value: \([^,]*\),.*/\1/p" arm_rotations.yaml)
+  awk -v a="$a" -v b="$b" 'BEGIN { d = a - b; if (d < 0) d = -d; m = a < 0 ? -a : a; exit !(a != "" && d <= 1e-6 * m) }' && ok ||
+    fail "SysId Arm: $key in Radians $a, from Rotations $b"
+done
 sed 's/"Simple"/"Elevator"/' sysid.json > elevator.json
 "$bin" axis elevator.json -o elevator.yaml > elevator.txt 2>&1 && grep -q "SysId Elevator test: the constant gravity Kg is the offset" elevator.txt &&
   ! grep -q "gravity_cos: {value" elevator.yaml && ok || fail "SysId Elevator: $(cat elevator.txt)"

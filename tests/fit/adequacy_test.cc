@@ -157,6 +157,60 @@ TEST_CASE("a parameter at its bound 0 is reported with its one-sided limit; the 
   CHECK_THROWS_AS(RequireDetermined(infinite, {"stiffness", "damping"}, 0.5, {}, {{"damping", 0.01}}), IdentificationError);
 }
 
+TEST_CASE("bound or refuse: the data's bound is the answer, once, after any widening; silence is refused") {
+  const auto make = [](double ks, double ks_std) {
+    FitResult fit;
+    fit.estimates = {{"Kv", 0.125, 0.003, 0.119, 0.131}, {"Ks", ks, ks_std, ks - 1.96 * ks_std, ks + 1.96 * ks_std}};
+    return fit;
+  };
+  // At its bound 0: [0, 1.645 std], one warning naming it; the other untouched.
+  FitResult at_bound = make(0.0, 0.11);
+  REQUIRE_NOTHROW(BoundOrRefuse(at_bound, {"Kv", "Ks"}, 0.5, {}));
+  CHECK(at_bound.estimates[1].ci95_low == 0.0);
+  CHECK(at_bound.estimates[1].ci95_high == Approx(1.6448536 * 0.11));
+  CHECK(at_bound.estimates[0].ci95_low == 0.119);
+  REQUIRE(at_bound.warnings.size() == 1);
+  CHECK_THAT(at_bound.warnings[0], Catch::StartsWith("bounded only: Ks = 0 +- 0.11 (at its bound 0"));
+  // Above 0 with a relative std above 50 %: the two-sided interval cut at 0.
+  FitResult loose = make(0.05, 0.04);
+  REQUIRE_NOTHROW(BoundOrRefuse(loose, {"Kv", "Ks"}, 0.5, {}));
+  CHECK(loose.estimates[1].ci95_low == 0.0);
+  CHECK(loose.estimates[1].ci95_high == Approx(0.05 + 1.96 * 0.04));
+  REQUIRE(loose.warnings.size() == 1);
+  CHECK_THAT(loose.warnings[0], Catch::Contains("relative std 80 %"));
+  // Determined: nothing changes.
+  FitResult determined = make(0.075, 0.03);
+  REQUIRE_NOTHROW(BoundOrRefuse(determined, {"Kv", "Ks"}, 0.5, {}));
+  CHECK(determined.warnings.empty());
+  CHECK(determined.estimates[1].ci95_low == Approx(0.075 - 1.96 * 0.03));
+  // Widened afterwards (std 0.03 -> 0.06, above 50 %): applied again, bounded;
+  // applied twice, one warning with the latest numbers.
+  determined.estimates[1].standard_error = 0.06;
+  BoundOrRefuse(determined, {"Kv", "Ks"}, 0.5, {});
+  determined.estimates[1].standard_error = 0.07;
+  BoundOrRefuse(determined, {"Kv", "Ks"}, 0.5, {});
+  REQUIRE(determined.warnings.size() == 1);
+  CHECK_THAT(determined.warnings[0], Catch::Contains("Ks = 0.075 +- 0.07"));
+  CHECK(determined.estimates[1].ci95_high == Approx(0.075 + 1.96 * 0.07));
+  // The data say nothing: no finite std, or the fit says why (silent): refused by name.
+  FitResult infinite = make(0.0, INFINITY);
+  try {
+    BoundOrRefuse(infinite, {"Kv", "Ks"}, 0.5, {"a context warning"});
+    FAIL("no refusal");
+  } catch (const IdentificationError& e) {
+    CHECK(e.parameters() == std::vector<std::string>{"Ks"});
+    CHECK_THAT(e.what(), Catch::Contains("warning: a context warning"));
+  }
+  FitResult silent = make(0.05, 0.04);
+  CHECK_THROWS_WITH(BoundOrRefuse(silent, {"Kv", "Ks"}, 0.5, {}, {{"Ks", "no motion in both directions"}}),
+                    Catch::Contains("Ks = 0.05 +- 0.04 (relative std 80 %): no motion in both directions"));
+  // A parameter not bounded at 0 is never touched.
+  FitResult signed_offset = make(0.0, 0.11);
+  REQUIRE_NOTHROW(BoundOrRefuse(signed_offset, {"Kv"}, 0.5, {}));
+  CHECK(signed_offset.warnings.empty());
+  CHECK(signed_offset.estimates[1].ci95_low < 0.0);
+}
+
 TEST_CASE("processing: a move past the std widens the covariance by the candidates' spread; a small one does not") {
   FitResult fit;
   fit.estimates = {{"viscous", 191.6, 4.2, 191.6 - 1.96 * 4.2, 191.6 + 1.96 * 4.2}, {"coulomb", 20.0, 0.5, 19.02, 20.98}};

@@ -252,8 +252,15 @@ TEST_CASE("the feed-forward section reads back unchanged; bad keys are named wit
   CHECK(back.feedforward.gains[2].unit == "rad");
   CHECK(FormatParameterFile(back) == text);
   CHECK(ErrorOf("axis:\n  inertia: 1\nfeedforward:\n  Kx: {value: 1}\n") ==
-        "p.yaml:4:3: feedforward.Kx: unknown key (known: law, effort_unit, position_unit, Ks, Ks_forward, Ks_backward, "
+        "p.yaml:4:3: feedforward.Kx: unknown key (known: law, effort_unit, position_unit, mechanism, Ks, Ks_forward, Ks_backward, "
         "Kv, Kv_forward, Kv_backward, Ka, Kg, Kg_angle, offset, beta, gamma_half, delta, eta, dead_zone, rate_limit)");
+  // SysId's analysis type reads back; another is refused.
+  file.feedforward.mechanism = "simple";
+  const std::string typed = FormatParameterFile(file);
+  CHECK(typed.find("  mechanism: simple") != std::string::npos);
+  CHECK(ParseParameterFile("p.yaml", typed).feedforward.mechanism == "simple");
+  CHECK(ErrorOf("axis:\n  inertia: 1\nfeedforward:\n  mechanism: drivetrain\n") ==
+        "p.yaml:4:14: feedforward.mechanism: expected simple, elevator or arm (SysId's analysis type)");
   CHECK(ErrorOf("axis:\n  inertia: 1\nfeedforward:\n  law: pid\n") ==
         "p.yaml:4:8: feedforward.law: \"pid\": expected axis or cdrive");
   CHECK(ErrorOf("axis:\n  inertia: 1\nfeedforward:\n  Ks: {std: 1}\n") == "p.yaml:4:7: feedforward.Ks: needs a value");

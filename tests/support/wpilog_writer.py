@@ -13,10 +13,22 @@ NT-mirrored entry with negative (retained) timestamps, a Finish and a
 Set-metadata control record.
 
 usage: wpilog_writer.py OUT.wpilog [--same-times CSV_PREFIX] [--seed N] [--short]
+                        [--names sysid|robotpy|advantagekit] [--no-state] [--ks VOLTS]
+                        [--latency MIN_MS MAX_MS]
   --same-times: the three entries share each loop's timestamp, and each
   test's samples are written to CSV_PREFIX<test>.csv (t, voltage, position,
   velocity) exactly as logged, for a round trip; --short: tests of 0.2 s
-  (a small file, e.g. a fuzzing seed).
+  (a small file, e.g. a fuzzing seed); --names: the entries' names as
+  SysIdRoutine writes them (default), as a RobotPy robot's own logging
+  (/drive/appliedVoltage, /drive/leftPosition, /drive/leftVelocity,
+  /sysid/testType with SysId's state names; no units) or as AdvantageKit
+  (/RealOutputs/Shooter/SysIdState holding the enum's names
+  kQuasistaticForward ..., /Shooter/LeaderAppliedVolts,
+  /Shooter/LeaderPositionRad, /Shooter/LeaderVelocityRadPerSec; the
+  follower's volts and current only); --no-state: no state entry; --ks:
+  the motor's static friction (default 0.25 V); --latency: the position
+  and velocity logged are as old as a CAN status frame, uniformly
+  MIN_MS..MAX_MS at each loop (default: current).
 """
 import math
 import random
@@ -68,9 +80,33 @@ def main():
     same_times = "--same-times" in sys.argv
     prefix = sys.argv[sys.argv.index("--same-times") + 1] if same_times else None
     seed = int(sys.argv[sys.argv.index("--seed") + 1]) if "--seed" in sys.argv else 1
+    ks = float(sys.argv[sys.argv.index("--ks") + 1]) if "--ks" in sys.argv else KS
+    latency = (tuple(float(x) * 1e-3 for x in sys.argv[sys.argv.index("--latency") + 1:sys.argv.index("--latency") + 3])
+               if "--latency" in sys.argv else (0.0, 0.0))
+    history = []  # (t, q, v) at 1 kHz, for a state as old as a status frame
     rng = random.Random(seed)
     log = bytearray(b"WPILOG" + struct.pack("<H", 0x0100) + text("driveid test writer"))
     mech = "Shooter"
+    names = sys.argv[sys.argv.index("--names") + 1] if "--names" in sys.argv else "sysid"
+    # The name each role is written under (role names as SysIdRoutine's).
+    rename = {
+        "sysid": {},
+        "robotpy": {"voltage-leader-" + mech: "/drive/appliedVoltage", "position-leader-" + mech: "/drive/leftPosition",
+                    "velocity-leader-" + mech: "/drive/leftVelocity", "voltage-follower-" + mech: "/drive/rightVoltage",
+                    "position-follower-" + mech: "/drive/rightPosition",
+                    "velocity-follower-" + mech: "/drive/rightVelocity", "sysid-test-state-" + mech: "/sysid/testType"},
+        "advantagekit": {"voltage-leader-" + mech: "/Shooter/LeaderAppliedVolts",
+                         "position-leader-" + mech: "/Shooter/LeaderPositionRad",
+                         "velocity-leader-" + mech: "/Shooter/LeaderVelocityRadPerSec",
+                         "voltage-follower-" + mech: "/Shooter/FollowerAppliedVolts",
+                         "position-follower-" + mech: "/Shooter/FollowerCurrentAmps",
+                         "velocity-follower-" + mech: "/Shooter/FollowerTempCelsius",
+                         "sysid-test-state-" + mech: "/RealOutputs/Shooter/SysIdState"},
+    }[names]
+    kotlin_state = {"quasistatic-forward": "kQuasistaticForward", "quasistatic-reverse": "kQuasistaticReverse",
+                    "dynamic-forward": "kDynamicForward", "dynamic-reverse": "kDynamicReverse", "none": "kNone"}
+    state_text = (lambda s: kotlin_state[s]) if names == "advantagekit" else (lambda s: s)
+    no_state = "--no-state" in sys.argv
     ids = {}
     for i, (name, type_, meta) in enumerate([
             ("voltage-leader-" + mech, "double", "Volt"),
@@ -84,7 +120,9 @@ def main():
             ("NT:/SmartDashboard/retained", "double", '{"source":"NT"}'),
             ("console", "string", "")]):
         ids[name] = 300 + i  # two-byte entry ids
-        log += start(ids[name], name, type_, meta, 1000)
+        if no_state and name.startswith("sysid-test-state-"):
+            continue
+        log += start(ids[name], rename.get(name, name), type_, meta if names == "sysid" else "", 1000)
     # Retained NetworkTables values: negative timestamps.
     log += record(ids["NT:/SmartDashboard/retained"], -5, struct.pack("<d", 42.0))
     log += record(ids["NT:/SmartDashboard/retained"], -1, struct.pack("<d", 43.0))
@@ -108,15 +146,20 @@ def main():
             volts = direction * (1.0 * elapsed if test.startswith("quasistatic") else 7.0)
             # 1 kHz integration, Coulomb friction with a small smooth zone.
             dt = 0.001
-            friction = KS * math.tanh(v / 0.01)
+            friction = ks * math.tanh(v / 0.01)
             v += dt * (volts - friction - KV * v) / KA
             q += dt * v
             t += dt
+            history.append((t, q, v))
+            if len(history) > 100:
+                del history[0]
             if t >= next_log:
                 stamp = int(round(t * 1e6))
                 logged_v = volts + rng.gauss(0.0, 0.02)
-                logged_q = round(q / 1e-4) * 1e-4
-                logged_w = v + rng.gauss(0.0, 0.005)
+                age = rng.uniform(*latency) if latency[1] > 0.0 else 0.0
+                _, q_then, v_then = min(history, key=lambda h: abs(h[0] - (t - age)))
+                logged_q = round(q_then / 1e-4) * 1e-4
+                logged_w = v_then + rng.gauss(0.0, 0.005)
                 stamps = (stamp, stamp, stamp) if same_times else (stamp, stamp + 15, stamp + 31)
                 log += record(ids["voltage-leader-" + mech], stamps[0], struct.pack("<d", logged_v))
                 log += record(ids["position-leader-" + mech], stamps[1], struct.pack("<d", logged_q))
@@ -124,12 +167,14 @@ def main():
                 log += record(ids["voltage-follower-" + mech], stamp + 40, struct.pack("<d", logged_v))
                 log += record(ids["position-follower-" + mech], stamp + 41, struct.pack("<d", -logged_q))
                 log += record(ids["velocity-follower-" + mech], stamp + 42, struct.pack("<d", -logged_w))
-                log += record(ids["sysid-test-state-" + mech], stamp + 50, test.encode())
+                if not no_state:
+                    log += record(ids["sysid-test-state-" + mech], stamp + 50, state_text(test).encode())
                 log += record(ids["struct:Pose2d"], stamp + 60, bytes(24))
                 rows.append((stamps[0], logged_v, logged_q, logged_w))
                 next_log += 0.020 + rng.uniform(-0.004, 0.004)
         stamp = int(round(t * 1e6)) + 100
-        log += record(ids["sysid-test-state-" + mech], stamp, b"none")
+        if not no_state:
+            log += record(ids["sysid-test-state-" + mech], stamp, state_text("none").encode())
         csv[test] = rows[1:]  # the last run of a test; its first loop precedes the state record
         # The mechanism coasts to rest between tests (not logged).
         v = 0.0

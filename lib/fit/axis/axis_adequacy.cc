@@ -80,6 +80,25 @@ std::string TryFreeing(const LinearRegression& regression, const std::vector<std
 
 }  // namespace
 
+std::vector<std::string> AxisNonnegativeKeys() {
+  std::vector<std::string> keys;
+  for (std::size_t j = 0; j < AxisParameterCount(); ++j) {
+    if (AxisTermRow(j).spec.lower_bound == 0.0) keys.emplace_back(AxisTermRow(j).spec.key);
+  }
+  return keys;
+}
+
+void DecideAxisDetermined(FitResult& fit, double max_relative_std, double rate_variation) {
+  std::map<std::string, std::string> silent;
+  if (rate_variation >= 0.0 && rate_variation < kAxisMinRateVariation) {
+    silent[AxisKey(&AxisParameters::inertia)] = fmt::format(
+        "the rate varies within the logs by {:.2g} % of its RMS (below {:g} %): no change of speed for an inertia to "
+        "act in; fit friction alone with ‹free› viscous,coulomb,offset",
+        100.0 * rate_variation, 100.0 * kAxisMinRateVariation);
+  }
+  BoundOrRefuse(fit, AxisNonnegativeKeys(), max_relative_std, fit.warnings, silent);
+}
+
 std::vector<std::string> CheckAxisAdequacy(const LinearRegression& regression, const FitResult& fit,
                                            const std::vector<std::string>& free,
                                            const std::map<std::string, double>& values, bool linear) {

@@ -352,7 +352,10 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& given, const AxisSection& star
                         : "from the data: of 5, 10, 20, ... x the motion frequency RMS(q')/(2 pi RMS(q)) up to the "
                           "decimated band 0.8 x rate / (2 x decimation), the highest unless a lower one leaves a residual 5 % "
                           "smaller";
-  if (!options.sensitivity) return out;
+  if (!options.sensitivity) {
+    DecideAxisDetermined(out.fit, options.max_relative_std, out.rate_variation);
+    return out;
+  }
   // The same fit at half and at twice the cutoff (twice: if below Nyquist).
   for (const double factor : {0.5, 2.0}) {
     AxisFitOptions other = central;
@@ -381,6 +384,7 @@ AxisFitOutput FitAxis(const std::vector<AxisLog>& given, const AxisSection& star
   WidenForProcessing(out.fit, out.cutoff);
   // The timing's uncertainty in the covariance, when the data chose it.
   AddTimingCovariance(logs, start, central, timing, &cache, out.fit);
+  DecideAxisDetermined(out.fit, options.max_relative_std, out.rate_variation);
   return out;
 }
 
@@ -444,6 +448,7 @@ AxisFitOutput FitAxisAtCutoff(const std::vector<AxisLog>& given, const AxisSecti
   std::string rule;
   o.decimation = AxisDecimationFor(logs, options.decimation, &rule);
   AxisFitOutput out = FitAtCutoff(logs, start, o, nullptr, AtCutoff::kFull);
+  DecideAxisDetermined(out.fit, options.max_relative_std, out.rate_variation);
   out.decimation = o.decimation;
   out.decimation_rule = rule;
   return out;
@@ -513,6 +518,25 @@ double AccelerationContent(const LinearRegression& regression) {
   return rate_square > 0.0 ? std::sqrt(acceleration_square / rate_square) : 0.0;
 }
 
+// How much the rate varies within the logs: sqrt(sum (q' - mean_log q')^2 /
+// sum q'^2) over the rows (0 where every log holds one rate).
+double RateVariation(const LinearRegression& regression, const std::vector<int>& log_index) {
+  std::map<int, std::pair<double, int>> sums;  // per log: sum of q', rows
+  for (std::size_t r = 0; r < regression.rows(); ++r) {
+    auto& s = sums[r < log_index.size() ? log_index[r] : 0];
+    s.first += regression.at(r, 1);
+    ++s.second;
+  }
+  double spread = 0.0, square = 0.0;
+  for (std::size_t r = 0; r < regression.rows(); ++r) {
+    const auto& s = sums[r < log_index.size() ? log_index[r] : 0];
+    const double v = regression.at(r, 1);
+    spread += std::pow(v - s.first / s.second, 2);
+    square += v * v;
+  }
+  return square > 0.0 ? std::sqrt(spread / square) : 0.0;
+}
+
 AxisFitOutput FitAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& start, const AxisFitOptions& options,
                           AxisRowCache* cache, AtCutoff extent, AxisReach reach) {
   if (logs.empty()) throw OptionError("no logs given");
@@ -540,6 +564,7 @@ AxisFitOutput FitAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& s
                                           "barely move or are too short)", rows_used, p));
   }
   out.acceleration_content = AccelerationContent(regression);
+  out.rate_variation = RateVariation(regression, out.log_index);
   FitOptions fit_options = options.fit;
   if (!fit_options.advice) {
     fit_options.advice = [](const std::vector<std::string>& involved) -> std::string {
@@ -564,11 +589,10 @@ AxisFitOutput FitAtCutoff(const std::vector<AxisLog>& logs, const AxisSection& s
     alone.per_log = false;
     AddPerLogFits(out.fit, LogLabels(logs), [&](std::size_t i) { return FitAxis({logs[i]}, start, alone).fit.estimates; });
   }
-  std::vector<std::string> nonnegative;
-  for (std::size_t j = 0; j < AxisLinearCount(); ++j) {
-    if (Column(j).spec.lower_bound == 0.0) nonnegative.emplace_back(Column(j).spec.key);
-  }
-  RequireDetermined(out.fit, nonnegative, options.max_relative_std, out.fit.warnings);
+  // Whether the data determine each estimate is decided on the fit's final
+  // covariance (DecideAxisDetermined, by FitAxis): a candidate cutoff or an
+  // alternative processing (kScore) gives its estimates as they are, so
+  // that their spread enters the intervals even where one is at its bound.
   // Model at the used samples and the relative error.
   double residual_norm = 0.0, force_norm = 0.0;
   out.model = regression.Predict(fitted);

@@ -86,6 +86,9 @@ struct AxisFitOutput {
   FitResult fit;
   double relative_error_percent = 0.0;  ///< |tau - X p| / |tau| on the decimated samples
   double acceleration_content = 0.0;    ///< RMS(q'') / RMS(q') [1/s] of the used samples
+  /// The rate's spread about each log's mean over its RMS, pooled over the
+  /// used samples (0: every log at a constant rate).
+  double rate_variation = 0.0;
   std::string method;                   ///< how rates were obtained
   double cutoff = 0.0;
   std::string cutoff_rule;                        ///< how the cutoff was chosen

@@ -9,6 +9,7 @@
 #include "core/errors.h"
 #include "core/option_check.h"
 #include "fit/core/adequacy.h"
+#include "fit/axis/axis_adequacy.h"
 #include "fit/axis/axis_fit.h"
 #include "models/axis_term.h"
 #include "sim/axis_simulator.h"
@@ -314,11 +315,7 @@ AxisOeOutput FitAxisOutputError(const std::vector<AxisLog>& logs, const AxisSect
   out.fit = vs == d.terms.end() ? FitLeastSquares(residuals, d.parameters, channels, fit_options)
                                 : FitFromPlateau(prepared, d, residuals, channels, fit_options,
                                                  static_cast<std::size_t>(vs - d.terms.begin()));
-  std::vector<std::string> nonnegative;
-  for (std::size_t j = 0; j < AxisParameterCount(); ++j) {
-    if (AxisTermRow(j).spec.lower_bound == 0.0) nonnegative.emplace_back(AxisTermRow(j).spec.key);
-  }
-  RequireDetermined(out.fit, nonnegative, kMaxRelativeStd, out.fit.warnings);
+  DecideAxisDetermined(out.fit, kMaxRelativeStd, -1.0);
   // RMSE back in the channels' units (fit % and lag-1 do not depend on the weight).
   for (std::size_t c = 0, i = 0; i < oe.size(); ++i) {
     out.fit.channels[c++].rmse /= oe[i].position_weight;

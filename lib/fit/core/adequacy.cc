@@ -11,6 +11,32 @@
 
 namespace driveid {
 
+namespace {
+
+// The refusal's message: the parameters the logs do not determine.
+[[noreturn]] void ThrowUndetermined(const std::vector<std::string>& undetermined, const std::vector<std::string>& names,
+                                    double max_relative_std, const std::vector<std::string>& context) {
+  const char* them = undetermined.size() > 1 ? "them" : "it";
+  // A threshold above 100 % is no rule of the user's (a start fit's), not said.
+  const std::string rule = max_relative_std <= 1.0
+                               ? fmt::format("robust relative std above {:.0f} %, ", 100.0 * max_relative_std)
+                               : std::string();
+  std::string message = fmt::format(
+      "not identifiable: {}: the logs do not determine {} ({}docs/models.md#adequacy): "
+      "fix {} in ‹params› and leave {} out of ‹free›, or log motion that excites {}",
+      fmt::join(undetermined, "; "), them, rule, them, them, them);
+  for (const auto& c : context) message += "\n  warning: " + c;
+  throw IdentificationError(message, names);
+}
+
+std::string Undetermined(const ParameterEstimate& e) {
+  return e.value != 0.0 ? fmt::format("{} = {:.4g} +- {:.2g} (relative std {:.0f} %)", e.name, e.value,
+                                      e.standard_error, 100.0 * e.standard_error / std::abs(e.value))
+                        : fmt::format("{} = 0 +- {:.2g} (at its bound 0)", e.name, e.standard_error);
+}
+
+}  // namespace
+
 void RequireDetermined(FitResult& fit, const std::vector<std::string>& nonnegative, double max_relative_std,
                        const std::vector<std::string>& context, const std::map<std::string, double>& start_values) {
   std::vector<std::string> undetermined, names;
@@ -47,21 +73,42 @@ void RequireDetermined(FitResult& fit, const std::vector<std::string>& nonnegati
       continue;
     }
     names.push_back(e.name);
-    undetermined.push_back(e.value != 0.0 ? fmt::format("{} = {:.4g} +- {:.2g} (relative std {:.0f} %)", e.name,
-                                                        e.value, e.standard_error,
-                                                        100.0 * e.standard_error / std::abs(e.value))
-                                          : fmt::format("{} = 0 +- {:.2g} (at its bound 0)", e.name, e.standard_error));
+    undetermined.push_back(Undetermined(e));
   }
-  if (undetermined.empty()) return;
+  if (!undetermined.empty()) ThrowUndetermined(undetermined, names, max_relative_std, context);
+}
 
-  std::string message = fmt::format(
-      "not identifiable: {}: the logs do not determine {} (robust relative std above {:.0f} %, docs/models.md#adequacy): "
-      "fix {} in ‹params› and leave {} out of ‹free›, or log motion that excites {}",
-      fmt::join(undetermined, "; "), undetermined.size() > 1 ? "them" : "it", 100.0 * max_relative_std,
-      undetermined.size() > 1 ? "them" : "it", undetermined.size() > 1 ? "them" : "it",
-      undetermined.size() > 1 ? "them" : "it");
-  for (const auto& c : context) message += "\n  warning: " + c;
-  throw IdentificationError(message, names);
+void BoundOrRefuse(FitResult& fit, const std::vector<std::string>& nonnegative, double max_relative_std,
+                   const std::vector<std::string>& context, const std::map<std::string, std::string>& silent) {
+  std::vector<std::string> undetermined, names;
+  const std::string marker = "bounded only: ";
+  for (auto& e : fit.estimates) {
+    if (std::find(nonnegative.begin(), nonnegative.end(), e.name) == nonnegative.end()) continue;
+    if (e.standard_error <= max_relative_std * std::abs(e.value)) continue;
+    const auto why_silent = silent.find(e.name);
+    if (std::isfinite(e.standard_error) && e.standard_error > 0.0 && why_silent == silent.end()) {
+      // The data bound it: its interval, cut at the bound 0, is the answer;
+      // a warning of an earlier pass is replaced.
+      const bool at_bound = e.value == 0.0;
+      e.ci95_low = 0.0;
+      e.ci95_high = at_bound ? kOneSided95 * e.standard_error : e.value + 1.96 * e.standard_error;
+      const std::string prefix = marker + e.name + " = ";
+      fit.warnings.erase(std::remove_if(fit.warnings.begin(), fit.warnings.end(),
+                                        [&](const std::string& w) { return w.rfind(prefix, 0) == 0; }),
+                         fit.warnings.end());
+      fit.warnings.push_back(fmt::format(
+          "{}{:.4g} +- {:.2g} ({}): the logs do not determine it, they bound it: 95 % interval [0, {:.3g}]{}; use "
+          "the bound, not the value (log motion that excites it, or fix it in ‹params›; docs/models.md#adequacy)",
+          prefix, e.value, e.standard_error,
+          at_bound ? std::string("at its bound 0: the data push it below")
+                   : fmt::format("relative std {:.0f} %", 100.0 * e.standard_error / std::abs(e.value)),
+          e.ci95_high, at_bound ? " (one-sided: 1.645 std)" : ""));
+      continue;
+    }
+    names.push_back(e.name);
+    undetermined.push_back(why_silent == silent.end() ? Undetermined(e) : Undetermined(e) + ": " + why_silent->second);
+  }
+  if (!undetermined.empty()) ThrowUndetermined(undetermined, names, max_relative_std, context);
 }
 
 bool MeasurementVaries(const double* measured, int count) {

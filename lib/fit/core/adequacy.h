@@ -46,6 +46,22 @@ void RequireDetermined(FitResult& fit, const std::vector<std::string>& nonnegati
                        const std::vector<std::string>& context,
                        const std::map<std::string, double>& start_values = {});
 
+/// The rule of a fit whose data may bound a non-negative parameter without
+/// determining it (the axis fits; docs/models.md#adequacy), applied to the
+/// final covariance (after any widening): a free parameter named in
+/// `nonnegative` whose robust standard error exceeds `max_relative_std` of
+/// its magnitude is
+///  - an answer where the data bound it: its 95 % interval cut at 0,
+///    [0, value + 1.96 std] ([0, 1.645 std], one-sided, at the bound 0),
+///    with a warning "bounded only" naming it;
+///  - refused by name (IdentificationError, exit 4) where the data say
+///    nothing: its std not finite, or it is named in `silent` (the reason
+///    said with it, e.g. an inertia of logs with no acceleration content).
+/// `context` is appended to a refusal's message. Applied again, it gives the
+/// same (an interval already cut is recomputed from the std).
+void BoundOrRefuse(FitResult& fit, const std::vector<std::string>& nonnegative, double max_relative_std,
+                   const std::vector<std::string>& context, const std::map<std::string, std::string>& silent = {});
+
 /// RMSE, fit % = 100 (1 - |r| / |y - mean(y)|) (NaN for a channel that
 /// does not vary or varies by less than kNearlyConstant of its RMS) and the
 /// lag-1 autocorrelation of the residuals r = y - model of one channel

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "core/clipped_text.h"
 #include "core/errors.h"
 #include "core/option_check.h"
 #include "fit/core/adequacy.h"
@@ -268,7 +269,7 @@ std::string CutoffAdvice(const std::vector<JointLog>& logs, const JointSection& 
                        raised, moved, tried.params.stiffness, elsewhere);
   } catch (const std::exception& e) {
     std::string why = e.what();
-    if (why.size() > 120) why = why.substr(0, 117) + "...";
+    why = ClippedText(why, 120);
     return fmt::format("a higher cutoff does not help (at {:.4g} Hz the fit is refused: {}): {}", raised, why, elsewhere);
   }
 }

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "core/clipped_text.h"
 #include "core/errors.h"
 #include "core/option_check.h"
 #include "fit/core/adequacy.h"
@@ -420,7 +421,7 @@ JointOeOutput FitJointOutputError(const std::vector<JointLog>& logs, const Joint
     } catch (const IdentificationError& e) {
       if (!(options.segment_seconds < longest / 2.0)) throw;  // the longest already: its refusal stands
       std::string why = e.what();
-      if (why.size() > 160) why = why.substr(0, 157) + "...";
+      why = ClippedText(why, 160);
       const double next = 2.0 * options.segment_seconds < longest / 2.0 ? 2.0 * options.segment_seconds : HUGE_VAL;
       tried.push_back(fmt::format("segments of {:.3g} s were refused ({}); {}", options.segment_seconds, why,
                                   std::isinf(next) ? std::string("each log simulated whole instead")

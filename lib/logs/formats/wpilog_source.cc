@@ -1,9 +1,10 @@
-// A WPILib SysIdRoutine recorded in a DataLog (logs/formats/wpilog.h; docs/formats.md#wpilog):
-// the string entry `sysid-test-state-<mechanism>` (quasistatic-forward,
-// quasistatic-reverse, dynamic-forward, dynamic-reverse, none) splits the
-// tests; the motor's entries `voltage-<motor>-<mechanism>`,
-// `position-<motor>-<mechanism>`, `velocity-<motor>-<mechanism>` carry its
-// samples, each at its own time, units in the entries' metadata. Each test
+// SysId data recorded in a WPILib DataLog (logs/formats/wpilog.h; docs/formats.md#wpilog),
+// found by logs/formats/wpilog_routines.h (SysIdRoutine's names, the names
+// given with ‹entry›, AdvantageKit's): the state entry (quasistatic-forward,
+// quasistatic-reverse, dynamic-forward, dynamic-reverse, none; or the tests
+// found from the voltage) splits the tests; the motor's voltage, position
+// and velocity entries carry its samples, each at its own time, units in the
+// entries' metadata. Each test
 // is one source with the columns t, voltage, position, velocity: t are the
 // voltage records' times, position and velocity are interpolated linearly
 // to them, as SysId does, from their records within the same run (a voltage
@@ -21,30 +22,14 @@
 #include "core/errors.h"
 #include "core/order_statistics.h"
 #include "logs/formats/wpilog.h"
+#include "logs/formats/wpilog_routines.h"
 #include "logs/log_format.h"
 #include "logs/table_source.h"
 
 namespace driveid {
 namespace {
 
-constexpr std::string_view kStatePrefix = "sysid-test-state-";
 const char* const kTests[] = {"quasistatic-forward", "quasistatic-reverse", "dynamic-forward", "dynamic-reverse"};
-
-bool StartsWith(const std::string& text, std::string_view prefix) { return text.compare(0, prefix.size(), prefix) == 0; }
-bool EndsWith(const std::string& text, const std::string& suffix) {
-  return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-// The unit a parameter file and the feed-forward take for WPILib's unit name.
-std::string PositionUnit(const std::string& metadata) {
-  static const std::map<std::string, std::string> kNames = {
-      {"Meter", "Meters"},   {"Meters", "Meters"},     {"Rotation", "Rotations"}, {"Rotations", "Rotations"},
-      {"Radian", "Radians"}, {"Radians", "Radians"},   {"Degree", "Degrees"},     {"Degrees", "Degrees"},
-      {"Foot", "Feet"},      {"Feet", "Feet"},         {"Inch", "Inches"},        {"Inches", "Inches"},
-      {"Millimeter", "mm"},  {"Millimeters", "mm"}};
-  const auto found = kNames.find(metadata);
-  return found == kNames.end() ? metadata : found->second;
-}
 
 // Samples of one entry (all Starts of its name), sorted by time.
 struct Series {
@@ -113,36 +98,6 @@ std::string EntrySummary(const WpilogEntry& e) {
   return out;
 }
 
-// What one routine offers: its motors and the state entry's records.
-struct Routine {
-  std::string mechanism;
-  std::vector<std::string> motors;
-};
-
-std::vector<Routine> FindRoutines(const WpilogIndex& index) {
-  std::vector<Routine> out;
-  std::set<std::string> seen;
-  for (const auto& e : index.entries) {
-    if (!StartsWith(e.name, kStatePrefix) || e.type != "string") continue;
-    const std::string mechanism = e.name.substr(kStatePrefix.size());
-    if (!seen.insert(mechanism).second) continue;
-    Routine routine{mechanism, {}};
-    std::set<std::string> motors;
-    for (const auto& v : index.entries) {
-      const std::string suffix = "-" + mechanism;
-      if (!StartsWith(v.name, "voltage-") || !EndsWith(v.name, suffix) || v.name.size() <= 8 + suffix.size()) continue;
-      const std::string motor = v.name.substr(8, v.name.size() - 8 - suffix.size());
-      const auto has = [&](const std::string& kind) {
-        return std::any_of(index.entries.begin(), index.entries.end(),
-                           [&](const WpilogEntry& x) { return x.name == kind + "-" + motor + suffix; });
-      };
-      if (has("position") && has("velocity") && motors.insert(motor).second) routine.motors.push_back(motor);
-    }
-    out.push_back(std::move(routine));
-  }
-  return out;
-}
-
 // The routine's records: the state entry's strings and the motor's three
 // numeric series, sorted by time.
 struct RoutineData {
@@ -150,24 +105,33 @@ struct RoutineData {
   Series voltage, position, velocity;
   std::string position_unit, velocity_unit, voltage_unit;
   std::int64_t log_end = 0;
+  std::vector<std::string> notes;  ///< how the states were read or found
 };
 
-RoutineData ReadRoutine(const std::string& path, const std::string& text, const std::string& mechanism,
-                        const std::string& motor) {
+// The routine's state records (SysId's names) and, with `motor`, its three
+// numeric series, sorted by time. Without a state entry, the states are
+// found from the motor's voltage.
+RoutineData ReadRoutine(const std::string& path, const std::string& text, const WpilogRoutine& routine,
+                        const WpilogMotor* motor) {
   RoutineData data;
-  const std::string state_name = std::string(kStatePrefix) + mechanism;
-  const std::string suffix = "-" + motor + "-" + mechanism;
+  std::size_t unknown_states = 0;
   const WpilogIndex index = ReadWpilog(path, text, [&](const WpilogRecord& r) {
     data.log_end = std::max(data.log_end, r.timestamp_us);
     const WpilogEntry& e = *r.entry;
-    if (e.name == state_name) {
-      data.states.emplace_back(r.timestamp_us, std::string(r.payload));
+    if (!routine.state.empty() && e.name == routine.state) {
+      const std::string state = CanonicalSysIdState(r.payload);
+      if (state.empty()) {
+        ++unknown_states;
+        return;
+      }
+      data.states.emplace_back(r.timestamp_us, state);
       return;
     }
-    Series* series = e.name == "voltage" + suffix    ? &data.voltage
-                     : e.name == "position" + suffix ? &data.position
-                     : e.name == "velocity" + suffix ? &data.velocity
-                                                     : nullptr;
+    if (motor == nullptr) return;
+    Series* series = e.name == motor->voltage    ? &data.voltage
+                     : e.name == motor->position ? &data.position
+                     : e.name == motor->velocity ? &data.velocity
+                                                 : nullptr;
     if (series == nullptr) return;
     double value = 0.0;
     if (!WpilogNumber(e.type, r.payload, value)) {
@@ -180,10 +144,16 @@ RoutineData ReadRoutine(const std::string& path, const std::string& text, const 
     series->t_us.push_back(static_cast<double>(r.timestamp_us));
     series->value.push_back(value);
   });
-  for (const auto& e : index.entries) {
-    if (e.name == "voltage" + suffix) data.voltage_unit = e.metadata;
-    if (e.name == "position" + suffix) data.position_unit = e.metadata;
-    if (e.name == "velocity" + suffix) data.velocity_unit = e.metadata;
+  if (motor != nullptr) {
+    for (const auto& e : index.entries) {
+      if (e.name == motor->voltage) data.voltage_unit = e.metadata;
+      if (e.name == motor->position) data.position_unit = e.metadata;
+      if (e.name == motor->velocity) data.velocity_unit = e.metadata;
+    }
+  }
+  if (unknown_states > 0) {
+    data.notes.push_back(fmt::format("{} records of the state entry '{}' hold no SysId state name (left out)",
+                                     unknown_states, routine.state));
   }
   std::stable_sort(data.states.begin(), data.states.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -198,6 +168,7 @@ RoutineData ReadRoutine(const std::string& path, const std::string& text, const 
     }
     *s = std::move(sorted);
   }
+  if (routine.state.empty()) data.states = StatesFromVoltage(data.voltage.t_us, data.voltage.value, data.notes);
   return data;
 }
 
@@ -255,17 +226,29 @@ std::string MechanismOf(const std::string& test) {
 }
 
 std::vector<std::unique_ptr<TableSource>> RoutineSources(const std::string& path, const std::string& text,
-                                                         const std::string& mechanism, const std::string& motor,
+                                                         const WpilogRoutine& routine, const WpilogMotor& motor,
                                                          const LogSelection& format) {
-  const RoutineData data = ReadRoutine(path, text, mechanism, motor);
+  const RoutineData data = ReadRoutine(path, text, routine, &motor);
   if (data.voltage.t_us.empty() || data.position.t_us.empty() || data.velocity.t_us.empty()) {
-    throw InputError(fmt::format("{}: motor '{}' of SysIdRoutine '{}' has no voltage, position or velocity records", path,
-                                 motor, mechanism));
+    throw InputError(fmt::format("{}: motor '{}' of {} has no voltage, position or velocity records", path, motor.name,
+                                 routine.origin));
   }
-  const std::string unit = PositionUnit(data.position_unit);
+  const std::string unit = WpilogPositionUnit(data.position_unit, motor.position);
   std::vector<std::string> common = {fmt::format(
-      "WPILog SysIdRoutine '{}', motor '{}': voltage in '{}', position in '{}' (read as {}), velocity in '{}'", mechanism,
-      motor, data.voltage_unit, data.position_unit, unit.empty() ? "no unit" : unit, data.velocity_unit)};
+      "WPILog, {}: voltage '{}' in '{}', position '{}' in '{}' (read as {}), velocity '{}' in '{}'", routine.origin,
+      motor.voltage, data.voltage_unit, motor.position, data.position_unit, unit.empty() ? "no unit" : unit,
+      motor.velocity, data.velocity_unit)};
+  for (const auto& note : data.notes) common.push_back(note);
+  if (unit.empty()) {
+    common.push_back(fmt::format("the position entry '{}' declares no unit: the fit is in the log's numbers and not "
+                                 "read as SysId data in volts; name the unit with ‹unit› (Rotations, Meters, Radians)",
+                                 motor.position));
+  }
+  if (routine.state.empty()) {
+    common.push_back(fmt::format("{} no state entry: the tests were found from the voltage pattern; name SysId's state "
+                                 "entry with ‹entry› state=NAME where the log has one",
+                                 kReaderWarning));
+  }
   if (!data.velocity_unit.empty() && data.velocity_unit != data.position_unit + " per Second") {
     common.push_back(fmt::format("{} the velocity's unit '{}' is not the position's '{}' per second", kReaderWarning,
                                  data.velocity_unit, data.position_unit));
@@ -305,7 +288,7 @@ std::vector<std::unique_ptr<TableSource>> RoutineSources(const std::string& path
     taken.push_back({test, std::move(columns), std::move(notes)});
   }
   if (taken.empty()) {
-    throw InputError(fmt::format("{}: SysIdRoutine '{}' holds no test with samples of motor '{}'", path, mechanism, motor));
+    throw InputError(fmt::format("{}: {} holds no test with samples of motor '{}'", path, routine.origin, motor.name));
   }
   std::vector<std::unique_ptr<TableSource>> out;
   for (auto& t : taken) {
@@ -316,14 +299,28 @@ std::vector<std::unique_ptr<TableSource>> RoutineSources(const std::string& path
   return out;
 }
 
+const WpilogRoutine& ChooseRoutine(const std::vector<WpilogRoutine>& routines, const LogSelection& format,
+                                   const std::string& path) {
+  std::vector<std::string> mechanisms;
+  for (const auto& r : routines) mechanisms.push_back(r.mechanism);
+  if (routines.size() == 1 && format.wpilog.mechanism.empty()) return routines.front();
+  const std::string mechanism = ChooseName(mechanisms, format.wpilog.mechanism, "SysIdRoutine", "mechanism", path);
+  return *std::find_if(routines.begin(), routines.end(), [&](const WpilogRoutine& r) { return r.mechanism == mechanism; });
+}
+
+const WpilogMotor& ChooseMotor(const WpilogRoutine& routine, const LogSelection& format, const std::string& path) {
+  std::vector<std::string> names;
+  for (const auto& m : routine.motors) names.push_back(m.name);
+  if (routine.motors.size() == 1 && format.wpilog.motor.empty()) return routine.motors.front();
+  const std::string motor = ChooseName(names, format.wpilog.motor, "motor", "motor", path);
+  return *std::find_if(routine.motors.begin(), routine.motors.end(), [&](const WpilogMotor& m) { return m.name == motor; });
+}
+
 }  // namespace
 
 std::vector<std::unique_ptr<TableSource>> OpenWpilogSources(const std::string& path, const std::string& text,
                                                             const LogSelection& format) {
   const WpilogIndex index = ReadWpilog(path, text);
-  const std::vector<Routine> routines = FindRoutines(index);
-  std::vector<std::string> mechanisms;
-  for (const auto& r : routines) mechanisms.push_back(r.mechanism);
   if (format.catalog) {
     std::vector<SourceVariable> variables;
     for (const auto& e : index.entries) variables.push_back({e.name, e.records, 1, EntrySummary(e)});
@@ -332,13 +329,27 @@ std::vector<std::unique_ptr<TableSource>> OpenWpilogSources(const std::string& p
                                                   index.orphan_records > 0
                                                       ? fmt::format(", {} of no started entry", index.orphan_records)
                                                       : "")};
-    for (const auto& r : routines) {
-      notes.push_back(fmt::format("SysIdRoutine '{}' (‹mechanism›): motors {} (‹motor›)", r.mechanism,
-                                  r.motors.empty() ? std::string("none") : fmt::format("{}", fmt::join(r.motors, ", "))));
+    std::vector<WpilogRoutine> routines;
+    try {
+      routines = FindWpilogRoutines(path, index, format.wpilog);
+    } catch (const std::exception& e) {
+      notes.push_back(fmt::format("{} {}", kReaderWarning, e.what()));
     }
-    if (routines.empty()) notes.push_back("no SysIdRoutine (no string entry sysid-test-state-<mechanism>)");
     for (const auto& r : routines) {
-      const RoutineData data = ReadRoutine(path, text, r.mechanism, "");
+      std::vector<std::string> motors;
+      for (const auto& m : r.motors) motors.push_back(m.name);
+      notes.push_back(fmt::format("{}{}: motors {} (‹motor›)", r.origin,
+                                  r.mechanism.empty() ? std::string() : std::string(" (‹mechanism›)"),
+                                  motors.empty() ? std::string("none") : fmt::format("{}", fmt::join(motors, ", "))));
+    }
+    if (routines.empty()) {
+      notes.push_back("no SysId routine recognised (no string entry sysid-test-state-<mechanism>, no AdvantageKit "
+                      "...SysIdState with its motors' entries): name the entries with ‹entry› voltage=NAME ‹entry› "
+                      "position=NAME ‹entry› velocity=NAME [‹entry› state=NAME]");
+    }
+    for (const auto& r : routines) {
+      if (r.state.empty() || r.motors.empty()) continue;
+      const RoutineData data = ReadRoutine(path, text, r, nullptr);
       for (const auto& [test, runs] : StateRuns(data.states, data.log_end)) {
         std::vector<std::string> spans;
         for (const Run& run : runs) {
@@ -353,29 +364,34 @@ std::vector<std::unique_ptr<TableSource>> OpenWpilogSources(const std::string& p
     std::vector<std::unique_ptr<TableSource>> out;
     out.push_back(MakeMemorySource({path, "", "wpilog", "", "", {}, {}, std::move(notes), {}, std::move(variables)}));
     // The tests as a fit would read them, when the routine and motor are clear.
-    try {
-      const std::string mechanism = ChooseName(mechanisms, format.wpilog.mechanism, "SysIdRoutine", "mechanism", path);
-      const Routine& routine =
-          *std::find_if(routines.begin(), routines.end(), [&](const Routine& r) { return r.mechanism == mechanism; });
-      const std::string motor = ChooseName(routine.motors, format.wpilog.motor, "motor", "motor", path);
-      for (auto& source : RoutineSources(path, text, mechanism, motor, format)) out.push_back(std::move(source));
-    } catch (const OptionError&) {
+    if (!routines.empty()) {
+      try {
+        const WpilogRoutine& routine = ChooseRoutine(routines, format, path);
+        if (!routine.motors.empty()) {
+          for (auto& source : RoutineSources(path, text, routine, ChooseMotor(routine, format, path), format)) {
+            out.push_back(std::move(source));
+          }
+        }
+      } catch (const OptionError&) {
+      } catch (const InputError&) {
+      }
     }
     return out;
   }
+  const std::vector<WpilogRoutine> routines = FindWpilogRoutines(path, index, format.wpilog);
   if (routines.empty()) {
-    throw InputError(fmt::format("{}: a WPILib DataLog without a SysIdRoutine (no string entry "
-                                 "sysid-test-state-<mechanism>); inspect lists its {} entries",
+    throw InputError(fmt::format("{}: a WPILib DataLog without a recognised SysId routine (no string entry "
+                                 "sysid-test-state-<mechanism>, no AdvantageKit ...SysIdState with its motors' "
+                                 "entries): name the entries with ‹entry› voltage=NAME ‹entry› position=NAME ‹entry› "
+                                 "velocity=NAME [‹entry› state=NAME]; inspect lists its {} entries",
                                  path, index.entries.size()));
   }
-  const std::string mechanism = ChooseName(mechanisms, format.wpilog.mechanism, "SysIdRoutine", "mechanism", path);
-  const Routine& routine = *std::find_if(routines.begin(), routines.end(), [&](const Routine& r) { return r.mechanism == mechanism; });
+  const WpilogRoutine& routine = ChooseRoutine(routines, format, path);
   if (routine.motors.empty()) {
-    throw InputError(fmt::format("{}: SysIdRoutine '{}' has no motor with voltage-, position- and velocity- entries", path,
-                                 mechanism));
+    throw InputError(fmt::format("{}: {} has no motor with voltage-, position- and velocity- entries", path,
+                                 routine.origin));
   }
-  const std::string motor = ChooseName(routine.motors, format.wpilog.motor, "motor", "motor", path);
-  return RoutineSources(path, text, mechanism, motor, format);
+  return RoutineSources(path, text, routine, ChooseMotor(routine, format, path), format);
 }
 
 DRIVEID_LOG_FORMAT(wpilog_source) {
@@ -386,7 +402,7 @@ DRIVEID_LOG_FORMAT(wpilog_source) {
   format.sniff = LooksLikeWpilog;
   format.structured = true;
   const std::string refusal = "‹{option}›: {path} is no WPILog; ‹{option}› chooses in a SysIdRoutine's .wpilog";
-  for (const char* option : {"mechanism", "motor", "test"}) {
+  for (const char* option : {"mechanism", "motor", "test", "entry"}) {
     format.options.push_back(option);
     format.declared.push_back({option, refusal});
   }
