@@ -171,27 +171,62 @@ FeedbackGains ControllerGains(double kv, double ka, const GainRequest& request) 
   return {k.kp * scale, k.kd * scale / (request.normalized ? 1.0 : s.period)};
 }
 
-GainUncertainty PropagateGains(double kv, double kv_std, double ka, double ka_std, double correlation,
-                               const GainRequest& request) {
+namespace {
+
+// The radical inverse of `index` in `base`: the Halton sequence's term.
+double RadicalInverse(int index, int base) {
+  double result = 0.0, scale = 1.0 / base;
+  for (int i = index; i > 0; i /= base, scale /= base) result += (i % base) * scale;
+  return result;
+}
+
+// The q-quantile of sorted values (linear between order statistics).
+double Quantile(const std::vector<double>& sorted, double q) {
+  const double position = q * static_cast<double>(sorted.size() - 1);
+  const auto below = static_cast<std::size_t>(position);
+  const std::size_t above = std::min(below + 1, sorted.size() - 1);
+  return sorted[below] + (position - static_cast<double>(below)) * (sorted[above] - sorted[below]);
+}
+
+}  // namespace
+
+GainUncertainty SampleGains(double kv, double kv_std, double ka, double ka_std, double correlation,
+                            const GainRequest& request) {
   GainUncertainty out;
   out.value = ControllerGains(kv, ka, request);
-  // Central differences, steps a thousandth of each std (or of the value).
-  const auto derivative = [&](bool of_ka) {
-    const double base = of_ka ? ka : kv, spread = of_ka ? ka_std : kv_std;
-    const double h = std::max(1e-3 * spread, 1e-6 * std::abs(base));
-    if (!(h > 0.0)) return FeedbackGains{0.0, 0.0};
-    const double low = of_ka ? std::max(0.0, ka - h) : std::max(0.0, kv - h), high = base + h;
-    const FeedbackGains a = of_ka ? ControllerGains(kv, low, request) : ControllerGains(low, ka, request);
-    const FeedbackGains b = of_ka ? ControllerGains(kv, high, request) : ControllerGains(high, ka, request);
-    return FeedbackGains{(b.kp - a.kp) / (high - low), (b.kd - a.kd) / (high - low)};
+  out.ci95_low = out.ci95_high = out.value;
+  if (!(kv_std > 0.0) && !(ka_std > 0.0)) return out;
+  const double rho = std::clamp(correlation, -1.0, 1.0), across = std::sqrt(std::max(0.0, 1.0 - rho * rho));
+  std::vector<double> kp, kd;
+  kp.reserve(kSampledGainPoints);
+  kd.reserve(kSampledGainPoints);
+  for (int i = 1; i <= kSampledGainPoints; ++i) {
+    // Box-Muller of the point (u1, u2) of the unit square (never 0).
+    const double u1 = RadicalInverse(i, 2), u2 = RadicalInverse(i, 3);
+    const double radius = std::sqrt(-2.0 * std::log(u1)), angle = 2.0 * M_PI * u2;
+    const double z1 = radius * std::cos(angle), z2 = radius * std::sin(angle);
+    const double kv_i = std::max(0.0, kv + kv_std * z1);
+    const double ka_i = std::max(0.0, ka + ka_std * (rho * z1 + across * z2));
+    const FeedbackGains g = ControllerGains(kv_i, ka_i, request);
+    kp.push_back(g.kp);
+    kd.push_back(g.kd);
+  }
+  const auto summarise = [](std::vector<double>& values, double& std, double& low, double& high) {
+    double mean = 0.0, square = 0.0;
+    for (double v : values) mean += v;
+    mean /= static_cast<double>(values.size());
+    for (double v : values) square += (v - mean) * (v - mean);
+    std = std::sqrt(square / static_cast<double>(values.size() - 1));
+    std::sort(values.begin(), values.end());
+    low = Quantile(values, 0.025);
+    high = Quantile(values, 0.975);
   };
-  const FeedbackGains d_kv = derivative(false), d_ka = derivative(true);
-  const auto combine = [&](double g_kv, double g_ka) {
-    const double variance = g_kv * g_kv * kv_std * kv_std + g_ka * g_ka * ka_std * ka_std +
-                            2.0 * correlation * g_kv * g_ka * kv_std * ka_std;
-    return std::sqrt(std::max(0.0, variance));
-  };
-  out.standard_error = {combine(d_kv.kp, d_ka.kp), combine(d_kv.kd, d_ka.kd)};
+  summarise(kp, out.standard_error.kp, out.ci95_low.kp, out.ci95_high.kp);
+  summarise(kd, out.standard_error.kd, out.ci95_low.kd, out.ci95_high.kd);
+  // The interval holds the estimate's own gain (a sample of 512 points
+  // could miss it only where the spread is below its resolution).
+  out.ci95_low.kp = std::min(out.ci95_low.kp, out.value.kp), out.ci95_high.kp = std::max(out.ci95_high.kp, out.value.kp);
+  out.ci95_low.kd = std::min(out.ci95_low.kd, out.value.kd), out.ci95_high.kd = std::max(out.ci95_high.kd, out.value.kd);
   return out;
 }
 

@@ -183,6 +183,7 @@ Json FeedbackJson(const FeedbackController& f) {
     const FeedbackKey* declared = FindFeedbackKey(v.key);
     Json entry = {{"value", v.value}};
     if (declared != nullptr && declared->gain) entry["std"] = v.standard_error;
+    if (declared != nullptr && declared->gain && v.HasInterval()) entry["ci95"] = {v.ci95_low, v.ci95_high};
     const std::string unit = FeedbackGainUnit(f, v.key);
     if (!unit.empty()) entry["unit"] = unit;
     values[v.key] = entry;

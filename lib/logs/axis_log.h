@@ -12,8 +12,11 @@ namespace driveid {
 
 struct CsvLog;
 
-/// Fewest samples the axis fit accepts in a log.
-inline constexpr std::size_t kMinAxisLogSamples = 20;
+/// Fewest samples the axis fit accepts in a log: a SysIdRoutine's dynamic
+/// test of 7 V on an arm or elevator lasts 0.3-0.5 s, 15-25 samples at 50
+/// Hz, and is what determines Ka; 10 leave the differentiator (central
+/// differences, one sample lost at each end) 8 rates and the rows' reach.
+inline constexpr std::size_t kMinAxisLogSamples = 10;
 
 struct AxisLog {
   std::string path;

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -68,6 +69,11 @@ struct FeedbackValue {
   std::string key;
   double value = 0.0;
   double standard_error = 0.0;
+  /// A gain's 95 % interval (sampled over the fit's covariance: it need not
+  /// be symmetric about the value); NaN where none was computed.
+  double ci95_low = std::numeric_limits<double>::quiet_NaN();
+  double ci95_high = std::numeric_limits<double>::quiet_NaN();
+  bool HasInterval() const { return ci95_low == ci95_low && ci95_high == ci95_high; }
 };
 
 struct FeedbackController {

@@ -55,13 +55,24 @@ FeedbackValue ParseValue(const std::string& path, const std::string& key, const 
   if (node.IsMap()) {
     for (const auto& entry : node) {
       const std::string sub = entry.first.Scalar();
-      if (sub != "value" && sub != "std") {
-        throw InputError(fmt::format("{}: {}.{}: unknown key (known: value, std)", Where(path, entry.first), name, sub));
+      if (sub != "value" && sub != "std" && sub != "ci95") {
+        throw InputError(fmt::format("{}: {}.{}: unknown key (known: value, std, ci95)", Where(path, entry.first), name, sub));
       }
     }
     if (!node["value"]) throw InputError(fmt::format("{}: {}: needs a value", Where(path, node), name));
     value.value = ParseNumber(path, name + ".value", node["value"]);
     if (node["std"]) value.standard_error = ParseStandardError(path, name + ".std", node["std"]);
+    if (const YAML::Node ci = node["ci95"]) {
+      if (!ci.IsSequence() || ci.size() != 2) {
+        throw InputError(fmt::format("{}: {}.ci95: expected [low, high]", Where(path, ci), name));
+      }
+      value.ci95_low = ParseNumber(path, name + ".ci95", ci[0]);
+      value.ci95_high = ParseNumber(path, name + ".ci95", ci[1]);
+      if (!(value.ci95_low <= value.value && value.value <= value.ci95_high)) {
+        throw InputError(fmt::format("{}: {}.ci95: [{}, {}] does not hold the value {}", Where(path, ci), name,
+                                     value.ci95_low, value.ci95_high, value.value));
+      }
+    }
   } else {
     value.value = ParseNumber(path, name, node);
   }
@@ -127,8 +138,12 @@ std::string FormatFeedbackSection(const FeedbackController& f) {
     const std::string unit = FeedbackKeyUnit(*key, f);
     const std::string comment = unit.empty() ? key->description : fmt::format("{} [{}]", key->description, unit);
     if (key->gain) {
-      out += fmt::format("  {}: {{value: {}, std: {}}}  # {}\n", v.key, Number(Writable(name, v.value)),
-                         fmt::format("{:.6g}", Writable(name + ".std", v.standard_error)), comment);
+      const std::string interval =
+          v.HasInterval() ? fmt::format(", ci95: [{}, {}]", Number(Writable(name + ".ci95", v.ci95_low)),
+                                        Number(Writable(name + ".ci95", v.ci95_high)))
+                          : "";
+      out += fmt::format("  {}: {{value: {}, std: {}{}}}  # {}\n", v.key, Number(Writable(name, v.value)),
+                         fmt::format("{:.6g}", Writable(name + ".std", v.standard_error)), interval, comment);
     } else {
       out += fmt::format("  {}: {}  # {}\n", v.key, Number(Writable(name, v.value)), comment);
     }

@@ -11,8 +11,9 @@ std::string FormatFeedbackReport(const FeedbackController& f) {
   for (const auto& v : f.values) {
     const FeedbackKey* key = FindFeedbackKey(v.key);
     if (key && key->gain) {
-      out += fmt::format("  {:<24} {:>12.6g} +- {:<10.3g} {}\n", v.key, v.value, v.standard_error,
-                         FeedbackGainUnit(f, v.key));
+      const std::string interval = v.HasInterval() ? fmt::format("  95 % [{:.6g}, {:.6g}]", v.ci95_low, v.ci95_high) : "";
+      out += fmt::format("  {:<24} {:>12.6g} +- {:<10.3g} {}{}\n", v.key, v.value, v.standard_error,
+                         FeedbackGainUnit(f, v.key), interval);
     } else {
       out += fmt::format("  {:<24} {:>12.6g}    {:<10} {}\n", v.key, v.value, key ? FeedbackKeyUnit(*key, f) : "",
                          key ? key->description : "");
@@ -47,7 +48,10 @@ Json FeedbackReportJson(const FeedbackController& f) {
     // The speed loop's notch and margins describe its controller C(s).
     const bool design = v.key.rfind("notch", 0) == 0 || v.key == "crossover_hz" ||
                         v.key.find("margin") != std::string::npos;
-    if (gain) gains[v.key] = {{"value", v.value}, {"std", v.standard_error}, {"unit", FeedbackGainUnit(f, v.key)}};
+    if (gain) {
+      gains[v.key] = {{"value", v.value}, {"std", v.standard_error}, {"unit", FeedbackGainUnit(f, v.key)}};
+      if (v.HasInterval()) gains[v.key]["ci95"] = {v.ci95_low, v.ci95_high};
+    }
     else if (design) controller[v.key] = v.value;
     else settings[v.key] = v.value;
   }

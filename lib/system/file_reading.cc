@@ -1,6 +1,7 @@
 #include "system/file_reading.h"
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <chrono>
 #include <cstdint>

@@ -78,7 +78,10 @@ void SysIdWeights(const AxisGainsOptions& o, bool loop_position, AxisGainsDesign
   qv = o.max_velocity_error;
   const bool volts = d.controller.effort_unit.empty() || d.controller.effort_unit == "V";
   const bool loaded = d.ks.has_value() && volts && !o.kv && d.kv > 0.0 && kSysIdBatteryVolts - *d.ks > 0.0;
-  if (qv > 0.0 && (qp > 0.0 || !loop_position)) return;
+  // A velocity loop has no position weight; it is set (to SysId's) only so
+  // that the settings are complete.
+  if (!(qp > 0.0) && !loop_position) qp = loaded ? kSysIdLoadedPositionError : kSysIdMaxPositionError;
+  if (qv > 0.0 && qp > 0.0) return;
   std::vector<std::string> set;
   if (!(qv > 0.0)) {
     qv = loaded ? (kSysIdBatteryVolts - *d.ks) / (4.0 * d.kv) : kSysIdMaxVelocityError;
@@ -196,7 +199,7 @@ AxisGainsDesign DesignAxisGains(const ParameterFile* file, const std::string& pa
                                   preset->name, conversion, controller_unit, c.position_unit));
   }
   request.conversion = conversion;
-  const GainUncertainty g = PropagateGains(d.kv, d.kv_std, d.ka, d.ka_std, d.correlation, request);
+  const GainUncertainty g = SampleGains(d.kv, d.kv_std, d.ka, d.ka_std, d.correlation, request);
   if (request.lqr.delay > 0.0) {
     GainRequest undelayed = request;
     undelayed.lqr.delay = 0.0;
@@ -216,8 +219,10 @@ AxisGainsDesign DesignAxisGains(const ParameterFile* file, const std::string& pa
   c.loop = o.loop;
   c.preset = preset->name;
   c.position_unit = controller_unit;
-  c.values.push_back({kGainKp, g.value.kp, g.standard_error.kp});
-  if (request.loop == FeedbackLoop::kPosition) c.values.push_back({kGainKd, g.value.kd, g.standard_error.kd});
+  c.values.push_back({kGainKp, g.value.kp, g.standard_error.kp, g.ci95_low.kp, g.ci95_high.kp});
+  if (request.loop == FeedbackLoop::kPosition) {
+    c.values.push_back({kGainKd, g.value.kd, g.standard_error.kd, g.ci95_low.kd, g.ci95_high.kd});
+  }
   c.values.push_back({"period", request.lqr.period, 0.0});
   c.values.push_back({"delay", request.lqr.delay, 0.0});
   if (request.loop == FeedbackLoop::kPosition) c.values.push_back({"max_position_error", qp, 0.0});

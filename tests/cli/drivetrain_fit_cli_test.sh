@@ -74,7 +74,7 @@ expect 2 "--free: 'd_g,,tau_c' holds an empty parameter name" -- step good.csv -
   && ok || fail "--free d_g --free tau_c estimated $(grep -A12 '^  estimates:' free_only.yaml)"
 # Simulated logs: never fewer samples than the fit accepts, never more than
 # the bound, and the message names the options that set the count.
-expect 2 "--duration 0.001 at --rate 1000 gives 2 samples: the fit of such a log needs at least 20" -- \
+expect 2 "--duration 0.001 at --rate 1000 gives 2 samples: the fit of such a log needs at least 10" -- \
   simulate axis --params "$src/data/axis_example.yaml" --duration 1e-3
 expect 2 "--duration 0.001 at --rate 1000 gives 2 samples: the fit of such a log needs at least 3" -- \
   simulate step --params "$src/data/paper000.yaml" --duration 1e-3 --step-time 0
@@ -406,16 +406,13 @@ expect 2 "not a parameter of the joint fit" -- joint "$src/data/joint_example.cs
 
 # joint --method (docs/models.md#joint-output-error): a stiff joint (resonance
 # 26 Hz near the inverse-dynamics cutoff 25 Hz) in a PI speed loop, no link
-# Coulomb friction: auto takes output error, which finds k within 2 %.
+# Coulomb friction: inverse dynamics' refusals and advice, the options' checks
+# (the output-error fits of the same log, auto and single shooting, are in
+# joint_oe_cli_test.sh: two minutes under the sanitizers).
 printf 'joint:\n  gear_ratio: 50\n  motor_inertia: 0.02\n  link_inertia: 0.05\n  stiffness: 400\n  damping: 0.2\n  motor_viscous: 0.1\n  motor_coulomb: 0.2\n  link_viscous: 0.05\n  link_coulomb: 0\n  offset: 0.05\n' > stiff_truth.yaml
 printf 'joint:\n  gear_ratio: 50\n' > stiff_start.yaml
 "$bin" simulate joint --params stiff_truth.yaml --kp 0.0004 --ki 0.002 --duration 10 --band 1,60 --amplitude 0.5 \
   --noise 0.5 -o stiff.csv && ok || fail "simulate joint (stiff)"
-"$bin" joint stiff.csv --params stiff_start.yaml --max-seconds 600 -o stiff_fit.yaml --trace stiff_trace.csv --plot stiff_fit.svg > stiff.txt 2>&1 \
-  && grep -q "^method: output error (auto: the inverse-dynamics cutoff 25 Hz is below 4 x the resonance" stiff.txt \
-  && grep -q "^  stiffness: \(39[2-9]\|40[0-8]\)" stiff_fit.yaml && grep -q "output error (exact ZOH" stiff_fit.yaml \
-  && head -2 stiff_trace.csv | grep -q "^log,t,q_motor_measured,q_motor_model,q_link_measured,q_link_model" \
-  && [ -s stiff_fit.svg ] && ok || fail "joint auto -> output error: $(cat stiff.txt)"
 "$bin" joint stiff.csv --params stiff_start.yaml --method id -q -o /dev/null 2> stiff_id.txt
 grep -q "not identifiable.*link_viscous\|within a factor 2 of the fitted resonance" stiff_id.txt && ok \
   || fail "joint --method id on the stiff joint: $(cat stiff_id.txt)"
@@ -434,11 +431,6 @@ expect 2 "--segment applies to --method oe \\(or auto\\) only" -- joint stiff.cs
 expect 2 "--segment.*expected auto, none or a number of seconds > 0, got '-1'" -- joint stiff.csv \
   --params stiff_start.yaml --segment -1
 expect 2 "--segment.*got 'nan'" -- joint stiff.csv --params stiff_start.yaml --segment nan
-grep -q "^note: output error by multiple shooting: [0-9]* segments of" stiff.txt && ok \
-  || fail "joint auto -> output error names its segments: $(cat stiff.txt)"
-"$bin" joint stiff.csv --params stiff_start.yaml --method oe --segment none --max-seconds 600 -o /dev/null > stiff_single.txt 2>&1 \
-  && grep -q "^note: output error by single shooting" stiff_single.txt && ok \
-  || fail "joint --segment none: $(cat stiff_single.txt)"
 cut -d, -f1,3,5 stiff.csv > stiff_notau.csv
 awk -F, '/^#/ { next } !header { print $0 ",tau_link"; header = 1; next } { print $0 "," 400 * ($2 / 50 - $3) }' \
   stiff_notau.csv > stiff_shaft.csv

@@ -88,6 +88,26 @@ grep -q "bounded only: coulomb = " ks0.err && grep -q "^    coulomb: {value: .*c
   fail "Ks 0 bounded: $(grep coulomb ks0.yaml ks0.err | head -3)"
 holds ks0.yaml inertia=0.3 viscous=2.5 coulomb=0
 
+# An elevator (constant gravity: Kg is the offset) and an arm (Kg cos q)
+# told with --test; the arm logged in Rotations as SysIdRoutine logs an
+# angular mechanism (converted to Radians: the same estimates as the arm
+# logged in radians, per radian), and with dynamic tests of 0.4 s, 18
+# samples each, as a 7 V arm test lasts (used, not refused: they are what
+# determines Ka).
+python3 "$src/tests/support/wpilog_writer.py" elevator.wpilog --mechanism elevator || fail "writer, elevator"
+"$bin" axis elevator.wpilog --motor leader --test elevator -q -o elevator.yaml 2> elevator.err || fail "elevator: $(cat elevator.err)"
+holds elevator.yaml inertia=0.3 viscous=2.5 coulomb=0.25 offset=0.6
+python3 "$src/tests/support/wpilog_writer.py" arm.wpilog --mechanism arm || fail "writer, arm"
+python3 "$src/tests/support/wpilog_writer.py" arm_rot.wpilog --mechanism arm --rotations || fail "writer, arm in rotations"
+"$bin" axis arm.wpilog --motor leader --test arm -q -o arm.yaml 2> arm.err || fail "arm: $(cat arm.err)"
+holds arm.yaml inertia=0.3 viscous=2.5 coulomb=0.25 gravity_cos=0.6 gravity_sin=0
+"$bin" axis arm_rot.wpilog --motor leader --test arm -o arm_rot.yaml > arm_rot.txt 2>&1 &&
+  grep -q "logged in Rotations: converted to Radians" arm_rot.txt && ok || fail "arm in rotations: $(head -c 600 arm_rot.txt)"
+holds arm_rot.yaml inertia=0.3 viscous=2.5 coulomb=0.25 gravity_cos=0.6 gravity_sin=0
+python3 "$src/tests/support/wpilog_writer.py" arm_short.wpilog --mechanism arm --dynamic 0.4 || fail "writer, short arm"
+"$bin" axis arm_short.wpilog --motor leader --test arm -q -o arm_short.yaml 2> arm_short.err || fail "short arm tests: $(cat arm_short.err)"
+holds arm_short.yaml inertia=0.3 viscous=2.5 coulomb=0.25 gravity_cos=0.6 gravity_sin=0
+
 # Other names: RobotPy's own logging, AdvantageKit's, no state entry.
 python3 "$src/tests/support/wpilog_writer.py" robotpy.wpilog --names robotpy || fail "writer, robotpy names"
 python3 "$src/tests/support/wpilog_writer.py" kit.wpilog --names advantagekit || fail "writer, AdvantageKit names"

@@ -16,7 +16,8 @@ TEST_CASE("feedback section: written, read back unchanged; unknown keys refused 
   c.preset = "custom";
   c.effort_unit = "N m";
   c.position_unit = "rad";
-  c.values = {{"kp", 0.0123456789012345, 1e-4}, {"ki", 0.5, 0.01}, {"period", 0.001, 0.0}, {"notch_hz", 8.1, 0.0}};
+  c.values = {{"kp", 0.0123456789012345, 1e-4, 0.0121, 0.01265}, {"ki", 0.5, 0.01}, {"period", 0.001, 0.0},
+              {"notch_hz", 8.1, 0.0}};
   c.numerator = {1.0, 2.5, 3.25};
   c.denominator = {1.0, 0.5, 0.0};
   const std::string text = FormatFeedbackSection(c);
@@ -29,6 +30,11 @@ TEST_CASE("feedback section: written, read back unchanged; unknown keys refused 
     CHECK(back.values[i].key == c.values[i].key);
     CHECK(back.values[i].value == c.values[i].value);
     CHECK(back.values[i].standard_error == Approx(c.values[i].standard_error));
+    CHECK(back.values[i].HasInterval() == c.values[i].HasInterval());
+    if (c.values[i].HasInterval()) {
+      CHECK(back.values[i].ci95_low == c.values[i].ci95_low);
+      CHECK(back.values[i].ci95_high == c.values[i].ci95_high);
+    }
   }
   CHECK(back.numerator == c.numerator);
   CHECK(back.denominator == c.denominator);
@@ -39,6 +45,17 @@ TEST_CASE("feedback section: written, read back unchanged; unknown keys refused 
   FeedbackController bad = c;
   bad.loop = "torque";
   CHECK_THROWS_AS(FormatFeedbackSection(bad), OutputError);
+}
+
+TEST_CASE("feedback section: a gain's interval that does not hold its value, or is no pair, is refused where it stands") {
+  const auto parse = [](const std::string& gain) {
+    return ParseFeedbackSection("f.yaml", YAML::Load("feedback:\n  loop: velocity\n  kp: " + gain + "\n")["feedback"]);
+  };
+  CHECK(parse("{value: 2, std: 0.1, ci95: [1.8, 2.3]}").values.front().ci95_high == 2.3);
+  CHECK_THROWS_WITH(parse("{value: 2, std: 0.1, ci95: [2.1, 2.3]}"),
+                    Catch::Contains("f.yaml:3:") && Catch::Contains("feedback.kp.ci95: [2.1, 2.3] does not hold the value 2"));
+  CHECK_THROWS_WITH(parse("{value: 2, std: 0.1, ci95: [1.8]}"), Catch::Contains("feedback.kp.ci95: expected [low, high]"));
+  CHECK_THROWS_WITH(parse("{value: 2, std: 0.1, ci95: [1.8, nan]}"), Catch::Contains("feedback.kp.ci95"));
 }
 
 TEST_CASE("feedback section: a negative std or a period not above 0 is refused where it stands") {

@@ -14,7 +14,8 @@ Set-metadata control record.
 
 usage: wpilog_writer.py OUT.wpilog [--same-times CSV_PREFIX] [--seed N] [--short]
                         [--names sysid|robotpy|advantagekit] [--no-state] [--ks VOLTS]
-                        [--latency MIN_MS MAX_MS]
+                        [--latency MIN_MS MAX_MS] [--mechanism flywheel|elevator|arm]
+                        [--rotations] [--kg VOLTS] [--dynamic SECONDS]
   --same-times: the three entries share each loop's timestamp, and each
   test's samples are written to CSV_PREFIX<test>.csv (t, voltage, position,
   velocity) exactly as logged, for a round trip; --short: tests of 0.2 s
@@ -28,7 +29,14 @@ usage: wpilog_writer.py OUT.wpilog [--same-times CSV_PREFIX] [--seed N] [--short
   follower's volts and current only); --no-state: no state entry; --ks:
   the motor's static friction (default 0.25 V); --latency: the position
   and velocity logged are as old as a CAN status frame, uniformly
-  MIN_MS..MAX_MS at each loop (default: current).
+  MIN_MS..MAX_MS at each loop (default: current); --mechanism: an
+  elevator adds a constant gravity Kg (V), an arm Kg cos(q) with q in
+  radians from the horizontal (starting at -1 rad), both Kg from --kg
+  (default 0.6 V); --rotations: the arm's position and velocity logged in
+  rotations, as SysIdRoutine logs an angular mechanism (units "Rotation",
+  "Rotation per Second"; the model's Kv and Ka stay per radian);
+  --dynamic: the dynamic tests' length (default 2.5 s; 0.4 s are 20
+  samples at 50 Hz).
 """
 import math
 import random
@@ -88,6 +96,16 @@ def main():
     log = bytearray(b"WPILOG" + struct.pack("<H", 0x0100) + text("driveid test writer"))
     mech = "Shooter"
     names = sys.argv[sys.argv.index("--names") + 1] if "--names" in sys.argv else "sysid"
+    mechanism = sys.argv[sys.argv.index("--mechanism") + 1] if "--mechanism" in sys.argv else "flywheel"
+    assert mechanism in ("flywheel", "elevator", "arm"), mechanism
+    kg = float(sys.argv[sys.argv.index("--kg") + 1]) if "--kg" in sys.argv else 0.6
+    rotations = "--rotations" in sys.argv
+    assert not rotations or mechanism == "arm", "--rotations is for an arm"
+    scale = 1.0 / (2.0 * math.pi) if rotations else 1.0  # logged units per model unit
+    dynamic = float(sys.argv[sys.argv.index("--dynamic") + 1]) if "--dynamic" in sys.argv else 2.5
+    position_unit, velocity_unit = (("Rotation", "Rotation per Second") if rotations else
+                                    ("Radian", "Radian per Second") if mechanism == "arm" else
+                                    ("Meter", "Meter per Second"))
     # The name each role is written under (role names as SysIdRoutine's).
     rename = {
         "sysid": {},
@@ -110,8 +128,8 @@ def main():
     ids = {}
     for i, (name, type_, meta) in enumerate([
             ("voltage-leader-" + mech, "double", "Volt"),
-            ("position-leader-" + mech, "double", "Meter"),
-            ("velocity-leader-" + mech, "double", "Meter per Second"),
+            ("position-leader-" + mech, "double", position_unit),
+            ("velocity-leader-" + mech, "double", velocity_unit),
             ("voltage-follower-" + mech, "double", "Volt"),
             ("position-follower-" + mech, "double", "Meter"),
             ("velocity-follower-" + mech, "double", "Meter per Second"),
@@ -129,12 +147,12 @@ def main():
     log += set_metadata(ids["console"], "changed", 2000)
 
     tests = [("quasistatic-forward", 1.5), ("quasistatic-forward", 5.0), ("quasistatic-reverse", 5.0),
-             ("dynamic-forward", 2.5), ("dynamic-reverse", 2.5)]
+             ("dynamic-forward", dynamic), ("dynamic-reverse", dynamic)]
     if "--short" in sys.argv:
         tests = [(name, 0.2) for name, _ in tests]
     t = 2.0  # s
     v = 0.0
-    q = 0.0
+    q = -1.0 if mechanism == "arm" else 0.0
     csv = {}
     for test, length in tests:
         direction = 1.0 if test.endswith("forward") else -1.0
@@ -147,7 +165,8 @@ def main():
             # 1 kHz integration, Coulomb friction with a small smooth zone.
             dt = 0.001
             friction = ks * math.tanh(v / 0.01)
-            v += dt * (volts - friction - KV * v) / KA
+            gravity = kg * math.cos(q) if mechanism == "arm" else kg if mechanism == "elevator" else 0.0
+            v += dt * (volts - friction - gravity - KV * v) / KA
             q += dt * v
             t += dt
             history.append((t, q, v))
@@ -158,8 +177,8 @@ def main():
                 logged_v = volts + rng.gauss(0.0, 0.02)
                 age = rng.uniform(*latency) if latency[1] > 0.0 else 0.0
                 _, q_then, v_then = min(history, key=lambda h: abs(h[0] - (t - age)))
-                logged_q = round(q_then / 1e-4) * 1e-4
-                logged_w = v_then + rng.gauss(0.0, 0.005)
+                logged_q = round(q_then * scale / 1e-4) * 1e-4
+                logged_w = (v_then + rng.gauss(0.0, 0.005)) * scale
                 stamps = (stamp, stamp, stamp) if same_times else (stamp, stamp + 15, stamp + 31)
                 log += record(ids["voltage-leader-" + mech], stamps[0], struct.pack("<d", logged_v))
                 log += record(ids["position-leader-" + mech], stamps[1], struct.pack("<d", logged_q))
