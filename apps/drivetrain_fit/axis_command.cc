@@ -97,6 +97,7 @@ AxisCommandResult ComputeAxisCommand(const AxisOptions& options, const std::stri
   fit_options.axis = options.fit;
   fit_options.axis.torque_timing = ParseAxisTorqueTiming(options.torque_timing, fit_options.axis.torque_delay);
   fit_options.trace = !options.output.trace.empty();
+  fit_options.simulate_rates = !options.output.plot.empty();
   SetProgress(fit_options.axis.fit, options.output.verbose, options.output.max_seconds);
   std::vector<AxisLog> validation;
   if (!options.validate.empty()) {
@@ -112,7 +113,14 @@ AxisCommandResult ComputeAxisCommand(const AxisOptions& options, const std::stri
   outputs.fit = run.fit;
   outputs.parameter_file = FormatParameterFile(fitted, &outputs.fit, &outputs.provenance, run.derived);
   outputs.trace_csv = run.trace_csv;
-  if (!options.output.plot.empty()) outputs.plot_panels = MakeFitPanels(run.series, run.labels);
+  if (!options.output.plot.empty()) {
+    outputs.plot_panels = MakeFitPanels(run.series, run.labels);
+    if (!run.rate_series.empty()) {
+      outputs.plot_panels.push_back(MakeFitPanels(run.rate_series, {"rate: measured, and simulated by the fitted model from "
+                                                                    "each log's start under its logged effort",
+                                                                    "rate"}).front());
+    }
+  }
   result.summary = run.summary;
   return result;
 }

@@ -369,17 +369,43 @@ std::vector<AxisLog> InRadians(std::vector<AxisLog> logs, double factor) {
 AxisIdentification IdentifyAxisAsGiven(const std::vector<AxisLog>& logged, const AxisSection& section,
                                        const AxisIdentificationOptions& requested, const std::vector<AxisLog>& held_out);
 
+// AxisIdentification::rate_series of the logs the fit saw.
+void AddSimulatedRates(const std::vector<AxisLog>& logs, const AxisIdentificationOptions& options,
+                       AxisIdentification& run) {
+  if (!options.simulate_rates) return;
+  const std::vector<std::vector<double>> simulated = SimulateAxisLogRates(logs, run.params);
+  for (std::size_t i = 0; i < logs.size(); ++i) {
+    const AxisLog& log = logs[i];
+    if (simulated[i].size() != log.time.size()) continue;
+    PlotSeries series{log.path, log.time, log.rate, simulated[i]};
+    if (series.measured.empty()) {
+      const std::size_t n = log.time.size();
+      series.measured.resize(n);
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t a = k > 0 ? k - 1 : k, b = k + 1 < n ? k + 1 : k;
+        series.measured[k] = (log.position[b] - log.position[a]) / (log.time[b] - log.time[a]);
+      }
+    }
+    run.rate_series.push_back(std::move(series));
+  }
+}
+
 }  // namespace
 
 AxisIdentification IdentifyAxis(const std::vector<AxisLog>& logged, const AxisSection& section,
                                 const AxisIdentificationOptions& requested, const std::vector<AxisLog>& held_out) {
   RequireValid(requested);
   const double factor = ArmRadiansPer(requested);
-  if (factor == 1.0) return IdentifyAxisAsGiven(logged, section, requested, held_out);
+  if (factor == 1.0) {
+    AxisIdentification run = IdentifyAxisAsGiven(logged, section, requested, held_out);
+    AddSimulatedRates(logged, requested, run);
+    return run;
+  }
   AxisIdentificationOptions in_radians = requested;
   in_radians.sysid_unit = "Radians";
-  AxisIdentification run =
-      IdentifyAxisAsGiven(InRadians(logged, factor), section, in_radians, InRadians(held_out, factor));
+  const std::vector<AxisLog> radians = InRadians(logged, factor);
+  AxisIdentification run = IdentifyAxisAsGiven(radians, section, in_radians, InRadians(held_out, factor));
+  AddSimulatedRates(radians, requested, run);
   run.summary.push_back(fmt::format("SysId Arm test logged in {}: converted to Radians (q and q' x {:.6g}) for the "
                                     "gravity term cos q; Kv and Ka are per radian, as WPILib's ArmFeedforward takes "
                                     "them (multiply by {:.6g} for per {})",

@@ -35,6 +35,7 @@ struct AxisIdentificationOptions {
   /// dynamics.
   AxisFitOptions axis = AxisFitOptionsFromData();
   bool trace = false;   ///< build the trace CSV
+  bool simulate_rates = false;  ///< build rate_series (for --plot)
   /// The SysId files' position unit when every log is a SysId file in one
   /// unit (estimates, feed-forward in volts and that unit), else "".
   std::string sysid_unit;
@@ -63,6 +64,11 @@ struct AxisIdentification {
   std::string trace_csv;                ///< when asked for
   std::vector<PlotSeries> series;       ///< measured and model per log
   PlotLabels labels;
+  /// With simulate_rates: per log, the logged rate (qd, else central
+  /// differences of q) and the rate the fitted model simulates from the log's
+  /// start under its logged effort (SimulateAxisLogRates), what SysId users
+  /// compare; a log the simulator cannot follow is left out.
+  std::vector<PlotSeries> rate_series;
   std::vector<std::string> summary;     ///< lines for the text summary
 };
 

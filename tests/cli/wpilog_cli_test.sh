@@ -101,6 +101,18 @@ python3 "$src/tests/support/wpilog_writer.py" arm.wpilog --mechanism arm || fail
 python3 "$src/tests/support/wpilog_writer.py" arm_rot.wpilog --mechanism arm --rotations || fail "writer, arm in rotations"
 "$bin" axis arm.wpilog --motor leader --test arm -q -o arm.yaml 2> arm.err || fail "arm: $(cat arm.err)"
 holds arm.yaml inertia=0.3 viscous=2.5 coulomb=0.25 gravity_cos=0.6 gravity_sin=0
+# What SysId users look at: with --plot, each test's measured rate beside the
+# rate the fitted model simulates from the test's start under its voltage;
+# the plot changes no estimate.
+if command -v gnuplot > /dev/null; then
+  "$bin" axis arm.wpilog --motor leader --test arm -q -o arm_plotted.yaml --plot arm.svg 2> /dev/null &&
+    grep -q "rate: measured, and simulated by the fitted model" arm.svg &&
+    [ "$(grep -c 'dynamic-forward\] model' arm.svg)" -ge 2 ] &&
+    cmp -s <(grep -v "command:" arm.yaml) <(grep -v "command:" arm_plotted.yaml) && ok ||
+    fail "the plot's simulated rates: $(grep -c 'rate: measured' arm.svg)"
+else
+  echo "skipped: gnuplot is not installed (the --plot check)"
+fi
 "$bin" axis arm_rot.wpilog --motor leader --test arm -o arm_rot.yaml > arm_rot.txt 2>&1 &&
   grep -q "logged in Rotations: converted to Radians" arm_rot.txt && ok || fail "arm in rotations: $(head -c 600 arm_rot.txt)"
 holds arm_rot.yaml inertia=0.3 viscous=2.5 coulomb=0.25 gravity_cos=0.6 gravity_sin=0

@@ -293,6 +293,28 @@ FitResult FitFromPlateau(OeLogs& prepared, const OeDesign& d, AxisOeResiduals& r
 
 }  // namespace
 
+std::vector<std::vector<double>> SimulateAxisLogRates(const std::vector<AxisLog>& logs, const AxisParameters& params) {
+  std::vector<std::vector<double>> out(logs.size());
+  for (std::size_t i = 0; i < logs.size(); ++i) {
+    const AxisLog& log = logs[i];
+    if (log.time.size() < 2 || !(params.inertia > 0.0)) continue;
+    // The output-error fit's tolerances (PrepareOeLogs): 1e-8 of the log's spread.
+    const double q_scale = std::max(CalcRmsDeviation(log.position), 1e-12);
+    const double duration = std::max(log.time.back() - log.time.front(), 1e-9);
+    const double v_scale = std::max(log.rate.empty() ? 0.0 : CalcRmsDeviation(log.rate), q_scale / duration);
+    const AxisStart start = AxisLogStart(log);
+    AxisSimulator simulator({}, 1e-8 * q_scale, 1e-8 * v_scale);
+    AxisResponse response;
+    try {
+      simulator.Simulate(params, log.time, log.force, start.position, start.rate, false, &response);
+    } catch (const IdentificationError&) {
+      continue;
+    }
+    out[i] = std::move(response.rate);
+  }
+  return out;
+}
+
 AxisOeOutput FitAxisOutputError(const std::vector<AxisLog>& logs, const AxisSection& start,
                                 const AxisParameters* initial, const AxisOeOptions& options) {
   RequireValid(options);

@@ -48,6 +48,12 @@ AxisStart AxisLogStart(const AxisLog& log);
 double CalcLoggedStartRate(const std::vector<double>& time, const std::vector<double>& position,
                            const std::vector<double>& rate);
 
+/// Each log simulated with `params` from its logged start (AxisLogStart)
+/// under its logged torque, held per sample (sim/axis_simulator.h; no fit):
+/// the rate the model predicts for the log, as a simulator would run it. A
+/// log the simulator cannot follow (an integrator failure) gets no rates.
+std::vector<std::vector<double>> SimulateAxisLogRates(const std::vector<AxisLog>& logs, const AxisParameters& params);
+
 /// Whether a log's torque looks like held steps (it changes at fewer than
 /// 2 % of the samples): output error suits it, inverse dynamics does not.
 bool IsTorqueStepLog(const AxisLog& log);
