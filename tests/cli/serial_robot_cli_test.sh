@@ -182,4 +182,15 @@ expect 3 "short.csv:1: missing columns .q_elbow. or .q3., .tau_elbow. or .tau3."
 head -50 arm.csv > few.csv
 expect 4 "not identifiable from these logs: .*viscous_yaw" -- robot few.csv --urdf arm.urdf
 expect 2 "--window" -- robot arm.csv --urdf arm.urdf --window 0
+# Windows against the log's rate (5 ms steps here; issue 71: a window whose
+# refit at half its length had no rows crashed on real arms with SIGFPE, or,
+# as here, put a refit of nothing into the intervals, widening them 3-4 x).
+# Shorter than 2 steps each side: refused, asking for a longer window.
+expect 3 "arm.csv: 0 usable samples .*window.* 0.003 s spans fewer than 2 samples on each side at this log's step of 0.005 s; give at least 0.012 s" -- \
+  robot arm.csv --urdf arm.urdf --window 0.003
+# Long enough, but not when halved: fitted, the halved refit left out and said.
+"$bin" robot arm.csv --urdf arm.urdf --window 0.015 -q -o short_window.yaml 2> short_window.err &&
+  grep -q "warning: processing: the differentiator's half window halved (0.0075 s) leaves a joint without samples" short_window.err &&
+  awk '/^    viscous_yaw: / { gsub(/[{},:]/, " "); exit !($5 > 0 && $5 < 1.5) }' short_window.yaml && ok ||
+  fail "a window whose half leaves no rows: $(cat short_window.err; grep viscous_yaw short_window.yaml)"
 finish

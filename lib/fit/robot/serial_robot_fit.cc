@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <algorithm>
+#include <optional>
 #include <random>
 #include <tuple>
 
@@ -276,6 +277,9 @@ Eigen::VectorXd Solve(const Rows& rows, std::size_t r, const std::vector<double>
     const double w = 1.0 / (sigma[j] * sigma[j]);
     for (std::size_t l = 0; l < rows.x.size(); ++l) {
       const Eigen::MatrixXd& x = rows.x[l][j];
+      // A log a window leaves without rows has an empty block (0 x 0: Eigen's
+      // products of it divide by its size).
+      if (x.rows() == 0 || x.cols() != p) continue;
       const auto size = static_cast<Eigen::Index>(taus[j][l].size());
       const Eigen::VectorXd tau = Eigen::Map<const Eigen::VectorXd>(taus[j][l].data(), size) -
                                   Eigen::Map<const Eigen::VectorXd>(rows.known[j][l].data(), size);
@@ -344,7 +348,20 @@ void AddProcessingUncertainty(const SerialRobot& robot, const BaseParameters& ba
   const std::size_t r = selection.free.size();
   Eigen::VectorXd theta(static_cast<Eigen::Index>(r));
   for (std::size_t c = 0; c < r; ++c) theta(static_cast<Eigen::Index>(c)) = fit.estimates[c].value;
-  const auto window = [&](double half_window) { return Solve(BuildRows(robot, base, selection, logs, half_window), r, sigma); };
+  // A refit at another half window: none where that window leaves a joint
+  // without rows (a short window halved at a low rate; a long one doubled on
+  // short logs) or the solve is not finite.
+  const auto window = [&](double half_window) -> std::optional<Eigen::VectorXd> {
+    const Rows rows = BuildRows(robot, base, selection, logs, half_window);
+    for (std::size_t j = 0; j < rows.tau.size(); ++j) {
+      std::size_t count = 0;
+      for (const auto& x : rows.x) count += static_cast<std::size_t>(x[j].rows());
+      if (count == 0) return std::nullopt;
+    }
+    const Eigen::VectorXd solved = Solve(rows, r, sigma);
+    if (!solved.allFinite()) return std::nullopt;
+    return solved;
+  };
   const auto timing = [&](double shift) {
     const auto torques = ShiftedTorques(nominal, logs, shift);
     return Solve(nominal, r, sigma, &torques);
@@ -354,10 +371,21 @@ void AddProcessingUncertainty(const SerialRobot& robot, const BaseParameters& ba
     double sigma;
     std::string what;
   };
-  std::vector<Systematic> errors = {
-      {window(0.5 * options.half_window) - theta, 1.0 / std::sqrt(2.0), "half window halved"},
-      {window(2.0 * options.half_window) - theta, 1.0 / std::sqrt(2.0), "half window doubled"},
-      {0.5 * (timing(0.5) - timing(-0.5)), 1.0 / std::sqrt(3.0), "torque timing +-1/2 sample"}};
+  std::vector<Systematic> errors;
+  std::vector<std::string> unassessed;
+  for (const auto& [factor, what] : {std::pair{0.5, "half window halved"}, std::pair{2.0, "half window doubled"}}) {
+    const std::optional<Eigen::VectorXd> moved = window(factor * options.half_window);
+    if (moved) errors.push_back({*moved - theta, 1.0 / std::sqrt(2.0), what});
+    else unassessed.push_back(fmt::format("{} ({:.3g} s)", what, factor * options.half_window));
+  }
+  errors.push_back({0.5 * (timing(0.5) - timing(-0.5)), 1.0 / std::sqrt(3.0), "torque timing +-1/2 sample"});
+  if (!unassessed.empty()) {
+    fit.warnings.push_back(fmt::format(
+        "processing: the differentiator's {} leaves a joint without samples, so how the estimates move with the "
+        "window is not in their intervals; a window of several samples at the log's rate (--window) lets it be "
+        "assessed",
+        fmt::join(unassessed, " and ")));
+  }
   bool moves = false;
   for (const Systematic& e : errors) {
     for (std::size_t c = 0; c < r; ++c) moves = moves || std::abs(e.gradient(static_cast<Eigen::Index>(c))) > fit.estimates[c].standard_error;
@@ -465,9 +493,19 @@ SerialRobotFitOutput FitSerialRobot(const SerialRobot& robot, const std::vector<
   const Rows rows = BuildRows(robot, out.base, selection, logs, options.half_window);
   out.samples = rows.samples;
   if (out.samples * n < 2 * r) {
-    throw InputError(fmt::format("{}: {} usable samples for {} base parameters: log more of the trajectory (or a "
-                                 "shorter ‹window›)",
-                                 logs.empty() ? std::string("the logs") : logs.front().path, out.samples, r));
+    // The differentiator needs 2 samples on each side of its centre
+    // (signal/local_polynomial.h): a half window shorter than 2 steps of the
+    // log leaves no sample, whatever its length.
+    double step = 0.0;
+    for (const SerialRobotLog& log : logs) step = std::max(step, log.time.size() > 1 ? MedianStep(log.time) : 0.0);
+    const bool short_window = step > 0.0 && options.half_window < 2.0 * step;
+    throw InputError(fmt::format(
+        "{}: {} usable samples for {} base parameters: {}",
+        logs.empty() ? std::string("the logs") : logs.front().path, out.samples, r,
+        short_window ? fmt::format("the differentiator's half window ‹window› {:.3g} s spans fewer than 2 samples on "
+                                   "each side at this log's step of {:.3g} s; give at least {:.2g} s",
+                                   options.half_window, step, 2.5 * step)
+                     : std::string("log more of the trajectory, or a shorter ‹window›")));
   }
   const std::vector<double> sigma = JointNoise(rows, r);
   const Eigen::VectorXd first = Solve(rows, r, sigma);
