@@ -28,10 +28,12 @@ std::optional<double> Number(const std::string& word) {
   return value;
 }
 
-// One term: a column times or divided by numbers, pi and scalars.
+// One term: a column times or divided by numbers, pi and scalars; with
+// `constant_allowed` (a term of a sum) also numbers alone (reference "").
 ColumnTerm ParseTerm(const std::string& option, const std::string& whole,
                      const std::function<bool(const std::string&)>& is_column,
-                     const std::function<std::optional<double>(const std::string&)>& scalar) {
+                     const std::function<std::optional<double>(const std::string&)>& scalar,
+                     bool constant_allowed = false) {
   ColumnTerm out;
   if (is_column(whole)) {
     out.reference = whole;
@@ -86,8 +88,14 @@ ColumnTerm ParseTerm(const std::string& option, const std::string& whole,
       out.factor *= value;
     }
   }
-  if (out.reference.empty()) {
+  if (out.reference.empty() && !constant_allowed) {
     throw OptionError(fmt::format("{}: no column in the expression (a constant column is not a log)", option));
+  }
+  if (out.reference.empty()) {
+    if (!std::isfinite(out.factor)) {
+      throw OptionError(fmt::format("{}: the constant is {} (not a finite number)", option, out.factor));
+    }
+    return out;
   }
   if (!std::isfinite(out.factor) || out.factor == 0.0) {
     throw OptionError(fmt::format("{}: the factor is {} (not a finite non-zero number)", option, out.factor));
@@ -171,8 +179,12 @@ ColumnExpression ParseColumnExpression(const std::string& option, const std::str
       if (term[0] == '-') sign = -sign;
       term = Trimmed(term.substr(1));
     }
-    ColumnTerm t = ParseTerm(option, term, is_column, scalar);
+    ColumnTerm t = ParseTerm(option, term, is_column, scalar, true);
     t.factor *= sign;
+    if (t.reference.empty()) {
+      out.offset += t.factor;
+      continue;
+    }
     for (const ColumnTerm& other : out.terms) {
       if (other.reference == t.reference) {
         throw OptionError(fmt::format("{}: the column '{}' appears twice; combine its factors", option, t.reference));
@@ -180,6 +192,10 @@ ColumnExpression ParseColumnExpression(const std::string& option, const std::str
     }
     out.terms.push_back(t);
   }
+  if (out.terms.empty()) {
+    throw OptionError(fmt::format("{}: no column in the expression (a constant column is not a log)", option));
+  }
+  if (!std::isfinite(out.offset)) throw OptionError(fmt::format("{}: the constants' sum is not finite", option));
   out.reference = out.terms.front().reference;
   out.factor = out.terms.front().factor;
   return out;

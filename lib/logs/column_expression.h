@@ -4,7 +4,9 @@
 // A factor is a number, `pi`, a scalar of the source, or the one column
 // reference: a header name, a 1-based position `#k`, or a MAT variable path
 // (`rec.pos(1,:)`). The column may not be a divisor. Terms of this kind
-// may be added and subtracted (`#6/32 - #5/45`, each column once). The whole may be
+// may be added and subtracted (`#6/32 - #5/45`, each column once), and so
+// may constants (`#2/32 - pi/2`: an encoder zero that is not the model's,
+// as an MDH offset), so long as one term holds a column. The whole may be
 // wrapped in derived-signal functions (applied innermost first, over the
 // log's time base, after crops): `integral(EXPR)` (cumulative trapezoid, 0
 // at the first sample), `derivative(EXPR)` (central differences, one-sided
@@ -32,6 +34,8 @@ struct ColumnExpression {
   /// Every term, the first included: the column is their sum (a coupled
   /// wrist: `#6/32 - #5/45`), at most kMaxColumnTerms.
   std::vector<ColumnTerm> terms;
+  /// The constant terms' sum, added to the column's (`- pi/2` of `#2/32 - pi/2`).
+  double offset = 0.0;
   /// Derived-signal functions, innermost first: "integral", "derivative", "detrend".
   std::vector<std::string> operations;
 };
@@ -44,7 +48,7 @@ void ApplyColumnOperation(const std::string& operation, const std::vector<double
 /// the source (checked first, so that a header containing '*' or '/' can be
 /// named whole); `scalar(word)` gives a named constant of the source. Throws
 /// OptionError naming `option` ("--col tau=...") on a malformed expression,
-/// no or two column references, a column divisor, or a zero divisor.
+/// no column reference, two in one product, a column divisor, or a zero divisor.
 ColumnExpression ParseColumnExpression(const std::string& option, const std::string& text,
                                        const std::function<bool(const std::string&)>& is_column,
                                        const std::function<std::optional<double>(const std::string&)>& scalar);

@@ -261,8 +261,8 @@ std::size_t ReadPlannedColumns(const TableSource& source, const std::vector<std:
       log.columns[k] = data.columns[slot[k]];
     }
     const ColumnExpression& e = expressions[k];
-    if (e.factor != 1.0 || !more_sum[k].empty()) {
-      for (double& v : log.columns[k]) v *= e.factor;
+    if (e.factor != 1.0 || !more_sum[k].empty() || e.offset != 0.0) {
+      for (double& v : log.columns[k]) v = v * e.factor + e.offset;
       for (std::size_t i = 0; i < more_sum[k].size(); ++i) log.columns[k][i] += more_sum[k][i];
       for (std::size_t i = 0; i < rows; ++i) {
         if (!std::isfinite(log.columns[k][i])) {

@@ -30,11 +30,15 @@ Series ReadExpression(const TableSource& source, const std::string& option, cons
   if (!e.operations.empty()) {
     throw OptionError(fmt::format("{}: derived signals ({}) cannot time or align a join", option, e.operations.front()));
   }
+  if (e.terms.size() > 1) {
+    throw OptionError(fmt::format("{}: a join's time or alignment is one scaled column (with a constant), not a sum of "
+                                  "columns", option));
+  }
   const auto index = source.Find(e.reference);
   if (!index) throw OptionError(fmt::format("{}: {} has no column '{}'", option, source.path(), e.reference));
   TableData data = source.Read({*index});
   Series out{std::move(data.columns.front()), std::move(data.line_numbers)};
-  for (double& v : out.values) v *= e.factor;
+  for (double& v : out.values) v = v * e.factor + e.offset;
   return out;
 }
 

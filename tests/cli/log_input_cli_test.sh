@@ -27,6 +27,10 @@ grep -v '^#' axis.csv | tail -n +2 | awk -F, '{ printf "%s,%.12g,%s\n", $1, $2 *
   fail "header-less log with a degree expression: inertia $(inertia bare.yaml) vs $(inertia reference.yaml)"
 grep -q 'notes: \["no header row: the first row holds numbers (columns are #1 .. #n)", "t = #1", "q = pi/180\*#2", "tau = #3"\]' bare.yaml \
   && ok || fail "provenance of the expressions: $(grep 'file:' bare.yaml)"
+# A constant in the expression (an encoder zero that is not the model's, as
+# an MDH offset): the positions moved by it, the estimates unchanged.
+"$bin" axis bare.csv --col t=#1 --col 'q=pi/180*#2 - pi/2' --col tau=#3 -q -o offset.yaml && same offset.yaml &&
+  grep -q '"q = pi/180\*#2 - pi/2"' offset.yaml && ok || fail "a column expression with a constant: $(inertia offset.yaml)"
 cp bare.yaml bare_first.yaml
 "$bin" axis bare.csv --col t=#1 --col 'q=pi/180*#2' --col tau=#3 -q -o bare.yaml && cmp -s bare.yaml bare_first.yaml \
   && ok || fail "rerun of a header-less fit differs"

@@ -38,6 +38,15 @@ TEST_CASE("column expressions: factors, functions, refusals") {
   CHECK_THROWS_AS(ParseColumnExpression("--col q=...", "2/pos", IsColumn, Scalar), OptionError);
   CHECK_THROWS_AS(ParseColumnExpression("--col q=...", "pos*#3", IsColumn, Scalar), OptionError);
   CHECK_THROWS_AS(ParseColumnExpression("--col q=...", "3*4", IsColumn, Scalar), OptionError);
+  // Constant terms of a sum go into the offset; at least one term holds a column.
+  const ColumnExpression o = ParseColumnExpression("--col q=...", "-pi/2 + pos/32 + gain", IsColumn, Scalar);
+  CHECK(o.reference == "pos");
+  CHECK(o.factor == Approx(1.0 / 32));
+  CHECK(o.offset == Approx(2.5 - M_PI / 2));
+  CHECK(o.terms.size() == 1);
+  CHECK(ParseColumnExpression("--col q=...", "pos", IsColumn, Scalar).offset == 0.0);
+  CHECK_THROWS_WITH(ParseColumnExpression("--col q=...", "1 - pi", IsColumn, Scalar), Catch::Contains("no column"));
+  CHECK_THROWS_WITH(ParseColumnExpression("--col q=...", "pos + 1e308*10", IsColumn, Scalar), Catch::Contains("not a finite"));
 }
 
 TEST_CASE("column operations: integral, derivative and detrend of a ramp against closed forms") {

@@ -97,8 +97,14 @@ TEST_CASE("column expressions: sums and differences of scaled columns (a coupled
   CHECK(whole.columns[1][1] == 8.0);
   CHECK(ErrorOf<OptionError>(text, Columns({{"q", "m5 - m5/2"}, {"tau", "tau"}})) ==
         "‹col› q=m5 - m5/2: the column 'm5' appears twice; combine its factors");
-  CHECK(ErrorOf<OptionError>(text, Columns({{"q", "m5 - 3"}, {"tau", "tau"}})) ==
-        "‹col› q=m5 - 3: no column in the expression (a constant column is not a log)");
+  // Constants in a sum (issue 71): an encoder zero that is not the model's,
+  // as an MDH offset, q2 = #2/32 - pi/2; before or after the columns.
+  const auto offset = ReadOne("w.csv", text, Columns({{"q", "#3/32 - pi/2"}, {"tau", "0.5 + tau - 1e-1"}}));
+  CHECK(offset.columns[1][0] == Approx(64.0 / 32 - M_PI / 2));
+  CHECK(offset.columns[1][1] == Approx(32.0 / 32 - M_PI / 2));
+  CHECK(offset.columns[2][1] == Approx(0.5 + 2.0 - 0.1));
+  CHECK(ErrorOf<OptionError>(text, Columns({{"q", "3 - pi/2"}, {"tau", "tau"}})) ==
+        "‹col› q=3 - pi/2: no column in the expression (a constant column is not a log)");
   CHECK(ErrorOf<OptionError>(text, Columns({{"q", "m5 -"}, {"tau", "tau"}})).find("an operand is missing") !=
         std::string::npos);
 }

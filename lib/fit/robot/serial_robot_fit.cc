@@ -382,7 +382,7 @@ void AddProcessingUncertainty(const SerialRobot& robot, const BaseParameters& ba
   if (!unassessed.empty()) {
     fit.warnings.push_back(fmt::format(
         "processing: the differentiator's {} leaves a joint without samples, so how the estimates move with the "
-        "window is not in their intervals; a window of several samples at the log's rate (--window) lets it be "
+        "window is not in their intervals; a window of several samples at the log's rate (‹window›) lets it be "
         "assessed",
         fmt::join(unassessed, " and ")));
   }
