@@ -85,6 +85,7 @@ void RunSerialRobot(const RobotOptions& options, const std::string& command_line
                                              [&](CsvLog csv) { return MakeSerialRobotLog(robot.robot, std::move(csv)); });
   SerialRobotIdentificationOptions run_options;
   run_options.fit.half_window = options.window > 0.0 ? options.window : 0.05;
+  run_options.window_from_logs = !(options.window > 0.0);
   run_options.prior_weight = options.prior_weight;
   run_options.viscous_per_direction = options.per_direction;
   if (options.free_option != nullptr && options.free_option->count() > 0) run_options.fit.free = options.free;

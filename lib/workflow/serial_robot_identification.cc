@@ -1,5 +1,6 @@
 #include "workflow/serial_robot_identification.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -8,6 +9,7 @@
 #include "core/errors.h"
 #include "core/option_check.h"
 #include "models/serial_dynamics.h"
+#include "signal/resample.h"
 
 namespace driveid {
 
@@ -142,8 +144,20 @@ SerialRobotIdentification IdentifySerialRobot(const UrdfRobot& urdf, const std::
   SerialRobotIdentification run;
   SerialRobotFitOptions fit_options = options.fit;
   fit_options.prior_drives = robot.drives;
+  std::string window_note;
+  if (options.window_from_logs) {
+    double step = 0.0;
+    for (const SerialRobotLog& log : logs) step = std::max(step, log.time.size() > 1 ? MedianStep(log.time) : 0.0);
+    if (kSerialWindowSteps * step > fit_options.half_window) {
+      window_note = fmt::format("differentiator half window {:.3g} s: {:g} steps of the log ({:.3g} s, about {:.3g} Hz), "
+                                "as the default {:.3g} s spans fewer than 2 samples each side there (‹window› sets it)",
+                                kSerialWindowSteps * step, kSerialWindowSteps, step, 1.0 / step, fit_options.half_window);
+      fit_options.half_window = kSerialWindowSteps * step;
+    }
+  }
   run.result = FitSerialRobot(robot.robot, logs, fit_options);
   SerialRobotFitOutput& r = run.result;
+  if (!window_note.empty()) r.fit.notes.push_back(window_note);
   for (const std::string& note : robot.notes) r.fit.notes.push_back(note);
   for (const auto& j : r.joints) {
     if (j.relative_error_percent > kPoorRelativeErrorPercent) {
@@ -165,7 +179,7 @@ SerialRobotIdentification IdentifySerialRobot(const UrdfRobot& urdf, const std::
   }
   run.section.urdf = urdf_path;
   run.section.urdf_sha256 = urdf_sha256;
-  run.section.half_window = options.fit.half_window;
+  run.section.half_window = fit_options.half_window;
   for (std::size_t k = 0; k < r.base.base.size(); ++k) {
     SerialBaseEntry e;
     e.lead = r.parameter_names[r.base.base[k]];
@@ -179,7 +193,7 @@ SerialRobotIdentification IdentifySerialRobot(const UrdfRobot& urdf, const std::
   run.trace_csv = "# joint torques [N m or N]: measured and predicted by the base parameters (docs/models.md#serial-robot)\n"
                   "log,t,joint,tau_measured,tau_model\n";
   for (std::size_t l = 0; l < logs.size(); ++l) {
-    const SerialPrediction p = PredictSerialRobot(robot.robot, r.base, values, logs[l], options.fit.half_window);
+    const SerialPrediction p = PredictSerialRobot(robot.robot, r.base, values, logs[l], fit_options.half_window);
     for (std::size_t k = 0; k < p.time.size() && options.trace; ++k) {
       for (std::size_t j = 0; j < p.joints.size(); ++j) {
         run.trace_csv += fmt::format("{},{},{},{:.6g},{:.6g}\n", l + 1, p.time[k], p.joints[j].joint,

@@ -16,6 +16,11 @@
 
 namespace driveid {
 
+/// A half window chosen from the logs spans this many of their steps: the
+/// differentiator needs 2 samples on each side (signal/local_polynomial.h),
+/// also in the processing refit at half the window (fit/robot/serial_robot_fit.h).
+inline constexpr double kSerialWindowSteps = 5.0;
+
 struct SerialRobotIdentificationOptions {
   SerialRobotFitOptions fit;
   /// The URDF prior's weight in the consistent fit, relative to one std of
@@ -25,6 +30,9 @@ struct SerialRobotIdentificationOptions {
   /// viscous_per_direction), by name, or "all".
   std::vector<std::string> viscous_per_direction;
   bool trace = false;  ///< fill the trace CSV's rows
+  /// The window was not given: fit.half_window is the least, raised to
+  /// kSerialWindowSteps steps of the slowest log (a 30 Hz bag), with a note.
+  bool window_from_logs = false;
   /// Every bound on these fields (‹field› names the option); see core/option_check.h.
   bool IsValid(std::string* error) const;
 };

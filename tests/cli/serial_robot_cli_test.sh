@@ -193,4 +193,17 @@ expect 3 "arm.csv: 0 usable samples .*window.* 0.003 s spans fewer than 2 sample
   grep -q "warning: processing: the differentiator's half window halved (0.0075 s) leaves a joint without samples" short_window.err &&
   awk '/^    viscous_yaw: / { gsub(/[{},:]/, " "); exit !($5 > 0 && $5 < 1.5) }' short_window.yaml && ok ||
   fail "a window whose half leaves no rows: $(cat short_window.err; grep viscous_yaw short_window.yaml)"
+# A low-rate log at default flags (every 10th row: 20 Hz, as slow as a
+# robot's bag recorded at 30 Hz): the default window (0.05 s) spans no
+# samples there, so the window is chosen from the log (5 steps), said in a
+# note; friction still holds its truth (before: "0 usable samples").
+awk -F, 'NR == 1 || (NR - 2) % 10 == 0' arm.csv > arm20.csv
+"$bin" robot arm20.csv --urdf arm.urdf -o arm20.yaml > arm20.txt 2>&1 &&
+  grep -q "^note: differentiator half window 0.25 s: 5 steps of the log (0.05 s, about 20 Hz)" arm20.txt &&
+  ! grep -q "^warning" arm20.txt && ok || fail "a 20 Hz log at default flags: $(cat arm20.txt)"
+for pair in viscous_yaw=3 coulomb_yaw=2 viscous_elbow=1.5 coulomb_elbow=1; do
+  awk -v key="${pair%=*}" -v t="${pair#*=}" '$1 == key ":" && $2 == "{value:" { gsub(/[{},:\[\]]/, " "); held = $7 <= t && t <= $8 }
+    END { exit !held }' arm20.yaml && ok ||
+    fail "20 Hz: ${pair%=*}: $(grep "^    ${pair%=*}:" arm20.yaml) misses ${pair#*=}"
+done
 finish
