@@ -32,6 +32,14 @@ constexpr double kBindingShift = 2.0;
 void UseConsistent(SerialRobotIdentification& run) {
   FitResult& fit = run.result.fit;
   const ConsistentParameters& c = run.consistent;
+  if (!c.unknown_bodies.empty()) {
+    fit.warnings.push_back(fmt::format(
+        "physical consistency: the URDF gives {} of the bodies no mass (no <inertial>); their consistent values start "
+        "from 1 kg at the joint under a prior 100 x weaker than a URDF's: the base parameters (what the logs "
+        "determine) are fitted, but the bodies themselves are one of many that fit, not for a simulator without a "
+        "check (docs/models.md#physical-consistency)",
+        c.unknown_bodies.size()));
+  }
   if (!c.converged) {
     fit.warnings.push_back(fmt::format("physical consistency: the consistent fit did not converge ({}); the values are "
                                        "its last iterate (docs/models.md#physical-consistency)",
@@ -159,14 +167,6 @@ SerialRobotIdentification IdentifySerialRobot(const UrdfRobot& urdf, const std::
   SerialRobotFitOutput& r = run.result;
   if (!window_note.empty()) r.fit.notes.push_back(window_note);
   for (const std::string& note : robot.notes) r.fit.notes.push_back(note);
-  for (const auto& j : r.joints) {
-    if (j.relative_error_percent > kPoorRelativeErrorPercent) {
-      r.fit.warnings.push_back(fmt::format(
-          "joint {}: the model leaves {:.0f} % of its torque unexplained (relative error; docs/models.md#serial-robot): "
-          "an effect the model lacks (elasticity, a cable, a payload), a wrong URDF, or a torque column in other units",
-          j.joint, j.relative_error_percent));
-    }
-  }
   run.consistent = FitConsistentParameters(robot.robot, r, ConsistentPrior{options.prior_weight, robot.drives});
   UseConsistent(run);
   for (std::size_t j = 0; j < robot.robot.size(); ++j) {
@@ -187,13 +187,20 @@ SerialRobotIdentification IdentifySerialRobot(const UrdfRobot& urdf, const std::
     e.value = std::isnan(r.held[k]) ? run.consistent.base[k] : r.held[k];
     run.section.base.push_back(std::move(e));
   }
-  run.summary = Summary(robot.robot, run);
-  // Trace and plot: each joint's measured and predicted torque per log.
+  // Trace and plot: each joint's measured and predicted torque per log, by
+  // the consistent base parameters the file holds; the joints' statistics
+  // over every log are theirs too, so that the summary describes the file
+  // (what `validate` of the same logs reports), not the unconstrained fit.
   const std::vector<double> values = r.BaseValues();
   run.trace_csv = "# joint torques [N m or N]: measured and predicted by the base parameters (docs/models.md#serial-robot)\n"
                   "log,t,joint,tau_measured,tau_model\n";
+  std::vector<std::vector<double>> all_measured(r.joints.size()), all_predicted(r.joints.size());
   for (std::size_t l = 0; l < logs.size(); ++l) {
     const SerialPrediction p = PredictSerialRobot(robot.robot, r.base, values, logs[l], fit_options.half_window);
+    for (std::size_t j = 0; j < p.joints.size() && j < all_measured.size(); ++j) {
+      all_measured[j].insert(all_measured[j].end(), p.measured[j].begin(), p.measured[j].end());
+      all_predicted[j].insert(all_predicted[j].end(), p.predicted[j].begin(), p.predicted[j].end());
+    }
     for (std::size_t k = 0; k < p.time.size() && options.trace; ++k) {
       for (std::size_t j = 0; j < p.joints.size(); ++j) {
         run.trace_csv += fmt::format("{},{},{},{:.6g},{:.6g}\n", l + 1, p.time[k], p.joints[j].joint,
@@ -210,6 +217,20 @@ SerialRobotIdentification IdentifySerialRobot(const UrdfRobot& urdf, const std::
                              {"residual", p.time, residual, false, true}}});
     }
   }
+  for (std::size_t j = 0; j < r.joints.size(); ++j) {
+    const double weight_std = r.joints[j].weight_std;
+    r.joints[j] = CalcSerialJointStatistics(r.joints[j].joint, all_measured[j], all_predicted[j]);
+    r.joints[j].weight_std = weight_std;
+  }
+  for (const auto& j : r.joints) {
+    if (j.relative_error_percent > kPoorRelativeErrorPercent) {
+      r.fit.warnings.push_back(fmt::format(
+          "joint {}: the model leaves {:.0f} % of its torque unexplained (relative error; docs/models.md#serial-robot): "
+          "an effect the model lacks (elasticity, a cable, a payload), a wrong URDF, or a torque column in other units",
+          j.joint, j.relative_error_percent));
+    }
+  }
+  run.summary = Summary(robot.robot, run);
   return run;
 }
 

@@ -205,12 +205,20 @@ ConsistentParameters FitConsistentParameters(const SerialRobot& robot, const Ser
   const Eigen::VectorXd& estimate = targets.estimate;
   const std::vector<double> values = result.BaseValues();
 
+  // A body the URDF gives no mass is unknown, not massless: its start and
+  // weak prior kUnknownBody.
+  std::vector<InertialParameters> start(n);
+  std::vector<char> unknown(n, 0);
   double total_mass = 0.0;
-  for (const auto& b : robot.bodies) total_mass += std::max(b[0], 0.0);
+  for (std::size_t j = 0; j < n; ++j) {
+    unknown[j] = !(robot.bodies[j][0] > 0.0);
+    start[j] = unknown[j] ? kUnknownBody : robot.bodies[j];
+    total_mass += start[j][0];
+  }
   std::vector<std::array<double, kBodyBlock>> bodies(n);
   std::vector<DriveBlock> drives(n);
   for (std::size_t j = 0; j < n; ++j) {
-    bodies[j] = LogCholeskyFromInertial(robot.bodies[j]);
+    bodies[j] = LogCholeskyFromInertial(start[j]);
     drives[j] = DriveValues(prior.drives.empty() ? SerialDriveParameters{} : prior.drives[j]);
   }
   // Drives that lead a base parameter start at its estimate (>= 0 where bounded).
@@ -240,8 +248,9 @@ ConsistentParameters FitConsistentParameters(const SerialRobot& robot, const Ser
   add_data(DataCost{&targets.regroup_held, &targets.held_whiten, &targets.held_value, n});
   const double w = std::sqrt(prior.weight);
   for (std::size_t j = 0; j < n; ++j) {
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<BodyPrior, kBodyBlock, kBodyBlock>(
-                                 new BodyPrior{robot.bodies[j], PriorScale(robot.bodies[j], total_mass), w}),
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<BodyPrior, kBodyBlock, kBodyBlock>(new BodyPrior{
+                                 start[j], PriorScale(start[j], total_mass),
+                                 unknown[j] ? w * std::sqrt(kUnknownBodyPriorFactor) : w}),
                              nullptr, bodies[j].data());
     problem.AddResidualBlock(
         new ceres::AutoDiffCostFunction<DrivePrior, kDriveBlock, kDriveBlock>(
@@ -258,6 +267,9 @@ ConsistentParameters FitConsistentParameters(const SerialRobot& robot, const Ser
   ceres::Solve(options, &problem, &summary);
 
   ConsistentParameters out;
+  for (std::size_t j = 0; j < n; ++j) {
+    if (unknown[j]) out.unknown_bodies.push_back(j);
+  }
   out.converged = summary.termination_type == ceres::CONVERGENCE;
   out.iterations = static_cast<int>(summary.iterations.size());
   out.termination = summary.message;

@@ -32,7 +32,16 @@ struct ConsistentParameters {
   bool converged = false;
   int iterations = 0;
   std::string termination;  ///< the solver's reason for stopping
+  /// Joints whose body the URDF gives no mass (no <inertial>): fitted from
+  /// kUnknownBody under a prior kUnknownBodyPriorFactor as weak, not a prior
+  /// at zero (which collapsed every such body to 1e-18 kg).
+  std::vector<std::size_t> unknown_bodies;
 };
+
+/// The start and weak prior of a body the URDF gives no mass: 1 kg at the
+/// joint, inertia 0.01 kg m^2 about each axis.
+inline constexpr InertialParameters kUnknownBody = {1.0, 0.0, 0.0, 0.0, 0.01, 0.0, 0.0, 0.01, 0.0, 0.01};
+inline constexpr double kUnknownBodyPriorFactor = 1e-2;
 
 /// The prior's default weight relative to one std of the data (`robot
 /// --prior-weight`; docs/models.md#physical-consistency), declared once.

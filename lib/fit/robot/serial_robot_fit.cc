@@ -102,8 +102,10 @@ std::vector<Eigen::MatrixXd> BaseRows(const SerialRobot& robot, const BaseParame
   return rows;
 }
 
-SerialJointStatistics Statistics(const std::string& joint, const std::vector<double>& measured,
-                                 const std::vector<double>& predicted) {
+}  // namespace
+
+SerialJointStatistics CalcSerialJointStatistics(const std::string& joint, const std::vector<double>& measured,
+                                                const std::vector<double>& predicted) {
   double e2 = 0.0, t2 = 0.0, mean = 0.0;
   for (double v : measured) mean += v / static_cast<double>(measured.size());
   double d2 = 0.0;
@@ -119,8 +121,6 @@ SerialJointStatistics Statistics(const std::string& joint, const std::vector<dou
   s.relative_error_percent = t2 > 0.0 ? 100.0 * std::sqrt(e2 / t2) : 0.0;
   return s;
 }
-
-}  // namespace
 
 BaseParameters SerialBaseParameters(const SerialRobot& robot) {
   // Random motions of the coordinates (mimic joints follow their leaders).
@@ -560,6 +560,7 @@ SerialRobotFitOutput FitSerialRobot(const SerialRobot& robot, const std::vector<
     for (std::size_t l = 0; l < logs.size(); ++l) {
       for (const auto& [x, tau, known] : {std::tuple{&rows.x[l][j], &rows.tau[j][l], &rows.known[j][l]},
                                           std::tuple{&rows.dropped_x[l][j], &rows.dropped_tau[j][l], &rows.dropped_known[j][l]}}) {
+        if (x->rows() == 0) continue;  // a log without rows (an empty block)
         const Eigen::VectorXd model = *x * fitted;
         measured[j].insert(measured[j].end(), tau->begin(), tau->end());
         for (Eigen::Index k = 0; k < model.size(); ++k) predicted[j].push_back(model(k) + (*known)[static_cast<std::size_t>(k)]);
@@ -567,7 +568,7 @@ SerialRobotFitOutput FitSerialRobot(const SerialRobot& robot, const std::vector<
     }
   }
   for (std::size_t j = 0; j < n; ++j) {
-    out.joints.push_back(Statistics(joint_names[j], measured[j], predicted[j]));
+    out.joints.push_back(CalcSerialJointStatistics(joint_names[j], measured[j], predicted[j]));
     out.joints.back().weight_std = sigma[j];
   }
   return out;
@@ -588,7 +589,7 @@ SerialPrediction PredictSerialRobot(const SerialRobot& robot, const BaseParamete
       measured.push_back(log.torque[j][m.sample[k]]);
       predicted.push_back(rows[j].row(static_cast<Eigen::Index>(k)).dot(beta));
     }
-    p.joints.push_back(Statistics(names[j], measured, predicted));
+    p.joints.push_back(CalcSerialJointStatistics(names[j], measured, predicted));
     p.measured.push_back(std::move(measured));
     p.predicted.push_back(std::move(predicted));
   }

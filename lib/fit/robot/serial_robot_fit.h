@@ -86,6 +86,10 @@ SerialMotion DifferentiateSerialLog(const SerialRobot& robot, const SerialRobotL
 /// The base parameters of `robot` (its structure, on random motions).
 BaseParameters SerialBaseParameters(const SerialRobot& robot);
 
+/// A joint's RMSE, fit % and relative error of `predicted` against `measured`.
+SerialJointStatistics CalcSerialJointStatistics(const std::string& joint, const std::vector<double>& measured,
+                                                const std::vector<double>& predicted);
+
 /// Each joint's predicted torque along a log from base-parameter values
 /// (`base.base` lead columns, `values` in that order), and its statistics.
 struct SerialPrediction {
