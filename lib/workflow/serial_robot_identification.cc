@@ -221,6 +221,12 @@ SerialRobotIdentification IdentifySerialRobot(const UrdfRobot& urdf, const std::
     const double weight_std = r.joints[j].weight_std;
     r.joints[j] = CalcSerialJointStatistics(r.joints[j].joint, all_measured[j], all_predicted[j]);
     r.joints[j].weight_std = weight_std;
+    // The file's and the JSON's channel statistics likewise (one channel per joint).
+    if (j < r.fit.channels.size()) {
+      r.fit.channels[j].rmse = r.joints[j].rmse;
+      r.fit.channels[j].fit_percent = r.joints[j].fit_percent;
+      r.fit.channels[j].relative_error_percent = r.joints[j].relative_error_percent;
+    }
   }
   for (const auto& j : r.joints) {
     if (j.relative_error_percent > kPoorRelativeErrorPercent) {

@@ -209,6 +209,12 @@ for joint in yaw shoulder elbow; do
   [ -n "$summary" ] && [ "$summary" = "$validated" ] && ok || fail "$joint: the summary's fit $summary %, the file's $validated %"
 done
 awk '$1 == "shoulder" { exit !($3 > 80) }' bare.txt && ok || fail "the bare URDF's shoulder: $(grep shoulder bare.txt | head -1)"
+# The JSON and the file's fit section say the same (the channels' statistics).
+"$bin" robot arm.csv --urdf bare.urdf --json -q > bare.json 2> /dev/null
+json_fit=$(sed -n 's/.*"fit_percent":{[^}]*"shoulder":\([0-9.]*\).*/\1/p' bare.json)
+awk -v a="$json_fit" -v b="$(awk '$1 == "arm.csv:tau_shoulder" { print $4 }' bare_validate.txt)" \
+  'BEGIN { d = a - b; exit !(a != "" && d < 0.006 && d > -0.006) }' && grep -q "^    \"shoulder\": $(printf '%.3f' "$json_fit")" bare.yaml && ok ||
+  fail "the JSON's shoulder fit $json_fit %, validate's $(grep tau_shoulder bare_validate.txt)"
 # A low-rate log at default flags (every 10th row: 20 Hz, as slow as a
 # robot's bag recorded at 30 Hz): the default window (0.05 s) spans no
 # samples there, so the window is chosen from the log (5 steps), said in a
