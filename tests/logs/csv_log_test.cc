@@ -35,6 +35,24 @@ TEST_CASE("reads header, comments, CRLF and BOM") {
   CHECK(log.comments[0] == " made by hand");
 }
 
+// RFC 4180 quoting (issue 71: a robot repository's own export quotes every
+// field, and a header name holding the delimiter split into two columns).
+TEST_CASE("quoted fields: delimiters inside are text, quotes around numbers and names are dropped") {
+  const std::string text = "\"t\",\"tau_motor, Nm\", \"tau_link\" ,\"say \"\"hi\"\"\"\n"
+                           "\"0\",\"1.5\",2,\"a, b\"\n"
+                           "0.001,\"-0.5\",\"3\",x\n";
+  CsvReadOptions options;
+  options.column_map = driveid::ParseColumnMap({"tau_motor=tau_motor, Nm"});
+  const auto log = ParseCsvLog("q.csv", text, kStep, options);
+  REQUIRE(log.rows() == 2);
+  CHECK(log.column("tau_motor")[0] == 1.5);
+  CHECK(log.column("tau_motor")[1] == -0.5);
+  CHECK(log.column("tau_link")[1] == 3.0);
+  CHECK(log.column("t")[1] == 0.001);
+  // A quote left open runs to the line's end: one field "1,2", not a number.
+  CHECK_THAT(ErrorOf("t,tau_motor,tau_link\n0,\"1,2\n"), Catch::Contains("log.csv:2: column 'tau_motor': not a number"));
+}
+
 TEST_CASE("maps columns with --col") {
   CsvReadOptions options;
   options.column_map = driveid::ParseColumnMap({"tau_link=strain"});

@@ -37,7 +37,12 @@ std::string Quote(const char* begin, const char* end) {
   return shown < length ? out + fmt::format("...\" ({} bytes)", length) : out + "\"";
 }
 
-// Splits [begin, end) into trimmed fields at `delimiter` (' ' = runs of blanks).
+// Splits [begin, end) into trimmed fields at `delimiter` (' ' = runs of
+// blanks). A field that starts with a double quote runs to the closing one
+// (RFC 4180: a delimiter inside is text, "" stands for a quote) and is
+// visited without its quotes (a "" inside is passed on as it is); what
+// follows its closing quote up to the delimiter is not part of it. A line
+// end inside quotes ends the field (a row is one line).
 template <typename Visit>
 void SplitFields(const char* begin, const char* end, char delimiter, Visit visit) {
   if (delimiter == ' ') {
@@ -51,16 +56,25 @@ void SplitFields(const char* begin, const char* end, char delimiter, Visit visit
     }
     return;
   }
-  const char* field = begin;
-  for (const char* p = begin;; ++p) {
-    if (p == end || *p == delimiter) {
-      const char* b = field;
-      const char* e = p;
+  const char* p = begin;
+  for (;;) {
+    const char* start = p;
+    while (start < end && IsBlank(*start)) ++start;
+    const char* next = nullptr;  // the delimiter after the field, or end
+    if (start < end && *start == '"') {
+      const char* close = start + 1;
+      while (close < end && !(*close == '"' && !(close + 1 < end && close[1] == '"'))) close += *close == '"' ? 2 : 1;
+      next = static_cast<const char*>(std::memchr(close, delimiter, static_cast<std::size_t>(end - close)));
+      visit(start + 1, std::min(close, end));
+    } else {
+      next = static_cast<const char*>(std::memchr(start, delimiter, static_cast<std::size_t>(end - start)));
+      const char* b = start;
+      const char* e = next ? next : end;
       Trim(b, e);
       visit(b, e);
-      if (p == end) break;
-      field = p + 1;
     }
+    if (next == nullptr) break;
+    p = next + 1;
   }
 }
 
@@ -111,10 +125,6 @@ class CsvSource : public TableSource {
           double v = 0.0;
           bool range = false;
           if (!ParseNumber(fb, fe, v, range)) numeric = false;
-          if (fe - fb >= 2 && *fb == '"' && fe[-1] == '"') {
-            ++fb;
-            --fe;
-          }
           fields.emplace_back(fb, fe);
         });
         field_count_ = fields.size();
