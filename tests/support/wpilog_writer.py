@@ -207,7 +207,7 @@ def main():
             with open(prefix + test + ".csv", "w") as f:
                 f.write("t,voltage,position,velocity\n")
                 for stamp, a, b, c in rows:
-                    f.write(f"{stamp * 1e-6!r},{a!r},{b!r},{c!r}\n")
+                    f.write(f"{stamp // 1000000}.{stamp % 1000000:06d},{a!r},{b!r},{c!r}\n")  # the stamp exactly
 
 
 if __name__ == "__main__":

@@ -11,6 +11,8 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
+#include <cstdint>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -24,6 +26,31 @@
 #include "system/byte_source.h"
 
 namespace driveid {
+
+// The nearest double to `ns` nanoseconds in seconds, as a CSV's
+// "1705910000.123456789" is read: below 2^53 one division of exact operands
+// (correctly rounded); above (stamps since 1970 are about 1.7e18 ns) the
+// count converted to a double is already rounded, and dividing that rounds
+// again (one stamp in four came out one ulp off), so its decimal text is read.
+double NearestSeconds(std::int64_t ns) {
+  constexpr std::int64_t kExact = std::int64_t{1} << 53;
+  if (ns > -kExact && ns < kExact) return static_cast<double>(ns) / 1e9;
+  char text[32];
+  char* p = text;
+  std::uint64_t magnitude = ns < 0 ? 0 - static_cast<std::uint64_t>(ns) : static_cast<std::uint64_t>(ns);
+  if (ns < 0) *p++ = '-';
+  const std::uint64_t seconds = magnitude / 1000000000u, fraction = magnitude % 1000000000u;
+  p = std::to_chars(p, text + sizeof text, seconds).ptr;
+  *p++ = '.';
+  char digits[9];
+  std::uint64_t rest = fraction;
+  for (int i = 8; i >= 0; --i, rest /= 10) digits[i] = static_cast<char>('0' + rest % 10);
+  p = std::copy(digits, digits + 9, p);
+  double value = 0.0;
+  std::from_chars(text, p, value);
+  return value;
+}
+
 namespace {
 
 constexpr const char* kJointState = "sensor_msgs/msg/JointState";
@@ -68,16 +95,15 @@ std::vector<std::size_t> RowOrder(const std::vector<std::int64_t>& time, bool re
   return order;
 }
 
-// `values` in `order` (freed after; `order` empty: as they are): a column.
-// Times are divided, not multiplied by 1e-9: the nearest double to the
-// time, as a CSV's "0.001" is read.
+// `values` in `order` (freed after; `order` empty: as they are): a column
+// of times in seconds (NearestSeconds).
 std::vector<double> Reordered(std::vector<std::int64_t>& values, const std::vector<std::size_t>& order) {
   std::vector<double> out;
   out.reserve(values.size());
   if (order.empty()) {
-    for (const std::int64_t v : values) out.push_back(static_cast<double>(v) / 1e9);
+    for (const std::int64_t v : values) out.push_back(NearestSeconds(v));
   } else {
-    for (const std::size_t k : order) out.push_back(static_cast<double>(values[k]) / 1e9);
+    for (const std::size_t k : order) out.push_back(NearestSeconds(values[k]));
   }
   std::vector<std::int64_t>().swap(values);
   return out;

@@ -5,6 +5,7 @@
 // topics. Each container registers itself through BagLogFormat.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -30,6 +31,10 @@ struct BagContainer {
 /// The bag's JointState topic (the one of LogSelection::topic, or the only
 /// one), or with catalog its topics then that topic when one can be chosen.
 /// Read from LogSelection::stream_file when given, else from `text`.
+/// The nearest double to `ns` nanoseconds in seconds (a bag's stamps read
+/// as a CSV's decimal text of them is: bit-equal).
+double NearestSeconds(std::int64_t ns);
+
 std::vector<std::unique_ptr<TableSource>> OpenRosBagSources(const std::string& path, const std::string& text,
                                                             const LogSelection& format, const BagContainer& container);
 

@@ -186,7 +186,7 @@ std::vector<std::vector<double>> TestColumns(const RoutineData& data, const Run&
       ++outside;
       continue;
     }
-    if (!columns[0].empty() && t * 1e-6 <= columns[0].back()) {
+    if (!columns[0].empty() && t / 1e6 <= columns[0].back()) {
       ++repeated;
       continue;
     }
@@ -197,7 +197,7 @@ std::vector<std::vector<double>> TestColumns(const RoutineData& data, const Run&
       ++unbracketed;
       continue;
     }
-    columns[0].push_back(t * 1e-6);
+    columns[0].push_back(t / 1e6);  // the nearest double to the time (t < 2^53 exactly), as a CSV's text is read
     columns[1].push_back(data.voltage.value[k]);
     columns[2].push_back(position);
     columns[3].push_back(velocity);
