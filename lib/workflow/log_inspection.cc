@@ -97,6 +97,17 @@ InspectedLog InspectLog(const TableSource& source, const LogInputOptions& option
   return out;
 }
 
+namespace {
+
+// A time for the listing: to the microsecond where it is large (a bag's
+// seconds since 1970, which {:.6g} showed as "1.70591e+09 .. 1.70591e+09"),
+// else in 6 significant digits.
+std::string TimeText(double t) {
+  return std::abs(t) >= 1e5 ? fmt::format("{:.6f}", t) : fmt::format("{:.6g}", t);
+}
+
+}  // namespace
+
 std::string FormatLogInspection(const InspectedLog& log) {
   std::string out = fmt::format("{}{} ({})\n", log.path, log.segment.empty() ? "" : " [" + log.segment + "]", log.format);
   // What the format says of its catalog (a WPILog's entries, a bag's topics) or variables (logs/log_format.h).
@@ -104,8 +115,8 @@ std::string FormatLogInspection(const InspectedLog& log) {
   const LogFormatCatalog listing = format != nullptr ? format->catalog : LogFormatCatalog{};
   const bool catalog = !listing.summary.empty() && log.segment.empty();
   if (log.has_time) {
-    out += fmt::format("  {} samples, t = {:.6g} .. {:.6g} s ({:.6g} s), rate {:.6g} Hz, jitter {:.3g} % of the step\n",
-                       log.rows, log.start, log.end, log.end - log.start, log.rate, 100.0 * log.jitter);
+    out += fmt::format("  {} samples, t = {} .. {} s ({:.6g} s), rate {:.6g} Hz, jitter {:.3g} % of the step\n",
+                       log.rows, TimeText(log.start), TimeText(log.end), log.end - log.start, log.rate, 100.0 * log.jitter);
   } else if (catalog) {
     out += "  " + listing.summary + "\n";
   } else {

@@ -65,3 +65,11 @@ TEST_CASE("inspect: a column problem is not called a missing time base") {
   CHECK(text.find("not readable as a fit would read it: ") != std::string::npos);
   CHECK(text.find("angle") != std::string::npos);
 }
+
+TEST_CASE("inspect: times since 1970 (a bag's) to the microsecond, not in 6 digits") {
+  const std::string csv = "t,q,tau\n1705910000.125,1,2\n1705910000.625,2,3\n1705910001.125,3,4\n";
+  const auto source = OpenCsvSource("epoch.csv", csv, {});
+  const std::string text = FormatLogInspection(InspectLog(*source, LogInputOptions{}));
+  INFO(text);
+  CHECK(text.find("t = 1705910000.125000 .. 1705910001.125000 s (1 s)") != std::string::npos);
+}
