@@ -49,6 +49,9 @@ grep -q "rel. err %" summary.txt && grep -q "^shoulder " summary.txt && ok || fa
   fail "robot --free drives: $(cat err.txt)"
 grep -q "held (the URDF's)" drives.txt && grep -q "^note: held at the prior" drives.txt && ok ||
   fail "the held base parameters in the summary: $(cat drives.txt)"
+# The armatures that ride in a held body's base parameter are named (issue 71: held silently).
+grep -q "^note: held with a body's inertia, not fitted: armature_yaw, armature_shoulder" drives.txt && ok ||
+  fail "the armatures held with a body: $(grep -i armature drives.txt | head -3)"
 [ "$(grep -c "^    [A-Za-z_]*: {value" drives.yaml)" -lt "$(grep -c "^    [A-Za-z_]*: {value" arm.yaml)" ] && ok ||
   fail "fewer estimates with --free drives"
 for pair in viscous_shoulder:4 coulomb_elbow:1; do

@@ -550,6 +550,25 @@ SerialRobotFitOutput FitSerialRobot(const SerialRobot& robot, const std::vector<
     out.fit.notes.push_back(fmt::format("held at the prior (the URDF's inertials and <dynamics>), not estimated: {}; "
                                         "the intervals take them as exact",
                                         fmt::join(held, ", ")));
+    // A drive term inside a held base parameter led by a body's inertia
+    // (a base joint's armature beside its link's Izz) is held with it: named,
+    // as `--free drives` does not fit it.
+    std::vector<std::string> held_drives;
+    for (std::size_t k = 0; k < out.held.size(); ++k) {
+      if (std::isnan(out.held[k])) continue;
+      for (const auto& [column, coefficient] : out.base.combination[k]) {
+        if (column % kSerialColumnsPerJoint >= kInertialParameters && column != out.base.base[k]) {
+          held_drives.push_back(out.parameter_names[column]);
+        }
+      }
+    }
+    if (!held_drives.empty()) {
+      out.fit.notes.push_back(fmt::format(
+          "held with a body's inertia, not fitted: {} (each lies in a base parameter that a link's inertia leads, "
+          "which the free set leaves out; the logs determine only the sum: free that base parameter, e.g. ‹free› "
+          "drives,bodies, to fit it)",
+          fmt::join(held_drives, ", ")));
+    }
   }
   // Each joint's statistics over every sample, standstill included: what
   // `validate` reports for the same log.
