@@ -176,7 +176,9 @@ TEST_CASE("sampled gain std matches a Monte Carlo of correlated Kv, Ka") {
 // correlated, and the measurement delay of 20 ms status frames compensated; the sampled 95 % interval of kp around each estimate holds the
 // kp of the true (Kv, Ka) near 95 % of the time (value +- 1.96 first-order
 // std, central differences, is printed beside it for comparison).
-TEST_CASE("sampled gain intervals cover where Ka is poorly determined") {
+// 200 x 512 Riccati solutions: a ctest of its own (feedback_gains_coverage_test,
+// label slow: 4 s in Release, 100 s under the sanitizers).
+TEST_CASE("sampled gain intervals cover where Ka is poorly determined", "[.][coverage]") {
   const double kv = 0.125, ka = 0.0324, kv_rel = 0.03, ka_rel = 0.25, rho = -0.5;
   GainRequest request;  // velocity loop, SysId's GUI weights for a 12 V flywheel, 20 ms CAN status frames
   request.lqr.max_velocity_error = (12.0 - 0.075) / (4.0 * kv);
