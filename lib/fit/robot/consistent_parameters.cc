@@ -186,6 +186,25 @@ Targets MakeTargets(const SerialRobotFitOutput& result) {
   return t;
 }
 
+// Each body's start and prior: the URDF's; a body the URDF gives no mass is
+// unknown, not massless: kUnknownBody, its prior weaker (kUnknownBodyPriorFactor).
+struct BodyStarts {
+  std::vector<InertialParameters> start;
+  std::vector<char> unknown;
+  std::vector<std::size_t> unknown_joints;
+  double total_mass = 0.0;
+};
+BodyStarts MakeBodyStarts(const SerialRobot& robot) {
+  BodyStarts out;
+  for (const InertialParameters& body : robot.bodies) {
+    out.unknown.push_back(!(body[0] > 0.0));
+    if (out.unknown.back()) out.unknown_joints.push_back(out.start.size());
+    out.start.push_back(out.unknown.back() ? kUnknownBody : body);
+    out.total_mass += out.start.back()[0];
+  }
+  return out;
+}
+
 }  // namespace
 
 ConsistentParameters FitConsistentParameters(const SerialRobot& robot, const SerialRobotFitOutput& result,
@@ -205,16 +224,10 @@ ConsistentParameters FitConsistentParameters(const SerialRobot& robot, const Ser
   const Eigen::VectorXd& estimate = targets.estimate;
   const std::vector<double> values = result.BaseValues();
 
-  // A body the URDF gives no mass is unknown, not massless: its start and
-  // weak prior kUnknownBody.
-  std::vector<InertialParameters> start(n);
-  std::vector<char> unknown(n, 0);
-  double total_mass = 0.0;
-  for (std::size_t j = 0; j < n; ++j) {
-    unknown[j] = !(robot.bodies[j][0] > 0.0);
-    start[j] = unknown[j] ? kUnknownBody : robot.bodies[j];
-    total_mass += start[j][0];
-  }
+  const BodyStarts starts = MakeBodyStarts(robot);
+  const std::vector<InertialParameters>& start = starts.start;
+  const std::vector<char>& unknown = starts.unknown;
+  const double total_mass = starts.total_mass;
   std::vector<std::array<double, kBodyBlock>> bodies(n);
   std::vector<DriveBlock> drives(n);
   for (std::size_t j = 0; j < n; ++j) {
@@ -267,9 +280,7 @@ ConsistentParameters FitConsistentParameters(const SerialRobot& robot, const Ser
   ceres::Solve(options, &problem, &summary);
 
   ConsistentParameters out;
-  for (std::size_t j = 0; j < n; ++j) {
-    if (unknown[j]) out.unknown_bodies.push_back(j);
-  }
+  out.unknown_bodies = starts.unknown_joints;
   out.converged = summary.termination_type == ceres::CONVERGENCE;
   out.iterations = static_cast<int>(summary.iterations.size());
   out.termination = summary.message;

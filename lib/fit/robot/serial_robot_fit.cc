@@ -473,6 +473,56 @@ Selection SelectFree(const SerialRobot& robot, const SerialRobotFitOptions& opti
                             e.parameters());
 }
 
+// The logs leave too few samples: InputError with the advice that is right
+// (a window of at least 2.5 steps where the window, not the logs, is short).
+[[noreturn]] void RefuseTooFewSamples(const std::vector<SerialRobotLog>& logs, const SerialRobotFitOptions& options,
+                                      std::size_t samples, std::size_t r) {
+  // The differentiator needs 2 samples on each side of its centre
+  // (signal/local_polynomial.h): a half window shorter than 2 steps of the
+  // log leaves no sample, whatever its length.
+  double step = 0.0;
+  for (const SerialRobotLog& log : logs) step = std::max(step, log.time.size() > 1 ? MedianStep(log.time) : 0.0);
+  const bool short_window = step > 0.0 && options.half_window < 2.0 * step;
+  throw InputError(fmt::format(
+      "{}: {} usable samples for {} base parameters: {}",
+      logs.empty() ? std::string("the logs") : logs.front().path, samples, r,
+      short_window ? fmt::format("the differentiator's half window ‹window› {:.3g} s spans fewer than 2 samples on "
+                                 "each side at this log's step of {:.3g} s; give at least {:.2g} s",
+                                 options.half_window, step, 2.5 * step)
+                   : std::string("log more of the trajectory, or a shorter ‹window›")));
+}
+
+// Notes of the base parameters held at the prior, and of the drive terms
+// held with a link's inertia inside them.
+void NoteHeldParameters(SerialRobotFitOutput& out) {
+  std::vector<std::string> held;
+  for (std::size_t k = 0; k < out.held.size(); ++k) {
+    if (!std::isnan(out.held[k])) held.push_back(out.parameter_names[out.base.base[k]]);
+  }
+  out.fit.notes.push_back(fmt::format("held at the prior (the URDF's inertials and <dynamics>), not estimated: {}; "
+                                      "the intervals take them as exact",
+                                      fmt::join(held, ", ")));
+  // A drive term inside a held base parameter led by a body's inertia
+  // (a base joint's armature beside its link's Izz) is held with it: named,
+  // as `--free drives` does not fit it.
+  std::vector<std::string> held_drives;
+  for (std::size_t k = 0; k < out.held.size(); ++k) {
+    if (std::isnan(out.held[k])) continue;
+    for (const auto& [column, coefficient] : out.base.combination[k]) {
+      if (column % kSerialColumnsPerJoint >= kInertialParameters && column != out.base.base[k]) {
+        held_drives.push_back(out.parameter_names[column]);
+      }
+    }
+  }
+  if (!held_drives.empty()) {
+    out.fit.notes.push_back(fmt::format(
+        "held with a body's inertia, not fitted: {} (each lies in a base parameter that a link's inertia leads, "
+        "which the free set leaves out; the logs determine only the sum: free that base parameter, e.g. ‹free› "
+        "drives,bodies, to fit it)",
+        fmt::join(held_drives, ", ")));
+  }
+}
+
 }  // namespace
 
 SerialRobotFitOutput FitSerialRobot(const SerialRobot& robot, const std::vector<SerialRobotLog>& logs,
@@ -492,21 +542,7 @@ SerialRobotFitOutput FitSerialRobot(const SerialRobot& robot, const std::vector<
   const std::size_t r = selection.free.size();
   const Rows rows = BuildRows(robot, out.base, selection, logs, options.half_window);
   out.samples = rows.samples;
-  if (out.samples * n < 2 * r) {
-    // The differentiator needs 2 samples on each side of its centre
-    // (signal/local_polynomial.h): a half window shorter than 2 steps of the
-    // log leaves no sample, whatever its length.
-    double step = 0.0;
-    for (const SerialRobotLog& log : logs) step = std::max(step, log.time.size() > 1 ? MedianStep(log.time) : 0.0);
-    const bool short_window = step > 0.0 && options.half_window < 2.0 * step;
-    throw InputError(fmt::format(
-        "{}: {} usable samples for {} base parameters: {}",
-        logs.empty() ? std::string("the logs") : logs.front().path, out.samples, r,
-        short_window ? fmt::format("the differentiator's half window ‹window› {:.3g} s spans fewer than 2 samples on "
-                                   "each side at this log's step of {:.3g} s; give at least {:.2g} s",
-                                   options.half_window, step, 2.5 * step)
-                     : std::string("log more of the trajectory, or a shorter ‹window›")));
-  }
+  if (out.samples * n < 2 * r) RefuseTooFewSamples(logs, options, out.samples, r);
   const std::vector<double> sigma = JointNoise(rows, r);
   const Eigen::VectorXd first = Solve(rows, r, sigma);
   std::vector<std::string> names;
@@ -542,34 +578,7 @@ SerialRobotFitOutput FitSerialRobot(const SerialRobot& robot, const std::vector<
     out.condition_number = out.fit.singular_values.front() / out.fit.singular_values.back();
   }
   AddProcessingUncertainty(robot, out.base, selection, rows, logs, options, sigma, out.fit);
-  if (!selection.all()) {
-    std::vector<std::string> held;
-    for (std::size_t k = 0; k < out.held.size(); ++k) {
-      if (!std::isnan(out.held[k])) held.push_back(out.parameter_names[out.base.base[k]]);
-    }
-    out.fit.notes.push_back(fmt::format("held at the prior (the URDF's inertials and <dynamics>), not estimated: {}; "
-                                        "the intervals take them as exact",
-                                        fmt::join(held, ", ")));
-    // A drive term inside a held base parameter led by a body's inertia
-    // (a base joint's armature beside its link's Izz) is held with it: named,
-    // as `--free drives` does not fit it.
-    std::vector<std::string> held_drives;
-    for (std::size_t k = 0; k < out.held.size(); ++k) {
-      if (std::isnan(out.held[k])) continue;
-      for (const auto& [column, coefficient] : out.base.combination[k]) {
-        if (column % kSerialColumnsPerJoint >= kInertialParameters && column != out.base.base[k]) {
-          held_drives.push_back(out.parameter_names[column]);
-        }
-      }
-    }
-    if (!held_drives.empty()) {
-      out.fit.notes.push_back(fmt::format(
-          "held with a body's inertia, not fitted: {} (each lies in a base parameter that a link's inertia leads, "
-          "which the free set leaves out; the logs determine only the sum: free that base parameter, e.g. ‹free› "
-          "drives,bodies, to fit it)",
-          fmt::join(held_drives, ", ")));
-    }
-  }
+  if (!selection.all()) NoteHeldParameters(out);
   // Each joint's statistics over every sample, standstill included: what
   // `validate` reports for the same log.
   Eigen::VectorXd fitted(static_cast<Eigen::Index>(r));
