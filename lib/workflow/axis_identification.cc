@@ -16,6 +16,7 @@
 #include "fit/core/adequacy.h"
 #include "fit/axis/axis_oe_fit.h"
 #include "fit/validation/validation.h"
+#include "logs/column_expression.h"
 #include "models/axis_term.h"
 #include "models/feedforward.h"
 #include "workflow/axis_feedforward.h"
@@ -379,12 +380,8 @@ void AddSimulatedRates(const std::vector<AxisLog>& logs, const AxisIdentificatio
     if (simulated[i].size() != log.time.size()) continue;
     PlotSeries series{log.path, log.time, log.rate, simulated[i]};
     if (series.measured.empty()) {
-      const std::size_t n = log.time.size();
-      series.measured.resize(n);
-      for (std::size_t k = 0; k < n; ++k) {
-        const std::size_t a = k > 0 ? k - 1 : k, b = k + 1 < n ? k + 1 : k;
-        series.measured[k] = (log.position[b] - log.position[a]) / (log.time[b] - log.time[a]);
-      }
+      series.measured = log.position;
+      ApplyColumnOperation("derivative", log.time, series.measured);  // central differences, one-sided at the ends
     }
     run.rate_series.push_back(std::move(series));
   }

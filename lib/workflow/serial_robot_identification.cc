@@ -9,7 +9,6 @@
 #include "core/errors.h"
 #include "core/option_check.h"
 #include "models/serial_dynamics.h"
-#include "signal/resample.h"
 
 namespace driveid {
 
@@ -154,8 +153,7 @@ SerialRobotIdentification IdentifySerialRobot(const UrdfRobot& urdf, const std::
   fit_options.prior_drives = robot.drives;
   std::string window_note;
   if (options.window_from_logs) {
-    double step = 0.0;
-    for (const SerialRobotLog& log : logs) step = std::max(step, log.time.size() > 1 ? MedianStep(log.time) : 0.0);
+    const double step = SlowestSerialLogStep(logs);
     if (kSerialWindowSteps * step > fit_options.half_window) {
       window_note = fmt::format("differentiator half window {:.3g} s: {:g} steps of the log ({:.3g} s, about {:.3g} Hz), "
                                 "as the default {:.3g} s spans fewer than 2 samples each side there (‹window› sets it)",

@@ -104,6 +104,12 @@ std::vector<Eigen::MatrixXd> BaseRows(const SerialRobot& robot, const BaseParame
 
 }  // namespace
 
+double SlowestSerialLogStep(const std::vector<SerialRobotLog>& logs) {
+  double step = 0.0;
+  for (const SerialRobotLog& log : logs) step = std::max(step, log.time.size() > 1 ? MedianStep(log.time) : 0.0);
+  return step;
+}
+
 SerialJointStatistics CalcSerialJointStatistics(const std::string& joint, const std::vector<double>& measured,
                                                 const std::vector<double>& predicted) {
   double e2 = 0.0, t2 = 0.0, mean = 0.0;
@@ -480,8 +486,7 @@ Selection SelectFree(const SerialRobot& robot, const SerialRobotFitOptions& opti
   // The differentiator needs 2 samples on each side of its centre
   // (signal/local_polynomial.h): a half window shorter than 2 steps of the
   // log leaves no sample, whatever its length.
-  double step = 0.0;
-  for (const SerialRobotLog& log : logs) step = std::max(step, log.time.size() > 1 ? MedianStep(log.time) : 0.0);
+  const double step = SlowestSerialLogStep(logs);
   const bool short_window = step > 0.0 && options.half_window < 2.0 * step;
   throw InputError(fmt::format(
       "{}: {} usable samples for {} base parameters: {}",

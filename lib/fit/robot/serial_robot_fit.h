@@ -86,6 +86,10 @@ SerialMotion DifferentiateSerialLog(const SerialRobot& robot, const SerialRobotL
 /// The base parameters of `robot` (its structure, on random motions).
 BaseParameters SerialBaseParameters(const SerialRobot& robot);
 
+/// The largest of the logs' median sample steps [s] (0 for logs of one
+/// sample): the slowest log, which a differentiator's window must span.
+double SlowestSerialLogStep(const std::vector<SerialRobotLog>& logs);
+
 /// A joint's RMSE, fit % and relative error of `predicted` against `measured`.
 SerialJointStatistics CalcSerialJointStatistics(const std::string& joint, const std::vector<double>& measured,
                                                 const std::vector<double>& predicted);

@@ -28,13 +28,13 @@ struct BagContainer {
   std::function<std::vector<std::string>(ByteSource& bytes)> file_notes;
 };
 
-/// The bag's JointState topic (the one of LogSelection::topic, or the only
-/// one), or with catalog its topics then that topic when one can be chosen.
-/// Read from LogSelection::stream_file when given, else from `text`.
 /// The nearest double to `ns` nanoseconds in seconds (a bag's stamps read
 /// as a CSV's decimal text of them is: bit-equal).
 double NearestSeconds(std::int64_t ns);
 
+/// The bag's JointState topic (the one of LogSelection::topic, or the only
+/// one), or with catalog its topics then that topic when one can be chosen.
+/// Read from LogSelection::stream_file when given, else from `text`.
 std::vector<std::unique_ptr<TableSource>> OpenRosBagSources(const std::string& path, const std::string& text,
                                                             const LogSelection& format, const BagContainer& container);
 
